@@ -1,0 +1,73 @@
+#include "reference/geometry.h"
+
+#include <cmath>
+#include <sstream>
+
+namespace rockbench::reference {
+namespace {
+
+BlockProps MakeBlock(double B, double H, double m) {
+  BlockProps p;
+  p.b = 0.5 * B;
+  p.h = 0.5 * H;
+  p.m = m;
+  p.r = std::hypot(p.b, p.h);
+  p.theta_c = std::atan2(p.b, p.h);
+  p.I_G = m * (p.b * p.b + p.h * p.h) / 3.0;
+  p.I_O = p.I_G + m * p.r * p.r;
+  return p;
+}
+
+}  // namespace
+
+Geometry MakeGeometry(double B1, double H1, double m1, double B2, double H2, double m2,
+                      double g) {
+  Geometry geo;
+  geo.g = g;
+  geo.block1 = MakeBlock(B1, H1, m1);
+  geo.two_blocks = B2 > 0.0;
+  const BlockProps& p1 = geo.block1;
+  if (!geo.two_blocks) {
+    geo.M = p1.m;
+    geo.h_stack = p1.h;
+    geo.R = p1.r;
+    geo.theta_c = p1.theta_c;
+    geo.I_O = p1.I_O;
+    return geo;
+  }
+  geo.block2 = MakeBlock(B2, H2, m2);
+  const BlockProps& p2 = geo.block2;
+  geo.xi = p1.b - p2.b;
+  geo.xi_p = p1.b + p2.b;
+  geo.l = std::hypot(geo.xi, 2.0 * p1.h);
+  geo.beta = std::atan2(geo.xi, 2.0 * p1.h);
+  geo.l_p = std::hypot(geo.xi_p, 2.0 * p1.h);
+  geo.beta_p = std::atan2(geo.xi_p, 2.0 * p1.h);
+  geo.M = p1.m + p2.m;
+  const double y2 = 2.0 * p1.h + p2.h;  // height of block 2's mass centre at rest
+  geo.h_stack = (p1.m * p1.h + p2.m * y2) / geo.M;
+  geo.R = std::hypot(p1.b, geo.h_stack);
+  geo.theta_c = std::atan2(p1.b, geo.h_stack);
+  geo.I_O = p1.I_O + p2.I_G + p2.m * (p1.b * p1.b + y2 * y2);
+  geo.d = std::hypot(y2, p1.b);
+  geo.omega_d = std::atan2(y2, p1.b);
+  return geo;
+}
+
+Geometry MakeGeometry(const Scene& scene) {
+  const double B2 = scene.block2 ? scene.block2->width_m : 0.0;
+  const double H2 = scene.block2 ? scene.block2->height_m : 0.0;
+  const double m2 = scene.block2 ? scene.block2->mass_kg : 0.0;
+  if (scene.block2 && B2 > scene.block1.width_m) {
+    std::ostringstream os;
+    os << scene.path.string() << ": block2.width (" << B2 << " m) exceeds block1.width ("
+       << scene.block1.width_m
+       << " m): block 2 would pivot outside block 1's top face, which the thesis's model "
+          "does not describe";
+    throw SceneError(os.str());
+  }
+  return MakeGeometry(scene.block1.width_m, scene.block1.height_m, scene.block1.mass_kg, B2, H2,
+                      m2, scene.run.gravity_mps2);
+}
+
+}  // namespace rockbench::reference

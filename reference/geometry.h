@@ -1,0 +1,42 @@
+#pragma once
+/// Geometry and mass properties of two stacked rectangular blocks (Roussis 1999, 4.2 and
+/// docs/model-notes). Block 2 sits centred on block 1.
+#include "scene/scene.h"
+
+namespace rockbench::reference {
+
+/// Properties of one rectangular block. Lengths in m, masses in kg, inertias in kg m^2.
+struct BlockProps {
+  double b = 0.0;      ///< half width, m
+  double h = 0.0;      ///< half height, m
+  double m = 0.0;      ///< mass, kg
+  double r = 0.0;      ///< corner to mass centre, sqrt(b^2 + h^2), m
+  double theta_c = 0.0;  ///< slenderness angle atan(b / h), rad
+  double I_G = 0.0;    ///< central moment of inertia m (b^2 + h^2) / 3, kg m^2
+  double I_O = 0.0;    ///< about a base corner, (4/3) m r^2, kg m^2
+};
+
+struct Geometry {
+  bool two_blocks = true;
+  double g = 9.81;     ///< gravity, m/s^2
+  BlockProps block1;
+  BlockProps block2;   ///< zero when there is no block 2
+  /// Block 2's pivots seen from block 1's pivot: xi = b1 - b2 (same side), xi' = b1 + b2.
+  double xi = 0.0, xi_p = 0.0;
+  /// l = sqrt(xi^2 + 4 h1^2), beta = atan(xi / (2 h1)); primes for the opposite side.
+  double l = 0.0, beta = 0.0, l_p = 0.0, beta_p = 0.0;
+  /// The stack (mode 3): total mass, mass-centre height, corner distance, slenderness, inertia
+  /// about a base corner of block 1. For one block these are block 1's.
+  double M = 0.0, h_stack = 0.0, R = 0.0, theta_c = 0.0, I_O = 0.0;
+  /// d = sqrt((2 h1 + h2)^2 + b1^2), omega = atan((2 h1 + h2) / b1) (transition criteria).
+  double d = 0.0, omega_d = 0.0;
+};
+
+/// Builds the geometry of a scene. Throws SceneError when block 2 is wider than block 1 (its
+/// pivots would not be on block 1: outside the thesis's model).
+Geometry MakeGeometry(const Scene& scene);
+/// Builds the geometry from full widths and heights (m) and masses (kg); B2 = 0: one block.
+Geometry MakeGeometry(double B1, double H1, double m1, double B2, double H2, double m2,
+                      double g = 9.81);
+
+}  // namespace rockbench::reference

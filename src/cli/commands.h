@@ -1,0 +1,21 @@
+#pragma once
+/// CLI subcommands. Each file registers one subcommand on the CLI11 app; main.cc calls them all.
+#include <CLI/CLI.hpp>
+
+namespace rockbench::cli {
+
+/// `rockbench run SCENE --out DIR [--engine NAME] [--set key=value ...]` (cmd_run.cc)
+void RegisterRun(CLI::App& app);
+/// `rockbench compare SCENE --out DIR [--engines bullet]` (cmd_compare.cc)
+void RegisterCompare(CLI::App& app);
+/// `rockbench sweep SCENE --out DIR` (cmd_sweep.cc)
+void RegisterSweep(CLI::App& app);
+/// `rockbench render SCENE_OR_RUN_DIR --out DIR ...` (cmd_render.cc)
+void RegisterRender(CLI::App& app);
+/// `rockbench bench ...` (cmd_bench.cc)
+void RegisterBench(CLI::App& app);
+
+/// Exit code for bad input (scene, record, option): 2. Physics outcomes exit 0.
+inline constexpr int kExitBadInput = 2;
+
+}  // namespace rockbench::cli

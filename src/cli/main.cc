@@ -1,0 +1,24 @@
+// rockbench: cross-validation harness for rocking rigid blocks.
+#include <cstdio>
+#include <exception>
+
+#include "cli/commands.h"
+
+int main(int argc, char** argv) {
+  CLI::App app{"rockbench: the two-block rocking model (Roussis 1999) beside physics engines"};
+  app.require_subcommand(1);
+  rockbench::cli::RegisterRun(app);
+  rockbench::cli::RegisterCompare(app);
+  rockbench::cli::RegisterSweep(app);
+  rockbench::cli::RegisterRender(app);
+  rockbench::cli::RegisterBench(app);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "rockbench: error: %s\n", e.what());
+    return rockbench::cli::kExitBadInput;
+  }
+  return 0;
+}

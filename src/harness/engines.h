@@ -1,0 +1,37 @@
+#pragma once
+/// Runs an engine on a scene and writes its files: the one place the harness knows every engine.
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "scene/ground_motion.h"
+#include "scene/history.h"
+#include "scene/scene.h"
+
+namespace rockbench {
+
+/// What an engine run produced.
+struct EngineRun {
+  std::string engine;        ///< "reference", "bullet", ...
+  History history;
+  nlohmann::json summary;    ///< the engine's part of summary.json
+  double wall_s = 0.0;       ///< wall-clock time of the simulation alone, s
+  std::string one_line;      ///< one-line human summary
+};
+
+/// Engine names this build has ("reference" always; "bullet" when built with Bullet).
+std::vector<std::string> AvailableEngines();
+
+/// Runs engine `name`. Throws SceneError for an unknown engine or impossible settings.
+EngineRun RunEngine(const std::string& name, const Scene& scene, const GroundMotion& motion);
+
+/// Writes DIR/<engine>/history.csv and DIR/<engine>/events.csv atomically.
+void WriteEngineFiles(const EngineRun& run, const std::filesystem::path& out_dir);
+
+/// summary.json's base part: {"horizontal": {...}, "vertical": {...}} (absent components omitted).
+nlohmann::json BaseMotionJson(const GroundMotion& motion);
+
+}  // namespace rockbench
