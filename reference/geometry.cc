@@ -20,8 +20,7 @@ BlockProps MakeBlock(double B, double H, double m) {
 
 }  // namespace
 
-Geometry MakeGeometry(double B1, double H1, double m1, double B2, double H2, double m2,
-                      double g) {
+Geometry MakeGeometry(double B1, double H1, double m1, double B2, double H2, double m2, double g) {
   Geometry geo;
   geo.g = g;
   geo.block1 = MakeBlock(B1, H1, m1);
@@ -66,8 +65,8 @@ Geometry MakeGeometry(const Scene& scene) {
           "does not describe";
     throw SceneError(os.str());
   }
-  return MakeGeometry(scene.block1.width_m, scene.block1.height_m, scene.block1.mass_kg, B2, H2,
-                      m2, scene.run.gravity_mps2);
+  return MakeGeometry(scene.block1.width_m, scene.block1.height_m, scene.block1.mass_kg, B2, H2, m2,
+                      scene.run.gravity_mps2);
 }
 
 }  // namespace rockbench::reference

@@ -7,20 +7,20 @@ namespace rockbench::reference {
 
 /// Properties of one rectangular block. Lengths in m, masses in kg, inertias in kg m^2.
 struct BlockProps {
-  double b = 0.0;      ///< half width, m
-  double h = 0.0;      ///< half height, m
-  double m = 0.0;      ///< mass, kg
-  double r = 0.0;      ///< corner to mass centre, sqrt(b^2 + h^2), m
+  double b = 0.0;        ///< half width, m
+  double h = 0.0;        ///< half height, m
+  double m = 0.0;        ///< mass, kg
+  double r = 0.0;        ///< corner to mass centre, sqrt(b^2 + h^2), m
   double theta_c = 0.0;  ///< slenderness angle atan(b / h), rad
-  double I_G = 0.0;    ///< central moment of inertia m (b^2 + h^2) / 3, kg m^2
-  double I_O = 0.0;    ///< about a base corner, (4/3) m r^2, kg m^2
+  double I_G = 0.0;      ///< central moment of inertia m (b^2 + h^2) / 3, kg m^2
+  double I_O = 0.0;      ///< about a base corner, (4/3) m r^2, kg m^2
 };
 
 struct Geometry {
   bool two_blocks = true;
-  double g = 9.81;     ///< gravity, m/s^2
+  double g = 9.81;  ///< gravity, m/s^2
   BlockProps block1;
-  BlockProps block2;   ///< zero when there is no block 2
+  BlockProps block2;  ///< zero when there is no block 2
   /// Block 2's pivots seen from block 1's pivot: xi = b1 - b2 (same side), xi' = b1 + b2.
   double xi = 0.0, xi_p = 0.0;
   /// l = sqrt(xi^2 + 4 h1^2), beta = atan(xi / (2 h1)); primes for the opposite side.

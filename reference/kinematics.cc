@@ -5,7 +5,9 @@
 namespace rockbench::reference {
 namespace {
 
-double SideSign(Contact c) { return c == Contact::kLeft ? -1.0 : 1.0; }
+double SideSign(Contact c) {
+  return c == Contact::kLeft ? -1.0 : 1.0;
+}
 
 // Rotation by CCW angle phi.
 Vec2 Rotate(double phi, Vec2 v) {
@@ -38,15 +40,24 @@ Points Place(const Geometry& geo, Contacts c, const State& s) {
 
 Contacts ContactsOf(Mode mode) {
   switch (mode) {
-    case Mode::kRest: return {Contact::kFace, Contact::kFace};
-    case Mode::k1a: return {Contact::kRight, Contact::kRight};
-    case Mode::k1b: return {Contact::kLeft, Contact::kLeft};
-    case Mode::k2a: return {Contact::kRight, Contact::kLeft};
-    case Mode::k2b: return {Contact::kLeft, Contact::kRight};
-    case Mode::k3a: return {Contact::kRight, Contact::kFace};
-    case Mode::k3b: return {Contact::kLeft, Contact::kFace};
-    case Mode::k4a: return {Contact::kFace, Contact::kRight};
-    case Mode::k4b: return {Contact::kFace, Contact::kLeft};
+    case Mode::kRest:
+      return {Contact::kFace, Contact::kFace};
+    case Mode::k1a:
+      return {Contact::kRight, Contact::kRight};
+    case Mode::k1b:
+      return {Contact::kLeft, Contact::kLeft};
+    case Mode::k2a:
+      return {Contact::kRight, Contact::kLeft};
+    case Mode::k2b:
+      return {Contact::kLeft, Contact::kRight};
+    case Mode::k3a:
+      return {Contact::kRight, Contact::kFace};
+    case Mode::k3b:
+      return {Contact::kLeft, Contact::kFace};
+    case Mode::k4a:
+      return {Contact::kFace, Contact::kRight};
+    case Mode::k4b:
+      return {Contact::kFace, Contact::kLeft};
   }
   return {};
 }
@@ -112,8 +123,8 @@ Chain EvaluateChain(const Geometry& geo, Mode mode, const State& s) {
   return ch;
 }
 
-GeneralizedDynamics AssembleDynamics(const Geometry& geo, Mode mode, const State& s,
-                                     double xg_mps2, double yg_mps2) {
+GeneralizedDynamics AssembleDynamics(const Geometry& geo, Mode mode, const State& s, double xg_mps2,
+                                     double yg_mps2) {
   const Chain ch = EvaluateChain(geo, mode, s);
   GeneralizedDynamics gd;
   gd.ndof = ch.ndof;
@@ -141,7 +152,7 @@ std::array<double, 2> GenericAccelerations(const Geometry& geo, Mode mode, const
   if (gd.ndof == 1) {
     const double a = gd.f[0] / gd.M[0][0];
     if (c.ground == Contact::kFace) return {0.0, a};  // mode 4
-    return {a, a};                                     // mode 3 / one block
+    return {a, a};                                    // mode 3 / one block
   }
   const double det = gd.M[0][0] * gd.M[1][1] - gd.M[0][1] * gd.M[1][0];
   return {(gd.f[0] * gd.M[1][1] - gd.M[0][1] * gd.f[1]) / det,
@@ -158,13 +169,12 @@ void SplitFace(Vec2 cL, Vec2 cR, Vec2 n, Vec2 F, double Mx, Vec2 X, double* NL, 
   const double half = 0.5 * std::sqrt(Dot(t, t));
   const Vec2 tu = (1.0 / (2.0 * half)) * t;
   const Vec2 mid = 0.5 * (cL + cR);
-  const double N = Dot(F, n), T = Dot(F, tu);
+  const double N = Dot(F, n);
   // Moment about the mid point: the tangential force has no arm there.
   const double M_mid = Mx + Cross(X - mid, F);
   // Normal forces NL at mid - half tu, NR at mid + half tu: moment about mid = half (NR - NL)
   // (tu x n) with tu x n = +1 for an upward normal and a rightward tangent.
   const double tn = Cross(tu, n);
-  (void)T;
   const double diff = M_mid / (half * tn);  // NR - NL
   *NR = 0.5 * (N + diff);
   *NL = 0.5 * (N - diff);
@@ -176,7 +186,6 @@ Reactions ComputeReactions(const Geometry& geo, Mode mode, const State& s,
                            const std::array<double, 2>& acc, double xg_mps2, double yg_mps2) {
   const Contacts c = ContactsOf(mode);
   const Chain ch = EvaluateChain(geo, mode, s);
-  const Vec2 g_eff{-xg_mps2, -(geo.g + yg_mps2)};
   // Generalized accelerations of the mode.
   double ud[2] = {0.0, 0.0};
   if (ch.ndof == 2) {
@@ -185,8 +194,8 @@ Reactions ComputeReactions(const Geometry& geo, Mode mode, const State& s,
   } else if (ch.ndof == 1) {
     ud[0] = c.ground == Contact::kFace ? acc[1] : acc[0];
   }
-  Vec2 aG[2];
-  double alpha[2];  // CCW angular accelerations
+  std::array<Vec2, 2> aG;
+  std::array<double, 2> alpha;  // CCW angular accelerations
   for (int b = 0; b < 2; ++b) {
     aG[b] = ch.a_vp[b];
     alpha[b] = 0.0;
@@ -195,10 +204,19 @@ Reactions ComputeReactions(const Geometry& geo, Mode mode, const State& s,
       alpha[b] += ch.Jphi[b][k] * ud[k];
     }
   }
+  return ContactLoads(geo, mode, s, aG, alpha, Vec2{-xg_mps2, -(geo.g + yg_mps2)});
+}
+
+Reactions ContactLoads(const Geometry& geo, Mode mode, const State& s,
+                       const std::array<Vec2, 2>& aG, const std::array<double, 2>& alpha,
+                       Vec2 g_eff) {
+  const Contacts c = ContactsOf(mode);
+  const Points pts = Place(geo, c, s);
+  const Vec2 G1 = pts.G1, G2 = pts.G2;
   const BlockProps& p1 = geo.block1;
   const BlockProps& p2 = geo.block2;
   Reactions r;
-  Vec2 F_int{};          // force of block 1 on block 2
+  Vec2 F_int{};           // force of block 1 on block 2
   double M_int_G1 = 0.0;  // moment of that force system about G1
   const double phi1 = -s.theta1;
   const Vec2 n1{-std::sin(phi1), std::cos(phi1)};  // block 1's top-face normal
@@ -207,14 +225,14 @@ Reactions ComputeReactions(const Geometry& geo, Mode mode, const State& s,
     F_int = p2.m * (aG[1] - g_eff);
     // Moment of the interface forces about G2 equals I_G2 alpha2.
     const double M_G2 = p2.I_G * alpha[1];
-    M_int_G1 = M_G2 + Cross(ch.G[1] - ch.G[0], F_int);
+    M_int_G1 = M_G2 + Cross(G2 - G1, F_int);
     r.N_interface = Dot(F_int, n1);
     r.T_interface = Dot(F_int, t1);
     if (c.interface == Contact::kFace) {
       // Block 2's base corners, on block 1's top face.
-      const Vec2 base_c = ch.G[1] - p2.h * Vec2{-std::sin(-s.theta2), std::cos(-s.theta2)};
+      const Vec2 base_c = G2 - p2.h * Vec2{-std::sin(-s.theta2), std::cos(-s.theta2)};
       const Vec2 cL = base_c - p2.b * t1, cR = base_c + p2.b * t1;
-      SplitFace(cL, cR, n1, F_int, M_G2, ch.G[1], &r.interface_left, &r.interface_right);
+      SplitFace(cL, cR, n1, F_int, M_G2, G2, &r.interface_left, &r.interface_right);
     }
   }
   // Ground on block 1: m1 aG1 = F_gnd + m1 g_eff - F_int.
@@ -223,44 +241,46 @@ Reactions ComputeReactions(const Geometry& geo, Mode mode, const State& s,
   r.T_ground = F_gnd.x;
   if (c.ground == Contact::kFace) {
     const double M_G1 = p1.I_G * alpha[0] + M_int_G1;
-    SplitFace(Vec2{-p1.b, 0.0}, Vec2{p1.b, 0.0}, Vec2{0.0, 1.0}, F_gnd, M_G1, ch.G[0],
-              &r.ground_left, &r.ground_right);
+    SplitFace(Vec2{-p1.b, 0.0}, Vec2{p1.b, 0.0}, Vec2{0.0, 1.0}, F_gnd, M_G1, G1, &r.ground_left,
+              &r.ground_right);
   }
   return r;
 }
 
+BodyVelocities Velocities(const Geometry& geo, Mode mode, const State& s) {
+  const Chain ch = EvaluateChain(geo, mode, s);
+  BodyVelocities v;
+  for (int b = 0; b < 2; ++b) {
+    for (int k = 0; k < ch.ndof; ++k) {
+      v.vG[b] = v.vG[b] + ch.u[k] * ch.JG[b][k];
+      v.w[b] += ch.Jphi[b][k] * ch.u[k];
+    }
+  }
+  return v;
+}
+
 double Energy(const Geometry& geo, Mode mode, const State& s) {
   const Chain ch = EvaluateChain(geo, mode, s);
-  const int nbody = geo.two_blocks ? 2 : 1;
+  const BodyVelocities v = Velocities(geo, mode, s);
   const double m[2] = {geo.block1.m, geo.block2.m};
   const double IG[2] = {geo.block1.I_G, geo.block2.I_G};
   double e = 0.0;
-  for (int b = 0; b < nbody; ++b) {
-    Vec2 v{};
-    double w = 0.0;
-    for (int k = 0; k < ch.ndof; ++k) {
-      v = v + ch.u[k] * ch.JG[b][k];
-      w += ch.Jphi[b][k] * ch.u[k];
-    }
-    e += 0.5 * m[b] * Dot(v, v) + 0.5 * IG[b] * w * w + m[b] * geo.g * ch.G[b].y;
+  for (int b = 0; b < (geo.two_blocks ? 2 : 1); ++b) {
+    e += 0.5 * m[b] * Dot(v.vG[b], v.vG[b]) + 0.5 * IG[b] * v.w[b] * v.w[b] +
+         m[b] * geo.g * ch.G[b].y;
   }
   return e;
 }
 
 double AngularMomentum(const Geometry& geo, Mode mode, const State& s, Vec2 A, int body) {
   const Chain ch = EvaluateChain(geo, mode, s);
+  const BodyVelocities v = Velocities(geo, mode, s);
   const double m[2] = {geo.block1.m, geo.block2.m};
   const double IG[2] = {geo.block1.I_G, geo.block2.I_G};
   double h = 0.0;
   for (int b = 0; b < (geo.two_blocks ? 2 : 1); ++b) {
     if (body >= 0 && body != b) continue;
-    Vec2 v{};
-    double w = 0.0;
-    for (int k = 0; k < ch.ndof; ++k) {
-      v = v + ch.u[k] * ch.JG[b][k];
-      w += ch.Jphi[b][k] * ch.u[k];
-    }
-    h += IG[b] * w + m[b] * Cross(ch.G[b] - A, v);
+    h += IG[b] * v.w[b] + m[b] * Cross(ch.G[b] - A, v.vG[b]);
   }
   return h;
 }

@@ -15,13 +15,25 @@ namespace rockbench::reference {
 struct Vec2 {
   double x = 0.0, y = 0.0;
 };
-inline Vec2 operator+(Vec2 a, Vec2 b) { return {a.x + b.x, a.y + b.y}; }
-inline Vec2 operator-(Vec2 a, Vec2 b) { return {a.x - b.x, a.y - b.y}; }
-inline Vec2 operator*(double s, Vec2 a) { return {s * a.x, s * a.y}; }
-inline double Dot(Vec2 a, Vec2 b) { return a.x * b.x + a.y * b.y; }
-inline double Cross(Vec2 a, Vec2 b) { return a.x * b.y - a.y * b.x; }
+inline Vec2 operator+(Vec2 a, Vec2 b) {
+  return {a.x + b.x, a.y + b.y};
+}
+inline Vec2 operator-(Vec2 a, Vec2 b) {
+  return {a.x - b.x, a.y - b.y};
+}
+inline Vec2 operator*(double s, Vec2 a) {
+  return {s * a.x, s * a.y};
+}
+inline double Dot(Vec2 a, Vec2 b) {
+  return a.x * b.x + a.y * b.y;
+}
+inline double Cross(Vec2 a, Vec2 b) {
+  return a.x * b.y - a.y * b.x;
+}
 /// a rotated by +90 degrees (counter-clockwise).
-inline Vec2 Perp(Vec2 a) { return {-a.y, a.x}; }
+inline Vec2 Perp(Vec2 a) {
+  return {-a.y, a.x};
+}
 
 /// State of the two blocks: angles (rad) and rates (rad/s), thesis sign convention.
 struct State {
@@ -44,9 +56,9 @@ int DofCount(Mode mode, bool two_blocks);
 /// Kinematics of the chain at a state, in a mode.
 struct Chain {
   int ndof = 0;
-  Vec2 P1;                    ///< block 1's ground pivot (for a face: its right corner)
-  Vec2 Q2;                    ///< block 2's pivot on block 1 (for a face: block 2's corner)
-  std::array<Vec2, 2> G;      ///< mass centres of block 1 and block 2
+  Vec2 P1;                ///< block 1's ground pivot (for a face: its right corner)
+  Vec2 Q2;                ///< block 2's pivot on block 1 (for a face: block 2's corner)
+  std::array<Vec2, 2> G;  ///< mass centres of block 1 and block 2
   /// dG_i/du_k and dphi_i/du_k for the mode's generalized rates u (phi = -theta, CCW angle).
   std::array<std::array<Vec2, 2>, 2> JG{};
   std::array<std::array<double, 2>, 2> Jphi{};
@@ -70,21 +82,35 @@ struct GeneralizedDynamics {
   double M[2][2] = {{0, 0}, {0, 0}};
   double f[2] = {0, 0};
 };
-GeneralizedDynamics AssembleDynamics(const Geometry& geo, Mode mode, const State& s,
-                                     double xg_mps2, double yg_mps2);
+GeneralizedDynamics AssembleDynamics(const Geometry& geo, Mode mode, const State& s, double xg_mps2,
+                                     double yg_mps2);
 
 /// Contact reactions on the blocks: ground on block 1, block 1 on block 2. N is the normal
 /// component (positive = compression), T the tangential one along the face (positive +x of the
 /// face). A face contact is split into the normal forces at its two corners (left, right).
 struct Reactions {
-  double N_ground = 0.0, T_ground = 0.0;        ///< N
-  double N_interface = 0.0, T_interface = 0.0;  ///< N
+  double N_ground = 0.0, T_ground = 0.0;               ///< N
+  double N_interface = 0.0, T_interface = 0.0;         ///< N
   double ground_left = 0.0, ground_right = 0.0;        ///< corner normal forces (face only)
   double interface_left = 0.0, interface_right = 0.0;  ///< corner normal forces (face only)
 };
 /// Reactions for given accelerations (theta1'', theta2'') consistent with the mode.
 Reactions ComputeReactions(const Geometry& geo, Mode mode, const State& s,
                            const std::array<double, 2>& acc, double xg_mps2, double yg_mps2);
+
+/// Mass-centre velocities and CCW angular velocities of the two blocks.
+struct BodyVelocities {
+  std::array<Vec2, 2> vG{};
+  std::array<double, 2> w{};
+};
+BodyVelocities Velocities(const Geometry& geo, Mode mode, const State& s);
+
+/// Contact loads (ground on block 1, block 1 on block 2) that give the blocks mass-centre
+/// accelerations aG and CCW angular accelerations alpha under effective gravity g_eff. With
+/// velocity jumps in place of accelerations and g_eff = 0 it gives the impact impulses.
+Reactions ContactLoads(const Geometry& geo, Mode mode, const State& s,
+                       const std::array<Vec2, 2>& aG, const std::array<double, 2>& alpha,
+                       Vec2 g_eff);
 
 /// Kinetic energy in the base frame plus gravitational potential m g y_G, J.
 double Energy(const Geometry& geo, Mode mode, const State& s);

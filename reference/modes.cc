@@ -27,8 +27,8 @@ struct Trig {
 
 }  // namespace
 
-std::array<double, 2> ModeAccelerations(const Geometry& geo, Mode mode, const State& s,
-                                        double xg, double yg, Equations equations) {
+std::array<double, 2> ModeAccelerations(const Geometry& geo, Mode mode, const State& s, double xg,
+                                        double yg, Equations equations) {
   const Trig tr{equations == Equations::kLinearized};
   const bool linear = tr.linear;
   const BlockProps& p1 = geo.block1;
@@ -54,8 +54,8 @@ std::array<double, 2> ModeAccelerations(const Geometry& geo, Mode mode, const St
       // Eq. 4.42 (S is the sign of theta2, printed as S_theta1; I_O2 printed as I_O1).
       const double S = mode == Mode::k4a ? 1.0 : -1.0;
       const double a = S * p2.theta_c;
-      const double acc = (m2 * r2 * (g + yg) * tr.sin_of(t2, a) - m2 * r2 * xg * tr.cos_of(t2, a)) /
-                         p2.I_O;
+      const double acc =
+          (m2 * r2 * (g + yg) * tr.sin_of(t2, a) - m2 * r2 * xg * tr.cos_of(t2, a)) / p2.I_O;
       return {0.0, acc};
     }
     case Mode::k1a:
@@ -69,11 +69,10 @@ std::array<double, 2> ModeAccelerations(const Geometry& geo, Mode mode, const St
       const double a11 = p1.I_O + m2 * l * l, a12 = m2 * r2 * l * cg;
       const double a21 = a12, a22 = p2.I_O;
       const double ge = g + yg;
-      const double f1 = -m2 * r2 * l * sg * s.omega2 * s.omega2 +
-                        m1 * r1 * ge * tr.sin_of(t1, S * p1.theta_c) +
-                        m2 * l * ge * tr.sin_of(t1, S * beta) -
-                        (m1 * r1 * tr.cos_of(t1, S * p1.theta_c) + m2 * l * tr.cos_of(t1, S * beta)) *
-                            xg;
+      const double f1 =
+          -m2 * r2 * l * sg * s.omega2 * s.omega2 + m1 * r1 * ge * tr.sin_of(t1, S * p1.theta_c) +
+          m2 * l * ge * tr.sin_of(t1, S * beta) -
+          (m1 * r1 * tr.cos_of(t1, S * p1.theta_c) + m2 * l * tr.cos_of(t1, S * beta)) * xg;
       const double f2 = m2 * r2 * l * sg * s.omega1 * s.omega1 +
                         m2 * r2 * ge * tr.sin_of(t2, S * p2.theta_c) -
                         m2 * r2 * tr.cos_of(t2, S * p2.theta_c) * xg;
@@ -90,11 +89,10 @@ std::array<double, 2> ModeAccelerations(const Geometry& geo, Mode mode, const St
       const double a11 = p1.I_O + m2 * l * l, a12 = m2 * r2 * l * cg;
       const double a21 = a12, a22 = p2.I_O;
       const double ge = g + yg;
-      const double f1 = -m2 * r2 * l * sg * s.omega2 * s.omega2 +
-                        m1 * r1 * ge * tr.sin_of(t1, S * p1.theta_c) +
-                        m2 * l * ge * tr.sin_of(t1, S * beta) -
-                        (m1 * r1 * tr.cos_of(t1, S * p1.theta_c) + m2 * l * tr.cos_of(t1, S * beta)) *
-                            xg;
+      const double f1 =
+          -m2 * r2 * l * sg * s.omega2 * s.omega2 + m1 * r1 * ge * tr.sin_of(t1, S * p1.theta_c) +
+          m2 * l * ge * tr.sin_of(t1, S * beta) -
+          (m1 * r1 * tr.cos_of(t1, S * p1.theta_c) + m2 * l * tr.cos_of(t1, S * beta)) * xg;
       const double f2 = m2 * r2 * l * sg * s.omega1 * s.omega1 +
                         m2 * r2 * ge * tr.sin_of(t2, -S * p2.theta_c) -
                         m2 * r2 * tr.cos_of(t2, -S * p2.theta_c) * xg;

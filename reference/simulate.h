@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "reference/integrator.h"
 #include "scene/ground_motion.h"
 #include "scene/history.h"
 #include "scene/scene.h"
@@ -19,14 +20,11 @@ class Trajectory {
   double end_s() const;
   bool empty() const;
 
-  /// One integration step's interpolant (Hermite/DOPRI continuous extension) on [t0, t1].
+  /// One integration step's interpolant on [t0, t1] (see integrator.h, DenseStep).
   struct Segment {
     double t0 = 0.0, t1 = 0.0;
     Mode mode = Mode::kRest;
-    /// Dense-output coefficients for y = (theta1, theta2, omega1, omega2): y(t0 + s h) =
-    /// sum_k c[k] s^k ... (see trajectory.cc); for rest segments all constant.
-    std::vector<double> coeffs;
-    int order = 0;
+    DenseStep dense;
   };
   void Append(Segment segment);
   const std::vector<Segment>& segments() const { return segments_; }
@@ -37,18 +35,18 @@ class Trajectory {
 
 /// Summary figures of a reference run.
 struct Summary {
-  std::string status = "completed";  ///< completed | overturned | at_rest | assumption_violated
-  std::string status_detail;         ///< why, for assumption_violated
+  std::string status = "completed";   ///< completed | overturned | at_rest | assumption_violated
+  std::string status_detail;          ///< why, for assumption_violated
   std::optional<int> overturn_block;  ///< 1 or 2
   double overturn_t_s = 0.0;
   double peak_theta1_rad = 0.0, peak_theta1_t_s = 0.0;  ///< peak |theta1| and its time
   double peak_theta2_rad = 0.0, peak_theta2_t_s = 0.0;
-  int impacts_ground = 0;            ///< block 1 (or the stack) hits the ground
-  int impacts_interface = 0;         ///< block 2 hits block 1
-  int impacts_inadmissible = 0;      ///< no thesis outcome was admissible (see README)
-  int impacts_energy_gain = 0;       ///< impacts that would add energy (must stay 0)
-  int transitions = 0;               ///< mode changes without impact
-  int initiations = 0;               ///< starts from rest
+  int impacts_ground = 0;                    ///< block 1 (or the stack) hits the ground
+  int impacts_interface = 0;                 ///< block 2 hits block 1
+  int impacts_inadmissible = 0;              ///< no thesis outcome was admissible (see README)
+  int impacts_energy_gain = 0;               ///< impacts that would add energy (must stay 0)
+  int transitions = 0;                       ///< mode changes without impact
+  int initiations = 0;                       ///< starts from rest
   double friction_required_ground = 0.0;     ///< max |T|/N at the ground contact
   double friction_required_interface = 0.0;  ///< max |T|/N at the block-1/block-2 contact
   double min_normal_ground_n = 0.0;          ///< smallest normal reaction seen, N

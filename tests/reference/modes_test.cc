@@ -1,14 +1,15 @@
 // The thesis's per-mode equations (modes.cc, eqs. 4.23, 4.35, 4.39, 4.42 with OCR typos
 // corrected) against the generic pivot-chain Lagrangian assembly (kinematics.cc), at random
 // states, in all 8 modes, with and without vertical base acceleration.
+#include "reference/modes.h"
+
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <limits>
 #include <random>
 
-#include <gtest/gtest.h>
-
 #include "reference/kinematics.h"
-#include "reference/modes.h"
 
 namespace rockbench::reference {
 namespace {
@@ -20,15 +21,36 @@ State RandomState(Mode mode, std::mt19937_64& rng) {
   State s;
   const double a1 = angle(rng), a2 = angle(rng);
   switch (mode) {
-    case Mode::k1a: s.theta1 = a1; s.theta2 = a1 + a2; break;
-    case Mode::k1b: s.theta1 = -a1; s.theta2 = -a1 - a2; break;
-    case Mode::k2a: s.theta1 = a1; s.theta2 = a1 - 2 * a2; break;
-    case Mode::k2b: s.theta1 = -a1; s.theta2 = -a1 + 2 * a2; break;
-    case Mode::k3a: s.theta1 = s.theta2 = a1; break;
-    case Mode::k3b: s.theta1 = s.theta2 = -a1; break;
-    case Mode::k4a: s.theta2 = a2; break;
-    case Mode::k4b: s.theta2 = -a2; break;
-    default: break;
+    case Mode::k1a:
+      s.theta1 = a1;
+      s.theta2 = a1 + a2;
+      break;
+    case Mode::k1b:
+      s.theta1 = -a1;
+      s.theta2 = -a1 - a2;
+      break;
+    case Mode::k2a:
+      s.theta1 = a1;
+      s.theta2 = a1 - 2 * a2;
+      break;
+    case Mode::k2b:
+      s.theta1 = -a1;
+      s.theta2 = -a1 + 2 * a2;
+      break;
+    case Mode::k3a:
+      s.theta1 = s.theta2 = a1;
+      break;
+    case Mode::k3b:
+      s.theta1 = s.theta2 = -a1;
+      break;
+    case Mode::k4a:
+      s.theta2 = a2;
+      break;
+    case Mode::k4b:
+      s.theta2 = -a2;
+      break;
+    default:
+      break;
   }
   s.omega1 = rate(rng);
   s.omega2 = rate(rng);

@@ -1,0 +1,58 @@
+#pragma once
+/// Impacts (thesis chapter 5): perfectly plastic point impacts, post-impact rates from the
+/// conservation of angular momentum. For a post-impact mode with contacts C, the impulses act
+/// only at the contacts of C, so they do no work on the motions C allows: the generalized
+/// momenta of the post-impact mode are conserved, J+^T M_b J+ u+ = J+^T M_b V-. This is exactly
+/// the pair of laws chapter 5 writes for each case (system about the new ground pivot, block 2
+/// about its pivot), e.g. eq. 5.12 + 5.13 for 1a -> 2b, and reduces to 5.31, 5.36 and Housner's
+/// e = 1 - 1.5 sin^2(theta_c) in the one-degree-of-freedom cases.
+#include <string>
+#include <vector>
+
+#include "reference/geometry.h"
+#include "reference/kinematics.h"
+#include "scene/mode.h"
+
+namespace rockbench::reference {
+
+enum class ImpactKind {
+  kGround,     ///< block 1 (or the stack) reaches theta1 = 0
+  kInterface,  ///< block 2 reaches theta2 = theta1 (mode 1, 2) or theta2 = 0 (mode 4)
+};
+
+/// One candidate outcome of an impact.
+struct ImpactOutcome {
+  Mode mode = Mode::kRest;
+  State state;                       ///< post-impact state (angles unchanged)
+  bool velocity_admissible = false;  ///< no body moves into another after the impact
+  bool impulse_admissible = false;   ///< every closed contact's impulse pushes (normal >= 0)
+  double min_normal_impulse = 0.0;   ///< smallest normal impulse at a closed contact, N s
+  double energy_after_j = 0.0;
+};
+
+struct ImpactResult {
+  ImpactOutcome chosen;
+  std::vector<ImpactOutcome> candidates;  ///< in order of preference (thesis's first)
+  bool admissible = true;                 ///< false: no candidate passed both checks (see note)
+  bool settled = false;                   ///< the rest rule closed a contact (rate below rest_rate)
+  double energy_before_j = 0.0;
+  std::string note;
+};
+
+/// The thesis's candidate post-impact modes first (e.g. 1a interface: 2a then 3a), then the
+/// other contact combinations the geometry allows (so that, e.g., a squat block whose Housner
+/// coefficient is negative can come to rest).
+std::vector<Mode> ImpactCandidates(Mode before, ImpactKind kind, bool two_blocks);
+
+/// Post-impact rates for a given post-impact mode by conservation of generalized momentum.
+State PostImpactState(const Geometry& geo, Mode before, const State& pre, Mode after);
+
+/// Resolves an impact at state `pre` (the gap coordinate exactly zero). Chooses the first
+/// candidate that is admissible both in velocities and in impulses; if none is, the first that is
+/// admissible in velocities (the thesis's check) and reports admissible = false; if none is even
+/// that, the blocks stop (rest of the contacts that closed). `rest_rate` is the rest rule: a
+/// contact that would open with a relative rate below it stays closed instead.
+ImpactResult ResolveImpact(const Geometry& geo, Mode before, const State& pre, ImpactKind kind,
+                           double rest_rate_radps);
+
+}  // namespace rockbench::reference

@@ -1,0 +1,167 @@
+#pragma once
+/// Explicit Runge-Kutta steps with dense output for the 4-vector state
+/// y = (theta1, theta2, omega1, omega2): Dormand-Prince 5(4) with its 4th-order continuous
+/// extension (Hairer, Norsett & Wanner, "Solving ODEs I", II.6, as in dopri5.f), and the
+/// classical fixed-step RK4 of the thesis (eq. 6.2, 6.3) with cubic Hermite dense output.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <utility>
+
+namespace rockbench::reference {
+
+using Vec4 = std::array<double, 4>;
+
+/// Continuous output of one step on [t0, t0 + h].
+struct DenseStep {
+  enum Kind { kConstant, kDopri, kHermite };
+  Kind kind = kConstant;
+  double t0 = 0.0, h = 0.0;
+  std::array<Vec4, 5> c{};  ///< kConstant: c[0]; kDopri: rcont1..5; kHermite: y0, y1, h f0, h f1
+  /// State at t (0 <= (t - t0) / h <= 1).
+  Vec4 At(double t) const {
+    if (kind == kConstant || h == 0.0) return c[0];
+    const double s = (t - t0) / h, s1 = 1.0 - s;
+    Vec4 y;
+    if (kind == kDopri) {
+      for (int i = 0; i < 4; ++i) {
+        y[i] = c[0][i] + s * (c[1][i] + s1 * (c[2][i] + s * (c[3][i] + s1 * c[4][i])));
+      }
+    } else {
+      const double h00 = (1 + 2 * s) * s1 * s1, h10 = s * s1 * s1, h01 = s * s * (3 - 2 * s),
+                   h11 = -s * s * s1;
+      for (int i = 0; i < 4; ++i) {
+        y[i] = h00 * c[0][i] + h10 * c[2][i] + h01 * c[1][i] + h11 * c[3][i];
+      }
+    }
+    return y;
+  }
+};
+
+/// Result of one step from (t, y) with step h.
+struct StepResult {
+  Vec4 y1{};
+  Vec4 f1{};         ///< f(t + h, y1) (first-same-as-last for the next step)
+  double err = 0.0;  ///< scaled RMS error estimate (DOPRI only; <= 1 accepts)
+  DenseStep dense;
+};
+
+/// One Dormand-Prince 5(4) step. f0 = f(t, y). rhs(t, y) -> Vec4.
+template <class Rhs>
+StepResult Dopri5Step(const Rhs& rhs, double t, const Vec4& y, const Vec4& f0, double h,
+                      double rtol, double atol) {
+  constexpr double c2 = 1.0 / 5, c3 = 3.0 / 10, c4 = 4.0 / 5, c5 = 8.0 / 9;
+  constexpr double a21 = 1.0 / 5, a31 = 3.0 / 40, a32 = 9.0 / 40, a41 = 44.0 / 45, a42 = -56.0 / 15,
+                   a43 = 32.0 / 9, a51 = 19372.0 / 6561, a52 = -25360.0 / 2187,
+                   a53 = 64448.0 / 6561, a54 = -212.0 / 729, a61 = 9017.0 / 3168, a62 = -355.0 / 33,
+                   a63 = 46732.0 / 5247, a64 = 49.0 / 176, a65 = -5103.0 / 18656, a71 = 35.0 / 384,
+                   a73 = 500.0 / 1113, a74 = 125.0 / 192, a75 = -2187.0 / 6784, a76 = 11.0 / 84;
+  constexpr double e1 = 71.0 / 57600, e3 = -71.0 / 16695, e4 = 71.0 / 1920, e5 = -17253.0 / 339200,
+                   e6 = 22.0 / 525, e7 = -1.0 / 40;
+  constexpr double d1 = -12715105075.0 / 11282082432, d3 = 87487479700.0 / 32700410799,
+                   d4 = -10690763975.0 / 1880347072, d5 = 701980252875.0 / 199316789632,
+                   d6 = -1453857185.0 / 822651844, d7 = 69997945.0 / 29380423;
+  const Vec4& k1 = f0;
+  Vec4 yt;
+  for (int i = 0; i < 4; ++i) yt[i] = y[i] + h * a21 * k1[i];
+  const Vec4 k2 = rhs(t + c2 * h, yt);
+  for (int i = 0; i < 4; ++i) yt[i] = y[i] + h * (a31 * k1[i] + a32 * k2[i]);
+  const Vec4 k3 = rhs(t + c3 * h, yt);
+  for (int i = 0; i < 4; ++i) yt[i] = y[i] + h * (a41 * k1[i] + a42 * k2[i] + a43 * k3[i]);
+  const Vec4 k4 = rhs(t + c4 * h, yt);
+  for (int i = 0; i < 4; ++i) {
+    yt[i] = y[i] + h * (a51 * k1[i] + a52 * k2[i] + a53 * k3[i] + a54 * k4[i]);
+  }
+  const Vec4 k5 = rhs(t + c5 * h, yt);
+  for (int i = 0; i < 4; ++i) {
+    yt[i] = y[i] + h * (a61 * k1[i] + a62 * k2[i] + a63 * k3[i] + a64 * k4[i] + a65 * k5[i]);
+  }
+  const Vec4 k6 = rhs(t + h, yt);
+  StepResult r;
+  for (int i = 0; i < 4; ++i) {
+    r.y1[i] = y[i] + h * (a71 * k1[i] + a73 * k3[i] + a74 * k4[i] + a75 * k5[i] + a76 * k6[i]);
+  }
+  const Vec4 k7 = rhs(t + h, r.y1);
+  r.f1 = k7;
+  double sum = 0.0;
+  for (int i = 0; i < 4; ++i) {
+    const double e =
+        h * (e1 * k1[i] + e3 * k3[i] + e4 * k4[i] + e5 * k5[i] + e6 * k6[i] + e7 * k7[i]);
+    const double sc = atol + rtol * std::max(std::abs(y[i]), std::abs(r.y1[i]));
+    sum += (e / sc) * (e / sc);
+  }
+  r.err = std::sqrt(sum / 4.0);
+  r.dense.kind = DenseStep::kDopri;
+  r.dense.t0 = t;
+  r.dense.h = h;
+  for (int i = 0; i < 4; ++i) {
+    const double ydiff = r.y1[i] - y[i];
+    const double bspl = h * k1[i] - ydiff;
+    r.dense.c[0][i] = y[i];
+    r.dense.c[1][i] = ydiff;
+    r.dense.c[2][i] = bspl;
+    r.dense.c[3][i] = ydiff - h * k7[i] - bspl;
+    r.dense.c[4][i] =
+        h * (d1 * k1[i] + d3 * k3[i] + d4 * k4[i] + d5 * k5[i] + d6 * k6[i] + d7 * k7[i]);
+  }
+  return r;
+}
+
+/// One classical RK4 step (thesis eq. 6.2). f0 = f(t, y). Dense output: cubic Hermite.
+template <class Rhs>
+StepResult Rk4Step(const Rhs& rhs, double t, const Vec4& y, const Vec4& f0, double h) {
+  Vec4 yt;
+  const Vec4& k1 = f0;
+  for (int i = 0; i < 4; ++i) yt[i] = y[i] + 0.5 * h * k1[i];
+  const Vec4 k2 = rhs(t + 0.5 * h, yt);
+  for (int i = 0; i < 4; ++i) yt[i] = y[i] + 0.5 * h * k2[i];
+  const Vec4 k3 = rhs(t + 0.5 * h, yt);
+  for (int i = 0; i < 4; ++i) yt[i] = y[i] + h * k3[i];
+  const Vec4 k4 = rhs(t + h, yt);
+  StepResult r;
+  for (int i = 0; i < 4; ++i) r.y1[i] = y[i] + h / 6.0 * (k1[i] + 2 * k2[i] + 2 * k3[i] + k4[i]);
+  r.f1 = rhs(t + h, r.y1);
+  r.dense.kind = DenseStep::kHermite;
+  r.dense.t0 = t;
+  r.dense.h = h;
+  for (int i = 0; i < 4; ++i) {
+    r.dense.c[0][i] = y[i];
+    r.dense.c[1][i] = r.y1[i];
+    r.dense.c[2][i] = h * f0[i];
+    r.dense.c[3][i] = h * r.f1[i];
+  }
+  return r;
+}
+
+/// Brent's method for a root of f in [a, b] with f(a) f(b) <= 0, to |b - a| <= tol.
+/// Returns the bracket (lo, hi) with the root inside: lo on f(a)'s side, hi on f(b)'s side.
+template <class F>
+std::pair<double, double> BrentBracket(const F& f, double a, double b, double fa, double fb,
+                                       double tol) {
+  // Regula falsi (Illinois) with bisection safeguard: keeps a strict bracket.
+  double lo = a, hi = b, flo = fa, fhi = fb;
+  int side = 0;
+  for (int it = 0; it < 400 && hi - lo > tol; ++it) {
+    double m = (flo * hi - fhi * lo) / (flo - fhi);
+    if (!(m > lo && m < hi) || it % 4 == 3) m = 0.5 * (lo + hi);
+    const double fm = f(m);
+    if ((fm > 0) == (flo > 0) && fm != 0.0) {
+      lo = m;
+      flo = fm;
+      if (side == -1) fhi *= 0.5;
+      side = -1;
+    } else {
+      hi = m;
+      fhi = fm;
+      if (side == 1) flo *= 0.5;
+      side = 1;
+      if (fm == 0.0) {
+        lo = m;  // an exact root: a zero-width bracket
+        break;
+      }
+    }
+  }
+  return {lo, hi};
+}
+
+}  // namespace rockbench::reference

@@ -1,0 +1,107 @@
+#include "reference/transitions.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "reference/modes.h"
+
+namespace rockbench::reference {
+
+ContactMargins EvaluateContacts(const Geometry& geo, Mode mode, const State& s, double xg,
+                                double yg, Equations equations) {
+  ContactMargins cm;
+  const auto acc = ModeAccelerations(geo, mode, s, xg, yg, equations);
+  cm.reactions = ComputeReactions(geo, mode, s, acc, xg, yg);
+  const Reactions& r = cm.reactions;
+  const double W = geo.M * geo.g;
+  const Contacts c = ContactsOf(mode);
+  if (c.ground == Contact::kFace) {
+    cm.face = std::min(r.ground_left, r.ground_right) / W;
+  } else {
+    cm.point = r.N_ground / W;
+  }
+  if (geo.two_blocks) {
+    if (c.interface == Contact::kFace) {
+      cm.face = std::min(cm.face, std::min(r.interface_left, r.interface_right) / W);
+    } else {
+      cm.point = std::min(cm.point, r.N_interface / W);
+    }
+    cm.mu_interface = r.N_interface > 0 ? std::abs(r.T_interface) / r.N_interface : 0.0;
+  }
+  cm.mu_ground = r.N_ground > 0 ? std::abs(r.T_ground) / r.N_ground : 0.0;
+  return cm;
+}
+
+ModeSelection SelectMode(const Geometry& geo, const State& s, double xg, double yg,
+                         Equations equations) {
+  const bool ground_closed = s.theta1 == 0.0 && s.omega1 == 0.0;
+  const bool interface_closed = s.theta2 == s.theta1 && s.omega2 == s.omega1;
+  auto side = [](double gap, double rate) {
+    const double v = gap != 0.0 ? gap : rate;
+    return v > 0 ? Contact::kRight : Contact::kLeft;
+  };
+  std::vector<Contact> g_opts, i_opts;
+  if (ground_closed) {
+    g_opts = {Contact::kFace, Contact::kRight, Contact::kLeft};
+  } else {
+    g_opts = {side(s.theta1, s.omega1)};
+  }
+  if (!geo.two_blocks) {
+    i_opts = {Contact::kFace};
+  } else if (interface_closed) {
+    i_opts = {Contact::kFace, Contact::kRight, Contact::kLeft};
+  } else {
+    i_opts = {side(s.theta2 - s.theta1, s.omega2 - s.omega1)};
+  }
+  // Candidates ordered by the number of contacts that open (the blocks do not start to move
+  // unless they must); among equals, the ground opening first (the thesis checks 4.1 before 4.3).
+  struct Candidate {
+    Contact gc, ic;
+    int opening;
+  };
+  std::vector<Candidate> cands;
+  for (Contact gc : g_opts) {
+    for (Contact ic : i_opts) {
+      const int opening = (ground_closed && gc != Contact::kFace) +
+                          (geo.two_blocks && interface_closed && ic != Contact::kFace);
+      cands.push_back({gc, ic, opening});
+    }
+  }
+  std::stable_sort(cands.begin(), cands.end(), [](const Candidate& a, const Candidate& b) {
+    if (a.opening != b.opening) return a.opening < b.opening;
+    return (a.gc != Contact::kFace) > (b.gc != Contact::kFace);
+  });
+  for (const Candidate& cand : cands) {
+    const Mode mode = ModeOf({cand.gc, cand.ic}, geo.two_blocks);
+    const auto acc = ModeAccelerations(geo, mode, s, xg, yg, equations);
+    // An opening contact must open: its gap must accelerate away from zero.
+    bool ok = true;
+    if (ground_closed && cand.gc != Contact::kFace) {
+      ok = ok && (cand.gc == Contact::kRight ? acc[0] : -acc[0]) > 0.0;
+    }
+    if (geo.two_blocks && interface_closed && cand.ic != Contact::kFace) {
+      const double rel = acc[1] - acc[0];
+      ok = ok && (cand.ic == Contact::kRight ? rel : -rel) > 0.0;
+    }
+    if (!ok) continue;
+    const ContactMargins cm = EvaluateContacts(geo, mode, s, xg, yg, equations);
+    if (cm.face < 0.0 || cm.point < 0.0) continue;
+    return {mode, true};
+  }
+  return {Mode::kRest, false};
+}
+
+Mode ThesisInitiation(const Geometry& geo, double xg, double yg) {
+  const double g = geo.g;
+  const double b1 = geo.block1.b, h = geo.h_stack;
+  if (-h * xg - b1 * yg > b1 * g) return Mode::k3a;  // (4.1)
+  if (h * xg - b1 * yg > b1 * g) return Mode::k3b;   // (4.2)
+  if (geo.two_blocks) {
+    const double b2 = geo.block2.b, h2 = geo.block2.h;
+    if (-h2 * xg - b2 * yg > b2 * g) return Mode::k4a;  // (4.3)
+    if (h2 * xg - b2 * yg > b2 * g) return Mode::k4b;   // (4.4), the mirror of 4.3
+  }
+  return Mode::kRest;
+}
+
+}  // namespace rockbench::reference

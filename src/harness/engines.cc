@@ -1,0 +1,56 @@
+#include "harness/engines.h"
+
+#include <chrono>
+#include <cstdio>
+
+#include "harness/summary.h"
+#include "reference/simulate.h"
+#ifdef ROCKBENCH_HAVE_BULLET
+#include "harness/engines_bullet.h"
+#endif
+
+namespace rockbench {
+
+std::vector<std::string> AvailableEngines() {
+  std::vector<std::string> names = {"reference"};
+#ifdef ROCKBENCH_HAVE_BULLET
+  names.push_back("bullet");
+#endif
+  return names;
+}
+
+EngineRun RunEngine(const std::string& name, const Scene& scene, const GroundMotion& motion) {
+  if (name == "reference") {
+    EngineRun run;
+    run.engine = name;
+    const auto start = std::chrono::steady_clock::now();
+    reference::Result result = reference::Simulate(scene, motion);
+    run.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    run.summary = ReferenceSummaryJson(scene, result, run.wall_s);
+    run.history = std::move(result.history);
+    const reference::Summary& s = result.summary;
+    char line[256];
+    std::snprintf(line, sizeof line,
+                  "reference: %s, peak |theta1| %.4g rad at %.3f s, peak |theta2| %.4g rad at "
+                  "%.3f s, %d impacts, %.3g ms",
+                  s.status.c_str(), s.peak_theta1_rad, s.peak_theta1_t_s, s.peak_theta2_rad,
+                  s.peak_theta2_t_s, s.impacts_ground + s.impacts_interface, run.wall_s * 1e3);
+    run.one_line = line;
+    return run;
+  }
+#ifdef ROCKBENCH_HAVE_BULLET
+  if (name == "bullet") return RunBulletEngine(scene, motion);
+#endif
+  std::string known;
+  for (const auto& n : AvailableEngines()) known += (known.empty() ? "" : ", ") + n;
+  throw SceneError("unknown engine '" + name + "' (this build has: " + known + ")");
+}
+
+void WriteEngineFiles(const EngineRun& run, const std::filesystem::path& out_dir) {
+  const auto dir = out_dir / run.engine;
+  std::filesystem::create_directories(dir);
+  WriteFileAtomic(dir / "history.csv", HistoryToCsv(run.history));
+  WriteFileAtomic(dir / "events.csv", EventsToCsv(run.history));
+}
+
+}  // namespace rockbench

@@ -1,0 +1,78 @@
+#include "harness/summary.h"
+
+#include <cmath>
+
+namespace rockbench {
+namespace {
+
+const char* IntegratorName(Integrator i) {
+  return i == Integrator::kDopri5 ? "dopri5" : "rk4";
+}
+
+}  // namespace
+
+nlohmann::json ModelOptionsJson(const ModelConfig& m) {
+  return {{"integrator", IntegratorName(m.integrator)},
+          {"rtol", m.rtol},
+          {"atol", m.atol},
+          {"step_s", m.step_s},
+          {"events", m.events == EventScheme::kLocated ? "located" : "thesis"},
+          {"equations", m.equations == Equations::kNonlinear ? "nonlinear" : "linearized"},
+          {"overturn_angle_rad", m.overturn_rad},
+          {"rest_rate_radps", m.rest_rate_radps},
+          {"check_transitions", m.check_transitions}};
+}
+
+nlohmann::json BaseMotionJson(const GroundMotion& motion) {
+  nlohmann::json base = nlohmann::json::object();
+  auto one = [](const MotionComponent& c) {
+    const MotionInfo& i = c.info();
+    nlohmann::json j = {{"source", i.source},
+                        {"format", i.format},
+                        {"npts", i.npts},
+                        {"dt_s", i.dt_s},
+                        {"duration_s", std::isfinite(i.duration_s) ? nlohmann::json(i.duration_s)
+                                                                   : nlohmann::json(nullptr)},
+                        {"peak_g", i.peak_g},
+                        {"peak_t_s", i.peak_t_s},
+                        {"padded_samples", i.padded_samples}};
+    return j;
+  };
+  if (motion.horizontal()) base["horizontal"] = one(*motion.horizontal());
+  if (motion.vertical()) base["vertical"] = one(*motion.vertical());
+  return base;
+}
+
+nlohmann::json ReferenceSummaryJson(const Scene& scene, const reference::Result& result,
+                                    double wall_s) {
+  const reference::Summary& s = result.summary;
+  nlohmann::json j;
+  j["status"] = s.status;
+  if (!s.status_detail.empty()) j["status_detail"] = s.status_detail;
+  j["wall_s"] = wall_s;
+  j["peaks"]["theta1"] = {{"abs_rad", s.peak_theta1_rad}, {"t_s", s.peak_theta1_t_s}};
+  if (scene.two_blocks()) {
+    j["peaks"]["theta2"] = {{"abs_rad", s.peak_theta2_rad}, {"t_s", s.peak_theta2_t_s}};
+  }
+  j["impacts"] = {{"total", s.impacts_ground + s.impacts_interface},
+                  {"ground", s.impacts_ground},
+                  {"interface", s.impacts_interface},
+                  {"inadmissible", s.impacts_inadmissible},
+                  {"energy_gain", s.impacts_energy_gain}};
+  j["transitions"] = s.transitions;
+  j["initiations"] = s.initiations;
+  if (s.overturn_block) {
+    j["overturn"] = {{"block", *s.overturn_block}, {"t_s", s.overturn_t_s}};
+  } else {
+    j["overturn"] = nullptr;
+  }
+  j["friction_required"] = {{"ground", s.friction_required_ground},
+                            {"interface", s.friction_required_interface}};
+  j["integration"] = {{"steps_accepted", s.steps_accepted},
+                      {"steps_rejected", s.steps_rejected},
+                      {"rhs_evaluations", s.rhs_evaluations}};
+  j["model"] = ModelOptionsJson(scene.model);
+  return j;
+}
+
+}  // namespace rockbench
