@@ -1,0 +1,254 @@
+#include "scene/ground_motion.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+namespace rockbench {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kPi = std::numbers::pi;
+
+// Length of an analytic kind's active window [t0, t0 + length].
+double AnalyticLength(const MotionDef& def) {
+  switch (def.kind) {
+    case MotionKind::kHarmonic:
+      return def.duration_s;
+    case MotionKind::kSinePulse:
+    case MotionKind::kCosinePulse:
+      return 1.0 / def.frequency_hz;
+    case MotionKind::kRectangularPulse:
+      return def.duration_s;
+    case MotionKind::kRicker:
+      return 2.0 / def.frequency_hz;
+    case MotionKind::kFile:
+      break;
+  }
+  return 0.0;
+}
+
+// Fills the peak of a sampled record (first largest |a|).
+void SamplePeak(const std::vector<double>& a, double t0, double dt, double gravity,
+                MotionInfo& info) {
+  double peak = 0.0;
+  size_t at = 0;
+  for (size_t i = 0; i < a.size(); ++i) {
+    if (std::abs(a[i]) > peak) {
+      peak = std::abs(a[i]);
+      at = i;
+    }
+  }
+  info.peak_g = peak / gravity;
+  info.peak_t_s = t0 + static_cast<double>(at) * dt;
+}
+
+}  // namespace
+
+MotionComponent MotionComponent::FromSamples(std::vector<double> accel_mps2, double dt_s,
+                                             double t0_s, double gravity_mps2, std::string source) {
+  if (accel_mps2.empty()) throw SceneError(source + ": a record needs at least one sample");
+  if (!(dt_s > 0.0) || !std::isfinite(dt_s)) {
+    throw SceneError(source + ": expected a positive finite sample interval (s)");
+  }
+  if (!std::isfinite(t0_s)) throw SceneError(source + ": expected a finite start time (s)");
+  if (!(gravity_mps2 > 0.0) || !std::isfinite(gravity_mps2)) {
+    throw SceneError(source + ": expected a positive gravity (m/s^2)");
+  }
+  for (size_t i = 0; i < accel_mps2.size(); ++i) {
+    if (!std::isfinite(accel_mps2[i])) {
+      throw SceneError(source + ": sample " + std::to_string(i) + " is not finite");
+    }
+  }
+  MotionComponent c;
+  c.kind_ = MotionKind::kFile;
+  c.samples_ = std::move(accel_mps2);
+  c.t0_ = t0_s;
+  c.dt_ = dt_s;
+  c.info_.source = std::move(source);
+  c.info_.format = "samples";
+  c.info_.npts = static_cast<int>(c.samples_.size());
+  c.info_.dt_s = dt_s;
+  c.info_.duration_s = static_cast<double>(c.samples_.size() - 1) * dt_s;
+  SamplePeak(c.samples_, t0_s, dt_s, gravity_mps2, c.info_);
+  return c;
+}
+
+MotionComponent MotionComponent::FromDef(const MotionDef& def, double gravity_mps2) {
+  if (def.kind == MotionKind::kFile) {
+    const bool at2 = IsAt2File(def.file);
+    RecordData rec = at2 ? ReadAt2(def.file) : ReadPlain(def.file, def.dt_s);
+    AccelUnits units = AccelUnits::kG;
+    if (def.units_given) {
+      units = def.units;
+      if (at2 && rec.units_are_g && units != AccelUnits::kG) {
+        throw SceneError(def.file.string() + ":" + std::to_string(rec.units_line) + ": " + def.key +
+                         ".units is \"" + std::string(AccelUnitsName(units)) +
+                         "\" but the AT2 header says UNITS OF G (omit units or use \"g\")");
+      }
+    } else if (!at2) {
+      throw SceneError(def.file.string() + ": " + def.key +
+                       ".units: a plain record file must state its units: \"g\", \"m/s2\" or "
+                       "\"cm/s2\"");
+    }
+    const double factor = AccelUnitsToMps2(units, gravity_mps2) * def.scale;
+    for (double& v : rec.values) v *= factor;
+    const std::string source =
+        def.file_as_written.empty() ? def.file.string() : def.file_as_written;
+    MotionComponent c =
+        FromSamples(std::move(rec.values), rec.dt_s, rec.t0_s + def.start_s, gravity_mps2, source);
+    c.info_.format = rec.format;
+    return c;
+  }
+  MotionComponent c;
+  c.kind_ = def.kind;
+  c.t0_ = def.start_s;
+  c.amplitude_mps2_ = def.amplitude_g * gravity_mps2 * def.scale;
+  c.frequency_hz_ = def.frequency_hz;
+  c.duration_s_ = AnalyticLength(def);
+  c.info_.source = std::string(MotionKindName(def.kind));
+  c.info_.format = "analytic";
+  c.info_.duration_s = c.duration_s_;
+  // Exact peak of each shape: |A| where the shape reaches 1, unless a harmonic stops earlier.
+  const double amp_g = std::abs(def.amplitude_g * def.scale);
+  switch (def.kind) {
+    case MotionKind::kHarmonic: {
+      const double quarter = 0.25 / def.frequency_hz;
+      if (c.duration_s_ >= quarter) {
+        c.info_.peak_g = amp_g;
+        c.info_.peak_t_s = c.t0_ + quarter;
+      } else {
+        c.info_.peak_g = amp_g * std::sin(2.0 * kPi * def.frequency_hz * c.duration_s_);
+        c.info_.peak_t_s = c.t0_ + c.duration_s_;
+      }
+      break;
+    }
+    case MotionKind::kSinePulse:
+      c.info_.peak_g = amp_g;
+      c.info_.peak_t_s = c.t0_ + 0.25 / def.frequency_hz;
+      break;
+    case MotionKind::kCosinePulse:
+    case MotionKind::kRectangularPulse:
+      c.info_.peak_g = amp_g;
+      c.info_.peak_t_s = c.t0_;
+      break;
+    case MotionKind::kRicker:
+      // The central lobe (shape 1 at tau = 0) exceeds the side lobes (2 exp(-3/2) = 0.446).
+      c.info_.peak_g = amp_g;
+      c.info_.peak_t_s = c.t0_ + 1.0 / def.frequency_hz;
+      break;
+    case MotionKind::kFile:
+      break;
+  }
+  return c;
+}
+
+double MotionComponent::accel_mps2(double t_s) const {
+  if (kind_ == MotionKind::kFile) {
+    const size_t n = samples_.size();
+    if (n == 0) return 0.0;
+    const auto sample_t = [&](size_t i) { return t0_ + static_cast<double>(i) * dt_; };
+    // Zero before the first sample and after the last (false for NaN too).
+    if (!(t_s >= t0_ && t_s <= sample_t(n - 1))) return 0.0;
+    size_t i =
+        static_cast<size_t>(std::min(std::floor((t_s - t0_) / dt_), static_cast<double>(n - 1)));
+    // Index arithmetic may be one off in floating point; settle on sample_t(i) <= t < next.
+    while (i + 1 < n && sample_t(i + 1) <= t_s) ++i;
+    while (i > 0 && sample_t(i) > t_s) --i;
+    const double ti = sample_t(i);
+    if (ti == t_s || i + 1 == n) return samples_[i];
+    const double frac = (t_s - ti) / (sample_t(i + 1) - ti);
+    return samples_[i] + frac * (samples_[i + 1] - samples_[i]);
+  }
+  const double end = t0_ + duration_s_;
+  if (!(t_s >= t0_ && t_s <= end)) return 0.0;
+  const double tau = t_s - t0_;
+  const double w = 2.0 * kPi * frequency_hz_;
+  switch (kind_) {
+    case MotionKind::kHarmonic:
+    case MotionKind::kSinePulse:
+      return amplitude_mps2_ * std::sin(w * tau);
+    case MotionKind::kCosinePulse:
+      return amplitude_mps2_ * std::cos(w * tau);
+    case MotionKind::kRectangularPulse:
+      return amplitude_mps2_;
+    case MotionKind::kRicker: {
+      const double x = kPi * frequency_hz_ * (tau - 1.0 / frequency_hz_);
+      return amplitude_mps2_ * (1.0 - 2.0 * x * x) * std::exp(-x * x);
+    }
+    case MotionKind::kFile:
+      break;
+  }
+  return 0.0;
+}
+
+double MotionComponent::next_breakpoint_after(double t_s) const {
+  if (kind_ == MotionKind::kFile) {
+    const size_t n = samples_.size();
+    if (n == 0) return kInf;
+    const auto sample_t = [&](size_t i) { return t0_ + static_cast<double>(i) * dt_; };
+    if (t_s < t0_) return t0_;
+    if (!(t_s < sample_t(n - 1))) return kInf;
+    // O(1): the index from arithmetic, then at most a step either way for rounding.
+    size_t i = static_cast<size_t>(
+        std::min(std::floor((t_s - t0_) / dt_) + 1.0, static_cast<double>(n - 1)));
+    while (i > 0 && sample_t(i - 1) > t_s) --i;
+    while (i + 1 < n && sample_t(i) <= t_s) ++i;
+    return sample_t(i);
+  }
+  if (t_s < t0_) return t0_;
+  const double end = t0_ + duration_s_;
+  if (t_s < end) return end;  // +inf for a never-ending harmonic
+  return kInf;
+}
+
+double MotionComponent::end_s() const {
+  if (kind_ == MotionKind::kFile) {
+    if (samples_.empty()) return 0.0;
+    return t0_ + static_cast<double>(samples_.size() - 1) * dt_;
+  }
+  return t0_ + duration_s_;
+}
+
+void MotionComponent::pad_to(double t_end_s) {
+  if (kind_ != MotionKind::kFile || samples_.empty() || !std::isfinite(t_end_s)) return;
+  if (t_end_s <= end_s()) return;
+  // Samples needed so that the last one is at or after t_end (1e-9 of dt absorbs rounding).
+  const double last_index = std::ceil((t_end_s - t0_) / dt_ - 1e-9);
+  const size_t n_new = static_cast<size_t>(last_index) + 1;
+  if (n_new <= samples_.size()) return;
+  info_.padded_samples += static_cast<int>(n_new - samples_.size());
+  samples_.resize(n_new, 0.0);
+}
+
+GroundMotion GroundMotion::FromScene(const Scene& scene) {
+  GroundMotion g;
+  const double gravity = scene.run.gravity_mps2;
+  if (scene.horizontal) g.horizontal_ = MotionComponent::FromDef(*scene.horizontal, gravity);
+  if (scene.vertical) g.vertical_ = MotionComponent::FromDef(*scene.vertical, gravity);
+  // Two records of different lengths: the shorter gets zeros at its end.
+  if (g.horizontal_ && g.vertical_ && !g.horizontal_->samples_mps2().empty() &&
+      !g.vertical_->samples_mps2().empty()) {
+    const double end = std::max(g.horizontal_->end_s(), g.vertical_->end_s());
+    g.horizontal_->pad_to(end);
+    g.vertical_->pad_to(end);
+  }
+  return g;
+}
+
+double GroundMotion::next_breakpoint_after(double t_s) const {
+  double next = kInf;
+  if (horizontal_) next = std::min(next, horizontal_->next_breakpoint_after(t_s));
+  if (vertical_) next = std::min(next, vertical_->next_breakpoint_after(t_s));
+  return next;
+}
+
+double GroundMotion::end_s() const {
+  double end = 0.0;
+  if (horizontal_) end = std::max(end, horizontal_->end_s());
+  if (vertical_) end = std::max(end, vertical_->end_s());
+  return end;
+}
+
+}  // namespace rockbench

@@ -1,0 +1,272 @@
+// Readers of ground-motion record files: PEER AT2 (every header variant of records/SOURCES.md)
+// and plain one- or two-column text files.
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <regex>
+#include <sstream>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "scene/ground_motion.h"
+
+namespace rockbench {
+namespace {
+
+// A line of the file: its 1-based number and its text with CR characters removed.
+struct Line {
+  int number = 0;
+  std::string text;
+};
+
+std::vector<Line> ReadLines(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw SceneError(path.string() + ": cannot open the record file");
+  std::ostringstream buf;
+  buf << in.rdbuf();
+  if (in.bad()) throw SceneError(path.string() + ": cannot read the record file");
+  const std::string text = buf.str();
+  std::vector<Line> lines;
+  int number = 1;
+  size_t start = 0;
+  while (start <= text.size()) {
+    size_t end = text.find('\n', start);
+    if (end == std::string::npos) end = text.size();
+    std::string line = text.substr(start, end - start);
+    // Stray CRs (CR LF, CR CR LF) are dropped.
+    line.erase(std::remove(line.begin(), line.end(), '\r'), line.end());
+    if (end < text.size() || !line.empty()) lines.push_back({number, std::move(line)});
+    ++number;
+    start = end + 1;
+  }
+  return lines;
+}
+
+// Splits on whitespace, and on commas when `commas` is set.
+std::vector<std::string_view> Tokens(std::string_view s, bool commas) {
+  std::vector<std::string_view> out;
+  size_t i = 0;
+  const auto is_sep = [&](char c) {
+    return c == ' ' || c == '\t' || c == '\v' || c == '\f' || (commas && c == ',');
+  };
+  while (i < s.size()) {
+    while (i < s.size() && is_sep(s[i])) ++i;
+    size_t j = i;
+    while (j < s.size() && !is_sep(s[j])) ++j;
+    if (j > i) out.push_back(s.substr(i, j - i));
+    i = j;
+  }
+  return out;
+}
+
+// Parses a whole token as a number (a leading '+' is allowed); nan/inf parse but are non-finite.
+bool ParseNumber(std::string_view tok, double& out) {
+  if (!tok.empty() && tok.front() == '+') tok.remove_prefix(1);
+  if (tok.empty()) return false;
+  const char* end = tok.data() + tok.size();
+  auto res = std::from_chars(tok.data(), end, out);
+  return res.ec == std::errc() && res.ptr == end;
+}
+
+std::string Where(const std::filesystem::path& path, int line) {
+  return path.string() + ":" + std::to_string(line);
+}
+
+// Reads one value token, with an error naming file and line.
+double Value(const std::filesystem::path& path, int line, std::string_view tok) {
+  double v = 0.0;
+  if (!ParseNumber(tok, v)) {
+    throw SceneError(Where(path, line) + ": expected a number, got '" + std::string(tok) + "'");
+  }
+  if (!std::isfinite(v)) {
+    throw SceneError(Where(path, line) + ": expected a finite number, got '" + std::string(tok) +
+                     "'");
+  }
+  return v;
+}
+
+}  // namespace
+
+RecordData ReadAt2(const std::filesystem::path& path) {
+  const std::vector<Line> lines = ReadLines(path);
+  // The NPTS/DT line is among the first lines (3 header lines in PEER files, 6 in some).
+  constexpr int kHeaderSearchLines = 12;
+  size_t header = lines.size();
+  for (size_t i = 0; i < lines.size() && lines[i].number <= kHeaderSearchLines; ++i) {
+    std::string upper = lines[i].text;
+    for (char& c : upper) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+    if (upper.find("NPTS") != std::string::npos) {
+      header = i;
+      break;
+    }
+  }
+  if (header == lines.size()) {
+    throw SceneError(path.string() + ": no NPTS/DT header line in the first " +
+                     std::to_string(kHeaderSearchLines) +
+                     " lines (expected e.g. 'NPTS=  4000, DT= .01000 SEC' or "
+                     "'3930 0.00500 NPTS, DT')");
+  }
+  const Line& h = lines[header];
+  const auto icase = std::regex::ECMAScript | std::regex::icase;
+  static const std::regex kNpts(R"(NPTS\s*=\s*([0-9]+))", icase);
+  static const std::regex kDt(R"(\bDT\s*=\s*([-+0-9.Ee]+))", icase);
+  static const std::regex kTrailer(R"(^\s*([0-9]+)\s+([-+0-9.Ee]+)\s+NPTS\s*,\s*DT)", icase);
+  static const std::regex kUnitsG(R"(UNITS\s+OF\s+G\b)", icase);
+  std::smatch npts_m, dt_m;
+  std::string npts_text, dt_text;
+  if (std::regex_search(h.text, npts_m, kNpts) && std::regex_search(h.text, dt_m, kDt)) {
+    npts_text = npts_m[1];
+    dt_text = dt_m[1];
+  } else if (std::regex_search(h.text, npts_m, kTrailer)) {
+    npts_text = npts_m[1];
+    dt_text = npts_m[2];
+  } else {
+    throw SceneError(Where(path, h.number) + ": cannot read NPTS and DT from '" + h.text +
+                     "' (expected 'NPTS= n, DT= dt SEC' or 'n dt NPTS, DT')");
+  }
+  RecordData rec;
+  rec.format = "AT2";
+  long long npts = 0;
+  {
+    const char* end = npts_text.data() + npts_text.size();
+    auto res = std::from_chars(npts_text.data(), end, npts);
+    if (res.ec != std::errc() || res.ptr != end || npts <= 0 || npts > 100'000'000) {
+      throw SceneError(Where(path, h.number) + ": expected a positive NPTS, got '" + npts_text +
+                       "'");
+    }
+  }
+  if (!ParseNumber(dt_text, rec.dt_s) || !std::isfinite(rec.dt_s) || rec.dt_s <= 0.0) {
+    throw SceneError(Where(path, h.number) + ": expected a positive DT (s), got '" + dt_text + "'");
+  }
+  for (size_t i = 0; i <= header; ++i) {
+    if (std::regex_search(lines[i].text, kUnitsG)) {
+      rec.units_are_g = true;
+      rec.units_line = lines[i].number;
+      break;
+    }
+  }
+  // Every numeric token after the header line, whatever the count per line.
+  rec.values.reserve(static_cast<size_t>(npts));
+  int last_line = h.number;
+  for (size_t i = header + 1; i < lines.size(); ++i) {
+    for (std::string_view tok : Tokens(lines[i].text, false)) {
+      if (static_cast<long long>(rec.values.size()) == npts) {
+        throw SceneError(Where(path, lines[i].number) + ": more values than NPTS = " +
+                         std::to_string(npts) + " (header line " + std::to_string(h.number) +
+                         "): value " + std::to_string(npts + 1) + " is '" + std::string(tok) + "'");
+      }
+      rec.values.push_back(Value(path, lines[i].number, tok));
+    }
+    last_line = lines[i].number;
+  }
+  if (static_cast<long long>(rec.values.size()) != npts) {
+    throw SceneError(Where(path, last_line) + ": read " + std::to_string(rec.values.size()) +
+                     " values but the header (line " + std::to_string(h.number) +
+                     ") says NPTS = " + std::to_string(npts) + "; the file ends here");
+  }
+  return rec;
+}
+
+RecordData ReadPlain(const std::filesystem::path& path, double dt_s) {
+  const std::vector<Line> lines = ReadLines(path);
+  RecordData rec;
+  std::vector<double> times;
+  std::vector<int> line_of;  // file line of each sample
+  size_t columns = 0;
+  int first_data_line = 0;
+  for (const Line& line : lines) {
+    const std::vector<std::string_view> toks = Tokens(line.text, true);
+    if (toks.empty()) continue;
+    if (columns == 0) {
+      // Header lines (any non-numeric token) are allowed until the first numeric line.
+      bool numeric = true;
+      for (std::string_view tok : toks) {
+        double v = 0.0;
+        numeric = numeric && ParseNumber(tok, v);
+      }
+      if (!numeric) continue;
+      columns = toks.size();
+      first_data_line = line.number;
+      if (columns != 1 && columns != 2) {
+        throw SceneError(Where(path, line.number) +
+                         ": expected 1 column (a) or 2 columns (t, a), got " +
+                         std::to_string(columns));
+      }
+    }
+    // Numbers first (a stray text line says so), then the column count.
+    std::vector<double> row;
+    for (std::string_view tok : toks) row.push_back(Value(path, line.number, tok));
+    if (row.size() != columns) {
+      throw SceneError(Where(path, line.number) + ": expected " + std::to_string(columns) +
+                       " column(s) like line " + std::to_string(first_data_line) + ", got " +
+                       std::to_string(row.size()));
+    }
+    if (columns == 2) times.push_back(row[0]);
+    rec.values.push_back(row.back());
+    line_of.push_back(line.number);
+  }
+  if (rec.values.empty()) throw SceneError(path.string() + ": no numeric data found");
+  if (columns == 1) {
+    if (!(dt_s > 0.0) || !std::isfinite(dt_s)) {
+      throw SceneError(path.string() +
+                       ": a one-column file needs the sample interval: set dt = ... (s) in the "
+                       "scene's [base.*] table");
+    }
+    rec.format = "plain-1col";
+    rec.dt_s = dt_s;
+    return rec;
+  }
+  rec.format = "plain-2col";
+  if (dt_s > 0.0) {
+    throw SceneError(path.string() +
+                     ": the file has a time column (t, a), so dt must not be given in the scene");
+  }
+  const size_t n = times.size();
+  if (n < 2) {
+    throw SceneError(Where(path, line_of[0]) +
+                     ": a two-column file needs at least 2 rows to define the time step");
+  }
+  rec.t0_s = times.front();
+  // Uniform spacing: every step within 0.1% of the first step, and every time within 0.1% of dt
+  // of the uniform grid through the first and last times. Times printed to 4 or more
+  // significant digits of dt pass exactly; 0.1% of dt moves a sample by far less than the
+  // interpolation error of a record.
+  const double first_step = times[1] - times[0];
+  for (size_t i = 1; i < n; ++i) {
+    const double step = times[i] - times[i - 1];
+    if (!(step > 0.0)) {
+      std::ostringstream msg;
+      msg.precision(10);
+      msg << Where(path, line_of[i]) << ": the time column does not increase: t = " << times[i]
+          << " after t = " << times[i - 1];
+      throw SceneError(msg.str());
+    }
+    if (std::abs(step - first_step) > 1e-3 * first_step) {
+      std::ostringstream msg;
+      msg.precision(10);
+      msg << Where(path, line_of[i])
+          << ": the time column is not uniformly spaced: t = " << times[i]
+          << " after t = " << times[i - 1] << " is a step of " << step
+          << " s, but the first step (line " << line_of[1] << ") is " << first_step << " s";
+      throw SceneError(msg.str());
+    }
+  }
+  rec.dt_s = (times.back() - times.front()) / static_cast<double>(n - 1);
+  for (size_t i = 1; i < n; ++i) {
+    const double grid = rec.t0_s + static_cast<double>(i) * rec.dt_s;
+    if (std::abs(times[i] - grid) > 1e-3 * rec.dt_s) {
+      std::ostringstream msg;
+      msg.precision(10);
+      msg << Where(path, line_of[i])
+          << ": the time column is not uniformly spaced: t = " << times[i]
+          << " is off the uniform grid (t = " << grid << ", dt = " << rec.dt_s
+          << " s from the first and last times)";
+      throw SceneError(msg.str());
+    }
+  }
+  return rec;
+}
+
+}  // namespace rockbench

@@ -1,0 +1,767 @@
+#include "scene/scene.h"
+
+#include <toml++/toml.h>
+
+#include <array>
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <utility>
+
+namespace rockbench {
+namespace {
+
+// Shortest text that reads back as the same double ("-1", "0.15", "1e-10", "inf").
+std::string Repr(double v) {
+  if (std::isnan(v)) return "nan";
+  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
+  std::array<char, 64> buf{};
+  auto res = std::to_chars(buf.data(), buf.data() + buf.size(), v);
+  return std::string(buf.data(), res.ptr);
+}
+
+// What a number must be; the message text names it and the unit.
+enum class Rule { kFinite, kPositive, kNonNegative, kFraction, kUnitInterval };
+
+std::string Expectation(Rule rule, std::string_view unit) {
+  std::string what;
+  switch (rule) {
+    case Rule::kFinite:
+      what = "a finite number";
+      break;
+    case Rule::kPositive:
+      what = "a positive number";
+      break;
+    case Rule::kNonNegative:
+      what = "a number >= 0";
+      break;
+    case Rule::kFraction:
+      what = "a number in (0, 1]";
+      break;
+    case Rule::kUnitInterval:
+      what = "a number in [0, 1]";
+      break;
+  }
+  if (!unit.empty()) what += " (" + std::string(unit) + ")";
+  return what;
+}
+
+bool Satisfies(double v, Rule rule) {
+  if (!std::isfinite(v)) return false;
+  switch (rule) {
+    case Rule::kFinite:
+      return true;
+    case Rule::kPositive:
+      return v > 0.0;
+    case Rule::kNonNegative:
+      return v >= 0.0;
+    case Rule::kFraction:
+      return v > 0.0 && v <= 1.0;
+    case Rule::kUnitInterval:
+      return v >= 0.0 && v <= 1.0;
+  }
+  return false;
+}
+
+std::string Quote(std::string_view text) {
+  std::string out;
+  out.reserve(text.size() + 2);
+  out += '"';
+  out += text;
+  out += '"';
+  return out;
+}
+
+// Describes a TOML node that has the wrong type, for "got ..." in messages.
+std::string Describe(const toml::node& node) {
+  if (auto s = node.as_string()) return Quote(s->get());
+  if (auto b = node.as_boolean()) return b->get() ? "true" : "false";
+  if (auto i = node.as_integer()) return std::to_string(i->get());
+  if (auto f = node.as_floating_point()) return Repr(f->get());
+  if (node.is_array()) return "an array";
+  if (node.is_table()) return "a table";
+  return "a date/time";
+}
+
+// Allowed keys of every table; a key listed with `true` is a sub-table.
+using KeyList = std::vector<std::pair<std::string_view, bool>>;
+const std::map<std::string, KeyList, std::less<>>& Schema() {
+  static const KeyList kBlock = {
+      {"width", false}, {"height", false}, {"density", false}, {"mass", false}, {"depth", false}};
+  static const KeyList kMotion = {
+      {"file", false},         {"kind", false},       {"units", false},
+      {"scale", false},        {"dt", false},         {"amplitude_g", false},
+      {"frequency_hz", false}, {"duration_s", false}, {"start_s", false}};
+  static const std::map<std::string, KeyList, std::less<>> kSchema = {
+      {"",
+       {{"title", false},
+        {"block1", true},
+        {"block2", true},
+        {"initial", true},
+        {"base", true},
+        {"run", true},
+        {"model", true},
+        {"bullet", true},
+        {"compare", true}}},
+      {"block1", kBlock},
+      {"block2", kBlock},
+      {"initial", {{"theta1", false}, {"theta2", false}, {"omega1", false}, {"omega2", false}}},
+      {"base", {{"horizontal", true}, {"vertical", true}}},
+      {"base.horizontal", kMotion},
+      {"base.vertical", kMotion},
+      {"run", {{"duration", false}, {"output_interval", false}, {"gravity", false}}},
+      {"model",
+       {{"integrator", false},
+        {"rtol", false},
+        {"atol", false},
+        {"step", false},
+        {"events", false},
+        {"equations", false},
+        {"overturn_angle", false},
+        {"rest_rate", false},
+        {"check_transitions", false}}},
+      {"bullet",
+       {{"time_step", false},
+        {"solver_iterations", false},
+        {"precision", false},
+        {"drive", false},
+        {"erp", false},
+        {"erp2", false},
+        {"split_impulse", false},
+        {"split_impulse_threshold", false},
+        {"restitution", false},
+        {"friction", false},
+        {"rolling_friction", false},
+        {"restitution_velocity_threshold", false},
+        {"margin", false},
+        {"ground_depth", false},
+        {"kinematic_highpass_hz", false}}},
+      {"compare", {{"tolerance", false}}},
+  };
+  return kSchema;
+}
+
+std::string Join(const std::string& prefix, std::string_view name) {
+  return prefix.empty() ? std::string(name) : prefix + "." + std::string(name);
+}
+
+std::string Trim(std::string_view s) {
+  const auto b = s.find_first_not_of(" \t\r\n");
+  if (b == std::string_view::npos) return {};
+  const auto e = s.find_last_not_of(" \t\r\n");
+  return std::string(s.substr(b, e - b + 1));
+}
+
+// One enum choice: its TOML string and value.
+template <typename E>
+using Choices = std::vector<std::pair<std::string_view, E>>;
+
+template <typename E>
+std::string ChoiceList(const Choices<E>& choices) {
+  std::string out;
+  for (size_t i = 0; i < choices.size(); ++i) {
+    if (i > 0) out += i + 1 == choices.size() ? " or " : ", ";
+    out += '"';
+    out += choices[i].first;
+    out += '"';
+  }
+  return out;
+}
+
+const Choices<MotionKind> kKinds = {{"harmonic", MotionKind::kHarmonic},
+                                    {"sine_pulse", MotionKind::kSinePulse},
+                                    {"cosine_pulse", MotionKind::kCosinePulse},
+                                    {"rectangular_pulse", MotionKind::kRectangularPulse},
+                                    {"ricker", MotionKind::kRicker}};
+const Choices<AccelUnits> kUnits = {
+    {"g", AccelUnits::kG}, {"m/s2", AccelUnits::kMps2}, {"cm/s2", AccelUnits::kCmps2}};
+
+// Reads the TOML tree into a Scene, with messages "FILE:LINE: KEY: expected ..., got ...".
+class Reader {
+ public:
+  Reader(std::string file, std::map<std::string, std::string> overrides)
+      : file_(std::move(file)), overrides_(std::move(overrides)) {}
+
+  std::string Loc(const std::string& key, const toml::node* node) const {
+    if (auto it = overrides_.find(key); it != overrides_.end()) {
+      return file_ + ": override \"" + it->second + "\"";
+    }
+    if (node != nullptr && node->source().begin.line > 0) {
+      return file_ + ":" + std::to_string(node->source().begin.line);
+    }
+    return file_;
+  }
+
+  [[noreturn]] void Fail(const std::string& key, const toml::node* node,
+                         const std::string& msg) const {
+    throw SceneError(Loc(key, node) + ": " + key + ": " + msg);
+  }
+
+  // Rejects keys that the schema does not list for `prefix`.
+  void CheckKeys(const toml::table& table, const std::string& prefix) const {
+    const KeyList& allowed = Schema().at(prefix);
+    for (auto&& [k, v] : table) {
+      bool known = false;
+      for (const auto& [name, is_table] : allowed) known = known || name == k.str();
+      if (known) continue;
+      std::string list;
+      for (const auto& [name, is_table] : allowed) {
+        list += (list.empty() ? "" : ", ") + std::string(name);
+      }
+      const std::string key = Join(prefix, k.str());
+      std::string loc = file_;
+      if (k.source().begin.line > 0) loc += ":" + std::to_string(k.source().begin.line);
+      throw SceneError(loc + ": " + key + ": unknown key (expected one of: " + list + ")");
+    }
+  }
+
+  // A sub-table, or nullptr when absent.
+  const toml::table* Table(const toml::table& parent, const std::string& prefix,
+                           std::string_view name) const {
+    const toml::node* node = parent.get(name);
+    if (node == nullptr) return nullptr;
+    const std::string key = Join(prefix, name);
+    if (!node->is_table())
+      Fail(key, node, "expected a table [" + key + "], got " + Describe(*node));
+    CheckKeys(*node->as_table(), key);
+    return node->as_table();
+  }
+
+  std::optional<double> Number(const toml::table& t, const std::string& prefix,
+                               std::string_view name, Rule rule, std::string_view unit) const {
+    const toml::node* node = t.get(name);
+    if (node == nullptr) return std::nullopt;
+    const std::string key = Join(prefix, name);
+    double v = 0.0;
+    if (auto f = node->as_floating_point()) {
+      v = f->get();
+    } else if (auto i = node->as_integer()) {
+      v = static_cast<double>(i->get());
+    } else {
+      Fail(key, node, "expected " + Expectation(rule, unit) + ", got " + Describe(*node));
+    }
+    if (!Satisfies(v, rule)) {
+      Fail(key, node, "expected " + Expectation(rule, unit) + ", got " + Repr(v));
+    }
+    return v;
+  }
+
+  double RequiredNumber(const toml::table& t, const std::string& prefix, std::string_view name,
+                        Rule rule, std::string_view unit) const {
+    auto v = Number(t, prefix, name, rule, unit);
+    if (!v) Fail(Join(prefix, name), &t, "missing; expected " + Expectation(rule, unit));
+    return *v;
+  }
+
+  std::optional<std::string> String(const toml::table& t, const std::string& prefix,
+                                    std::string_view name, std::string_view expected) const {
+    const toml::node* node = t.get(name);
+    if (node == nullptr) return std::nullopt;
+    auto s = node->as_string();
+    if (s == nullptr) {
+      Fail(Join(prefix, name), node,
+           "expected " + std::string(expected) + ", got " + Describe(*node));
+    }
+    return s->get();
+  }
+
+  std::optional<bool> Bool(const toml::table& t, const std::string& prefix,
+                           std::string_view name) const {
+    const toml::node* node = t.get(name);
+    if (node == nullptr) return std::nullopt;
+    auto b = node->as_boolean();
+    if (b == nullptr)
+      Fail(Join(prefix, name), node, "expected true or false, got " + Describe(*node));
+    return b->get();
+  }
+
+  std::optional<int64_t> PositiveInteger(const toml::table& t, const std::string& prefix,
+                                         std::string_view name) const {
+    const toml::node* node = t.get(name);
+    if (node == nullptr) return std::nullopt;
+    auto i = node->as_integer();
+    if (i == nullptr || i->get() <= 0) {
+      Fail(Join(prefix, name), node, "expected a positive integer, got " + Describe(*node));
+    }
+    return i->get();
+  }
+
+  template <typename E>
+  std::optional<E> Enum(const toml::table& t, const std::string& prefix, std::string_view name,
+                        const Choices<E>& choices) const {
+    const std::string expected = ChoiceList(choices);
+    auto s = String(t, prefix, name, expected);
+    if (!s) return std::nullopt;
+    for (const auto& [text, value] : choices) {
+      if (text == *s) return value;
+    }
+    Fail(Join(prefix, name), t.get(name), "expected " + expected + ", got \"" + *s + "\"");
+  }
+
+  // A key that must not be there (message says why).
+  void Forbid(const toml::table& t, const std::string& prefix, std::string_view name,
+              const std::string& why) const {
+    if (const toml::node* node = t.get(name)) Fail(Join(prefix, name), node, why);
+  }
+
+  BlockDef ReadBlock(const toml::table& t, const std::string& prefix) const {
+    BlockDef b;
+    b.width_m = RequiredNumber(t, prefix, "width", Rule::kPositive, "m");
+    b.height_m = RequiredNumber(t, prefix, "height", Rule::kPositive, "m");
+    b.depth_m = Number(t, prefix, "depth", Rule::kPositive, "m").value_or(1.0);
+    auto density = Number(t, prefix, "density", Rule::kPositive, "kg/m^3");
+    auto mass = Number(t, prefix, "mass", Rule::kPositive, "kg");
+    if (density && mass) {
+      Fail(prefix + ".mass", t.get("mass"), "give either density or mass, not both");
+    }
+    if (!density && !mass) {
+      Fail(prefix, &t, "missing density (kg/m^3) or mass (kg)");
+    }
+    if (density) {
+      b.density_kgpm3 = *density;
+      b.mass_kg = *density * b.width_m * b.height_m * b.depth_m;
+    } else {
+      b.density_kgpm3 = 0.0;
+      b.mass_kg = *mass;
+    }
+    return b;
+  }
+
+  MotionDef ReadMotion(const toml::table& t, const std::string& prefix,
+                       const std::filesystem::path& scene_path) const {
+    MotionDef m;
+    m.key = prefix;
+    auto file = String(t, prefix, "file", "a file path");
+    const std::string kinds = ChoiceList(kKinds);
+    const toml::node* kind_node = t.get("kind");
+    if (file && kind_node != nullptr) {
+      Fail(prefix, &t, "give either file or kind, not both");
+    }
+    if (!file && kind_node == nullptr) {
+      Fail(prefix, &t, "missing file = \"...\" or kind = " + kinds);
+    }
+    m.scale = Number(t, prefix, "scale", Rule::kFinite, "").value_or(1.0);
+    m.start_s = Number(t, prefix, "start_s", Rule::kNonNegative, "s").value_or(0.0);
+    if (file) {
+      m.kind = MotionKind::kFile;
+      if (file->empty()) Fail(prefix + ".file", t.get("file"), "expected a file path, got \"\"");
+      m.file_as_written = *file;
+      std::filesystem::path p(*file);
+      m.file = p.is_absolute() ? p : (scene_path.parent_path() / p).lexically_normal();
+      if (!std::filesystem::is_regular_file(m.file)) {
+        Fail(prefix + ".file", t.get("file"), "file not found: " + m.file.string());
+      }
+      const std::string why = "only for analytic kinds (kind = ...), not for a record file";
+      Forbid(t, prefix, "amplitude_g", why);
+      Forbid(t, prefix, "frequency_hz", why);
+      Forbid(t, prefix, "duration_s", why);
+      const bool at2 = IsAt2File(m.file);
+      if (auto u = Enum(t, prefix, "units", kUnits)) {
+        m.units = *u;
+        m.units_given = true;
+      } else if (!at2) {
+        Fail(prefix + ".units", &t,
+             "missing; a plain record file must state its units: " + ChoiceList(kUnits));
+      }
+      if (at2) {
+        Forbid(t, prefix, "dt", "not allowed for an AT2 file (DT is read from its header)");
+      } else {
+        m.dt_s = Number(t, prefix, "dt", Rule::kPositive, "s").value_or(0.0);
+      }
+      return m;
+    }
+    m.kind = *Enum(t, prefix, "kind", kKinds);
+    const std::string kind_name(MotionKindName(m.kind));
+    Forbid(t, prefix, "units", "not used by kind = \"" + kind_name + "\" (amplitude_g is in g)");
+    Forbid(t, prefix, "dt", "only for one-column record files");
+    m.amplitude_g = RequiredNumber(t, prefix, "amplitude_g", Rule::kFinite, "g");
+    if (m.kind == MotionKind::kRectangularPulse) {
+      Forbid(t, prefix, "frequency_hz", "not used by kind = \"rectangular_pulse\"");
+      m.duration_s = RequiredNumber(t, prefix, "duration_s", Rule::kPositive, "s");
+    } else {
+      m.frequency_hz = RequiredNumber(t, prefix, "frequency_hz", Rule::kPositive, "Hz");
+      if (m.kind == MotionKind::kHarmonic) {
+        m.duration_s = Number(t, prefix, "duration_s", Rule::kPositive, "s")
+                           .value_or(std::numeric_limits<double>::infinity());
+      } else {
+        Forbid(t, prefix, "duration_s",
+               "not used by kind = \"" + kind_name + "\" (its length follows from frequency_hz)");
+      }
+    }
+    return m;
+  }
+
+  Scene Read(const toml::table& root, const std::filesystem::path& path) const {
+    Scene s;
+    s.path = path;
+    CheckKeys(root, "");
+    s.title = String(root, "", "title", "a string").value_or("");
+
+    const toml::table* b1 = Table(root, "", "block1");
+    if (b1 == nullptr) {
+      throw SceneError(file_ +
+                       ": block1: missing table [block1] (the lower block: width, height, "
+                       "density or mass)");
+    }
+    s.block1 = ReadBlock(*b1, "block1");
+    if (const toml::table* b2 = Table(root, "", "block2")) s.block2 = ReadBlock(*b2, "block2");
+
+    if (const toml::table* in = Table(root, "", "initial")) {
+      s.initial.theta1_rad = Number(*in, "initial", "theta1", Rule::kFinite, "rad").value_or(0.0);
+      s.initial.omega1_radps =
+          Number(*in, "initial", "omega1", Rule::kFinite, "rad/s").value_or(0.0);
+      if (!s.two_blocks()) {
+        const std::string why = "not allowed in a single-block scene (there is no [block2])";
+        Forbid(*in, "initial", "theta2", why);
+        Forbid(*in, "initial", "omega2", why);
+      }
+      s.initial.theta2_rad = Number(*in, "initial", "theta2", Rule::kFinite, "rad").value_or(0.0);
+      s.initial.omega2_radps =
+          Number(*in, "initial", "omega2", Rule::kFinite, "rad/s").value_or(0.0);
+    }
+
+    if (const toml::table* base = Table(root, "", "base")) {
+      if (const toml::table* h = Table(*base, "base", "horizontal")) {
+        s.horizontal = ReadMotion(*h, "base.horizontal", path);
+      }
+      if (const toml::table* v = Table(*base, "base", "vertical")) {
+        s.vertical = ReadMotion(*v, "base.vertical", path);
+      }
+    }
+
+    if (const toml::table* run = Table(root, "", "run")) {
+      RunConfig& r = s.run;
+      r.duration_s = Number(*run, "run", "duration", Rule::kPositive, "s").value_or(r.duration_s);
+      r.output_interval_s = Number(*run, "run", "output_interval", Rule::kPositive, "s")
+                                .value_or(r.output_interval_s);
+      r.gravity_mps2 =
+          Number(*run, "run", "gravity", Rule::kPositive, "m/s^2").value_or(r.gravity_mps2);
+      if (r.output_interval_s > r.duration_s) {
+        if (const toml::node* node = run->get("output_interval")) {
+          Fail("run.output_interval", node,
+               "must not exceed run.duration (" + Repr(r.duration_s) + " s), got " +
+                   Repr(r.output_interval_s));
+        }
+        Fail("run.duration", run->get("duration"),
+             "must be at least run.output_interval (" + Repr(r.output_interval_s) +
+                 " s, the default), got " + Repr(r.duration_s));
+      }
+    }
+
+    if (const toml::table* model = Table(root, "", "model")) {
+      ModelConfig& m = s.model;
+      m.integrator =
+          Enum(*model, "model", "integrator",
+               Choices<Integrator>{{"dopri5", Integrator::kDopri5}, {"rk4", Integrator::kRk4}})
+              .value_or(m.integrator);
+      m.rtol = Number(*model, "model", "rtol", Rule::kPositive, "").value_or(m.rtol);
+      m.atol = Number(*model, "model", "atol", Rule::kPositive, "rad, rad/s").value_or(m.atol);
+      m.step_s = Number(*model, "model", "step", Rule::kPositive, "s").value_or(m.step_s);
+      m.events = Enum(*model, "model", "events",
+                      Choices<EventScheme>{{"located", EventScheme::kLocated},
+                                           {"thesis", EventScheme::kThesis}})
+                     .value_or(m.events);
+      m.equations = Enum(*model, "model", "equations",
+                         Choices<Equations>{{"nonlinear", Equations::kNonlinear},
+                                            {"linearized", Equations::kLinearized}})
+                        .value_or(m.equations);
+      m.overturn_rad = Number(*model, "model", "overturn_angle", Rule::kPositive, "rad")
+                           .value_or(m.overturn_rad);
+      m.rest_rate_radps = Number(*model, "model", "rest_rate", Rule::kNonNegative, "rad/s")
+                              .value_or(m.rest_rate_radps);
+      m.check_transitions =
+          Bool(*model, "model", "check_transitions").value_or(m.check_transitions);
+    }
+
+    if (const toml::table* bt = Table(root, "", "bullet")) {
+      BulletConfig& b = s.bullet;
+      const std::string p = "bullet";
+      b.time_step_s = Number(*bt, p, "time_step", Rule::kPositive, "s").value_or(b.time_step_s);
+      b.solver_iterations = static_cast<int>(
+          PositiveInteger(*bt, p, "solver_iterations").value_or(b.solver_iterations));
+      b.precision = Enum(*bt, p, "precision",
+                         Choices<BulletPrecision>{{"double", BulletPrecision::kDouble},
+                                                  {"float", BulletPrecision::kFloat}})
+                        .value_or(b.precision);
+      b.drive = Enum(*bt, p, "drive",
+                     Choices<BulletDrive>{{"inertial", BulletDrive::kInertial},
+                                          {"kinematic", BulletDrive::kKinematic}})
+                    .value_or(b.drive);
+      b.erp = Number(*bt, p, "erp", Rule::kFraction, "").value_or(b.erp);
+      b.erp2 = Number(*bt, p, "erp2", Rule::kFraction, "").value_or(b.erp2);
+      b.split_impulse = Bool(*bt, p, "split_impulse").value_or(b.split_impulse);
+      b.split_impulse_threshold = Number(*bt, p, "split_impulse_threshold", Rule::kFinite, "")
+                                      .value_or(b.split_impulse_threshold);
+      b.restitution =
+          Number(*bt, p, "restitution", Rule::kUnitInterval, "").value_or(b.restitution);
+      b.friction = Number(*bt, p, "friction", Rule::kNonNegative, "").value_or(b.friction);
+      b.rolling_friction =
+          Number(*bt, p, "rolling_friction", Rule::kNonNegative, "").value_or(b.rolling_friction);
+      b.restitution_velocity_threshold =
+          Number(*bt, p, "restitution_velocity_threshold", Rule::kNonNegative, "m/s")
+              .value_or(b.restitution_velocity_threshold);
+      b.margin_m = Number(*bt, p, "margin", Rule::kNonNegative, "m").value_or(b.margin_m);
+      b.ground_depth_m =
+          Number(*bt, p, "ground_depth", Rule::kPositive, "m").value_or(b.ground_depth_m);
+      b.kinematic_highpass_hz = Number(*bt, p, "kinematic_highpass_hz", Rule::kNonNegative, "Hz")
+                                    .value_or(b.kinematic_highpass_hz);
+    }
+
+    if (const toml::table* cmp = Table(root, "", "compare")) {
+      s.compare.tolerance_rad = Number(*cmp, "compare", "tolerance", Rule::kPositive, "rad");
+    }
+    return s;
+  }
+
+ private:
+  std::string file_;
+  std::map<std::string, std::string> overrides_;  // dotted key -> override text
+};
+
+// Applies "key=value" overrides to the parsed tree; returns dotted key -> override text.
+std::map<std::string, std::string> ApplyOverrides(toml::table& root,
+                                                  const std::vector<std::string>& overrides,
+                                                  const std::string& file) {
+  std::map<std::string, std::string> applied;
+  for (const std::string& text : overrides) {
+    const auto fail = [&](const std::string& msg) {
+      throw SceneError(file + ": override \"" + text + "\": " + msg);
+    };
+    const auto eq = text.find('=');
+    if (eq == std::string::npos) fail("expected key=value");
+    const std::string key = Trim(std::string_view(text).substr(0, eq));
+    const std::string value = Trim(std::string_view(text).substr(eq + 1));
+    // Split the dotted key and check every part against the schema.
+    std::vector<std::string> parts;
+    std::string prefix;
+    for (size_t start = 0;;) {
+      const auto dot = key.find('.', start);
+      parts.push_back(
+          key.substr(start, dot == std::string::npos ? std::string::npos : dot - start));
+      if (dot == std::string::npos) break;
+      start = dot + 1;
+    }
+    for (size_t i = 0; i < parts.size(); ++i) {
+      auto it = Schema().find(prefix);
+      bool found = false, is_table = false;
+      if (it != Schema().end()) {
+        for (const auto& [name, tbl] : it->second) {
+          if (name == parts[i]) found = true, is_table = tbl;
+        }
+      }
+      const std::string here = Join(prefix, parts[i]);
+      if (!found) fail("unknown key " + here);
+      const bool last = i + 1 == parts.size();
+      if (last && is_table)
+        fail(here + " is a table; set its keys one by one (" + here + ".x=...)");
+      if (!last && !is_table) fail(here + " is not a table");
+      prefix = here;
+    }
+    // The value: TOML if it parses, otherwise the bare text as a string.
+    toml::table parsed;
+    bool is_toml = true;
+    try {
+      const std::string doc = "v = " + value;
+      parsed = toml::parse(std::string_view(doc), std::string_view("override"));
+    } catch (const toml::parse_error&) {
+      is_toml = false;
+    }
+    toml::table* t = &root;
+    for (size_t i = 0; i + 1 < parts.size(); ++i) {
+      toml::node* n = t->get(parts[i]);
+      if (n == nullptr) {
+        t->insert(parts[i], toml::table{});
+        n = t->get(parts[i]);
+      }
+      if (!n->is_table()) fail(parts[i] + " in the scene is not a table");
+      t = n->as_table();
+    }
+    const toml::node* v = is_toml ? parsed.get("v") : nullptr;
+    if (is_toml && v != nullptr && parsed.size() == 1) {
+      v->visit([&](const auto& node) { t->insert_or_assign(parts.back(), node); });
+    } else {
+      t->insert_or_assign(parts.back(), value);
+    }
+    applied[key] = text;
+  }
+  return applied;
+}
+
+std::string FileLabel(const std::filesystem::path& path) {
+  return path.empty() ? std::string("scene") : path.string();
+}
+
+}  // namespace
+
+bool IsAt2File(const std::filesystem::path& file) {
+  std::string ext = file.extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return ext == ".at2";
+}
+
+std::string_view MotionKindName(MotionKind kind) {
+  switch (kind) {
+    case MotionKind::kFile:
+      return "file";
+    case MotionKind::kHarmonic:
+      return "harmonic";
+    case MotionKind::kSinePulse:
+      return "sine_pulse";
+    case MotionKind::kCosinePulse:
+      return "cosine_pulse";
+    case MotionKind::kRectangularPulse:
+      return "rectangular_pulse";
+    case MotionKind::kRicker:
+      return "ricker";
+  }
+  return "file";
+}
+
+std::string_view AccelUnitsName(AccelUnits units) {
+  switch (units) {
+    case AccelUnits::kG:
+      return "g";
+    case AccelUnits::kMps2:
+      return "m/s2";
+    case AccelUnits::kCmps2:
+      return "cm/s2";
+  }
+  return "g";
+}
+
+double AccelUnitsToMps2(AccelUnits units, double gravity_mps2) {
+  switch (units) {
+    case AccelUnits::kG:
+      return gravity_mps2;
+    case AccelUnits::kMps2:
+      return 1.0;
+    case AccelUnits::kCmps2:
+      return 0.01;
+  }
+  return 1.0;
+}
+
+Scene ParseScene(std::string_view toml_text, const std::filesystem::path& path,
+                 const std::vector<std::string>& overrides) {
+  const std::string file = FileLabel(path);
+  toml::table root;
+  try {
+    root = toml::parse(toml_text, file);
+  } catch (const toml::parse_error& e) {
+    throw SceneError(file + ":" + std::to_string(e.source().begin.line) + ":" +
+                     std::to_string(e.source().begin.column) +
+                     ": TOML syntax error: " + std::string(e.description()));
+  }
+  auto applied = ApplyOverrides(root, overrides, file);
+  Scene scene = Reader(file, std::move(applied)).Read(root, path);
+  ValidateScene(scene);
+  return scene;
+}
+
+Scene LoadScene(const std::filesystem::path& path, const std::vector<std::string>& overrides) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw SceneError(path.string() + ": cannot open the scene file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) throw SceneError(path.string() + ": cannot read the scene file");
+  return ParseScene(text.str(), path, overrides);
+}
+
+void ValidateScene(const Scene& scene) {
+  const std::string file = FileLabel(scene.path);
+  const auto check = [&](const std::string& key, double v, Rule rule, std::string_view unit) {
+    if (!Satisfies(v, rule)) {
+      throw SceneError(file + ": " + key + ": expected " + Expectation(rule, unit) + ", got " +
+                       Repr(v));
+    }
+  };
+  const auto fail = [&](const std::string& key, const std::string& msg) {
+    throw SceneError(file + ": " + key + ": " + msg);
+  };
+  const auto block = [&](const BlockDef& b, const std::string& p) {
+    check(p + ".width", b.width_m, Rule::kPositive, "m");
+    check(p + ".height", b.height_m, Rule::kPositive, "m");
+    check(p + ".depth", b.depth_m, Rule::kPositive, "m");
+    check(p + ".mass", b.mass_kg, Rule::kPositive, "kg");
+    check(p + ".density", b.density_kgpm3, Rule::kNonNegative, "kg/m^3");
+  };
+  block(scene.block1, "block1");
+  if (scene.block2) block(*scene.block2, "block2");
+  check("initial.theta1", scene.initial.theta1_rad, Rule::kFinite, "rad");
+  check("initial.omega1", scene.initial.omega1_radps, Rule::kFinite, "rad/s");
+  check("initial.theta2", scene.initial.theta2_rad, Rule::kFinite, "rad");
+  check("initial.omega2", scene.initial.omega2_radps, Rule::kFinite, "rad/s");
+  if (!scene.two_blocks() &&
+      (scene.initial.theta2_rad != 0.0 || scene.initial.omega2_radps != 0.0)) {
+    fail("initial.theta2", "must be 0 with omega2 in a single-block scene (there is no block2)");
+  }
+  for (const auto* m : {&scene.horizontal, &scene.vertical}) {
+    if (!*m) continue;
+    const MotionDef& d = **m;
+    const std::string p = d.key.empty() ? std::string("base") : d.key;
+    check(p + ".scale", d.scale, Rule::kFinite, "");
+    check(p + ".start_s", d.start_s, Rule::kNonNegative, "s");
+    if (d.kind == MotionKind::kFile) {
+      if (d.file.empty()) fail(p + ".file", "expected a file path");
+      if (!std::filesystem::is_regular_file(d.file)) {
+        fail(p + ".file", "file not found: " + d.file.string());
+      }
+      const bool at2 = IsAt2File(d.file);
+      if (!at2 && !d.units_given) {
+        fail(p + ".units",
+             "missing; a plain record file must state its units: " + ChoiceList(kUnits));
+      }
+      if (at2 && d.dt_s != 0.0) fail(p + ".dt", "not allowed for an AT2 file");
+      if (!at2) check(p + ".dt", d.dt_s, Rule::kNonNegative, "s");
+      continue;
+    }
+    check(p + ".amplitude_g", d.amplitude_g, Rule::kFinite, "g");
+    if (d.kind != MotionKind::kRectangularPulse) {
+      check(p + ".frequency_hz", d.frequency_hz, Rule::kPositive, "Hz");
+    }
+    if (d.kind == MotionKind::kRectangularPulse) {
+      check(p + ".duration_s", d.duration_s, Rule::kPositive, "s");
+    } else if (d.kind == MotionKind::kHarmonic &&
+               d.duration_s != std::numeric_limits<double>::infinity()) {
+      // A harmonic lasts duration_s, or forever (+inf, the default).
+      check(p + ".duration_s", d.duration_s, Rule::kPositive, "s");
+    }
+  }
+  check("run.duration", scene.run.duration_s, Rule::kPositive, "s");
+  check("run.output_interval", scene.run.output_interval_s, Rule::kPositive, "s");
+  check("run.gravity", scene.run.gravity_mps2, Rule::kPositive, "m/s^2");
+  if (scene.run.output_interval_s > scene.run.duration_s) {
+    fail("run.output_interval", "must not exceed run.duration (" + Repr(scene.run.duration_s) +
+                                    " s), got " + Repr(scene.run.output_interval_s));
+  }
+  const ModelConfig& m = scene.model;
+  check("model.rtol", m.rtol, Rule::kPositive, "");
+  check("model.atol", m.atol, Rule::kPositive, "rad, rad/s");
+  check("model.step", m.step_s, Rule::kPositive, "s");
+  check("model.overturn_angle", m.overturn_rad, Rule::kPositive, "rad");
+  check("model.rest_rate", m.rest_rate_radps, Rule::kNonNegative, "rad/s");
+  const BulletConfig& b = scene.bullet;
+  check("bullet.time_step", b.time_step_s, Rule::kPositive, "s");
+  if (b.solver_iterations <= 0) {
+    fail("bullet.solver_iterations",
+         "expected a positive integer, got " + std::to_string(b.solver_iterations));
+  }
+  check("bullet.erp", b.erp, Rule::kFraction, "");
+  check("bullet.erp2", b.erp2, Rule::kFraction, "");
+  check("bullet.split_impulse_threshold", b.split_impulse_threshold, Rule::kFinite, "");
+  check("bullet.restitution", b.restitution, Rule::kUnitInterval, "");
+  check("bullet.friction", b.friction, Rule::kNonNegative, "");
+  check("bullet.rolling_friction", b.rolling_friction, Rule::kNonNegative, "");
+  check("bullet.restitution_velocity_threshold", b.restitution_velocity_threshold,
+        Rule::kNonNegative, "m/s");
+  check("bullet.margin", b.margin_m, Rule::kNonNegative, "m");
+  check("bullet.ground_depth", b.ground_depth_m, Rule::kPositive, "m");
+  check("bullet.kinematic_highpass_hz", b.kinematic_highpass_hz, Rule::kNonNegative, "Hz");
+  if (scene.compare.tolerance_rad) {
+    check("compare.tolerance", *scene.compare.tolerance_rad, Rule::kPositive, "rad");
+  }
+}
+
+}  // namespace rockbench

@@ -1,0 +1,391 @@
+// Base motion: units and scale, piecewise-linear records, breakpoints, analytic kinds, padding.
+#include "scene/ground_motion.h"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include "scene/scene.h"
+
+namespace rockbench {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kPi = std::numbers::pi;
+const fs::path kRecords = fs::path(ROCKBENCH_SOURCE_DIR) / "records";
+const fs::path kRinaldi228 = kRecords / "northridge1994_rinaldi_receiving_sta_228.AT2";
+
+class GroundMotionTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("rockbench_ground_motion_test_" + std::to_string(::getpid()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  fs::path Write(const std::string& name, const std::string& text) {
+    const fs::path p = dir_ / name;
+    std::ofstream(p, std::ios::binary) << text;
+    return p;
+  }
+  fs::path dir_;
+};
+
+MotionDef FileDef(const fs::path& file) {
+  MotionDef d;
+  d.key = "base.horizontal";
+  d.kind = MotionKind::kFile;
+  d.file = file;
+  d.file_as_written = file.filename().string();
+  return d;
+}
+
+MotionDef Analytic(MotionKind kind, double amplitude_g, double f_hz, double t0_s,
+                   double duration_s = kInf) {
+  MotionDef d;
+  d.key = "base.horizontal";
+  d.kind = kind;
+  d.amplitude_g = amplitude_g;
+  d.frequency_hz = f_hz;
+  d.start_s = t0_s;
+  d.duration_s = duration_s;
+  return d;
+}
+
+TEST_F(GroundMotionTest, UnitsAndScale) {
+  // One-column file, values 1, -2, 4; each unit and the scale multiply them.
+  const fs::path p = Write("one.txt", "1\n-2\n4\n");
+  const double g = 9.81;
+  struct Case {
+    AccelUnits units;
+    double to_mps2;
+  };
+  for (const Case& c :
+       {Case{AccelUnits::kG, g}, Case{AccelUnits::kMps2, 1.0}, Case{AccelUnits::kCmps2, 0.01}}) {
+    MotionDef d = FileDef(p);
+    d.units = c.units;
+    d.units_given = true;
+    d.dt_s = 0.1;
+    d.scale = 0.5;
+    const MotionComponent m = MotionComponent::FromDef(d, g);
+    ASSERT_EQ(m.samples_mps2().size(), 3u);
+    EXPECT_DOUBLE_EQ(m.samples_mps2()[1], -2.0 * c.to_mps2 * 0.5);
+    EXPECT_DOUBLE_EQ(m.accel_mps2(0.2), 4.0 * c.to_mps2 * 0.5);
+    EXPECT_DOUBLE_EQ(m.info().peak_g, 4.0 * c.to_mps2 * 0.5 / g);
+    EXPECT_DOUBLE_EQ(m.info().peak_t_s, 0.2);
+    EXPECT_EQ(m.info().format, "plain-1col");
+  }
+}
+
+TEST_F(GroundMotionTest, PlainFileWithoutUnitsIsAnError) {
+  MotionDef d = FileDef(Write("one.txt", "1\n2\n"));
+  d.dt_s = 0.1;
+  EXPECT_THROW(MotionComponent::FromDef(d, 9.81), SceneError);
+}
+
+TEST_F(GroundMotionTest, At2InGAndConflictingUnits) {
+  MotionDef d = FileDef(kRinaldi228);
+  d.scale = 0.5;
+  const MotionComponent m = MotionComponent::FromDef(d, 9.81);
+  const RecordData raw = ReadAt2(kRinaldi228);
+  ASSERT_EQ(m.samples_mps2().size(), raw.values.size());
+  for (size_t i = 0; i < raw.values.size(); ++i) {
+    ASSERT_DOUBLE_EQ(m.samples_mps2()[i], raw.values[i] * 9.81 * 0.5);
+  }
+  // MotionInfo: SOURCES.md gives PGA 0.8741 g; the scale halves it.
+  const MotionInfo& info = m.info();
+  EXPECT_EQ(info.source, "northridge1994_rinaldi_receiving_sta_228.AT2");
+  EXPECT_EQ(info.format, "AT2");
+  EXPECT_EQ(info.npts, 1991);
+  EXPECT_EQ(info.dt_s, 0.01);
+  EXPECT_NEAR(info.duration_s, 19.9, 1e-12);
+  EXPECT_NEAR(info.peak_g, 0.5 * 0.8741, 0.5 * 0.5e-4);
+  const auto peak_at =
+      std::max_element(raw.values.begin(), raw.values.end(),
+                       [](double a, double b) { return std::abs(a) < std::abs(b); });
+  EXPECT_DOUBLE_EQ(info.peak_t_s, 0.01 * static_cast<double>(peak_at - raw.values.begin()));
+  // Units given as g: fine; as m/s2 against a header in g: an error naming the header line.
+  d.units_given = true;
+  d.units = AccelUnits::kG;
+  EXPECT_NO_THROW(MotionComponent::FromDef(d, 9.81));
+  d.units = AccelUnits::kMps2;
+  try {
+    MotionComponent::FromDef(d, 9.81);
+    ADD_FAILURE() << "no error";
+  } catch (const SceneError& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find(kRinaldi228.string() + ":3:"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("UNITS OF G"), std::string::npos) << msg;
+  }
+}
+
+TEST_F(GroundMotionTest, PiecewiseLinearAndZeroOutside) {
+  const std::vector<double> a = {0.0, 1.0, 3.0, -1.0};
+  const double t0 = 0.5, dt = 0.1;
+  const MotionComponent m = MotionComponent::FromSamples(a, dt, t0, 9.81, "test");
+  // At the sample times t0 + i dt: the samples, exactly.
+  for (size_t i = 0; i < a.size(); ++i) {
+    EXPECT_EQ(m.accel_mps2(t0 + static_cast<double>(i) * dt), a[i]) << i;
+  }
+  // Between samples: linear (1e-12 allows for rounding of the fractions).
+  EXPECT_NEAR(m.accel_mps2(0.55), 0.5, 1e-12);
+  EXPECT_NEAR(m.accel_mps2(0.625), 1.0 + 0.25 * 2.0, 1e-12);
+  EXPECT_NEAR(m.accel_mps2(0.79), 3.0 + 0.9 * (-4.0), 1e-12);
+  // Zero before the first and after the last sample.
+  EXPECT_EQ(m.accel_mps2(0.0), 0.0);
+  EXPECT_EQ(m.accel_mps2(std::nextafter(t0, 0.0)), 0.0);
+  EXPECT_EQ(m.accel_mps2(std::nextafter(m.end_s(), 10.0)), 0.0);
+  EXPECT_EQ(m.accel_mps2(5.0), 0.0);
+  EXPECT_DOUBLE_EQ(m.end_s(), 0.8);
+  EXPECT_EQ(m.info().format, "samples");
+  EXPECT_DOUBLE_EQ(m.info().peak_g, 3.0 / 9.81);
+  EXPECT_DOUBLE_EQ(m.info().peak_t_s, 0.7);
+}
+
+TEST_F(GroundMotionTest, RecordAtEverySampleTimeIsTheSample) {
+  MotionDef d = FileDef(kRinaldi228);
+  d.start_s = 1.5;
+  const MotionComponent m = MotionComponent::FromDef(d, 9.81);
+  const auto& s = m.samples_mps2();
+  EXPECT_EQ(m.t0_s(), 1.5);
+  for (size_t i = 0; i < s.size(); ++i) {
+    const double t = m.t0_s() + static_cast<double>(i) * m.dt_s();
+    ASSERT_EQ(m.accel_mps2(t), s[i]) << i;
+    // Half-way: the mean of the neighbours (1e-12 relative: rounding of t and the fraction).
+    if (i + 1 < s.size()) {
+      const double mid = m.accel_mps2(t + 0.5 * m.dt_s());
+      ASSERT_NEAR(mid, 0.5 * (s[i] + s[i + 1]),
+                  1e-12 * (std::abs(s[i]) + std::abs(s[i + 1])) + 1e-15);
+    }
+  }
+  EXPECT_EQ(m.accel_mps2(1.4999), 0.0);
+}
+
+TEST_F(GroundMotionTest, TwoColumnFileStartsAtItsOwnTimePlusStart) {
+  MotionDef d = FileDef(Write("two.txt", "t a\n2.0 1\n2.5 2\n3.0 3\n"));
+  d.units = AccelUnits::kMps2;
+  d.units_given = true;
+  d.start_s = 1.0;
+  const MotionComponent m = MotionComponent::FromDef(d, 9.81);
+  EXPECT_EQ(m.t0_s(), 3.0);
+  EXPECT_EQ(m.accel_mps2(3.0), 1.0);
+  EXPECT_EQ(m.accel_mps2(4.0), 3.0);
+  EXPECT_EQ(m.accel_mps2(2.9), 0.0);
+  EXPECT_EQ(m.next_breakpoint_after(0.0), 3.0);
+  EXPECT_EQ(m.end_s(), 4.0);
+}
+
+TEST_F(GroundMotionTest, RecordBreakpoints) {
+  const MotionComponent m =
+      MotionComponent::FromSamples({1.0, 2.0, 3.0, 4.0}, 0.25, 1.0, 9.81, "test");
+  EXPECT_EQ(m.next_breakpoint_after(-3.0), 1.0);
+  EXPECT_EQ(m.next_breakpoint_after(std::nextafter(1.0, 0.0)), 1.0);
+  EXPECT_EQ(m.next_breakpoint_after(1.0), 1.25);  // strictly after
+  EXPECT_EQ(m.next_breakpoint_after(1.3), 1.5);
+  EXPECT_EQ(m.next_breakpoint_after(1.5), 1.75);
+  EXPECT_EQ(m.next_breakpoint_after(1.74), 1.75);
+  EXPECT_EQ(m.next_breakpoint_after(1.75), kInf);
+  EXPECT_EQ(m.next_breakpoint_after(9.0), kInf);
+}
+
+TEST_F(GroundMotionTest, WalkingBreakpointsVisitsEverySampleOfARecord) {
+  // 0.01 s steps do not add up exactly in binary: each breakpoint must still be strictly later
+  // and be the next sample time.
+  MotionDef d = FileDef(kRinaldi228);
+  d.start_s = 0.3;
+  const MotionComponent m = MotionComponent::FromDef(d, 9.81);
+  double t = -1.0;
+  size_t count = 0;
+  for (double next = m.next_breakpoint_after(t); std::isfinite(next);
+       next = m.next_breakpoint_after(t)) {
+    ASSERT_GT(next, t);
+    ASSERT_EQ(next, m.t0_s() + static_cast<double>(count) * m.dt_s()) << count;
+    t = next;
+    ++count;
+  }
+  EXPECT_EQ(count, m.samples_mps2().size());
+  EXPECT_EQ(t, m.end_s());
+}
+
+// Formulas of the README, written out independently of the implementation.
+double Expected(MotionKind kind, double a_mps2, double f, double t0, double length, double t) {
+  // Closed window [t0, t0 + length], compared in absolute time as the README states it.
+  if (!(t >= t0 && t <= t0 + length)) return 0.0;
+  const double tau = t - t0;
+  switch (kind) {
+    case MotionKind::kHarmonic:
+    case MotionKind::kSinePulse:
+      return a_mps2 * std::sin(2 * kPi * f * tau);
+    case MotionKind::kCosinePulse:
+      return a_mps2 * std::cos(2 * kPi * f * tau);
+    case MotionKind::kRectangularPulse:
+      return a_mps2;
+    case MotionKind::kRicker: {
+      const double s = tau - 1 / f;
+      return a_mps2 * (1 - 2 * kPi * kPi * f * f * s * s) * std::exp(-kPi * kPi * f * f * s * s);
+    }
+    case MotionKind::kFile:
+      break;
+  }
+  return 0.0;
+}
+
+TEST_F(GroundMotionTest, AnalyticKindsFollowTheirFormulas) {
+  const double g = 9.81, amp = 0.3, f = 2.0, t0 = 0.7, scale = 1.5;
+  struct Case {
+    MotionKind kind;
+    double duration;  // as given in the scene
+    double length;    // active window
+  };
+  const std::vector<Case> cases = {
+      {MotionKind::kHarmonic, 1.3, 1.3},         {MotionKind::kHarmonic, kInf, kInf},
+      {MotionKind::kSinePulse, kInf, 1 / f},     {MotionKind::kCosinePulse, kInf, 1 / f},
+      {MotionKind::kRectangularPulse, 0.8, 0.8}, {MotionKind::kRicker, kInf, 2 / f}};
+  for (const Case& c : cases) {
+    SCOPED_TRACE(std::string(MotionKindName(c.kind)) + " length " + std::to_string(c.length));
+    MotionDef d = Analytic(c.kind, amp, f, t0, c.duration);
+    d.scale = scale;
+    const MotionComponent m = MotionComponent::FromDef(d, g);
+    const double a = amp * scale * g;
+    const double end = t0 + c.length;
+    EXPECT_EQ(m.end_s(), end);
+    EXPECT_EQ(m.info().format, "analytic");
+    EXPECT_EQ(m.info().source, MotionKindName(c.kind));
+    EXPECT_EQ(m.info().npts, 0);
+    // Before the start: zero; at the start and at the end (closed window): the formula.
+    EXPECT_EQ(m.accel_mps2(t0 - 1e-9), 0.0);
+    EXPECT_EQ(m.accel_mps2(0.0), 0.0);
+    EXPECT_NEAR(m.accel_mps2(t0), Expected(c.kind, a, f, t0, c.length, t0), 1e-12);
+    if (std::isfinite(end)) {
+      EXPECT_NEAR(m.accel_mps2(end), Expected(c.kind, a, f, t0, c.length, end), 1e-12);
+      EXPECT_EQ(m.accel_mps2(end + 1e-9), 0.0);
+      EXPECT_EQ(m.accel_mps2(end + 10.0), 0.0);
+    }
+    // Inside: a spread of times (1e-12 m/s^2: same formula, rounding only).
+    for (double frac : {0.05, 0.125, 0.25, 0.3, 0.5, 0.61, 0.75, 0.99}) {
+      const double span = std::isfinite(c.length) ? c.length : 3.0;
+      const double t = t0 + frac * span;
+      EXPECT_NEAR(m.accel_mps2(t), Expected(c.kind, a, f, t0, c.length, t), 1e-12) << t;
+    }
+    // Breakpoints: the start, then the end (none for a never-ending harmonic).
+    EXPECT_EQ(m.next_breakpoint_after(0.0), t0);
+    EXPECT_EQ(m.next_breakpoint_after(t0), end);
+    EXPECT_EQ(m.next_breakpoint_after(t0 + 0.01), end);
+    if (std::isfinite(end)) {
+      EXPECT_EQ(m.next_breakpoint_after(end), kInf);
+    }
+    // The peak in MotionInfo (exact) against dense sampling of the window: 1e5 samples put the
+    // sampled peak within (2 pi f dt)^2 / 2 ~ 1e-8 relative of the true one.
+    const double span = std::isfinite(c.length) ? c.length : 2.0 / f;
+    double peak = 0.0;
+    for (int i = 0; i <= 100000; ++i) {
+      peak = std::max(peak, std::abs(m.accel_mps2(t0 + span * i / 100000.0)));
+    }
+    EXPECT_NEAR(m.info().peak_g, peak / g, 1e-7 * amp * scale);
+    EXPECT_GE(m.info().peak_t_s, t0);
+    EXPECT_NEAR(std::abs(m.accel_mps2(m.info().peak_t_s)) / g, m.info().peak_g, 1e-12);
+  }
+}
+
+TEST_F(GroundMotionTest, RickerPeakIsAgAtT0PlusOneOverF) {
+  const double g = 9.81, amp = -0.45, f = 1.6, t0 = 0.25;
+  const MotionComponent m = MotionComponent::FromDef(Analytic(MotionKind::kRicker, amp, f, t0), g);
+  EXPECT_DOUBLE_EQ(m.accel_mps2(t0 + 1 / f), amp * g);
+  EXPECT_DOUBLE_EQ(m.info().peak_t_s, t0 + 1 / f);
+  EXPECT_DOUBLE_EQ(m.info().peak_g, 0.45);
+  // Symmetric about the peak (rounding of the two times only).
+  EXPECT_NEAR(m.accel_mps2(t0 + 1 / f - 0.2), m.accel_mps2(t0 + 1 / f + 0.2), 1e-12);
+}
+
+TEST_F(GroundMotionTest, ShortHarmonicPeakIsAtItsEnd) {
+  // 0.1 s of a 2 Hz sine stops before the crest at 0.125 s: peak sin(2 pi 2 0.1) = 0.951.
+  const MotionComponent m =
+      MotionComponent::FromDef(Analytic(MotionKind::kHarmonic, 1.0, 2.0, 0.0, 0.1), 9.81);
+  EXPECT_NEAR(m.info().peak_g, std::sin(2 * kPi * 0.2), 1e-15);
+  EXPECT_DOUBLE_EQ(m.info().peak_t_s, 0.1);
+}
+
+TEST_F(GroundMotionTest, PadsTheShorterOfTwoRecords) {
+  const fs::path h = Write("h.txt", "1\n2\n3\n4\n5\n6\n7\n8\n9\n10\n");
+  const fs::path v = Write("v.txt", "1\n2\n3\n4\n5\n6\n7\n8\n9\n10\n11\n12\n13\n14\n15\n");
+  Scene scene;
+  scene.block1 = BlockDef{1.0, 2.0, 1.0, 100.0, 0.0};
+  scene.horizontal = FileDef(h);
+  scene.horizontal->units = AccelUnits::kMps2;
+  scene.horizontal->units_given = true;
+  scene.horizontal->dt_s = 0.01;
+  scene.vertical = *scene.horizontal;
+  scene.vertical->key = "base.vertical";
+  scene.vertical->file = v;
+  const GroundMotion gm = GroundMotion::FromScene(scene);
+  ASSERT_TRUE(gm.has_horizontal() && gm.has_vertical());
+  EXPECT_EQ(gm.horizontal()->samples_mps2().size(), 15u);
+  EXPECT_EQ(gm.horizontal()->info().padded_samples, 5);
+  EXPECT_EQ(gm.horizontal()->info().npts, 10);  // as read
+  EXPECT_EQ(gm.vertical()->info().padded_samples, 0);
+  EXPECT_DOUBLE_EQ(gm.horizontal()->end_s(), gm.vertical()->end_s());
+  EXPECT_NEAR(gm.xg_mps2(0.09), 10.0, 1e-12);
+  EXPECT_NEAR(gm.xg_mps2(0.095), 5.0, 1e-12);  // ramps down to the first padded zero
+  EXPECT_EQ(gm.xg_mps2(0.12), 0.0);
+  EXPECT_NEAR(gm.yg_mps2(0.12), 13.0, 1e-12);
+  EXPECT_DOUBLE_EQ(gm.end_s(), 0.14);
+}
+
+TEST_F(GroundMotionTest, PadsShippedRecordsOfDifferentLengths) {
+  // Rinaldi 228 (1991 samples at 0.01 s, 19.90 s) with Kobe KJMA UP (7500 at 0.02 s, 149.98 s):
+  // the horizontal gets zeros up to 149.98 s, i.e. 14999 samples in all.
+  Scene scene;
+  scene.block1 = BlockDef{1.0, 2.0, 1.0, 100.0, 0.0};
+  scene.horizontal = FileDef(kRinaldi228);
+  scene.vertical = FileDef(kRecords / "kobe1995_kjma_UP.AT2");
+  scene.vertical->key = "base.vertical";
+  const GroundMotion gm = GroundMotion::FromScene(scene);
+  EXPECT_EQ(gm.horizontal()->info().padded_samples, 14999 - 1991);
+  EXPECT_EQ(gm.vertical()->info().padded_samples, 0);
+  EXPECT_NEAR(gm.horizontal()->end_s(), 149.98, 1e-9);
+  EXPECT_EQ(gm.xg_mps2(100.0), 0.0);
+  EXPECT_NE(gm.yg_mps2(100.0), 0.0);
+  EXPECT_NEAR(gm.end_s(), 149.98, 1e-9);
+}
+
+TEST_F(GroundMotionTest, CombinedBreakpointsAndEmptyMotion) {
+  GroundMotion none;
+  EXPECT_TRUE(none.empty());
+  EXPECT_EQ(none.end_s(), 0.0);
+  EXPECT_EQ(none.next_breakpoint_after(0.0), kInf);
+  EXPECT_EQ(none.xg_mps2(1.0), 0.0);
+  EXPECT_EQ(none.yg_mps2(1.0), 0.0);
+
+  GroundMotion gm;
+  gm.set_horizontal(MotionComponent::FromSamples({1.0, 2.0, 3.0}, 0.5, 0.0, 9.81, "h"));
+  gm.set_vertical(
+      MotionComponent::FromDef(Analytic(MotionKind::kRectangularPulse, 0.1, 0.0, 0.2, 0.6), 9.81));
+  EXPECT_EQ(gm.next_breakpoint_after(0.0), 0.2);        // pulse start
+  EXPECT_EQ(gm.next_breakpoint_after(0.2), 0.5);        // sample
+  EXPECT_EQ(gm.next_breakpoint_after(0.5), 0.2 + 0.6);  // pulse end
+  EXPECT_EQ(gm.next_breakpoint_after(0.2 + 0.6), 1.0);  // last sample
+  EXPECT_EQ(gm.next_breakpoint_after(1.0), kInf);
+  EXPECT_EQ(gm.end_s(), 1.0);
+  EXPECT_DOUBLE_EQ(gm.yg_mps2(0.5), 0.981);
+}
+
+TEST_F(GroundMotionTest, FromSamplesRejectsBadInput) {
+  EXPECT_THROW(MotionComponent::FromSamples({}, 0.1, 0.0, 9.81, "x"), SceneError);
+  EXPECT_THROW(MotionComponent::FromSamples({1.0}, 0.0, 0.0, 9.81, "x"), SceneError);
+  EXPECT_THROW(MotionComponent::FromSamples({1.0, NAN}, 0.1, 0.0, 9.81, "x"), SceneError);
+}
+
+}  // namespace
+}  // namespace rockbench

@@ -1,0 +1,309 @@
+// Record readers: every shipped record against records/SOURCES.md, every AT2 header variant, and
+// malformed files (errors must name the file and the line).
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "scene/ground_motion.h"
+
+namespace rockbench {
+namespace {
+
+namespace fs = std::filesystem;
+
+const fs::path kRecords = fs::path(ROCKBENCH_SOURCE_DIR) / "records";
+
+// One row of the table in records/SOURCES.md.
+struct Shipped {
+  const char* file;
+  const char* format;  // "AT2", "plain-2col", "plain-1col"
+  int npts;
+  double dt_s;
+  double peak_file_units;  // "peak (file units)" column, 4 decimals
+  double dt_scene_s;       // dt for one-column files (from the script that uses the file)
+};
+
+const std::vector<Shipped> kShipped = {
+    {"christchurch2011_hvsc_UP_plain_t_ms2.txt", "plain-2col", 5401, 0.005, 21.3966, 0.0},
+    {"imperialvalley1940_elcentro_array9_180_PEER2000.AT2", "AT2", 4000, 0.01, 0.3129, 0.0},
+    {"kobe1995_kjma_000.AT2", "AT2", 7500, 0.02, 0.8342, 0.0},
+    {"kobe1995_kjma_090.AT2", "AT2", 7500, 0.02, 0.6297, 0.0},
+    {"kobe1995_kjma_UP.AT2", "AT2", 7500, 0.02, 0.3389, 0.0},
+    {"northridge1994_arleta_nordhoff_fire_sta_360.AT2", "AT2", 2000, 0.02, 0.3081, 0.0},
+    {"northridge1994_castaic_old_ridge_route_090_plain_t_g.txt", "plain-2col", 3989, 0.01, 0.5683,
+     0.0},
+    {"northridge1994_rinaldi_receiving_sta_228.AT2", "AT2", 1991, 0.01, 0.8741, 0.0},
+    {"northridge1994_rinaldi_receiving_sta_318.AT2", "AT2", 1991, 0.01, 0.4723, 0.0},
+    {"northridge1994_rinaldi_receiving_sta_UP.AT2", "AT2", 1991, 0.01, 0.9582, 0.0},
+    {"northridge1994_sylmar_converter_sta_052.AT2", "AT2", 8773, 0.005, 0.6230, 0.0},
+    {"northridge1994_sylmar_converter_sta_142.AT2", "AT2", 8773, 0.005, 0.9234, 0.0},
+    {"tabas1978_FN_plain_g_dt0p02.txt", "plain-1col", 2500, 0.02, 0.8999, 0.02},
+};
+
+RecordData ReadShipped(const Shipped& s) {
+  const fs::path p = kRecords / s.file;
+  return std::string(s.format) == "AT2" ? ReadAt2(p) : ReadPlain(p, s.dt_scene_s);
+}
+
+TEST(ShippedRecords, EveryFileIsListed) {
+  // A record added to records/ without a row here (and in SOURCES.md) fails.
+  std::set<std::string> listed;
+  for (const auto& s : kShipped) listed.insert(s.file);
+  int files = 0;
+  for (const auto& entry : fs::directory_iterator(kRecords)) {
+    const std::string name = entry.path().filename().string();
+    if (name == "SOURCES.md") continue;
+    ++files;
+    EXPECT_TRUE(listed.count(name)) << name << " has no row in records_test.cc";
+  }
+  EXPECT_EQ(files, static_cast<int>(kShipped.size()));
+}
+
+TEST(ShippedRecords, NptsDtAndPeakMatchSources) {
+  for (const auto& s : kShipped) {
+    SCOPED_TRACE(s.file);
+    const RecordData r = ReadShipped(s);
+    EXPECT_EQ(r.format, s.format);
+    EXPECT_EQ(static_cast<int>(r.values.size()), s.npts);
+    // The dt of two-column files is the mean step of the time column: equal up to rounding.
+    EXPECT_NEAR(r.dt_s, s.dt_s, 1e-12);
+    double peak = 0.0;
+    for (double v : r.values) peak = std::max(peak, std::abs(v));
+    // SOURCES.md gives the peak to 4 decimals: within half a unit of the last digit.
+    EXPECT_NEAR(peak, s.peak_file_units, 0.5e-4 + 1e-12);
+    if (std::string(s.format) == "AT2") {
+      EXPECT_TRUE(r.units_are_g);
+      EXPECT_GT(r.units_line, 0);
+      EXPECT_EQ(r.t0_s, 0.0);
+    }
+  }
+}
+
+TEST(ShippedRecords, ChristchurchPgaInG) {
+  // SOURCES.md: 21.3966 m/s^2 is PGA 2.182 g (3 decimals), i.e. with standard gravity 9.80665.
+  MotionDef def;
+  def.key = "base.vertical";
+  def.file = kRecords / "christchurch2011_hvsc_UP_plain_t_ms2.txt";
+  def.units = AccelUnits::kMps2;
+  def.units_given = true;
+  const MotionComponent c = MotionComponent::FromDef(def, 9.80665);
+  EXPECT_NEAR(c.info().peak_g, 2.182, 0.5e-3);
+  EXPECT_EQ(c.info().format, "plain-2col");
+  EXPECT_EQ(c.info().npts, 5401);
+  EXPECT_NEAR(c.info().duration_s, 27.0, 1e-9);
+}
+
+// Writes synthetic files into a fresh temporary folder.
+class RecordFiles : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("rockbench_records_test_" + std::to_string(::getpid()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  fs::path Write(const std::string& name, const std::string& text) {
+    const fs::path p = dir_ / name;
+    std::ofstream(p, std::ios::binary) << text;
+    return p;
+  }
+
+  // Expects `fn` to throw a SceneError whose message contains every piece.
+  template <typename Fn>
+  static void ExpectError(Fn fn, const std::vector<std::string>& pieces) {
+    try {
+      fn();
+      ADD_FAILURE() << "no error";
+    } catch (const SceneError& e) {
+      const std::string msg = e.what();
+      for (const auto& piece : pieces) {
+        EXPECT_NE(msg.find(piece), std::string::npos) << "'" << piece << "' not in: " << msg;
+      }
+    }
+  }
+
+  fs::path dir_;
+};
+
+// Ten values 0.1, -0.2, ..., as a list of tokens in the given format.
+const std::vector<double> kTen = {0.1, -0.2, 0.3, -0.4, 0.5, -0.6, 0.7, -0.8, 0.9, -1.0};
+
+void ExpectTen(const RecordData& r, double dt) {
+  EXPECT_EQ(r.format, "AT2");
+  EXPECT_EQ(r.dt_s, dt);
+  ASSERT_EQ(r.values.size(), kTen.size());
+  for (size_t i = 0; i < kTen.size(); ++i) EXPECT_DOUBLE_EQ(r.values[i], kTen[i]) << i;
+}
+
+TEST_F(RecordFiles, Pre2000PeaWithCrCrLfAndBlankLines) {
+  const std::string text =
+      "PACIFIC ENGINEERING AND ANALYSIS STRONG-MOTION DATA\r\r\n"
+      "NORTHRIDGE 01/17/94 1231, ARLETA, 360                 \r\r\n"
+      "ACCELERATION TIME HISTORY IN UNITS OF G\r\r\n"
+      "NPTS=    10, DT= .02000 SEC\r\r\n"
+      "   .1000000E+00  -.2000000E+00   .3000000E+00  -.4000000E+00   .5000000E+00\r\r\n"
+      "\r\r\n"
+      "  -.6000000E+00   .7000000E+00  -.8000000E+00   .9000000E+00  -.1000000E+01\r\r\n";
+  const RecordData r = ReadAt2(Write("pea.AT2", text));
+  ExpectTen(r, 0.02);
+  EXPECT_TRUE(r.units_are_g);
+  EXPECT_EQ(r.units_line, 3);
+}
+
+TEST_F(RecordFiles, Peer2000LowercaseDtWithoutSec) {
+  const std::string text =
+      "PEER STRONG MOTION DATABASE RECORD. PROCESSING BY CDMG.\n"
+      "CHI-CHI 09/20/99, CHY080, N\n"
+      "ACCELERATION TIME HISTORY IN UNITS OF G. FILTER POINTS: HP=0.05 Hz LP=50.0 Hz\n"
+      "NPTS=  10, dt=  .00500\n"
+      "   .1000000E+00  -.2000000E+00   .3000000E+00  -.4000000E+00   .5000000E+00\n"
+      "  -.6000000E+00   .7000000E+00  -.8000000E+00   .9000000E+00  -.1000000E+01\n";
+  ExpectTen(ReadAt2(Write("lower.AT2", text)), 0.005);
+}
+
+TEST_F(RecordFiles, NumbersFirstTrailerAfterSixHeaderLines) {
+  const std::string text =
+      "line 1\nline 2\nline 3\nline 4\nline 5\nACCELERATION IN UNITS OF G\n"
+      "10 0.00500 NPTS, DT\n"
+      "0.1 -0.2 0.3 -0.4 0.5 -0.6 0.7 -0.8\n"
+      "0.9 -1.0\n";
+  const RecordData r = ReadAt2(Write("trailer.at2", text));
+  ExpectTen(r, 0.005);
+  EXPECT_EQ(r.units_line, 6);
+}
+
+TEST_F(RecordFiles, NgaWest2TrailingCommaAndFilterPoles) {
+  const std::string values =
+      "  .1000000E+00  -.2000000E+00   .3000000E+00  -.4000000E+00   .5000000E+00\n"
+      "  -.6000000E+00   .7000000E+00  -.8000000E+00   .9000000E+00  -.1000000E+01\n";
+  const std::string head =
+      "PEER NGA STRONG MOTION DATABASE RECORD\nNorthridge-01, 1/17/1994, Rinaldi, 228\n"
+      "ACCELERATION TIME SERIES IN UNITS OF G\n";
+  ExpectTen(ReadAt2(Write("a.AT2", head + "NPTS=   10, DT=   .0100 SEC,\n" + values)), 0.01);
+  ExpectTen(
+      ReadAt2(Write("b.AT2", head +
+                                 "NPTS=   10, DT=   .0100 SEC,   0 POLE @    30.00000 HZ,  -5 "
+                                 "POLE @      .05000\n" +
+                                 values)),
+      0.01);
+  // Re-spaced by hand (Kobe files): spaces around '=' and before the commas.
+  ExpectTen(ReadAt2(Write("c.AT2", head + "NPTS =   10 , DT =   .020 SEC ,      \n" + values)),
+            0.02);
+  // Newer RSNs: "0.01" and values with a leading digit.
+  ExpectTen(ReadAt2(Write("d.AT2", head + "NPTS=   10, DT=    0.01 SEC\n" +
+                                       " 1.0000000E-01 -2.0000000E-01  3.0000000E-01 "
+                                       "-4.0000000E-01  5.0000000E-01\n"
+                                       "-6.0000000E-01  7.0000000E-01 -8.0000000E-01 "
+                                       " 9.0000000E-01 -1.0000000E+00\n")),
+            0.01);
+}
+
+TEST_F(RecordFiles, PseudoAt2EightPerLineShortLastLine) {
+  const std::string text =
+      "El Centro\nPeknold version\nunits of g\nNPTS=  10, DT= .02000 SEC\n"
+      "   0.10000  -0.20000   0.30000  -0.40000   0.50000  -0.60000   0.70000  -0.80000\n"
+      "   0.90000  -1.00000\n";
+  const RecordData r = ReadAt2(Write("peknold.AT2", text));
+  ExpectTen(r, 0.02);
+  EXPECT_TRUE(r.units_are_g);  // "units of g": case-insensitive
+}
+
+TEST_F(RecordFiles, At2WithoutUnitsOfG) {
+  const std::string text = "x\ny\nACCELERATION IN CM/S/S\nNPTS= 2, DT= 0.01 SEC\n1 2\n";
+  const RecordData r = ReadAt2(Write("cms.AT2", text));
+  EXPECT_FALSE(r.units_are_g);
+  EXPECT_EQ(r.values, (std::vector<double>{1.0, 2.0}));
+}
+
+TEST_F(RecordFiles, At2Truncated) {
+  const std::string text =
+      "a\nb\nUNITS OF G\nNPTS=  10, DT= .01 SEC\n0.1 0.2 0.3 0.4 0.5\n0.6 0.7 0.8 0.9\n";
+  const fs::path p = Write("trunc.AT2", text);
+  // The file ends on line 6 after 9 values; the header on line 4 says 10.
+  ExpectError([&] { ReadAt2(p); }, {p.string() + ":6:", "read 9 values", "NPTS = 10", "line 4"});
+}
+
+TEST_F(RecordFiles, At2TooManyValues) {
+  const std::string text = "a\nb\nc\nNPTS= 3, DT= .01 SEC\n0.1 0.2\n0.3 0.4\n";
+  const fs::path p = Write("many.AT2", text);
+  ExpectError([&] { ReadAt2(p); }, {p.string() + ":6:", "more values than NPTS = 3"});
+}
+
+TEST_F(RecordFiles, At2NanInfAndTextTokens) {
+  const std::string head = "a\nb\nc\nNPTS= 4, DT= .01 SEC\n0.1 0.2\n";
+  const fs::path nan = Write("nan.AT2", head + "NaN 0.4\n");
+  ExpectError([&] { ReadAt2(nan); }, {nan.string() + ":6:", "finite", "NaN"});
+  const fs::path inf = Write("inf.AT2", head + "0.3 inf\n");
+  ExpectError([&] { ReadAt2(inf); }, {inf.string() + ":6:", "finite", "inf"});
+  const fs::path text = Write("text.AT2", head + "0.3 0.4x\n");
+  ExpectError([&] { ReadAt2(text); }, {text.string() + ":6:", "expected a number", "0.4x"});
+}
+
+TEST_F(RecordFiles, At2BadHeaders) {
+  const fs::path none = Write("none.AT2", "a\nb\nc\n0.1 0.2 0.3\n");
+  ExpectError([&] { ReadAt2(none); }, {none.string(), "NPTS"});
+  const fs::path no_dt = Write("nodt.AT2", "a\nb\nc\nNPTS= 3, SEC\n0.1 0.2 0.3\n");
+  ExpectError([&] { ReadAt2(no_dt); }, {no_dt.string() + ":4:", "NPTS and DT"});
+  const fs::path zero_dt = Write("zerodt.AT2", "a\nb\nc\nNPTS= 3, DT= 0.0 SEC\n0.1 0.2 0.3\n");
+  ExpectError([&] { ReadAt2(zero_dt); }, {zero_dt.string() + ":4:", "positive DT"});
+  const fs::path zero_n = Write("zeron.AT2", "a\nb\nc\nNPTS= 0, DT= 0.01 SEC\n");
+  ExpectError([&] { ReadAt2(zero_n); }, {zero_n.string() + ":4:", "positive NPTS"});
+  ExpectError([&] { ReadAt2(dir_ / "missing.AT2"); }, {(dir_ / "missing.AT2").string(), "open"});
+}
+
+TEST_F(RecordFiles, PlainTwoColumnsWithHeaderTabsCommas) {
+  const RecordData tabs =
+      ReadPlain(Write("t.txt", "Time[s]\tAccel[g]\n\n1.00\t0.5\n1.01\t-0.25\r\n1.02\t0.125"), 0.0);
+  EXPECT_EQ(tabs.format, "plain-2col");
+  EXPECT_EQ(tabs.t0_s, 1.0);
+  EXPECT_NEAR(tabs.dt_s, 0.01, 1e-15);
+  EXPECT_EQ(tabs.values, (std::vector<double>{0.5, -0.25, 0.125}));
+  const RecordData commas = ReadPlain(Write("c.csv", "t,a\n0,1\n0.5,2\n1.0,+3\n"), 0.0);
+  EXPECT_EQ(commas.dt_s, 0.5);
+  EXPECT_EQ(commas.values, (std::vector<double>{1.0, 2.0, 3.0}));
+}
+
+TEST_F(RecordFiles, PlainOneColumnUsesSceneDt) {
+  const fs::path p = Write("one.txt", "# accel in g\n  0.1\n -0.2\n  0.3\n");
+  const RecordData r = ReadPlain(p, 0.02);
+  EXPECT_EQ(r.format, "plain-1col");
+  EXPECT_EQ(r.dt_s, 0.02);
+  EXPECT_EQ(r.t0_s, 0.0);
+  EXPECT_EQ(r.values, (std::vector<double>{0.1, -0.2, 0.3}));
+  ExpectError([&] { ReadPlain(p, 0.0); }, {p.string(), "dt"});
+}
+
+TEST_F(RecordFiles, PlainMalformed) {
+  // Non-uniform time column: the step ending on line 4 is 0.02 instead of 0.0133.
+  const fs::path uneven = Write("uneven.txt", "t a\n0.00 1\n0.01 2\n0.03 3\n0.04 4\n");
+  ExpectError([&] { ReadPlain(uneven, 0.0); }, {uneven.string() + ":4:", "uniformly spaced"});
+  const fs::path backwards = Write("back.txt", "1.0 1\n0.5 2\n");
+  ExpectError([&] { ReadPlain(backwards, 0.0); }, {backwards.string() + ":2:", "increase"});
+  const fs::path cols = Write("cols.txt", "0 1\n0.1 2 3\n");
+  ExpectError([&] { ReadPlain(cols, 0.0); }, {cols.string() + ":2:", "column"});
+  const fs::path three = Write("three.txt", "0 1 2\n");
+  ExpectError([&] { ReadPlain(three, 0.0); }, {three.string() + ":1:", "2 columns"});
+  const fs::path text = Write("text.txt", "0 1\n0.1 2\nend of data\n");
+  ExpectError([&] { ReadPlain(text, 0.0); }, {text.string() + ":3:", "expected a number"});
+  const fs::path nan = Write("nan.txt", "0.1\nnan\n");
+  ExpectError([&] { ReadPlain(nan, 0.01); }, {nan.string() + ":2:", "finite"});
+  const fs::path empty = Write("empty.txt", "header only\n\n");
+  ExpectError([&] { ReadPlain(empty, 0.01); }, {empty.string(), "no numeric data"});
+  const fs::path with_dt = Write("twodt.txt", "0 1\n0.1 2\n");
+  ExpectError([&] { ReadPlain(with_dt, 0.1); }, {with_dt.string(), "time column"});
+  const fs::path one_row = Write("onerow.txt", "0 1\n");
+  ExpectError([&] { ReadPlain(one_row, 0.0); }, {one_row.string() + ":1:", "2 rows"});
+}
+
+}  // namespace
+}  // namespace rockbench

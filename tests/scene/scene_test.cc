@@ -1,0 +1,578 @@
+// Scene files: the shipped scenes, the full schema, every validation error, overrides.
+#include "scene/scene.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "scene/ground_motion.h"
+
+namespace rockbench {
+namespace {
+
+namespace fs = std::filesystem;
+
+const fs::path kRoot = fs::path(ROCKBENCH_SOURCE_DIR);
+const fs::path kScenes = kRoot / "scenes";
+const fs::path kRecords = kRoot / "records";
+
+// The message of the SceneError that parsing `text` throws ("" when it parses).
+std::string ErrorOf(const std::string& text, const std::vector<std::string>& overrides = {},
+                    const fs::path& path = "scenes/x.toml") {
+  try {
+    ParseScene(text, path, overrides);
+  } catch (const SceneError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+// A valid two-block scene; tests append or edit tables.
+const std::string kBlocks =
+    "[block1]\nwidth = 1.25\nheight = 1.25\ndensity = 2500.0\n"
+    "[block2]\nwidth = 1.0\nheight = 2.5\ndensity = 2500.0\n";
+
+#define EXPECT_CONTAINS(haystack, needle)                          \
+  EXPECT_NE(std::string(haystack).find(needle), std::string::npos) \
+      << "'" << (needle) << "' not in '" << (haystack) << "'"
+
+TEST(ShippedScenes, AllParseAndTheirMotionLoads) {
+  int count = 0;
+  for (const auto& entry : fs::directory_iterator(kScenes)) {
+    if (entry.path().extension() != ".toml") continue;
+    SCOPED_TRACE(entry.path().string());
+    ++count;
+    const Scene s = LoadScene(entry.path());
+    EXPECT_FALSE(s.title.empty());
+    EXPECT_EQ(s.path, entry.path());
+    const GroundMotion gm = GroundMotion::FromScene(s);
+    EXPECT_EQ(gm.has_horizontal(), s.horizontal.has_value());
+    EXPECT_EQ(gm.has_vertical(), s.vertical.has_value());
+  }
+  EXPECT_GE(count, 5);
+}
+
+TEST(ShippedScenes, ThesisFreeRocking) {
+  // Thesis 6.3.1: B1 = H1 = 1.25 m, B2 = 1.0 m, H2 = 2.5 m, 2500 kg/m^3, theta = 0.15 rad.
+  const Scene s = LoadScene(kScenes / "thesis_free_rocking.toml");
+  ASSERT_TRUE(s.two_blocks());
+  EXPECT_EQ(s.block1.width_m, 1.25);
+  EXPECT_EQ(s.block1.height_m, 1.25);
+  EXPECT_EQ(s.block1.depth_m, 1.0);
+  EXPECT_EQ(s.block1.density_kgpm3, 2500.0);
+  EXPECT_DOUBLE_EQ(s.block1.mass_kg, 2500.0 * 1.25 * 1.25);
+  EXPECT_EQ(s.block2->width_m, 1.0);
+  EXPECT_EQ(s.block2->height_m, 2.5);
+  EXPECT_DOUBLE_EQ(s.block2->mass_kg, 6250.0);
+  EXPECT_EQ(s.initial.theta1_rad, 0.15);
+  EXPECT_EQ(s.initial.theta2_rad, 0.15);
+  EXPECT_EQ(s.initial.omega1_radps, 0.0);
+  EXPECT_EQ(s.initial.omega2_radps, 0.0);
+  EXPECT_FALSE(s.horizontal || s.vertical);
+  EXPECT_EQ(s.run.duration_s, 6.0);
+  EXPECT_EQ(s.run.output_interval_s, 0.005);
+  EXPECT_EQ(s.run.gravity_mps2, 9.81);
+}
+
+TEST(ShippedScenes, ThesisRinaldiResolvesTheRecordNextToTheScene) {
+  const Scene s = LoadScene(kScenes / "thesis_rinaldi228.toml");
+  ASSERT_TRUE(s.horizontal);
+  EXPECT_FALSE(s.vertical);
+  EXPECT_EQ(s.horizontal->kind, MotionKind::kFile);
+  EXPECT_EQ(s.horizontal->file_as_written,
+            "../records/northridge1994_rinaldi_receiving_sta_228.AT2");
+  EXPECT_TRUE(fs::equivalent(s.horizontal->file,
+                             kRecords / "northridge1994_rinaldi_receiving_sta_228.AT2"));
+  EXPECT_FALSE(s.horizontal->units_given);
+  EXPECT_EQ(s.run.duration_s, 20.0);
+  const GroundMotion gm = GroundMotion::FromScene(s);
+  EXPECT_NEAR(gm.horizontal()->info().peak_g, 0.8741, 0.5e-4);  // records/SOURCES.md
+}
+
+TEST(ShippedScenes, HousnerIsASingleBlockAtHalfItsSlenderness) {
+  const Scene s = LoadScene(kScenes / "housner_free_rocking.toml");
+  EXPECT_FALSE(s.two_blocks());
+  const double theta_c = std::atan(s.block1.width_m / s.block1.height_m);
+  EXPECT_DOUBLE_EQ(s.initial.theta1_rad, 0.5 * theta_c);
+  EXPECT_EQ(s.run.duration_s, 4.0);
+}
+
+TEST(ShippedScenes, HarmonicAndRinaldiWithVertical) {
+  const Scene h = LoadScene(kScenes / "harmonic.toml");
+  ASSERT_TRUE(h.horizontal);
+  EXPECT_EQ(h.horizontal->kind, MotionKind::kHarmonic);
+  EXPECT_EQ(h.horizontal->amplitude_g, 0.4);
+  EXPECT_EQ(h.horizontal->frequency_hz, 2.0);
+  EXPECT_EQ(h.horizontal->duration_s, 3.0);
+  EXPECT_EQ(h.run.duration_s, 8.0);
+  const Scene r = LoadScene(kScenes / "rinaldi_with_vertical.toml");
+  ASSERT_TRUE(r.horizontal && r.vertical);
+  EXPECT_EQ(r.vertical->key, "base.vertical");
+  const GroundMotion gm = GroundMotion::FromScene(r);
+  EXPECT_NEAR(gm.vertical()->info().peak_g, 0.9582, 0.5e-4);  // records/SOURCES.md
+  EXPECT_EQ(gm.vertical()->info().padded_samples, 0);         // same length as 228
+}
+
+TEST(Parse, DefaultsOfAMinimalScene) {
+  const Scene s = ParseScene("[block1]\nwidth = 1\nheight = 2\nmass = 100\n", "");
+  const Scene d;
+  EXPECT_FALSE(s.two_blocks());
+  EXPECT_EQ(s.block1.mass_kg, 100.0);
+  EXPECT_EQ(s.block1.density_kgpm3, 0.0);
+  EXPECT_EQ(s.block1.depth_m, 1.0);
+  EXPECT_EQ(s.run.duration_s, d.run.duration_s);
+  EXPECT_EQ(s.run.output_interval_s, d.run.output_interval_s);
+  EXPECT_EQ(s.run.gravity_mps2, d.run.gravity_mps2);
+  EXPECT_EQ(s.model.integrator, d.model.integrator);
+  EXPECT_EQ(s.model.rtol, d.model.rtol);
+  EXPECT_EQ(s.bullet.solver_iterations, d.bullet.solver_iterations);
+  EXPECT_EQ(s.bullet.friction, d.bullet.friction);
+  EXPECT_FALSE(s.compare.tolerance_rad);
+  EXPECT_EQ(s.initial.theta1_rad, 0.0);
+}
+
+TEST(Parse, EveryKeyOfTheSchema) {
+  const std::string text = R"(
+title = "all keys"
+[block1]
+width = 2
+height = 3.0
+density = 2000.0
+depth = 0.5
+[block2]
+width = 1.0
+height = 1.5
+mass = 700.0
+depth = 0.5
+[initial]
+theta1 = 0.01
+theta2 = -0.02
+omega1 = 0.3
+omega2 = -0.4
+[base.horizontal]
+kind = "ricker"
+amplitude_g = 0.25
+frequency_hz = 1.5
+start_s = 0.5
+scale = 2.0
+[base.vertical]
+kind = "rectangular_pulse"
+amplitude_g = -0.1
+duration_s = 0.4
+[run]
+duration = 5.0
+output_interval = 0.02
+gravity = 9.80665
+[model]
+integrator = "rk4"
+rtol = 1e-6
+atol = 1e-9
+step = 2e-4
+events = "thesis"
+equations = "linearized"
+overturn_angle = 1.0
+rest_rate = 0.001
+check_transitions = false
+[bullet]
+time_step = 5e-4
+solver_iterations = 20
+precision = "float"
+drive = "kinematic"
+erp = 0.3
+erp2 = 0.7
+split_impulse = false
+split_impulse_threshold = -0.01
+restitution = 0.1
+friction = 0.8
+rolling_friction = 0.05
+restitution_velocity_threshold = 0.5
+margin = 0.001
+ground_depth = 2.0
+kinematic_highpass_hz = 0.2
+[compare]
+tolerance = 0.02
+)";
+  const Scene s = ParseScene(text, "");
+  EXPECT_EQ(s.title, "all keys");
+  EXPECT_EQ(s.block1.width_m, 2.0);  // a TOML integer is accepted as a number
+  EXPECT_DOUBLE_EQ(s.block1.mass_kg, 2000.0 * 2.0 * 3.0 * 0.5);
+  EXPECT_EQ(s.block2->mass_kg, 700.0);
+  EXPECT_EQ(s.block2->density_kgpm3, 0.0);
+  EXPECT_EQ(s.block2->depth_m, 0.5);
+  EXPECT_EQ(s.initial.theta2_rad, -0.02);
+  EXPECT_EQ(s.initial.omega2_radps, -0.4);
+  EXPECT_EQ(s.horizontal->kind, MotionKind::kRicker);
+  EXPECT_EQ(s.horizontal->key, "base.horizontal");
+  EXPECT_EQ(s.horizontal->amplitude_g, 0.25);
+  EXPECT_EQ(s.horizontal->frequency_hz, 1.5);
+  EXPECT_EQ(s.horizontal->start_s, 0.5);
+  EXPECT_EQ(s.horizontal->scale, 2.0);
+  EXPECT_EQ(s.vertical->kind, MotionKind::kRectangularPulse);
+  EXPECT_EQ(s.vertical->duration_s, 0.4);
+  EXPECT_EQ(s.run.gravity_mps2, 9.80665);
+  EXPECT_EQ(s.model.integrator, Integrator::kRk4);
+  EXPECT_EQ(s.model.rtol, 1e-6);
+  EXPECT_EQ(s.model.atol, 1e-9);
+  EXPECT_EQ(s.model.step_s, 2e-4);
+  EXPECT_EQ(s.model.events, EventScheme::kThesis);
+  EXPECT_EQ(s.model.equations, Equations::kLinearized);
+  EXPECT_EQ(s.model.overturn_rad, 1.0);
+  EXPECT_EQ(s.model.rest_rate_radps, 0.001);
+  EXPECT_FALSE(s.model.check_transitions);
+  EXPECT_EQ(s.bullet.time_step_s, 5e-4);
+  EXPECT_EQ(s.bullet.solver_iterations, 20);
+  EXPECT_EQ(s.bullet.precision, BulletPrecision::kFloat);
+  EXPECT_EQ(s.bullet.drive, BulletDrive::kKinematic);
+  EXPECT_EQ(s.bullet.erp, 0.3);
+  EXPECT_EQ(s.bullet.erp2, 0.7);
+  EXPECT_FALSE(s.bullet.split_impulse);
+  EXPECT_EQ(s.bullet.split_impulse_threshold, -0.01);
+  EXPECT_EQ(s.bullet.restitution, 0.1);
+  EXPECT_EQ(s.bullet.friction, 0.8);
+  EXPECT_EQ(s.bullet.rolling_friction, 0.05);
+  EXPECT_EQ(s.bullet.restitution_velocity_threshold, 0.5);
+  EXPECT_EQ(s.bullet.margin_m, 0.001);
+  EXPECT_EQ(s.bullet.ground_depth_m, 2.0);
+  EXPECT_EQ(s.bullet.kinematic_highpass_hz, 0.2);
+  ASSERT_TRUE(s.compare.tolerance_rad);
+  EXPECT_EQ(*s.compare.tolerance_rad, 0.02);
+}
+
+TEST(Parse, HarmonicWithoutDurationLastsForever) {
+  const Scene s = ParseScene(
+      kBlocks + "[base.horizontal]\nkind = \"harmonic\"\namplitude_g = 0.1\nfrequency_hz = 1\n",
+      "");
+  EXPECT_EQ(s.horizontal->duration_s, std::numeric_limits<double>::infinity());
+}
+
+TEST(Parse, PlainRecordWithUnitsAndDt) {
+  const std::string text =
+      kBlocks +
+      "[base.horizontal]\nfile = \"../records/tabas1978_FN_plain_g_dt0p02.txt\""
+      "\nunits = \"g\"\ndt = 0.02\n";
+  const Scene s = ParseScene(text, kScenes / "virtual.toml");
+  EXPECT_EQ(s.horizontal->dt_s, 0.02);
+  EXPECT_TRUE(s.horizontal->units_given);
+  EXPECT_EQ(s.horizontal->units, AccelUnits::kG);
+  EXPECT_EQ(GroundMotion::FromScene(s).horizontal()->info().npts, 2500);
+}
+
+TEST(Errors, TheMessageOfTheIssue) {
+  EXPECT_EQ(ErrorOf("title = \"x\"\n[block1]\nheight = 1.0\nwidth = -1\ndensity = 2500\n"),
+            "scenes/x.toml:4: block1.width: expected a positive number (m), got -1");
+}
+
+TEST(Errors, UnknownKeysAndTables) {
+  const std::string e1 = ErrorOf(kBlocks + "[run]\nduration = 3\nduraton = 4\n");
+  EXPECT_CONTAINS(e1, "scenes/x.toml:11:");
+  EXPECT_CONTAINS(e1, "run.duraton");
+  EXPECT_CONTAINS(e1, "unknown key");
+  const std::string e2 = ErrorOf(kBlocks + "\n[blok3]\nwidth = 1\n");
+  EXPECT_CONTAINS(e2, "scenes/x.toml:10:");
+  EXPECT_CONTAINS(e2, "blok3");
+  const std::string e3 = ErrorOf(kBlocks +
+                                 "[base.horizontal]\nkind = \"harmonic\"\n"
+                                 "amplitude_g = 0.1\nfrequency = 2\n");
+  EXPECT_CONTAINS(e3, "scenes/x.toml:12:");
+  EXPECT_CONTAINS(e3, "base.horizontal.frequency");
+  const std::string e4 = ErrorOf(kBlocks + "[base.sideways]\nkind = \"harmonic\"\n");
+  EXPECT_CONTAINS(e4, "scenes/x.toml:9:");
+  EXPECT_CONTAINS(e4, "base.sideways");
+}
+
+TEST(Errors, TomlSyntaxErrorHasLineAndColumn) {
+  const std::string e = ErrorOf("[block1]\nwidth = 1.0\nheight = = 2\n");
+  EXPECT_CONTAINS(e, "scenes/x.toml:3:");
+  EXPECT_CONTAINS(e, "TOML syntax error");
+  // file:line:column
+  EXPECT_TRUE(e.rfind("scenes/x.toml:3:", 0) == 0 && std::isdigit(e[16])) << e;
+}
+
+// One bad scene, the line of the error and pieces of its message.
+struct BadCase {
+  std::string name;
+  std::string text;
+  std::string where;  // "scenes/x.toml:N:" or "scenes/x.toml:"
+  std::vector<std::string> pieces;
+};
+
+TEST(Errors, Validation) {
+  const std::string b1 = "[block1]\nwidth = 1.0\nheight = 2.0\ndensity = 2500\n";  // lines 1-4
+  const std::string at2 = "\"../records/northridge1994_rinaldi_receiving_sta_228.AT2\"";
+  const std::string plain = "\"../records/tabas1978_FN_plain_g_dt0p02.txt\"";
+  const std::vector<BadCase> cases = {
+      {"zero height",
+       "[block1]\nwidth = 1.0\nheight = 0\ndensity = 2500\n",
+       ":3:",
+       {"block1.height", "expected a positive number (m), got 0"}},
+      {"zero mass",
+       "[block1]\nwidth = 1.0\nheight = 1\nmass = 0.0\n",
+       ":4:",
+       {"block1.mass", "positive number (kg), got 0"}},
+      {"negative density",
+       "[block1]\nwidth = 1.0\nheight = 1\ndensity = -3\n",
+       ":4:",
+       {"block1.density", "positive number (kg/m^3), got -3"}},
+      {"zero depth", b1 + "depth = 0\n", ":5:", {"block1.depth", "positive"}},
+      {"nan",
+       "[block1]\nwidth = nan\nheight = 1\ndensity = 1\n",
+       ":2:",
+       {"block1.width", "got nan"}},
+      {"inf", b1 + "[initial]\ntheta1 = inf\n", ":6:", {"initial.theta1", "finite", "got inf"}},
+      {"string for a number",
+       "[block1]\nwidth = \"wide\"\nheight = 1\ndensity = 1\n",
+       ":2:",
+       {"block1.width", "expected a positive number (m), got \"wide\""}},
+      {"bool for a number", b1 + "[run]\nduration = true\n", ":6:", {"run.duration", "got true"}},
+      {"table for a number", b1 + "[run.duration]\nx = 1\n", ":5:", {"run.duration", "a table"}},
+      {"both density and mass",
+       b1 + "mass = 3.0\n",
+       ":5:",
+       {"block1.mass", "either density or mass"}},
+      {"neither density nor mass",
+       "[block1]\nwidth = 1.0\nheight = 1\n",
+       ":1:",
+       {"block1", "density", "mass"}},
+      {"missing width", "[block1]\nheight = 1\ndensity = 1\n", ":1:", {"block1.width", "missing"}},
+      {"missing block1", "title = \"no blocks\"\n", ":", {"block1", "missing"}},
+      {"block1 not a table", "block1 = 3\n", ":1:", {"block1", "expected a table"}},
+      {"output interval zero",
+       b1 + "[run]\noutput_interval = 0.0\n",
+       ":6:",
+       {"run.output_interval", "positive number (s), got 0"}},
+      {"output interval above duration",
+       b1 + "[run]\nduration = 1.0\noutput_interval = 2.0\n",
+       ":7:",
+       {"run.output_interval", "must not exceed run.duration"}},
+      {"duration below the default output interval",
+       b1 + "[run]\nduration = 0.005\n",
+       ":6:",
+       {"run.duration", "at least run.output_interval (0.01 s, the default), got 0.005"}},
+      {"negative duration",
+       b1 + "[run]\nduration = -1.0\n",
+       ":6:",
+       {"run.duration", "positive number (s), got -1"}},
+      {"theta2 in a single block",
+       b1 + "[initial]\ntheta1 = 0.1\ntheta2 = 0.1\n",
+       ":7:",
+       {"initial.theta2", "single-block"}},
+      {"omega2 in a single block",
+       b1 + "[initial]\nomega2 = 0.0\n",
+       ":6:",
+       {"initial.omega2", "single-block"}},
+      {"file and kind",
+       b1 + "[base.horizontal]\nfile = " + at2 + "\nkind = \"harmonic\"\n",
+       ":5:",
+       {"base.horizontal", "either file or kind"}},
+      {"neither file nor kind",
+       b1 + "[base.vertical]\nscale = 2.0\n",
+       ":5:",
+       {"base.vertical", "missing file"}},
+      {"harmonic without frequency",
+       b1 + "[base.horizontal]\nkind = \"harmonic\"\namplitude_g = 0.3\n",
+       ":5:",
+       {"base.horizontal.frequency_hz", "missing", "Hz"}},
+      {"ricker without amplitude",
+       b1 + "[base.horizontal]\nkind = \"ricker\"\nfrequency_hz = 1\n",
+       ":5:",
+       {"base.horizontal.amplitude_g", "missing"}},
+      {"rectangular without duration",
+       b1 + "[base.horizontal]\nkind = \"rectangular_pulse\"\namplitude_g = 0.3\n",
+       ":5:",
+       {"base.horizontal.duration_s", "missing"}},
+      {"rectangular with frequency",
+       b1 + "[base.horizontal]\nkind = \"rectangular_pulse\"\namplitude_g = 0.3\n"
+            "duration_s = 1\nfrequency_hz = 2\n",
+       ":9:",
+       {"base.horizontal.frequency_hz", "not used"}},
+      {"sine pulse with duration",
+       b1 + "[base.horizontal]\nkind = \"sine_pulse\"\namplitude_g = 0.3\nfrequency_hz = 2\n"
+            "duration_s = 1\n",
+       ":9:",
+       {"base.horizontal.duration_s", "not used"}},
+      {"zero frequency",
+       b1 + "[base.horizontal]\nkind = \"sine_pulse\"\namplitude_g = 0.3\nfrequency_hz = 0\n",
+       ":8:",
+       {"base.horizontal.frequency_hz", "positive number (Hz), got 0"}},
+      {"unknown kind",
+       b1 + "[base.horizontal]\nkind = \"square\"\n",
+       ":6:",
+       {"base.horizontal.kind", "\"harmonic\"", "\"ricker\"", "got \"square\""}},
+      {"unknown integrator",
+       b1 + "[model]\nintegrator = \"euler\"\n",
+       ":6:",
+       {"model.integrator", "\"dopri5\" or \"rk4\"", "got \"euler\""}},
+      {"unknown events", b1 + "[model]\nevents = \"exact\"\n", ":6:", {"model.events", "thesis"}},
+      {"unknown equations",
+       b1 + "[model]\nequations = \"linear\"\n",
+       ":6:",
+       {"model.equations", "linearized"}},
+      {"unknown precision",
+       b1 + "[bullet]\nprecision = \"half\"\n",
+       ":6:",
+       {"bullet.precision", "\"double\" or \"float\""}},
+      {"unknown drive",
+       b1 + "[bullet]\ndrive = \"pushed\"\n",
+       ":6:",
+       {"bullet.drive", "kinematic"}},
+      {"unknown units",
+       b1 + "[base.horizontal]\nfile = " + at2 + "\nunits = \"ft/s2\"\n",
+       ":7:",
+       {"base.horizontal.units", "\"m/s2\"", "ft/s2"}},
+      {"plain file without units",
+       b1 + "[base.horizontal]\nfile = " + plain + "\ndt = 0.02\n",
+       ":5:",
+       {"base.horizontal.units", "missing", "plain"}},
+      {"dt for an AT2",
+       b1 + "[base.horizontal]\nfile = " + at2 + "\ndt = 0.01\n",
+       ":7:",
+       {"base.horizontal.dt", "AT2"}},
+      {"amplitude for a file",
+       b1 + "[base.horizontal]\nfile = " + at2 + "\namplitude_g = 1\n",
+       ":7:",
+       {"base.horizontal.amplitude_g", "analytic"}},
+      {"units for a kind",
+       b1 + "[base.horizontal]\nkind = \"harmonic\"\namplitude_g = 0.3\nfrequency_hz = 2\n"
+            "units = \"g\"\n",
+       ":9:",
+       {"base.horizontal.units", "not used"}},
+      {"missing record file",
+       b1 + "[base.horizontal]\nfile = \"nowhere.AT2\"\n",
+       ":6:",
+       {"base.horizontal.file", "file not found", "nowhere.AT2"}},
+      {"negative start",
+       b1 + "[base.horizontal]\nfile = " + at2 + "\nstart_s = -1\n",
+       ":7:",
+       {"base.horizontal.start_s", ">= 0"}},
+      {"non-integer iterations",
+       b1 + "[bullet]\nsolver_iterations = 2.5\n",
+       ":6:",
+       {"bullet.solver_iterations", "positive integer"}},
+      {"zero iterations",
+       b1 + "[bullet]\nsolver_iterations = 0\n",
+       ":6:",
+       {"bullet.solver_iterations", "positive integer"}},
+      {"erp above 1", b1 + "[bullet]\nerp = 1.5\n", ":6:", {"bullet.erp", "(0, 1]"}},
+      {"negative friction", b1 + "[bullet]\nfriction = -1\n", ":6:", {"bullet.friction", ">= 0"}},
+      {"string for a bool",
+       b1 + "[model]\ncheck_transitions = \"yes\"\n",
+       ":6:",
+       {"model.check_transitions", "true or false"}},
+      {"zero tolerance", b1 + "[compare]\ntolerance = 0\n", ":6:", {"compare.tolerance"}},
+      {"zero rtol", b1 + "[model]\nrtol = 0\n", ":6:", {"model.rtol"}},
+      {"title not a string", "title = 3\n" + b1, ":1:", {"title", "string"}},
+  };
+  for (const BadCase& c : cases) {
+    SCOPED_TRACE(c.name);
+    const std::string e = ErrorOf(c.text, {}, kScenes / "x.toml");
+    ASSERT_FALSE(e.empty()) << "no error";
+    EXPECT_EQ(e.rfind((kScenes / "x.toml").string() + c.where, 0), 0u) << e;
+    for (const auto& piece : c.pieces) EXPECT_CONTAINS(e, piece);
+  }
+}
+
+TEST(Errors, MissingSceneFile) {
+  try {
+    LoadScene(kScenes / "does_not_exist.toml");
+    ADD_FAILURE() << "no error";
+  } catch (const SceneError& e) {
+    EXPECT_CONTAINS(e.what(), "does_not_exist.toml");
+  }
+}
+
+TEST(Overrides, AppliedBeforeValidation) {
+  const Scene s =
+      LoadScene(kScenes / "thesis_rinaldi228.toml",
+                {"run.duration=3", "base.horizontal.scale=0.5", "model.integrator=\"rk4\"",
+                 "bullet.precision=float", " model.rtol = 1e-6 ", "title=Bare words here"});
+  EXPECT_EQ(s.run.duration_s, 3.0);
+  EXPECT_EQ(s.horizontal->scale, 0.5);
+  EXPECT_EQ(s.model.integrator, Integrator::kRk4);
+  EXPECT_EQ(s.bullet.precision, BulletPrecision::kFloat);
+  EXPECT_EQ(s.model.rtol, 1e-6);
+  EXPECT_EQ(s.title, "Bare words here");
+  // The scaled record's peak halves (records/SOURCES.md: 0.8741 g).
+  EXPECT_NEAR(GroundMotion::FromScene(s).horizontal()->info().peak_g, 0.5 * 0.8741, 0.25e-4);
+}
+
+TEST(Overrides, CreateMissingTablesAndKeys) {
+  const Scene s =
+      ParseScene(kBlocks, "",
+                 {"initial.theta1=0.05", "compare.tolerance=0.02", "base.vertical.kind=sine_pulse",
+                  "base.vertical.amplitude_g=0.2", "base.vertical.frequency_hz=3"});
+  EXPECT_EQ(s.initial.theta1_rad, 0.05);
+  EXPECT_EQ(*s.compare.tolerance_rad, 0.02);
+  ASSERT_TRUE(s.vertical);
+  EXPECT_EQ(s.vertical->kind, MotionKind::kSinePulse);
+  EXPECT_EQ(s.vertical->frequency_hz, 3.0);
+}
+
+TEST(Overrides, Errors) {
+  const std::string unknown = ErrorOf(kBlocks, {"run.duraton=3"});
+  EXPECT_CONTAINS(unknown, "override \"run.duraton=3\"");
+  EXPECT_CONTAINS(unknown, "unknown key run.duraton");
+  EXPECT_CONTAINS(ErrorOf(kBlocks, {"nosuch.key=1"}), "unknown key nosuch");
+  EXPECT_CONTAINS(ErrorOf(kBlocks, {"run"}), "expected key=value");
+  EXPECT_CONTAINS(ErrorOf(kBlocks, {"run=3"}), "is a table");
+  EXPECT_CONTAINS(ErrorOf(kBlocks, {"title.x=3"}), "title is not a table");
+  // A bad value names the override, the key and what was expected.
+  const std::string bad = ErrorOf(kBlocks, {"run.duration=-2"});
+  EXPECT_CONTAINS(bad,
+                  "scenes/x.toml: override \"run.duration=-2\": run.duration: expected a "
+                  "positive number (s), got -2");
+  EXPECT_CONTAINS(ErrorOf(kBlocks, {"model.integrator=euler"}), "got \"euler\"");
+  // An override that makes a single-block scene set theta2 is refused like the file would be.
+  EXPECT_CONTAINS(ErrorOf("[block1]\nwidth = 1\nheight = 1\nmass = 1\n", {"initial.theta2=0.1"}),
+                  "single-block");
+}
+
+TEST(Validate, SceneBuiltInCode) {
+  Scene s;
+  s.block1 = BlockDef{1.0, 2.0, 1.0, 100.0, 0.0};
+  EXPECT_NO_THROW(ValidateScene(s));
+  s.block1.width_m = -1.0;
+  try {
+    ValidateScene(s);
+    ADD_FAILURE() << "no error";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(std::string(e.what()), "scene: block1.width: expected a positive number (m), got -1");
+  }
+  s.block1.width_m = 1.0;
+  s.initial.theta2_rad = 0.1;  // no block 2
+  EXPECT_THROW(ValidateScene(s), SceneError);
+  s.initial.theta2_rad = 0.0;
+  s.run.output_interval_s = 20.0;
+  EXPECT_THROW(ValidateScene(s), SceneError);
+  s.run.output_interval_s = 0.01;
+  MotionDef m;
+  m.key = "base.horizontal";
+  m.kind = MotionKind::kHarmonic;
+  m.amplitude_g = 0.1;
+  m.frequency_hz = 0.0;
+  s.horizontal = m;
+  EXPECT_THROW(ValidateScene(s), SceneError);
+  s.horizontal->frequency_hz = 2.0;
+  EXPECT_NO_THROW(ValidateScene(s));
+  s.horizontal->kind = MotionKind::kFile;
+  s.horizontal->file = kRecords / "tabas1978_FN_plain_g_dt0p02.txt";
+  EXPECT_THROW(ValidateScene(s), SceneError);  // plain file without units
+  s.horizontal->units_given = true;
+  EXPECT_NO_THROW(ValidateScene(s));
+}
+
+TEST(Helpers, NamesAndUnits) {
+  EXPECT_TRUE(IsAt2File("a/b/X.AT2"));
+  EXPECT_TRUE(IsAt2File("x.at2"));
+  EXPECT_FALSE(IsAt2File("x.txt"));
+  EXPECT_EQ(MotionKindName(MotionKind::kCosinePulse), "cosine_pulse");
+  EXPECT_EQ(AccelUnitsName(AccelUnits::kCmps2), "cm/s2");
+  EXPECT_EQ(AccelUnitsToMps2(AccelUnits::kG, 9.5), 9.5);
+  EXPECT_EQ(AccelUnitsToMps2(AccelUnits::kCmps2, 9.5), 0.01);
+}
+
+}  // namespace
+}  // namespace rockbench
