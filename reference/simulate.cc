@@ -481,6 +481,17 @@ Result Simulator::Run() {
     return result_;
   }
   mode_ = sel.mode;
+  if (mode_ != Mode::kRest && s.theta1 == 0.0 && s.theta2 == 0.0 && s.omega1 == 0.0 &&
+      s.omega2 == 0.0) {
+    // Motion starts at t = 0 from rest.
+    Event ev;
+    ev.kind = "initiation";
+    ev.mode_before = Mode::kRest;
+    ev.mode_after = mode_;
+    ev.energy_before_j = ev.energy_after_j = Energy(geo_, Mode::kRest, s);
+    AddEvent(ev);
+    ++result_.summary.initiations;
+  }
   while (!done_ && t_ < t_end_) {
     if (mode_ == Mode::kRest) {
       RunRest();

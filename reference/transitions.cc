@@ -73,22 +73,27 @@ ModeSelection SelectMode(const Geometry& geo, const State& s, double xg, double 
   });
   for (const Candidate& cand : cands) {
     const Mode mode = ModeOf({cand.gc, cand.ic}, geo.two_blocks);
-    const auto acc = ModeAccelerations(geo, mode, s, xg, yg, equations);
-    // An opening contact must open: its gap must accelerate away from zero.
-    bool ok = true;
-    if (ground_closed && cand.gc != Contact::kFace) {
-      ok = ok && (cand.gc == Contact::kRight ? acc[0] : -acc[0]) > 0.0;
-    }
-    if (geo.two_blocks && interface_closed && cand.ic != Contact::kFace) {
-      const double rel = acc[1] - acc[0];
-      ok = ok && (cand.ic == Contact::kRight ? rel : -rel) > 0.0;
-    }
-    if (!ok) continue;
-    const ContactMargins cm = EvaluateContacts(geo, mode, s, xg, yg, equations);
-    if (cm.face < 0.0 || cm.point < 0.0) continue;
-    return {mode, true};
+    if (ModeConsistent(geo, mode, s, xg, yg, equations)) return {mode, true};
   }
   return {Mode::kRest, false};
+}
+
+bool ModeConsistent(const Geometry& geo, Mode mode, const State& s, double xg, double yg,
+                    Equations equations) {
+  const bool ground_closed = s.theta1 == 0.0 && s.omega1 == 0.0;
+  const bool interface_closed = s.theta2 == s.theta1 && s.omega2 == s.omega1;
+  const Contacts c = ContactsOf(mode);
+  const auto acc = ModeAccelerations(geo, mode, s, xg, yg, equations);
+  // An opening contact must open: its gap must accelerate away from zero.
+  if (ground_closed && c.ground != Contact::kFace) {
+    if (!((c.ground == Contact::kRight ? acc[0] : -acc[0]) > 0.0)) return false;
+  }
+  if (geo.two_blocks && interface_closed && c.interface != Contact::kFace) {
+    const double rel = acc[1] - acc[0];
+    if (!((c.interface == Contact::kRight ? rel : -rel) > 0.0)) return false;
+  }
+  const ContactMargins cm = EvaluateContacts(geo, mode, s, xg, yg, equations);
+  return cm.face >= 0.0 && cm.point >= 0.0;
 }
 
 Mode ThesisInitiation(const Geometry& geo, double xg, double yg) {

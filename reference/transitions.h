@@ -26,6 +26,13 @@ struct ModeSelection {
 ModeSelection SelectMode(const Geometry& geo, const State& s, double xg_mps2, double yg_mps2,
                          Equations equations);
 
+/// Whether `mode` satisfies the contact conditions at (s, xg, yg): closed faces carry
+/// compressive corner forces, point contacts compressive normal forces, and every contact that
+/// is closed in s but open in `mode` accelerates open. SelectMode returns the first consistent
+/// mode; the contact problem has a positive-definite mass matrix, so at most one is consistent.
+bool ModeConsistent(const Geometry& geo, Mode mode, const State& s, double xg_mps2, double yg_mps2,
+                    Equations equations);
+
 /// Event function of the contact conditions of `mode` at (s, xg, yg), normalized by the total
 /// weight: the smallest of the face corner forces and point normal forces, in units of M g.
 /// Negative: a face must open (transition) or a point contact would pull (violation).
