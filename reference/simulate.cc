@@ -73,6 +73,19 @@ class Simulator {
   void AddEvent(Event ev) { result_.history.events.push_back(std::move(ev)); }
   void Track(double t, const State& s);
   bool StartMode(double t, const State& s, const char* kind, Mode before, const std::string& note);
+  // At a located switch the choice of mode can hang on rounding (a face force or an opening
+  // acceleration of ~1e-16): the first time from t on (1e-12 s, doubling, up to t_max) at which
+  // a mode other than `leaving` is consistent; t itself when none is found.
+  template <class StateAt>
+  double SwitchTime(double t, double t_max, Mode leaving, const StateAt& state_at) const {
+    for (double dt = 0.0; t + dt <= t_max; dt = dt == 0.0 ? 1e-12 : 2 * dt) {
+      const double tt = t + dt;
+      const ModeSelection sel =
+          SelectMode(geo_, state_at(tt), motion_.xg_mps2(tt), motion_.yg_mps2(tt), cfg_.equations);
+      if (sel.consistent && sel.mode != leaving) return tt;
+    }
+    return t;
+  }
   void DoImpact(double t, const State& s, ImpactKind kind);
   void RunRest();
   void RunMoving();
@@ -230,6 +243,7 @@ void Simulator::RunRest() {
         const auto br = BrentBracket(margin, t0, t1, m0, m1, kEventTol_s);
         t_start = br.second;
       }
+      t_start = SwitchTime(t_start, t1, Mode::kRest, [](double) { return State{}; });
       t1 = t_start;
     }
     Trajectory::Segment seg{t0, t1, Mode::kRest, DenseStep{}};
@@ -415,8 +429,8 @@ void Simulator::RunMoving() {
       }
       case kFace: {
         // Just past the located root, where the face force has turned tensile.
-        t_ = t_ev_hi;
-        const State sh = ToState(at(t_ev_hi));
+        t_ = SwitchTime(t_ev_hi, t1, mode_, [&](double t) { return ToState(at(t)); });
+        const State sh = ToState(at(t_));
         y_ = ToVec(sh);
         StartMode(t_, sh, "transition", mode_, "face opens");
         break;
