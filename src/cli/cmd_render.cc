@@ -8,16 +8,16 @@
 #include <fstream>
 #include <limits>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <regex>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "cli/commands.h"
 #include "harness/engines.h"
 #include "renders/animation.h"
 #include "renders/geometry.h"
+#include "renders/gl_context.h"
 #include "renders/renderer.h"
 #include "scene/ground_motion.h"
 #include "scene/history.h"
@@ -112,8 +112,8 @@ void Execute(const RenderOptions& opt) {
   config.t_to_s = opt.to_s;
   config.show_base_motion = !opt.no_base;
   if (opt.mp4 && (config.width_px % 2 != 0 || config.height_px % 2 != 0)) {
-    Fail(kExitBadInput, "--size " + opt.size + ": an MP4 (H.264, yuv420p) needs an even width " +
-                            "and height");
+    Fail(kExitBadInput,
+         "--size " + opt.size + ": an MP4 (H.264, yuv420p) needs an even width " + "and height");
   }
   const auto layout = renders::ParseLayout(opt.layout);
   if (!layout) Fail(kExitBadInput, "--layout " + opt.layout + ": expected overlay or side");
@@ -128,6 +128,8 @@ void Execute(const RenderOptions& opt) {
   // The motion: read from a run folder, or simulated now from a scene file.
   const fs::path input(opt.input);
   if (!fs::exists(input)) Fail(kExitBadInput, opt.input + ": no such scene file or run folder");
+  // Before any work: can this build draw at all?
+  if (!renders::GlAvailable()) Fail(kExitCannotRender, renders::GlUnavailableReason());
   Scene scene;
   std::vector<renders::Track> tracks;
   GroundMotion motion;
@@ -186,8 +188,8 @@ void Execute(const RenderOptions& opt) {
     const auto& lay = renderer.layout();
     const auto times = renders::FrameTimes(lay.t_from_s, lay.t_to_s, opt.fps, opt.speed);
     std::printf("rendering %zu frames (%dx%d, %g fps, t = %g..%g s, speed %g) into %s\n",
-                times.size(), config.width_px, config.height_px, opt.fps, lay.t_from_s,
-                lay.t_to_s, opt.speed, opt.out.c_str());
+                times.size(), config.width_px, config.height_px, opt.fps, lay.t_from_s, lay.t_to_s,
+                opt.speed, opt.out.c_str());
     std::fflush(stdout);
     const renders::AnimationResult result = renders::ExportAnimation(renderer, anim);
     for (const auto& path : result.written) std::printf("wrote %s\n", path.string().c_str());

@@ -1,0 +1,347 @@
+#include "renders/animation.h"
+
+#include <fcntl.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <stdexcept>
+#include <thread>
+
+extern char** environ;
+
+namespace rockbench::renders {
+namespace fs = std::filesystem;
+
+std::optional<fs::path> FindExecutable(const std::string& name) {
+  auto executable = [](const fs::path& p) {
+    struct stat st;
+    return ::stat(p.c_str(), &st) == 0 && S_ISREG(st.st_mode) && ::access(p.c_str(), X_OK) == 0;
+  };
+  if (name.find('/') != std::string::npos) {
+    if (executable(name)) return fs::path(name);
+    return std::nullopt;
+  }
+  const char* path_env = std::getenv("PATH");
+  std::string path = path_env ? path_env : "/usr/local/bin:/usr/bin:/bin";
+  size_t start = 0;
+  while (start <= path.size()) {
+    const size_t end = std::min(path.find(':', start), path.size());
+    const std::string dir = path.substr(start, end - start);
+    if (!dir.empty() && executable(fs::path(dir) / name)) return fs::path(dir) / name;
+    start = end + 1;
+  }
+  return std::nullopt;
+}
+
+struct FfmpegPipe::Impl {
+  pid_t pid = -1;
+  int stdin_fd = -1;
+  int stderr_fd = -1;
+  std::thread drain;
+  std::string messages;  // ffmpeg's standard error (the last 16 kB)
+  bool closed = false;
+
+  void StartDrain() {
+    drain = std::thread([this] {
+      char buf[4096];
+      for (;;) {
+        const ssize_t n = ::read(stderr_fd, buf, sizeof buf);
+        if (n < 0 && errno == EINTR) continue;
+        if (n <= 0) break;
+        messages.append(buf, static_cast<size_t>(n));
+        if (messages.size() > 16384) messages.erase(0, messages.size() - 16384);
+      }
+    });
+  }
+
+  // Waits for ffmpeg; an error message when it did not exit with status 0.
+  std::string Wait() {
+    int status = 0;
+    while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+    }
+    if (drain.joinable()) drain.join();
+    ::close(stderr_fd);
+    stderr_fd = -1;
+    pid = -1;
+    std::string why;
+    if (WIFEXITED(status) && WEXITSTATUS(status) == 0) return why;
+    why = WIFEXITED(status) ? "ffmpeg exited with status " + std::to_string(WEXITSTATUS(status))
+                            : "ffmpeg was stopped by signal " + std::to_string(WTERMSIG(status));
+    while (!messages.empty() && (messages.back() == '\n' || messages.back() == '\r')) {
+      messages.pop_back();
+    }
+    if (!messages.empty()) why += ": " + messages;
+    return why;
+  }
+};
+
+FfmpegPipe::FfmpegPipe(const fs::path& ffmpeg, std::vector<std::string> args)
+    : impl_(std::make_unique<Impl>()) {
+  int in_pipe[2], err_pipe[2];
+  if (::pipe2(in_pipe, O_CLOEXEC) != 0)
+    throw std::runtime_error("pipe: " + std::string(std::strerror(errno)));
+  if (::pipe2(err_pipe, O_CLOEXEC) != 0) {
+    ::close(in_pipe[0]);
+    ::close(in_pipe[1]);
+    throw std::runtime_error("pipe: " + std::string(std::strerror(errno)));
+  }
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_adddup2(&actions, in_pipe[0], 0);
+  posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
+  posix_spawn_file_actions_adddup2(&actions, err_pipe[1], 2);
+  std::vector<std::string> argv_s;
+  argv_s.push_back(ffmpeg.string());
+  for (auto& a : args) argv_s.push_back(std::move(a));
+  std::vector<char*> argv;
+  for (auto& a : argv_s) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  pid_t pid = -1;
+  const int rc = ::posix_spawn(&pid, ffmpeg.c_str(), &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  ::close(in_pipe[0]);
+  ::close(err_pipe[1]);
+  if (rc != 0) {
+    ::close(in_pipe[1]);
+    ::close(err_pipe[0]);
+    throw std::runtime_error("cannot start " + ffmpeg.string() + ": " + std::strerror(rc));
+  }
+  impl_->pid = pid;
+  impl_->stdin_fd = in_pipe[1];
+  impl_->stderr_fd = err_pipe[0];
+  impl_->StartDrain();
+}
+
+FfmpegPipe::~FfmpegPipe() {
+  if (impl_->closed || impl_->pid < 0) return;
+  if (impl_->stdin_fd >= 0) ::close(impl_->stdin_fd);
+  ::kill(impl_->pid, SIGKILL);
+  impl_->Wait();
+}
+
+void FfmpegPipe::Write(const Image& frame) {
+  if (impl_->closed) throw std::runtime_error("ffmpeg: writing a frame after the input was closed");
+  // SIGPIPE blocked while writing: a dead ffmpeg gives EPIPE here instead of ending us.
+  sigset_t pipe_set, old_set;
+  sigemptyset(&pipe_set);
+  sigaddset(&pipe_set, SIGPIPE);
+  pthread_sigmask(SIG_BLOCK, &pipe_set, &old_set);
+  const uint8_t* p = frame.rgb.data();
+  size_t left = frame.rgb.size();
+  int err = 0;
+  while (left > 0) {
+    const ssize_t n = ::write(impl_->stdin_fd, p, left);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      err = errno;
+      break;
+    }
+    p += n;
+    left -= static_cast<size_t>(n);
+  }
+  if (err == EPIPE) {
+    // Consume the pending SIGPIPE before unblocking it.
+    const timespec zero{0, 0};
+    while (sigtimedwait(&pipe_set, nullptr, &zero) == SIGPIPE) {
+    }
+  }
+  pthread_sigmask(SIG_SETMASK, &old_set, nullptr);
+  if (err != 0) {
+    ::close(impl_->stdin_fd);
+    impl_->stdin_fd = -1;
+    impl_->closed = true;
+    std::string why = impl_->Wait();
+    if (why.empty()) why = "ffmpeg stopped reading frames";
+    throw std::runtime_error(why + " (writing a frame: " + std::strerror(err) + ")");
+  }
+}
+
+void FfmpegPipe::Close() {
+  if (impl_->closed) return;
+  impl_->closed = true;
+  ::close(impl_->stdin_fd);
+  impl_->stdin_fd = -1;
+  const std::string why = impl_->Wait();
+  if (!why.empty()) throw std::runtime_error(why);
+}
+
+namespace {
+
+std::string Number(double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.10g", v);
+  return buf;
+}
+
+std::vector<std::string> RawInput(const Image& like, double fps) {
+  return {"-hide_banner", "-loglevel",
+          "error",        "-nostats",
+          "-f",           "rawvideo",
+          "-pix_fmt",     "rgb24",
+          "-video_size",  std::to_string(like.width_px) + "x" + std::to_string(like.height_px),
+          "-framerate",   Number(fps),
+          "-i",           "pipe:0"};
+}
+
+// Removes files on scope exit unless released (temporary outputs of a failed export).
+struct TempFiles {
+  std::vector<fs::path> paths;
+  ~TempFiles() {
+    std::error_code ec;
+    for (const auto& p : paths) fs::remove(p, ec);
+  }
+};
+
+}  // namespace
+
+AnimationResult ExportAnimation(FrameRenderer& renderer, const AnimationConfig& config) {
+  using Clock = std::chrono::steady_clock;
+  const auto t_start = Clock::now();
+  if (!config.frames && !config.mp4 && !config.gif) {
+    throw std::invalid_argument("nothing to make: ask for frames, an MP4 or a GIF");
+  }
+  const RenderConfig& rc = renderer.config();
+  if (config.mp4 && (rc.width_px % 2 != 0 || rc.height_px % 2 != 0)) {
+    throw std::invalid_argument("MP4 (H.264, yuv420p) needs an even width and height; " +
+                                std::to_string(rc.width_px) + "x" + std::to_string(rc.height_px) +
+                                " is not");
+  }
+  const FrameLayout& lay = renderer.layout();
+  AnimationResult result;
+  result.frame_times_s = FrameTimes(lay.t_from_s, lay.t_to_s, config.fps, config.speed);
+  const auto& times = result.frame_times_s;
+  result.frame_count = static_cast<int>(times.size());
+
+  bool frames = config.frames, mp4 = config.mp4, gif = config.gif;
+  std::optional<fs::path> ffmpeg;
+  if (mp4 || gif) {
+    ffmpeg =
+        config.ffmpeg.empty() ? FindExecutable("ffmpeg") : FindExecutable(config.ffmpeg.string());
+    if (!ffmpeg) {
+      result.problems.push_back(
+          "ffmpeg not found (" +
+          (config.ffmpeg.empty() ? std::string("not on PATH") : config.ffmpeg.string()) +
+          "; install the Debian package ffmpeg): no " +
+          std::string(mp4 && gif ? "MP4 or GIF"
+                      : mp4      ? "MP4"
+                                 : "GIF") +
+          " written; the PNG frames are written instead");
+      frames = true;
+      mp4 = gif = false;
+    }
+  }
+
+  fs::create_directories(config.out_dir);
+  const fs::path frames_dir = config.out_dir / "frames";
+  int digits = 5;
+  for (size_t n = times.size(); n >= 100000; n /= 10) ++digits;
+  if (frames) {
+    fs::create_directories(frames_dir);
+    // Frames of an earlier, longer export would be mistaken for this one's.
+    for (const auto& entry : fs::directory_iterator(frames_dir)) {
+      const std::string f = entry.path().filename().string();
+      if (f.starts_with("frame_") && f.ends_with(".png")) fs::remove(entry.path());
+    }
+  }
+  const fs::path mp4_path = config.out_dir / (config.name + ".mp4");
+  const fs::path gif_path = config.out_dir / (config.name + ".gif");
+  const std::string tmp_suffix = ".tmp" + std::to_string(::getpid());
+  const fs::path mp4_tmp = config.out_dir / ("." + config.name + ".mp4" + tmp_suffix);
+  const fs::path gif_tmp = config.out_dir / ("." + config.name + ".gif" + tmp_suffix);
+  const fs::path palette_tmp =
+      config.out_dir / ("." + config.name + ".palette" + tmp_suffix + ".png");
+  TempFiles temps;
+  temps.paths = {mp4_tmp, gif_tmp, palette_tmp};
+
+  Image frame;
+  double render_s = 0.0, png_s = 0.0;
+  auto render = [&](double t) {
+    const auto a = Clock::now();
+    renderer.Render(t, &frame);
+    render_s += std::chrono::duration<double>(Clock::now() - a).count();
+  };
+  // Sizes of the raw input for ffmpeg.
+  Image like(rc.width_px, rc.height_px);
+
+  // Pass 1: PNG frames, MP4, and the GIF's palette, from one rendering of each frame.
+  {
+    std::unique_ptr<FfmpegPipe> mp4_pipe, palette_pipe;
+    if (mp4) {
+      auto args = RawInput(like, config.fps);
+      for (const char* a : {"-an", "-c:v", "libx264", "-preset"}) args.push_back(a);
+      args.push_back(config.x264_preset);
+      for (const char* a : {"-crf"}) args.push_back(a);
+      args.push_back(std::to_string(config.x264_crf));
+      for (const char* a : {"-pix_fmt", "yuv420p", "-movflags", "+faststart", "-f", "mp4", "-y"}) {
+        args.push_back(a);
+      }
+      args.push_back(mp4_tmp.string());
+      mp4_pipe = std::make_unique<FfmpegPipe>(*ffmpeg, std::move(args));
+    }
+    if (gif) {
+      auto args = RawInput(like, config.fps);
+      for (const char* a : {"-vf", "palettegen=stats_mode=full", "-f", "image2", "-y"}) {
+        args.push_back(a);
+      }
+      args.push_back(palette_tmp.string());
+      palette_pipe = std::make_unique<FfmpegPipe>(*ffmpeg, std::move(args));
+    }
+    for (size_t k = 0; k < times.size(); ++k) {
+      render(times[k]);
+      if (mp4_pipe) mp4_pipe->Write(frame);
+      if (palette_pipe) palette_pipe->Write(frame);
+      if (frames) {
+        const auto a = Clock::now();
+        std::string index = std::to_string(k);
+        index.insert(0, static_cast<size_t>(std::max(0, digits - static_cast<int>(index.size()))),
+                     '0');
+        WritePng(frame, frames_dir / ("frame_" + index + ".png"), config.png);
+        png_s += std::chrono::duration<double>(Clock::now() - a).count();
+      }
+      if (config.progress) config.progress(static_cast<int>(k) + 1, result.frame_count);
+    }
+    if (mp4_pipe) mp4_pipe->Close();
+    if (palette_pipe) palette_pipe->Close();
+  }
+  if (frames) result.written.push_back(frames_dir);
+  if (mp4) {
+    fs::rename(mp4_tmp, mp4_path);
+    result.written.push_back(mp4_path);
+  }
+
+  // Pass 2: the GIF, drawn again with the palette of all frames.
+  if (gif) {
+    auto args = RawInput(like, config.fps);
+    args.push_back("-i");
+    args.push_back(palette_tmp.string());
+    for (const char* a : {"-lavfi", "[0:v][1:v]paletteuse=dither=bayer:bayer_scale=5", "-loop", "0",
+                          "-f", "gif", "-y"}) {
+      args.push_back(a);
+    }
+    args.push_back(gif_tmp.string());
+    FfmpegPipe gif_pipe(*ffmpeg, std::move(args));
+    for (double t : times) {
+      render(t);
+      gif_pipe.Write(frame);
+    }
+    gif_pipe.Close();
+    fs::rename(gif_tmp, gif_path);
+    result.written.push_back(gif_path);
+  }
+  result.render_wall_s = render_s;
+  result.png_wall_s = png_s;
+  result.wall_s = std::chrono::duration<double>(Clock::now() - t_start).count();
+  return result;
+}
+
+}  // namespace rockbench::renders

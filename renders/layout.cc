@@ -1,0 +1,121 @@
+// Frame layout and camera: pure arithmetic, built with or without OSMesa.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <stdexcept>
+
+#include "renders/renderer.h"
+
+namespace rockbench::renders {
+namespace {
+
+// The smallest of 1, 1.5, 2, 3, 4, 5, 6, 8 times a power of ten that is >= x (x > 0).
+double NiceCeil(double x) {
+  const double p = std::pow(10.0, std::floor(std::log10(x)));
+  for (double m : {1.0, 1.5, 2.0, 3.0, 4.0, 5.0, 6.0, 8.0, 10.0}) {
+    if (m * p >= x * (1.0 - 1e-12)) return m * p;
+  }
+  return 10.0 * p;
+}
+
+}  // namespace
+
+std::optional<Layout> ParseLayout(std::string_view name) {
+  if (name == "overlay") return Layout::kOverlay;
+  if (name == "side") return Layout::kSide;
+  return std::nullopt;
+}
+
+FrameLayout ComputeLayout(const Scene& scene, const std::vector<Track>& tracks,
+                          const BaseDisplacement& base, const RenderConfig& config) {
+  if (config.width_px < 64 || config.height_px < 48) {
+    throw std::invalid_argument("image size must be at least 64x48 pixels");
+  }
+  if (config.supersample < 1 || config.supersample > 4) {
+    throw std::invalid_argument("supersampling factor must be 1..4");
+  }
+  if (tracks.empty()) throw std::invalid_argument("nothing to draw: no history given");
+  std::vector<const History*> histories;
+  double t_end_s = 0.0;
+  for (const Track& t : tracks) {
+    if (t.history.samples.empty()) {
+      throw std::invalid_argument("the history of '" + t.engine + "' has no samples");
+    }
+    histories.push_back(&t.history);
+    t_end_s = std::max(t_end_s, t.history.samples.back().t_s);
+  }
+  FrameLayout lay;
+  lay.t_from_s = std::isnan(config.t_from_s) ? 0.0 : config.t_from_s;
+  lay.t_to_s = std::isnan(config.t_to_s) ? t_end_s : config.t_to_s;
+  if (!(lay.t_to_s >= lay.t_from_s)) {
+    throw std::invalid_argument("the time window ends before it starts");
+  }
+
+  const int w = config.width_px, h = config.height_px;
+  const int n = static_cast<int>(tracks.size());
+  const bool side = config.layout == Layout::kSide && n > 1;
+  lay.font_px = std::clamp(static_cast<int>(std::lround(h / 34.0)), 9, 40);
+  lay.line_px = static_cast<int>(std::lround(lay.font_px * 1.3));
+  lay.margin_px = std::max(3, static_cast<int>(std::lround(h * 0.015)));
+  const double m = lay.margin_px;
+
+  // Header: the time stamp line, and in the overlay layout one line per engine.
+  const int header_lines = config.show_text ? (side ? 1 : 1 + n) : 0;
+  lay.header = {m, m, w - 2 * m, static_cast<double>(header_lines * lay.line_px)};
+  const double top = header_lines > 0 ? lay.header.y_px + lay.header.h_px + m : m;
+  double bottom = h - m;
+  if (config.show_chart) {
+    lay.has_chart = true;
+    // The plot area, with a gutter on the left for the angle labels and a line below for the
+    // time labels and the legend.
+    const double chart_h = std::max(24.0, std::round(0.2 * h));
+    lay.chart = {m, h - m - chart_h, w - 2 * m, chart_h - lay.line_px};
+    bottom = lay.chart.y_px - m;
+  }
+  if (bottom - top < 16.0) {
+    throw std::invalid_argument("image too small for the text and chart: give a larger size");
+  }
+
+  const Box box = MotionBox(scene, histories, config.show_base_motion ? base : BaseDisplacement{},
+                            lay.t_from_s, lay.t_to_s);
+  if (side) {
+    const double panel_w = (w - m * (n + 1)) / n;
+    const int label_lines = config.show_text ? 2 : 0;
+    for (int i = 0; i < n; ++i) {
+      const double x = m + i * (panel_w + m);
+      lay.view_labels.push_back({x, top, panel_w, static_cast<double>(label_lines * lay.line_px)});
+      const double view_top = top + label_lines * lay.line_px;
+      lay.views.push_back(FitCamera(box, x, view_top, panel_w, bottom - view_top));
+    }
+  } else {
+    lay.views.push_back(FitCamera(box, m, top, w - 2 * m, bottom - top));
+  }
+
+  // Chart range: the largest |theta| in the window, rounded up to a round number.
+  double peak = 0.0;
+  auto add_peak = [&](const History& hist, const Sample& s) {
+    peak = std::max(peak, std::abs(s.theta1_rad));
+    if (hist.two_blocks) peak = std::max(peak, std::abs(s.theta2_rad));
+  };
+  for (const Track& t : tracks) {
+    add_peak(t.history, StateAt(t.history, lay.t_from_s));
+    add_peak(t.history, StateAt(t.history, lay.t_to_s));
+    for (const Sample& s : t.history.samples) {
+      if (s.t_s >= lay.t_from_s && s.t_s <= lay.t_to_s) add_peak(t.history, s);
+    }
+  }
+  lay.chart_theta_max_rad = NiceCeil(std::max(peak, 1e-4) * 1.05);
+  if (lay.has_chart) {
+    // A gutter on the left for the range label "+<max>" (DejaVu Sans digits are 0.64 em wide).
+    char label[32];
+    std::snprintf(label, sizeof label, "+%g", lay.chart_theta_max_rad);
+    const double gutter_px =
+        std::round((0.64 * std::max<double>(std::strlen(label), 3.0) + 0.6) * lay.font_px);
+    lay.chart.x_px += gutter_px;
+    lay.chart.w_px -= gutter_px;
+  }
+  return lay;
+}
+
+}  // namespace rockbench::renders

@@ -1,0 +1,429 @@
+// FrameRenderer: legacy fixed-function GL into a supersampled off-screen buffer, box-filtered
+// down, then FreeType text on the final pixels.
+#include "renders/renderer.h"
+
+#include <GL/gl.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "renders/gl_context.h"
+#include "scene/mode.h"
+
+namespace rockbench::renders {
+namespace {
+
+// Outline colours of the second, third, ... engine in the overlay layout (luminances 0.06,
+// 0.21, 0.40).
+constexpr Rgb kOverlayOutlines[] = {{15, 15, 15}, {180, 20, 20}, {20, 130, 60}};
+
+void Colour(Rgb c, double alpha = 1.0) {
+  glColor4d(c.r / 255.0, c.g / 255.0, c.b / 255.0, alpha);
+}
+
+// A quad in pixel coordinates (final-image px; the projection scales to the supersampled buffer).
+using PixelQuad = std::array<Vec2, 4>;
+
+PixelQuad ToPixels(const Camera& cam, const Quad& q) {
+  PixelQuad p;
+  for (int i = 0; i < 4; ++i) p[i] = cam.ToPixel(q[i]);
+  return p;
+}
+
+// The rectangle shrunk by d px on every side (corners moved along both adjacent edges).
+PixelQuad Inset(const PixelQuad& q, double d_px) {
+  PixelQuad out;
+  for (int i = 0; i < 4; ++i) {
+    const Vec2& c = q[i];
+    const Vec2& next = q[(i + 1) % 4];
+    const Vec2& prev = q[(i + 3) % 4];
+    auto unit = [](Vec2 a, Vec2 b) {
+      const double dx = b.x_m - a.x_m, dy = b.y_m - a.y_m;
+      const double len = std::hypot(dx, dy);
+      return len > 0 ? Vec2{dx / len, dy / len} : Vec2{};
+    };
+    const Vec2 u = unit(c, next), v = unit(c, prev);
+    out[i] = {c.x_m + d_px * (u.x_m + v.x_m), c.y_m + d_px * (u.y_m + v.y_m)};
+  }
+  return out;
+}
+
+void FillQuad(const PixelQuad& q) {
+  glBegin(GL_QUADS);
+  for (const Vec2& p : q) glVertex2d(p.x_m, p.y_m);
+  glEnd();
+}
+
+// The band between a quad and its inset.
+void Ring(const PixelQuad& outer, const PixelQuad& inner) {
+  glBegin(GL_TRIANGLE_STRIP);
+  for (int i = 0; i <= 4; ++i) {
+    glVertex2d(outer[i % 4].x_m, outer[i % 4].y_m);
+    glVertex2d(inner[i % 4].x_m, inner[i % 4].y_m);
+  }
+  glEnd();
+}
+
+void FillRect(const PixelRect& r) {
+  glBegin(GL_QUADS);
+  glVertex2d(r.x_px, r.y_px);
+  glVertex2d(r.x_px + r.w_px, r.y_px);
+  glVertex2d(r.x_px + r.w_px, r.y_px + r.h_px);
+  glVertex2d(r.x_px, r.y_px + r.h_px);
+  glEnd();
+}
+
+// An axis-aligned line as a thin rectangle (exact width, no line-rasterisation rules).
+void HLine(double x0, double x1, double y, double width) {
+  FillRect({x0, y - 0.5 * width, x1 - x0, width});
+}
+void VLine(double x, double y0, double y1, double width) {
+  FillRect({x - 0.5 * width, y0, width, y1 - y0});
+}
+
+// The smallest of 1, 2, 5 times a power of ten that is >= x (x > 0).
+double NiceStep(double x) {
+  const double p = std::pow(10.0, std::floor(std::log10(x)));
+  for (double m : {1.0, 2.0, 5.0, 10.0}) {
+    if (m * p >= x) return m * p;
+  }
+  return 10.0 * p;
+}
+
+std::string Format(const char* fmt, double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, fmt, v);
+  return buf;
+}
+
+}  // namespace
+
+struct FrameRenderer::Impl {
+  Scene scene;
+  std::vector<Track> tracks;
+  BaseDisplacement base;
+  RenderConfig config;
+  FrameLayout layout;
+  Palette palette;
+  std::unique_ptr<Font> font;
+  std::unique_ptr<GlContext> gl;
+
+  double line_w() const { return std::max(1.0, config.height_px / 480.0); }
+
+  Vec2 BaseAt(double t) const { return config.show_base_motion ? base.At(t) : Vec2{}; }
+
+  void Scissor(const Camera& cam) const {
+    const int s = config.supersample;
+    const int x0 = static_cast<int>(std::lround(cam.vp_x_px * s));
+    const int x1 = static_cast<int>(std::lround((cam.vp_x_px + cam.vp_w_px) * s));
+    const int y_top = static_cast<int>(std::lround(cam.vp_y_px * s));
+    const int y_bot = static_cast<int>(std::lround((cam.vp_y_px + cam.vp_h_px) * s));
+    glScissor(x0, config.height_px * s - y_bot, x1 - x0, y_bot - y_top);
+  }
+
+  void DrawGround(const Camera& cam, double t) const {
+    const Vec2 b = BaseAt(t);
+    const Box& w = cam.world;
+    const double big = 2.0 * (w.width_m() + w.height_m());
+    const Vec2 top_left = cam.ToPixel({w.x_min_m - big, b.y_m});
+    const Vec2 bottom_right = cam.ToPixel({w.x_max_m + big, w.y_min_m - big});
+    Colour(palette.ground);
+    FillRect({top_left.x_m, top_left.y_m, bottom_right.x_m - top_left.x_m,
+              bottom_right.y_m - top_left.y_m});
+    // Ticks fixed to the ground (they move with x_g), every round number of metres.
+    const double step_m = NiceStep(w.width_m() / 12.0);
+    const double ground_px = cam.vp_y_px + cam.vp_h_px - top_left.y_m;
+    const double tick_px = std::min(0.5 * ground_px, 0.03 * config.height_px);
+    Colour(palette.ground_line);
+    const long k0 = static_cast<long>(std::floor((w.x_min_m - b.x_m) / step_m));
+    const long k1 = static_cast<long>(std::ceil((w.x_max_m - b.x_m) / step_m));
+    for (long k = k0; k <= k1; ++k) {
+      const Vec2 p = cam.ToPixel({b.x_m + k * step_m, b.y_m});
+      VLine(p.x_m, p.y_m, p.y_m + tick_px, line_w());
+    }
+    HLine(top_left.x_m, bottom_right.x_m, top_left.y_m, 1.5 * line_w());
+    // A fixed marker under the ground's rest position (x = 0): the ticks move past it.
+    const Vec2 o = cam.ToPixel({0.0, w.y_min_m});
+    const double mh = std::min(0.6 * ground_px, 0.03 * config.height_px);
+    Colour(palette.background);
+    glBegin(GL_TRIANGLES);
+    glVertex2d(o.x_m, o.y_m - mh);
+    glVertex2d(o.x_m - 0.6 * mh, o.y_m);
+    glVertex2d(o.x_m + 0.6 * mh, o.y_m);
+    glEnd();
+  }
+
+  StackPose PoseOf(const Track& track, double t) const {
+    const Sample s = StateAt(track.history, t);
+    const double th2 = track.history.two_blocks ? s.theta2_rad : s.theta1_rad;
+    return PoseFor(scene, s.theta1_rad, th2, BaseAt(t));
+  }
+
+  // Solid blocks: an outline band and the block colour inside.
+  void DrawSolid(const Camera& cam, const StackPose& pose) const {
+    auto one = [&](const Quad& q, Rgb fill) {
+      const PixelQuad outer = ToPixels(cam, q);
+      Colour(palette.outline);
+      FillQuad(outer);
+      Colour(fill);
+      FillQuad(Inset(outer, line_w()));
+    };
+    one(pose.block1, palette.block1);
+    if (pose.has_block2) one(pose.block2, palette.block2);
+  }
+
+  // Outlined, translucent blocks (other engines in the overlay layout).
+  void DrawOutlined(const Camera& cam, const StackPose& pose, Rgb outline) const {
+    auto one = [&](const Quad& q, Rgb fill) {
+      const PixelQuad outer = ToPixels(cam, q);
+      const PixelQuad inner = Inset(outer, 2.0 * line_w());
+      glEnable(GL_BLEND);
+      Colour(fill, 0.35);
+      FillQuad(inner);
+      glDisable(GL_BLEND);
+      Colour(outline);
+      Ring(outer, inner);
+    };
+    one(pose.block1, palette.block1);
+    if (pose.has_block2) one(pose.block2, palette.block2);
+  }
+
+  void DrawChart(double t) const {
+    const PixelRect& r = layout.chart;
+    Colour(palette.chart_frame);
+    FillRect({r.x_px - line_w(), r.y_px - line_w(), r.w_px + 2 * line_w(), r.h_px + 2 * line_w()});
+    Colour(palette.chart_background);
+    FillRect(r);
+    const double span = std::max(layout.t_to_s - layout.t_from_s, 1e-9);
+    auto px = [&](double ts, double theta) {
+      const double half = 0.5 * r.h_px - 2.0 * line_w();
+      return Vec2{r.x_px + (ts - layout.t_from_s) / span * r.w_px,
+                  r.y_px + 0.5 * r.h_px - theta / layout.chart_theta_max_rad * half};
+    };
+    // Zero line and the current time.
+    Colour(palette.chart_frame);
+    HLine(r.x_px, r.x_px + r.w_px, r.y_px + 0.5 * r.h_px, line_w());
+    const double t_clamped = std::clamp(t, layout.t_from_s, layout.t_to_s);
+    VLine(px(t_clamped, 0).x_m, r.y_px, r.y_px + r.h_px, line_w());
+    // Curves up to t: the first engine solid, the others dashed.
+    const int s = config.supersample;
+    glEnable(GL_SCISSOR_TEST);
+    glScissor(static_cast<int>(r.x_px * s),
+              static_cast<int>((config.height_px - r.y_px - r.h_px) * s),
+              static_cast<int>(r.w_px * s), static_cast<int>(r.h_px * s));
+    for (size_t i = 0; i < tracks.size(); ++i) {
+      const History& h = tracks[i].history;
+      if (i > 0) {
+        glEnable(GL_LINE_STIPPLE);
+        glLineStipple(3 * s, 0xF0F0);
+      }
+      glLineWidth(static_cast<float>((i == 0 ? 1.5 : 1.2) * line_w() * s));
+      for (int which = h.two_blocks ? 1 : 0; which >= 0; --which) {
+        Colour(which == 0 ? palette.chart_theta1 : palette.chart_theta2);
+        glBegin(GL_LINE_STRIP);
+        const Sample first = StateAt(h, layout.t_from_s);
+        const Vec2 p0 = px(layout.t_from_s, which == 0 ? first.theta1_rad : first.theta2_rad);
+        glVertex2d(p0.x_m, p0.y_m);
+        for (const Sample& smp : h.samples) {
+          if (smp.t_s <= layout.t_from_s) continue;
+          if (smp.t_s > t_clamped) break;
+          const Vec2 p = px(smp.t_s, which == 0 ? smp.theta1_rad : smp.theta2_rad);
+          glVertex2d(p.x_m, p.y_m);
+        }
+        const Sample now = StateAt(h, t_clamped);
+        const Vec2 p = px(t_clamped, which == 0 ? now.theta1_rad : now.theta2_rad);
+        glVertex2d(p.x_m, p.y_m);
+        glEnd();
+      }
+      glDisable(GL_LINE_STIPPLE);
+    }
+    glDisable(GL_SCISSOR_TEST);
+  }
+
+  void DrawGl(double t) {
+    const int s = config.supersample;
+    glViewport(0, 0, config.width_px * s, config.height_px * s);
+    glMatrixMode(GL_PROJECTION);
+    glLoadIdentity();
+    // Final-image pixel coordinates, y down.
+    glOrtho(0, config.width_px, config.height_px, 0, -1, 1);
+    glMatrixMode(GL_MODELVIEW);
+    glLoadIdentity();
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_CULL_FACE);
+    // Opaque drawing without blending (cheaper per pixel); translucent fills turn it on.
+    glDisable(GL_BLEND);
+    glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+    glClearColor(palette.background.r / 255.f, palette.background.g / 255.f,
+                 palette.background.b / 255.f, 1.f);
+    glClear(GL_COLOR_BUFFER_BIT);
+
+    const bool side = layout.views.size() > 1;
+    for (size_t v = 0; v < layout.views.size(); ++v) {
+      const Camera& cam = layout.views[v];
+      glEnable(GL_SCISSOR_TEST);
+      Scissor(cam);
+      DrawGround(cam, t);
+      if (side) {
+        DrawSolid(cam, PoseOf(tracks[v], t));
+      } else {
+        DrawSolid(cam, PoseOf(tracks[0], t));
+        for (size_t i = 1; i < tracks.size(); ++i) {
+          DrawOutlined(cam, PoseOf(tracks[i], t), kOverlayOutlines[(i - 1) % 3]);
+        }
+      }
+      glDisable(GL_SCISSOR_TEST);
+    }
+    if (layout.has_chart) DrawChart(t);
+  }
+
+  std::string StateText(const Track& track, double t, bool with_name) const {
+    const Sample s = StateAt(track.history, t);
+    std::string line;
+    if (with_name) line = track.engine + "   ";
+    line += "mode " + std::string(ModeName(s.mode)) + "   θ₁ = " + Format("%+.4f", s.theta1_rad) +
+            " rad";
+    if (track.history.two_blocks) line += "   θ₂ = " + Format("%+.4f", s.theta2_rad) + " rad";
+    return line;
+  }
+
+  void DrawText(double t, Image* img) {
+    const int asc = font->ascender_px();
+    auto baseline = [&](const PixelRect& r, int line) {
+      return static_cast<int>(std::lround(r.y_px)) + line * layout.line_px + asc;
+    };
+    const int x0 = static_cast<int>(std::lround(layout.header.x_px));
+    if (config.show_text) {
+      std::string stamp = "t = " + Format("%.3f", t) + " s";
+      if (config.show_base_motion && !base.empty()) {
+        const Vec2 b = base.At(t);
+        stamp += "    base x = " + Format("%+.3f", b.x_m) + " m";
+        if (b.y_m != 0.0) stamp += ", y = " + Format("%+.3f", b.y_m) + " m";
+      }
+      const int stamp_w = font->Draw(img, x0, baseline(layout.header, 0), stamp, palette.text);
+      if (!config.title.empty()) {
+        // Right-aligned, shortened with an ellipsis where it would run into the time stamp.
+        const int room = static_cast<int>(layout.header.w_px) - stamp_w - 2 * layout.font_px;
+        std::string kept = config.title, title = config.title;
+        while (!kept.empty() && font->Measure(title) > room) {
+          // Drop the last code point (its continuation bytes, then its lead byte).
+          while (!kept.empty()) {
+            const auto c = static_cast<unsigned char>(kept.back());
+            kept.pop_back();
+            if ((c & 0xC0) != 0x80) break;
+          }
+          title.assign(kept).append("…");
+        }
+        if (kept.empty()) title.clear();
+        const int right = static_cast<int>(std::lround(layout.header.x_px + layout.header.w_px));
+        font->Draw(img, right - font->Measure(title), baseline(layout.header, 0), title,
+                   palette.text);
+      }
+      if (layout.views.size() > 1) {
+        for (size_t i = 0; i < tracks.size(); ++i) {
+          const PixelRect& r = layout.view_labels[i];
+          const int x = static_cast<int>(std::lround(r.x_px));
+          const Sample s = StateAt(tracks[i].history, t);
+          font->Draw(img, x, baseline(r, 0),
+                     tracks[i].engine + "   mode " + std::string(ModeName(s.mode)), palette.text);
+          std::string angles = "θ₁ = " + Format("%+.4f", s.theta1_rad);
+          if (tracks[i].history.two_blocks) angles += "   θ₂ = " + Format("%+.4f", s.theta2_rad);
+          font->Draw(img, x, baseline(r, 1), angles + " rad", palette.text);
+        }
+      } else {
+        for (size_t i = 0; i < tracks.size(); ++i) {
+          const std::string style =
+              tracks.size() > 1 ? (i == 0 ? " (solid)" : " (outline)") : std::string();
+          font->Draw(img, x0, baseline(layout.header, static_cast<int>(i) + 1),
+                     tracks[i].engine + style + "   " + StateText(tracks[i], t, false),
+                     palette.text);
+        }
+      }
+    }
+    if (layout.has_chart) {
+      // Angle range left of the plot, times and legend on the line below it.
+      const PixelRect& r = layout.chart;
+      const int gap = std::max(2, layout.font_px / 3);
+      const int left = static_cast<int>(std::lround(r.x_px));
+      const int right = static_cast<int>(std::lround(r.x_px + r.w_px));
+      const int top = static_cast<int>(std::lround(r.y_px)) + asc;
+      const int bottom = static_cast<int>(std::lround(r.y_px + r.h_px));
+      const std::string up = Format("+%g", layout.chart_theta_max_rad);
+      const std::string down = Format("-%g", layout.chart_theta_max_rad);
+      font->Draw(img, left - gap - font->Measure(up), top, up, palette.text);
+      const std::string rad = "rad";
+      font->Draw(img, left - gap - font->Measure(rad),
+                 static_cast<int>(std::lround(r.y_px + 0.5 * r.h_px)) + asc / 2, rad, palette.text);
+      font->Draw(img, left - gap - font->Measure(down), bottom, down, palette.text);
+      const int below = bottom + gap + asc;
+      const std::string t_from = Format("%.4g", layout.t_from_s) + " s";
+      const std::string t_end = Format("%.4g", layout.t_to_s) + " s";
+      font->Draw(img, left, below, t_from, palette.text);
+      font->Draw(img, right - font->Measure(t_end), below, t_end, palette.text);
+      // Legend: theta1 and theta2 in their line colours; solid/dashed per engine.
+      std::string engines;
+      if (tracks.size() > 1) {
+        engines = "   " + tracks[0].engine + " solid, ";
+        for (size_t i = 1; i < tracks.size(); ++i) {
+          engines += tracks[i].engine + (i + 1 < tracks.size() ? ", " : " dashed");
+        }
+      }
+      const bool two = std::any_of(tracks.begin(), tracks.end(),
+                                   [](const Track& tr) { return tr.history.two_blocks; });
+      const int space = font->Measure("  ");
+      const int w1 = font->Measure("θ₁");
+      const int w2 = two ? space + font->Measure("θ₂") : 0;
+      int x = static_cast<int>(std::lround(r.x_px + 0.5 * r.w_px)) -
+              (w1 + w2 + font->Measure(engines)) / 2;
+      x += font->Draw(img, x, below, "θ₁", palette.chart_theta1);
+      if (two) x += space + font->Draw(img, x + space, below, "θ₂", palette.chart_theta2);
+      font->Draw(img, x, below, engines, palette.text);
+    }
+  }
+};
+
+FrameRenderer::FrameRenderer(const Scene& scene, std::vector<Track> tracks, BaseDisplacement base,
+                             RenderConfig config)
+    : impl_(std::make_unique<Impl>()) {
+  impl_->layout = ComputeLayout(scene, tracks, base, config);
+  impl_->scene = scene;
+  impl_->tracks = std::move(tracks);
+  impl_->base = std::move(base);
+  impl_->config = std::move(config);
+  if (impl_->config.show_text || impl_->config.show_chart) {
+    impl_->font = std::make_unique<Font>(impl_->config.font_path, impl_->layout.font_px);
+  }
+  impl_->gl = CreateGlContext(impl_->config.width_px * impl_->config.supersample,
+                              impl_->config.height_px * impl_->config.supersample);
+}
+
+FrameRenderer::~FrameRenderer() = default;
+
+void FrameRenderer::Render(double t_s, Image* out) {
+  impl_->gl->MakeCurrent();
+  impl_->DrawGl(t_s);
+  const uint8_t* pixels = impl_->gl->Finish();
+  out->width_px = impl_->config.width_px;
+  out->height_px = impl_->config.height_px;
+  DownsampleFlip(pixels, impl_->config.supersample, out);
+  if (impl_->font) impl_->DrawText(t_s, out);
+}
+
+Image FrameRenderer::Render(double t_s) {
+  Image img;
+  Render(t_s, &img);
+  return img;
+}
+
+const FrameLayout& FrameRenderer::layout() const {
+  return impl_->layout;
+}
+const RenderConfig& FrameRenderer::config() const {
+  return impl_->config;
+}
+const Palette& FrameRenderer::palette() const {
+  return impl_->palette;
+}
+
+}  // namespace rockbench::renders

@@ -1,0 +1,117 @@
+#pragma once
+/// Frames of a scene's motion: the ground and the blocks at a time of one or more engines'
+/// histories, with the base displacement, text (time, mode, angles) and a strip chart of the
+/// angles. Draws with legacy GL into an off-screen context (gl_context.h), supersampled and
+/// box-filtered down for anti-aliased edges; text is drawn with FreeType on the final pixels.
+#include <filesystem>
+#include <limits>
+#include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "renders/geometry.h"
+#include "renders/image.h"
+#include "renders/text.h"
+#include "scene/history.h"
+#include "scene/scene.h"
+
+namespace rockbench::renders {
+
+/// How several engines share a frame.
+enum class Layout {
+  kOverlay,  ///< one view: the first engine solid, the others outlined and translucent on top
+  kSide,     ///< one view per engine, side by side, all solid
+};
+
+/// "overlay" / "side"; nullopt for anything else.
+std::optional<Layout> ParseLayout(std::string_view name);
+
+/// One engine's motion to draw.
+struct Track {
+  std::string engine;  ///< "reference", "bullet", ... (shown in the text)
+  History history;
+};
+
+struct RenderConfig {
+  int width_px = 1280;  ///< final image width, px
+  int height_px = 720;  ///< final image height, px
+  int supersample = 2;  ///< drawn at this factor per axis and box-filtered down (1..4)
+  Layout layout = Layout::kOverlay;
+  /// Time window, s: the camera frames the motion in it and the strip chart spans it. NaN:
+  /// from 0 / to the end of the longest history.
+  double t_from_s = std::numeric_limits<double>::quiet_NaN();
+  double t_to_s = std::numeric_limits<double>::quiet_NaN();
+  bool show_text = true;         ///< time stamp, mode and angles of each engine
+  bool show_chart = true;        ///< strip chart of theta1/theta2 up to the current time
+  bool show_base_motion = true;  ///< shift ground and blocks by the base displacement
+  std::string title;             ///< optional text at the top right (e.g. the scene title)
+  std::filesystem::path font_path = kDefaultFontPath;
+};
+
+/// An axis-aligned rectangle of the final image, px (x right, y down from the top-left).
+struct PixelRect {
+  double x_px = 0.0, y_px = 0.0, w_px = 0.0, h_px = 0.0;
+};
+
+/// Where everything goes in a frame (final-image pixels). Computed without GL.
+struct FrameLayout {
+  double t_from_s = 0.0, t_to_s = 0.0;  ///< the resolved time window, s
+  int font_px = 0;                      ///< text size, px
+  int line_px = 0;                      ///< text line spacing, px
+  int margin_px = 0;
+  PixelRect header;                    ///< text lines at the top
+  std::vector<Camera> views;           ///< overlay: one; side: one per track, left to right
+  std::vector<PixelRect> view_labels;  ///< side: each view's text lines (above the view)
+  bool has_chart = false;
+  PixelRect chart;                   ///< the strip chart's plot area (labels outside)
+  double chart_theta_max_rad = 0.0;  ///< the chart's y range is +-this, rad
+};
+
+/// The layout of frames for these inputs (throws std::invalid_argument for a bad config or no
+/// track with samples).
+FrameLayout ComputeLayout(const Scene& scene, const std::vector<Track>& tracks,
+                          const BaseDisplacement& base, const RenderConfig& config);
+
+/// Colours (sRGB). Their luminances differ (Rec. 709: background 0.97, block 2 0.66, ground
+/// 0.47, block 1 0.28, outlines and text 0.08), so a greyscale print keeps them apart.
+struct Palette {
+  Rgb background{248, 248, 246};
+  Rgb ground{120, 120, 120};
+  Rgb ground_line{50, 50, 50};
+  Rgb block1{40, 72, 130};
+  Rgb block2{240, 160, 50};
+  Rgb outline{20, 20, 20};
+  Rgb text{20, 20, 20};
+  Rgb chart_background{255, 255, 255};
+  Rgb chart_frame{150, 150, 150};
+  Rgb chart_theta1{40, 72, 130};
+  Rgb chart_theta2{205, 110, 0};
+};
+
+/// Draws frames. Owns a GL context (created in the constructor) and the font.
+class FrameRenderer {
+ public:
+  /// Throws RenderError when this build has no OSMesa, the font is missing or the context
+  /// cannot be created; std::invalid_argument for a bad config.
+  FrameRenderer(const Scene& scene, std::vector<Track> tracks, BaseDisplacement base,
+                RenderConfig config);
+  ~FrameRenderer();
+  FrameRenderer(const FrameRenderer&) = delete;
+  FrameRenderer& operator=(const FrameRenderer&) = delete;
+
+  /// The frame at simulated time t_s into `out` (resized to the config's size).
+  void Render(double t_s, Image* out);
+  Image Render(double t_s);
+
+  const FrameLayout& layout() const;
+  const RenderConfig& config() const;
+  const Palette& palette() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace rockbench::renders

@@ -1,0 +1,139 @@
+// Frame layout (no GL): where the views, text and chart go, and the bad configurations.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "renders/renderer.h"
+
+namespace rockbench::renders {
+namespace {
+
+Scene Stack() {
+  Scene s;
+  s.block1 = {.width_m = 1.25, .height_m = 1.25, .mass_kg = 3906.0};
+  s.block2 = BlockDef{.width_m = 1.0, .height_m = 2.5, .mass_kg = 6250.0};
+  return s;
+}
+
+History Wobble(double amp_rad, double t_end_s = 4.0) {
+  History h;
+  for (int i = 0; i <= static_cast<int>(t_end_s * 100); ++i) {
+    const double t = 0.01 * i;
+    h.samples.push_back({.t_s = t,
+                         .theta1_rad = amp_rad * std::sin(3 * t),
+                         .theta2_rad = 2 * amp_rad * std::sin(4 * t)});
+  }
+  return h;
+}
+
+bool Inside(const PixelRect& outer, const PixelRect& inner) {
+  return inner.x_px >= outer.x_px && inner.y_px >= outer.y_px &&
+         inner.x_px + inner.w_px <= outer.x_px + outer.w_px + 1e-9 &&
+         inner.y_px + inner.h_px <= outer.y_px + outer.h_px + 1e-9;
+}
+
+bool Disjoint(const PixelRect& a, const PixelRect& b) {
+  return a.x_px + a.w_px <= b.x_px || b.x_px + b.w_px <= a.x_px || a.y_px + a.h_px <= b.y_px ||
+         b.y_px + b.h_px <= a.y_px;
+}
+
+PixelRect ViewRect(const Camera& c) {
+  return {c.vp_x_px, c.vp_y_px, c.vp_w_px, c.vp_h_px};
+}
+
+TEST(ComputeLayout, OverlayHasOneViewBetweenTextAndChart) {
+  RenderConfig cfg;
+  const FrameLayout lay =
+      ComputeLayout(Stack(), {{"reference", Wobble(0.05)}, {"bullet", Wobble(0.06)}}, {}, cfg);
+  ASSERT_EQ(lay.views.size(), 1u);
+  const PixelRect image{0, 0, 1280, 720};
+  const PixelRect view = ViewRect(lay.views[0]);
+  EXPECT_TRUE(Inside(image, view));
+  EXPECT_TRUE(Inside(image, lay.chart));
+  EXPECT_TRUE(Disjoint(view, lay.chart));
+  EXPECT_TRUE(Disjoint(view, lay.header));
+  // Header: the time stamp and one line per engine.
+  EXPECT_EQ(lay.header.h_px, 3 * lay.line_px);
+  // The window defaults to the whole history.
+  EXPECT_EQ(lay.t_from_s, 0.0);
+  EXPECT_DOUBLE_EQ(lay.t_to_s, 4.0);
+  // Chart range: a round number just above the peak |theta2| = 0.12 rad.
+  EXPECT_GE(lay.chart_theta_max_rad, 0.12);
+  EXPECT_LE(lay.chart_theta_max_rad, 0.2);
+}
+
+TEST(ComputeLayout, SideBySideGivesOneViewPerEngineWithTheSameScale) {
+  RenderConfig cfg;
+  cfg.layout = Layout::kSide;
+  const FrameLayout lay = ComputeLayout(
+      Stack(), {{"reference", Wobble(0.05)}, {"a", Wobble(0.06)}, {"b", Wobble(0.02)}}, {}, cfg);
+  ASSERT_EQ(lay.views.size(), 3u);
+  ASSERT_EQ(lay.view_labels.size(), 3u);
+  for (size_t i = 0; i < 3; ++i) {
+    EXPECT_NEAR(lay.views[i].px_per_m(), lay.views[0].px_per_m(), 1e-9);
+    EXPECT_TRUE(Disjoint(ViewRect(lay.views[i]), lay.view_labels[i]));
+    if (i > 0) {
+      EXPECT_GE(lay.views[i].vp_x_px, lay.views[i - 1].vp_x_px + lay.views[i - 1].vp_w_px);
+    }
+  }
+}
+
+TEST(ComputeLayout, TheWindowLimitsTheChartRange) {
+  // The motion grows with time; a window over the quiet start gets a smaller range.
+  History h;
+  for (int i = 0; i <= 400; ++i) {
+    const double t = 0.01 * i;
+    h.samples.push_back({.t_s = t, .theta1_rad = 0.01 * t * t, .theta2_rad = 0.0});
+  }
+  RenderConfig cfg;
+  cfg.t_from_s = 0.0;
+  cfg.t_to_s = 1.0;
+  const FrameLayout early = ComputeLayout(Stack(), {{"reference", h}}, {}, cfg);
+  cfg.t_to_s = 4.0;
+  const FrameLayout all = ComputeLayout(Stack(), {{"reference", h}}, {}, cfg);
+  EXPECT_LT(early.chart_theta_max_rad, all.chart_theta_max_rad);
+  EXPECT_GE(all.chart_theta_max_rad, 0.16);
+}
+
+TEST(ComputeLayout, BaseDisplacementWidensTheView) {
+  RenderConfig cfg;
+  const History h = Wobble(0.01);
+  const FrameLayout still = ComputeLayout(Stack(), {{"reference", h}}, {}, cfg);
+  // A swing of +-10 m is wider than the 16:9 view of the still stack (about 13 m).
+  const auto moving = BaseDisplacement::FromFunction([](double t) {
+    return Vec2{10.0 * std::sin(t), 0.0};
+  });
+  const FrameLayout shaken = ComputeLayout(Stack(), {{"reference", h}}, moving, cfg);
+  EXPECT_GT(shaken.views[0].world.width_m(), 20.0);
+  EXPECT_GT(shaken.views[0].world.width_m(), still.views[0].world.width_m());
+  // Switched off, the base motion does not count.
+  cfg.show_base_motion = false;
+  const FrameLayout off = ComputeLayout(Stack(), {{"reference", h}}, moving, cfg);
+  EXPECT_NEAR(off.views[0].world.width_m(), still.views[0].world.width_m(), 1e-12);
+}
+
+TEST(ComputeLayout, RejectsBadConfigurations) {
+  const std::vector<Track> tracks = {{"reference", Wobble(0.05)}};
+  RenderConfig cfg;
+  cfg.supersample = 5;
+  EXPECT_THROW(ComputeLayout(Stack(), tracks, {}, cfg), std::invalid_argument);
+  cfg = {};
+  cfg.width_px = 20;
+  EXPECT_THROW(ComputeLayout(Stack(), tracks, {}, cfg), std::invalid_argument);
+  cfg = {};
+  cfg.t_from_s = 3.0;
+  cfg.t_to_s = 1.0;
+  EXPECT_THROW(ComputeLayout(Stack(), tracks, {}, cfg), std::invalid_argument);
+  EXPECT_THROW(ComputeLayout(Stack(), {}, {}, RenderConfig{}), std::invalid_argument);
+  EXPECT_THROW(ComputeLayout(Stack(), {{"empty", History{}}}, {}, RenderConfig{}),
+               std::invalid_argument);
+}
+
+TEST(ParseLayout, KnowsOverlayAndSide) {
+  EXPECT_EQ(ParseLayout("overlay"), Layout::kOverlay);
+  EXPECT_EQ(ParseLayout("side"), Layout::kSide);
+  EXPECT_FALSE(ParseLayout("stacked").has_value());
+}
+
+}  // namespace
+}  // namespace rockbench::renders

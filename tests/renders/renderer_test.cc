@@ -1,0 +1,334 @@
+// Rendered frames checked from their pixels: colours where the geometry puts things, the tilt of
+// block 2 recovered from the image, determinism, greyscale separation and a golden image.
+#include "renders/renderer.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <numbers>
+
+namespace rockbench::renders {
+namespace {
+
+Scene Stack() {
+  Scene s;
+  s.block1 = {.width_m = 1.25, .height_m = 1.25, .mass_kg = 3906.0};
+  s.block2 = BlockDef{.width_m = 0.5, .height_m = 1.5, .mass_kg = 1875.0};
+  return s;
+}
+
+// Block 2 tilted by 0.2 rad on block 1 at rest (mode 4a), held for one second.
+History Tilted() {
+  History h;
+  h.samples = {{.t_s = 0.0, .theta1_rad = 0.0, .theta2_rad = 0.2, .mode = Mode::k4a},
+               {.t_s = 1.0, .theta1_rad = 0.0, .theta2_rad = 0.2, .mode = Mode::k4a}};
+  return h;
+}
+
+#if ROCKBENCH_HAVE_OSMESA
+
+int Diff(Rgb a, Rgb b) {
+  return std::max({std::abs(a.r - b.r), std::abs(a.g - b.g), std::abs(a.b - b.b)});
+}
+
+// Rec. 709 luma of an sRGB colour, 0..255.
+double Luma(Rgb c) {
+  return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b;
+}
+
+Rgb At(const Image& img, Vec2 px) {
+  return img.at(static_cast<int>(std::floor(px.x_m)), static_cast<int>(std::floor(px.y_m)));
+}
+
+class TiltedFrame : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    RenderConfig cfg;
+    cfg.width_px = 640;
+    cfg.height_px = 480;
+    renderer_ = new FrameRenderer(Stack(), {{"reference", Tilted()}}, {}, cfg);
+    image_ = new Image(renderer_->Render(0.5));
+  }
+  static void TearDownTestSuite() {
+    delete image_;
+    delete renderer_;
+  }
+  static FrameRenderer* renderer_;
+  static Image* image_;
+};
+FrameRenderer* TiltedFrame::renderer_ = nullptr;
+Image* TiltedFrame::image_ = nullptr;
+
+TEST_F(TiltedFrame, CornersAreBackground) {
+  const Image& img = *image_;
+  const Rgb bg = renderer_->palette().background;
+  EXPECT_EQ(img.at(0, 0), bg);
+  EXPECT_EQ(img.at(img.width_px - 1, 0), bg);
+  EXPECT_EQ(img.at(0, img.height_px - 1), bg);
+  EXPECT_EQ(img.at(img.width_px - 1, img.height_px - 1), bg);
+}
+
+TEST_F(TiltedFrame, BlocksGroundAndSkyHaveTheirColoursWhereTheGeometryPutsThem) {
+  const Image& img = *image_;
+  const Palette& pal = renderer_->palette();
+  const Camera& cam = renderer_->layout().views.at(0);
+  const StackPose pose = PoseFor(Stack(), 0.0, 0.2);
+  auto centre = [](const Quad& q) {
+    return Vec2{0.25 * (q[0].x_m + q[1].x_m + q[2].x_m + q[3].x_m),
+                0.25 * (q[0].y_m + q[1].y_m + q[2].y_m + q[3].y_m)};
+  };
+  // Interior points are flat colour (edges are 1-2 px away from them).
+  EXPECT_EQ(At(img, cam.ToPixel(centre(pose.block1))), pal.block1);
+  EXPECT_EQ(At(img, cam.ToPixel(centre(pose.block2))), pal.block2);
+  // Block 2's top-left corner region, 5 cm inside both edges.
+  const Quad& b2 = pose.block2;
+  const Vec2 inside{
+      b2[3].x_m + 0.05 * (b2[2].x_m - b2[3].x_m) / 0.5 + 0.05 * (b2[0].x_m - b2[3].x_m) / 1.5,
+      b2[3].y_m + 0.05 * (b2[2].y_m - b2[3].y_m) / 0.5 + 0.05 * (b2[0].y_m - b2[3].y_m) / 1.5};
+  EXPECT_EQ(At(img, cam.ToPixel(inside)), pal.block2);
+  // Just outside block 2's left edge, above block 1: sky.
+  const Vec2 left_of_b2{b2[0].x_m - 0.1, b2[0].y_m + 0.3};
+  EXPECT_EQ(At(img, cam.ToPixel(left_of_b2)), pal.background);
+  // Ground: a quarter of the way across, three quarters of the way down the visible ground
+  // (below the tick marks, which reach at most half way).
+  const Box& w = cam.world;
+  EXPECT_EQ(At(img, cam.ToPixel({w.x_min_m + 0.25 * w.width_m(), 0.75 * w.y_min_m})), pal.ground);
+  // Sky in the view's top-left corner.
+  EXPECT_EQ(At(img, cam.ToPixel({w.x_min_m + 0.05 * w.width_m(), w.y_max_m - 0.05 * w.height_m()})),
+            pal.background);
+}
+
+TEST_F(TiltedFrame, Block2TiltRecoveredFromItsPixels) {
+  // Principal axes of the pixels of block 2's colour inside the view: the long axis of a
+  // 0.5 x 1.5 m rectangle. With ~70 px per metre, the interior has ~3000 pixels; the orientation
+  // of a digitised rectangle is then good to ~0.1 degree, well inside the 0.5 degree asked for.
+  const Image& img = *image_;
+  const Camera& cam = renderer_->layout().views.at(0);
+  const Rgb want = renderer_->palette().block2;
+  double n = 0, sx = 0, sy = 0, sxx = 0, syy = 0, sxy = 0;
+  for (int y = static_cast<int>(cam.vp_y_px); y < static_cast<int>(cam.vp_y_px + cam.vp_h_px);
+       ++y) {
+    for (int x = static_cast<int>(cam.vp_x_px); x < static_cast<int>(cam.vp_x_px + cam.vp_w_px);
+         ++x) {
+      if (Diff(img.at(x, y), want) > 6) continue;
+      const double cx = x + 0.5, cy = y + 0.5;
+      n += 1;
+      sx += cx;
+      sy += cy;
+      sxx += cx * cx;
+      syy += cy * cy;
+      sxy += cx * cy;
+    }
+  }
+  ASSERT_GT(n, 1000);
+  const double mx = sx / n, my = sy / n;
+  const double mu20 = sxx / n - mx * mx, mu02 = syy / n - my * my, mu11 = sxy / n - mx * my;
+  // Long-axis angle from +x in image coordinates (y down); upright is -90 degrees, and a
+  // clockwise (rightward) tilt theta makes it theta - 90 degrees.
+  const double phi = 0.5 * std::atan2(2 * mu11, mu20 - mu02);
+  double tilt_deg = (phi + 0.5 * std::numbers::pi) * 180.0 / std::numbers::pi;
+  if (tilt_deg > 90) tilt_deg -= 180;
+  EXPECT_NEAR(tilt_deg, 0.2 * 180.0 / std::numbers::pi, 0.5);
+  // And the pixels sit where the geometry says: pivoting about the right corner (not the left,
+  // which would move the centroid ~0.1 m = ~7 px) and centred on block 1 at rest.
+  const StackPose pose = PoseFor(Stack(), 0.0, 0.2);
+  Vec2 c{};
+  for (const Vec2& p : pose.block2) c = {c.x_m + 0.25 * p.x_m, c.y_m + 0.25 * p.y_m};
+  const Vec2 cpx = cam.ToPixel(c);
+  EXPECT_NEAR(mx, cpx.x_m, 1.5);
+  EXPECT_NEAR(my, cpx.y_m, 1.5);
+}
+
+TEST_F(TiltedFrame, ColoursStayApartInGreyscale) {
+  // Luma of what is drawn, sampled from the image: every pair differs by at least 25 of 255 (a
+  // tenth of the range), so a greyscale print keeps background, block 2, ground and block 1
+  // apart.
+  const Image& img = *image_;
+  const Camera& cam = renderer_->layout().views.at(0);
+  const StackPose pose = PoseFor(Stack(), 0.0, 0.2);
+  const Box& w = cam.world;
+  const double l_bg = Luma(img.at(0, 0));
+  const double l_b1 = Luma(At(img, cam.ToPixel({0.0, 0.6})));
+  const double l_b2 = Luma(At(img, cam.ToPixel({0.5 * (pose.block2[0].x_m + pose.block2[2].x_m),
+                                                0.5 * (pose.block2[0].y_m + pose.block2[2].y_m)})));
+  const double l_ground =
+      Luma(At(img, cam.ToPixel({w.x_min_m + 0.25 * w.width_m(), 0.75 * w.y_min_m})));
+  const double l[] = {l_bg, l_b2, l_ground, l_b1};
+  for (int i = 0; i < 4; ++i) {
+    for (int j = i + 1; j < 4; ++j) EXPECT_GE(std::abs(l[i] - l[j]), 25.0) << i << " " << j;
+  }
+}
+
+TEST(FrameRenderer, SameInputSameBytes) {
+  RenderConfig cfg;
+  cfg.width_px = 320;
+  cfg.height_px = 240;
+  History h = Tilted();
+  h.samples[1].theta1_rad = 0.05;
+  FrameRenderer a(Stack(), {{"reference", h}}, {}, cfg);
+  FrameRenderer b(Stack(), {{"reference", h}}, {}, cfg);
+  const Image a1 = a.Render(0.37);
+  const Image a2 = a.Render(0.37);
+  const Image b1 = b.Render(0.37);
+  EXPECT_EQ(a1.rgb, a2.rgb);
+  EXPECT_EQ(a1.rgb, b1.rgb);
+  EXPECT_EQ(EncodePng(a1), EncodePng(b1));
+  // And a different time is a different picture.
+  EXPECT_NE(a.Render(0.9).rgb, a1.rgb);
+}
+
+TEST(FrameRenderer, EdgesAreAntiAliased) {
+  // Supersampled 2x2 and box-filtered: pixels on block 1's tilted edge take intermediate shades
+  // between the block colour and the background; drawn at 1x there are none.
+  History h;
+  h.samples = {{.t_s = 0.0, .theta1_rad = 0.1, .theta2_rad = 0.1, .mode = Mode::k3a}};
+  auto shades = [&](int supersample) {
+    RenderConfig cfg;
+    cfg.width_px = 320;
+    cfg.height_px = 240;
+    cfg.supersample = supersample;
+    cfg.show_text = false;
+    cfg.show_chart = false;
+    FrameRenderer r(Stack(), {{"reference", h}}, {}, cfg);
+    const Image img = r.Render(0.0);
+    const Palette& pal = r.palette();
+    int mixed = 0;
+    for (int y = 0; y < img.height_px; ++y) {
+      for (int x = 0; x < img.width_px; ++x) {
+        const Rgb c = img.at(x, y);
+        bool known = false;
+        for (Rgb k :
+             {pal.background, pal.block1, pal.block2, pal.ground, pal.ground_line, pal.outline}) {
+          known = known || c == k;
+        }
+        mixed += known ? 0 : 1;
+      }
+    }
+    return mixed;
+  };
+  EXPECT_EQ(shades(1), 0);
+  EXPECT_GT(shades(2), 200);
+}
+
+TEST(FrameRenderer, SingleBlockScene) {
+  Scene s = Stack();
+  s.block2.reset();
+  History h;
+  h.two_blocks = false;
+  h.samples = {{.t_s = 0.0, .theta1_rad = -0.15, .mode = Mode::k3b}};
+  RenderConfig cfg;
+  cfg.width_px = 320;
+  cfg.height_px = 240;
+  FrameRenderer r(s, {{"reference", h}}, {}, cfg);
+  const Image img = r.Render(0.0);
+  const Camera& cam = r.layout().views.at(0);
+  const StackPose pose = PoseFor(s, -0.15, 0.0);
+  EXPECT_EQ(At(img, cam.ToPixel({0.5 * (pose.block1[0].x_m + pose.block1[2].x_m),
+                                 0.5 * (pose.block1[0].y_m + pose.block1[2].y_m)})),
+            r.palette().block1);
+  // Nothing of block 2's colour anywhere in the view.
+  for (int y = static_cast<int>(cam.vp_y_px); y < static_cast<int>(cam.vp_y_px + cam.vp_h_px);
+       ++y) {
+    for (int x = static_cast<int>(cam.vp_x_px); x < static_cast<int>(cam.vp_x_px + cam.vp_w_px);
+         ++x) {
+      ASSERT_GT(Diff(img.at(x, y), r.palette().block2), 20) << x << "," << y;
+    }
+  }
+}
+
+TEST(FrameRenderer, BaseDisplacementMovesTheBlocks) {
+  History h = Tilted();
+  RenderConfig cfg;
+  cfg.width_px = 320;
+  cfg.height_px = 240;
+  cfg.show_text = false;
+  const auto base = BaseDisplacement::FromFunction([](double t) { return Vec2{0.4 * t, 0.0}; });
+  FrameRenderer r(Stack(), {{"reference", h}}, base, cfg);
+  const Camera& cam = r.layout().views.at(0);
+  const Image img = r.Render(1.0);
+  // Block 1's centre is 0.4 m to the right of where it starts.
+  EXPECT_EQ(At(img, cam.ToPixel({0.4, 0.6})), r.palette().block1);
+  EXPECT_NE(At(img, cam.ToPixel({-0.55, 0.6})), r.palette().block1);
+}
+
+TEST(FrameRenderer, MissingFontIsAClearError) {
+  RenderConfig cfg;
+  cfg.font_path = "/nonexistent/font.ttf";
+  try {
+    FrameRenderer r(Stack(), {{"reference", Tilted()}}, {}, cfg);
+    FAIL() << "a missing font must throw";
+  } catch (const RenderError& e) {
+    EXPECT_NE(std::string(e.what()).find("/nonexistent/font.ttf"), std::string::npos) << e.what();
+  }
+}
+
+// The look, guarded by a golden image: an overlay of two engines with text and chart.
+// ROCKBENCH_UPDATE_GOLDEN=1 rewrites it. Tolerance: identical on the machine that made it; 16
+// levels per channel and 0.5% of pixels beyond that allow other Mesa/FreeType versions to
+// rasterise edges and hint glyphs a little differently, while any change of colour, layout or
+// geometry alters thousands of pixels.
+TEST(FrameRenderer, GoldenImage) {
+  Scene s = Stack();
+  History ref, other;
+  for (int i = 0; i <= 300; ++i) {
+    const double t = 0.01 * i;
+    ref.samples.push_back({.t_s = t,
+                           .theta1_rad = 0.08 * std::sin(2.0 * t),
+                           .theta2_rad = 0.08 * std::sin(2.0 * t) + 0.12 * std::sin(3.0 * t),
+                           .mode = Mode::k1a});
+    other.samples.push_back({.t_s = t,
+                             .theta1_rad = 0.06 * std::sin(2.1 * t),
+                             .theta2_rad = 0.06 * std::sin(2.1 * t) + 0.15 * std::sin(3.1 * t),
+                             .mode = Mode::k2a});
+  }
+  RenderConfig cfg;
+  cfg.width_px = 320;
+  cfg.height_px = 240;
+  cfg.title = "golden";
+  const auto base = BaseDisplacement::FromFunction([](double t) {
+    return Vec2{0.1 * std::sin(t), 0.0};
+  });
+  FrameRenderer r(s, {{"reference", ref}, {"engine", other}}, base, cfg);
+  const Image img = r.Render(1.7);
+  const auto golden =
+      std::filesystem::path(ROCKBENCH_SOURCE_DIR) / "tests/renders/golden/overlay_320x240.png";
+  const char* update = std::getenv("ROCKBENCH_UPDATE_GOLDEN");
+  if (update && std::string(update) == "1") {
+    WritePng(img, golden, PngConfig{.compression_level = 9});
+    GTEST_SKIP() << "golden image rewritten: " << golden;
+  }
+  ASSERT_TRUE(std::filesystem::exists(golden))
+      << golden << " is missing; run with ROCKBENCH_UPDATE_GOLDEN=1 to make it";
+  const Image want = ReadPng(golden);
+  ASSERT_EQ(want.width_px, img.width_px);
+  ASSERT_EQ(want.height_px, img.height_px);
+  int beyond = 0, worst = 0;
+  for (int y = 0; y < img.height_px; ++y) {
+    for (int x = 0; x < img.width_px; ++x) {
+      const int d = Diff(img.at(x, y), want.at(x, y));
+      worst = std::max(worst, d);
+      beyond += d > 16 ? 1 : 0;
+    }
+  }
+  EXPECT_LE(beyond, img.width_px * img.height_px / 200)
+      << "worst channel difference " << worst << "; if the change is intended, run with "
+      << "ROCKBENCH_UPDATE_GOLDEN=1 and look at " << golden;
+}
+
+#else
+
+TEST(FrameRenderer, SaysThisBuildHasNoOsmesa) {
+  try {
+    FrameRenderer r(Stack(), {{"reference", Tilted()}}, {}, RenderConfig{});
+    FAIL() << "rendering without OSMesa must throw";
+  } catch (const RenderError& e) {
+    EXPECT_NE(std::string(e.what()).find("no OSMesa"), std::string::npos) << e.what();
+  }
+}
+
+#endif
+
+}  // namespace
+}  // namespace rockbench::renders
