@@ -23,7 +23,8 @@ constexpr double kEventTol_s = 1e-12;
 // inside one step.
 constexpr double kMaxStep_s = 0.02;
 // While at rest under an analytic motion, the initiation criteria are checked at least this
-// often (s); between record samples the criteria are linear in time and located exactly.
+// often (s). Between record samples the accelerations are linear in time, so each corner force
+// is linear and the smallest of them concave: checking the samples is exact.
 constexpr double kRestScan_s = 1e-3;
 
 State ToState(const Vec4& y) {
@@ -40,7 +41,11 @@ double Side(Contact c) {
 class Simulator {
  public:
   Simulator(const Scene& scene, const GroundMotion& motion)
-      : scene_(scene), cfg_(scene.model), motion_(motion), geo_(MakeGeometry(scene)) {}
+      : scene_(scene), cfg_(scene.model), motion_(motion), geo_(MakeGeometry(scene)) {
+    for (const auto* c : {&motion.horizontal(), &motion.vertical()}) {
+      if (*c && (*c)->samples_mps2().empty()) analytic_motion_ = true;
+    }
+  }
 
   Result Run();
 
@@ -115,6 +120,7 @@ class Simulator {
   double t_end_ = 0.0;
   long next_sample_ = 0;
   bool done_ = false;
+  bool analytic_motion_ = false;  // some component is an analytic kind (not a record)
   double h_ = 1e-3;
   mutable long rhs_count_ = 0;
   int same_time_events_ = 0;
@@ -232,7 +238,8 @@ void Simulator::RunRest() {
       Finish("at_rest");
       return;
     }
-    double t1 = std::min({motion_.next_breakpoint_after(t0), t_end_, t0 + kRestScan_s});
+    double t1 = std::min(motion_.next_breakpoint_after(t0), t_end_);
+    if (analytic_motion_) t1 = std::min(t1, t0 + kRestScan_s);
     const double m1 = margin(t1);
     double t_start = -1.0;
     if (m1 < 0.0) {
@@ -531,8 +538,7 @@ Result Simulator::Run() {
     result_.summary.status = "at_rest";
   }
   result_.summary.rhs_evaluations = rhs_count_;
-  // The last sample carries the final mode.
-  return result_;
+  return std::move(result_);
 }
 
 }  // namespace
