@@ -104,6 +104,21 @@ class Simulator {
     return EvaluateContacts(geo_, mode_, ToState(y), motion_.xg_mps2(t), motion_.yg_mps2(t),
                             cfg_.equations);
   }
+  // Records an event that ends the run at t_ in state s (no change of state).
+  void StopWith(const char* kind, const State& s, const std::string& note,
+                const std::string& status) {
+    Event ev;
+    ev.t_s = t_;
+    ev.kind = kind;
+    ev.mode_before = ev.mode_after = mode_;
+    ev.omega1_before = ev.omega1_after = s.omega1;
+    ev.omega2_before = ev.omega2_after = s.omega2;
+    ev.energy_before_j = ev.energy_after_j = Energy(geo_, mode_, s);
+    ev.note = note;
+    AddEvent(ev);
+    y_ = ToVec(s);
+    Finish(status);
+  }
   void Finish(const std::string& status) {
     if (result_.summary.status == "completed") result_.summary.status = status;
     done_ = true;
@@ -421,17 +436,7 @@ void Simulator::RunMoving() {
         const bool first = std::abs(s.theta1) >= std::abs(s.theta2) || !geo_.two_blocks;
         sum.overturn_block = first ? 1 : 2;
         sum.overturn_t_s = t_;
-        Event ev;
-        ev.t_s = t_;
-        ev.kind = "overturn";
-        ev.mode_before = ev.mode_after = mode_;
-        ev.omega1_before = ev.omega1_after = s.omega1;
-        ev.omega2_before = ev.omega2_after = s.omega2;
-        ev.energy_before_j = ev.energy_after_j = Energy(geo_, mode_, s);
-        ev.note = first ? "block 1" : "block 2";
-        AddEvent(ev);
-        y_ = ToVec(s);
-        Finish("overturned");
+        StopWith("overturn", s, first ? "block 1" : "block 2", "overturned");
         break;
       }
       case kFace: {
@@ -443,18 +448,8 @@ void Simulator::RunMoving() {
         break;
       }
       case kPoint: {
-        Event ev;
-        ev.t_s = t_;
-        ev.kind = "assumption_violated";
-        ev.mode_before = ev.mode_after = mode_;
-        ev.omega1_before = ev.omega1_after = s.omega1;
-        ev.omega2_before = ev.omega2_after = s.omega2;
-        ev.energy_before_j = ev.energy_after_j = Energy(geo_, mode_, s);
-        ev.note = "tensile normal force at a pivot (uplift)";
-        sum.status_detail = ev.note;
-        AddEvent(ev);
-        y_ = ToVec(s);
-        Finish("assumption_violated");
+        sum.status_detail = "tensile normal force at a pivot (uplift)";
+        StopWith("assumption_violated", s, sum.status_detail, "assumption_violated");
         break;
       }
       default:

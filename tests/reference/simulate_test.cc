@@ -173,32 +173,22 @@ TEST(SimulateTest, IntegratorConvergenceOrders) {
     const double a = -kk * std::sin(tc - y[0]);
     return Vec4{y[2], y[3], a, a};
   };
-  auto run_rk4 = [&](double h, double T) {
+  // Integrates to T with n equal steps of the given scheme.
+  auto run = [&](bool rk4, double h, double T) {
     Vec4 y{0.2, 0.2, 0.0, 0.0};
     double t = 0;
     Vec4 f = rhs(t, y);
     const int n = static_cast<int>(std::lround(T / h));
     for (int i = 0; i < n; ++i) {
-      const StepResult r = Rk4Step(rhs, t, y, f, h);
+      const StepResult r = rk4 ? Rk4Step(rhs, t, y, f, h) : Dopri5Step(rhs, t, y, f, h, 1.0, 1.0);
       y = r.y1;
       f = r.f1;
       t += h;
     }
     return y[0];
   };
-  auto run_dopri = [&](double h, double T) {
-    Vec4 y{0.2, 0.2, 0.0, 0.0};
-    double t = 0;
-    Vec4 f = rhs(t, y);
-    const int n = static_cast<int>(std::lround(T / h));
-    for (int i = 0; i < n; ++i) {
-      const StepResult r = Dopri5Step(rhs, t, y, f, h, 1.0, 1.0);
-      y = r.y1;
-      f = r.f1;
-      t += h;
-    }
-    return y[0];
-  };
+  auto run_rk4 = [&](double h, double T) { return run(true, h, T); };
+  auto run_dopri = [&](double h, double T) { return run(false, h, T); };
   const double T = 0.4;
   const double exact = run_dopri(T / 4096, T);
   const double e1 = std::abs(run_rk4(T / 16, T) - exact), e2 = std::abs(run_rk4(T / 32, T) - exact);
