@@ -13,10 +13,10 @@ namespace rockbench {
 
 /// One rectangular rigid block. Planar dynamics depend on width, height and mass only.
 struct BlockDef {
-  double width_m = 0.0;    ///< full width B = 2b, m
-  double height_m = 0.0;   ///< full height H = 2h, m
-  double depth_m = 1.0;    ///< out-of-plane depth, m (used with density, and for 3-D engines)
-  double mass_kg = 0.0;    ///< mass, kg (given, or density * width * height * depth)
+  double width_m = 0.0;        ///< full width B = 2b, m
+  double height_m = 0.0;       ///< full height H = 2h, m
+  double depth_m = 1.0;        ///< out-of-plane depth, m (used with density, and for 3-D engines)
+  double mass_kg = 0.0;        ///< mass, kg (given, or density * width * height * depth)
   double density_kgpm3 = 0.0;  ///< density, kg/m^3 (0 when the scene gave the mass)
 };
 
@@ -34,24 +34,24 @@ enum class MotionKind { kFile, kHarmonic, kSinePulse, kCosinePulse, kRectangular
 /// One component of base motion: a record file or an analytic kind. Acceleration is positive to
 /// the right (+x) for horizontal and upwards (+y) for vertical.
 struct MotionDef {
-  std::string key;                 ///< "base.horizontal" or "base.vertical" (for messages)
+  std::string key;  ///< "base.horizontal" or "base.vertical" (for messages)
   MotionKind kind = MotionKind::kFile;
-  std::filesystem::path file;      ///< resolved path (relative paths are relative to the scene)
-  std::string file_as_written;     ///< the path as the scene wrote it
+  std::filesystem::path file;   ///< resolved path (relative paths are relative to the scene)
+  std::string file_as_written;  ///< the path as the scene wrote it
   AccelUnits units = AccelUnits::kG;
-  bool units_given = false;        ///< false: AT2 -> g; plain files need units
-  double scale = 1.0;              ///< multiplies the acceleration
-  double dt_s = 0.0;               ///< sample interval of a one-column file (0: not given)
-  double amplitude_g = 0.0;        ///< analytic kinds: amplitude A, in g
-  double frequency_hz = 0.0;       ///< analytic kinds: frequency f
+  bool units_given = false;   ///< false: AT2 -> g; plain files need units
+  double scale = 1.0;         ///< multiplies the acceleration
+  double dt_s = 0.0;          ///< sample interval of a one-column file (0: not given)
+  double amplitude_g = 0.0;   ///< analytic kinds: amplitude A, in g
+  double frequency_hz = 0.0;  ///< analytic kinds: frequency f
   double duration_s = std::numeric_limits<double>::infinity();  ///< harmonic/rectangular length
-  double start_s = 0.0;            ///< first sample time / pulse start t0
+  double start_s = 0.0;  ///< first sample time / pulse start t0
 };
 
 struct RunConfig {
-  double duration_s = 10.0;          ///< simulated time, s
-  double output_interval_s = 0.01;   ///< history sample interval, s (events are added)
-  double gravity_mps2 = 9.81;        ///< g, m/s^2
+  double duration_s = 10.0;         ///< simulated time, s
+  double output_interval_s = 0.01;  ///< history sample interval, s (events are added)
+  double gravity_mps2 = 9.81;       ///< g, m/s^2
 };
 
 enum class Integrator { kDopri5, kRk4 };
@@ -61,14 +61,14 @@ enum class Equations { kNonlinear, kLinearized };
 /// Options of the reference model ([model] table).
 struct ModelConfig {
   Integrator integrator = Integrator::kDopri5;  ///< "dopri5" (adaptive, dense) or "rk4" (fixed)
-  double rtol = 1e-8;                ///< dopri5 relative tolerance
-  double atol = 1e-10;               ///< dopri5 absolute tolerance, rad and rad/s
-  double step_s = 1e-3;              ///< rk4 fixed step, s
-  EventScheme events = EventScheme::kLocated;  ///< "located" or "thesis" (O(h) detection)
+  double rtol = 1e-8;                           ///< dopri5 relative tolerance
+  double atol = 1e-10;                          ///< dopri5 absolute tolerance, rad and rad/s
+  double step_s = 1e-3;                         ///< rk4 fixed step, s
+  EventScheme events = EventScheme::kLocated;   ///< "located" or "thesis" (O(h) detection)
   Equations equations = Equations::kNonlinear;  ///< "nonlinear" or "linearized" (4.3.3)
   double overturn_rad = 1.5707963267948966;     ///< |theta_i| at which a block overturns
-  double rest_rate_radps = 1e-4;     ///< rest rule: impact rate below which a block settles
-  bool check_transitions = true;     ///< evaluate no-impact transition criteria in every mode
+  double rest_rate_radps = 1e-4;  ///< rest rule: impact rate below which a block settles
+  bool check_transitions = true;  ///< evaluate no-impact transition criteria in every mode
 };
 
 enum class BulletPrecision { kDouble, kFloat };
@@ -76,21 +76,25 @@ enum class BulletDrive { kInertial, kKinematic };
 
 /// Settings of the Bullet engine ([bullet] table). Defaults are ours; Bullet's are in the README.
 struct BulletConfig {
-  double time_step_s = 1e-4;         ///< fixed step, s
-  int solver_iterations = 50;        ///< sequential-impulse iterations (Bullet default 10)
+  double time_step_s = 1e-4;   ///< fixed step, s
+  int solver_iterations = 50;  ///< sequential-impulse iterations (Bullet default 10)
   BulletPrecision precision = BulletPrecision::kDouble;
   BulletDrive drive = BulletDrive::kInertial;
-  double erp = 0.2;                  ///< Baumgarte error reduction (Bullet default 0.2)
-  double erp2 = 0.8;                 ///< split-impulse ERP (Bullet default 0.8)
-  bool split_impulse = true;         ///< Bullet default true
-  double split_impulse_threshold = -0.04;  ///< Bullet default -0.04
-  double restitution = 0.0;          ///< per body; Bullet multiplies the two bodies' values
-  double friction = 3.0;             ///< per body; Bullet multiplies and clamps the product at 10
-  double rolling_friction = 0.0;     ///< per body
+  double erp = 0.2;           ///< joint ERP (Bullet default 0.2; contacts use erp2)
+  double erp2 = 0.8;          ///< contact penetration recovery (Bullet 3.24 default 0.2)
+  bool split_impulse = true;  ///< Bullet default true
+  /// m; Bullet's default -0.04 corrects shallow penetration with a velocity bias that throws
+  /// the blocks up at every impact (docs/bullet.md): ours is 0, all through split impulse.
+  double split_impulse_threshold = 0.0;
+  double restitution = 0.0;       ///< per body; Bullet multiplies the two bodies' values
+  double friction = 3.0;          ///< per body; Bullet multiplies and clamps the product at 10
+  double rolling_friction = 0.0;  ///< per body
   double restitution_velocity_threshold = 0.2;  ///< m/s (Bullet default 0.2)
-  double margin_m = 0.0;             ///< collision margin, m (Bullet default 0.04 for boxes)
-  double ground_depth_m = 1.0;       ///< ground box thickness, m
-  double kinematic_highpass_hz = 0.1;  ///< kinematic drive: baseline correction corner, Hz
+  double margin_m = 0.0;        ///< collision margin, m (Bullet default 0.04 for boxes)
+  double ground_depth_m = 1.0;  ///< ground box thickness, m
+  /// Kinematic drive: baseline-correction corner, Hz; 0 = none (the default: any correction
+  /// changes the excitation; docs/bullet.md).
+  double kinematic_highpass_hz = 0.0;
 };
 
 /// Comparison settings ([compare] table).
@@ -100,10 +104,10 @@ struct CompareConfig {
 };
 
 struct Scene {
-  std::filesystem::path path;       ///< the scene file (empty for a scene built in code)
-  std::string title;                ///< optional free text
-  BlockDef block1;                  ///< lower block
-  std::optional<BlockDef> block2;   ///< upper block; absent: single block (Housner)
+  std::filesystem::path path;      ///< the scene file (empty for a scene built in code)
+  std::string title;               ///< optional free text
+  BlockDef block1;                 ///< lower block
+  std::optional<BlockDef> block2;  ///< upper block; absent: single block (Housner)
   InitialState initial;
   std::optional<MotionDef> horizontal;
   std::optional<MotionDef> vertical;

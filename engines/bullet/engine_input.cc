@@ -1,0 +1,168 @@
+#include "engines/bullet/engine_input.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <string>
+
+namespace rockbench::bullet {
+namespace {
+
+// Upper bound on the number of steps of one run (about a day of CPU at 1 us per step).
+constexpr std::int64_t kMaxSteps = 2'000'000'000;
+
+void Require(bool ok, const Scene& scene, const std::string& key, const std::string& expected) {
+  if (ok) return;
+  const std::string where = scene.path.empty() ? std::string("scene") : scene.path.string();
+  throw SceneError(where + ": [bullet] " + key + ": expected " + expected);
+}
+
+void CheckConfig(const Scene& scene) {
+  const BulletConfig& c = scene.bullet;
+  Require(std::isfinite(c.time_step_s) && c.time_step_s > 0.0, scene, "time_step",
+          "a positive time step in s");
+  Require(c.solver_iterations >= 1 && c.solver_iterations <= 100000, scene, "solver_iterations",
+          "an integer from 1 to 100000");
+  Require(std::isfinite(c.erp) && c.erp >= 0.0 && c.erp <= 1.0, scene, "erp", "a number in [0, 1]");
+  Require(std::isfinite(c.erp2) && c.erp2 >= 0.0 && c.erp2 <= 1.0, scene, "erp2",
+          "a number in [0, 1]");
+  Require(std::isfinite(c.split_impulse_threshold), scene, "split_impulse_threshold",
+          "a finite penetration in m (negative = penetrating)");
+  Require(std::isfinite(c.restitution) && c.restitution >= 0.0 && c.restitution <= 1.0, scene,
+          "restitution", "a number in [0, 1]");
+  Require(std::isfinite(c.friction) && c.friction >= 0.0, scene, "friction",
+          "a non-negative friction coefficient");
+  Require(std::isfinite(c.rolling_friction) && c.rolling_friction >= 0.0, scene, "rolling_friction",
+          "a non-negative coefficient");
+  Require(
+      std::isfinite(c.restitution_velocity_threshold) && c.restitution_velocity_threshold >= 0.0,
+      scene, "restitution_velocity_threshold", "a non-negative speed in m/s");
+  Require(std::isfinite(c.margin_m) && c.margin_m >= 0.0, scene, "margin",
+          "a non-negative collision margin in m");
+  Require(std::isfinite(c.ground_depth_m) && c.ground_depth_m > 0.0, scene, "ground_depth",
+          "a positive thickness in m");
+  Require(std::isfinite(c.kinematic_highpass_hz) && c.kinematic_highpass_hz >= 0.0, scene,
+          "kinematic_highpass_hz", "a non-negative frequency in Hz (0: no baseline correction)");
+  const double steps = std::ceil(scene.run.duration_s / c.time_step_s - 1e-9);
+  Require(steps <= static_cast<double>(kMaxSteps), scene, "time_step",
+          "at most 2e9 steps over run.duration (time step too small)");
+}
+
+// Second-order Butterworth low-pass (bilinear transform with pre-warping), transposed direct
+// form II. Runs over x in place; `steady` starts the filter in steady state for x[0].
+void LowPassInPlace(std::vector<double>& x, double fc_hz, double dt_s, bool steady, bool reverse) {
+  if (x.empty()) return;
+  const double k = std::tan(std::numbers::pi * fc_hz * dt_s);
+  const double norm = 1.0 / (1.0 + std::sqrt(2.0) * k + k * k);
+  const double b0 = k * k * norm, b1 = 2.0 * b0, b2 = b0;
+  const double a1 = 2.0 * (k * k - 1.0) * norm, a2 = (1.0 - std::sqrt(2.0) * k + k * k) * norm;
+  const size_t n = x.size();
+  const double first = reverse ? x[n - 1] : x[0];
+  double z1 = steady ? first * (1.0 - b0) : 0.0;
+  double z2 = steady ? first * (b2 - a2) : 0.0;
+  for (size_t i = 0; i < n; ++i) {
+    double& v = reverse ? x[n - 1 - i] : x[i];
+    const double in = v;
+    const double out = b0 * in + z1;
+    z1 = b1 * in - a1 * out + z2;
+    z2 = b2 * in - a2 * out;
+    v = out;
+  }
+}
+
+}  // namespace
+
+std::vector<double> KinematicDisplacement(const std::vector<double>& accel_mps2, double dt_s,
+                                          double highpass_hz, double* velocity_before_mps,
+                                          double* raw_peak_m) {
+  const size_t n = accel_mps2.size();
+  std::vector<double> u(n + 1, 0.0);
+  // Leapfrog double integration: the ground's second difference is exactly dt^2 a_n, the
+  // velocity change the inertial drive gives the blocks in step n.
+  double u_prev = 0.0;
+  for (size_t i = 0; i < n; ++i) {
+    const double next = 2.0 * u[i] - u_prev + dt_s * dt_s * accel_mps2[i];
+    u_prev = u[i];
+    u[i + 1] = next;
+  }
+  double peak = 0.0;
+  for (double v : u) peak = std::max(peak, std::abs(v));
+  if (raw_peak_m) *raw_peak_m = peak;
+  if (velocity_before_mps) *velocity_before_mps = 0.0;
+  if (highpass_hz <= 0.0) return u;
+
+  // Baseline: zero-phase low-pass of u. The 2nd-order Butterworth's envelope decays with time
+  // constant 1 / (0.707 * 2 pi fc) = 0.225 / fc; pads of 1.2 / fc (5.3 time constants) let
+  // the start-up transients of both passes die out before the data.
+  const double pad_d = std::ceil(1.2 / (highpass_hz * dt_s));
+  const size_t pad = static_cast<size_t>(std::min(pad_d, 5e7));
+  std::vector<double> x(pad + u.size() + pad, 0.0);
+  std::copy(u.begin(), u.end(), x.begin() + static_cast<std::ptrdiff_t>(pad));
+  const double last = u.back();
+  for (size_t k = 1; k <= pad; ++k) {
+    // Odd reflection about the last sample (continues the final trend); beyond the record's
+    // own length the reflection repeats its first value.
+    const size_t mirror = k <= n ? n - k : 0;
+    x[pad + n + k] = 2.0 * last - u[mirror];
+  }
+  LowPassInPlace(x, highpass_hz, dt_s, /*steady=*/false, /*reverse=*/false);
+  LowPassInPlace(x, highpass_hz, dt_s, /*steady=*/true, /*reverse=*/true);
+  std::vector<double> out(u.size());
+  for (size_t i = 0; i < u.size(); ++i) out[i] = u[i] - x[pad + i];
+  // u_{-1} = 0 before the record; its baseline value is x[pad - 1].
+  const double u_minus1 = pad > 0 ? -x[pad - 1] : 0.0;
+  if (velocity_before_mps) *velocity_before_mps = (out[0] - u_minus1) / dt_s;
+  return out;
+}
+
+EngineInput MakeEngineInput(const Scene& scene, const GroundMotion& motion) {
+  CheckConfig(scene);
+  EngineInput in;
+  in.block1 = scene.block1;
+  in.block2 = scene.block2;
+  in.initial = scene.initial;
+  in.run = scene.run;
+  in.config = scene.bullet;
+  in.overturn_rad = scene.model.overturn_rad;
+  in.rest_rate_radps = scene.model.rest_rate_radps;
+  const double dt = scene.bullet.time_step_s;
+  in.steps = static_cast<std::int64_t>(std::max(0.0, std::ceil(scene.run.duration_s / dt - 1e-9)));
+  in.motion_end_s = motion.empty() ? 0.0 : motion.end_s();
+
+  const size_t n = static_cast<size_t>(in.steps);
+  DriveSamples& d = in.drive;
+  if (!motion.empty()) {
+    d.ax_mps2.resize(n);
+    d.ay_mps2.resize(n);
+    for (size_t i = 0; i < n; ++i) {
+      const double t = static_cast<double>(i) * dt;
+      d.ax_mps2[i] = motion.xg_mps2(t);
+      d.ay_mps2[i] = motion.yg_mps2(t);
+    }
+  }
+  if (scene.bullet.drive == BulletDrive::kKinematic) {
+    const std::vector<double> zeros(d.ax_mps2.empty() ? n : 0, 0.0);
+    const std::vector<double>& ax = d.ax_mps2.empty() ? zeros : d.ax_mps2;
+    const std::vector<double>& ay = d.ay_mps2.empty() ? zeros : d.ay_mps2;
+    const double fc = scene.bullet.kinematic_highpass_hz;
+    d.ux_m = KinematicDisplacement(ax, dt, fc, &d.ux0_mps, &d.raw_peak_x_m);
+    d.uy_m = KinematicDisplacement(ay, dt, fc, &d.uy0_mps, &d.raw_peak_y_m);
+    // What the correction changed: the drive's acceleration against the record's.
+    double um1x = d.ux_m[0] - d.ux0_mps * dt, um1y = d.uy_m[0] - d.uy0_mps * dt;
+    for (size_t i = 0; i < n; ++i) {
+      const double prev_x = i == 0 ? um1x : d.ux_m[i - 1];
+      const double prev_y = i == 0 ? um1y : d.uy_m[i - 1];
+      const double axe = (d.ux_m[i + 1] - 2.0 * d.ux_m[i] + prev_x) / (dt * dt);
+      const double aye = (d.uy_m[i + 1] - 2.0 * d.uy_m[i] + prev_y) / (dt * dt);
+      d.correction_max_x_mps2 = std::max(d.correction_max_x_mps2, std::abs(axe - ax[i]));
+      d.correction_max_y_mps2 = std::max(d.correction_max_y_mps2, std::abs(aye - ay[i]));
+    }
+    for (size_t i = 0; i <= n; ++i) {
+      d.peak_x_m = std::max(d.peak_x_m, std::abs(d.ux_m[i]));
+      d.peak_y_m = std::max(d.peak_y_m, std::abs(d.uy_m[i]));
+    }
+  }
+  return in;
+}
+
+}  // namespace rockbench::bullet

@@ -1,0 +1,75 @@
+#pragma once
+/// What the Bullet engine simulates, independent of Bullet's precision: the scene's blocks,
+/// initial state and settings, and the base motion sampled on the engine's step grid. The same
+/// input drives the double-precision engine (in process) and the single-precision helper
+/// program (rockbench-bullet-float), so both see bit-identical excitation.
+#include <cstdint>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <vector>
+
+#include "scene/ground_motion.h"
+#include "scene/history.h"
+#include "scene/scene.h"
+
+namespace rockbench::bullet {
+
+/// Base motion on the step grid t_n = n * time_step_s, n = 0..steps.
+struct DriveSamples {
+  /// Inertial drive: base acceleration applied during step n (from t_n to t_{n+1}), m/s^2,
+  /// evaluated at t_n (the leapfrog force time of Bullet's symplectic Euler step). Empty when
+  /// the scene has no base motion (all zero).
+  std::vector<double> ax_mps2, ay_mps2;
+  /// Kinematic drive: ground displacement at t_n (n = 0..steps), m, after baseline correction.
+  /// Empty for the inertial drive.
+  std::vector<double> ux_m, uy_m;
+  /// Kinematic drive: ground velocity before step 0 (so that the blocks start at rest relative
+  /// to the ground), m/s.
+  double ux0_mps = 0.0, uy0_mps = 0.0;
+  /// Kinematic drive: max |second difference of u / dt^2 - record|, the acceleration the
+  /// baseline correction removed, m/s^2 (horizontal, vertical).
+  double correction_max_x_mps2 = 0.0, correction_max_y_mps2 = 0.0;
+  /// Kinematic drive: peak |u| before and after the correction, m.
+  double raw_peak_x_m = 0.0, raw_peak_y_m = 0.0, peak_x_m = 0.0, peak_y_m = 0.0;
+};
+
+/// Everything one engine run needs.
+struct EngineInput {
+  BlockDef block1;
+  std::optional<BlockDef> block2;
+  InitialState initial;
+  RunConfig run;
+  BulletConfig config;
+  double overturn_rad = 1.5707963267948966;  ///< |theta| that counts as overturned (model's)
+  double rest_rate_radps = 1e-4;             ///< the model's rest rate (reported only)
+  std::int64_t steps = 0;                    ///< number of Bullet steps, ceil(duration / dt)
+  double motion_end_s = 0.0;                 ///< time after which the base is still, s
+  DriveSamples drive;
+
+  bool two_blocks() const { return block2.has_value(); }
+  double time_step_s() const { return config.time_step_s; }
+};
+
+/// What one engine run returns.
+struct EngineOutput {
+  History history;         ///< samples at the output interval (step times), events
+  nlohmann::json summary;  ///< the engine's part of summary.json
+  double wall_s = 0.0;     ///< wall-clock time of the simulation loop alone, s
+};
+
+/// Builds the input of a run: checks the [bullet] settings (throws SceneError naming the key
+/// and what was expected) and samples the base motion on the step grid.
+EngineInput MakeEngineInput(const Scene& scene, const GroundMotion& motion);
+
+/// Kinematic drive: ground displacement from the acceleration samples a_n (m/s^2) on the grid
+/// of step dt (s). Integrates twice with the leapfrog rule (u_{n+1} - 2 u_n + u_{n-1} = dt^2 a_n,
+/// u_0 = 0, at rest before t = 0), then removes the baseline B = zero-phase low-pass of u
+/// (2nd-order Butterworth run forward and backward, corner highpass_hz; the ends are padded:
+/// zeros before t = 0, odd reflection after the last sample). Because |H_LP|^2 + |H_HP|^2 = 1
+/// for a Butterworth pair, u - B is the zero-phase 4th-order high-pass of u. highpass_hz = 0
+/// disables the correction. Returns u at n = 0..a.size() and fills the velocity before step 0.
+std::vector<double> KinematicDisplacement(const std::vector<double>& accel_mps2, double dt_s,
+                                          double highpass_hz, double* velocity_before_mps,
+                                          double* raw_peak_m);
+
+}  // namespace rockbench::bullet

@@ -1,0 +1,539 @@
+#include "engines/bullet/monitor.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace rockbench::bullet {
+namespace {
+
+int Sign(double v) {
+  return v > 0.0 ? 1 : (v < 0.0 ? -1 : 0);
+}
+
+bool Finite(const BodyReadout& b) {
+  return std::isfinite(b.x_m) && std::isfinite(b.y_m) && std::isfinite(b.cos_phi) &&
+         std::isfinite(b.sin_phi) && std::isfinite(b.vx_mps) && std::isfinite(b.vy_mps) &&
+         std::isfinite(b.w_radps);
+}
+
+// Hysteresis update of one tilt. Returns true when the tilted block lands (its angle crosses
+// zero or falls below `leave`); *t_impact is the linearly interpolated zero crossing, or t when
+// it landed without crossing.
+// Linear interpolation of the zero crossing of an angle between two steps.
+double CrossingTime(double prev, double angle, double t_prev, double t) {
+  const double denom = prev - angle;
+  const double frac = denom != 0.0 ? std::clamp(prev / denom, 0.0, 1.0) : 1.0;
+  return t_prev + frac * (t - t_prev);
+}
+
+bool UpdateSide(int* side, double prev, double angle, double t_prev, double t, double enter,
+                double leave, double* t_impact, bool* crossed) {
+  bool impact = false;
+  *crossed = false;
+  if (*side != 0) {
+    const double a = *side * angle;
+    if (a <= 0.0) {
+      impact = true;
+      *crossed = true;
+      *t_impact = CrossingTime(prev, angle, t_prev, t);
+    } else if (a < leave) {
+      impact = true;
+      *t_impact = t;
+    }
+    if (impact) *side = std::abs(angle) > enter ? Sign(angle) : 0;
+  } else if (std::abs(angle) > enter) {
+    *side = Sign(angle);
+  }
+  return impact;
+}
+
+Mode ModeFromSides(int s1, int s2, bool two_blocks) {
+  if (!two_blocks) return s1 == 0 ? Mode::kRest : (s1 > 0 ? Mode::k3a : Mode::k3b);
+  if (s1 == 0) return s2 == 0 ? Mode::kRest : (s2 > 0 ? Mode::k4a : Mode::k4b);
+  if (s2 == 0) return s1 > 0 ? Mode::k3a : Mode::k3b;
+  if (s1 > 0) return s2 > 0 ? Mode::k1a : Mode::k2a;
+  return s2 < 0 ? Mode::k1b : Mode::k2b;
+}
+
+}  // namespace
+
+Monitor::Monitor(const EngineInput& input, MonitorConfig config) : cfg_(config) {
+  in_meta_.block1 = input.block1;
+  in_meta_.block2 = input.block2;
+  in_meta_.initial = input.initial;
+  in_meta_.run = input.run;
+  in_meta_.config = input.config;
+  in_meta_.overturn_rad = input.overturn_rad;
+  in_meta_.steps = input.steps;
+  two_ = input.two_blocks();
+  b1_ = 0.5 * input.block1.width_m;
+  h1_ = 0.5 * input.block1.height_m;
+  m1_ = input.block1.mass_kg;
+  i1_ = m1_ * (b1_ * b1_ + h1_ * h1_) / 3.0;
+  if (two_) {
+    b2_ = 0.5 * input.block2->width_m;
+    h2_ = 0.5 * input.block2->height_m;
+    m2_ = input.block2->mass_kg;
+    i2_ = m2_ * (b2_ * b2_ + h2_ * h2_) / 3.0;
+  }
+  g_ = input.run.gravity_mps2;
+  dt_ = input.time_step_s();
+  out_dt_ = input.run.output_interval_s;
+  tipping_energy_j_ = m1_ * g_ * (std::hypot(b1_, h1_) - h1_);
+  if (two_) tipping_energy_j_ += m2_ * g_ * (std::hypot(b2_, h2_) - h2_);
+  history_.two_blocks = two_;
+}
+
+Monitor::Derived Monitor::Derive(const StepReadout& s) {
+  Derived d;
+  const BodyReadout& r1 = s.block1;
+  // Unwrapped CCW angles; the thesis's theta is -phi.
+  phi1_ += std::remainder(std::atan2(r1.sin_phi, r1.cos_phi) - phi1_, 2.0 * std::numbers::pi);
+  d.sample.t_s = s.t_s;
+  d.sample.theta1_rad = -phi1_;
+  d.sample.omega1_radps = -r1.w_radps;
+  // Base frame.
+  const double x1 = r1.x_m - s.ground_x_m, y1 = r1.y_m - s.ground_y_m;
+  const double vx1 = r1.vx_mps - s.ground_vx_mps, vy1 = r1.vy_mps - s.ground_vy_mps;
+  const double c1 = r1.cos_phi, s1 = r1.sin_phi;
+  // Lowest corner of block 1 above the ground (bottom corners at local (+-b1, -h1)).
+  // Corner heights: y = y1 + sin(phi) lx + cos(phi) ly for local (lx, ly) = (+-b1, +-h1); the top
+  // corners matter for a block lying on its side.
+  const double yl = y1 - s1 * b1_ - c1 * h1_;
+  const double yr = y1 + s1 * b1_ - c1 * h1_;
+  const double yl_top = y1 - s1 * b1_ + c1 * h1_;
+  const double yr_top = y1 + s1 * b1_ + c1 * h1_;
+  d.gap_ground_m = std::min(std::min(yl, yr), std::min(yl_top, yr_top));
+  d.energy_j = 0.5 * m1_ * (vx1 * vx1 + vy1 * vy1) +
+               0.5 * (m1_ * (b1_ * b1_ + h1_ * h1_) / 3.0) * r1.w_radps * r1.w_radps +
+               m1_ * g_ * y1;
+  if (two_) {
+    const BodyReadout& r2 = s.block2;
+    phi2_ += std::remainder(std::atan2(r2.sin_phi, r2.cos_phi) - phi2_, 2.0 * std::numbers::pi);
+    d.sample.theta2_rad = -phi2_;
+    d.sample.omega2_radps = -r2.w_radps;
+    const double x2 = r2.x_m - s.ground_x_m, y2 = r2.y_m - s.ground_y_m;
+    const double vx2 = r2.vx_mps - s.ground_vx_mps, vy2 = r2.vy_mps - s.ground_vy_mps;
+    d.energy_j +=
+        0.5 * m2_ * (vx2 * vx2 + vy2 * vy2) + 0.5 * i2_ * r2.w_radps * r2.w_radps + m2_ * g_ * y2;
+    // Block 2's bottom corners in block 1's frame: gap above block 1's top face (y = h1).
+    const double c2 = r2.cos_phi, s2 = r2.sin_phi;
+    double gap = 1e300;
+    for (int k = -1; k <= 1; k += 2) {
+      const double px = x2 + c2 * (k * b2_) + s2 * h2_;  // local (k b2, -h2)
+      const double py = y2 + s2 * (k * b2_) - c2 * h2_;
+      const double dx = px - x1, dy = py - y1;
+      const double ly = -s1 * dx + c1 * dy;
+      gap = std::min(gap, ly - h1_);
+    }
+    d.gap_interface_m = gap;
+  }
+  return d;
+}
+
+void Monitor::Pivots(const StepReadout& s, Derived* d, int* side1, int* side2) const {
+  const Sample& cur = d->sample;
+  const double c1 = s.block1.cos_phi, s1 = s.block1.sin_phi;
+  const double x1 = s.block1.x_m - s.ground_x_m, y1 = s.block1.y_m - s.ground_y_m;
+  *side1 = ground_.side;
+  if (*side1 == 0 && std::abs(cur.omega1_radps) > cfg_.rate_tol_radps) {
+    *side1 = Sign(cur.omega1_radps);
+  }
+  // Block 1's pivot: bottom corner (side1 b1, -h1) in its frame (bottom centre when flat).
+  d->pivot_ground_x_m = x1 + c1 * (*side1 * b1_) + s1 * h1_;
+  if (!two_) return;
+  *side2 = interface_.side;
+  const double rel = cur.omega2_radps - cur.omega1_radps;
+  if (*side2 == 0 && std::abs(rel) > cfg_.rate_tol_radps) *side2 = Sign(rel);
+  // Block 2's pivot (side2 b2, -h2) in its frame, expressed in block 1's frame.
+  const double c2 = s.block2.cos_phi, s2 = s.block2.sin_phi;
+  const double x2 = s.block2.x_m - s.ground_x_m, y2 = s.block2.y_m - s.ground_y_m;
+  const double px = x2 + c2 * (*side2 * b2_) + s2 * h2_;
+  const double py = y2 + s2 * (*side2 * b2_) - c2 * h2_;
+  const double dx = px - x1, dy = py - y1;
+  d->pivot_interface_x_m = c1 * dx + s1 * dy;
+}
+
+Mode Monitor::InferMode(const Sample& s) const {
+  int s1 = ground_.side;
+  if (s1 == 0 && std::abs(s.omega1_radps) > cfg_.rate_tol_radps) s1 = Sign(s.omega1_radps);
+  int s2 = 0;
+  if (two_) {
+    s2 = interface_.side;
+    const double rel = s.omega2_radps - s.omega1_radps;
+    if (s2 == 0 && std::abs(rel) > cfg_.rate_tol_radps) s2 = Sign(rel);
+  }
+  return ModeFromSides(s1, s2, two_);
+}
+
+void Monitor::Record(const Sample& s) {
+  history_.samples.push_back(s);
+}
+
+void Monitor::PushEvent(Event e) {
+  history_.events.push_back(std::move(e));
+}
+
+void Monitor::Start(const StepReadout& s) {
+  const double a1 = std::atan2(s.block1.sin_phi, s.block1.cos_phi);
+  phi1_ = a1;
+  if (two_) phi2_ = std::atan2(s.block2.sin_phi, s.block2.cos_phi);
+  Derived d = Derive(s);
+  ground_.side =
+      std::abs(d.sample.theta1_rad) > cfg_.angle_enter_rad ? Sign(d.sample.theta1_rad) : 0;
+  ground_.prev = d.sample.theta1_rad;
+  if (two_) {
+    const double rel = d.sample.theta2_rad - d.sample.theta1_rad;
+    interface_.side = std::abs(rel) > cfg_.angle_enter_rad ? Sign(rel) : 0;
+    interface_.prev = rel;
+  }
+  d.sample.mode = InferMode(d.sample);
+  Pivots(s, &d, &pivot_side1_, &pivot_side2_);
+  peak1_ = std::abs(d.sample.theta1_rad);
+  peak2_ = std::abs(d.sample.theta2_rad);
+  prev_ = d;
+  last_ = d.sample;
+  energy_min_free_j_ = d.energy_j;
+  Record(d.sample);
+  last_recorded_ = true;
+  next_out_ = 1;
+}
+
+bool Monitor::Step(std::int64_t n, const StepReadout& s) {
+  steps_done_ = n;
+  if (!Finite(s.block1) || (two_ && !Finite(s.block2))) {
+    status_ = "blow_up";
+    status_detail_ = "non-finite state after step " + std::to_string(n);
+    return false;
+  }
+  Derived d = Derive(s);
+  Sample& cur = d.sample;
+  const Sample& prev = prev_.sample;
+  const double t_prev = prev.t_s, t = cur.t_s;
+
+  // Impacts: a tilted block lands.
+  const double rel = two_ ? cur.theta2_rad - cur.theta1_rad : 0.0;
+  const double rel_prev = interface_.prev;
+  const double theta1_prev = ground_.prev;
+  double t_ground = 0.0, t_interface = 0.0;
+  bool crossed_ground = false, crossed_interface = false;
+  const int side_ground = ground_.side, side_interface = interface_.side;
+  const bool ground_impact =
+      UpdateSide(&ground_.side, ground_.prev, cur.theta1_rad, t_prev, t, cfg_.angle_enter_rad,
+                 cfg_.angle_leave_rad, &t_ground, &crossed_ground);
+  ground_.prev = cur.theta1_rad;
+  bool interface_impact = false;
+  if (two_) {
+    interface_impact =
+        UpdateSide(&interface_.side, interface_.prev, rel, t_prev, t, cfg_.angle_enter_rad,
+                   cfg_.angle_leave_rad, &t_interface, &crossed_interface);
+    interface_.prev = rel;
+  }
+  cur.mode = InferMode(cur);
+
+  // Pending impacts: Bullet resolves a contact in the step after the one that brought the
+  // corner into the support, so an impact is complete one step after its angle crossed zero
+  // (or after kImpactWaitSteps steps if it landed without crossing).
+  constexpr int kImpactWaitSteps = 10;
+  for (size_t k = 0; k < pending_.size();) {
+    PendingImpact& p = pending_[k];
+    const double angle = p.interface ? rel : cur.theta1_rad;
+    const double angle_prev = p.interface ? rel_prev : theta1_prev;
+    bool done = false;
+    if (p.crossed) {
+      done = true;
+    } else if (p.side * angle <= 0.0) {
+      p.crossed = true;
+      p.event.t_s = CrossingTime(angle_prev, angle, t_prev, t);
+      p.event.omega1_before = prev.omega1_radps;
+      p.event.omega2_before = prev.omega2_radps;
+      p.event.energy_before_j = prev_.energy_j;
+    } else if (++p.waited >= kImpactWaitSteps) {
+      done = true;
+      p.event.note = "landed without crossing zero";
+    }
+    if (done) {
+      p.event.mode_after = cur.mode;
+      p.event.omega1_after = cur.omega1_radps;
+      p.event.omega2_after = cur.omega2_radps;
+      p.event.energy_after_j = d.energy_j;
+      PushEvent(std::move(p.event));
+      pending_.erase(pending_.begin() + static_cast<std::ptrdiff_t>(k));
+      suppress_mode_events_ = 1;
+    } else {
+      ++k;
+    }
+  }
+  auto make_impact = [&](const char* kind, bool interface, int side, double when, bool crossed) {
+    PendingImpact p;
+    p.interface = interface;
+    p.side = side;
+    p.crossed = crossed;
+    p.event.t_s = when;
+    p.event.kind = kind;
+    p.event.mode_before = prev.mode;
+    // The state before the crossing step is before the contact impulse: Bullet applies it in
+    // the step that crosses (a speculative contact already in the manifold) or in the next one
+    // (a contact found penetrating), so the step after the crossing is after it.
+    p.event.omega1_before = prev.omega1_radps;
+    p.event.omega2_before = prev.omega2_radps;
+    p.event.energy_before_j = prev_.energy_j;
+    pending_.push_back(std::move(p));
+  };
+  if (ground_impact) {
+    ++impacts_ground_;
+    make_impact("ground_impact", false, side_ground, t_ground, crossed_ground);
+  }
+  if (interface_impact) {
+    ++impacts_interface_;
+    make_impact("interface_impact", true, side_interface, t_interface, crossed_interface);
+  }
+  const bool impact_busy = !pending_.empty() || suppress_mode_events_ > 0;
+  // Mode changes without impact.
+  if (cur.mode != prev.mode) {
+    if (!impact_busy) {
+      Event e;
+      e.t_s = t;
+      e.mode_before = prev.mode;
+      e.mode_after = cur.mode;
+      e.omega1_before = e.omega1_after = cur.omega1_radps;
+      e.omega2_before = e.omega2_after = cur.omega2_radps;
+      e.energy_before_j = prev_.energy_j;
+      e.energy_after_j = d.energy_j;
+      if (prev.mode == Mode::kRest) {
+        e.kind = "initiation";
+        ++initiations_;
+      } else if (cur.mode == Mode::kRest) {
+        e.kind = "rest";
+        ++rests_;
+      } else {
+        e.kind = "transition";
+        ++transitions_;
+      }
+      PushEvent(std::move(e));
+    }
+  }
+  if (suppress_mode_events_ > 0) --suppress_mode_events_;
+
+  // Slip: horizontal motion of the pivot point relative to the support while in contact.
+  {
+    int side1 = 0, side2 = 0;
+    Pivots(s, &d, &side1, &side2);
+    if (side1 == pivot_side1_ && d.gap_ground_m < cfg_.uplift_tol_m) {
+      slip_ground_m_ += std::abs(d.pivot_ground_x_m - prev_.pivot_ground_x_m);
+    }
+    drift_ground_max_m_ = std::max(drift_ground_max_m_, std::abs(d.pivot_ground_x_m - side1 * b1_));
+    pivot_side1_ = side1;
+    if (two_) {
+      if (side2 == pivot_side2_ && d.gap_interface_m < cfg_.uplift_tol_m) {
+        slip_interface_m_ += std::abs(d.pivot_interface_x_m - prev_.pivot_interface_x_m);
+      }
+      drift_interface_max_m_ =
+          std::max(drift_interface_max_m_, std::abs(d.pivot_interface_x_m - side2 * b2_));
+      pivot_side2_ = side2;
+    }
+  }
+  // Uplift and penetration.
+  {
+    const bool up = d.gap_ground_m > cfg_.uplift_tol_m;
+    if (up) {
+      uplift_ground_s_ += dt_;
+      uplift_ground_max_m_ = std::max(uplift_ground_max_m_, d.gap_ground_m);
+      if (!airborne_ground_) ++uplift_ground_episodes_;
+    }
+    airborne_ground_ = up;
+    penetration_ground_max_m_ = std::max(penetration_ground_max_m_, -d.gap_ground_m);
+    if (two_) {
+      const bool up2 = d.gap_interface_m > cfg_.uplift_tol_m;
+      if (up2) {
+        uplift_interface_s_ += dt_;
+        uplift_interface_max_m_ = std::max(uplift_interface_max_m_, d.gap_interface_m);
+        if (!airborne_interface_) ++uplift_interface_episodes_;
+      }
+      airborne_interface_ = up2;
+      penetration_interface_max_m_ = std::max(penetration_interface_max_m_, -d.gap_interface_m);
+    }
+  }
+  out_of_plane_m_ = std::max(out_of_plane_m_, s.out_of_plane_m);
+  out_of_plane_rad_ = std::max(out_of_plane_rad_, s.out_of_plane_rad);
+
+  // Peaks.
+  if (std::abs(cur.theta1_rad) > peak1_) {
+    peak1_ = std::abs(cur.theta1_rad);
+    peak1_t_ = t;
+  }
+  if (two_ && std::abs(cur.theta2_rad) > peak2_) {
+    peak2_ = std::abs(cur.theta2_rad);
+    peak2_t_ = t;
+  }
+  max_rate_radps_ = std::max(
+      {max_rate_radps_, std::abs(cur.omega1_radps), two_ ? std::abs(cur.omega2_radps) : 0.0});
+
+  // Energy without input must not grow.
+  if (s.base_accelerating) {
+    free_ = false;
+  } else {
+    if (!free_) {
+      free_ = true;
+      energy_min_free_j_ = std::min(prev_.energy_j, d.energy_j);
+    }
+    energy_min_free_j_ = std::min(energy_min_free_j_, d.energy_j);
+    const double gain = d.energy_j - energy_min_free_j_;
+    if (gain > energy_gain_max_j_) {
+      energy_gain_max_j_ = gain;
+      energy_gain_t_s_ = t;
+    }
+  }
+
+  prev_ = d;
+  last_ = cur;
+  last_recorded_ = false;
+  end_t_s_ = t;
+
+  // Output sample: the step nearest to each output time (every step without an interval).
+  if (!(out_dt_ > 0.0)) {
+    Record(cur);
+    last_recorded_ = true;
+  } else if (t >= static_cast<double>(next_out_) * out_dt_ - 0.5 * dt_) {
+    Record(cur);
+    last_recorded_ = true;
+    next_out_ = static_cast<std::int64_t>(std::floor((t + 0.5 * dt_) / out_dt_)) + 1;
+  }
+
+  // Stops: overturn, blow-up.
+  const double over = in_meta_.overturn_rad - cfg_.overturn_slack_rad;
+  int over_block = 0;
+  if (std::abs(cur.theta1_rad) >= over) {
+    over_block = 1;
+  } else if (two_ && std::abs(cur.theta2_rad) >= over) {
+    over_block = 2;
+  }
+  if (over_block != 0) {
+    status_ = "overturned";
+    overturn_block_ = over_block;
+    overturn_t_s_ = t;
+    status_detail_ = "block " + std::to_string(over_block) +
+                     " reached |theta| >= " + std::to_string(over) + " rad";
+    Event e;
+    e.t_s = t;
+    e.kind = "overturn";
+    e.mode_before = e.mode_after = cur.mode;
+    e.omega1_before = e.omega1_after = cur.omega1_radps;
+    e.omega2_before = e.omega2_after = cur.omega2_radps;
+    e.energy_before_j = e.energy_after_j = d.energy_j;
+    e.note = "block " + std::to_string(over_block);
+    PushEvent(std::move(e));
+    return false;
+  }
+  if (max_rate_radps_ > cfg_.blow_up_rate_radps) {
+    status_ = "blow_up";
+    status_detail_ = "|omega| above " + std::to_string(cfg_.blow_up_rate_radps) + " rad/s";
+    return false;
+  }
+  if (energy_gain_max_j_ > cfg_.blow_up_energy_rel * tipping_energy_j_) {
+    status_ = "blow_up";
+    status_detail_ = "energy grew without base input by more than the tipping energy";
+    return false;
+  }
+  return true;
+}
+
+void Monitor::Finish() {
+  // Impacts still waiting for their post-impact state: complete them with the last state.
+  for (PendingImpact& p : pending_) {
+    p.event.mode_after = last_.mode;
+    p.event.omega1_after = last_.omega1_radps;
+    p.event.omega2_after = last_.omega2_radps;
+    p.event.energy_after_j = prev_.energy_j;
+    p.event.note = "run ended before the contact was resolved";
+    PushEvent(std::move(p.event));
+  }
+  pending_.clear();
+  // Impacts are pushed when complete: restore time order.
+  std::stable_sort(history_.events.begin(), history_.events.end(),
+                   [](const Event& a, const Event& b) { return a.t_s < b.t_s; });
+  if (!last_recorded_) {
+    Record(last_);
+    last_recorded_ = true;
+  }
+}
+
+nlohmann::json Monitor::Summary() const {
+  using nlohmann::json;
+  json j;
+  j["status"] = status_;
+  if (!status_detail_.empty()) j["status_detail"] = status_detail_;
+  j["end_t_s"] = end_t_s_;
+  j["steps"] = steps_done_;
+  // Same shape as the reference's part of summary.json (harness/summary.cc).
+  j["peaks"]["theta1"] = {{"abs_rad", peak1_}, {"t_s", peak1_t_}};
+  if (two_) j["peaks"]["theta2"] = {{"abs_rad", peak2_}, {"t_s", peak2_t_}};
+  j["impacts"] = {{"total", impacts_ground_ + impacts_interface_},
+                  {"ground", impacts_ground_},
+                  {"interface", impacts_interface_}};
+  j["transitions"] = transitions_;
+  j["initiations"] = initiations_;
+  j["rests"] = rests_;
+  if (overturn_block_ != 0) {
+    j["overturn"] = {{"block", overturn_block_}, {"t_s", overturn_t_s_}};
+  } else {
+    j["overturn"] = nullptr;
+  }
+  json fin;
+  fin["t_s"] = last_.t_s;
+  fin["theta1_rad"] = last_.theta1_rad;
+  fin["omega1_radps"] = last_.omega1_radps;
+  if (two_) {
+    fin["theta2_rad"] = last_.theta2_rad;
+    fin["omega2_radps"] = last_.omega2_radps;
+  }
+  fin["mode"] = std::string(ModeName(last_.mode));
+  j["final"] = fin;
+
+  json v;
+  v["slip_ground_m"] = slip_ground_m_;
+  v["drift_ground_max_m"] = drift_ground_max_m_;
+  v["uplift_ground_s"] = uplift_ground_s_;
+  v["uplift_ground_max_m"] = uplift_ground_max_m_;
+  v["uplift_ground_episodes"] = uplift_ground_episodes_;
+  v["penetration_ground_max_m"] = penetration_ground_max_m_;
+  if (two_) {
+    v["slip_interface_m"] = slip_interface_m_;
+    v["drift_interface_max_m"] = drift_interface_max_m_;
+    v["uplift_interface_s"] = uplift_interface_s_;
+    v["uplift_interface_max_m"] = uplift_interface_max_m_;
+    v["uplift_interface_episodes"] = uplift_interface_episodes_;
+    v["penetration_interface_max_m"] = penetration_interface_max_m_;
+  }
+  v["energy_gain_max_j"] = energy_gain_max_j_;
+  v["energy_gain_t_s"] = energy_gain_t_s_;
+  v["tipping_energy_j"] = tipping_energy_j_;
+  v["energy_gain_rel"] = tipping_energy_j_ > 0.0 ? energy_gain_max_j_ / tipping_energy_j_ : 0.0;
+  v["out_of_plane_m"] = out_of_plane_m_;
+  v["out_of_plane_rad"] = out_of_plane_rad_;
+  v["max_rate_radps"] = max_rate_radps_;
+  const double slip_flag1 = cfg_.slip_flag_rel * 2.0 * b1_;
+  const double slip_flag2 = cfg_.slip_flag_rel * 2.0 * b2_;
+  v["sliding"] = slip_ground_m_ > slip_flag1 || (two_ && slip_interface_m_ > slip_flag2);
+  v["uplift"] = uplift_ground_episodes_ > 0 || (two_ && uplift_interface_episodes_ > 0);
+  v["penetration"] = penetration_ground_max_m_ > cfg_.penetration_flag_m ||
+                     (two_ && penetration_interface_max_m_ > cfg_.penetration_flag_m);
+  v["energy_growth"] = energy_gain_max_j_ > cfg_.energy_growth_flag_rel * tipping_energy_j_;
+  v["blow_up"] = status_ == "blow_up";
+  j["violations"] = v;
+
+  json m;
+  m["angle_enter_rad"] = cfg_.angle_enter_rad;
+  m["angle_leave_rad"] = cfg_.angle_leave_rad;
+  m["rate_tol_radps"] = cfg_.rate_tol_radps;
+  m["uplift_tol_m"] = cfg_.uplift_tol_m;
+  m["slip_flag_rel"] = cfg_.slip_flag_rel;
+  m["penetration_flag_m"] = cfg_.penetration_flag_m;
+  m["energy_growth_flag_rel"] = cfg_.energy_growth_flag_rel;
+  m["overturn_slack_rad"] = cfg_.overturn_slack_rad;
+  j["monitor"] = m;
+  return j;
+}
+
+}  // namespace rockbench::bullet

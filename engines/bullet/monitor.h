@@ -1,0 +1,157 @@
+#pragma once
+/// Watches a Bullet run step by step, independent of Bullet's precision: reads the thesis's
+/// angles back from the bodies' poses, infers the mode, detects impacts and mode changes, and
+/// measures what the model forbids (slip at either contact, uplift, penetration, energy growth
+/// without input, blow-up, out-of-plane motion).
+#include <cstdint>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "engines/bullet/engine_input.h"
+#include "scene/history.h"
+
+namespace rockbench::bullet {
+
+/// Thresholds of the monitor. Angles in rad, rates in rad/s, lengths in m.
+struct MonitorConfig {
+  /// A block (or block 2 on block 1) counts as tilted to a side once |angle| exceeds
+  /// angle_enter_rad, and as landed once its angle falls below angle_leave_rad (hysteresis, so
+  /// numerical noise at rest does not chatter).
+  double angle_enter_rad = 1e-5;
+  double angle_leave_rad = 5e-6;
+  /// A flat block (|angle| below angle_enter_rad) turning faster than this is passing through
+  /// zero and is taken to rock towards the side of its rate; slower, it counts as still (mode
+  /// rest or 4). 1e-2 rad/s leaves a flat band of at most 1e-5 / 1e-2 = 1 ms, so micro-rocking
+  /// below the angle threshold does not make the mode chatter.
+  double rate_tol_radps = 1e-2;
+  /// A block whose lowest corner is higher than this above its support has no contact: uplift.
+  double uplift_tol_m = 1e-5;
+  /// Flags in the summary: slip above this fraction of the block's width is "sliding",
+  /// penetration deeper than penetration_flag_m is "penetration", energy gained without base
+  /// input above energy_growth_flag_rel of the tipping energy is "energy_growth".
+  double slip_flag_rel = 1e-3;
+  double penetration_flag_m = 1e-4;
+  double energy_growth_flag_rel = 0.01;
+  /// Blow-up: a non-finite state, |rate| above blow_up_rate_radps, or energy gained without
+  /// input above blow_up_energy_rel times the tipping energy. The run stops there.
+  double blow_up_rate_radps = 1e3;
+  double blow_up_energy_rel = 1.0;
+  /// A block counts as overturned at |theta| >= overturn_rad - overturn_slack_rad (a block that
+  /// fell on its side rests within its penetration of pi/2, not beyond it).
+  double overturn_slack_rad = 0.01;
+};
+
+/// One body's planar pose and velocity as read from Bullet (world frame): mass centre (m), the
+/// first column of its rotation (cos phi, sin phi) with phi the CCW angle about +z, centre
+/// velocity (m/s) and CCW angular velocity (rad/s).
+struct BodyReadout {
+  double x_m = 0.0, y_m = 0.0, cos_phi = 1.0, sin_phi = 0.0;
+  double vx_mps = 0.0, vy_mps = 0.0, w_radps = 0.0;
+};
+
+/// The state after a step.
+struct StepReadout {
+  double t_s = 0.0;
+  BodyReadout block1, block2;
+  /// Base frame origin in the world (the ground top's reference point) and its velocity; zero
+  /// for the inertial drive.
+  double ground_x_m = 0.0, ground_y_m = 0.0, ground_vx_mps = 0.0, ground_vy_mps = 0.0;
+  /// Largest out-of-plane displacement (|z - z0|, m) and rotation (rad) of the blocks.
+  double out_of_plane_m = 0.0, out_of_plane_rad = 0.0;
+  /// Whether the base accelerated during the step that ended here.
+  bool base_accelerating = false;
+};
+
+class Monitor {
+ public:
+  explicit Monitor(const EngineInput& input, MonitorConfig config = {});
+
+  /// The state at t = 0 (first sample).
+  void Start(const StepReadout& s);
+  /// The state after step n (1-based). Returns false when the run must stop (overturn,
+  /// blow-up).
+  bool Step(std::int64_t n, const StepReadout& s);
+  /// Ends the run: records the last state as a sample if it was not one.
+  void Finish();
+
+  const History& history() const { return history_; }
+  History TakeHistory() { return std::move(history_); }
+  /// The monitor's part of the summary: status, peaks, impact counts, violations.
+  nlohmann::json Summary() const;
+  const std::string& status() const { return status_; }
+  /// Last state read, in the thesis's convention.
+  const Sample& last() const { return last_; }
+
+ private:
+  // Hysteresis side of one tilt (block 1 on the ground, block 2 on block 1).
+  struct Side {
+    int side = 0;       // armed side: +1 right, -1 left, 0 flat
+    double prev = 0.0;  // previous angle
+  };
+  struct Derived {
+    Sample sample;
+    double gap_ground_m = 0.0, gap_interface_m = 0.0;  // lowest corner above its support
+    double pivot_ground_x_m = 0.0, pivot_interface_x_m = 0.0;
+    double energy_j = 0.0;  // kinetic (base frame) + m g y_G, J, as the reference
+  };
+  Derived Derive(const StepReadout& s);
+  Mode InferMode(const Sample& s) const;
+  // Pivot points and sides of the state (for slip): block 1's on the ground, block 2's on
+  // block 1 (in block 1's frame).
+  void Pivots(const StepReadout& s, Derived* d, int* side1, int* side2) const;
+  void Record(const Sample& s);
+  void PushEvent(Event e);
+
+  EngineInput in_meta_;  // geometry and settings (drive samples not kept)
+  MonitorConfig cfg_;
+  bool two_ = false;
+  double b1_ = 0.0, h1_ = 0.0, b2_ = 0.0, h2_ = 0.0, m1_ = 0.0, m2_ = 0.0, i1_ = 0.0, i2_ = 0.0;
+  double g_ = 9.81, dt_ = 0.0, out_dt_ = 0.0, tipping_energy_j_ = 0.0;
+
+  History history_;
+  Sample last_;
+  Derived prev_;
+  Side ground_, interface_;
+  double phi1_ = 0.0, phi2_ = 0.0;  // unwrapped CCW angles
+  std::int64_t next_out_ = 1;       // index of the next output time
+  bool last_recorded_ = false;
+
+  // Pending impacts: completed with the state one step later (Bullet resolves a contact in the
+  // step after the one that brought the corner into the support).
+  struct PendingImpact {
+    Event event;
+    bool interface = false;  // block 2 on block 1 (else block 1 on the ground)
+    int side = 0;            // side the block was tilted to before it landed
+    bool crossed = false;    // its angle has crossed zero
+    int waited = 0;          // steps waited without crossing
+  };
+  std::vector<PendingImpact> pending_;
+  int pivot_side1_ = 0, pivot_side2_ = 0;  // pivot sides of the last state (for the slip)
+  int suppress_mode_events_ = 0;
+
+  // Peaks.
+  double peak1_ = 0.0, peak1_t_ = 0.0, peak2_ = 0.0, peak2_t_ = 0.0;
+  // Counts.
+  int impacts_ground_ = 0, impacts_interface_ = 0, transitions_ = 0, initiations_ = 0, rests_ = 0;
+  // Violations.
+  double slip_ground_m_ = 0.0, slip_interface_m_ = 0.0;
+  double drift_ground_max_m_ = 0.0, drift_interface_max_m_ = 0.0;
+  double uplift_ground_s_ = 0.0, uplift_interface_s_ = 0.0;
+  double uplift_ground_max_m_ = 0.0, uplift_interface_max_m_ = 0.0;
+  int uplift_ground_episodes_ = 0, uplift_interface_episodes_ = 0;
+  bool airborne_ground_ = false, airborne_interface_ = false;
+  double penetration_ground_max_m_ = 0.0, penetration_interface_max_m_ = 0.0;
+  double energy_min_free_j_ = 0.0, energy_gain_max_j_ = 0.0, energy_gain_t_s_ = 0.0;
+  bool free_ = false;
+  double out_of_plane_m_ = 0.0, out_of_plane_rad_ = 0.0;
+  double max_rate_radps_ = 0.0;
+
+  std::string status_ = "completed";
+  std::string status_detail_;
+  int overturn_block_ = 0;
+  double overturn_t_s_ = 0.0, end_t_s_ = 0.0;
+  std::int64_t steps_done_ = 0;
+};
+
+}  // namespace rockbench::bullet

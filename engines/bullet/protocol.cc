@@ -1,0 +1,303 @@
+#include "engines/bullet/protocol.h"
+
+#include <cstdint>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+#include <type_traits>
+
+namespace rockbench::bullet {
+namespace {
+
+constexpr char kInputMagic[8] = {'R', 'B', 'B', 'I', 'N', 'P', 'U', 'T'};
+constexpr char kOutputMagic[8] = {'R', 'B', 'B', 'O', 'U', 'T', 'P', 'T'};
+constexpr std::uint32_t kVersion = 1;
+
+class Writer {
+ public:
+  template <typename T>
+  void Put(T v) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    const char* p = reinterpret_cast<const char*>(&v);
+    out_.append(p, sizeof(T));
+  }
+  void PutBool(bool v) { Put<std::uint8_t>(v ? 1 : 0); }
+  void PutStr(const std::string& s) {
+    Put<std::uint64_t>(s.size());
+    out_.append(s);
+  }
+  void PutVec(const std::vector<double>& v) {
+    Put<std::uint64_t>(v.size());
+    if (!v.empty()) out_.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(double));
+  }
+  void PutRaw(const char* p, size_t n) { out_.append(p, n); }
+  std::string Take() { return std::move(out_); }
+
+ private:
+  std::string out_;
+};
+
+class Reader {
+ public:
+  explicit Reader(const std::string& bytes) : bytes_(bytes) {}
+  template <typename T>
+  T Get() {
+    T v;
+    Need(sizeof(T));
+    std::memcpy(&v, bytes_.data() + pos_, sizeof(T));
+    pos_ += sizeof(T);
+    return v;
+  }
+  bool GetBool() { return Get<std::uint8_t>() != 0; }
+  std::string GetStr() {
+    const auto n = Get<std::uint64_t>();
+    Need(n);
+    std::string s = bytes_.substr(pos_, n);
+    pos_ += n;
+    return s;
+  }
+  std::vector<double> GetVec() {
+    const auto n = Get<std::uint64_t>();
+    if (n > (bytes_.size() - pos_) / sizeof(double)) Fail();
+    std::vector<double> v(n);
+    if (n) std::memcpy(v.data(), bytes_.data() + pos_, n * sizeof(double));
+    pos_ += n * sizeof(double);
+    return v;
+  }
+  void Expect(const char (&magic)[8]) {
+    Need(8);
+    if (std::memcmp(bytes_.data() + pos_, magic, 8) != 0) {
+      throw std::runtime_error("bullet helper protocol: wrong file type");
+    }
+    pos_ += 8;
+    const auto version = Get<std::uint32_t>();
+    if (version != kVersion) {
+      throw std::runtime_error("bullet helper protocol: version " + std::to_string(version) +
+                               ", expected " + std::to_string(kVersion) +
+                               " (rebuild rockbench and rockbench-bullet-float together)");
+    }
+  }
+  void ExpectEnd() const {
+    if (pos_ != bytes_.size()) throw std::runtime_error("bullet helper protocol: trailing data");
+  }
+
+ private:
+  void Need(size_t n) const {
+    if (n > bytes_.size() - pos_) Fail();
+  }
+  [[noreturn]] static void Fail() {
+    throw std::runtime_error("bullet helper protocol: truncated data");
+  }
+  const std::string& bytes_;
+  size_t pos_ = 0;
+};
+
+void PutBlock(Writer& w, const BlockDef& b) {
+  w.Put(b.width_m);
+  w.Put(b.height_m);
+  w.Put(b.depth_m);
+  w.Put(b.mass_kg);
+  w.Put(b.density_kgpm3);
+}
+BlockDef GetBlock(Reader& r) {
+  BlockDef b;
+  b.width_m = r.Get<double>();
+  b.height_m = r.Get<double>();
+  b.depth_m = r.Get<double>();
+  b.mass_kg = r.Get<double>();
+  b.density_kgpm3 = r.Get<double>();
+  return b;
+}
+
+}  // namespace
+
+std::string SerializeInput(const EngineInput& in) {
+  Writer w;
+  w.PutRaw(kInputMagic, 8);
+  w.Put(kVersion);
+  PutBlock(w, in.block1);
+  w.PutBool(in.block2.has_value());
+  if (in.block2) PutBlock(w, *in.block2);
+  w.Put(in.initial.theta1_rad);
+  w.Put(in.initial.theta2_rad);
+  w.Put(in.initial.omega1_radps);
+  w.Put(in.initial.omega2_radps);
+  w.Put(in.run.duration_s);
+  w.Put(in.run.output_interval_s);
+  w.Put(in.run.gravity_mps2);
+  const BulletConfig& c = in.config;
+  w.Put(c.time_step_s);
+  w.Put<std::int32_t>(c.solver_iterations);
+  w.Put<std::int32_t>(static_cast<std::int32_t>(c.precision));
+  w.Put<std::int32_t>(static_cast<std::int32_t>(c.drive));
+  w.Put(c.erp);
+  w.Put(c.erp2);
+  w.PutBool(c.split_impulse);
+  w.Put(c.split_impulse_threshold);
+  w.Put(c.restitution);
+  w.Put(c.friction);
+  w.Put(c.rolling_friction);
+  w.Put(c.restitution_velocity_threshold);
+  w.Put(c.margin_m);
+  w.Put(c.ground_depth_m);
+  w.Put(c.kinematic_highpass_hz);
+  w.Put(in.overturn_rad);
+  w.Put(in.rest_rate_radps);
+  w.Put<std::int64_t>(in.steps);
+  w.Put(in.motion_end_s);
+  const DriveSamples& d = in.drive;
+  w.PutVec(d.ax_mps2);
+  w.PutVec(d.ay_mps2);
+  w.PutVec(d.ux_m);
+  w.PutVec(d.uy_m);
+  w.Put(d.ux0_mps);
+  w.Put(d.uy0_mps);
+  w.Put(d.correction_max_x_mps2);
+  w.Put(d.correction_max_y_mps2);
+  w.Put(d.raw_peak_x_m);
+  w.Put(d.raw_peak_y_m);
+  w.Put(d.peak_x_m);
+  w.Put(d.peak_y_m);
+  return w.Take();
+}
+
+EngineInput ParseInput(const std::string& bytes) {
+  Reader r(bytes);
+  r.Expect(kInputMagic);
+  EngineInput in;
+  in.block1 = GetBlock(r);
+  if (r.GetBool()) in.block2 = GetBlock(r);
+  in.initial.theta1_rad = r.Get<double>();
+  in.initial.theta2_rad = r.Get<double>();
+  in.initial.omega1_radps = r.Get<double>();
+  in.initial.omega2_radps = r.Get<double>();
+  in.run.duration_s = r.Get<double>();
+  in.run.output_interval_s = r.Get<double>();
+  in.run.gravity_mps2 = r.Get<double>();
+  BulletConfig& c = in.config;
+  c.time_step_s = r.Get<double>();
+  c.solver_iterations = r.Get<std::int32_t>();
+  c.precision = static_cast<BulletPrecision>(r.Get<std::int32_t>());
+  c.drive = static_cast<BulletDrive>(r.Get<std::int32_t>());
+  c.erp = r.Get<double>();
+  c.erp2 = r.Get<double>();
+  c.split_impulse = r.GetBool();
+  c.split_impulse_threshold = r.Get<double>();
+  c.restitution = r.Get<double>();
+  c.friction = r.Get<double>();
+  c.rolling_friction = r.Get<double>();
+  c.restitution_velocity_threshold = r.Get<double>();
+  c.margin_m = r.Get<double>();
+  c.ground_depth_m = r.Get<double>();
+  c.kinematic_highpass_hz = r.Get<double>();
+  in.overturn_rad = r.Get<double>();
+  in.rest_rate_radps = r.Get<double>();
+  in.steps = r.Get<std::int64_t>();
+  in.motion_end_s = r.Get<double>();
+  DriveSamples& d = in.drive;
+  d.ax_mps2 = r.GetVec();
+  d.ay_mps2 = r.GetVec();
+  d.ux_m = r.GetVec();
+  d.uy_m = r.GetVec();
+  d.ux0_mps = r.Get<double>();
+  d.uy0_mps = r.Get<double>();
+  d.correction_max_x_mps2 = r.Get<double>();
+  d.correction_max_y_mps2 = r.Get<double>();
+  d.raw_peak_x_m = r.Get<double>();
+  d.raw_peak_y_m = r.Get<double>();
+  d.peak_x_m = r.Get<double>();
+  d.peak_y_m = r.Get<double>();
+  r.ExpectEnd();
+  return in;
+}
+
+std::string SerializeOutput(const EngineOutput& out) {
+  Writer w;
+  w.PutRaw(kOutputMagic, 8);
+  w.Put(kVersion);
+  w.PutBool(out.history.two_blocks);
+  w.Put<std::uint64_t>(out.history.samples.size());
+  for (const Sample& s : out.history.samples) {
+    w.Put(s.t_s);
+    w.Put(s.theta1_rad);
+    w.Put(s.theta2_rad);
+    w.Put(s.omega1_radps);
+    w.Put(s.omega2_radps);
+    w.Put<std::int32_t>(static_cast<std::int32_t>(s.mode));
+  }
+  w.Put<std::uint64_t>(out.history.events.size());
+  for (const Event& e : out.history.events) {
+    w.Put(e.t_s);
+    w.PutStr(e.kind);
+    w.Put<std::int32_t>(static_cast<std::int32_t>(e.mode_before));
+    w.Put<std::int32_t>(static_cast<std::int32_t>(e.mode_after));
+    w.Put(e.omega1_before);
+    w.Put(e.omega2_before);
+    w.Put(e.omega1_after);
+    w.Put(e.omega2_after);
+    w.Put(e.energy_before_j);
+    w.Put(e.energy_after_j);
+    w.PutStr(e.note);
+  }
+  w.PutStr(out.summary.dump());
+  w.Put(out.wall_s);
+  return w.Take();
+}
+
+EngineOutput ParseOutput(const std::string& bytes) {
+  Reader r(bytes);
+  r.Expect(kOutputMagic);
+  EngineOutput out;
+  out.history.two_blocks = r.GetBool();
+  const auto ns = r.Get<std::uint64_t>();
+  if (ns > bytes.size()) throw std::runtime_error("bullet helper protocol: bad sample count");
+  out.history.samples.resize(ns);
+  for (Sample& s : out.history.samples) {
+    s.t_s = r.Get<double>();
+    s.theta1_rad = r.Get<double>();
+    s.theta2_rad = r.Get<double>();
+    s.omega1_radps = r.Get<double>();
+    s.omega2_radps = r.Get<double>();
+    s.mode = static_cast<Mode>(r.Get<std::int32_t>());
+  }
+  const auto ne = r.Get<std::uint64_t>();
+  if (ne > bytes.size()) throw std::runtime_error("bullet helper protocol: bad event count");
+  out.history.events.resize(ne);
+  for (Event& e : out.history.events) {
+    e.t_s = r.Get<double>();
+    e.kind = r.GetStr();
+    e.mode_before = static_cast<Mode>(r.Get<std::int32_t>());
+    e.mode_after = static_cast<Mode>(r.Get<std::int32_t>());
+    e.omega1_before = r.Get<double>();
+    e.omega2_before = r.Get<double>();
+    e.omega1_after = r.Get<double>();
+    e.omega2_after = r.Get<double>();
+    e.energy_before_j = r.Get<double>();
+    e.energy_after_j = r.Get<double>();
+    e.note = r.GetStr();
+  }
+  out.summary = nlohmann::json::parse(r.GetStr());
+  out.wall_s = r.Get<double>();
+  r.ExpectEnd();
+  return out;
+}
+
+std::string ReadBinaryFile(const std::filesystem::path& path) {
+  std::ifstream f(path, std::ios::binary);
+  if (!f) throw std::runtime_error(path.string() + ": cannot open for reading");
+  std::ostringstream ss;
+  ss << f.rdbuf();
+  if (!f.good() && !f.eof()) throw std::runtime_error(path.string() + ": read error");
+  return ss.str();
+}
+
+void WriteBinaryFile(const std::filesystem::path& path, const std::string& bytes) {
+  std::ofstream f(path, std::ios::binary | std::ios::trunc);
+  if (!f) throw std::runtime_error(path.string() + ": cannot open for writing");
+  f.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+  f.close();
+  if (!f) throw std::runtime_error(path.string() + ": write error");
+}
+
+}  // namespace rockbench::bullet

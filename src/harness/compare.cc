@@ -1,0 +1,328 @@
+#include "harness/compare.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+namespace rockbench {
+namespace {
+
+bool IsImpact(const Event& e) {
+  return e.kind == "ground_impact" || e.kind == "interface_impact";
+}
+
+// Landing rate of an impact: the rate of the block that lands, relative to its support.
+double LandingRate(const Event& e) {
+  return e.kind == "ground_impact" ? std::abs(e.omega1_before)
+                                   : std::abs(e.omega2_before - e.omega1_before);
+}
+
+std::vector<const Event*> Impacts(const History& h, double min_rate, int* all) {
+  std::vector<const Event*> out;
+  *all = 0;
+  for (const Event& e : h.events) {
+    if (!IsImpact(e)) continue;
+    ++*all;
+    if (LandingRate(e) >= min_rate) out.push_back(&e);
+  }
+  return out;
+}
+
+// Peak |theta_i| and its time: from the run's summary ("peaks": {"theta1": {"abs_rad", "t_s"}},
+// written per step by the engines) when present, else from the samples.
+void EnginePeak(const EngineRun& run, int block, double* peak, double* t) {
+  const char* key = block == 1 ? "theta1" : "theta2";
+  const nlohmann::json& s = run.summary;
+  if (s.is_object() && s.contains("peaks") && s["peaks"].contains(key)) {
+    *peak = s["peaks"][key].value("abs_rad", 0.0);
+    *t = s["peaks"][key].value("t_s", 0.0);
+    return;
+  }
+  *peak = 0.0;
+  *t = 0.0;
+  for (const Sample& x : run.history.samples) {
+    const double v = std::abs(block == 1 ? x.theta1_rad : x.theta2_rad);
+    if (v > *peak) {
+      *peak = v;
+      *t = x.t_s;
+    }
+  }
+}
+
+// Mode family for the final-state check.
+std::string Family(Mode m, bool overturned) {
+  if (overturned) return "overturned";
+  return m == Mode::kRest ? "rest" : "rocking";
+}
+
+ImpactAgreement MatchImpacts(const History& ref, const History& eng, double until_s,
+                             double min_rate) {
+  ImpactAgreement a;
+  std::vector<const Event*> r = Impacts(ref, min_rate, &a.reference_impacts_all);
+  std::vector<const Event*> e = Impacts(eng, min_rate, &a.engine_impacts_all);
+  // Only impacts inside the compared window count.
+  auto in_window = [until_s](const Event* x) { return x->t_s <= until_s + 1e-12; };
+  r.erase(std::remove_if(r.begin(), r.end(), [&](const Event* x) { return !in_window(x); }),
+          r.end());
+  e.erase(std::remove_if(e.begin(), e.end(), [&](const Event* x) { return !in_window(x); }),
+          e.end());
+  a.reference_impacts = static_cast<int>(r.size());
+  a.engine_impacts = static_cast<int>(e.size());
+  // Impacts slower than twice the minimum rate are marginal: one run may see one where the
+  // other's is just below the minimum, so an unmatched marginal impact is skipped rather than
+  // ending the sequence.
+  auto marginal = [min_rate](const Event* x) { return LandingRate(*x) < 2.0 * min_rate; };
+  size_t i = 0, j = 0;
+  char buf[160];
+  while (i < r.size() && j < e.size()) {
+    const double tr = r[i]->t_s, te = e[j]->t_s;
+    double gap = 0.5;
+    if (i > 0) gap = std::min(gap, tr - r[i - 1]->t_s);
+    if (i + 1 < r.size()) gap = std::min(gap, r[i + 1]->t_s - tr);
+    const double window = std::clamp(0.5 * gap, 2e-3, 0.25);
+    if (r[i]->kind == e[j]->kind && std::abs(te - tr) <= window) {
+      a.time_errors_s.push_back(te - tr);
+      a.max_abs_time_error_s = std::max(a.max_abs_time_error_s, std::abs(te - tr));
+      ++i;
+      ++j;
+      continue;
+    }
+    // The earlier of the two is the missing (reference) or extra (engine) impact.
+    if (te < tr) {
+      if (marginal(e[j])) {
+        ++j;
+        ++a.skipped_marginal;
+        continue;
+      }
+      std::snprintf(buf, sizeof buf, "extra %s at %.6f s", e[j]->kind.c_str(), te);
+    } else {
+      if (marginal(r[i])) {
+        ++i;
+        ++a.skipped_marginal;
+        continue;
+      }
+      std::snprintf(buf, sizeof buf, "missing %s at %.6f s", r[i]->kind.c_str(), tr);
+    }
+    a.first_mismatch = buf;
+    break;
+  }
+  a.matched = static_cast<int>(a.time_errors_s.size());
+  if (a.first_mismatch.empty()) {
+    // Left over at the end: marginal ones do not count.
+    while (i < r.size() && marginal(r[i])) ++i;
+    while (j < e.size() && marginal(e[j])) ++j;
+    if (i < r.size()) {
+      std::snprintf(buf, sizeof buf, "missing %s at %.6f s", r[i]->kind.c_str(), r[i]->t_s);
+      a.first_mismatch = buf;
+    } else if (j < e.size()) {
+      std::snprintf(buf, sizeof buf, "extra %s at %.6f s", e[j]->kind.c_str(), e[j]->t_s);
+      a.first_mismatch = buf;
+    }
+  }
+  return a;
+}
+
+nlohmann::json AngleJson(const AngleAgreement& a) {
+  return {{"max_abs_error_rad", a.max_abs_error_rad},
+          {"rms_error_rad", a.rms_error_rad},
+          {"peak_rel_error", a.peak_rel_error},
+          {"peak_time_error_s", a.peak_time_error_s},
+          {"horizon_s", a.horizon_s},
+          {"within_tolerance", a.within_tolerance},
+          {"tolerance_rad", a.tolerance_rad},
+          {"max_abs_error_horizon_rad", a.max_abs_error_horizon_rad},
+          {"rms_error_horizon_rad", a.rms_error_horizon_rad},
+          {"peak_reference_rad", a.peak_reference_rad},
+          {"peak_reference_t_s", a.peak_reference_t_s},
+          {"peak_engine_rad", a.peak_engine_rad},
+          {"peak_engine_t_s", a.peak_engine_t_s}};
+}
+
+}  // namespace
+
+EngineAgreement CompareWithReference(const Scene& scene, const reference::Result& ref,
+                                     const EngineRun& run, const CompareOptions& options) {
+  EngineAgreement a;
+  a.engine = run.engine;
+  a.wall_s = run.wall_s;
+  a.status = run.summary.is_object() ? run.summary.value("status", std::string()) : "";
+  if (run.summary.is_object() && run.summary.contains("violations")) {
+    a.violations = run.summary["violations"];
+  }
+  const bool two = scene.two_blocks();
+  const reference::Summary& rs = ref.summary;
+
+  // Common grid: the engine's sample times, up to the end of the shorter meaningful run. A
+  // reference that stopped at rest stays valid afterwards (At clamps to its end).
+  const double eng_end = run.history.samples.empty() ? 0.0 : run.history.samples.back().t_s;
+  double until = eng_end;
+  if (rs.status == "overturned" || rs.status == "assumption_violated") {
+    until = std::min(until, ref.trajectory.end_s());
+  }
+  a.compared_until_s = until;
+
+  // Tolerances: scene [compare] tolerance, else 10% of the reference's peak |theta|.
+  const double peak_ref[2] = {rs.peak_theta1_rad, rs.peak_theta2_rad};
+  const double peak_ref_t[2] = {rs.peak_theta1_t_s, rs.peak_theta2_t_s};
+  AngleAgreement ang[2];
+  for (int b = 0; b < 2; ++b) {
+    ang[b].tolerance_rad =
+        scene.compare.tolerance_rad ? *scene.compare.tolerance_rad : 0.1 * peak_ref[b];
+    ang[b].horizon_s = until;
+  }
+  double sum2[2] = {0, 0}, sum2_h[2] = {0, 0};
+  int n_h[2] = {0, 0};
+  int n = 0;
+  for (const Sample& s : run.history.samples) {
+    if (s.t_s > until + 1e-12) break;
+    const Sample r = ref.trajectory.At(s.t_s);
+    const double err[2] = {s.theta1_rad - r.theta1_rad, s.theta2_rad - r.theta2_rad};
+    ++n;
+    for (int b = 0; b < (two ? 2 : 1); ++b) {
+      const double e = std::abs(err[b]);
+      AngleAgreement& g = ang[b];
+      g.max_abs_error_rad = std::max(g.max_abs_error_rad, e);
+      sum2[b] += e * e;
+      if (g.within_tolerance && e > g.tolerance_rad) {
+        g.within_tolerance = false;
+        g.horizon_s = s.t_s;
+      }
+      if (g.within_tolerance) {
+        g.max_abs_error_horizon_rad = std::max(g.max_abs_error_horizon_rad, e);
+        sum2_h[b] += e * e;
+        ++n_h[b];
+      }
+    }
+  }
+  a.samples_compared = n;
+  for (int b = 0; b < (two ? 2 : 1); ++b) {
+    AngleAgreement& g = ang[b];
+    g.rms_error_rad = n > 0 ? std::sqrt(sum2[b] / n) : 0.0;
+    g.rms_error_horizon_rad = n_h[b] > 0 ? std::sqrt(sum2_h[b] / n_h[b]) : 0.0;
+    g.peak_reference_rad = peak_ref[b];
+    g.peak_reference_t_s = peak_ref_t[b];
+    EnginePeak(run, b + 1, &g.peak_engine_rad, &g.peak_engine_t_s);
+    g.peak_rel_error = peak_ref[b] > 0.0 ? (g.peak_engine_rad - peak_ref[b]) / peak_ref[b] : 0.0;
+    g.peak_time_error_s = g.peak_engine_t_s - peak_ref_t[b];
+  }
+  a.theta1 = ang[0];
+  if (two) a.theta2 = ang[1];
+
+  a.impacts = MatchImpacts(ref.history, run.history, until, options.min_impact_rate_radps);
+
+  // Overturning.
+  a.overturn_block_reference = rs.overturn_block;
+  const nlohmann::json& es = run.summary;
+  if (es.is_object() && es.contains("overturn") && es["overturn"].is_object()) {
+    a.overturn_block_engine = es["overturn"].value("block", 0);
+    if (rs.overturn_block) {
+      a.overturn_time_error_s = es["overturn"].value("t_s", 0.0) - rs.overturn_t_s;
+    }
+  }
+  a.overturn_agree = a.overturn_block_reference == a.overturn_block_engine;
+
+  // Final state at the end of the common grid.
+  if (!run.history.samples.empty()) {
+    const Sample* last = &run.history.samples.front();
+    for (const Sample& s : run.history.samples) {
+      if (s.t_s <= until + 1e-12) last = &s;
+    }
+    const Sample r = ref.trajectory.At(last->t_s);
+    a.final_mode_reference = Family(r.mode, rs.overturn_block.has_value());
+    a.final_mode_engine = Family(last->mode, a.overturn_block_engine.has_value());
+    a.final_theta1_error_rad = last->theta1_rad - r.theta1_rad;
+    a.final_theta2_error_rad = two ? last->theta2_rad - r.theta2_rad : 0.0;
+    a.final_agree = a.final_mode_reference == a.final_mode_engine &&
+                    std::abs(a.final_theta1_error_rad) <= ang[0].tolerance_rad &&
+                    (!two || std::abs(a.final_theta2_error_rad) <= ang[1].tolerance_rad);
+  }
+  return a;
+}
+
+nlohmann::json AgreementJson(const EngineAgreement& a) {
+  nlohmann::json j;
+  j["wall_s"] = a.wall_s;
+  j["status"] = a.status;
+  j["compared_until_s"] = a.compared_until_s;
+  j["samples_compared"] = a.samples_compared;
+  j["theta1"] = AngleJson(a.theta1);
+  if (a.theta2) j["theta2"] = AngleJson(*a.theta2);
+  j["impacts_matched"] = a.impacts.matched;
+  j["impacts_reference"] = a.impacts.reference_impacts;
+  j["impacts_engine"] = a.impacts.engine_impacts;
+  j["impacts_reference_all"] = a.impacts.reference_impacts_all;
+  j["impacts_engine_all"] = a.impacts.engine_impacts_all;
+  j["impacts_skipped_marginal"] = a.impacts.skipped_marginal;
+  j["impact_time_errors_s"] = a.impacts.time_errors_s;
+  j["max_abs_impact_time_error_s"] = a.impacts.max_abs_time_error_s;
+  j["first_impact_mismatch"] = a.impacts.first_mismatch.empty()
+                                   ? nlohmann::json(nullptr)
+                                   : nlohmann::json(a.impacts.first_mismatch);
+  nlohmann::json ov;
+  ov["agree"] = a.overturn_agree;
+  ov["reference_block"] =
+      a.overturn_block_reference ? nlohmann::json(*a.overturn_block_reference) : nullptr;
+  ov["engine_block"] = a.overturn_block_engine ? nlohmann::json(*a.overturn_block_engine) : nullptr;
+  ov["time_error_s"] = a.overturn_time_error_s ? nlohmann::json(*a.overturn_time_error_s) : nullptr;
+  j["overturn"] = ov;
+  j["final"] = {{"agree", a.final_agree},
+                {"reference", a.final_mode_reference},
+                {"engine", a.final_mode_engine},
+                {"theta1_error_rad", a.final_theta1_error_rad}};
+  if (a.theta2) j["final"]["theta2_error_rad"] = a.final_theta2_error_rad;
+  j["violations"] = a.violations;
+  return j;
+}
+
+nlohmann::json ComparisonJson(const Scene& scene, const reference::Result& ref,
+                              double reference_wall_s, const std::vector<EngineAgreement>& engines,
+                              const CompareOptions& options) {
+  nlohmann::json j;
+  j["scene"] = {
+      {"path", scene.path.string()}, {"title", scene.title}, {"two_blocks", scene.two_blocks()}};
+  const reference::Summary& rs = ref.summary;
+  j["reference"] = {{"status", rs.status},
+                    {"wall_s", reference_wall_s},
+                    {"impacts", rs.impacts_ground + rs.impacts_interface},
+                    {"peak_theta1_rad", rs.peak_theta1_rad},
+                    {"peak_theta1_t_s", rs.peak_theta1_t_s},
+                    {"end_s", ref.trajectory.end_s()}};
+  if (scene.two_blocks()) {
+    j["reference"]["peak_theta2_rad"] = rs.peak_theta2_rad;
+    j["reference"]["peak_theta2_t_s"] = rs.peak_theta2_t_s;
+  }
+  j["tolerance"] = scene.compare.tolerance_rad
+                       ? nlohmann::json{{"rule", "scene"}, {"rad", *scene.compare.tolerance_rad}}
+                       : nlohmann::json{{"rule", "10% of the reference's peak |theta|"}};
+  j["impact_min_rate_radps"] = options.min_impact_rate_radps;
+  j["engines"] = nlohmann::json::object();
+  for (const EngineAgreement& a : engines) j["engines"][a.engine] = AgreementJson(a);
+  return j;
+}
+
+std::string ComparisonCsv(const std::vector<EngineAgreement>& engines) {
+  std::string out =
+      "engine,block,max_abs_error_rad,rms_error_rad,horizon_s,within_tolerance,tolerance_rad,"
+      "max_abs_error_horizon_rad,rms_error_horizon_rad,peak_reference_rad,peak_engine_rad,"
+      "peak_rel_error,peak_time_error_s,impacts_reference,impacts_engine,impacts_matched,"
+      "max_abs_impact_time_error_s,overturn_agree,final_agree,status,wall_s\n";
+  char line[768];
+  for (const EngineAgreement& a : engines) {
+    for (int b = 1; b <= (a.theta2 ? 2 : 1); ++b) {
+      const AngleAgreement& g = b == 1 ? a.theta1 : *a.theta2;
+      std::snprintf(line, sizeof line,
+                    "%s,%d,%.9e,%.9e,%.9g,%d,%.9e,%.9e,%.9e,%.9e,%.9e,%.9e,%.9e,%d,%d,%d,%.9e,%d,"
+                    "%d,%s,%.6g\n",
+                    a.engine.c_str(), b, g.max_abs_error_rad, g.rms_error_rad, g.horizon_s,
+                    g.within_tolerance ? 1 : 0, g.tolerance_rad, g.max_abs_error_horizon_rad,
+                    g.rms_error_horizon_rad, g.peak_reference_rad, g.peak_engine_rad,
+                    g.peak_rel_error, g.peak_time_error_s, a.impacts.reference_impacts,
+                    a.impacts.engine_impacts, a.impacts.matched, a.impacts.max_abs_time_error_s,
+                    a.overturn_agree ? 1 : 0, a.final_agree ? 1 : 0, a.status.c_str(), a.wall_s);
+      out += line;
+    }
+  }
+  return out;
+}
+
+}  // namespace rockbench

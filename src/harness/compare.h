@@ -1,0 +1,100 @@
+#pragma once
+/// Agreement of an engine's run with the reference model: angle errors on a common time grid
+/// (the engine's sample times, the reference evaluated there by its dense output), agreement
+/// horizon, peaks, impact sequence, overturning and final state. Writes comparison.json and
+/// comparison.csv.
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "harness/engines.h"
+#include "reference/simulate.h"
+#include "scene/scene.h"
+
+namespace rockbench {
+
+/// Agreement of one block's angle (theta1 or theta2) with the reference.
+struct AngleAgreement {
+  double tolerance_rad = 0.0;              ///< horizon tolerance used
+  double max_abs_error_rad = 0.0;          ///< max |theta_engine - theta_ref| over the compared run
+  double rms_error_rad = 0.0;              ///< RMS of the same over the compared run
+  double horizon_s = 0.0;                  ///< first time the error exceeds the tolerance (the
+                                           ///< end of the comparison if it never does)
+  bool within_tolerance = true;            ///< the error never exceeded the tolerance
+  double max_abs_error_horizon_rad = 0.0;  ///< max error before the horizon
+  double rms_error_horizon_rad = 0.0;      ///< RMS error before the horizon
+  double peak_reference_rad = 0.0, peak_reference_t_s = 0.0;  ///< peak |theta| and its time
+  double peak_engine_rad = 0.0, peak_engine_t_s = 0.0;
+  double peak_rel_error = 0.0;     ///< (peak_engine - peak_ref) / peak_ref (0 if ref is 0)
+  double peak_time_error_s = 0.0;  ///< peak_engine_t - peak_ref_t
+};
+
+/// The engine's impacts against the reference's, matched in order until the first missing or
+/// extra impact. An engine impact matches the next reference impact when it is of the same
+/// kind and closer to it than half the gap to the neighbouring reference impacts (clamped to
+/// [2 ms, 0.25 s]). Impacts slower than CompareOptions::min_impact_rate_radps are left out of
+/// both lists; an unmatched impact slower than twice that ("marginal": the other run may have
+/// seen it just below the minimum) is skipped instead of ending the match.
+struct ImpactAgreement {
+  int reference_impacts = 0;  ///< compared (landing rate >= the option's minimum)
+  int engine_impacts = 0;
+  int reference_impacts_all = 0;  ///< all, the slow ones included
+  int engine_impacts_all = 0;
+  int matched = 0;
+  int skipped_marginal = 0;           ///< unmatched marginal impacts passed over
+  std::vector<double> time_errors_s;  ///< engine - reference, per matched impact
+  double max_abs_time_error_s = 0.0;  ///< over the matched impacts
+  std::string first_mismatch;         ///< empty when every impact of both runs matched
+};
+
+/// Options of the comparison.
+struct CompareOptions {
+  /// Impacts whose landing rate (|omega1| before a ground impact, |omega2 - omega1| before an
+  /// interface impact) is below this are not compared, in either run: they are the tails of
+  /// the cascades with which a rocking block settles, and an engine monitor that sees a tilt
+  /// only above 1e-5 rad cannot resolve them (rad/s).
+  double min_impact_rate_radps = 0.02;
+};
+
+/// Everything known about one engine's agreement with the reference.
+struct EngineAgreement {
+  std::string engine;
+  double wall_s = 0.0;
+  std::string status;             ///< the engine's status (summary "status")
+  double compared_until_s = 0.0;  ///< end of the common grid
+  int samples_compared = 0;
+  AngleAgreement theta1;
+  std::optional<AngleAgreement> theta2;  ///< two-block scenes only
+  ImpactAgreement impacts;
+  /// Overturning: both or neither, and the same block.
+  bool overturn_agree = true;
+  std::optional<int> overturn_block_reference, overturn_block_engine;
+  std::optional<double> overturn_time_error_s;
+  /// Final state at compared_until_s: same mode family (rest / rocking / overturned) and angles
+  /// within the horizon tolerances.
+  bool final_agree = true;
+  std::string final_mode_reference, final_mode_engine;
+  double final_theta1_error_rad = 0.0, final_theta2_error_rad = 0.0;
+  nlohmann::json violations;  ///< the engine's summary "violations" (null when it has none)
+};
+
+/// Compares an engine's run with the reference's result on the same scene.
+EngineAgreement CompareWithReference(const Scene& scene, const reference::Result& reference,
+                                     const EngineRun& run, const CompareOptions& options = {});
+
+/// comparison.json: {"scene": ..., "reference": {...}, "engines": {name: {...}}}. Keys read by
+/// other tools: engines.<name>.wall_s, engines.<name>.impacts_matched and, under
+/// engines.<name>.theta1 / theta2: max_abs_error_rad, rms_error_rad, peak_rel_error,
+/// peak_time_error_s, horizon_s.
+nlohmann::json ComparisonJson(const Scene& scene, const reference::Result& reference,
+                              double reference_wall_s, const std::vector<EngineAgreement>& engines,
+                              const CompareOptions& options = {});
+
+/// comparison.csv: a header and one row per engine and block.
+std::string ComparisonCsv(const std::vector<EngineAgreement>& engines);
+
+/// One agreement as JSON (the value under engines.<name> in comparison.json).
+nlohmann::json AgreementJson(const EngineAgreement& a);
+
+}  // namespace rockbench

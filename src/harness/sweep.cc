@@ -1,0 +1,203 @@
+#include "harness/sweep.h"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cstdio>
+#include <exception>
+#include <mutex>
+#include <thread>
+
+#include "harness/engines.h"
+#include "reference/simulate.h"
+
+namespace rockbench {
+namespace {
+
+const char* PrecisionName(BulletPrecision p) {
+  return p == BulletPrecision::kDouble ? "double" : "float";
+}
+const char* IntegratorName(Integrator i) {
+  return i == Integrator::kDopri5 ? "dopri5" : "rk4";
+}
+
+}  // namespace
+
+std::vector<SweepPoint> SweepGrid(bool quick, bool with_bullet) {
+  std::vector<SweepPoint> grid;
+  if (with_bullet) {
+    const std::vector<double> steps =
+        quick ? std::vector<double>{1.0 / 60.0, 1e-3, 1e-4}
+              : std::vector<double>{1.0 / 60.0, 5e-3, 1e-3, 5e-4, 1e-4, 5e-5, 1e-5};
+    const std::vector<int> iterations =
+        quick ? std::vector<int>{10, 50} : std::vector<int>{4, 10, 50, 200};
+    for (BulletPrecision p : {BulletPrecision::kDouble, BulletPrecision::kFloat}) {
+      for (double dt : steps) {
+        for (int it : iterations) {
+          SweepPoint s;
+          s.engine = "bullet";
+          s.precision = p;
+          s.time_step_s = dt;
+          s.solver_iterations = it;
+          grid.push_back(s);
+        }
+      }
+    }
+  }
+  const std::vector<double> rtols = quick ? std::vector<double>{1e-4, 1e-6, 1e-8}
+                                          : std::vector<double>{1e-4, 1e-6, 1e-8, 1e-10, 1e-12};
+  for (double rtol : rtols) {
+    SweepPoint s;
+    s.engine = "reference";
+    s.integrator = Integrator::kDopri5;
+    s.rtol = rtol;
+    s.atol = rtol * 1e-2;
+    grid.push_back(s);
+  }
+  const std::vector<double> rk4 =
+      quick ? std::vector<double>{1e-3} : std::vector<double>{1e-2, 1e-3, 1e-4};
+  for (double h : rk4) {
+    SweepPoint s;
+    s.engine = "reference";
+    s.integrator = Integrator::kRk4;
+    s.rk4_step_s = h;
+    grid.push_back(s);
+  }
+  return grid;
+}
+
+Scene SceneForPoint(const Scene& base, const SweepPoint& p) {
+  Scene s = base;
+  if (p.engine == "bullet") {
+    s.bullet.precision = p.precision;
+    s.bullet.time_step_s = p.time_step_s;
+    s.bullet.solver_iterations = p.solver_iterations;
+  } else {
+    s.model.integrator = p.integrator;
+    if (p.integrator == Integrator::kDopri5) {
+      s.model.rtol = p.rtol;
+      s.model.atol = p.atol;
+    } else {
+      s.model.step_s = p.rk4_step_s;
+    }
+  }
+  return s;
+}
+
+std::vector<SweepRow> RunSweep(const Scene& scene, const GroundMotion& motion,
+                               const SweepOptions& options, const SweepProgress& progress,
+                               double* baseline_wall_s) {
+  if (options.repeat < 1) throw SceneError("--repeat: expected a positive integer");
+  if (options.threads < 0) throw SceneError("--threads: expected a non-negative integer");
+  const std::vector<std::string> engines = AvailableEngines();
+  const bool with_bullet = std::find(engines.begin(), engines.end(), "bullet") != engines.end();
+  const std::vector<SweepPoint> grid = SweepGrid(options.quick, with_bullet);
+
+  // The tight reference every row is compared with.
+  Scene tight = scene;
+  tight.model.integrator = Integrator::kDopri5;
+  tight.model.rtol = 1e-12;
+  tight.model.atol = 1e-14;
+  const auto start = std::chrono::steady_clock::now();
+  const reference::Result baseline = reference::Simulate(tight, motion);
+  if (baseline_wall_s) {
+    *baseline_wall_s =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  }
+
+  std::vector<SweepRow> rows(grid.size());
+  std::atomic<size_t> next{0};
+  std::mutex progress_mutex;
+  int done = 0;
+  auto worker = [&] {
+    for (;;) {
+      const size_t i = next.fetch_add(1);
+      if (i >= grid.size()) return;
+      SweepRow& row = rows[i];
+      row.point = grid[i];
+      try {
+        const Scene s = SceneForPoint(scene, grid[i]);
+        EngineRun first;
+        double best = 0.0;
+        for (int r = 0; r < options.repeat; ++r) {
+          EngineRun run = RunEngine(grid[i].engine, s, motion);
+          if (r == 0 || run.wall_s < best) best = run.wall_s;
+          if (r == 0) first = std::move(run);
+        }
+        first.wall_s = best;
+        row.wall_s = best;
+        row.agreement = CompareWithReference(scene, baseline, first);
+      } catch (const std::exception& e) {
+        row.error = e.what();
+      }
+      if (progress) {
+        std::lock_guard<std::mutex> lock(progress_mutex);
+        progress(++done, static_cast<int>(grid.size()), grid[i]);
+      }
+    }
+  };
+  unsigned n_threads = options.threads > 0 ? static_cast<unsigned>(options.threads)
+                                           : std::max(1u, std::thread::hardware_concurrency());
+  n_threads =
+      std::min<unsigned>(n_threads, static_cast<unsigned>(std::max<size_t>(1, grid.size())));
+  std::vector<std::thread> pool;
+  for (unsigned t = 1; t < n_threads; ++t) pool.emplace_back(worker);
+  worker();
+  for (std::thread& t : pool) t.join();
+  return rows;
+}
+
+std::string SweepCsv(const std::vector<SweepRow>& rows) {
+  std::string out =
+      "engine,precision,time_step_s,solver_iterations,integrator,rtol,atol,rk4_step_s,status,"
+      "wall_s,theta1_max_abs_error_rad,theta1_rms_error_rad,theta1_horizon_s,"
+      "theta1_peak_rel_error,theta1_peak_time_error_s,theta2_max_abs_error_rad,"
+      "theta2_rms_error_rad,theta2_horizon_s,theta2_peak_rel_error,theta2_peak_time_error_s,"
+      "impacts_reference,impacts_engine,impacts_matched,max_abs_impact_time_error_s,"
+      "overturn_agree,final_agree,error\n";
+  char buf[1024];
+  for (const SweepRow& r : rows) {
+    const SweepPoint& p = r.point;
+    const bool bullet = p.engine == "bullet";
+    if (bullet) {
+      std::snprintf(buf, sizeof buf, "bullet,%s,%.9g,%d,,,,,", PrecisionName(p.precision),
+                    p.time_step_s, p.solver_iterations);
+    } else if (p.integrator == Integrator::kDopri5) {
+      std::snprintf(buf, sizeof buf, "reference,,,,%s,%.3g,%.3g,,", IntegratorName(p.integrator),
+                    p.rtol, p.atol);
+    } else {
+      std::snprintf(buf, sizeof buf, "reference,,,,%s,,,%.9g,", IntegratorName(p.integrator),
+                    p.rk4_step_s);
+    }
+    out += buf;
+    if (!r.error.empty()) {
+      // Keep the CSV one line per row: no commas or newlines inside the message.
+      std::string msg = r.error;
+      std::replace(msg.begin(), msg.end(), ',', ';');
+      std::replace(msg.begin(), msg.end(), '\n', ' ');
+      out += "error" + std::string(18, ',') + msg + "\n";
+      continue;
+    }
+    const EngineAgreement& a = r.agreement;
+    const AngleAgreement& t1 = a.theta1;
+    std::snprintf(buf, sizeof buf, "%s,%.6g,%.6e,%.6e,%.9g,%.6e,%.6e,", a.status.c_str(), r.wall_s,
+                  t1.max_abs_error_rad, t1.rms_error_rad, t1.horizon_s, t1.peak_rel_error,
+                  t1.peak_time_error_s);
+    out += buf;
+    if (a.theta2) {
+      const AngleAgreement& t2 = *a.theta2;
+      std::snprintf(buf, sizeof buf, "%.6e,%.6e,%.9g,%.6e,%.6e,", t2.max_abs_error_rad,
+                    t2.rms_error_rad, t2.horizon_s, t2.peak_rel_error, t2.peak_time_error_s);
+      out += buf;
+    } else {
+      out += ",,,,,";
+    }
+    std::snprintf(buf, sizeof buf, "%d,%d,%d,%.6e,%d,%d,\n", a.impacts.reference_impacts,
+                  a.impacts.engine_impacts, a.impacts.matched, a.impacts.max_abs_time_error_s,
+                  a.overturn_agree ? 1 : 0, a.final_agree ? 1 : 0);
+    out += buf;
+  }
+  return out;
+}
+
+}  // namespace rockbench

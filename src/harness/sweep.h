@@ -1,0 +1,67 @@
+#pragma once
+/// Accuracy/cost sweep: runs the engines over a grid of settings (Bullet: time step, solver
+/// iterations, precision; reference: dopri5 tolerances and fixed-step RK4 steps) and compares
+/// each run with a tight-tolerance reference (dopri5, rtol 1e-12). Runs in parallel on a
+/// std::thread pool; rows come out in the grid's fixed order, so every column but the wall
+/// times is independent of the number of threads.
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "harness/compare.h"
+#include "scene/ground_motion.h"
+#include "scene/scene.h"
+
+namespace rockbench {
+
+/// One grid point.
+struct SweepPoint {
+  std::string engine;  ///< "bullet" or "reference"
+  // Bullet.
+  BulletPrecision precision = BulletPrecision::kDouble;
+  double time_step_s = 0.0;
+  int solver_iterations = 0;
+  // Reference.
+  Integrator integrator = Integrator::kDopri5;
+  double rtol = 0.0, atol = 0.0;  ///< dopri5 tolerances
+  double rk4_step_s = 0.0;        ///< rk4 fixed step, s
+};
+
+/// The grid, in row order. Full: Bullet time steps 1/60, 5e-3, 1e-3, 5e-4, 1e-4, 5e-5, 1e-5 s
+/// x solver iterations 4, 10, 50, 200 x double, float (only when `with_bullet`); reference
+/// dopri5 rtol 1e-4 ... 1e-12 (atol = rtol / 100) and RK4 steps 1e-2, 1e-3, 1e-4 s. Quick:
+/// Bullet 1/60, 1e-3, 1e-4 s x 10, 50 iterations x both precisions; dopri5 rtol 1e-4, 1e-6,
+/// 1e-8; RK4 1e-3 s.
+std::vector<SweepPoint> SweepGrid(bool quick, bool with_bullet);
+
+/// The scene of a grid point: `base` with the point's settings.
+Scene SceneForPoint(const Scene& base, const SweepPoint& point);
+
+struct SweepOptions {
+  bool quick = false;
+  int repeat = 1;   ///< repetitions per point; the row's wall time is their minimum
+  int threads = 0;  ///< worker threads; 0: std::thread::hardware_concurrency()
+};
+
+/// One row of sweep.csv.
+struct SweepRow {
+  SweepPoint point;
+  double wall_s = 0.0;  ///< minimum over the repetitions, s
+  EngineAgreement agreement;
+  std::string error;  ///< non-empty when the run failed (its message)
+};
+
+/// Progress callback: (runs done, runs total, the point just finished). Called from worker
+/// threads, one call at a time.
+using SweepProgress = std::function<void(int, int, const SweepPoint&)>;
+
+/// Runs the sweep on a scene. The tight reference runs first (its wall time in *baseline_wall_s
+/// when given). Throws SceneError for bad options.
+std::vector<SweepRow> RunSweep(const Scene& scene, const GroundMotion& motion,
+                               const SweepOptions& options, const SweepProgress& progress = {},
+                               double* baseline_wall_s = nullptr);
+
+/// sweep.csv text: header and one row per grid point, in grid order.
+std::string SweepCsv(const std::vector<SweepRow>& rows);
+
+}  // namespace rockbench

@@ -1,0 +1,268 @@
+// The monitor on synthetic states (no Bullet): angle read-back, mode inference, impacts with
+// interpolated times and post-impact rates, output sampling, and the measures of what the model
+// forbids (slip, uplift, penetration, energy growth, blow-up, overturning).
+#include "engines/bullet/monitor.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <string>
+
+#include "engines/bullet/placement.h"
+
+namespace rockbench::bullet {
+namespace {
+
+// Single block B = 1 m, H = 4 m, 10 t; or the thesis's two blocks.
+EngineInput Input(bool two, double dt = 1e-3, double out = 1e-3) {
+  EngineInput in;
+  if (two) {
+    in.block1 = {1.25, 1.25, 1.0, 3906.25, 0.0};
+    in.block2 = BlockDef{1.0, 2.5, 1.0, 6250.0, 0.0};
+  } else {
+    in.block1 = {1.0, 4.0, 1.0, 10000.0, 0.0};
+  }
+  in.config.time_step_s = dt;
+  in.run.output_interval_s = out;
+  in.run.duration_s = 1.0;
+  in.steps = static_cast<std::int64_t>(std::llround(1.0 / dt));
+  return in;
+}
+
+BodyReadout ToReadout(const PlanarPose& p) {
+  return {p.x_m, p.y_m, std::cos(p.phi_rad), std::sin(p.phi_rad), p.vx_mps, p.vy_mps, p.w_radps};
+}
+
+// The readout of an exact pivot-chain state (what an ideal engine would produce).
+StepReadout At(const EngineInput& in, double t, double th1, double w1, double th2 = 0.0,
+               double w2 = 0.0) {
+  const double b1 = 0.5 * in.block1.width_m, h1 = 0.5 * in.block1.height_m;
+  const double b2 = in.block2 ? 0.5 * in.block2->width_m : 0.0;
+  const double h2 = in.block2 ? 0.5 * in.block2->height_m : 0.0;
+  const StackPlacement p = PlaceStack(b1, h1, b2, h2, in.two_blocks(), {th1, th2, w1, w2});
+  StepReadout r;
+  r.t_s = t;
+  r.block1 = ToReadout(p.block1);
+  r.block2 = ToReadout(p.block2);
+  return r;
+}
+
+TEST(MonitorTest, ReadsAnglesBackInTheThesisConvention) {
+  EngineInput in = Input(true);
+  in.overturn_rad = 10.0;  // let the blocks turn past pi without stopping
+  Monitor m(in);
+  m.Start(At(in, 0.0, 0.1, -0.2, 0.15, 0.3));
+  EXPECT_NEAR(m.last().theta1_rad, 0.1, 1e-15);
+  EXPECT_NEAR(m.last().theta2_rad, 0.15, 1e-15);
+  EXPECT_NEAR(m.last().omega1_radps, -0.2, 1e-15);
+  EXPECT_NEAR(m.last().omega2_radps, 0.3, 1e-15);
+  EXPECT_EQ(m.last().mode, Mode::k1a);
+  // Angles are unwrapped: a block turned past pi keeps counting.
+  m.Step(1, At(in, 1e-3, 3.0, 0.0, 3.0, 0.0));
+  m.Step(2, At(in, 2e-3, 3.3, 0.0, 3.3, 0.0));
+  EXPECT_NEAR(m.last().theta1_rad, 3.3, 1e-12);
+}
+
+TEST(MonitorTest, InfersEveryModeFromTheState) {
+  struct Case {
+    double th1, w1, th2, w2;
+    Mode mode;
+  };
+  // Angles well beyond the 1e-5 rad threshold; a flat block turning faster than 1e-2 rad/s is
+  // passing through zero towards the side of its rate.
+  const Case cases[] = {
+      {0.1, 0, 0.15, 0, Mode::k1a},    {-0.1, 0, -0.15, 0, Mode::k1b},
+      {0.1, 0, 0.05, 0, Mode::k2a},    {-0.1, 0, -0.05, 0, Mode::k2b},
+      {0.1, 0, 0.1, 0, Mode::k3a},     {-0.1, 0, -0.1, 0, Mode::k3b},
+      {0.0, 0, 0.1, 0, Mode::k4a},     {0.0, 0, -0.1, 0, Mode::k4b},
+      {0.0, 0, 0.0, 0, Mode::kRest},   {2e-6, 1e-3, 2e-6, 1e-3, Mode::kRest},
+      {0.0, 0.5, 0.0, 0.5, Mode::k3a}, {0.0, -0.5, 0.0, -0.5, Mode::k3b},
+  };
+  const EngineInput in = Input(true);
+  for (const Case& c : cases) {
+    Monitor m(in);
+    m.Start(At(in, 0.0, c.th1, c.w1, c.th2, c.w2));
+    EXPECT_EQ(m.last().mode, c.mode) << c.th1 << " " << c.th2 << " " << c.w1;
+  }
+  const EngineInput one = Input(false);
+  Monitor m(one);
+  m.Start(At(one, 0.0, -0.05, 0.0));
+  EXPECT_EQ(m.last().mode, Mode::k3b);
+  EXPECT_FALSE(m.history().two_blocks);
+}
+
+TEST(MonitorTest, GroundImpactTimeIsTheInterpolatedCrossingAndRatesComeAfterContact) {
+  const EngineInput in = Input(false);
+  Monitor m(in);
+  m.Start(At(in, 0.0, 4e-5, -0.4));
+  m.Step(1, At(in, 1e-3, 3e-5, -0.4));
+  // Crosses zero between 2 and 3 ms: 1e-5 -> -3e-5 puts the zero at 2.25 ms.
+  m.Step(2, At(in, 2e-3, 1e-5, -0.4));
+  m.Step(3, At(in, 3e-3, -3e-5, -0.41));  // crossed (the impulse may be in this step or next)
+  EXPECT_TRUE(m.history().events.empty());
+  m.Step(4, At(in, 4e-3, -6e-5, -0.36));  // the engine applied the impulse by now
+  m.Finish();
+  ASSERT_EQ(m.history().events.size(), 1u);
+  const Event& e = m.history().events[0];
+  EXPECT_EQ(e.kind, "ground_impact");
+  EXPECT_NEAR(e.t_s, 2.25e-3, 1e-12);
+  EXPECT_EQ(e.mode_before, Mode::k3a);
+  EXPECT_EQ(e.mode_after, Mode::k3b);
+  EXPECT_DOUBLE_EQ(e.omega1_before, -0.4);  // the step before the crossing
+  EXPECT_DOUBLE_EQ(e.omega1_after, -0.36);
+  EXPECT_EQ(m.Summary()["impacts"]["ground"], 1);
+}
+
+TEST(MonitorTest, InterfaceImpactWhenBlockTwoLandsOnBlockOne) {
+  const EngineInput in = Input(true);
+  Monitor m(in);
+  // Block 1 flat (mode 4a), block 2 rocking back onto it.
+  m.Start(At(in, 0.0, 0.0, 0.0, 2e-4, -0.5));
+  m.Step(1, At(in, 1e-3, 0.0, 0.0, 1e-4, -0.5));
+  m.Step(2, At(in, 2e-3, 0.0, 0.0, -1e-4, -0.5));  // crossing at 1.5 ms
+  m.Step(3, At(in, 3e-3, 0.0, 0.0, -3e-4, -0.4));
+  m.Finish();
+  ASSERT_EQ(m.history().events.size(), 1u);
+  EXPECT_EQ(m.history().events[0].kind, "interface_impact");
+  EXPECT_NEAR(m.history().events[0].t_s, 1.5e-3, 1e-12);
+  EXPECT_EQ(m.history().events[0].mode_before, Mode::k4a);
+  EXPECT_EQ(m.history().events[0].mode_after, Mode::k4b);
+}
+
+TEST(MonitorTest, InitiationAndRestAreModeChanges) {
+  const EngineInput in = Input(false);
+  Monitor m(in);
+  m.Start(At(in, 0.0, 0.0, 0.0));
+  m.Step(1, At(in, 1e-3, 0.0, 0.0));
+  m.Step(2, At(in, 2e-3, -2e-5, -0.02));  // lifts off its left corner
+  m.Finish();
+  ASSERT_EQ(m.history().events.size(), 1u);
+  EXPECT_EQ(m.history().events[0].kind, "initiation");
+  EXPECT_EQ(m.history().events[0].mode_after, Mode::k3b);
+  EXPECT_EQ(m.Summary()["initiations"], 1);
+}
+
+TEST(MonitorTest, SamplesAtTheStepNearestEachOutputTime) {
+  // dt = 1 ms, output every 2.4 ms: the steps nearest 0, 2.4, 4.8, 7.2, 9.6 ms.
+  const EngineInput in = Input(false, 1e-3, 2.4e-3);
+  Monitor m(in);
+  m.Start(At(in, 0.0, 0.0, 0.0));
+  for (int n = 1; n <= 10; ++n) m.Step(n, At(in, n * 1e-3, 0.0, 0.0));
+  m.Finish();
+  std::vector<double> t;
+  for (const Sample& s : m.history().samples) t.push_back(s.t_s);
+  ASSERT_EQ(t.size(), 5u);
+  EXPECT_DOUBLE_EQ(t[0], 0.0);
+  EXPECT_DOUBLE_EQ(t[1], 2e-3);
+  EXPECT_DOUBLE_EQ(t[2], 5e-3);
+  EXPECT_DOUBLE_EQ(t[3], 7e-3);
+  EXPECT_DOUBLE_EQ(t[4], 10e-3);
+  // The last state is always a sample.
+  Monitor m2(in);
+  m2.Start(At(in, 0.0, 0.0, 0.0));
+  m2.Step(1, At(in, 1e-3, 0.0, 0.0));
+  m2.Finish();
+  EXPECT_DOUBLE_EQ(m2.history().samples.back().t_s, 1e-3);
+}
+
+TEST(MonitorTest, MeasuresSlipUpliftAndPenetration) {
+  const EngineInput in = Input(true);
+  {
+    // Block 1 slides 2 mm to the right on the ground, block 2 riding along.
+    Monitor m(in);
+    m.Start(At(in, 0.0, 0.0, 0.0));
+    for (int n = 1; n <= 20; ++n) {
+      StepReadout r = At(in, n * 1e-3, 0.0, 0.0);
+      r.block1.x_m += n * 1e-4;
+      r.block2.x_m += n * 1e-4;
+      m.Step(n, r);
+    }
+    const auto v = m.Summary()["violations"];
+    EXPECT_NEAR(v["slip_ground_m"].get<double>(), 2e-3, 1e-12);
+    EXPECT_NEAR(v["drift_ground_max_m"].get<double>(), 2e-3, 1e-12);
+    EXPECT_NEAR(v["slip_interface_m"].get<double>(), 0.0, 1e-15);
+    EXPECT_TRUE(v["sliding"].get<bool>());  // 2 mm > 1e-3 of the 1.25 m width
+    EXPECT_FALSE(v["uplift"].get<bool>());
+  }
+  {
+    // The whole stack jumps 1 mm for 5 steps, then block 2 sinks 0.2 mm into block 1.
+    Monitor m(in);
+    m.Start(At(in, 0.0, 0.0, 0.0));
+    for (int n = 1; n <= 10; ++n) {
+      StepReadout r = At(in, n * 1e-3, 0.0, 0.0);
+      if (n <= 5) {
+        r.block1.y_m += 1e-3;
+        r.block2.y_m += 1e-3;
+      } else {
+        r.block2.y_m -= 2e-4;
+      }
+      m.Step(n, r);
+    }
+    const auto v = m.Summary()["violations"];
+    EXPECT_EQ(v["uplift_ground_episodes"], 1);
+    EXPECT_NEAR(v["uplift_ground_max_m"].get<double>(), 1e-3, 1e-12);
+    EXPECT_NEAR(v["uplift_ground_s"].get<double>(), 5e-3, 1e-12);
+    EXPECT_NEAR(v["penetration_interface_max_m"].get<double>(), 2e-4, 1e-12);
+    EXPECT_TRUE(v["uplift"].get<bool>());
+    EXPECT_TRUE(v["penetration"].get<bool>());  // 0.2 mm > 0.1 mm
+  }
+}
+
+TEST(MonitorTest, EnergyGrowthWithoutInputIsABlowUp) {
+  const EngineInput in = Input(false);
+  Monitor m(in);
+  m.Start(At(in, 0.0, 0.0, 0.0));
+  bool go = true;
+  int n = 1;
+  // Spin the flat block faster and faster with no base input.
+  for (; go && n < 100; ++n) go = m.Step(n, At(in, n * 1e-3, 0.0, 0.0 + 0.2 * n));
+  EXPECT_FALSE(go);
+  EXPECT_EQ(m.status(), "blow_up");
+  const auto s = m.Summary();
+  EXPECT_TRUE(s["violations"]["blow_up"].get<bool>());
+  EXPECT_TRUE(s["violations"]["energy_growth"].get<bool>());
+  EXPECT_GT(s["violations"]["energy_gain_rel"].get<double>(), 1.0);
+  // With base input the same growth is not counted.
+  Monitor m2(in);
+  m2.Start(At(in, 0.0, 0.0, 0.0));
+  for (int k = 1; k < 50; ++k) {
+    StepReadout r = At(in, k * 1e-3, 0.0, 0.0 + 0.2 * k);
+    r.base_accelerating = true;
+    EXPECT_TRUE(m2.Step(k, r));
+  }
+  EXPECT_EQ(m2.Summary()["violations"]["energy_gain_max_j"].get<double>(), 0.0);
+}
+
+TEST(MonitorTest, NonFiniteStateStopsTheRunWithoutThrowing) {
+  const EngineInput in = Input(true);
+  Monitor m(in);
+  m.Start(At(in, 0.0, 0.01, 0.0, 0.01, 0.0));
+  StepReadout r = At(in, 1e-3, 0.01, 0.0, 0.01, 0.0);
+  r.block2.w_radps = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_FALSE(m.Step(1, r));
+  m.Finish();
+  EXPECT_EQ(m.status(), "blow_up");
+  EXPECT_EQ(m.history().samples.size(), 1u);  // the NaN state is not a sample
+}
+
+TEST(MonitorTest, OverturnStopsAtTheModelAngle) {
+  EngineInput in = Input(false);
+  in.overturn_rad = std::numbers::pi / 2;
+  Monitor m(in);
+  m.Start(At(in, 0.0, 1.0, 2.0));
+  EXPECT_TRUE(m.Step(1, At(in, 1e-3, 1.5, 2.0)));
+  // Lying on its side, within the 0.01 rad slack of pi/2.
+  EXPECT_FALSE(m.Step(2, At(in, 2e-3, std::numbers::pi / 2 - 0.005, 0.0)));
+  m.Finish();
+  EXPECT_EQ(m.status(), "overturned");
+  const auto s = m.Summary();
+  EXPECT_EQ(s["overturn"]["block"], 1);
+  EXPECT_DOUBLE_EQ(s["overturn"]["t_s"].get<double>(), 2e-3);
+  ASSERT_FALSE(m.history().events.empty());
+  EXPECT_EQ(m.history().events.back().kind, "overturn");
+}
+
+}  // namespace
+}  // namespace rockbench::bullet

@@ -1,0 +1,131 @@
+// The file format between rockbench and the float helper: bit-exact round trips, and clear
+// errors for truncated, foreign or stale files.
+#include "engines/bullet/protocol.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <stdexcept>
+#include <string>
+
+namespace rockbench::bullet {
+namespace {
+
+EngineInput SomeInput() {
+  EngineInput in;
+  in.block1 = {1.25, 1.25, 0.7, 3906.25, 2500.0};
+  in.block2 = BlockDef{1.0, 2.5, 1.1, 6250.0, 0.0};
+  in.initial = {0.1, 0.2, -0.3, 1.0 / 3.0};
+  in.run = {20.0, 0.01, 9.80665};
+  in.config.time_step_s = 1.0 / 60.0;
+  in.config.solver_iterations = 77;
+  in.config.precision = BulletPrecision::kFloat;
+  in.config.drive = BulletDrive::kKinematic;
+  in.config.erp = 0.1;
+  in.config.erp2 = 0.7;
+  in.config.split_impulse = false;
+  in.config.split_impulse_threshold = 0.0;
+  in.config.restitution = 0.05;
+  in.config.friction = 2.0;
+  in.config.rolling_friction = 0.001;
+  in.config.restitution_velocity_threshold = 0.1;
+  in.config.margin_m = 0.002;
+  in.config.ground_depth_m = 3.0;
+  in.config.kinematic_highpass_hz = 0.05;
+  in.overturn_rad = 1.2;
+  in.rest_rate_radps = 1e-5;
+  in.steps = 1200;
+  in.motion_end_s = 19.9;
+  for (int k = 0; k < 1200; ++k) {
+    in.drive.ax_mps2.push_back(std::sin(0.1 * k) / 7.0);
+    in.drive.ay_mps2.push_back(std::cos(0.3 * k) / 3.0);
+  }
+  for (int k = 0; k <= 1200; ++k) {
+    in.drive.ux_m.push_back(1e-3 * k / 9.0);
+    in.drive.uy_m.push_back(-1e-4 * k / 11.0);
+  }
+  in.drive.ux0_mps = 1e-7 / 3.0;
+  in.drive.uy0_mps = -2e-7;
+  in.drive.correction_max_x_mps2 = 0.123;
+  in.drive.correction_max_y_mps2 = 0.456;
+  in.drive.raw_peak_x_m = 1.5;
+  in.drive.raw_peak_y_m = 0.25;
+  in.drive.peak_x_m = 0.3;
+  in.drive.peak_y_m = 0.05;
+  return in;
+}
+
+TEST(ProtocolTest, InputRoundTripIsBitExact) {
+  const EngineInput a = SomeInput();
+  const std::string bytes = SerializeInput(a);
+  const EngineInput b = ParseInput(bytes);
+  EXPECT_EQ(SerializeInput(b), bytes);  // every field, every bit
+  EXPECT_EQ(b.block2->depth_m, 1.1);
+  EXPECT_EQ(b.initial.omega2_radps, 1.0 / 3.0);
+  EXPECT_EQ(b.config.precision, BulletPrecision::kFloat);
+  EXPECT_EQ(b.config.drive, BulletDrive::kKinematic);
+  EXPECT_EQ(b.config.solver_iterations, 77);
+  EXPECT_EQ(b.drive.ax_mps2, a.drive.ax_mps2);
+  EXPECT_EQ(b.drive.uy_m, a.drive.uy_m);
+  EXPECT_EQ(b.steps, 1200);
+  // A single block and empty drive arrays survive too.
+  EngineInput one;
+  one.block1 = {1.0, 4.0, 1.0, 1e4, 0.0};
+  const EngineInput c = ParseInput(SerializeInput(one));
+  EXPECT_FALSE(c.block2.has_value());
+  EXPECT_TRUE(c.drive.ax_mps2.empty());
+}
+
+TEST(ProtocolTest, OutputRoundTripIsBitExact) {
+  EngineOutput a;
+  a.history.two_blocks = true;
+  a.history.samples.push_back({0.0, 0.1, 0.2, 0.3, 0.4, Mode::k1a});
+  a.history.samples.push_back({1e-3, -1.0 / 3.0, 2.0 / 7.0, 0.5, -0.5, Mode::k4b});
+  Event e;
+  e.t_s = 0.6983;
+  e.kind = "ground_impact";
+  e.mode_before = Mode::k3a;
+  e.mode_after = Mode::k3b;
+  e.omega1_before = -0.3995;
+  e.omega1_after = -0.3642;
+  e.energy_before_j = 1.0 / 3.0;
+  e.note = "a note";
+  a.history.events.push_back(e);
+  a.summary = {{"status", "completed"}, {"violations", {{"slip_ground_m", 1e-7}}}};
+  a.wall_s = 0.125;
+  const EngineOutput b = ParseOutput(SerializeOutput(a));
+  EXPECT_EQ(SerializeOutput(b), SerializeOutput(a));
+  ASSERT_EQ(b.history.samples.size(), 2u);
+  EXPECT_EQ(b.history.samples[1].theta1_rad, -1.0 / 3.0);
+  EXPECT_EQ(b.history.samples[1].mode, Mode::k4b);
+  ASSERT_EQ(b.history.events.size(), 1u);
+  EXPECT_EQ(b.history.events[0].kind, "ground_impact");
+  EXPECT_EQ(b.history.events[0].note, "a note");
+  EXPECT_EQ(b.summary["violations"]["slip_ground_m"], 1e-7);
+  EXPECT_EQ(b.wall_s, 0.125);
+}
+
+TEST(ProtocolTest, RefusesTruncatedForeignAndStaleData) {
+  const std::string bytes = SerializeInput(SomeInput());
+  for (size_t cut : {size_t{0}, size_t{5}, size_t{12}, bytes.size() / 2, bytes.size() - 1}) {
+    EXPECT_THROW(ParseInput(bytes.substr(0, cut)), std::runtime_error) << cut;
+  }
+  EXPECT_THROW(ParseInput(bytes + "x"), std::runtime_error);
+  // An output file is not an input file.
+  EngineOutput o;
+  o.summary = nlohmann::json::object();
+  EXPECT_THROW(ParseInput(SerializeOutput(o)), std::runtime_error);
+  // Another version: the message says to rebuild both programs.
+  std::string stale = bytes;
+  stale[8] = static_cast<char>(stale[8] + 1);
+  try {
+    ParseInput(stale);
+    ADD_FAILURE() << "accepted another protocol version";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("rebuild"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace rockbench::bullet

@@ -1,0 +1,193 @@
+// The sweep: its grid, one row per run in a fixed order, results independent of the number of
+// threads, and the CSV format.
+#include "harness/sweep.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "harness/engines.h"
+
+namespace rockbench {
+namespace {
+
+// Housner's block for 0.8 s: the first impact (0.698 s) is inside.
+Scene ShortHousner() {
+  Scene s;
+  s.block1 = {1.0, 4.0, 1.0, 10000.0, 0.0};
+  s.initial.theta1_rad = 0.5 * std::atan(0.25);
+  s.run.duration_s = 0.8;
+  s.run.output_interval_s = 0.01;
+  s.bullet.split_impulse_threshold = 0.0;
+  return s;
+}
+
+std::vector<std::string> Lines(const std::string& text) {
+  std::vector<std::string> out;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) out.push_back(line);
+  return out;
+}
+
+// The CSV with the wall-time column (10th) blanked.
+std::string WithoutWallTimes(const std::string& csv) {
+  std::string out;
+  for (const std::string& line : Lines(csv)) {
+    std::vector<std::string> f;
+    std::stringstream ss(line);
+    for (std::string x; std::getline(ss, x, ',');) f.push_back(x);
+    if (f.size() > 9) f[9].clear();
+    for (size_t i = 0; i < f.size(); ++i) out += (i ? "," : "") + f[i];
+    out += "\n";
+  }
+  return out;
+}
+
+TEST(SweepTest, GridSpansTheRequestedRanges) {
+  const std::vector<SweepPoint> full = SweepGrid(false, true);
+  std::set<double> steps;
+  std::set<int> iterations;
+  std::set<BulletPrecision> precisions;
+  std::set<double> rtols;
+  int rk4 = 0;
+  for (const SweepPoint& p : full) {
+    if (p.engine == "bullet") {
+      steps.insert(p.time_step_s);
+      iterations.insert(p.solver_iterations);
+      precisions.insert(p.precision);
+    } else if (p.integrator == Integrator::kDopri5) {
+      rtols.insert(p.rtol);
+      EXPECT_DOUBLE_EQ(p.atol, p.rtol * 1e-2);
+    } else {
+      ++rk4;
+      EXPECT_GT(p.rk4_step_s, 0.0);
+    }
+  }
+  EXPECT_DOUBLE_EQ(*steps.rbegin(), 1.0 / 60.0);
+  EXPECT_DOUBLE_EQ(*steps.begin(), 1e-5);
+  EXPECT_EQ(*iterations.begin(), 4);
+  EXPECT_EQ(*iterations.rbegin(), 200);
+  EXPECT_EQ(precisions.size(), 2u);
+  EXPECT_DOUBLE_EQ(*rtols.rbegin(), 1e-4);
+  EXPECT_DOUBLE_EQ(*rtols.begin(), 1e-12);
+  EXPECT_EQ(rk4, 3);
+  EXPECT_EQ(full.size(), steps.size() * iterations.size() * 2 + rtols.size() + 3);
+  // Quick is a subset; without Bullet only reference rows remain.
+  EXPECT_LT(SweepGrid(true, true).size(), full.size());
+  for (const SweepPoint& p : SweepGrid(true, false)) EXPECT_EQ(p.engine, "reference");
+}
+
+TEST(SweepTest, PointSettingsGoIntoTheScene) {
+  SweepPoint p;
+  p.engine = "bullet";
+  p.precision = BulletPrecision::kFloat;
+  p.time_step_s = 5e-4;
+  p.solver_iterations = 7;
+  const Scene s = SceneForPoint(ShortHousner(), p);
+  EXPECT_EQ(s.bullet.precision, BulletPrecision::kFloat);
+  EXPECT_EQ(s.bullet.time_step_s, 5e-4);
+  EXPECT_EQ(s.bullet.solver_iterations, 7);
+  EXPECT_EQ(s.bullet.split_impulse_threshold, 0.0);  // the rest of the scene is kept
+  SweepPoint r;
+  r.engine = "reference";
+  r.integrator = Integrator::kRk4;
+  r.rk4_step_s = 1e-3;
+  EXPECT_EQ(SceneForPoint(ShortHousner(), r).model.integrator, Integrator::kRk4);
+  EXPECT_EQ(SceneForPoint(ShortHousner(), r).model.step_s, 1e-3);
+}
+
+bool HaveBullet() {
+  const std::vector<std::string> e = AvailableEngines();
+  return std::find(e.begin(), e.end(), "bullet") != e.end();
+}
+
+TEST(SweepTest, RowsAreInGridOrderAndIndependentOfTheThreadCount) {
+  const Scene s = ShortHousner();
+  const bool bullet = HaveBullet();
+  SweepOptions one;
+  one.quick = true;
+  one.threads = 1;
+  int calls = 0, last_done = 0;
+  const std::vector<SweepRow> a =
+      RunSweep(s, GroundMotion(), one, [&](int done, int total, const SweepPoint&) {
+        ++calls;
+        EXPECT_EQ(done, last_done + 1);
+        last_done = done;
+        EXPECT_EQ(total, static_cast<int>(SweepGrid(true, bullet).size()));
+      });
+  SweepOptions two = one;
+  two.threads = 2;
+  two.repeat = 2;
+  const std::vector<SweepRow> b = RunSweep(s, GroundMotion(), two);
+  const std::vector<SweepPoint> grid = SweepGrid(true, bullet);
+  ASSERT_EQ(a.size(), grid.size());
+  EXPECT_EQ(calls, static_cast<int>(grid.size()));
+  for (size_t i = 0; i < a.size(); ++i) {
+    EXPECT_TRUE(a[i].error.empty()) << a[i].error;
+    EXPECT_EQ(a[i].point.engine, grid[i].engine);
+    EXPECT_EQ(a[i].point.time_step_s, grid[i].time_step_s);
+    EXPECT_GT(a[i].wall_s, 0.0);
+  }
+  EXPECT_EQ(WithoutWallTimes(SweepCsv(a)), WithoutWallTimes(SweepCsv(b)));
+  // Against the tight reference: the reference rows agree far better than Bullet's, and
+  // Bullet at 1e-4 s better than at 1/60 s.
+  double bullet_fine = 1.0, bullet_coarse = 0.0, reference_worst = 0.0;
+  for (const SweepRow& r : a) {
+    const double e = r.agreement.theta1.max_abs_error_rad;
+    if (r.point.engine == "reference") reference_worst = std::max(reference_worst, e);
+    if (r.point.engine == "bullet" && r.point.precision == BulletPrecision::kDouble) {
+      if (r.point.time_step_s == 1e-4) bullet_fine = std::min(bullet_fine, e);
+      if (r.point.time_step_s > 0.01) bullet_coarse = std::max(bullet_coarse, e);
+    }
+  }
+  if (bullet) {
+    EXPECT_LT(bullet_fine, bullet_coarse);
+    EXPECT_LT(reference_worst, bullet_fine);
+  }
+  // Every reference setting is within 1e-6 rad of the tight run on this smooth case.
+  EXPECT_LT(reference_worst, 1e-6);
+}
+
+TEST(SweepTest, CsvHasOneRowPerRunAndAFixedWidth) {
+  SweepRow ok;
+  ok.point.engine = "bullet";
+  ok.point.time_step_s = 1e-3;
+  ok.point.solver_iterations = 10;
+  ok.wall_s = 0.5;
+  ok.agreement.status = "completed";
+  ok.agreement.theta2 = AngleAgreement{};
+  SweepRow ref;
+  ref.point.engine = "reference";
+  ref.point.integrator = Integrator::kDopri5;
+  ref.point.rtol = 1e-6;
+  ref.point.atol = 1e-8;
+  SweepRow bad;
+  bad.point.engine = "reference";
+  bad.point.integrator = Integrator::kRk4;
+  bad.point.rk4_step_s = 1e-2;
+  bad.error = "failed, badly\nsecond line";
+  const std::vector<std::string> lines = Lines(SweepCsv({ok, ref, bad}));
+  ASSERT_EQ(lines.size(), 4u);
+  auto fields = [](const std::string& s) { return std::count(s.begin(), s.end(), ',') + 1; };
+  for (const std::string& l : lines) EXPECT_EQ(fields(l), fields(lines[0])) << l;
+  EXPECT_EQ(lines[1].rfind("bullet,double,0.001,10,", 0), 0u) << lines[1];
+  EXPECT_EQ(lines[2].rfind("reference,,,,dopri5,1e-06,1e-08,,", 0), 0u) << lines[2];
+  EXPECT_NE(lines[3].find("failed; badly second line"), std::string::npos) << lines[3];
+}
+
+TEST(SweepTest, RejectsBadOptions) {
+  SweepOptions o;
+  o.repeat = 0;
+  EXPECT_THROW(RunSweep(ShortHousner(), GroundMotion(), o), SceneError);
+  o.repeat = 1;
+  o.threads = -1;
+  EXPECT_THROW(RunSweep(ShortHousner(), GroundMotion(), o), SceneError);
+}
+
+}  // namespace
+}  // namespace rockbench
