@@ -15,7 +15,8 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    // --help exits 0; every bad option or value is bad input.
+    return app.exit(e) == 0 ? 0 : rockbench::cli::kExitBadInput;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "rockbench: error: %s\n", e.what());
     return rockbench::cli::kExitBadInput;
