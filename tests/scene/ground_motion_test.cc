@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "scene/scene.h"
+#include "tests/common/scratch_dir_test.h"
 
 namespace rockbench {
 namespace {
@@ -25,23 +26,7 @@ constexpr double kPi = std::numbers::pi;
 const fs::path kRecords = fs::path(ROCKBENCH_SOURCE_DIR) / "records";
 const fs::path kRinaldi228 = kRecords / "northridge1994_rinaldi_receiving_sta_228.AT2";
 
-class GroundMotionTest : public ::testing::Test {
- protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("rockbench_ground_motion_test_" + std::to_string(::getpid()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-  fs::path Write(const std::string& name, const std::string& text) {
-    const fs::path p = dir_ / name;
-    std::ofstream(p, std::ios::binary) << text;
-    return p;
-  }
-  fs::path dir_;
-};
+class GroundMotionTest : public testing_util::ScratchDirTest {};
 
 MotionDef FileDef(const fs::path& file) {
   MotionDef d;

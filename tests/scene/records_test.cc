@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "scene/ground_motion.h"
+#include "tests/common/scratch_dir_test.h"
 
 namespace rockbench {
 namespace {
@@ -101,23 +102,8 @@ TEST(ShippedRecords, ChristchurchPgaInG) {
 }
 
 // Writes synthetic files into a fresh temporary folder.
-class RecordFiles : public ::testing::Test {
+class RecordFiles : public testing_util::ScratchDirTest {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("rockbench_records_test_" + std::to_string(::getpid()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
-  fs::path Write(const std::string& name, const std::string& text) {
-    const fs::path p = dir_ / name;
-    std::ofstream(p, std::ios::binary) << text;
-    return p;
-  }
-
   // Expects `fn` to throw a SceneError whose message contains every piece.
   template <typename Fn>
   static void ExpectError(Fn fn, const std::vector<std::string>& pieces) {
