@@ -12,8 +12,6 @@ void RegisterCompare(CLI::App& app);
 void RegisterSweep(CLI::App& app);
 /// `rockbench render SCENE_OR_RUN_DIR --out DIR ...` (cmd_render.cc)
 void RegisterRender(CLI::App& app);
-/// `rockbench bench ...` (cmd_bench.cc)
-void RegisterBench(CLI::App& app);
 
 /// Exit code for bad input (scene, record, option): 2. Physics outcomes exit 0.
 inline constexpr int kExitBadInput = 2;

@@ -11,7 +11,6 @@ int main(int argc, char** argv) {
   rockbench::cli::RegisterCompare(app);
   rockbench::cli::RegisterSweep(app);
   rockbench::cli::RegisterRender(app);
-  rockbench::cli::RegisterBench(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
