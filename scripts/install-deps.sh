@@ -5,7 +5,8 @@ packages=(build-essential cmake pkg-config
   libeigen3-dev libcli11-dev libtomlplusplus-dev nlohmann-json3-dev
   libgtest-dev libbenchmark-dev
   libbullet-dev
-  libosmesa6-dev libpng-dev libfreetype-dev fonts-dejavu-core ffmpeg)
+  libosmesa6-dev libpng-dev libfreetype-dev fonts-dejavu-core ffmpeg
+  gnuplot-nox chromium)
 missing=()
 for p in "${packages[@]}"; do
   dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p")

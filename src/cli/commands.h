@@ -12,6 +12,10 @@ void RegisterCompare(CLI::App& app);
 void RegisterSweep(CLI::App& app);
 /// `rockbench render SCENE_OR_RUN_DIR --out DIR ...` (cmd_render.cc)
 void RegisterRender(CLI::App& app);
+/// `rockbench report RUN_DIR... --out DIR` (cmd_report.cc)
+void RegisterReport(CLI::App& app);
+/// `rockbench stress --out DIR [--quick]` (cmd_stress.cc)
+void RegisterStress(CLI::App& app);
 
 /// Exit code for bad input (scene, record, option): 2. Physics outcomes exit 0.
 inline constexpr int kExitBadInput = 2;

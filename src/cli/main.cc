@@ -11,6 +11,8 @@ int main(int argc, char** argv) {
   rockbench::cli::RegisterCompare(app);
   rockbench::cli::RegisterSweep(app);
   rockbench::cli::RegisterRender(app);
+  rockbench::cli::RegisterReport(app);
+  rockbench::cli::RegisterStress(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
