@@ -3,35 +3,34 @@
 /// the file, grouping its bounds into comparisons, running a comparison in process and checking
 /// its measured metrics against the bounds. See docs/agreement.md.
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
 
-#include <nlohmann/json.hpp>
-
 namespace rockbench::agreement {
 
 /// One [[bound]] entry of the tolerance file.
 struct Bound {
-  std::string file;  ///< the tolerance file, for messages
-  int line = 0;      ///< line of the entry's first key (0 if unknown)
-  int index = 0;     ///< 1-based position in the file's [[bound]] array
-  std::string scene;                 ///< scene file name, relative to the scenes folder
-  std::filesystem::path scene_path;  ///< the scene file (exists)
-  std::string engine;                ///< "bullet", or "reference" (reference against itself)
+  std::string file;                   ///< the tolerance file, for messages
+  int line = 0;                       ///< line of the entry's first key (0 if unknown)
+  int index = 0;                      ///< 1-based position in the file's [[bound]] array
+  std::string scene;                  ///< scene file name, relative to the scenes folder
+  std::filesystem::path scene_path;   ///< the scene file (exists)
+  std::string engine;                 ///< "bullet", or "reference" (reference against itself)
   std::vector<std::string> settings;  ///< --set overrides for both runs ([] = scene as committed)
   /// Extra overrides for the reference run only (required with engine = "reference", where the
   /// engine run is the reference at `settings` and the reference run adds these: e.g. a tight
   /// tolerance).
   std::vector<std::string> reference_settings;
-  std::string metric;       ///< as written: a dotted key under engines.<name>, or abs(key)
-  std::string metric_path;  ///< the dotted key
-  bool metric_abs = false;  ///< metric is abs(key): the bound applies to |value|
+  std::string metric;         ///< as written: a dotted key under engines.<name>, or abs(key)
+  std::string metric_path;    ///< the dotted key
+  bool metric_abs = false;    ///< metric is abs(key): the bound applies to |value|
   std::optional<double> max;  ///< measured <= max
   std::optional<double> min;  ///< measured >= min
   std::optional<nlohmann::json> equals;  ///< measured == equals (booleans and strings)
-  std::string why;  ///< the measurement and mechanism behind the bound
+  std::string why;                       ///< the measurement and mechanism behind the bound
 
   /// "FILE:LINE: bound #N (scene, engine, [settings], metric)" for messages.
   std::string Name() const;
@@ -96,5 +95,10 @@ Verdict CheckBound(const Bound& bound, const nlohmann::json& agreement);
 
 /// Scene files (*.toml, sorted by name) in `scenes_dir`.
 std::vector<std::string> SceneFiles(const std::filesystem::path& scenes_dir);
+
+/// "scene: engine" for every scene of `scenes_dir` that has no bound for an engine of
+/// KnownEngines() other than the reference (reference-against-itself bounds are extras).
+std::vector<std::string> UnguardedScenes(const std::vector<Bound>& bounds,
+                                         const std::filesystem::path& scenes_dir);
 
 }  // namespace rockbench::agreement
