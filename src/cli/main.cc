@@ -15,6 +15,9 @@ int main(int argc, char** argv) {
   rockbench::cli::RegisterStress(app);
   try {
     app.parse(argc, argv);
+  } catch (const CLI::RuntimeError& e) {
+    // A subcommand's own failure: it printed its message; keep its exit code.
+    return e.get_exit_code();
   } catch (const CLI::ParseError& e) {
     // --help exits 0; every bad option or value is bad input.
     return app.exit(e) == 0 ? 0 : rockbench::cli::kExitBadInput;
