@@ -119,6 +119,13 @@ class Simulator {
     y_ = ToVec(s);
     Finish(status);
   }
+  // Smallest normal reactions seen (summary).
+  void NoteNormalForces(const Reactions& r) {
+    Summary& sum = result_.summary;
+    sum.min_normal_ground_n = std::min(sum.min_normal_ground_n, r.N_ground);
+    if (geo_.two_blocks)
+      sum.min_normal_interface_n = std::min(sum.min_normal_interface_n, r.N_interface);
+  }
   void Finish(const std::string& status) {
     if (result_.summary.status == "completed") result_.summary.status = status;
     done_ = true;
@@ -236,9 +243,10 @@ void Simulator::DoImpact(double t, const State& pre, ImpactKind kind) {
 void Simulator::RunRest() {
   // Criterion while at rest: the smallest corner force of the two faces (linear in xg'', yg'').
   auto margin = [&](double t) {
-    return EvaluateContacts(geo_, Mode::kRest, State{}, motion_.xg_mps2(t), motion_.yg_mps2(t),
-                            cfg_.equations)
-        .face;
+    const ContactMargins cm = EvaluateContacts(geo_, Mode::kRest, State{}, motion_.xg_mps2(t),
+                                               motion_.yg_mps2(t), cfg_.equations);
+    NoteNormalForces(cm.reactions);
+    return cm.face;
   };
   const double motion_end = motion_.end_s();
   y_ = Vec4{};
@@ -395,6 +403,7 @@ void Simulator::RunMoving() {
     const ContactMargins& cmr = which == kNone ? cm1 : Margins(t_seg_end, y_end);
     sum.friction_required_ground = std::max(sum.friction_required_ground, cmr.mu_ground);
     sum.friction_required_interface = std::max(sum.friction_required_interface, cmr.mu_interface);
+    NoteNormalForces(cmr.reactions);
     if (which == kNone) {
       t_ = t1;
       y_ = y1;

@@ -1,5 +1,6 @@
 #pragma once
 /// The reference model: the thesis's two-block rocking model (Roussis 1999), event-accurate.
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -49,8 +50,10 @@ struct Summary {
   int initiations = 0;                       ///< starts from rest
   double friction_required_ground = 0.0;     ///< max |T|/N at the ground contact
   double friction_required_interface = 0.0;  ///< max |T|/N at the block-1/block-2 contact
-  double min_normal_ground_n = 0.0;          ///< smallest normal reaction seen, N
-  double min_normal_interface_n = 0.0;
+  /// Smallest normal reaction at the ground and at the interface (two blocks) over the step
+  /// ends, N; +infinity when the run took no step.
+  double min_normal_ground_n = std::numeric_limits<double>::infinity();
+  double min_normal_interface_n = std::numeric_limits<double>::infinity();
   long steps_accepted = 0, steps_rejected = 0, rhs_evaluations = 0;
 };
 

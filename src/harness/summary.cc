@@ -68,6 +68,14 @@ nlohmann::json ReferenceSummaryJson(const Scene& scene, const reference::Result&
   }
   j["friction_required"] = {{"ground", s.friction_required_ground},
                             {"interface", s.friction_required_interface}};
+  // Smallest normal reactions along the solution (null when no step was taken).
+  const auto finite_or_null = [](double v) -> nlohmann::json {
+    return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
+  };
+  j["min_normal_force_n"] = {{"ground", finite_or_null(s.min_normal_ground_n)}};
+  if (scene.two_blocks()) {
+    j["min_normal_force_n"]["interface"] = finite_or_null(s.min_normal_interface_n);
+  }
   j["integration"] = {{"steps_accepted", s.steps_accepted},
                       {"steps_rejected", s.steps_rejected},
                       {"rhs_evaluations", s.rhs_evaluations}};

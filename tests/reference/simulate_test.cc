@@ -344,6 +344,36 @@ TEST(SimulateTest, UpliftThreshold) {
   }
 }
 
+// Normal reactions along the solution. A stack at rest under a constant horizontal pulse below
+// its uplift threshold carries its weight: N_ground = (m1 + m2) g and N_interface = m2 g
+// exactly (the horizontal load only shifts the corner forces); the summary's minima over the
+// step ends equal those to rounding (16 ulps). A rocking block's ground reaction is smaller
+// than its weight (its mass centre accelerates downwards), but stays compressive.
+TEST(SimulateTest, MinimumNormalForcesMatchTheWeightAtRestAndStayCompressiveWhileRocking) {
+  Scene sc = ThesisExample();
+  sc.initial = InitialState{};
+  sc.run.duration_s = 1.0;
+  MotionDef pulse;
+  pulse.key = "base.horizontal";
+  pulse.kind = MotionKind::kRectangularPulse;
+  pulse.amplitude_g = 0.1;  // below the stack's threshold (0.35 g) and block 2's (0.4 g)
+  pulse.duration_s = 0.5;
+  pulse.start_s = 0.1;
+  GroundMotion gm;
+  gm.set_horizontal(MotionComponent::FromDef(pulse, sc.run.gravity_mps2));
+  const Result rest = Simulate(sc, gm);
+  ASSERT_EQ(rest.summary.initiations, 0);
+  const double g = sc.run.gravity_mps2;
+  const double m1 = sc.block1.mass_kg, m2 = sc.block2->mass_kg;
+  EXPECT_NEAR(rest.summary.min_normal_ground_n, (m1 + m2) * g, 16 * kEps * (m1 + m2) * g);
+  EXPECT_NEAR(rest.summary.min_normal_interface_n, m2 * g, 16 * kEps * m2 * g);
+
+  const Result rocking = Simulate(ThesisExample(), GroundMotion{});
+  EXPECT_GT(rocking.summary.min_normal_ground_n, 0.0);
+  EXPECT_LT(rocking.summary.min_normal_ground_n, (m1 + m2) * g);
+  EXPECT_GT(rocking.summary.min_normal_interface_n, 0.0);
+}
+
 // Released just beyond its slenderness angle, a block falls over: overturned, with the block
 // and time reported. (A strong long pulse on a slender block instead lifts it off its pivot
 // before it falls: the ground's normal force turns tensile once omega^2 r exceeds about g, and
