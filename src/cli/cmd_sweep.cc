@@ -1,6 +1,7 @@
 // `rockbench sweep SCENE --out DIR [--quick] [--repeat N] [--threads N] [--set k=v ...]`:
 // accuracy and cost of every engine setting on the grid against a tight reference; writes
-// DIR/sweep.csv (atomically) with one row per run, a progress bar on stderr.
+// DIR/sweep.csv (one row per run) and DIR/sweep.json (scene, options, simulated duration, tight
+// reference, machine), both atomically, with a progress bar on stderr.
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -63,13 +64,16 @@ void Execute(const SweepCliOptions& opt) {
     std::fflush(stderr);
   };
   std::fprintf(stderr, "rockbench sweep: tight reference (dopri5, rtol 1e-12) first...\n");
-  double baseline_wall_s = 0.0;
-  const std::vector<SweepRow> rows = RunSweep(scene, motion, so, progress, &baseline_wall_s);
+  SweepBaseline baseline;
+  const std::vector<SweepRow> rows = RunSweep(scene, motion, so, progress, &baseline);
   WriteFileAtomic(out / "sweep.csv", SweepCsv(rows));
+  WriteFileAtomic(out / "sweep.json",
+                  SweepJson(scene, opt.overrides, so, baseline, rows).dump(2) + "\n");
   int failed = 0;
   for (const SweepRow& r : rows) failed += r.error.empty() ? 0 : 1;
-  std::printf("%zu runs (%d failed), tight reference %.3g s; outputs in %s (sweep.csv)\n",
-              rows.size(), failed, baseline_wall_s, out.string().c_str());
+  std::printf(
+      "%zu runs (%d failed), tight reference %.3g s; outputs in %s (sweep.csv, sweep.json)\n",
+      rows.size(), failed, baseline.wall_s, out.string().c_str());
 }
 
 }  // namespace

@@ -1,10 +1,13 @@
 #include "harness/sweep.h"
 
+#include <sys/utsname.h>
+
 #include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cstdio>
 #include <exception>
+#include <fstream>
 #include <mutex>
 #include <thread>
 
@@ -86,23 +89,32 @@ Scene SceneForPoint(const Scene& base, const SweepPoint& p) {
 
 std::vector<SweepRow> RunSweep(const Scene& scene, const GroundMotion& motion,
                                const SweepOptions& options, const SweepProgress& progress,
-                               double* baseline_wall_s) {
+                               SweepBaseline* baseline_out) {
   if (options.repeat < 1) throw SceneError("--repeat: expected a positive integer");
   if (options.threads < 0) throw SceneError("--threads: expected a non-negative integer");
   const std::vector<std::string> engines = AvailableEngines();
   const bool with_bullet = std::find(engines.begin(), engines.end(), "bullet") != engines.end();
-  const std::vector<SweepPoint> grid = SweepGrid(options.quick, with_bullet);
+  const std::vector<SweepPoint> grid =
+      options.points.empty() ? SweepGrid(options.quick, with_bullet) : options.points;
 
   // The tight reference every row is compared with.
   Scene tight = scene;
   tight.model.integrator = Integrator::kDopri5;
-  tight.model.rtol = 1e-12;
-  tight.model.atol = 1e-14;
+  tight.model.rtol = kSweepTightRtol;
+  tight.model.atol = kSweepTightAtol;
   const auto start = std::chrono::steady_clock::now();
   const reference::Result baseline = reference::Simulate(tight, motion);
-  if (baseline_wall_s) {
-    *baseline_wall_s =
+  if (baseline_out) {
+    baseline_out->wall_s =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    baseline_out->status = baseline.summary.status;
+    baseline_out->peak_theta1_rad = baseline.summary.peak_theta1_rad;
+    baseline_out->peak_theta1_t_s = baseline.summary.peak_theta1_t_s;
+    baseline_out->peak_theta2_rad = baseline.summary.peak_theta2_rad;
+    baseline_out->peak_theta2_t_s = baseline.summary.peak_theta2_t_s;
+    baseline_out->overturn_block = baseline.summary.overturn_block.value_or(0);
+    baseline_out->overturn_t_s = baseline.summary.overturn_t_s;
+    baseline_out->two_blocks = scene.two_blocks();
   }
 
   std::vector<SweepRow> rows(grid.size());
@@ -198,6 +210,58 @@ std::string SweepCsv(const std::vector<SweepRow>& rows) {
     out += buf;
   }
   return out;
+}
+
+std::string MachineDescription() {
+  std::string cpu = "unknown CPU";
+  std::ifstream info("/proc/cpuinfo");
+  for (std::string line; std::getline(info, line);) {
+    if (line.rfind("model name", 0) == 0 && line.find(':') != std::string::npos) {
+      cpu = line.substr(line.find(':') + 1);
+      cpu.erase(0, cpu.find_first_not_of(" \t"));
+      break;
+    }
+  }
+  std::string out =
+      cpu + ", " + std::to_string(std::thread::hardware_concurrency()) + " hardware threads";
+  struct utsname u;
+  if (uname(&u) == 0) out += std::string(", ") + u.sysname + " " + u.machine;
+  return out;
+}
+
+nlohmann::json SweepJson(const Scene& scene, const std::vector<std::string>& overrides,
+                         const SweepOptions& options, const SweepBaseline& baseline,
+                         const std::vector<SweepRow>& rows) {
+  nlohmann::json j;
+  j["scene"]["path"] = scene.path.string();
+  j["scene"]["title"] = scene.title;
+  j["scene"]["overrides"] = overrides;
+  j["simulated_duration_s"] = scene.run.duration_s;
+  j["two_blocks"] = scene.two_blocks();
+  j["options"]["quick"] = options.quick;
+  j["options"]["repeat"] = options.repeat;
+  j["options"]["threads"] = options.threads;
+  j["tight_reference"]["integrator"] = "dopri5";
+  j["tight_reference"]["rtol"] = kSweepTightRtol;
+  j["tight_reference"]["atol"] = kSweepTightAtol;
+  j["tight_reference"]["wall_s"] = baseline.wall_s;
+  j["tight_reference"]["status"] = baseline.status;
+  j["tight_reference"]["peak_theta1_rad"] = baseline.peak_theta1_rad;
+  j["tight_reference"]["peak_theta1_t_s"] = baseline.peak_theta1_t_s;
+  j["tight_reference"]["peak_theta2_rad"] = baseline.peak_theta2_rad;
+  j["tight_reference"]["peak_theta2_t_s"] = baseline.peak_theta2_t_s;
+  if (baseline.overturn_block > 0) {
+    j["tight_reference"]["overturn_block"] = baseline.overturn_block;
+    j["tight_reference"]["overturn_t_s"] = baseline.overturn_t_s;
+  } else {
+    j["tight_reference"]["overturn_block"] = nullptr;
+  }
+  int failed = 0;
+  for (const SweepRow& r : rows) failed += r.error.empty() ? 0 : 1;
+  j["runs"] = rows.size();
+  j["failed"] = failed;
+  j["machine"] = MachineDescription();
+  return j;
 }
 
 }  // namespace rockbench

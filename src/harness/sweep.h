@@ -5,6 +5,7 @@
 /// std::thread pool; rows come out in the grid's fixed order, so every column but the wall
 /// times is independent of the number of threads.
 #include <functional>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -41,6 +42,25 @@ struct SweepOptions {
   bool quick = false;
   int repeat = 1;   ///< repetitions per point; the row's wall time is their minimum
   int threads = 0;  ///< worker threads; 0: std::thread::hardware_concurrency()
+  /// When non-empty, these points are run instead of SweepGrid(quick, ...) (tests, studies).
+  std::vector<SweepPoint> points;
+};
+
+/// Tolerances of the tight reference every row is compared with (dopri5).
+inline constexpr double kSweepTightRtol = 1e-12;
+inline constexpr double kSweepTightAtol = 1e-14;
+
+/// The tight reference every row is compared with (dopri5, kSweepTightRtol/Atol).
+struct SweepBaseline {
+  double wall_s = 0.0;           ///< its wall time, s
+  std::string status;            ///< its summary status (completed, overturned, at_rest, ...)
+  double peak_theta1_rad = 0.0;  ///< peak |theta1| over the run, rad
+  double peak_theta1_t_s = 0.0;  ///< its time, s (0: the release angle is the peak)
+  double peak_theta2_rad = 0.0;  ///< peak |theta2|, rad (0 for one block)
+  double peak_theta2_t_s = 0.0;
+  int overturn_block = 0;  ///< 1 or 2 when a block overturned, else 0
+  double overturn_t_s = 0.0;
+  bool two_blocks = false;
 };
 
 /// One row of sweep.csv.
@@ -55,13 +75,26 @@ struct SweepRow {
 /// threads, one call at a time.
 using SweepProgress = std::function<void(int, int, const SweepPoint&)>;
 
-/// Runs the sweep on a scene. The tight reference runs first (its wall time in *baseline_wall_s
-/// when given). Throws SceneError for bad options.
+/// Runs the sweep on a scene. The tight reference runs first (described in *baseline when
+/// given). Throws SceneError for bad options.
 std::vector<SweepRow> RunSweep(const Scene& scene, const GroundMotion& motion,
                                const SweepOptions& options, const SweepProgress& progress = {},
-                               double* baseline_wall_s = nullptr);
+                               SweepBaseline* baseline = nullptr);
 
 /// sweep.csv text: header and one row per grid point, in grid order.
 std::string SweepCsv(const std::vector<SweepRow>& rows);
+
+/// The machine, without dates or names: "CPU model, N hardware threads, Linux x86_64".
+std::string MachineDescription();
+
+/// sweep.json, written beside sweep.csv: what a report needs that the rows do not say. Keys:
+/// scene.path, scene.title, scene.overrides (as given), simulated_duration_s (the scene's
+/// run.duration, the real-time mark), two_blocks, options.quick / repeat / threads,
+/// tight_reference.rtol / atol / wall_s / status / peak_theta1_rad / peak_theta1_t_s /
+/// peak_theta2_rad / peak_theta2_t_s / overturn_block (null or 1, 2) / overturn_t_s, runs,
+/// failed, machine. No dates; only the wall times change from run to run.
+nlohmann::json SweepJson(const Scene& scene, const std::vector<std::string>& overrides,
+                         const SweepOptions& options, const SweepBaseline& baseline,
+                         const std::vector<SweepRow>& rows);
 
 }  // namespace rockbench

@@ -1,10 +1,12 @@
-// `rockbench sweep`: writes sweep.csv (one row per grid point) with a progress bar on stderr.
+// `rockbench sweep`: writes sweep.csv (one row per grid point) and sweep.json with a progress
+// bar on stderr.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -43,13 +45,19 @@ TEST(CmdSweepTest, QuickSweepWritesOneRowPerRun) {
   for (size_t i = 1; i < lines.size(); ++i) {
     EXPECT_EQ(lines[i].find("error"), std::string::npos) << lines[i];
   }
-  // Only sweep.csv in the folder: written through a temporary name, renamed.
-  int files = 0;
-  for (const auto& e : fs::directory_iterator(dir)) {
-    ++files;
-    EXPECT_EQ(e.path().filename(), "sweep.csv");
-  }
-  EXPECT_EQ(files, 1);
+  // sweep.json: the scene, its overrides and the simulated duration (the real-time mark).
+  std::ifstream jf(dir / "sweep.json");
+  const nlohmann::json j = nlohmann::json::parse(jf);
+  EXPECT_EQ(j["scene"]["path"], (kScenes / "housner_free_rocking.toml").string());
+  EXPECT_EQ(j["scene"]["overrides"][0], "run.duration=0.3");
+  EXPECT_EQ(j["simulated_duration_s"], 0.3);
+  EXPECT_EQ(j["options"]["threads"], 2);
+  EXPECT_EQ(j["runs"], static_cast<int>(lines.size()) - 1);
+  // Only sweep.csv and sweep.json in the folder: written through temporary names, renamed.
+  std::vector<std::string> files;
+  for (const auto& e : fs::directory_iterator(dir)) files.push_back(e.path().filename());
+  std::sort(files.begin(), files.end());
+  EXPECT_EQ(files, (std::vector<std::string>{"sweep.csv", "sweep.json"}));
   fs::remove_all(dir);
 }
 

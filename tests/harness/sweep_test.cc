@@ -180,6 +180,71 @@ TEST(SweepTest, CsvHasOneRowPerRunAndAFixedWidth) {
   EXPECT_NE(lines[3].find("failed; badly second line"), std::string::npos) << lines[3];
 }
 
+TEST(SweepTest, ChosenPointsReplaceTheGrid) {
+  SweepOptions o;
+  for (double h : {1e-2, 5e-3}) {
+    SweepPoint p;
+    p.engine = "reference";
+    p.integrator = Integrator::kRk4;
+    p.rk4_step_s = h;
+    o.points.push_back(p);
+  }
+  SweepBaseline baseline;
+  const std::vector<SweepRow> rows = RunSweep(ShortHousner(), GroundMotion(), o, {}, &baseline);
+  ASSERT_EQ(rows.size(), 2u);
+  EXPECT_EQ(rows[0].point.rk4_step_s, 1e-2);
+  EXPECT_EQ(rows[1].point.rk4_step_s, 5e-3);
+  // RK4 is fourth order: halving the step divides the error by about 16 (measured 18).
+  const double e0 = rows[0].agreement.theta1.max_abs_error_rad;
+  const double e1 = rows[1].agreement.theta1.max_abs_error_rad;
+  EXPECT_GT(e0 / e1, 8.0);
+  // The tight reference: Housner's block released from theta_c / 2 peaks at release.
+  EXPECT_GT(baseline.wall_s, 0.0);
+  EXPECT_EQ(baseline.status, "completed");
+  EXPECT_DOUBLE_EQ(baseline.peak_theta1_rad, ShortHousner().initial.theta1_rad);
+  EXPECT_EQ(baseline.peak_theta1_t_s, 0.0);
+  EXPECT_EQ(baseline.overturn_block, 0);
+  EXPECT_FALSE(baseline.two_blocks);
+}
+
+TEST(SweepTest, JsonSaysWhatTheRowsDoNot) {
+  Scene s = ShortHousner();
+  s.path = "scenes/housner.toml";
+  s.title = "Housner";
+  SweepOptions o;
+  o.quick = true;
+  o.repeat = 3;
+  SweepBaseline b;
+  b.wall_s = 0.25;
+  b.status = "overturned";
+  b.peak_theta2_rad = 1.5;
+  b.overturn_block = 2;
+  b.overturn_t_s = 3.5;
+  SweepRow failed;
+  failed.point.engine = "bullet";
+  failed.error = "boom";
+  const nlohmann::json j = SweepJson(s, {"run.duration=0.8"}, o, b, {SweepRow{}, failed});
+  EXPECT_EQ(j["scene"]["path"], "scenes/housner.toml");
+  EXPECT_EQ(j["scene"]["title"], "Housner");
+  EXPECT_EQ(j["scene"]["overrides"][0], "run.duration=0.8");
+  EXPECT_EQ(j["simulated_duration_s"], 0.8);
+  EXPECT_EQ(j["two_blocks"], false);
+  EXPECT_EQ(j["options"]["quick"], true);
+  EXPECT_EQ(j["options"]["repeat"], 3);
+  EXPECT_EQ(j["tight_reference"]["rtol"], kSweepTightRtol);
+  EXPECT_EQ(j["tight_reference"]["wall_s"], 0.25);
+  EXPECT_EQ(j["tight_reference"]["status"], "overturned");
+  EXPECT_EQ(j["tight_reference"]["overturn_block"], 2);
+  EXPECT_EQ(j["tight_reference"]["overturn_t_s"], 3.5);
+  EXPECT_EQ(j["runs"], 2);
+  EXPECT_EQ(j["failed"], 1);
+  EXPECT_FALSE(j["machine"].get<std::string>().empty());
+  b.overturn_block = 0;
+  EXPECT_TRUE(SweepJson(s, {}, o, b, {})["tight_reference"]["overturn_block"].is_null());
+  // No dates: the same inputs give the same text.
+  EXPECT_EQ(SweepJson(s, {}, o, b, {}).dump(), SweepJson(s, {}, o, b, {}).dump());
+}
+
 TEST(SweepTest, RejectsBadOptions) {
   SweepOptions o;
   o.repeat = 0;
