@@ -76,6 +76,7 @@ class ReportBrowserTest : public ::testing::Test {
                                      "--headless",
                                      "--no-sandbox",
                                      "--disable-gpu",
+                                     "--disable-dev-shm-usage",
                                      "--disable-quic",
                                      "--no-first-run",
                                      "--disable-background-networking",
