@@ -167,5 +167,48 @@ TEST(TransitionsTest, FreeFallIsInconsistent) {
   EXPECT_FALSE(SelectMode(geo, State{}, 0.0, -1.2 * geo.g, Equations::kNonlinear).consistent);
 }
 
+// A body toppling from rest about a fixed corner (one block, or the stack in mode 3) has, by
+// energy and Newton's law for the mass centre, the ground reaction
+//   N = M g [1 - (1 + 2c - 3c^2) / kappa],  c = cos(theta - theta_c), kappa = I_O / (M R^2),
+// whose minimum over c (at c = 1/3) is M g (1 - 4 / (3 kappa)). One rectangle has kappa = 4/3
+// exactly: N = (M g / 4)(1 - 3c)^2 touches zero but stays compressive. The thesis's stack has
+// kappa = 1.367 > 4/3: compressive throughout. A stack whose mass sits in a small block on a
+// wide light base has kappa < 4/3: its pivot would have to pull, first at
+// c* = (1 + sqrt(4 - 3 kappa)) / 3, so it would jump off its corner before reaching pi/2. The
+// model's reactions (generic Lagrangian accelerations + Newton-Euler) match the closed form to
+// 1e-12 M g (rounding of a dozen terms of size M g).
+TEST(TransitionsTest, TopplingFromRestGroundReactionClosedForm) {
+  const Geometry single = MakeGeometry(1.0, 4.0, 4000.0, 0.0, 0.0, 0.0);
+  const Geometry thesis = ThesisGeometry();
+  const Geometry compact_top = MakeGeometry(2.0, 0.1, 10.0, 0.2, 0.2, 1000.0);
+  const auto kappa_of = [](const Geometry& geo) { return geo.I_O / (geo.M * geo.R * geo.R); };
+  const auto state_at = [](const Geometry& geo, double phi) {
+    const double omega = std::sqrt(2.0 * geo.M * geo.g * geo.R * (1.0 - std::cos(phi)) / geo.I_O);
+    return State{geo.theta_c + phi, geo.theta_c + phi, omega, omega};
+  };
+  const auto ground_n = [](const Geometry& geo, const State& s) {
+    const auto acc = GenericAccelerations(geo, Mode::k3a, s, 0.0, 0.0);
+    return ComputeReactions(geo, Mode::k3a, s, acc, 0.0, 0.0).N_ground;
+  };
+  for (const Geometry* geo : {&single, &thesis, &compact_top}) {
+    const double kappa = kappa_of(*geo);
+    const double weight = geo->M * geo->g;
+    for (double phi = 0.0; phi < 1.5; phi += 0.05) {
+      const double c = std::cos(phi);
+      EXPECT_NEAR(ground_n(*geo, state_at(*geo, phi)),
+                  weight * (1.0 - (1.0 + 2.0 * c - 3.0 * c * c) / kappa), 1e-12 * weight)
+          << "kappa " << kappa << ", phi " << phi;
+    }
+  }
+  EXPECT_NEAR(kappa_of(single), 4.0 / 3.0, 1e-15);
+  EXPECT_GT(kappa_of(thesis), 4.0 / 3.0);
+  // Where the compact-top stack's pivot force first vanishes: compressive before, tensile after.
+  const double kappa = kappa_of(compact_top);
+  ASSERT_LT(kappa, 4.0 / 3.0);
+  const double phi_star = std::acos((1.0 + std::sqrt(4.0 - 3.0 * kappa)) / 3.0);
+  EXPECT_GT(ground_n(compact_top, state_at(compact_top, phi_star - 1e-3)), 0.0);
+  EXPECT_LT(ground_n(compact_top, state_at(compact_top, phi_star + 1e-3)), 0.0);
+}
+
 }  // namespace
 }  // namespace rockbench::reference
