@@ -310,68 +310,6 @@ std::string OverturnMarks(const RunData& run) {
 
 // ---- Public physics helpers ----
 
-std::vector<Event> ReadEventsCsv(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error(path.string() + ": cannot open the events file");
-  std::vector<Event> events;
-  std::string line;
-  int number = 0;
-  const auto fail = [&](const std::string& msg) {
-    throw std::runtime_error(path.string() + ":" + std::to_string(number) + ": " + msg);
-  };
-  static const std::string kHeader =
-      "t,kind,mode_before,mode_after,omega1_before,omega2_before,omega1_after,omega2_after,"
-      "energy_before_j,energy_after_j,note";
-  while (std::getline(in, line)) {
-    ++number;
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    if (number == 1) {
-      if (line != kHeader) fail("expected the header \"" + kHeader + "\"");
-      continue;
-    }
-    if (line.empty()) continue;
-    std::vector<std::string> cells;
-    std::string cell;
-    std::stringstream ss(line);
-    while (std::getline(ss, cell, ',')) cells.push_back(cell);
-    if (!line.empty() && line.back() == ',') cells.push_back("");
-    if (cells.size() != 11) {
-      fail("expected 11 comma-separated cells, found " + std::to_string(cells.size()));
-    }
-    Event e;
-    const auto number_at = [&](int i, const char* what) {
-      try {
-        size_t used = 0;
-        const double v = std::stod(cells[i], &used);
-        if (used != cells[i].size() || !std::isfinite(v)) throw std::invalid_argument("");
-        return v;
-      } catch (const std::exception&) {
-        fail(std::string(what) + ": expected a finite number, found '" + cells[i] + "'");
-      }
-      return 0.0;
-    };
-    const auto mode_at = [&](int i, const char* what) {
-      const auto m = ParseMode(cells[i]);
-      if (!m) fail(std::string(what) + ": unknown mode '" + cells[i] + "'");
-      return *m;
-    };
-    e.t_s = number_at(0, "t");
-    e.kind = cells[1];
-    e.mode_before = mode_at(2, "mode_before");
-    e.mode_after = mode_at(3, "mode_after");
-    e.omega1_before = number_at(4, "omega1_before");
-    e.omega2_before = number_at(5, "omega2_before");
-    e.omega1_after = number_at(6, "omega1_after");
-    e.omega2_after = number_at(7, "omega2_after");
-    e.energy_before_j = number_at(8, "energy_before_j");
-    e.energy_after_j = number_at(9, "energy_after_j");
-    e.note = cells[10];
-    events.push_back(std::move(e));
-  }
-  if (number == 0) fail("empty file (expected the events header)");
-  return events;
-}
-
 Mode ModeFromAngles(const Sample& s, bool two_blocks) {
   using reference::Contact;
   const auto side = [](double angle, double rate) {

@@ -76,9 +76,6 @@ void WriteReportIndex(const std::filesystem::path& out_dir, const std::vector<In
 
 // ---- The physics behind the figures (public for the tests). ----
 
-/// events.csv as written by WriteEngineFiles. Throws std::runtime_error naming file and line.
-std::vector<Event> ReadEventsCsv(const std::filesystem::path& path);
-
 /// The mode the angles and rates of a sample imply (contacts: a block tilted or turning to a
 /// side pivots on that side's corner; flat and still, it sits on its face). Engines' mode
 /// columns come from their own monitors; this rule gives the energy one definition for all.

@@ -5,9 +5,11 @@
 
 #include <cerrno>
 #include <charconv>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <string_view>
@@ -50,6 +52,20 @@ std::vector<std::string_view> SplitCommas(std::string_view line) {
   return out;
 }
 
+// A CSV number cell ("+" allowed, as written by %e), or nullopt.
+std::optional<double> ParseNumberCell(std::string_view c) {
+  if (!c.empty() && c.front() == '+') c.remove_prefix(1);
+  double v = 0.0;
+  const char* end = c.data() + c.size();
+  const auto res = std::from_chars(c.data(), end, v);
+  if (c.empty() || res.ec != std::errc() || res.ptr != end) return std::nullopt;
+  return v;
+}
+
+constexpr const char* kEventsCsvHeader =
+    "t,kind,mode_before,mode_after,omega1_before,omega2_before,omega1_after,omega2_after,"
+    "energy_before_j,energy_after_j,note";
+
 }  // namespace
 
 std::string HistoryCsvHeader(bool two_blocks) {
@@ -81,9 +97,7 @@ std::string HistoryToCsv(const History& history) {
 }
 
 std::string EventsToCsv(const History& history) {
-  std::string out =
-      "t,kind,mode_before,mode_after,omega1_before,omega2_before,omega1_after,omega2_after,"
-      "energy_before_j,energy_after_j,note\n";
+  std::string out = std::string(kEventsCsvHeader) + "\n";
   for (const Event& e : history.events) {
     AppendTime(out, e.t_s);
     out += ',' + CsvCell(e.kind) + ',';
@@ -133,14 +147,12 @@ History ReadHistoryCsv(const std::filesystem::path& path) {
     }
     double v[5] = {0, 0, 0, 0, 0};
     for (size_t i = 0; i + 1 < want; ++i) {
-      std::string_view c = cells[i];
-      if (!c.empty() && c.front() == '+') c.remove_prefix(1);
-      const char* end = c.data() + c.size();
-      auto res = std::from_chars(c.data(), end, v[i]);
-      if (c.empty() || res.ec != std::errc() || res.ptr != end) {
+      const std::optional<double> x = ParseNumberCell(cells[i]);
+      if (!x) {
         fail("column " + std::to_string(i + 1) + ": expected a number, got '" +
              std::string(cells[i]) + "'");
       }
+      v[i] = *x;
     }
     const auto mode = ParseMode(cells[want - 1]);
     if (!mode)
@@ -163,6 +175,62 @@ History ReadHistoryCsv(const std::filesystem::path& path) {
     throw std::runtime_error(path.string() + ":1: empty file (expected a history header)");
   }
   return h;
+}
+
+std::vector<Event> ReadEventsCsv(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw std::runtime_error(path.string() + ": cannot open the events file");
+  std::vector<Event> events;
+  std::string line;
+  int number = 0;
+  const auto fail = [&](const std::string& msg) {
+    throw std::runtime_error(path.string() + ":" + std::to_string(number) + ": " + msg);
+  };
+  while (std::getline(in, line)) {
+    ++number;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (number == 1) {
+      if (line != kEventsCsvHeader) {
+        fail(std::string("expected the header '") + kEventsCsvHeader + "', got '" + line + "'");
+      }
+      continue;
+    }
+    if (line.empty()) continue;
+    const std::vector<std::string_view> cells = SplitCommas(line);
+    if (cells.size() != 11) {
+      fail("expected 11 columns, got " + std::to_string(cells.size()));
+    }
+    const auto number_at = [&](size_t i, const char* what) {
+      const std::optional<double> x = ParseNumberCell(cells[i]);
+      if (!x || !std::isfinite(*x)) {
+        fail(std::string(what) + ": expected a finite number, got '" + std::string(cells[i]) + "'");
+      }
+      return *x;
+    };
+    const auto mode_at = [&](size_t i, const char* what) {
+      const auto m = ParseMode(cells[i]);
+      if (!m) fail(std::string(what) + ": unknown mode '" + std::string(cells[i]) + "'");
+      return *m;
+    };
+    Event e;
+    e.t_s = number_at(0, "t");
+    e.kind = std::string(cells[1]);
+    e.mode_before = mode_at(2, "mode_before");
+    e.mode_after = mode_at(3, "mode_after");
+    e.omega1_before = number_at(4, "omega1_before");
+    e.omega2_before = number_at(5, "omega2_before");
+    e.omega1_after = number_at(6, "omega1_after");
+    e.omega2_after = number_at(7, "omega2_after");
+    e.energy_before_j = number_at(8, "energy_before_j");
+    e.energy_after_j = number_at(9, "energy_after_j");
+    e.note = std::string(cells[10]);
+    events.push_back(std::move(e));
+  }
+  if (in.bad()) throw std::runtime_error(path.string() + ": cannot read the events file");
+  if (number == 0) {
+    throw std::runtime_error(path.string() + ":1: empty file (expected the events header)");
+  }
+  return events;
 }
 
 void WriteFileAtomic(const std::filesystem::path& path, const std::string& text) {

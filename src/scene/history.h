@@ -25,8 +25,8 @@ struct Event {
                      ///< "overturn", "assumption_violated"
   Mode mode_before = Mode::kRest;
   Mode mode_after = Mode::kRest;
-  double omega1_before = 0.0, omega2_before = 0.0;  ///< rad/s
-  double omega1_after = 0.0, omega2_after = 0.0;    ///< rad/s
+  double omega1_before = 0.0, omega2_before = 0.0;     ///< rad/s
+  double omega1_after = 0.0, omega2_after = 0.0;       ///< rad/s
   double energy_before_j = 0.0, energy_after_j = 0.0;  ///< kinetic + potential, J
   std::string note;  ///< free text (no commas), e.g. "inadmissible: ..." or a criterion name
 };
@@ -49,6 +49,8 @@ std::string HistoryToCsv(const History& history);
 std::string EventsToCsv(const History& history);
 /// Reads a history.csv (either header). Throws std::runtime_error naming file and line.
 History ReadHistoryCsv(const std::filesystem::path& path);
+/// Reads an events.csv (EventsToCsv's format). Throws std::runtime_error naming file and line.
+std::vector<Event> ReadEventsCsv(const std::filesystem::path& path);
 
 /// Writes `text` to `path` atomically: to "<path>.tmp.<pid>" in the same folder, fsync, then
 /// rename over `path`. Creates missing parent folders. Throws std::runtime_error.

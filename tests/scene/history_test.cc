@@ -11,28 +11,21 @@
 #include <stdexcept>
 #include <string>
 
+#include "tests/common/scratch_dir_test.h"
+
 namespace rockbench {
 namespace {
 
 namespace fs = std::filesystem;
 
-class HistoryTest : public ::testing::Test {
+class HistoryTest : public testing_util::ScratchDirTest {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("rockbench_history_test_" + std::to_string(::getpid()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
   static std::string Slurp(const fs::path& p) {
     std::ifstream in(p, std::ios::binary);
     std::ostringstream s;
     s << in.rdbuf();
     return s.str();
   }
-  fs::path dir_;
 };
 
 // A deterministic history with irrational-looking values of both signs and all modes.
@@ -168,6 +161,53 @@ TEST_F(HistoryTest, EventsCsv) {
             "1.250000000,ground_impact,1a,2b,-5.000000000000e-01,2.500000000000e-01,"
             "1.250000000000e-01,-1.000000000000e+00,1.000000000000e+03,7.505000000000e+02,"
             "inadmissible: a; b c\n");
+}
+
+// events.csv reads back what EventsToCsv wrote (values with 13 significant digits, the note
+// with its commas and line breaks replaced), and a bad line is named.
+TEST_F(HistoryTest, EventsCsvRoundTripAndErrors) {
+  History h;
+  Event a;
+  a.t_s = 0.359512345;
+  a.kind = "transition";
+  a.mode_before = Mode::k3a;
+  a.mode_after = Mode::k1a;
+  a.omega1_before = a.omega1_after = -0.123456789012;
+  a.omega2_before = a.omega2_after = 0.5;
+  a.energy_before_j = a.energy_after_j = 7315.47;
+  Event b = a;
+  b.t_s = 1.0;
+  b.kind = "ground_impact";
+  b.note = "";
+  h.events = {a, b};
+  const auto path = Write("events.csv", EventsToCsv(h));
+  const std::vector<Event> back = ReadEventsCsv(path);
+  ASSERT_EQ(back.size(), 2u);
+  EXPECT_EQ(back[0].t_s, a.t_s);
+  EXPECT_EQ(back[0].kind, "transition");
+  EXPECT_EQ(back[0].mode_before, Mode::k3a);
+  EXPECT_EQ(back[0].mode_after, Mode::k1a);
+  EXPECT_DOUBLE_EQ(back[0].omega1_before, a.omega1_before);
+  EXPECT_EQ(back[0].energy_after_j, 7315.47);
+  EXPECT_EQ(back[1].note, "");
+  EXPECT_EQ(HistoryToCsv(History{true, {}, back}), HistoryToCsv(h));  // events do not print
+  EXPECT_EQ(EventsToCsv(History{true, {}, back}), EventsToCsv(h));
+
+  const std::string header = EventsToCsv(History{});
+  const auto expect_error = [&](const std::string& text, const std::string& what) {
+    const auto p = Write("bad.csv", text);
+    try {
+      ReadEventsCsv(p);
+      ADD_FAILURE() << "no error for: " << text;
+    } catch (const std::runtime_error& e) {
+      EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
+    }
+  };
+  expect_error("", "bad.csv:1: empty file");
+  expect_error("t,kind\n", "bad.csv:1: expected the header");
+  expect_error(header + "1.0,ground_impact,1a,2b,0,0,0,0,0,0\n", "bad.csv:2: expected 11 columns");
+  expect_error(header + "1.0,ground_impact,1a,9z,0,0,0,0,0,0,\n", "bad.csv:2: mode_after");
+  expect_error(header + "1.0,ground_impact,1a,2b,0,nan,0,0,0,0,\n", "bad.csv:2: omega2_before");
 }
 
 TEST_F(HistoryTest, WriteFileAtomicReplacesAndLeavesNoTemporary) {
