@@ -1,19 +1,16 @@
 #include "report/page.h"
 
-#include <fstream>
-#include <sstream>
 #include <stdexcept>
+
+#include "scene/history.h"
 
 namespace rockbench::report {
 namespace {
 
 std::string ReadBytes(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error(path.string() + ": figure missing");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  if (ss.str().empty()) throw std::runtime_error(path.string() + ": figure is empty");
-  return ss.str();
+  std::string bytes = ReadTextFile(path);
+  if (bytes.empty()) throw std::runtime_error(path.string() + ": figure is empty");
+  return bytes;
 }
 
 std::string MimeType(const std::filesystem::path& file) {

@@ -3,13 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <limits>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <set>
-#include <sstream>
 #include <stdexcept>
 
 #include "reference/kinematics.h"
@@ -57,16 +55,8 @@ void AppendDat(std::string& out, double v) {
   out += buf;
 }
 
-std::string ReadText(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error(path.string() + ": cannot be read (not found?)");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
 json ReadJson(const fs::path& path) {
-  const std::string text = ReadText(path);
+  const std::string text = ReadTextFile(path);
   try {
     return json::parse(text);
   } catch (const json::exception& e) {

@@ -4,7 +4,6 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -137,14 +136,6 @@ class RowReader {
   const std::vector<std::string>& fields_;
 };
 
-std::string ReadText(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error(path.string() + ": cannot read (does the folder hold it?)");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
 // A family's colour and style: line colour by iteration count, dashes for float.
 struct Style {
   std::string colour;
@@ -204,7 +195,7 @@ SweepInfo ReadSweepInfo(const fs::path& path) {
   if (!fs::exists(path)) return info;
   nlohmann::json j;
   try {
-    j = nlohmann::json::parse(ReadText(path));
+    j = nlohmann::json::parse(ReadTextFile(path));
     info.scene_path = j.at("scene").at("path").get<std::string>();
     info.scene_title = j.at("scene").value("title", "");
     info.overrides = j.at("scene").value("overrides", std::vector<std::string>{});
@@ -629,7 +620,7 @@ CheapestSetting FindCheapestSetting(const std::vector<SweepRecord>& rows,
 
 std::filesystem::path WriteSweepReport(const fs::path& sweep_dir, const fs::path& out_dir) {
   const fs::path csv = sweep_dir / "sweep.csv";
-  const std::vector<SweepRecord> rows = ParseSweepCsv(ReadText(csv), csv);
+  const std::vector<SweepRecord> rows = ParseSweepCsv(ReadTextFile(csv), csv);
   const SweepInfo info = ReadSweepInfo(sweep_dir / "sweep.json");
   const std::string name = SweepReportName(sweep_dir);
   const fs::path page_dir = out_dir / name;

@@ -233,6 +233,15 @@ std::vector<Event> ReadEventsCsv(const std::filesystem::path& path) {
   return events;
 }
 
+std::string ReadTextFile(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw std::runtime_error(path.string() + ": cannot be read (not found?)");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  if (in.bad()) throw std::runtime_error(path.string() + ": cannot be read");
+  return ss.str();
+}
+
 void WriteFileAtomic(const std::filesystem::path& path, const std::string& text) {
   const auto fail = [&](const std::string& what, int err) {
     throw std::runtime_error(path.string() + ": " + what + ": " + std::strerror(err));

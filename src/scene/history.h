@@ -52,6 +52,10 @@ History ReadHistoryCsv(const std::filesystem::path& path);
 /// Reads an events.csv (EventsToCsv's format). Throws std::runtime_error naming file and line.
 std::vector<Event> ReadEventsCsv(const std::filesystem::path& path);
 
+/// The whole content of a file (bytes as stored). Throws std::runtime_error naming the file
+/// when it cannot be opened or read.
+std::string ReadTextFile(const std::filesystem::path& path);
+
 /// Writes `text` to `path` atomically: to "<path>.tmp.<pid>" in the same folder, fsync, then
 /// rename over `path`. Creates missing parent folders. Throws std::runtime_error.
 void WriteFileAtomic(const std::filesystem::path& path, const std::string& text);
