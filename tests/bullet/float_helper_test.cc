@@ -13,16 +13,13 @@
 
 #include "engines/bullet/bullet_engine.h"
 #include "harness/engines_bullet.h"
+#include "tests/common/housner_scene.h"
 
 namespace rockbench::bullet {
 namespace {
 
 Scene Housner(BulletPrecision p) {
-  Scene s;
-  s.block1 = {1.0, 4.0, 1.0, 10000.0, 0.0};
-  s.initial.theta1_rad = 0.5 * std::atan(0.25);
-  s.run.duration_s = 2.0;
-  s.run.output_interval_s = 0.01;
+  Scene s = testing_util::HousnerHalfAngleRelease(2.0);
   s.bullet.precision = p;
   s.bullet.split_impulse_threshold = 0.0;
   return s;

@@ -12,18 +12,14 @@
 
 #include "reference/simulate.h"
 #include "scene/ground_motion.h"
+#include "tests/common/housner_scene.h"
 
 namespace rockbench {
 namespace {
 
 // Housner's block released from theta_c / 2 (4 s, four impacts in the reference).
 Scene Housner() {
-  Scene s;
-  s.block1 = {1.0, 4.0, 1.0, 10000.0, 0.0};
-  s.initial.theta1_rad = 0.5 * std::atan(0.25);
-  s.run.duration_s = 4.0;
-  s.run.output_interval_s = 0.01;
-  return s;
+  return testing_util::HousnerHalfAngleRelease(4.0);
 }
 
 // An "engine" that reports the reference's own trajectory plus err(t), on its own grid.

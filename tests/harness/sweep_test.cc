@@ -12,17 +12,14 @@
 #include <vector>
 
 #include "harness/engines.h"
+#include "tests/common/housner_scene.h"
 
 namespace rockbench {
 namespace {
 
 // Housner's block for 0.8 s: the first impact (0.698 s) is inside.
 Scene ShortHousner() {
-  Scene s;
-  s.block1 = {1.0, 4.0, 1.0, 10000.0, 0.0};
-  s.initial.theta1_rad = 0.5 * std::atan(0.25);
-  s.run.duration_s = 0.8;
-  s.run.output_interval_s = 0.01;
+  Scene s = testing_util::HousnerHalfAngleRelease(0.8);
   s.bullet.split_impulse_threshold = 0.0;
   return s;
 }
