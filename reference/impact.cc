@@ -130,22 +130,29 @@ ImpactOutcome Evaluate(const Geometry& geo, Mode before, const State& pre, Mode 
 }
 
 // The mode with the contacts that would open too slowly kept closed.
-Mode Settle(Mode mode, const State& pre, const State& post, double rest_rate, bool two_blocks) {
+Mode Settle(const Geometry& geo, Mode mode, const State& pre, const State& post,
+            double rest_rate_rel) {
   Contacts c = ContactsOf(mode);
-  if (c.ground != Contact::kFace && pre.theta1 == 0.0 && std::abs(post.omega1) < rest_rate) {
+  if (c.ground != Contact::kFace && pre.theta1 == 0.0 &&
+      std::abs(post.omega1) < RestRate(geo, ImpactKind::kGround, rest_rate_rel)) {
     c.ground = Contact::kFace;
   }
-  if (two_blocks && c.interface != Contact::kFace && pre.theta2 == pre.theta1 &&
-      std::abs(post.omega2 - post.omega1) < rest_rate) {
+  if (geo.two_blocks && c.interface != Contact::kFace && pre.theta2 == pre.theta1 &&
+      std::abs(post.omega2 - post.omega1) < RestRate(geo, ImpactKind::kInterface, rest_rate_rel)) {
     c.interface = Contact::kFace;
   }
-  return ModeOf(c, two_blocks);
+  return ModeOf(c, geo.two_blocks);
 }
 
 }  // namespace
 
+double RestRate(const Geometry& geo, ImpactKind contact, double rest_rate_rel) {
+  const double R = contact == ImpactKind::kInterface && geo.two_blocks ? geo.block2.r : geo.R;
+  return rest_rate_rel * std::sqrt(geo.g / R);
+}
+
 ImpactResult ResolveImpact(const Geometry& geo, Mode before, const State& pre, ImpactKind kind,
-                           double rest_rate) {
+                           double rest_rate_rel) {
   ImpactResult res;
   res.energy_before_j = Energy(geo, before, pre);
   for (Mode m : ImpactCandidates(before, kind, geo.two_blocks)) {
@@ -181,8 +188,8 @@ ImpactResult ResolveImpact(const Geometry& geo, Mode before, const State& pre, I
     }
   }
   res.chosen = *pick;
-  // Rest rule: a contact that would open with a rate below rest_rate stays closed.
-  const Mode settled = Settle(res.chosen.mode, pre, res.chosen.state, rest_rate, geo.two_blocks);
+  // Rest rule: a contact that would open with a rate below its RestRate stays closed.
+  const Mode settled = Settle(geo, res.chosen.mode, pre, res.chosen.state, rest_rate_rel);
   if (settled != res.chosen.mode) {
     res.settled = true;
     res.chosen = Evaluate(geo, before, pre, settled);

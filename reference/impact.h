@@ -34,7 +34,7 @@ struct ImpactResult {
   ImpactOutcome chosen;
   std::vector<ImpactOutcome> candidates;  ///< in order of preference (thesis's first)
   bool admissible = true;                 ///< false: no candidate passed both checks (see note)
-  bool settled = false;                   ///< the rest rule closed a contact (rate below rest_rate)
+  bool settled = false;                   ///< the rest rule closed a contact (see RestRate)
   double energy_before_j = 0.0;
   std::string note;
 };
@@ -47,12 +47,22 @@ std::vector<Mode> ImpactCandidates(Mode before, ImpactKind kind, bool two_blocks
 /// Post-impact rates for a given post-impact mode by conservation of generalized momentum.
 State PostImpactState(const Geometry& geo, Mode before, const State& pre, Mode after);
 
+/// The rest rule's threshold at a contact, rad/s: `rest_rate_rel` times sqrt(g / R), R the
+/// distance from the contact's pivot to the mass centre of what rests on it. At the ground that
+/// is the stack (block 1 carries block 2 whether block 2 rocks or not; for one block, the
+/// block): geo.R. At the interface it is block 2: block2.r. sqrt(g / R) is the rate scale of
+/// rocking about that pivot (Housner's p = sqrt(3 g / (4 R)) for one block), so the rule is
+/// the same for every size of the same shape (a scene scaled by k in length, its time by
+/// sqrt(k), settles at the same impacts).
+double RestRate(const Geometry& geo, ImpactKind contact, double rest_rate_rel);
+
 /// Resolves an impact at state `pre` (the gap coordinate exactly zero). Chooses the first
 /// candidate that is admissible both in velocities and in impulses; if none is, the first that is
 /// admissible in velocities (the thesis's check) and reports admissible = false; if none is even
-/// that, the blocks stop (rest of the contacts that closed). `rest_rate` is the rest rule: a
-/// contact that would open with a relative rate below it stays closed instead.
+/// that, the blocks stop (rest of the contacts that closed). `rest_rate_rel` is the rest rule: a
+/// contact that would open with a relative rate below RestRate(geo, that contact,
+/// rest_rate_rel) stays closed instead (0: never).
 ImpactResult ResolveImpact(const Geometry& geo, Mode before, const State& pre, ImpactKind kind,
-                           double rest_rate_radps);
+                           double rest_rate_rel);
 
 }  // namespace rockbench::reference

@@ -124,7 +124,6 @@ EngineInput MakeEngineInput(const Scene& scene, const GroundMotion& motion) {
   in.run = scene.run;
   in.config = scene.bullet;
   in.overturn_rad = scene.model.overturn_rad;
-  in.rest_rate_radps = scene.model.rest_rate_radps;
   const double dt = scene.bullet.time_step_s;
   in.steps = static_cast<std::int64_t>(std::max(0.0, std::ceil(scene.run.duration_s / dt - 1e-9)));
   in.motion_end_s = motion.empty() ? 0.0 : motion.end_s();

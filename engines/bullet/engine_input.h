@@ -41,7 +41,6 @@ struct EngineInput {
   RunConfig run;
   BulletConfig config;
   double overturn_rad = 1.5707963267948966;  ///< |theta| that counts as overturned (model's)
-  double rest_rate_radps = 1e-4;             ///< the model's rest rate (reported only)
   std::int64_t steps = 0;                    ///< number of Bullet steps, ceil(duration / dt)
   double motion_end_s = 0.0;                 ///< time after which the base is still, s
   DriveSamples drive;

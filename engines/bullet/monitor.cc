@@ -17,16 +17,17 @@ bool Finite(const BodyReadout& b) {
          std::isfinite(b.w_radps);
 }
 
-// Hysteresis update of one tilt. Returns true when the tilted block lands (its angle crosses
-// zero or falls below `leave`); *t_impact is the linearly interpolated zero crossing, or t when
-// it landed without crossing.
-// Linear interpolation of the zero crossing of an angle between two steps.
+// Linear interpolation of the zero crossing of a quantity (an angle, or the overturn margin
+// overturn_rad - |theta|) between two steps, clamped to the step.
 double CrossingTime(double prev, double angle, double t_prev, double t) {
   const double denom = prev - angle;
   const double frac = denom != 0.0 ? std::clamp(prev / denom, 0.0, 1.0) : 1.0;
   return t_prev + frac * (t - t_prev);
 }
 
+// Hysteresis update of one tilt. Returns true when the tilted block lands (its angle crosses
+// zero or falls below `leave`); *t_impact is the linearly interpolated zero crossing, or t when
+// it landed without crossing.
 bool UpdateSide(int* side, double prev, double angle, double t_prev, double t, double enter,
                 double leave, double* t_impact, bool* crossed) {
   bool impact = false;
@@ -211,6 +212,8 @@ bool Monitor::Step(std::int64_t n, const StepReadout& s) {
   Sample& cur = d.sample;
   const Sample& prev = prev_.sample;
   const double t_prev = prev.t_s, t = cur.t_s;
+  // |theta| of both blocks before this step (prev_ is overwritten before the overturn check).
+  const double abs1_prev = std::abs(prev.theta1_rad), abs2_prev = std::abs(prev.theta2_rad);
 
   // Impacts: a tilted block lands.
   const double rel = two_ ? cur.theta2_rad - cur.theta1_rad : 0.0;
@@ -401,22 +404,32 @@ bool Monitor::Step(std::int64_t n, const StepReadout& s) {
     next_out_ = static_cast<std::int64_t>(std::floor((t + 0.5 * dt_) / out_dt_)) + 1;
   }
 
-  // Stops: overturn, blow-up.
-  const double over = in_meta_.overturn_rad - cfg_.overturn_slack_rad;
+  // Stops: overturn, blow-up. A block overturns when |theta| reaches the model's overturn angle
+  // (model.overturn_angle, the reference's definition, no slack). The crossing time is
+  // interpolated linearly between the step's two ends, the same way for both blocks: Bullet turns
+  // each body at a constant rate within a step, so this is Bullet's own crossing. If both cross
+  // in one step, the first to cross overturned (ties: block 1, as the reference).
+  const double over = in_meta_.overturn_rad;
   int over_block = 0;
-  if (std::abs(cur.theta1_rad) >= over) {
-    over_block = 1;
-  } else if (two_ && std::abs(cur.theta2_rad) >= over) {
-    over_block = 2;
-  }
+  double t_over = 0.0;
+  auto crossed = [&](int block, double abs_prev, double abs_cur) {
+    if (!(abs_cur >= over)) return;
+    const double when = CrossingTime(over - abs_prev, over - abs_cur, t_prev, t);
+    if (over_block == 0 || when < t_over) {
+      over_block = block;
+      t_over = when;
+    }
+  };
+  crossed(1, abs1_prev, std::abs(cur.theta1_rad));
+  if (two_) crossed(2, abs2_prev, std::abs(cur.theta2_rad));
   if (over_block != 0) {
     status_ = "overturned";
     overturn_block_ = over_block;
-    overturn_t_s_ = t;
+    overturn_t_s_ = t_over;
     status_detail_ = "block " + std::to_string(over_block) +
-                     " reached |theta| >= " + std::to_string(over) + " rad";
+                     " reached |theta| = " + std::to_string(over) + " rad (model.overturn_angle)";
     Event e;
-    e.t_s = t;
+    e.t_s = t_over;
     e.kind = "overturn";
     e.mode_before = e.mode_after = cur.mode;
     e.omega1_before = e.omega1_after = cur.omega1_radps;
@@ -531,7 +544,6 @@ nlohmann::json Monitor::Summary() const {
   m["slip_flag_rel"] = cfg_.slip_flag_rel;
   m["penetration_flag_m"] = cfg_.penetration_flag_m;
   m["energy_growth_flag_rel"] = cfg_.energy_growth_flag_rel;
-  m["overturn_slack_rad"] = cfg_.overturn_slack_rad;
   j["monitor"] = m;
   return j;
 }

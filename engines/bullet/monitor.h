@@ -37,9 +37,9 @@ struct MonitorConfig {
   /// input above blow_up_energy_rel times the tipping energy. The run stops there.
   double blow_up_rate_radps = 1e3;
   double blow_up_energy_rel = 1.0;
-  /// A block counts as overturned at |theta| >= overturn_rad - overturn_slack_rad (a block that
-  /// fell on its side rests within its penetration of pi/2, not beyond it).
-  double overturn_slack_rad = 0.01;
+  // No overturn setting here: a block overturns when |theta| reaches EngineInput::overturn_rad
+  // (the scene's model.overturn_angle, the reference's definition), at the time interpolated
+  // inside the step that crossed it.
 };
 
 /// One body's planar pose and velocity as read from Bullet (world frame): mass centre (m), the
@@ -70,7 +70,8 @@ class Monitor {
   /// The state at t = 0 (first sample).
   void Start(const StepReadout& s);
   /// The state after step n (1-based). Returns false when the run must stop (overturn,
-  /// blow-up).
+  /// blow-up). The overturn time is the interpolated crossing of model.overturn_angle inside the
+  /// step; the last sample is the state at the step's end.
   bool Step(std::int64_t n, const StepReadout& s);
   /// Ends the run: records the last state as a sample if it was not one.
   void Finish();

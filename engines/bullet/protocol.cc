@@ -143,7 +143,6 @@ std::string SerializeInput(const EngineInput& in) {
   w.Put(c.ground_depth_m);
   w.Put(c.kinematic_highpass_hz);
   w.Put(in.overturn_rad);
-  w.Put(in.rest_rate_radps);
   w.Put<std::int64_t>(in.steps);
   w.Put(in.motion_end_s);
   const DriveSamples& d = in.drive;
@@ -192,7 +191,6 @@ EngineInput ParseInput(const std::string& bytes) {
   c.ground_depth_m = r.Get<double>();
   c.kinematic_highpass_hz = r.Get<double>();
   in.overturn_rad = r.Get<double>();
-  in.rest_rate_radps = r.Get<double>();
   in.steps = r.Get<std::int64_t>();
   in.motion_end_s = r.Get<double>();
   DriveSamples& d = in.drive;

@@ -1,18 +1,25 @@
-// `rockbench compare SCENE --out DIR [--engines bullet] [--set k=v ...]`: runs the reference
-// and each engine on the same scene and writes their histories, comparison.json,
-// comparison.csv and summary.json.
-#include <chrono>
+// `rockbench compare SCENE --out DIR [--engines bullet] [--members N] [--quick] [--set k=v ...]`:
+// runs the reference (checked against its witness), its ensemble on perturbed inputs (the
+// predictability horizon), each engine, and each engine's ensemble beyond the horizon; writes
+// histories, comparison.json, comparison.csv and summary.json, and prints one verdict per engine.
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <limits>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "cli/commands.h"
 #include "harness/compare.h"
+#include "harness/compare_run.h"
+#include "harness/convergence.h"
 #include "harness/engines.h"
+#include "harness/ensemble.h"
 #include "harness/summary.h"
+#include "harness/verdict.h"
 #include "reference/simulate.h"
 #include "scene/ground_motion.h"
 #include "scene/history.h"
@@ -21,20 +28,21 @@
 namespace rockbench::cli {
 namespace {
 
-struct CompareOptions {
+struct CompareCliOptions {
   std::string scene;
   std::string out = "out";
   std::vector<std::string> engines = {"bullet"};
   std::vector<std::string> overrides;
+  int members = -1;         // -1: the scene's compare.members
+  int engine_members = -1;  // -1: the scene's compare.engine_members
+  bool quick = false;       // no ensembles: pointwise comparison only
+  int jobs = 0;             // 0: all hardware threads
 };
 
-void Execute(const CompareOptions& opt) {
-  const Scene scene = LoadScene(opt.scene, opt.overrides);
-  const GroundMotion motion = GroundMotion::FromScene(scene);
-  // Check the engine names before any work.
+std::vector<std::string> CheckedEngines(const std::vector<std::string>& requested) {
   const std::vector<std::string> available = AvailableEngines();
   std::vector<std::string> engines;
-  for (const std::string& name : opt.engines) {
+  for (const std::string& name : requested) {
     if (name == "reference") continue;  // always run: it is what the others are compared with
     bool known = false;
     for (const std::string& a : available) known = known || a == name;
@@ -45,53 +53,68 @@ void Execute(const CompareOptions& opt) {
     }
     engines.push_back(name);
   }
+  return engines;
+}
+
+void Execute(const CompareCliOptions& opt) {
+  std::vector<std::string> overrides = opt.overrides;
+  if (opt.members >= 0) overrides.push_back("compare.members=" + std::to_string(opt.members));
+  if (opt.quick) overrides.push_back("compare.members=0");
+  if (opt.engine_members >= 0) {
+    overrides.push_back("compare.engine_members=" + std::to_string(opt.engine_members));
+  }
+  const Scene scene = LoadScene(opt.scene, overrides);
+  const GroundMotion motion = GroundMotion::FromScene(scene);
+  const std::vector<std::string> engines = CheckedEngines(opt.engines);
   const std::filesystem::path out(opt.out);
   std::filesystem::create_directories(out);
+  const bool two = scene.two_blocks();
+  const int nb = two ? 2 : 1;
+  CompareRunOptions run_options;
+  run_options.jobs = opt.jobs;
+  run_options.log = [](const std::string& line) {
+    std::printf("%s\n", line.c_str());
+    std::fflush(stdout);
+  };
+  const CompareRun run = RunCompare(scene, motion, engines, run_options);
 
-  // The reference, kept whole: its dense trajectory is what the engines are compared with.
-  const auto start = std::chrono::steady_clock::now();
-  const reference::Result ref = reference::Simulate(scene, motion);
-  const double ref_wall_s =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  EngineRun ref_run;
-  ref_run.engine = "reference";
-  ref_run.history = ref.history;
-  ref_run.wall_s = ref_wall_s;
-  ref_run.summary = ReferenceSummaryJson(scene, ref, ref_wall_s);
-  WriteEngineFiles(ref_run, out);
-
+  // Files: each written to a temporary name and renamed when complete.
+  WriteEngineFiles(run.reference_run, out);
+  if (run.ensemble) {
+    WriteFileAtomic(out / "reference" / "ensemble_band.csv", EnsembleBandCsv(*run.ensemble, two));
+    WriteFileAtomic(out / "reference" / "ensemble.csv",
+                    OutcomesCsv(run.ensemble->outcomes, run.ensemble->perturbations, two));
+  }
   nlohmann::json summary;
   summary["scene"] = {{"path", std::filesystem::absolute(opt.scene).lexically_normal().string()},
-                      {"overrides", opt.overrides},
-                      {"two_blocks", scene.two_blocks()}};
+                      {"overrides", overrides},
+                      {"two_blocks", two}};
   summary["base"] = BaseMotionJson(motion);
-  for (auto it = ref_run.summary.begin(); it != ref_run.summary.end(); ++it) {
+  for (auto it = run.reference_run.summary.begin(); it != run.reference_run.summary.end(); ++it) {
     summary[it.key()] = *it;
   }
-  std::printf("reference: %s, %zu events, %.3g ms\n", ref.summary.status.c_str(),
-              ref.history.events.size(), ref_wall_s * 1e3);
-
-  std::vector<EngineAgreement> agreements;
-  for (const std::string& name : engines) {
-    const EngineRun run = RunEngine(name, scene, motion);
-    WriteEngineFiles(run, out);
-    summary["engines"][name] = run.summary;
-    std::printf("%s\n", run.one_line.c_str());
-    agreements.push_back(CompareWithReference(scene, ref, run));
+  for (size_t k = 0; k < engines.size(); ++k) {
+    WriteEngineFiles(run.engine_runs[k], out);
+    summary["engines"][engines[k]] = run.engine_runs[k].summary;
+    if (!run.engine_outcomes[k].empty()) {
+      WriteFileAtomic(out / engines[k] / "ensemble.csv",
+                      OutcomesCsv(run.engine_outcomes[k], run.ensemble->perturbations, two));
+    }
   }
-  const nlohmann::json comparison = ComparisonJson(scene, ref, ref_wall_s, agreements);
-  WriteFileAtomic(out / "comparison.json", comparison.dump(2) + "\n");
-  WriteFileAtomic(out / "comparison.csv", ComparisonCsv(agreements));
+  WriteFileAtomic(out / "comparison.json", run.comparison.dump(2) + "\n");
+  WriteFileAtomic(out / "comparison.csv", ComparisonCsv(run.agreements));
   WriteFileAtomic(out / "summary.json", summary.dump(2) + "\n");
 
+  const std::vector<EngineAgreement>& agreements = run.agreements;
   for (const EngineAgreement& a : agreements) {
-    for (int b = 1; b <= (a.theta2 ? 2 : 1); ++b) {
+    for (int b = 1; b <= nb; ++b) {
       const AngleAgreement& g = b == 1 ? a.theta1 : *a.theta2;
       std::printf(
-          "  %s theta%d: max error %.3g rad, RMS %.3g rad, within %.3g rad until %.3f s, peak "
-          "%+.2f%% (%+.4f s)\n",
-          a.engine.c_str(), b, g.max_abs_error_rad, g.rms_error_rad, g.tolerance_rad, g.horizon_s,
-          100.0 * g.peak_rel_error, g.peak_time_error_s);
+          "  %s theta%d: max error %.3g rad (%.3g where the reference is predictable), RMS %.3g "
+          "rad, within %.3g rad until %.3f s, peak %+.2f%% (%+.4f s)\n",
+          a.engine.c_str(), b, g.max_abs_error_rad, g.max_abs_error_predictable_rad,
+          g.rms_error_rad, g.tolerance_rad, g.horizon_s, 100.0 * g.peak_rel_error,
+          g.peak_time_error_s);
     }
     std::printf("  %s impacts: %d of %d matched (engine %d), max time error %.3g ms%s%s\n",
                 a.engine.c_str(), a.impacts.matched, a.impacts.reference_impacts,
@@ -100,6 +123,10 @@ void Execute(const CompareOptions& opt) {
                 a.impacts.first_mismatch.c_str());
     std::printf("  %s overturning %s, final state %s\n", a.engine.c_str(),
                 a.overturn_agree ? "agrees" : "DIFFERS", a.final_agree ? "agrees" : "DIFFERS");
+  }
+  for (const EngineAgreement& a : agreements) {
+    std::printf("verdict %s: %s: %s\n", a.engine.c_str(), a.verdict_agrees ? "AGREES" : "DIFFERS",
+                a.verdict.c_str());
   }
   std::printf("outputs in %s (comparison.json, comparison.csv, summary.json, reference/",
               out.string().c_str());
@@ -110,13 +137,24 @@ void Execute(const CompareOptions& opt) {
 }  // namespace
 
 void RegisterCompare(CLI::App& app) {
-  auto opt = std::make_shared<CompareOptions>();
+  auto opt = std::make_shared<CompareCliOptions>();
   auto* cmd = app.add_subcommand(
       "compare", "Run the reference and engines on a scene and compare them with the reference");
   cmd->add_option("scene", opt->scene, "Scene file (TOML)")->required();
   cmd->add_option("--out,-o", opt->out, "Output folder")->capture_default_str();
   cmd->add_option("--engines,-e", opt->engines, "Engines to compare with the reference")
       ->capture_default_str();
+  cmd->add_option("--members", opt->members,
+                  "Reference ensemble members (default: the scene's compare.members, 32); 0: "
+                  "pointwise comparison only")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option(
+         "--engine-members", opt->engine_members,
+         "Engine ensemble members beyond the horizon (default: compare.engine_members, 16)")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_flag("--quick", opt->quick, "No ensembles: the pointwise comparison only");
+  cmd->add_option("--jobs,-j", opt->jobs, "Threads for the ensembles (default: all cores)")
+      ->check(CLI::NonNegativeNumber);
   cmd->add_option("--set", opt->overrides, "Override a scene value: key=value (repeatable)");
   cmd->callback([opt] { Execute(*opt); });
 }

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "cli/commands.h"
+#include "harness/parallel.h"
 #include "harness/stress.h"
 #include "scene/history.h"
 #include "scene/scene.h"
@@ -75,13 +76,9 @@ void Execute(const StressCliOptions& opt) {
   StressRunOptions ro;
   ro.jobs = opt.jobs;
   const auto start = std::chrono::steady_clock::now();
-  auto progress = [&](int done, int total, const StressRow& r) {
-    const double elapsed =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    std::fprintf(stderr, "[%d/%d %.0f s] %-44s %-9s %s (%.3g s)\n", done, total, elapsed,
-                 r.case_name.c_str(), r.engine.c_str(), r.status.c_str(), r.wall_s);
-    std::fflush(stderr);
-  };
+  // Progress on a terminal only (runs done, elapsed, remaining); quiet otherwise.
+  ProgressLine line("stress runs");
+  auto progress = [&](int done, int total, const StressRow&) { line.Update(done, total); };
   const std::vector<StressRow> rows = RunStress(cases, ro, progress);
   WriteFileAtomic(out / "stress.csv", StressCsv(rows));
   // Summary: the reference's invariants and every engine's statuses.

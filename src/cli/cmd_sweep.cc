@@ -1,7 +1,7 @@
 // `rockbench sweep SCENE --out DIR [--quick] [--repeat N] [--threads N] [--set k=v ...]`:
 // accuracy and cost of every engine setting on the grid against a tight reference; writes
 // DIR/sweep.csv (one row per run) and DIR/sweep.json (scene, options, simulated duration, tight
-// reference, machine), both atomically, with a progress bar on stderr.
+// reference, machine), both atomically, with progress on stderr when it is a terminal.
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "cli/commands.h"
+#include "harness/parallel.h"
 #include "harness/sweep.h"
 #include "scene/ground_motion.h"
 #include "scene/history.h"
@@ -27,20 +28,6 @@ struct SweepCliOptions {
   std::vector<std::string> overrides;
 };
 
-std::string Describe(const SweepPoint& p) {
-  char buf[128];
-  if (p.engine == "bullet") {
-    std::snprintf(buf, sizeof buf, "bullet %s dt=%.3g it=%d",
-                  p.precision == BulletPrecision::kDouble ? "double" : "float", p.time_step_s,
-                  p.solver_iterations);
-  } else if (p.integrator == Integrator::kDopri5) {
-    std::snprintf(buf, sizeof buf, "reference dopri5 rtol=%.0e", p.rtol);
-  } else {
-    std::snprintf(buf, sizeof buf, "reference rk4 h=%.0e", p.rk4_step_s);
-  }
-  return buf;
-}
-
 void Execute(const SweepCliOptions& opt) {
   const Scene scene = LoadScene(opt.scene, opt.overrides);
   const GroundMotion motion = GroundMotion::FromScene(scene);
@@ -51,19 +38,9 @@ void Execute(const SweepCliOptions& opt) {
   const std::filesystem::path out(opt.out);
   std::filesystem::create_directories(out);
 
-  const auto start = std::chrono::steady_clock::now();
-  auto progress = [&](int done, int total, const SweepPoint& p) {
-    constexpr int kWidth = 30;
-    const int filled = total > 0 ? done * kWidth / total : kWidth;
-    const double elapsed =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    std::fprintf(stderr, "\r[%s%s] %d/%d runs, %.0f s, last: %-32s",
-                 std::string(filled, '#').c_str(), std::string(kWidth - filled, '.').c_str(), done,
-                 total, elapsed, Describe(p).c_str());
-    if (done == total) std::fprintf(stderr, "\n");
-    std::fflush(stderr);
-  };
-  std::fprintf(stderr, "rockbench sweep: tight reference (dopri5, rtol 1e-12) first...\n");
+  // Progress on a terminal only (runs done, elapsed, remaining); quiet otherwise.
+  ProgressLine line("sweep runs");
+  auto progress = [&](int done, int total, const SweepPoint&) { line.Update(done, total); };
   SweepBaseline baseline;
   const std::vector<SweepRow> rows = RunSweep(scene, motion, so, progress, &baseline);
   WriteFileAtomic(out / "sweep.csv", SweepCsv(rows));

@@ -135,10 +135,30 @@ nlohmann::json AngleJson(const AngleAgreement& a) {
           {"peak_reference_rad", a.peak_reference_rad},
           {"peak_reference_t_s", a.peak_reference_t_s},
           {"peak_engine_rad", a.peak_engine_rad},
-          {"peak_engine_t_s", a.peak_engine_t_s}};
+          {"peak_engine_t_s", a.peak_engine_t_s},
+          {"max_abs_error_predictable_rad", a.max_abs_error_predictable_rad},
+          {"rms_error_predictable_rad", a.rms_error_predictable_rad},
+          {"max_abs_error_beyond_rad", a.max_abs_error_beyond_rad},
+          {"rms_error_beyond_rad", a.rms_error_beyond_rad},
+          {"samples_beyond", a.samples_beyond},
+          {"predictability_horizon_s", std::isfinite(a.predictability_horizon_s)
+                                           ? nlohmann::json(a.predictability_horizon_s)
+                                           : nlohmann::json(nullptr)}};
 }
 
 }  // namespace
+
+double AngleTolerance_rad(const Scene& scene, int block, double reference_peak_rad) {
+  if (scene.compare.tolerance_rad) return *scene.compare.tolerance_rad;
+  const BlockDef& b = block == 2 && scene.block2 ? *scene.block2 : scene.block1;
+  const double critical_rad = std::atan(b.width_m / b.height_m);
+  return std::max(0.1 * reference_peak_rad, 0.01 * critical_rad);
+}
+
+int CountComparedImpacts(const History& history, double min_rate_radps) {
+  int all = 0;
+  return static_cast<int>(Impacts(history, min_rate_radps, &all).size());
+}
 
 EngineAgreement CompareWithReference(const Scene& scene, const reference::Result& ref,
                                      const EngineRun& run, const CompareOptions& options) {
@@ -166,12 +186,12 @@ EngineAgreement CompareWithReference(const Scene& scene, const reference::Result
   const double peak_ref_t[2] = {rs.peak_theta1_t_s, rs.peak_theta2_t_s};
   AngleAgreement ang[2];
   for (int b = 0; b < 2; ++b) {
-    ang[b].tolerance_rad =
-        scene.compare.tolerance_rad ? *scene.compare.tolerance_rad : 0.1 * peak_ref[b];
+    ang[b].tolerance_rad = AngleTolerance_rad(scene, b + 1, peak_ref[b]);
     ang[b].horizon_s = until;
+    ang[b].predictability_horizon_s = options.predictability_horizon_s[b];
   }
-  double sum2[2] = {0, 0}, sum2_h[2] = {0, 0};
-  int n_h[2] = {0, 0};
+  double sum2[2] = {0, 0}, sum2_h[2] = {0, 0}, sum2_p[2] = {0, 0}, sum2_b[2] = {0, 0};
+  int n_h[2] = {0, 0}, n_p[2] = {0, 0};
   int n = 0;
   for (const Sample& s : run.history.samples) {
     if (s.t_s > until + 1e-12) break;
@@ -183,6 +203,15 @@ EngineAgreement CompareWithReference(const Scene& scene, const reference::Result
       AngleAgreement& g = ang[b];
       g.max_abs_error_rad = std::max(g.max_abs_error_rad, e);
       sum2[b] += e * e;
+      if (s.t_s <= options.predictability_horizon_s[b]) {
+        g.max_abs_error_predictable_rad = std::max(g.max_abs_error_predictable_rad, e);
+        sum2_p[b] += e * e;
+        ++n_p[b];
+      } else {
+        g.max_abs_error_beyond_rad = std::max(g.max_abs_error_beyond_rad, e);
+        sum2_b[b] += e * e;
+        ++g.samples_beyond;
+      }
       if (g.within_tolerance && e > g.tolerance_rad) {
         g.within_tolerance = false;
         g.horizon_s = s.t_s;
@@ -199,6 +228,9 @@ EngineAgreement CompareWithReference(const Scene& scene, const reference::Result
     AngleAgreement& g = ang[b];
     g.rms_error_rad = n > 0 ? std::sqrt(sum2[b] / n) : 0.0;
     g.rms_error_horizon_rad = n_h[b] > 0 ? std::sqrt(sum2_h[b] / n_h[b]) : 0.0;
+    g.rms_error_predictable_rad = n_p[b] > 0 ? std::sqrt(sum2_p[b] / n_p[b]) : 0.0;
+    g.rms_error_beyond_rad =
+        g.samples_beyond > 0 ? std::sqrt(sum2_b[b] / g.samples_beyond) : 0.0;
     g.peak_reference_rad = peak_ref[b];
     g.peak_reference_t_s = peak_ref_t[b];
     EnginePeak(run, b + 1, &g.peak_engine_rad, &g.peak_engine_t_s);
@@ -271,6 +303,12 @@ nlohmann::json AgreementJson(const EngineAgreement& a) {
                 {"theta1_error_rad", a.final_theta1_error_rad}};
   if (a.theta2) j["final"]["theta2_error_rad"] = a.final_theta2_error_rad;
   j["violations"] = a.violations;
+  if (!a.verdict_kind.empty()) {
+    j["verdict"] = a.verdict;
+    j["verdict_kind"] = a.verdict_kind;
+    j["agrees"] = a.verdict_agrees;
+  }
+  if (!a.statistics.is_null()) j["statistics"] = a.statistics;
   return j;
 }
 
@@ -291,9 +329,16 @@ nlohmann::json ComparisonJson(const Scene& scene, const reference::Result& ref,
     j["reference"]["peak_theta2_rad"] = rs.peak_theta2_rad;
     j["reference"]["peak_theta2_t_s"] = rs.peak_theta2_t_s;
   }
-  j["tolerance"] = scene.compare.tolerance_rad
-                       ? nlohmann::json{{"rule", "scene"}, {"rad", *scene.compare.tolerance_rad}}
-                       : nlohmann::json{{"rule", "10% of the reference's peak |theta|"}};
+  j["tolerance"] =
+      scene.compare.tolerance_rad
+          ? nlohmann::json{{"rule", "scene"}, {"rad", *scene.compare.tolerance_rad}}
+          : nlohmann::json{{"rule",
+                            "10% of the reference's peak |theta|, at least 1% of the block's "
+                            "critical angle atan(B/H)"}};
+  j["tolerance"]["theta1_rad"] = AngleTolerance_rad(scene, 1, rs.peak_theta1_rad);
+  if (scene.two_blocks()) {
+    j["tolerance"]["theta2_rad"] = AngleTolerance_rad(scene, 2, rs.peak_theta2_rad);
+  }
   j["impact_min_rate_radps"] = options.min_impact_rate_radps;
   j["engines"] = nlohmann::json::object();
   for (const EngineAgreement& a : engines) j["engines"][a.engine] = AgreementJson(a);
@@ -305,20 +350,27 @@ std::string ComparisonCsv(const std::vector<EngineAgreement>& engines) {
       "engine,block,max_abs_error_rad,rms_error_rad,horizon_s,within_tolerance,tolerance_rad,"
       "max_abs_error_horizon_rad,rms_error_horizon_rad,peak_reference_rad,peak_engine_rad,"
       "peak_rel_error,peak_time_error_s,impacts_reference,impacts_engine,impacts_matched,"
-      "max_abs_impact_time_error_s,overturn_agree,final_agree,status,wall_s\n";
-  char line[768];
+      "max_abs_impact_time_error_s,overturn_agree,final_agree,status,wall_s,"
+      "predictability_horizon_s,max_abs_error_predictable_rad,max_abs_error_beyond_rad,"
+      "verdict_kind\n";
+  char line[1024];
   for (const EngineAgreement& a : engines) {
     for (int b = 1; b <= (a.theta2 ? 2 : 1); ++b) {
       const AngleAgreement& g = b == 1 ? a.theta1 : *a.theta2;
       std::snprintf(line, sizeof line,
                     "%s,%d,%.9e,%.9e,%.9g,%d,%.9e,%.9e,%.9e,%.9e,%.9e,%.9e,%.9e,%d,%d,%d,%.9e,%d,"
-                    "%d,%s,%.6g\n",
+                    "%d,%s,%.6g,%s,%.9e,%.9e,%s\n",
                     a.engine.c_str(), b, g.max_abs_error_rad, g.rms_error_rad, g.horizon_s,
                     g.within_tolerance ? 1 : 0, g.tolerance_rad, g.max_abs_error_horizon_rad,
                     g.rms_error_horizon_rad, g.peak_reference_rad, g.peak_engine_rad,
                     g.peak_rel_error, g.peak_time_error_s, a.impacts.reference_impacts,
                     a.impacts.engine_impacts, a.impacts.matched, a.impacts.max_abs_time_error_s,
-                    a.overturn_agree ? 1 : 0, a.final_agree ? 1 : 0, a.status.c_str(), a.wall_s);
+                    a.overturn_agree ? 1 : 0, a.final_agree ? 1 : 0, a.status.c_str(), a.wall_s,
+                    std::isfinite(g.predictability_horizon_s)
+                        ? std::to_string(g.predictability_horizon_s).c_str()
+                        : "",
+                    g.max_abs_error_predictable_rad, g.max_abs_error_beyond_rad,
+                    a.verdict_kind.c_str());
       out += line;
     }
   }

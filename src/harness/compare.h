@@ -3,6 +3,7 @@
 /// (the engine's sample times, the reference evaluated there by its dense output), agreement
 /// horizon, peaks, impact sequence, overturning and final state. Writes comparison.json and
 /// comparison.csv.
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
@@ -28,6 +29,14 @@ struct AngleAgreement {
   double peak_engine_rad = 0.0, peak_engine_t_s = 0.0;
   double peak_rel_error = 0.0;     ///< (peak_engine - peak_ref) / peak_ref (0 if ref is 0)
   double peak_time_error_s = 0.0;  ///< peak_engine_t - peak_ref_t
+  /// The same errors split at the reference's predictability horizon (CompareOptions): where
+  /// the reference is predictable an error is the engine's; beyond it, the problem's own
+  /// sensitivity is part of it. Zero with no sample on that side.
+  double max_abs_error_predictable_rad = 0.0, rms_error_predictable_rad = 0.0;
+  double max_abs_error_beyond_rad = 0.0, rms_error_beyond_rad = 0.0;
+  int samples_beyond = 0;
+  /// The horizon used for that split (+inf: predictable to the end, or no ensemble was run).
+  double predictability_horizon_s = std::numeric_limits<double>::infinity();
 };
 
 /// The engine's impacts against the reference's, matched in order until the first missing or
@@ -48,8 +57,17 @@ struct ImpactAgreement {
   std::string first_mismatch;         ///< empty when every impact of both runs matched
 };
 
+/// Agreement-horizon tolerance of block `block` (1 or 2), rad: the scene's [compare] tolerance,
+/// else 10% of the reference's peak |theta| of that block, never below 1% of the block's
+/// critical angle atan(B/H) (so a block that never moves is not held to a tolerance of zero).
+double AngleTolerance_rad(const Scene& scene, int block, double reference_peak_rad);
+
 /// Options of the comparison.
 struct CompareOptions {
+  /// Per block, the reference's predictability horizon (s): errors are also reported
+  /// separately before it and after it. +inf: the reference is predictable to the end.
+  double predictability_horizon_s[2] = {std::numeric_limits<double>::infinity(),
+                                        std::numeric_limits<double>::infinity()};
   /// Impacts whose landing rate (|omega1| before a ground impact, |omega2 - omega1| before an
   /// interface impact) is below this are not compared, in either run: they are the tails of
   /// the cascades with which a rocking block settles, and an engine monitor that sees a tilt
@@ -77,7 +95,16 @@ struct EngineAgreement {
   std::string final_mode_reference, final_mode_engine;
   double final_theta1_error_rad = 0.0, final_theta2_error_rad = 0.0;
   nlohmann::json violations;  ///< the engine's summary "violations" (null when it has none)
+  /// The verdict (harness/verdict.h), when one was made: its kind, whether the engine agrees,
+  /// the plain-words text and the statistical comparison (engines.<name>.statistics).
+  std::string verdict_kind, verdict;
+  bool verdict_agrees = false;
+  nlohmann::json statistics;
 };
+
+/// Impacts of a history whose landing rate (|omega1| before a ground impact, |omega2 - omega1|
+/// before an interface impact) is at least `min_rate_radps`: the impacts a comparison counts.
+int CountComparedImpacts(const History& history, double min_rate_radps);
 
 /// Compares an engine's run with the reference's result on the same scene.
 EngineAgreement CompareWithReference(const Scene& scene, const reference::Result& reference,

@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cstdio>
 
+#include "harness/convergence.h"
 #include "harness/summary.h"
 #include "reference/simulate.h"
 #ifdef ROCKBENCH_HAVE_BULLET
@@ -19,16 +20,17 @@ std::vector<std::string> AvailableEngines() {
   return names;
 }
 
-EngineRun RunEngine(const std::string& name, const Scene& scene, const GroundMotion& motion) {
+EngineRun RunEngine(const std::string& name, const Scene& scene, const GroundMotion& motion,
+                    const RunEngineOptions& options) {
   if (name == "reference") {
     EngineRun run;
     run.engine = name;
-    const auto start = std::chrono::steady_clock::now();
-    reference::Result result = reference::Simulate(scene, motion);
-    run.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    run.summary = ReferenceSummaryJson(scene, result, run.wall_s);
-    run.history = std::move(result.history);
-    const reference::Summary& s = result.summary;
+    CheckedReference checked = RunCheckedReference(scene, motion, options.reference_witness);
+    run.wall_s = checked.nominal_wall_s;
+    const reference::Result& used = checked.used();
+    run.summary = ReferenceSummaryJson(scene, used, run.wall_s);
+    if (checked.check) run.summary["convergence"] = ConvergenceJson(scene, *checked.check);
+    const reference::Summary& s = used.summary;
     char line[256];
     std::snprintf(line, sizeof line,
                   "reference: %s, peak |theta1| %.4g rad at %.3f s, peak |theta2| %.4g rad at "
@@ -36,6 +38,11 @@ EngineRun RunEngine(const std::string& name, const Scene& scene, const GroundMot
                   s.status.c_str(), s.peak_theta1_rad, s.peak_theta1_t_s, s.peak_theta2_rad,
                   s.peak_theta2_t_s, s.impacts_ground + s.impacts_interface, run.wall_s * 1e3);
     run.one_line = line;
+    if (checked.check && !checked.check->converged) {
+      run.one_line += "\n  WARNING: " + ConvergenceWarning(*checked.check);
+    }
+    run.history = &used == &checked.nominal ? std::move(checked.nominal.history)
+                                            : std::move(checked.witness->history);
     return run;
   }
 #ifdef ROCKBENCH_HAVE_BULLET

@@ -25,8 +25,16 @@ struct EngineRun {
 /// Engine names this build has ("reference" always; "bullet" when built with Bullet).
 std::vector<std::string> AvailableEngines();
 
+/// Options of RunEngine.
+struct RunEngineOptions {
+  /// The reference also runs its witness (a tighter tolerance) and reports summary.json
+  /// "convergence"; its history is the witness's when the nominal run is not converged.
+  bool reference_witness = true;
+};
+
 /// Runs engine `name`. Throws SceneError for an unknown engine or impossible settings.
-EngineRun RunEngine(const std::string& name, const Scene& scene, const GroundMotion& motion);
+EngineRun RunEngine(const std::string& name, const Scene& scene, const GroundMotion& motion,
+                    const RunEngineOptions& options = {});
 
 /// Writes DIR/<engine>/history.csv and DIR/<engine>/events.csv atomically.
 void WriteEngineFiles(const EngineRun& run, const std::filesystem::path& out_dir);

@@ -380,7 +380,8 @@ void AddUplift(std::vector<StressCase>& cat) {
   const Geo geos[] = {{"stack", UpliftKind::kStack, StackScene(1.25, 1.25, 1.0, 2.5, 3.0)},
                       {"top", UpliftKind::kTop, StackScene(1.25, 1.25, 0.5, 2.0, 3.0)}};
   for (const Geo& g : geos) {
-    const double a_g = UpliftThreshold_mps2(g.scene, g.kind) / g.scene.run.gravity_mps2;
+    // The threshold is in m/s^2 (the scene's gravity); amplitude_g is in standard g.
+    const double a_g = UpliftThreshold_mps2(g.scene, g.kind) / kStandardGravity_mps2;
     for (const auto& [label, factor] : {std::pair{"below_1pct", 0.99}, {"above_1pct", 1.01}}) {
       Scene s = g.scene;
       s.horizontal =
@@ -403,7 +404,7 @@ void AddUplift(std::vector<StressCase>& cat) {
   }
   // Harmonic excitation from 0.5 to 50 Hz at 1.5 times the stack's uplift acceleration.
   const Scene thesis = StackScene(1.25, 1.25, 1.0, 2.5, 3.0);
-  const double a_stack_g = UpliftThreshold_mps2(thesis, UpliftKind::kStack) / 9.81;
+  const double a_stack_g = UpliftThreshold_mps2(thesis, UpliftKind::kStack) / kStandardGravity_mps2;
   for (double f : {0.5, 1.0, 2.0, 5.0, 10.0, 20.0, 50.0}) {
     Scene s = thesis;
     s.horizontal = Motion("base.horizontal", MotionKind::kHarmonic, 1.5 * a_stack_g, f, 3.0, 0.0);

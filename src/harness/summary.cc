@@ -19,7 +19,7 @@ nlohmann::json ModelOptionsJson(const ModelConfig& m) {
           {"events", m.events == EventScheme::kLocated ? "located" : "thesis"},
           {"equations", m.equations == Equations::kNonlinear ? "nonlinear" : "linearized"},
           {"overturn_angle_rad", m.overturn_rad},
-          {"rest_rate_radps", m.rest_rate_radps},
+          {"rest_rate_rel", m.rest_rate_rel},
           {"check_transitions", m.check_transitions}};
 }
 

@@ -442,7 +442,7 @@ void BaseMotionSection(const RunData& run, const GroundMotion& motion, Figures& 
     page.Paragraph("No base motion: the blocks rock freely from their initial state.");
     return;
   }
-  const double g = scene.run.gravity_mps2;
+  const double g = kStandardGravity_mps2;  // the plot is in g, as the records are
   // Integration grid: 1 ms, or the record's interval when finer.
   double step = 1e-3;
   for (const auto* c : {&motion.horizontal(), &motion.vertical()}) {
@@ -582,7 +582,7 @@ void SceneSection(const RunData& run, const GroundMotion& motion, Figures& fig) 
                         "; equations " +
                         (m.equations == Equations::kNonlinear ? "nonlinear" : "linearized") +
                         "; transitions " + (m.check_transitions ? "checked" : "not checked") +
-                        "; rest rate " + Num(m.rest_rate_radps) + " rad/s"});
+                        "; rest rate " + Num(m.rest_rate_rel) + " sqrt(g/R)"});
   for (const EngineData& e : run.engines) {
     if (e.name != "bullet") continue;
     const BulletConfig& b = s.bullet;

@@ -4,6 +4,9 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <stdexcept>
+#include <string>
+#include <utility>
 
 namespace rockbench {
 namespace {
@@ -29,9 +32,8 @@ double AnalyticLength(const MotionDef& def) {
   return 0.0;
 }
 
-// Fills the peak of a sampled record (first largest |a|).
-void SamplePeak(const std::vector<double>& a, double t0, double dt, double gravity,
-                MotionInfo& info) {
+// Fills the peak of a sampled record (first largest |a|), in standard g.
+void SamplePeak(const std::vector<double>& a, double t0, double dt, MotionInfo& info) {
   double peak = 0.0;
   size_t at = 0;
   for (size_t i = 0; i < a.size(); ++i) {
@@ -40,30 +42,40 @@ void SamplePeak(const std::vector<double>& a, double t0, double dt, double gravi
       at = i;
     }
   }
-  info.peak_g = peak / gravity;
+  info.peak_g = peak / kStandardGravity_mps2;
   info.peak_t_s = t0 + static_cast<double>(at) * dt;
 }
 
 }  // namespace
 
 MotionComponent MotionComponent::FromSamples(std::vector<double> accel_mps2, double dt_s,
-                                             double t0_s, double gravity_mps2, std::string source) {
+                                             double t0_s, std::string source,
+                                             std::vector<double> resolution_mps2) {
   if (accel_mps2.empty()) throw SceneError(source + ": a record needs at least one sample");
   if (!(dt_s > 0.0) || !std::isfinite(dt_s)) {
     throw SceneError(source + ": expected a positive finite sample interval (s)");
   }
   if (!std::isfinite(t0_s)) throw SceneError(source + ": expected a finite start time (s)");
-  if (!(gravity_mps2 > 0.0) || !std::isfinite(gravity_mps2)) {
-    throw SceneError(source + ": expected a positive gravity (m/s^2)");
-  }
   for (size_t i = 0; i < accel_mps2.size(); ++i) {
     if (!std::isfinite(accel_mps2[i])) {
       throw SceneError(source + ": sample " + std::to_string(i) + " is not finite");
     }
   }
+  if (!resolution_mps2.empty() && resolution_mps2.size() != accel_mps2.size()) {
+    throw SceneError(source + ": expected one resolution per sample (" +
+                     std::to_string(accel_mps2.size()) + "), got " +
+                     std::to_string(resolution_mps2.size()));
+  }
+  for (size_t i = 0; i < resolution_mps2.size(); ++i) {
+    if (!(resolution_mps2[i] >= 0.0) || !std::isfinite(resolution_mps2[i])) {
+      throw SceneError(source + ": the resolution of sample " + std::to_string(i) +
+                       " must be finite and >= 0 (m/s^2)");
+    }
+  }
   MotionComponent c;
   c.kind_ = MotionKind::kFile;
   c.samples_ = std::move(accel_mps2);
+  c.resolution_ = std::move(resolution_mps2);
   c.t0_ = t0_s;
   c.dt_ = dt_s;
   c.info_.source = std::move(source);
@@ -71,40 +83,54 @@ MotionComponent MotionComponent::FromSamples(std::vector<double> accel_mps2, dou
   c.info_.npts = static_cast<int>(c.samples_.size());
   c.info_.dt_s = dt_s;
   c.info_.duration_s = static_cast<double>(c.samples_.size() - 1) * dt_s;
-  SamplePeak(c.samples_, t0_s, dt_s, gravity_mps2, c.info_);
+  SamplePeak(c.samples_, t0_s, dt_s, c.info_);
   return c;
 }
 
-MotionComponent MotionComponent::FromDef(const MotionDef& def, double gravity_mps2) {
+MotionComponent MotionComponent::FromDef(const MotionDef& def) {
   if (def.kind == MotionKind::kFile) {
     const bool at2 = IsAt2File(def.file);
     RecordData rec = at2 ? ReadAt2(def.file) : ReadPlain(def.file, def.dt_s);
-    AccelUnits units = AccelUnits::kG;
-    if (def.units_given) {
-      units = def.units;
-      if (at2 && rec.units_are_g && units != AccelUnits::kG) {
-        throw SceneError(def.file.string() + ":" + std::to_string(rec.units_line) + ": " + def.key +
-                         ".units is \"" + std::string(AccelUnitsName(units)) +
-                         "\" but the AT2 header says UNITS OF G (omit units or use \"g\")");
+    AccelUnits units = AccelUnits::kG;  // an AT2 file whose header declares no units: PEER's g
+    const auto name = [](AccelUnits u) { return "\"" + std::string(AccelUnitsName(u)) + "\""; };
+    if (at2 && rec.header_units) {
+      const AccelUnits header = *rec.header_units;
+      const std::string where = def.file.string() + ":" + std::to_string(rec.units_line) + ": ";
+      const std::string says = "the AT2 header says \"" + rec.units_text + "\" (" +
+                               std::string(AccelUnitsName(header)) + ")";
+      if (def.units_given && def.units != header) {
+        throw SceneError(where + def.key + ".units is " + name(def.units) + " but " + says +
+                         (header == AccelUnits::kG ? ": omit units or use \"g\""
+                                                   : ": use units = " + name(header)));
       }
+      if (!def.units_given && header != AccelUnits::kG) {
+        // Read only when the scene says so: a file in g is the norm, and a header misread as
+        // another unit would go unnoticed.
+        throw SceneError(where + says + ", not g: set " + def.key + ".units = " + name(header) +
+                         " to read it in those units");
+      }
+      units = header;
+    } else if (def.units_given) {
+      units = def.units;
     } else if (!at2) {
       throw SceneError(def.file.string() + ": " + def.key +
                        ".units: a plain record file must state its units: \"g\", \"m/s2\" or "
                        "\"cm/s2\"");
     }
-    const double factor = AccelUnitsToMps2(units, gravity_mps2) * def.scale;
+    const double factor = AccelUnitsToMps2(units) * def.scale;
     for (double& v : rec.values) v *= factor;
+    for (double& r : rec.resolution) r *= std::abs(factor);
     const std::string source =
         def.file_as_written.empty() ? def.file.string() : def.file_as_written;
-    MotionComponent c =
-        FromSamples(std::move(rec.values), rec.dt_s, rec.t0_s + def.start_s, gravity_mps2, source);
+    MotionComponent c = FromSamples(std::move(rec.values), rec.dt_s, rec.t0_s + def.start_s, source,
+                                    std::move(rec.resolution));
     c.info_.format = rec.format;
     return c;
   }
   MotionComponent c;
   c.kind_ = def.kind;
   c.t0_ = def.start_s;
-  c.amplitude_mps2_ = def.amplitude_g * gravity_mps2 * def.scale;
+  c.amplitude_mps2_ = def.amplitude_g * kStandardGravity_mps2 * def.scale;
   c.frequency_hz_ = def.frequency_hz;
   c.duration_s_ = AnalyticLength(def);
   c.info_.source = std::string(MotionKindName(def.kind));
@@ -220,13 +246,52 @@ void MotionComponent::pad_to(double t_end_s) {
   if (n_new <= samples_.size()) return;
   info_.padded_samples += static_cast<int>(n_new - samples_.size());
   samples_.resize(n_new, 0.0);
+  // The appended zeros are exact.
+  if (!resolution_.empty()) resolution_.resize(n_new, 0.0);
+}
+
+MotionComponent MotionComponent::Scaled(double factor) const {
+  if (!std::isfinite(factor)) {
+    throw std::invalid_argument(info_.source + ": Scaled: expected a finite factor, got " +
+                                std::to_string(factor));
+  }
+  MotionComponent c = *this;
+  if (kind_ == MotionKind::kFile) {
+    for (double& v : c.samples_) v *= factor;
+    for (double& r : c.resolution_) r *= std::abs(factor);
+    SamplePeak(c.samples_, c.t0_, c.dt_, c.info_);
+  } else {
+    c.amplitude_mps2_ *= factor;
+    c.info_.peak_g *= std::abs(factor);
+  }
+  return c;
+}
+
+MotionComponent MotionComponent::WithSamples(std::vector<double> accel_mps2) const {
+  if (kind_ != MotionKind::kFile) {
+    throw std::invalid_argument(info_.source + ": WithSamples: an analytic motion has no samples");
+  }
+  if (accel_mps2.size() != samples_.size()) {
+    throw std::invalid_argument(info_.source + ": WithSamples: expected " +
+                                std::to_string(samples_.size()) + " samples, got " +
+                                std::to_string(accel_mps2.size()));
+  }
+  for (size_t i = 0; i < accel_mps2.size(); ++i) {
+    if (!std::isfinite(accel_mps2[i])) {
+      throw std::invalid_argument(info_.source + ": WithSamples: sample " + std::to_string(i) +
+                                  " is not finite");
+    }
+  }
+  MotionComponent c = *this;
+  c.samples_ = std::move(accel_mps2);
+  SamplePeak(c.samples_, c.t0_, c.dt_, c.info_);
+  return c;
 }
 
 GroundMotion GroundMotion::FromScene(const Scene& scene) {
   GroundMotion g;
-  const double gravity = scene.run.gravity_mps2;
-  if (scene.horizontal) g.horizontal_ = MotionComponent::FromDef(*scene.horizontal, gravity);
-  if (scene.vertical) g.vertical_ = MotionComponent::FromDef(*scene.vertical, gravity);
+  if (scene.horizontal) g.horizontal_ = MotionComponent::FromDef(*scene.horizontal);
+  if (scene.vertical) g.vertical_ = MotionComponent::FromDef(*scene.vertical);
   // Two records of different lengths: the shorter gets zeros at its end.
   if (g.horizontal_ && g.vertical_ && !g.horizontal_->samples_mps2().empty() &&
       !g.vertical_->samples_mps2().empty()) {

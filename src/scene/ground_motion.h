@@ -3,6 +3,8 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <string_view>
+#include <utility>
 #include <vector>
 
 #include "scene/scene.h"
@@ -11,22 +13,24 @@ namespace rockbench {
 
 /// What was read: reported in summary.json as base.horizontal / base.vertical.
 struct MotionInfo {
-  std::string source;      ///< file path as written in the scene, or "harmonic", ...
-  std::string format;      ///< "AT2", "plain-2col", "plain-1col", "analytic" or "samples"
-                           ///< (built in code with FromSamples)
-  int npts = 0;            ///< samples (0 for analytic kinds)
-  double dt_s = 0.0;       ///< sample interval (0 for analytic kinds)
-  double duration_s = 0.0; ///< last sample time - first (analytic: pulse length, inf allowed)
-  double peak_g = 0.0;     ///< peak |acceleration| after units and scale, in g (records: the
-                           ///< largest |sample|; analytic kinds: exact, from the formula)
-  double peak_t_s = 0.0;   ///< time of the peak (the first one if several)
-  int padded_samples = 0;  ///< zeros appended to match the other component's length
+  std::string source;       ///< file path as written in the scene, or "harmonic", ...
+  std::string format;       ///< "AT2", "plain-2col", "plain-1col", "analytic" or "samples"
+                            ///< (built in code with FromSamples)
+  int npts = 0;             ///< samples (0 for analytic kinds)
+  double dt_s = 0.0;        ///< sample interval (0 for analytic kinds)
+  double duration_s = 0.0;  ///< last sample time - first (analytic: pulse length, inf allowed)
+  double peak_g = 0.0;      ///< peak |acceleration| after units and scale, in standard g
+                            ///< (kStandardGravity_mps2; records: the largest |sample|;
+                            ///< analytic kinds: exact, from the formula)
+  double peak_t_s = 0.0;    ///< time of the peak (the first one if several)
+  int padded_samples = 0;   ///< zeros appended to match the other component's length
 };
 
 /// One acceleration component. A record is piecewise linear between samples, zero before its
 /// first sample (at start_s; for a two-column file its own first time plus start_s) and after
 /// its last; at exactly a sample time it is that sample. Analytic kinds, with A = amplitude_g *
-/// scale * g, f = frequency_hz, t0 = start_s, zero outside the closed window given:
+/// scale * kStandardGravity_mps2 (g is standard gravity, whatever the scene's [run] gravity),
+/// f = frequency_hz, t0 = start_s, zero outside the closed window given:
 /// - harmonic:          A sin(2 pi f (t - t0))            on [t0, t0 + duration_s] (default inf)
 /// - sine_pulse:        A sin(2 pi f (t - t0))            on [t0, t0 + 1/f]
 /// - cosine_pulse:      A cos(2 pi f (t - t0))            on [t0, t0 + 1/f]
@@ -35,12 +39,25 @@ struct MotionInfo {
 ///                                                        on [t0, t0 + 2/f] (peak A at t0 + 1/f)
 class MotionComponent {
  public:
-  /// Builds from a scene definition (reads the file when kind is kFile). Throws SceneError
-  /// naming the file, line and what was expected.
-  static MotionComponent FromDef(const MotionDef& def, double gravity_mps2);
-  /// A sampled record in m/s^2, first sample at t0_s.
+  /// Builds from a scene definition (reads the file when kind is kFile). The units of an AT2
+  /// file are those its header declares (g when it declares none); def.units, when given, must
+  /// agree, and acceleration in other units than g is read only when def.units says which.
+  /// Throws SceneError naming the file, line and what was expected.
+  static MotionComponent FromDef(const MotionDef& def);
+  /// A sampled record in m/s^2, first sample at t0_s. `resolution_mps2`, empty or one per
+  /// sample (>= 0), is each sample's printed precision (see sample_resolution_mps2()).
   static MotionComponent FromSamples(std::vector<double> accel_mps2, double dt_s, double t0_s,
-                                     double gravity_mps2, std::string source);
+                                     std::string source, std::vector<double> resolution_mps2 = {});
+
+  /// A copy with the acceleration times `factor` (records: samples and their resolution
+  /// (times |factor|); analytic kinds: the amplitude); info().peak_g follows. Throws
+  /// std::invalid_argument for a non-finite factor.
+  MotionComponent Scaled(double factor) const;
+  /// A copy of a record with other samples (m/s^2), e.g. perturbed within their resolution:
+  /// same t0, dt, source, format and resolution; the peak is recomputed. Throws
+  /// std::invalid_argument for an analytic kind, a different number of samples than
+  /// samples_mps2() or a non-finite sample.
+  MotionComponent WithSamples(std::vector<double> accel_mps2) const;
 
   /// Acceleration at t, m/s^2.
   double accel_mps2(double t_s) const;
@@ -53,12 +70,18 @@ class MotionComponent {
   void pad_to(double t_end_s);
   /// Samples of a record (empty for analytic kinds).
   const std::vector<double>& samples_mps2() const { return samples_; }
+  /// The printed precision of each sample, m/s^2: one unit of its last printed digit in the
+  /// file, times the units and |scale|. Records read from files: same length as
+  /// samples_mps2(), 0 for the zeros pad_to appends; FromSamples: as given (may be empty);
+  /// analytic kinds: empty.
+  const std::vector<double>& sample_resolution_mps2() const { return resolution_; }
   double t0_s() const { return t0_; }
   double dt_s() const { return dt_; }
 
  private:
   MotionKind kind_ = MotionKind::kFile;
-  std::vector<double> samples_;  // m/s^2
+  std::vector<double> samples_;     // m/s^2
+  std::vector<double> resolution_;  // m/s^2, empty or one per sample
   double t0_ = 0.0, dt_ = 0.0;
   double amplitude_mps2_ = 0.0, frequency_hz_ = 0.0, duration_s_ = 0.0;
   MotionInfo info_;
@@ -92,18 +115,31 @@ class GroundMotion {
 
 /// A record as read from a file, before units and scale.
 struct RecordData {
-  std::vector<double> values;  ///< acceleration in the file's units
+  std::vector<double> values;      ///< acceleration in the file's units
+  std::vector<double> resolution;  ///< one unit of each value's last printed digit, file units
   double dt_s = 0.0;
-  double t0_s = 0.0;           ///< time of the first sample in the file (two-column files)
-  std::string format;          ///< "AT2", "plain-2col", "plain-1col"
-  bool units_are_g = false;    ///< AT2 header said UNITS OF G
-  int units_line = 0;          ///< AT2: line number of the "UNITS OF G" header line (0: none)
+  double t0_s = 0.0;   ///< time of the first sample in the file (two-column files)
+  std::string format;  ///< "AT2", "plain-2col", "plain-1col"
+  /// AT2: the acceleration units its header declares ("... IN UNITS OF G", "... CM/S/S", ...);
+  /// nullopt when no header line declares units.
+  std::optional<AccelUnits> header_units;
+  int units_line = 0;      ///< AT2: line number of that header line (0: none)
+  std::string units_text;  ///< AT2: that header line, trimmed
 };
 
-/// Reads a PEER AT2 file (all header variants of records/SOURCES.md). Throws SceneError.
+/// Reads a PEER AT2 file (all header variants of records/SOURCES.md). The header line that
+/// declares the quantity and units ("ACCELERATION TIME SERIES IN UNITS OF G", "... IN UNITS OF
+/// CM/S/S", "CM/SEC/SEC", "CM/S^2", "CM/S2", "GAL", "M/S/S", "M/S2"; "ACCELERATION IN CM/S/S")
+/// sets header_units. Throws SceneError naming the file and line for a header that declares
+/// velocity or displacement (rockbench reads acceleration) or units it does not know.
 RecordData ReadAt2(const std::filesystem::path& path);
 /// Reads a plain file: two columns (t, a) or one column (a, dt given by dt_s > 0), with optional
 /// non-numeric header lines. Throws SceneError.
 RecordData ReadPlain(const std::filesystem::path& path, double dt_s);
+
+/// The value of one unit in the last printed digit of a decimal number token: "-.1234567E-02"
+/// -> 1e-9, "0.039111" -> 1e-6, "12" -> 1, "1.5e3" -> 100 (the nearest double to 10^k). NaN
+/// when the token is not a decimal number ([+-] digits [. digits] [e|E [+-] digits]).
+double PrintedResolution(std::string_view token);
 
 }  // namespace rockbench

@@ -4,6 +4,8 @@
 #include <charconv>
 #include <cmath>
 #include <fstream>
+#include <limits>
+#include <optional>
 #include <regex>
 #include <sstream>
 #include <string>
@@ -87,7 +89,188 @@ double Value(const std::filesystem::path& path, int line, std::string_view tok) 
   return v;
 }
 
+// The printed resolution of a value token already read by Value (one unit of its last digit).
+double Resolution(const std::filesystem::path& path, int line, std::string_view tok) {
+  const double r = PrintedResolution(tok);
+  if (!(r >= 0.0)) {
+    throw SceneError(Where(path, line) + ": expected a decimal number (e.g. -.1234567E-02), got '" +
+                     std::string(tok) + "'");
+  }
+  return r;
+}
+
+std::string Upper(std::string s) {
+  for (char& c : s) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  return s;
+}
+
+std::string Trim(const std::string& s) {
+  const size_t a = s.find_first_not_of(" \t\v\f");
+  if (a == std::string::npos) return "";
+  return s.substr(a, s.find_last_not_of(" \t\v\f") + 1 - a);
+}
+
+// The dimension of a units spelling in an AT2 header.
+enum class Dimension { kAcceleration, kVelocity, kLength };
+
+struct UnitsSpelling {
+  const char* spelling;  // normalised: upper case, SEC -> S, ** -> ^
+  Dimension dimension;
+  std::optional<AccelUnits> accel;  // the acceleration units rockbench reads it as
+};
+
+constexpr std::string_view kKnownAccelUnits =
+    "G, CM/S/S (or CM/SEC/SEC, CM/S^2, CM/S2, GAL) or M/S/S (or M/S^2, M/S2)";
+
+const std::vector<UnitsSpelling>& Spellings() {
+  static const std::vector<UnitsSpelling> kSpellings = {
+      {"G", Dimension::kAcceleration, AccelUnits::kG},
+      {"CM/S/S", Dimension::kAcceleration, AccelUnits::kCmps2},
+      {"CM/S^2", Dimension::kAcceleration, AccelUnits::kCmps2},
+      {"CM/S2", Dimension::kAcceleration, AccelUnits::kCmps2},
+      {"GAL", Dimension::kAcceleration, AccelUnits::kCmps2},
+      {"GALS", Dimension::kAcceleration, AccelUnits::kCmps2},
+      {"M/S/S", Dimension::kAcceleration, AccelUnits::kMps2},
+      {"M/S^2", Dimension::kAcceleration, AccelUnits::kMps2},
+      {"M/S2", Dimension::kAcceleration, AccelUnits::kMps2},
+      {"MM/S/S", Dimension::kAcceleration, std::nullopt},
+      {"MM/S^2", Dimension::kAcceleration, std::nullopt},
+      {"MM/S2", Dimension::kAcceleration, std::nullopt},
+      {"IN/S/S", Dimension::kAcceleration, std::nullopt},
+      {"IN/S^2", Dimension::kAcceleration, std::nullopt},
+      {"IN/S2", Dimension::kAcceleration, std::nullopt},
+      {"FT/S/S", Dimension::kAcceleration, std::nullopt},
+      {"FT/S^2", Dimension::kAcceleration, std::nullopt},
+      {"FT/S2", Dimension::kAcceleration, std::nullopt},
+      {"CM/S", Dimension::kVelocity, std::nullopt},
+      {"M/S", Dimension::kVelocity, std::nullopt},
+      {"MM/S", Dimension::kVelocity, std::nullopt},
+      {"IN/S", Dimension::kVelocity, std::nullopt},
+      {"FT/S", Dimension::kVelocity, std::nullopt},
+      {"CM", Dimension::kLength, std::nullopt},
+      {"M", Dimension::kLength, std::nullopt},
+      {"MM", Dimension::kLength, std::nullopt},
+      {"IN", Dimension::kLength, std::nullopt},
+      {"FT", Dimension::kLength, std::nullopt},
+  };
+  return kSpellings;
+}
+
+// Upper case, SEC -> S, ** -> ^: "cm/sec**2" -> "CM/S^2".
+std::string NormaliseUnits(std::string u) {
+  u = Upper(std::move(u));
+  for (size_t at = u.find("SEC"); at != std::string::npos; at = u.find("SEC", at)) {
+    u.replace(at, 3, "S");
+  }
+  for (size_t at = u.find("**"); at != std::string::npos; at = u.find("**", at)) {
+    u.replace(at, 2, "^");
+  }
+  return u;
+}
+
+// Reads the header line of an AT2 file that declares the quantity and units, if any, into
+// rec; refuses velocity, displacement and units it does not know.
+void ReadUnitsLine(const std::filesystem::path& path, const Line& line, RecordData& rec,
+                   bool& found) {
+  const auto icase = std::regex::ECMAScript | std::regex::icase;
+  static const std::regex kQuantity(R"(\b(ACCELERATION|ACCEL|VELOCITY|DISPLACEMENT)\b)", icase);
+  static const std::regex kUnitsOf(R"(\bUNITS\s+OF\s+(\S+))", icase);
+  static const std::regex kIn(R"(\b(?:ACCELERATION|ACCEL|VELOCITY|DISPLACEMENT)\b.*?\bIN\s+(\S+))",
+                              icase);
+  static const std::regex kSeries(
+      R"(\b(VELOCITY|DISPLACEMENT)\s+(TIME\s+(SERIES|HISTORY)|RECORD|TRACE)\b)", icase);
+  const std::string& text = line.text;
+  const std::string quoted = "\"" + Trim(text) + "\"";
+  std::smatch quantity_m, units_m;
+  const bool has_quantity = std::regex_search(text, quantity_m, kQuantity);
+  const std::string quantity = has_quantity ? Upper(quantity_m[1]) : "";
+  const bool has_units = std::regex_search(text, units_m, kUnitsOf) ||
+                         (has_quantity && std::regex_search(text, units_m, kIn));
+  const std::string refuse =
+      "; rockbench reads acceleration (expected an acceleration record, PEER's .AT2, not the "
+      ".VT2 velocity or .DT2 displacement file)";
+  if (!has_units) {
+    // "VELOCITY TIME SERIES" without units still says what the file holds.
+    if (std::regex_search(text, kSeries)) {
+      throw SceneError(Where(path, line.number) + ": the header says " + quoted + refuse);
+    }
+    return;
+  }
+  found = true;
+  if (quantity == "VELOCITY" || quantity == "DISPLACEMENT") {
+    throw SceneError(Where(path, line.number) + ": the header says " + quoted + refuse);
+  }
+  std::string written = units_m[1];
+  // Punctuation around the units: "UNITS OF G. FILTER POINTS: ...", "UNITS OF G,", "(G)".
+  while (!written.empty() && std::string_view(".,;:)").find(written.back()) != std::string::npos) {
+    written.pop_back();
+  }
+  if (!written.empty() && written.front() == '(') written.erase(0, 1);
+  const std::string units = NormaliseUnits(written);
+  const UnitsSpelling* spelling = nullptr;
+  for (const UnitsSpelling& s : Spellings()) {
+    if (units == s.spelling) spelling = &s;
+  }
+  const std::string expected =
+      std::string(" (expected acceleration in ") + std::string(kKnownAccelUnits) + ")";
+  if (spelling == nullptr) {
+    throw SceneError(Where(path, line.number) + ": the header says " + quoted +
+                     ": unknown units \"" + written + "\"" + expected);
+  }
+  if (spelling->dimension == Dimension::kVelocity) {
+    throw SceneError(Where(path, line.number) + ": the header says " + quoted + ": \"" + written +
+                     "\" is a velocity unit" + refuse);
+  }
+  if (spelling->dimension == Dimension::kLength) {
+    throw SceneError(Where(path, line.number) + ": the header says " + quoted + ": \"" + written +
+                     "\" is a length (displacement) unit" + refuse);
+  }
+  if (!spelling->accel) {
+    throw SceneError(Where(path, line.number) + ": the header says " + quoted +
+                     ": rockbench does not read acceleration in \"" + written + "\"" + expected);
+  }
+  rec.header_units = spelling->accel;
+  rec.units_line = line.number;
+  rec.units_text = Trim(text);
+}
+
 }  // namespace
+
+double PrintedResolution(std::string_view tok) {
+  constexpr double kNan = std::numeric_limits<double>::quiet_NaN();
+  size_t i = 0;
+  const size_t n = tok.size();
+  const auto digit = [&](size_t k) { return k < n && tok[k] >= '0' && tok[k] <= '9'; };
+  if (i < n && (tok[i] == '+' || tok[i] == '-')) ++i;
+  long digits = 0, decimals = 0;
+  while (digit(i)) ++i, ++digits;
+  if (i < n && tok[i] == '.') {
+    ++i;
+    while (digit(i)) ++i, ++decimals;
+  }
+  if (digits + decimals == 0) return kNan;
+  long exponent = 0;
+  if (i < n && (tok[i] == 'e' || tok[i] == 'E')) {
+    ++i;
+    bool negative = false;
+    if (i < n && (tok[i] == '+' || tok[i] == '-')) negative = tok[i++] == '-';
+    if (!digit(i)) return kNan;
+    const auto res = std::from_chars(tok.data() + i, tok.data() + n, exponent);
+    if (res.ec != std::errc()) return kNan;
+    i = static_cast<size_t>(res.ptr - tok.data());
+    if (negative) exponent = -exponent;
+  }
+  if (i != n) return kNan;
+  // The nearest double to 10^k, as the decimal literal "1e<k>" reads.
+  const long k = exponent - decimals;
+  const std::string power = "1e" + std::to_string(k);
+  double r = 0.0;
+  const auto res = std::from_chars(power.data(), power.data() + power.size(), r);
+  if (res.ec == std::errc::result_out_of_range) {
+    return k < 0 ? 0.0 : std::numeric_limits<double>::infinity();
+  }
+  return r;
+}
 
 RecordData ReadAt2(const std::filesystem::path& path) {
   const std::vector<Line> lines = ReadLines(path);
@@ -113,7 +296,6 @@ RecordData ReadAt2(const std::filesystem::path& path) {
   static const std::regex kNpts(R"(NPTS\s*=\s*([0-9]+))", icase);
   static const std::regex kDt(R"(\bDT\s*=\s*([-+0-9.Ee]+))", icase);
   static const std::regex kTrailer(R"(^\s*([0-9]+)\s+([-+0-9.Ee]+)\s+NPTS\s*,\s*DT)", icase);
-  static const std::regex kUnitsG(R"(UNITS\s+OF\s+G\b)", icase);
   std::smatch npts_m, dt_m;
   std::string npts_text, dt_text;
   if (std::regex_search(h.text, npts_m, kNpts) && std::regex_search(h.text, dt_m, kDt)) {
@@ -140,15 +322,14 @@ RecordData ReadAt2(const std::filesystem::path& path) {
   if (!ParseNumber(dt_text, rec.dt_s) || !std::isfinite(rec.dt_s) || rec.dt_s <= 0.0) {
     throw SceneError(Where(path, h.number) + ": expected a positive DT (s), got '" + dt_text + "'");
   }
-  for (size_t i = 0; i <= header; ++i) {
-    if (std::regex_search(lines[i].text, kUnitsG)) {
-      rec.units_are_g = true;
-      rec.units_line = lines[i].number;
-      break;
-    }
+  // The first header line (up to the NPTS line) that declares the units.
+  bool units_found = false;
+  for (size_t i = 0; i <= header && !units_found; ++i) {
+    ReadUnitsLine(path, lines[i], rec, units_found);
   }
   // Every numeric token after the header line, whatever the count per line.
   rec.values.reserve(static_cast<size_t>(npts));
+  rec.resolution.reserve(static_cast<size_t>(npts));
   int last_line = h.number;
   for (size_t i = header + 1; i < lines.size(); ++i) {
     for (std::string_view tok : Tokens(lines[i].text, false)) {
@@ -158,6 +339,7 @@ RecordData ReadAt2(const std::filesystem::path& path) {
                          "): value " + std::to_string(npts + 1) + " is '" + std::string(tok) + "'");
       }
       rec.values.push_back(Value(path, lines[i].number, tok));
+      rec.resolution.push_back(Resolution(path, lines[i].number, tok));
     }
     last_line = lines[i].number;
   }
@@ -205,6 +387,7 @@ RecordData ReadPlain(const std::filesystem::path& path, double dt_s) {
     }
     if (columns == 2) times.push_back(row[0]);
     rec.values.push_back(row.back());
+    rec.resolution.push_back(Resolution(path, line.number, toks.back()));
     line_of.push_back(line.number);
   }
   if (rec.values.empty()) throw SceneError(path.string() + ": no numeric data found");

@@ -120,7 +120,8 @@ const std::map<std::string, KeyList, std::less<>>& Schema() {
         {"events", false},
         {"equations", false},
         {"overturn_angle", false},
-        {"rest_rate", false},
+        {"rest_rate", false},  // removed: an error naming rest_rate_rel
+        {"rest_rate_rel", false},
         {"check_transitions", false}}},
       {"bullet",
        {{"time_step", false},
@@ -138,7 +139,14 @@ const std::map<std::string, KeyList, std::less<>>& Schema() {
         {"margin", false},
         {"ground_depth", false},
         {"kinematic_highpass_hz", false}}},
-      {"compare", {{"tolerance", false}}},
+      {"compare",
+       {{"tolerance", false},
+        {"members", false},
+        {"engine_members", false},
+        {"amplitude_rel", false},
+        {"sample_precision", false},
+        {"initial_rel", false},
+        {"seed", false}}},
   };
   return kSchema;
 }
@@ -284,6 +292,18 @@ class Reader {
     auto i = node->as_integer();
     if (i == nullptr || i->get() <= 0) {
       Fail(Join(prefix, name), node, "expected a positive integer, got " + Describe(*node));
+    }
+    return i->get();
+  }
+
+  std::optional<int64_t> NonNegativeInteger(const toml::table& t, const std::string& prefix,
+                                            std::string_view name, int64_t max) const {
+    const toml::node* node = t.get(name);
+    if (node == nullptr) return std::nullopt;
+    auto i = node->as_integer();
+    if (i == nullptr || i->get() < 0 || i->get() > max) {
+      Fail(Join(prefix, name), node,
+           "expected an integer from 0 to " + std::to_string(max) + ", got " + Describe(*node));
     }
     return i->get();
   }
@@ -469,8 +489,12 @@ class Reader {
                         .value_or(m.equations);
       m.overturn_rad = Number(*model, "model", "overturn_angle", Rule::kPositive, "rad")
                            .value_or(m.overturn_rad);
-      m.rest_rate_radps = Number(*model, "model", "rest_rate", Rule::kNonNegative, "rad/s")
-                              .value_or(m.rest_rate_radps);
+      Forbid(*model, "model", "rest_rate",
+             "removed: the rest rule is dimensionless now; use model.rest_rate_rel (the rate "
+             "relative to sqrt(g / R), default " +
+                 Repr(ModelConfig{}.rest_rate_rel) + "; README \"Coming to rest\")");
+      m.rest_rate_rel =
+          Number(*model, "model", "rest_rate_rel", Rule::kNonNegative, "").value_or(m.rest_rate_rel);
       m.check_transitions =
           Bool(*model, "model", "check_transitions").value_or(m.check_transitions);
     }
@@ -510,7 +534,20 @@ class Reader {
     }
 
     if (const toml::table* cmp = Table(root, "", "compare")) {
-      s.compare.tolerance_rad = Number(*cmp, "compare", "tolerance", Rule::kPositive, "rad");
+      CompareConfig& c = s.compare;
+      c.tolerance_rad = Number(*cmp, "compare", "tolerance", Rule::kPositive, "rad");
+      c.members = static_cast<int>(
+          NonNegativeInteger(*cmp, "compare", "members", 100000).value_or(c.members));
+      c.engine_members = static_cast<int>(
+          NonNegativeInteger(*cmp, "compare", "engine_members", 100000).value_or(c.engine_members));
+      c.amplitude_rel = Number(*cmp, "compare", "amplitude_rel", Rule::kUnitInterval, "")
+                            .value_or(c.amplitude_rel);
+      c.sample_precision = Number(*cmp, "compare", "sample_precision", Rule::kNonNegative, "")
+                               .value_or(c.sample_precision);
+      c.initial_rel =
+          Number(*cmp, "compare", "initial_rel", Rule::kUnitInterval, "").value_or(c.initial_rel);
+      c.seed = static_cast<uint64_t>(
+          NonNegativeInteger(*cmp, "compare", "seed", INT64_MAX).value_or(1));
     }
     return s;
   }
@@ -631,10 +668,10 @@ std::string_view AccelUnitsName(AccelUnits units) {
   return "g";
 }
 
-double AccelUnitsToMps2(AccelUnits units, double gravity_mps2) {
+double AccelUnitsToMps2(AccelUnits units) {
   switch (units) {
     case AccelUnits::kG:
-      return gravity_mps2;
+      return kStandardGravity_mps2;
     case AccelUnits::kMps2:
       return 1.0;
     case AccelUnits::kCmps2:
@@ -741,7 +778,7 @@ void ValidateScene(const Scene& scene) {
   check("model.atol", m.atol, Rule::kPositive, "rad, rad/s");
   check("model.step", m.step_s, Rule::kPositive, "s");
   check("model.overturn_angle", m.overturn_rad, Rule::kPositive, "rad");
-  check("model.rest_rate", m.rest_rate_radps, Rule::kNonNegative, "rad/s");
+  check("model.rest_rate_rel", m.rest_rate_rel, Rule::kNonNegative, "");
   const BulletConfig& b = scene.bullet;
   check("bullet.time_step", b.time_step_s, Rule::kPositive, "s");
   if (b.solver_iterations <= 0) {
@@ -759,9 +796,13 @@ void ValidateScene(const Scene& scene) {
   check("bullet.margin", b.margin_m, Rule::kNonNegative, "m");
   check("bullet.ground_depth", b.ground_depth_m, Rule::kPositive, "m");
   check("bullet.kinematic_highpass_hz", b.kinematic_highpass_hz, Rule::kNonNegative, "Hz");
-  if (scene.compare.tolerance_rad) {
-    check("compare.tolerance", *scene.compare.tolerance_rad, Rule::kPositive, "rad");
-  }
+  const CompareConfig& c = scene.compare;
+  if (c.tolerance_rad) check("compare.tolerance", *c.tolerance_rad, Rule::kPositive, "rad");
+  if (c.members < 0) fail("compare.members", "expected a non-negative integer");
+  if (c.engine_members < 0) fail("compare.engine_members", "expected a non-negative integer");
+  check("compare.amplitude_rel", c.amplitude_rel, Rule::kUnitInterval, "");
+  check("compare.sample_precision", c.sample_precision, Rule::kNonNegative, "");
+  check("compare.initial_rel", c.initial_rel, Rule::kUnitInterval, "");
 }
 
 }  // namespace rockbench

@@ -1,6 +1,7 @@
 #pragma once
 /// The scene: what a run simulates. Read from TOML (see README "Scene files"); every field has
 /// the documented default, so a scene that omits a key gets exactly what the README says.
+#include <cstdint>
 #include <filesystem>
 #include <limits>
 #include <optional>
@@ -51,7 +52,9 @@ struct MotionDef {
 struct RunConfig {
   double duration_s = 10.0;         ///< simulated time, s
   double output_interval_s = 0.01;  ///< history sample interval, s (events are added)
-  double gravity_mps2 = 9.81;       ///< g, m/s^2
+  /// Gravitational acceleration of the simulation, m/s^2. Not the unit g of records and
+  /// amplitude_g, which is standard gravity (kStandardGravity_mps2) whatever this says.
+  double gravity_mps2 = 9.81;
 };
 
 enum class Integrator { kDopri5, kRk4 };
@@ -61,13 +64,17 @@ enum class Equations { kNonlinear, kLinearized };
 /// Options of the reference model ([model] table).
 struct ModelConfig {
   Integrator integrator = Integrator::kDopri5;  ///< "dopri5" (adaptive, dense) or "rk4" (fixed)
-  double rtol = 1e-8;                           ///< dopri5 relative tolerance
-  double atol = 1e-10;                          ///< dopri5 absolute tolerance, rad and rad/s
+  double rtol = 1e-12;                          ///< dopri5 relative tolerance
+  double atol = 1e-14;                          ///< dopri5 absolute tolerance, rad and rad/s
   double step_s = 1e-3;                         ///< rk4 fixed step, s
   EventScheme events = EventScheme::kLocated;   ///< "located" or "thesis" (O(h) detection)
   Equations equations = Equations::kNonlinear;  ///< "nonlinear" or "linearized" (4.3.3)
   double overturn_rad = 1.5707963267948966;     ///< |theta_i| at which a block overturns
-  double rest_rate_radps = 1e-4;  ///< rest rule: impact rate below which a block settles
+  /// Rest rule, dimensionless: a contact that would open after an impact with a relative rate
+  /// below rest_rate_rel * sqrt(g / R) stays closed (R: the contact's pivot to the mass centre
+  /// of what rests on it; README "Coming to rest"). 0: never. An excursion launched at that
+  /// rate would rise (2/3) rest_rate_rel^2 / sin(theta_c): 2e-14 rad for the thesis's stack.
+  double rest_rate_rel = 1e-7;
   bool check_transitions = true;  ///< evaluate no-impact transition criteria in every mode
 };
 
@@ -99,8 +106,27 @@ struct BulletConfig {
 
 /// Comparison settings ([compare] table).
 struct CompareConfig {
-  /// Agreement-horizon tolerance, rad; nullopt: 10% of the reference's peak |theta|.
+  /// Agreement-horizon tolerance, rad; nullopt: 10% of the reference's peak |theta| of that
+  /// block, and never below 1% of the block's critical angle atan(B/H) (a block that barely
+  /// moves would otherwise be held to a tolerance of zero).
   std::optional<double> tolerance_rad;
+  /// Reference ensemble members run on perturbed inputs (the predictability horizon); 0: none.
+  int members = 32;
+  /// Engine members on the same perturbed inputs as the first reference members (the
+  /// statistical comparison beyond the horizon); 0: none. At most `members` are used.
+  int engine_members = 16;
+  /// Each member's record (or pulse) amplitude is scaled by 1 + u * amplitude_rel, u uniform in
+  /// [-1, 1], one u per component: what a record's scaling is known to (instrument, baseline
+  /// correction, scale factor: 1e-2 at best).
+  double amplitude_rel = 1e-2;
+  /// Each record sample moves by u * sample_precision * (half a unit of its last printed digit),
+  /// u uniform in [-1, 1]: the samples are known to their printed precision.
+  double sample_precision = 1.0;
+  /// Each nonzero initial angle and rate is scaled by 1 + u * initial_rel (a state at rest
+  /// stays at rest: a block standing on its face is known exactly).
+  double initial_rel = 1e-2;
+  /// Seed of the perturbations: member i's inputs depend only on (seed, i).
+  uint64_t seed = 1;
 };
 
 struct Scene {
@@ -143,7 +169,10 @@ bool IsAt2File(const std::filesystem::path& file);
 std::string_view MotionKindName(MotionKind kind);
 /// "g", "m/s2", "cm/s2".
 std::string_view AccelUnitsName(AccelUnits units);
-/// Metres per second squared in one unit (g uses `gravity_mps2`).
-double AccelUnitsToMps2(AccelUnits units, double gravity_mps2);
+/// The unit g of records, `units = "g"` and `amplitude_g`: standard gravity, m/s^2 by
+/// definition (3rd CGPM, 1901), independent of the scene's [run] gravity.
+inline constexpr double kStandardGravity_mps2 = 9.80665;
+/// Metres per second squared in one unit (g is kStandardGravity_mps2).
+double AccelUnitsToMps2(AccelUnits units);
 
 }  // namespace rockbench

@@ -167,7 +167,7 @@ TEST(BulletEngineTest, UpliftStartsAtTheStaticThreshold) {
   s.bullet.split_impulse_threshold = 0.0;
   const double a_c = kG * std::tan(hz.alpha);
   GroundMotion m;
-  m.set_horizontal(MotionComponent::FromSamples({0.0, 2.0 * a_c}, 10.0, 0.0, kG, "ramp"));
+  m.set_horizontal(MotionComponent::FromSamples({0.0, 2.0 * a_c}, 10.0, 0.0, "ramp"));
   const EngineOutput out = Simulate(MakeEngineInput(s, m));
   const Event* start = nullptr;
   for (const Event& e : out.history.events) {
@@ -245,14 +245,16 @@ TEST(BulletEngineTest, BulletConfirmsTheTransitionWithoutImpact) {
 TEST(BulletEngineTest, ThesisRinaldiAgreesWithTheReference) {
   const EngineAgreement a = Agreement(Load("thesis_rinaldi228.toml"));
   ASSERT_TRUE(a.theta2.has_value());
-  // Both overturn block 2 (reference at 5.402 s); compared until then. Measured: theta1 max
-  // 3.7e-4 rad, theta2 max 2.89e-2 rad (the last 0.1 s of the fall, at 2.6 rad/s), horizon the
-  // whole run, overturn 7.5 ms late, all 7 impacts matched within 0.5 ms.
+  // Both overturn block 2 (reference at 5.420 s); compared until then. Measured: theta1 max
+  // 4.5e-4 rad, theta2 max 3.8e-2 rad (the last 0.1 s of the fall, at 2.6 rad/s), horizon the
+  // whole run, overturn 14.8 ms late (both at |theta2| = pi/2; the accumulated first-order lag,
+  // see RinaldiOverturnTimeConvergesAtFirstOrder), all 7 impacts matched within 0.66 ms.
   EXPECT_TRUE(a.overturn_agree);
   ASSERT_TRUE(a.overturn_block_reference.has_value());
   EXPECT_EQ(*a.overturn_block_reference, 2);
   ASSERT_TRUE(a.overturn_time_error_s.has_value());
-  EXPECT_LT(std::abs(*a.overturn_time_error_s), 0.015);
+  EXPECT_GT(*a.overturn_time_error_s, 0.0);
+  EXPECT_LT(*a.overturn_time_error_s, 0.03);
   EXPECT_LT(a.theta1.max_abs_error_rad, 5.5e-4);
   EXPECT_LT(a.theta1.rms_error_rad, 1.0e-4);
   EXPECT_LT(a.theta2->max_abs_error_rad, 4.3e-2);
@@ -264,6 +266,69 @@ TEST(BulletEngineTest, ThesisRinaldiAgreesWithTheReference) {
   EXPECT_EQ(a.impacts.matched, a.impacts.reference_impacts);
   EXPECT_GE(a.impacts.matched, 7);
   EXPECT_LT(a.impacts.max_abs_time_error_s, 0.75e-3);
+}
+
+// Overturn time error (Bullet minus reference, s) of a scene at time step dt; both must
+// overturn the same block.
+double OverturnTimeError(Scene s, double dt, int block) {
+  s.bullet.time_step_s = dt;
+  const EngineAgreement a = Agreement(s);
+  EXPECT_TRUE(a.overturn_agree) << "dt " << dt;
+  EXPECT_EQ(a.overturn_block_reference.value_or(0), block) << "dt " << dt;
+  EXPECT_TRUE(a.overturn_time_error_s.has_value()) << "dt " << dt;
+  const double e = a.overturn_time_error_s.value_or(std::nan(""));
+  ::testing::Test::RecordProperty("overturn_time_error_s_dt_" + std::to_string(dt),
+                                  std::to_string(e));
+  return e;
+}
+
+// Bullet and the reference use one overturn definition: |theta| reaches model.overturn_angle,
+// Bullet's crossing interpolated inside its step. The overturn time error then falls in
+// proportion to the step, with no floor (the old 0.01 rad slack made Bullet declare overturning
+// 0.01 rad / |omega| early: a floor of -1.6 ms here, -3.9 ms on Rinaldi 228 below).
+TEST(BulletEngineTest, SingleBlockOverturnTimeConvergesAtFirstOrder) {
+  // Housner's scale effect case of the stress catalogue (size/single/b=0.1m): B = 0.1 m,
+  // H = 0.4 m, one sine pulse of 1 g at 2 Hz from 0.1 s; it overturns at 0.559 s at 6.2 rad/s.
+  Scene s;
+  s.block1 = {0.1, 0.4, 0.1, 2500.0 * 0.1 * 0.4 * 0.1, 2500.0};
+  MotionDef pulse;
+  pulse.key = "base.horizontal";
+  pulse.kind = MotionKind::kSinePulse;
+  pulse.amplitude_g = 1.0;
+  pulse.frequency_hz = 2.0;
+  pulse.start_s = 0.1;
+  s.horizontal = pulse;
+  s.run.duration_s = 1.0;
+  s.bullet.split_impulse_threshold = 0.0;
+  // A single block's side face meets the ground at exactly pi/2, where Bullet may hold it at
+  // pi/2 within rounding (measured: released 1% outside its critical angle at dt 3e-5 s, max
+  // |theta| = pi/2 - 4e-16; elsewhere it lands 2e-6 to 4e-2 rad past pi/2). Both engines read
+  // this angle, so the definition is still one.
+  s.model.overturn_rad = std::numbers::pi / 2 - 0.01;
+  // Measured: +2.48e-4 s at dt 1e-3, +2.43e-5 at 1e-4, +2.43e-6 at 1e-5 (0.24 dt: Bullet's first
+  // order); with the old slack -4.1e-4, -1.51e-3, -1.60e-3. Bound 0.5 dt (2x).
+  for (const double dt : {1e-3, 1e-4, 1e-5}) {
+    const double e = OverturnTimeError(s, dt, 1);
+    EXPECT_LT(std::abs(e), 0.5 * dt) << "dt " << dt;
+  }
+}
+
+TEST(BulletEngineTest, RinaldiOverturnTimeConvergesAtFirstOrder) {
+  // Block 2 falls off block 1 at 2.6 rad/s, past pi/2 (by 0.55 rad: nothing holds it short of
+  // the default overturn angle, pi/2). Bullet's error here is the lag accumulated over 5.4 s of
+  // rocking (7 impacts, each resolved up to a step late), not the overturn's location.
+  // Measured (s): +0.167 at dt 1e-3, +1.48e-2 at 1e-4, +1.35e-3 at 1e-5 (11x per decade; at
+  // 1e-3 s only 2 of 7 impacts match, so that point is not yet asymptotic); with the old slack
+  // +0.164, +1.10e-2, -2.51e-3: shifted by -3.9 ms, through zero.
+  const Scene s = Load("thesis_rinaldi228.toml");
+  const double coarse = OverturnTimeError(s, 1e-3, 2);
+  const double mid = OverturnTimeError(s, 1e-4, 2);
+  const double fine = OverturnTimeError(s, 1e-5, 2);
+  // Bullet is late at every step, and the error falls at least 5x per decade of the step.
+  EXPECT_GT(fine, 0.0);
+  EXPECT_GT(mid, 5.0 * fine);
+  EXPECT_GT(coarse, 5.0 * mid);
+  EXPECT_LT(fine, 3e-3);
 }
 
 // Max angle error against the reference over the first 3 s of a scene.
@@ -308,7 +373,8 @@ TEST(BulletEngineTest, DoubleIsNotWorseThanFloatAtTheCoarseSteps) {
 TEST(BulletEngineTest, KinematicDriveWithoutBaselineCorrectionEqualsTheInertialDrive) {
   // The Rinaldi record through both drives, the ground moved by the exact double integral
   // (highpass 0): only rounding and contact positions differ. Measured max difference
-  // 4e-6 rad (theta1) over the 5.4 s until block 2 falls.
+  // 2.8e-5 rad (theta1) and 3.0e-5 rad (theta2) over the first 5 s (block 2 falls at 5.4 s);
+  // rounding differences grow with the motion's sensitivity, so the bounds keep a factor ~2.
   Scene s = Load("thesis_rinaldi228.toml", {"run.duration=5"});
   const EngineOutput inertial = RunScene(s);
   s.bullet.drive = BulletDrive::kKinematic;
@@ -323,8 +389,8 @@ TEST(BulletEngineTest, KinematicDriveWithoutBaselineCorrectionEqualsTheInertialD
     d1 = std::max(d1, std::abs(a.theta1_rad - b.theta1_rad));
     d2 = std::max(d2, std::abs(a.theta2_rad - b.theta2_rad));
   }
-  EXPECT_LT(d1, 2e-5);
-  EXPECT_LT(d2, 2e-4);
+  EXPECT_LT(d1, 6e-5) << "theta2 " << d2;
+  EXPECT_LT(d2, 2e-4) << "theta1 " << d1;
   // With the default 0.1 Hz baseline correction the excitation itself changes (by 0.022 m/s^2
   // at most here): reported, not hidden.
   s.bullet.kinematic_highpass_hz = 0.1;

@@ -31,7 +31,7 @@ TEST(EngineInputTest, SamplesTheBaseMotionAtTheStepStarts) {
   s.bullet.time_step_s = 1e-3;
   s.run.duration_s = 0.0105;  // not a multiple of dt: 11 steps
   GroundMotion m;
-  m.set_horizontal(MotionComponent::FromSamples({0.0, 1.0}, 0.01, 0.0, 9.81, "ramp"));
+  m.set_horizontal(MotionComponent::FromSamples({0.0, 1.0}, 0.01, 0.0, "ramp"));
   const EngineInput in = MakeEngineInput(s, m);
   EXPECT_EQ(in.steps, 11);
   ASSERT_EQ(in.drive.ax_mps2.size(), 11u);
@@ -133,7 +133,7 @@ TEST(EngineInputTest, BaselineCorrectionRemovesDriftAndKeepsTheShaking) {
   // what changes is the burst's mean velocity A / omega = 0.094 m/s, removed by a slow ground
   // acceleration of measured 0.011 m/s^2 = 0.38% of A. Bound 0.5%.
   std::vector<double> h(n, 0.0);
-  const double A = 0.3 * 9.81;
+  const double A = 0.3 * kStandardGravity_mps2;
   for (size_t k = 0; k < 2000; ++k) h[k] = A * std::sin(2.0 * std::numbers::pi * 5.0 * k * dt);
   const std::vector<double> uh = KinematicDisplacement(h, dt, fc, &v0, nullptr);
   double worst = 0.0;
@@ -163,7 +163,7 @@ TEST(EngineInputTest, KinematicDriveFillsTheGroundPathAndItsReport) {
   EXPECT_GT(in.drive.raw_peak_x_m, 0.0);
   EXPECT_GT(in.drive.peak_x_m, 0.0);
   EXPECT_GT(in.drive.correction_max_x_mps2, 0.0);
-  EXPECT_LT(in.drive.correction_max_x_mps2, 0.05 * 0.2 * 9.81);
+  EXPECT_LT(in.drive.correction_max_x_mps2, 0.05 * 0.2 * kStandardGravity_mps2);
   // The report is the largest |second difference - record| over the run.
   double worst = 0.0;
   for (size_t k = 0; k < 2000; ++k) {

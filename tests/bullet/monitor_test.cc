@@ -247,21 +247,50 @@ TEST(MonitorTest, NonFiniteStateStopsTheRunWithoutThrowing) {
   EXPECT_EQ(m.history().samples.size(), 1u);  // the NaN state is not a sample
 }
 
-TEST(MonitorTest, OverturnStopsAtTheModelAngle) {
-  EngineInput in = Input(false);
-  in.overturn_rad = std::numbers::pi / 2;
+// Overturning is the reference's definition: |theta| reaches model.overturn_angle (no slack), at
+// the crossing interpolated inside the step, on either side.
+TEST(MonitorTest, OverturnIsTheInterpolatedCrossingOfTheModelAngle) {
+  const double half_pi = std::numbers::pi / 2;
+  for (const double side : {1.0, -1.0}) {
+    SCOPED_TRACE(side);
+    EngineInput in = Input(false);
+    in.overturn_rad = half_pi;
+    Monitor m(in);
+    m.Start(At(in, 0.0, side * 1.0, side * 2.0));
+    EXPECT_TRUE(m.Step(1, At(in, 1e-3, side * 1.5, side * 2.0)));
+    // 0.005 rad short of the overturn angle is not overturned (the old 0.01 rad slack said it was).
+    EXPECT_TRUE(m.Step(2, At(in, 2e-3, side * (half_pi - 0.005), side * 2.0)));
+    // Crossed a quarter into the step: overturned at 2.25 ms, not at the step's end.
+    EXPECT_FALSE(m.Step(3, At(in, 3e-3, side * (half_pi + 0.015), side * 2.0)));
+    m.Finish();
+    EXPECT_EQ(m.status(), "overturned");
+    const auto s = m.Summary();
+    EXPECT_EQ(s["overturn"]["block"], 1);
+    EXPECT_NEAR(s["overturn"]["t_s"].get<double>(), 2.25e-3, 1e-15);
+    EXPECT_FALSE(s["monitor"].contains("overturn_slack_rad"));
+    ASSERT_FALSE(m.history().events.empty());
+    const Event& e = m.history().events.back();
+    EXPECT_EQ(e.kind, "overturn");
+    EXPECT_NEAR(e.t_s, 2.25e-3, 1e-15);
+    // The last sample is the state at the step's end.
+    EXPECT_EQ(m.history().samples.back().t_s, 3e-3);
+  }
+}
+
+TEST(MonitorTest, OverturnOfTwoBlocksInOneStepIsTheFirstCrossing) {
+  const double half_pi = std::numbers::pi / 2;
+  EngineInput in = Input(true);
+  in.overturn_rad = half_pi;
   Monitor m(in);
-  m.Start(At(in, 0.0, 1.0, 2.0));
-  EXPECT_TRUE(m.Step(1, At(in, 1e-3, 1.5, 2.0)));
-  // Lying on its side, within the 0.01 rad slack of pi/2.
-  EXPECT_FALSE(m.Step(2, At(in, 2e-3, std::numbers::pi / 2 - 0.005, 0.0)));
+  m.Start(At(in, 0.0, 1.2, 2.0, 1.3, 2.0));
+  EXPECT_TRUE(m.Step(1, At(in, 1e-3, half_pi - 0.01, 2.0, half_pi - 0.002, 2.0)));
+  // Block 1 crosses 0.8 into the step, block 2 0.1 into it: block 2 overturned, at 1.1 ms.
+  EXPECT_FALSE(m.Step(2, At(in, 2e-3, half_pi + 0.0025, 2.0, half_pi + 0.018, 2.0)));
   m.Finish();
-  EXPECT_EQ(m.status(), "overturned");
   const auto s = m.Summary();
-  EXPECT_EQ(s["overturn"]["block"], 1);
-  EXPECT_DOUBLE_EQ(s["overturn"]["t_s"].get<double>(), 2e-3);
-  ASSERT_FALSE(m.history().events.empty());
-  EXPECT_EQ(m.history().events.back().kind, "overturn");
+  EXPECT_EQ(s["overturn"]["block"], 2);
+  EXPECT_NEAR(s["overturn"]["t_s"].get<double>(), 1.1e-3, 1e-15);
+  EXPECT_EQ(m.history().events.back().note, "block 2");
 }
 
 }  // namespace

@@ -34,7 +34,6 @@ EngineInput SomeInput() {
   in.config.ground_depth_m = 3.0;
   in.config.kinematic_highpass_hz = 0.05;
   in.overturn_rad = 1.2;
-  in.rest_rate_radps = 1e-5;
   in.steps = 1200;
   in.motion_end_s = 19.9;
   for (int k = 0; k < 1200; ++k) {

@@ -215,8 +215,8 @@ TEST(RockingWorldTest, InertialDriveSetsEffectiveGravityBeforeEachStep) {
   s.bullet.time_step_s = 1e-3;
   GroundMotion m;
   // A ramp 0, 1, 2, 3 m/s^2 at t = 0, 1, 2, 3 ms horizontally, and 0.5 m/s^2 vertically.
-  m.set_horizontal(MotionComponent::FromSamples({0.0, 1.0, 2.0, 3.0}, 1e-3, 0.0, 9.81, "ramp"));
-  m.set_vertical(MotionComponent::FromSamples({0.5, 0.5, 0.5, 0.5}, 1e-3, 0.0, 9.81, "up"));
+  m.set_horizontal(MotionComponent::FromSamples({0.0, 1.0, 2.0, 3.0}, 1e-3, 0.0, "ramp"));
+  m.set_vertical(MotionComponent::FromSamples({0.5, 0.5, 0.5, 0.5}, 1e-3, 0.0, "up"));
   const EngineInput input = MakeEngineInput(s, m);
   RockingWorld world(input);
   for (int n = 0; n < 3; ++n) {
@@ -278,7 +278,7 @@ TEST(RockingWorldTest, KinematicGroundFollowsTheDisplacementWithStepVelocity) {
   s.bullet.drive = BulletDrive::kKinematic;
   s.bullet.kinematic_highpass_hz = 0.0;
   GroundMotion m;
-  m.set_horizontal(MotionComponent::FromSamples({2.0, 2.0}, 1.0, 0.0, 9.81, "const"));
+  m.set_horizontal(MotionComponent::FromSamples({2.0, 2.0}, 1.0, 0.0, "const"));
   const EngineInput input = MakeEngineInput(s, m);
   RockingWorld world(input);
   for (int n = 0; n < 10; ++n) {

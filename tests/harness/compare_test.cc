@@ -209,5 +209,51 @@ TEST_F(CompareTest, JsonAndCsvCarryTheKeysOtherToolsRead) {
   EXPECT_EQ(row2.rfind("bullet,2,", 0), 0u);
 }
 
+TEST(CompareTolerance, ABlockThatNeverMovesIsNotHeldToAToleranceOfZero) {
+  // Block 2 (0.4 x 1.2 m) rocks on a wide, squat block 1 (3 x 0.5 m) that never lifts: the
+  // reference's peak theta1 is 0, so "10% of the peak" would be 0 and an engine 1e-7 rad off
+  // (contact compliance) would leave the tolerance at its first sample. The floor is 1% of the
+  // block's critical angle atan(B/H).
+  Scene s;
+  s.block1 = {3.0, 0.5, 1.0, 3750.0, 2500.0};
+  s.block2 = BlockDef{0.4, 1.2, 1.0, 1200.0, 2500.0};
+  s.initial.theta2_rad = 0.1;
+  s.run.duration_s = 2.0;
+  const reference::Result ref = reference::Simulate(s, GroundMotion());
+  ASSERT_EQ(ref.summary.peak_theta1_rad, 0.0);
+  EXPECT_DOUBLE_EQ(AngleTolerance_rad(s, 1, 0.0), 0.01 * std::atan(3.0 / 0.5));
+  EngineRun run;
+  run.engine = "fake";
+  run.history.two_blocks = true;
+  for (double t = 0.0; t <= 2.0 + 1e-12; t += 0.01) {
+    Sample x = ref.trajectory.At(t);
+    x.t_s = t;
+    x.theta1_rad += 1e-7;
+    run.history.samples.push_back(x);
+  }
+  run.summary = nlohmann::json::object();
+  const EngineAgreement a = CompareWithReference(s, ref, run);
+  EXPECT_TRUE(a.theta1.within_tolerance);
+  EXPECT_NEAR(a.theta1.horizon_s, 2.0, 1e-9);
+  // The 10% rule still holds for a block that moves: block 2's tolerance is 10% of its peak.
+  EXPECT_DOUBLE_EQ(a.theta2->tolerance_rad, 0.1 * ref.summary.peak_theta2_rad);
+}
+
+TEST(CompareTolerance, ErrorsAreSplitAtThePredictabilityHorizon) {
+  const Scene s = testing_util::HousnerHalfAngleRelease(4.0);
+  const reference::Result ref = reference::Simulate(s, GroundMotion());
+  // Error 1e-4 rad before 2 s and 3e-4 after.
+  const EngineRun run =
+      FromReference(ref, 0.0, 0.01, 4.0, [](double t) { return t < 2.0 ? 1e-4 : 3e-4; });
+  CompareOptions o;
+  o.predictability_horizon_s[0] = 2.0;
+  const EngineAgreement a = CompareWithReference(s, ref, run, o);
+  EXPECT_NEAR(a.theta1.max_abs_error_predictable_rad, 1e-4, 1e-12);
+  EXPECT_NEAR(a.theta1.max_abs_error_beyond_rad, 3e-4, 1e-12);
+  EXPECT_NEAR(a.theta1.rms_error_beyond_rad, 3e-4, 1e-12);
+  EXPECT_NEAR(a.theta1.samples_beyond, 200, 1);  // the grid is a sum of 0.01 s steps
+  EXPECT_EQ(AgreementJson(a)["theta1"]["predictability_horizon_s"], 2.0);
+}
+
 }  // namespace
 }  // namespace rockbench

@@ -205,17 +205,70 @@ TEST(ImpactTest, ThesisExampleFirstImpactGoesTo1b) {
   EXPECT_LT(res.chosen.state.omega2, res.chosen.state.omega1);
 }
 
-// The rest rule: an opening rate below rest_rate keeps the contact closed.
-TEST(ImpactTest, RestRuleSettlesSlowImpacts) {
+// The rest rule: an opening rate below rest_rate_rel sqrt(g / R) keeps the contact closed,
+// with R the distance from the pivot to the mass centre of what settles: the block (or the
+// stack) at the ground, block 2 at the interface. Just above and just below the threshold
+// (Housner's e = 0.912 for H/B = 4 turns the pre-impact rate into the post-impact one).
+TEST(ImpactTest, RestRuleSettlesImpactsBelowTheRelativeRate) {
   const Geometry geo = MakeGeometry(1.0, 4.0, 10000.0, 0.0, 0.0, 0.0);
-  const ImpactResult fast =
-      ResolveImpact(geo, Mode::k3a, {0.0, 0.0, -1e-3, -1e-3}, ImpactKind::kGround, 1e-4);
-  EXPECT_EQ(fast.chosen.mode, Mode::k3b);
-  EXPECT_FALSE(fast.settled);
-  const ImpactResult slow =
-      ResolveImpact(geo, Mode::k3a, {0.0, 0.0, -1e-5, -1e-5}, ImpactKind::kGround, 1e-4);
-  EXPECT_EQ(slow.chosen.mode, Mode::kRest);
-  EXPECT_TRUE(slow.settled);
+  const double rel = 1e-4;
+  const double thr = rel * std::sqrt(geo.g / geo.block1.r);
+  EXPECT_DOUBLE_EQ(RestRate(geo, ImpactKind::kGround, rel), thr);
+  const double e = 1.0 - 1.5 * std::pow(std::sin(geo.block1.theta_c), 2);
+  for (const double f : {1.01, 0.99}) {
+    const double w = -f * thr / e;  // post-impact rate f * thr
+    const ImpactResult r = ResolveImpact(geo, Mode::k3a, {0.0, 0.0, w, w}, ImpactKind::kGround, rel);
+    EXPECT_EQ(r.chosen.mode, f > 1 ? Mode::k3b : Mode::kRest) << f;
+    EXPECT_EQ(r.settled, f < 1) << f;
+  }
+  // Zero: never settles.
+  EXPECT_EQ(ResolveImpact(geo, Mode::k3a, {0.0, 0.0, -1e-12, -1e-12}, ImpactKind::kGround, 0.0)
+                .chosen.mode,
+            Mode::k3b);
+  // Two blocks: the ground uses the stack's R, the interface block 2's r.
+  const Geometry two = MakeGeometry(1.25, 1.25, 3906.25, 1.0, 2.5, 6250.0);
+  EXPECT_DOUBLE_EQ(RestRate(two, ImpactKind::kGround, rel), rel * std::sqrt(two.g / two.R));
+  EXPECT_DOUBLE_EQ(RestRate(two, ImpactKind::kInterface, rel),
+                   rel * std::sqrt(two.g / two.block2.r));
+}
+
+// The rule is the same at every size: scaled by k in length (masses by k^3), with rates
+// divided by sqrt(k), an impact settles or not exactly as at k = 1, for rates either side of
+// the threshold and every impact case of the thesis's stack.
+TEST(ImpactTest, RestRuleIsTheSameAtEverySize) {
+  const double rel = 1e-4;
+  const Case cases[] = {{Mode::k3a, ImpactKind::kGround},    {Mode::k1a, ImpactKind::kGround},
+                        {Mode::k2a, ImpactKind::kGround},    {Mode::k1a, ImpactKind::kInterface},
+                        {Mode::k2a, ImpactKind::kInterface}, {Mode::k4a, ImpactKind::kInterface}};
+  std::mt19937_64 rng(7);
+  int settled = 0, total = 0;
+  for (const Case& c : cases) {
+    for (int trial = 0; trial < 200; ++trial) {
+      State s = ImpactState(c.before, c.kind, rng);
+      // Rates near the threshold (2.3e-4 rad/s at the ground, 2.7e-4 at the interface): the
+      // rates of ImpactState (0.05 to 2 rad/s) times e^-10 .. e^-5, 2e-6 to 1.3e-2 rad/s.
+      const double shrink = std::exp(std::uniform_real_distribution<double>(-10.0, -5.0)(rng));
+      s.omega1 *= shrink;
+      s.omega2 *= shrink;
+      const Geometry g1 = MakeGeometry(1.25, 1.25, 3906.25, 1.0, 2.5, 6250.0);
+      const ImpactResult r1 = ResolveImpact(g1, c.before, s, c.kind, rel);
+      for (const double k : {0.01, 100.0}) {
+        const Geometry gk = MakeGeometry(1.25 * k, 1.25 * k, 3906.25 * k * k * k, 1.0 * k, 2.5 * k,
+                                         6250.0 * k * k * k);
+        State sk = s;
+        sk.omega1 /= std::sqrt(k);
+        sk.omega2 /= std::sqrt(k);
+        const ImpactResult rk = ResolveImpact(gk, c.before, sk, c.kind, rel);
+        EXPECT_EQ(rk.chosen.mode, r1.chosen.mode) << k;
+        EXPECT_EQ(rk.settled, r1.settled) << k;
+      }
+      settled += r1.settled;
+      ++total;
+    }
+  }
+  // Both outcomes occur among the trials (the rates straddle the threshold).
+  EXPECT_GT(settled, total / 10);
+  EXPECT_LT(settled, total - total / 10);
 }
 
 }  // namespace

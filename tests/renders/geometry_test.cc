@@ -200,7 +200,7 @@ TEST(IntegrateBaseDisplacement, RecoversAHarmonicDisplacement) {
   std::vector<double> a;
   for (int i = 0; i <= 800; ++i) a.push_back(-amp_m * w * w * std::sin(w * i * dt));
   GroundMotion motion;
-  motion.set_horizontal(MotionComponent::FromSamples(a, dt, 0.0, 9.81, "test"));
+  motion.set_horizontal(MotionComponent::FromSamples(a, dt, 0.0, "test"));
   const BaseDisplacement d = IntegrateBaseDisplacement(motion, 4.0);
   for (double t : {0.25, 0.75, 1.3, 2.25, 3.75}) {
     EXPECT_NEAR(d.At(t).x_m, amp_m * std::sin(w * t), 1e-2 * amp_m) << "t = " << t;

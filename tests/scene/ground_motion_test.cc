@@ -10,6 +10,7 @@
 #include <fstream>
 #include <limits>
 #include <numbers>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -52,7 +53,7 @@ MotionDef Analytic(MotionKind kind, double amplitude_g, double f_hz, double t0_s
 TEST_F(GroundMotionTest, UnitsAndScale) {
   // One-column file, values 1, -2, 4; each unit and the scale multiply them.
   const fs::path p = Write("one.txt", "1\n-2\n4\n");
-  const double g = 9.81;
+  const double g = kStandardGravity_mps2;
   struct Case {
     AccelUnits units;
     double to_mps2;
@@ -64,7 +65,7 @@ TEST_F(GroundMotionTest, UnitsAndScale) {
     d.units_given = true;
     d.dt_s = 0.1;
     d.scale = 0.5;
-    const MotionComponent m = MotionComponent::FromDef(d, g);
+    const MotionComponent m = MotionComponent::FromDef(d);
     ASSERT_EQ(m.samples_mps2().size(), 3u);
     EXPECT_DOUBLE_EQ(m.samples_mps2()[1], -2.0 * c.to_mps2 * 0.5);
     EXPECT_DOUBLE_EQ(m.accel_mps2(0.2), 4.0 * c.to_mps2 * 0.5);
@@ -77,17 +78,17 @@ TEST_F(GroundMotionTest, UnitsAndScale) {
 TEST_F(GroundMotionTest, PlainFileWithoutUnitsIsAnError) {
   MotionDef d = FileDef(Write("one.txt", "1\n2\n"));
   d.dt_s = 0.1;
-  EXPECT_THROW(MotionComponent::FromDef(d, 9.81), SceneError);
+  EXPECT_THROW(MotionComponent::FromDef(d), SceneError);
 }
 
 TEST_F(GroundMotionTest, At2InGAndConflictingUnits) {
   MotionDef d = FileDef(kRinaldi228);
   d.scale = 0.5;
-  const MotionComponent m = MotionComponent::FromDef(d, 9.81);
+  const MotionComponent m = MotionComponent::FromDef(d);
   const RecordData raw = ReadAt2(kRinaldi228);
   ASSERT_EQ(m.samples_mps2().size(), raw.values.size());
   for (size_t i = 0; i < raw.values.size(); ++i) {
-    ASSERT_DOUBLE_EQ(m.samples_mps2()[i], raw.values[i] * 9.81 * 0.5);
+    ASSERT_DOUBLE_EQ(m.samples_mps2()[i], raw.values[i] * kStandardGravity_mps2 * 0.5);
   }
   // MotionInfo: SOURCES.md gives PGA 0.8741 g; the scale halves it.
   const MotionInfo& info = m.info();
@@ -104,10 +105,10 @@ TEST_F(GroundMotionTest, At2InGAndConflictingUnits) {
   // Units given as g: fine; as m/s2 against a header in g: an error naming the header line.
   d.units_given = true;
   d.units = AccelUnits::kG;
-  EXPECT_NO_THROW(MotionComponent::FromDef(d, 9.81));
+  EXPECT_NO_THROW(MotionComponent::FromDef(d));
   d.units = AccelUnits::kMps2;
   try {
-    MotionComponent::FromDef(d, 9.81);
+    MotionComponent::FromDef(d);
     ADD_FAILURE() << "no error";
   } catch (const SceneError& e) {
     const std::string msg = e.what();
@@ -119,7 +120,7 @@ TEST_F(GroundMotionTest, At2InGAndConflictingUnits) {
 TEST_F(GroundMotionTest, PiecewiseLinearAndZeroOutside) {
   const std::vector<double> a = {0.0, 1.0, 3.0, -1.0};
   const double t0 = 0.5, dt = 0.1;
-  const MotionComponent m = MotionComponent::FromSamples(a, dt, t0, 9.81, "test");
+  const MotionComponent m = MotionComponent::FromSamples(a, dt, t0, "test");
   // At the sample times t0 + i dt: the samples, exactly.
   for (size_t i = 0; i < a.size(); ++i) {
     EXPECT_EQ(m.accel_mps2(t0 + static_cast<double>(i) * dt), a[i]) << i;
@@ -135,14 +136,14 @@ TEST_F(GroundMotionTest, PiecewiseLinearAndZeroOutside) {
   EXPECT_EQ(m.accel_mps2(5.0), 0.0);
   EXPECT_DOUBLE_EQ(m.end_s(), 0.8);
   EXPECT_EQ(m.info().format, "samples");
-  EXPECT_DOUBLE_EQ(m.info().peak_g, 3.0 / 9.81);
+  EXPECT_DOUBLE_EQ(m.info().peak_g, 3.0 / kStandardGravity_mps2);
   EXPECT_DOUBLE_EQ(m.info().peak_t_s, 0.7);
 }
 
 TEST_F(GroundMotionTest, RecordAtEverySampleTimeIsTheSample) {
   MotionDef d = FileDef(kRinaldi228);
   d.start_s = 1.5;
-  const MotionComponent m = MotionComponent::FromDef(d, 9.81);
+  const MotionComponent m = MotionComponent::FromDef(d);
   const auto& s = m.samples_mps2();
   EXPECT_EQ(m.t0_s(), 1.5);
   for (size_t i = 0; i < s.size(); ++i) {
@@ -163,7 +164,7 @@ TEST_F(GroundMotionTest, TwoColumnFileStartsAtItsOwnTimePlusStart) {
   d.units = AccelUnits::kMps2;
   d.units_given = true;
   d.start_s = 1.0;
-  const MotionComponent m = MotionComponent::FromDef(d, 9.81);
+  const MotionComponent m = MotionComponent::FromDef(d);
   EXPECT_EQ(m.t0_s(), 3.0);
   EXPECT_EQ(m.accel_mps2(3.0), 1.0);
   EXPECT_EQ(m.accel_mps2(4.0), 3.0);
@@ -173,8 +174,7 @@ TEST_F(GroundMotionTest, TwoColumnFileStartsAtItsOwnTimePlusStart) {
 }
 
 TEST_F(GroundMotionTest, RecordBreakpoints) {
-  const MotionComponent m =
-      MotionComponent::FromSamples({1.0, 2.0, 3.0, 4.0}, 0.25, 1.0, 9.81, "test");
+  const MotionComponent m = MotionComponent::FromSamples({1.0, 2.0, 3.0, 4.0}, 0.25, 1.0, "test");
   EXPECT_EQ(m.next_breakpoint_after(-3.0), 1.0);
   EXPECT_EQ(m.next_breakpoint_after(std::nextafter(1.0, 0.0)), 1.0);
   EXPECT_EQ(m.next_breakpoint_after(1.0), 1.25);  // strictly after
@@ -190,7 +190,7 @@ TEST_F(GroundMotionTest, WalkingBreakpointsVisitsEverySampleOfARecord) {
   // and be the next sample time.
   MotionDef d = FileDef(kRinaldi228);
   d.start_s = 0.3;
-  const MotionComponent m = MotionComponent::FromDef(d, 9.81);
+  const MotionComponent m = MotionComponent::FromDef(d);
   double t = -1.0;
   size_t count = 0;
   for (double next = m.next_breakpoint_after(t); std::isfinite(next);
@@ -228,7 +228,7 @@ double Expected(MotionKind kind, double a_mps2, double f, double t0, double leng
 }
 
 TEST_F(GroundMotionTest, AnalyticKindsFollowTheirFormulas) {
-  const double g = 9.81, amp = 0.3, f = 2.0, t0 = 0.7, scale = 1.5;
+  const double g = kStandardGravity_mps2, amp = 0.3, f = 2.0, t0 = 0.7, scale = 1.5;
   struct Case {
     MotionKind kind;
     double duration;  // as given in the scene
@@ -242,7 +242,7 @@ TEST_F(GroundMotionTest, AnalyticKindsFollowTheirFormulas) {
     SCOPED_TRACE(std::string(MotionKindName(c.kind)) + " length " + std::to_string(c.length));
     MotionDef d = Analytic(c.kind, amp, f, t0, c.duration);
     d.scale = scale;
-    const MotionComponent m = MotionComponent::FromDef(d, g);
+    const MotionComponent m = MotionComponent::FromDef(d);
     const double a = amp * scale * g;
     const double end = t0 + c.length;
     EXPECT_EQ(m.end_s(), end);
@@ -285,8 +285,8 @@ TEST_F(GroundMotionTest, AnalyticKindsFollowTheirFormulas) {
 }
 
 TEST_F(GroundMotionTest, RickerPeakIsAgAtT0PlusOneOverF) {
-  const double g = 9.81, amp = -0.45, f = 1.6, t0 = 0.25;
-  const MotionComponent m = MotionComponent::FromDef(Analytic(MotionKind::kRicker, amp, f, t0), g);
+  const double g = kStandardGravity_mps2, amp = -0.45, f = 1.6, t0 = 0.25;
+  const MotionComponent m = MotionComponent::FromDef(Analytic(MotionKind::kRicker, amp, f, t0));
   EXPECT_DOUBLE_EQ(m.accel_mps2(t0 + 1 / f), amp * g);
   EXPECT_DOUBLE_EQ(m.info().peak_t_s, t0 + 1 / f);
   EXPECT_DOUBLE_EQ(m.info().peak_g, 0.45);
@@ -297,7 +297,7 @@ TEST_F(GroundMotionTest, RickerPeakIsAgAtT0PlusOneOverF) {
 TEST_F(GroundMotionTest, ShortHarmonicPeakIsAtItsEnd) {
   // 0.1 s of a 2 Hz sine stops before the crest at 0.125 s: peak sin(2 pi 2 0.1) = 0.951.
   const MotionComponent m =
-      MotionComponent::FromDef(Analytic(MotionKind::kHarmonic, 1.0, 2.0, 0.0, 0.1), 9.81);
+      MotionComponent::FromDef(Analytic(MotionKind::kHarmonic, 1.0, 2.0, 0.0, 0.1));
   EXPECT_NEAR(m.info().peak_g, std::sin(2 * kPi * 0.2), 1e-15);
   EXPECT_DOUBLE_EQ(m.info().peak_t_s, 0.1);
 }
@@ -354,22 +354,216 @@ TEST_F(GroundMotionTest, CombinedBreakpointsAndEmptyMotion) {
   EXPECT_EQ(none.yg_mps2(1.0), 0.0);
 
   GroundMotion gm;
-  gm.set_horizontal(MotionComponent::FromSamples({1.0, 2.0, 3.0}, 0.5, 0.0, 9.81, "h"));
+  gm.set_horizontal(MotionComponent::FromSamples({1.0, 2.0, 3.0}, 0.5, 0.0, "h"));
   gm.set_vertical(
-      MotionComponent::FromDef(Analytic(MotionKind::kRectangularPulse, 0.1, 0.0, 0.2, 0.6), 9.81));
+      MotionComponent::FromDef(Analytic(MotionKind::kRectangularPulse, 0.1, 0.0, 0.2, 0.6)));
   EXPECT_EQ(gm.next_breakpoint_after(0.0), 0.2);        // pulse start
   EXPECT_EQ(gm.next_breakpoint_after(0.2), 0.5);        // sample
   EXPECT_EQ(gm.next_breakpoint_after(0.5), 0.2 + 0.6);  // pulse end
   EXPECT_EQ(gm.next_breakpoint_after(0.2 + 0.6), 1.0);  // last sample
   EXPECT_EQ(gm.next_breakpoint_after(1.0), kInf);
   EXPECT_EQ(gm.end_s(), 1.0);
-  EXPECT_DOUBLE_EQ(gm.yg_mps2(0.5), 0.981);
+  EXPECT_DOUBLE_EQ(gm.yg_mps2(0.5), 0.1 * kStandardGravity_mps2);
 }
 
 TEST_F(GroundMotionTest, FromSamplesRejectsBadInput) {
-  EXPECT_THROW(MotionComponent::FromSamples({}, 0.1, 0.0, 9.81, "x"), SceneError);
-  EXPECT_THROW(MotionComponent::FromSamples({1.0}, 0.0, 0.0, 9.81, "x"), SceneError);
-  EXPECT_THROW(MotionComponent::FromSamples({1.0, NAN}, 0.1, 0.0, 9.81, "x"), SceneError);
+  EXPECT_THROW(MotionComponent::FromSamples({}, 0.1, 0.0, "x"), SceneError);
+  EXPECT_THROW(MotionComponent::FromSamples({1.0}, 0.0, 0.0, "x"), SceneError);
+  EXPECT_THROW(MotionComponent::FromSamples({1.0, NAN}, 0.1, 0.0, "x"), SceneError);
+}
+
+// The units an AT2 header declares decide the conversion; the scene's units must agree, and
+// acceleration in units other than g is read only when the scene says which.
+TEST_F(GroundMotionTest, At2HeaderUnitsDecideTheConversion) {
+  const auto at2 = [&](const std::string& name, const std::string& units_line) {
+    return Write(name, "PEER NGA STRONG MOTION DATABASE RECORD\nSomewhere, 1/1/2000, X, 0\n" +
+                           units_line +
+                           "\nNPTS=    3, DT=   .0100 SEC,\n  .1000000E+03"
+                           "  -.2000000E+03   .5000000E+02\n");
+  };
+  const std::vector<double> raw = {100.0, -200.0, 50.0};
+  const auto expect_error = [](const MotionDef& d, const std::vector<std::string>& pieces) {
+    try {
+      MotionComponent::FromDef(d);
+      ADD_FAILURE() << "no error";
+    } catch (const SceneError& e) {
+      const std::string msg = e.what();
+      for (const auto& piece : pieces) {
+        EXPECT_NE(msg.find(piece), std::string::npos) << "'" << piece << "' not in: " << msg;
+      }
+    }
+  };
+  struct Case {
+    const char* units_line;
+    AccelUnits units;
+    double to_mps2;
+  };
+  for (const Case& c :
+       {Case{"ACCELERATION TIME SERIES IN UNITS OF CM/S/S", AccelUnits::kCmps2, 0.01},
+        Case{"ACCELERATION TIME SERIES IN UNITS OF GAL", AccelUnits::kCmps2, 0.01},
+        Case{"ACCELERATION TIME SERIES IN UNITS OF M/S2", AccelUnits::kMps2, 1.0}}) {
+    SCOPED_TRACE(c.units_line);
+    const fs::path p = at2("cms.AT2", c.units_line);
+    MotionDef d = FileDef(p);
+    const std::string units = "\"" + std::string(AccelUnitsName(c.units)) + "\"";
+    // No units in the scene: refused (read as g it would be 981 or 9.8 times too strong).
+    expect_error(d, {p.string() + ":3:", std::string("\"") + c.units_line + "\"",
+                     "base.horizontal.units = " + units});
+    // The scene says the same units: converted with them, times the scale.
+    d.units_given = true;
+    d.units = c.units;
+    d.scale = -2.0;
+    const MotionComponent m = MotionComponent::FromDef(d);
+    ASSERT_EQ(m.samples_mps2().size(), raw.size());
+    for (size_t i = 0; i < raw.size(); ++i) {
+      EXPECT_DOUBLE_EQ(m.samples_mps2()[i], raw[i] * c.to_mps2 * -2.0) << i;
+    }
+    EXPECT_DOUBLE_EQ(m.info().peak_g, 200.0 * c.to_mps2 * 2.0 / kStandardGravity_mps2);
+    // Other units in the scene: refused, naming both.
+    for (AccelUnits other : {AccelUnits::kG, AccelUnits::kMps2, AccelUnits::kCmps2}) {
+      if (other == c.units) continue;
+      d.units = other;
+      expect_error(d, {p.string() + ":3:", std::string("\"") + c.units_line + "\"",
+                       "base.horizontal.units is \"" + std::string(AccelUnitsName(other)) + "\"",
+                       "use units = " + units});
+    }
+  }
+  // A header in g: read as g; a scene saying otherwise is refused (as before).
+  MotionDef g = FileDef(at2("g.AT2", "ACCELERATION TIME SERIES IN UNITS OF G"));
+  EXPECT_DOUBLE_EQ(MotionComponent::FromDef(g).samples_mps2()[1], -200.0 * kStandardGravity_mps2);
+  g.units_given = true;
+  g.units = AccelUnits::kCmps2;
+  expect_error(g, {":3:", "\"ACCELERATION TIME SERIES IN UNITS OF G\"", "omit units or use \"g\""});
+  // Velocity: refused whatever the scene says.
+  MotionDef v = FileDef(at2("v.AT2", "VELOCITY TIME SERIES IN UNITS OF CM/S"));
+  v.units_given = true;
+  v.units = AccelUnits::kCmps2;
+  expect_error(v, {":3:", "\"VELOCITY TIME SERIES IN UNITS OF CM/S\"", "reads acceleration"});
+  // No units line: g unless the scene says otherwise (the header cannot contradict it).
+  MotionDef none = FileDef(at2("none.AT2", "free text"));
+  EXPECT_DOUBLE_EQ(MotionComponent::FromDef(none).samples_mps2()[0], 100.0 * kStandardGravity_mps2);
+  none.units_given = true;
+  none.units = AccelUnits::kCmps2;
+  EXPECT_DOUBLE_EQ(MotionComponent::FromDef(none).samples_mps2()[0], 1.0);
+}
+
+// The unit g is standard gravity, 9.80665 m/s^2: [run] gravity (the simulation's gravitational
+// acceleration) does not rescale a record in g, an analytic amplitude_g, or peak_g.
+TEST_F(GroundMotionTest, RunGravityDoesNotRescaleTheBaseMotion) {
+  Scene scene;
+  scene.block1 = BlockDef{1.0, 2.0, 1.0, 100.0, 0.0};
+  scene.horizontal = FileDef(kRinaldi228);
+  scene.vertical = Analytic(MotionKind::kHarmonic, 0.2, 3.0, 0.0, 1.0);
+  scene.vertical->key = "base.vertical";
+  scene.run.gravity_mps2 = 9.81;
+  const GroundMotion earth = GroundMotion::FromScene(scene);
+  scene.run.gravity_mps2 = 3.71;
+  const GroundMotion mars = GroundMotion::FromScene(scene);
+  const RecordData raw = ReadAt2(kRinaldi228);
+  ASSERT_EQ(earth.horizontal()->samples_mps2().size(), raw.values.size());
+  for (size_t i = 0; i < raw.values.size(); ++i) {
+    ASSERT_EQ(earth.horizontal()->samples_mps2()[i], raw.values[i] * kStandardGravity_mps2) << i;
+    ASSERT_EQ(mars.horizontal()->samples_mps2()[i], earth.horizontal()->samples_mps2()[i]) << i;
+  }
+  for (double t : {0.0, 0.05, 0.2, 0.5, 0.77, 1.0}) {
+    EXPECT_EQ(earth.yg_mps2(t), mars.yg_mps2(t)) << t;
+    // The formula with A = 0.2 x 9.80665 m/s^2 (1e-14 m/s^2: rounding of the same operations).
+    EXPECT_NEAR(earth.yg_mps2(t), 0.2 * 9.80665 * std::sin(2 * kPi * 3.0 * t), 1e-14) << t;
+  }
+  EXPECT_EQ(earth.horizontal()->info().peak_g, mars.horizontal()->info().peak_g);
+  // SOURCES.md: PGA 0.8741 g (4 decimals), the file's own number, in standard g.
+  EXPECT_NEAR(earth.horizontal()->info().peak_g, 0.8741, 0.5e-4);
+  EXPECT_EQ(earth.vertical()->info().peak_g, 0.2);
+}
+
+// Each sample's printed precision, converted like the sample; exact zeros for padding.
+TEST_F(GroundMotionTest, SampleResolution) {
+  MotionDef d = FileDef(Write("one.txt", "1.25\n-0.002\n4\n"));
+  d.units = AccelUnits::kCmps2;
+  d.units_given = true;
+  d.dt_s = 0.1;
+  d.scale = -2.0;
+  MotionComponent m = MotionComponent::FromDef(d);
+  // One unit of the last digit (0.01, 0.001, 1) in cm/s^2, times 0.01 and |scale|.
+  ASSERT_EQ(m.sample_resolution_mps2().size(), 3u);
+  EXPECT_DOUBLE_EQ(m.sample_resolution_mps2()[0], 0.01 * 0.01 * 2.0);
+  EXPECT_DOUBLE_EQ(m.sample_resolution_mps2()[1], 0.001 * 0.01 * 2.0);
+  EXPECT_DOUBLE_EQ(m.sample_resolution_mps2()[2], 1.0 * 0.01 * 2.0);
+  m.pad_to(0.45);
+  ASSERT_EQ(m.samples_mps2().size(), 6u);
+  ASSERT_EQ(m.sample_resolution_mps2().size(), 6u);
+  for (size_t i = 3; i < 6; ++i) EXPECT_EQ(m.sample_resolution_mps2()[i], 0.0) << i;
+  // A shipped AT2 record in g: E15.7 values, e.g. -.2556093E-02 g, known to 1e-9 g.
+  const MotionComponent rinaldi = MotionComponent::FromDef(FileDef(kRinaldi228));
+  ASSERT_EQ(rinaldi.sample_resolution_mps2().size(), rinaldi.samples_mps2().size());
+  EXPECT_DOUBLE_EQ(rinaldi.sample_resolution_mps2()[0], 1e-9 * kStandardGravity_mps2);
+  // Analytic kinds: none; FromSamples: as given.
+  EXPECT_TRUE(MotionComponent::FromDef(Analytic(MotionKind::kSinePulse, 0.1, 1.0, 0.0))
+                  .sample_resolution_mps2()
+                  .empty());
+  EXPECT_TRUE(
+      MotionComponent::FromSamples({1.0, 2.0}, 0.1, 0.0, "s").sample_resolution_mps2().empty());
+  EXPECT_EQ(
+      MotionComponent::FromSamples({1.0, 2.0}, 0.1, 0.0, "s", {0.5, 0.25}).sample_resolution_mps2(),
+      (std::vector<double>{0.5, 0.25}));
+  EXPECT_THROW(MotionComponent::FromSamples({1.0, 2.0}, 0.1, 0.0, "s", {0.5}), SceneError);
+  EXPECT_THROW(MotionComponent::FromSamples({1.0, 2.0}, 0.1, 0.0, "s", {0.5, -1.0}), SceneError);
+  EXPECT_THROW(MotionComponent::FromSamples({1.0, 2.0}, 0.1, 0.0, "s", {0.5, NAN}), SceneError);
+}
+
+TEST_F(GroundMotionTest, ScaledCopies) {
+  const MotionComponent rec =
+      MotionComponent::FromSamples({1.0, -3.0, 2.0}, 0.1, 0.5, "rec", {0.01, 0.02, 0.04});
+  const MotionComponent half = rec.Scaled(-0.5);
+  EXPECT_EQ(half.samples_mps2(), (std::vector<double>{-0.5, 1.5, -1.0}));
+  EXPECT_EQ(half.sample_resolution_mps2(), (std::vector<double>{0.005, 0.01, 0.02}));
+  EXPECT_DOUBLE_EQ(half.info().peak_g, 1.5 / kStandardGravity_mps2);
+  EXPECT_DOUBLE_EQ(half.info().peak_t_s, 0.6);
+  EXPECT_EQ(half.info().source, "rec");
+  EXPECT_EQ(half.t0_s(), 0.5);
+  EXPECT_EQ(half.dt_s(), 0.1);
+  EXPECT_EQ(half.accel_mps2(0.65), -0.5 * rec.accel_mps2(0.65));
+  EXPECT_EQ(rec.samples_mps2()[1], -3.0);  // the original is untouched
+  // Analytic: the amplitude, everywhere; the exact peak follows.
+  const MotionComponent pulse =
+      MotionComponent::FromDef(Analytic(MotionKind::kRicker, 0.3, 2.0, 0.1));
+  const MotionComponent more = pulse.Scaled(1.01);
+  // The amplitude is scaled before the shape multiplies it: equal to an ulp or two.
+  for (double t : {0.1, 0.3, 0.6, 0.9}) {
+    EXPECT_DOUBLE_EQ(more.accel_mps2(t), 1.01 * pulse.accel_mps2(t)) << t;
+  }
+  EXPECT_DOUBLE_EQ(more.info().peak_g, 0.3 * 1.01);
+  EXPECT_EQ(more.info().peak_t_s, pulse.info().peak_t_s);
+  EXPECT_TRUE(more.sample_resolution_mps2().empty());
+  EXPECT_DOUBLE_EQ(pulse.Scaled(-2.0).info().peak_g, 0.6);
+  EXPECT_THROW(rec.Scaled(NAN), std::invalid_argument);
+  EXPECT_THROW(pulse.Scaled(INFINITY), std::invalid_argument);
+}
+
+TEST_F(GroundMotionTest, WithSamplesKeepsTheRecordAndRecomputesThePeak) {
+  MotionDef d = FileDef(Write("one.txt", "1.0\n-3.0\n2.0\n"));
+  d.units = AccelUnits::kMps2;
+  d.units_given = true;
+  d.dt_s = 0.1;
+  MotionComponent rec = MotionComponent::FromDef(d);
+  rec.pad_to(0.4);
+  const MotionComponent other = rec.WithSamples({1.0, -3.0, 4.5, 0.0, 0.0});
+  EXPECT_EQ(other.samples_mps2(), (std::vector<double>{1.0, -3.0, 4.5, 0.0, 0.0}));
+  EXPECT_DOUBLE_EQ(other.info().peak_g, 4.5 / kStandardGravity_mps2);
+  EXPECT_DOUBLE_EQ(other.info().peak_t_s, 0.2);
+  EXPECT_EQ(other.sample_resolution_mps2(), rec.sample_resolution_mps2());
+  EXPECT_EQ(other.info().source, "one.txt");
+  EXPECT_EQ(other.info().format, "plain-1col");
+  EXPECT_EQ(other.info().npts, 3);
+  EXPECT_EQ(other.info().padded_samples, 2);
+  EXPECT_EQ(other.t0_s(), rec.t0_s());
+  EXPECT_EQ(other.dt_s(), rec.dt_s());
+  EXPECT_EQ(other.end_s(), rec.end_s());
+  EXPECT_THROW(rec.WithSamples({1.0, 2.0}), std::invalid_argument);
+  EXPECT_THROW(rec.WithSamples({1.0, 2.0, 3.0, 4.0, NAN}), std::invalid_argument);
+  const MotionComponent pulse =
+      MotionComponent::FromDef(Analytic(MotionKind::kSinePulse, 0.3, 2.0, 0.0));
+  EXPECT_THROW(pulse.WithSamples({}), std::invalid_argument);
 }
 
 }  // namespace

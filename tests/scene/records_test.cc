@@ -7,6 +7,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <set>
 #include <string>
 #include <vector>
@@ -80,7 +81,7 @@ TEST(ShippedRecords, NptsDtAndPeakMatchSources) {
     // SOURCES.md gives the peak to 4 decimals: within half a unit of the last digit.
     EXPECT_NEAR(peak, s.peak_file_units, 0.5e-4 + 1e-12);
     if (std::string(s.format) == "AT2") {
-      EXPECT_TRUE(r.units_are_g);
+      EXPECT_EQ(r.header_units, AccelUnits::kG);
       EXPECT_GT(r.units_line, 0);
       EXPECT_EQ(r.t0_s, 0.0);
     }
@@ -94,7 +95,7 @@ TEST(ShippedRecords, ChristchurchPgaInG) {
   def.file = kRecords / "christchurch2011_hvsc_UP_plain_t_ms2.txt";
   def.units = AccelUnits::kMps2;
   def.units_given = true;
-  const MotionComponent c = MotionComponent::FromDef(def, 9.80665);
+  const MotionComponent c = MotionComponent::FromDef(def);
   EXPECT_NEAR(c.info().peak_g, 2.182, 0.5e-3);
   EXPECT_EQ(c.info().format, "plain-2col");
   EXPECT_EQ(c.info().npts, 5401);
@@ -142,8 +143,9 @@ TEST_F(RecordFiles, Pre2000PeaWithCrCrLfAndBlankLines) {
       "  -.6000000E+00   .7000000E+00  -.8000000E+00   .9000000E+00  -.1000000E+01\r\r\n";
   const RecordData r = ReadAt2(Write("pea.AT2", text));
   ExpectTen(r, 0.02);
-  EXPECT_TRUE(r.units_are_g);
+  EXPECT_EQ(r.header_units, AccelUnits::kG);
   EXPECT_EQ(r.units_line, 3);
+  EXPECT_EQ(r.units_text, "ACCELERATION TIME HISTORY IN UNITS OF G");
 }
 
 TEST_F(RecordFiles, Peer2000LowercaseDtWithoutSec) {
@@ -201,14 +203,153 @@ TEST_F(RecordFiles, PseudoAt2EightPerLineShortLastLine) {
       "   0.90000  -1.00000\n";
   const RecordData r = ReadAt2(Write("peknold.AT2", text));
   ExpectTen(r, 0.02);
-  EXPECT_TRUE(r.units_are_g);  // "units of g": case-insensitive
+  EXPECT_EQ(r.header_units, AccelUnits::kG);  // "units of g": case-insensitive
 }
 
-TEST_F(RecordFiles, At2WithoutUnitsOfG) {
+TEST_F(RecordFiles, At2AccelerationInCmPerS2WithoutUnitsOf) {
   const std::string text = "x\ny\nACCELERATION IN CM/S/S\nNPTS= 2, DT= 0.01 SEC\n1 2\n";
   const RecordData r = ReadAt2(Write("cms.AT2", text));
-  EXPECT_FALSE(r.units_are_g);
+  EXPECT_EQ(r.header_units, AccelUnits::kCmps2);
+  EXPECT_EQ(r.units_line, 3);
   EXPECT_EQ(r.values, (std::vector<double>{1.0, 2.0}));
+}
+
+// Every spelling of the units line: the units the reader finds (the values are not touched:
+// conversion is MotionComponent's, see ground_motion_test.cc).
+TEST_F(RecordFiles, At2HeaderUnitsSpellings) {
+  struct Case {
+    const char* line;
+    AccelUnits units;
+  };
+  const std::vector<Case> cases = {
+      {"ACCELERATION TIME SERIES IN UNITS OF G", AccelUnits::kG},
+      {"ACCELERATION TIME HISTORY IN UNITS OF G", AccelUnits::kG},
+      {"ACCELERATION TIME HISTORY IN UNITS OF G. FILTER POINTS: HP=0.2 Hz LP=15.0 Hz",
+       AccelUnits::kG},
+      {"Acceleration time series in units of g,", AccelUnits::kG},
+      {"ACCELERATION TIME SERIES IN UNITS OF CM/S/S", AccelUnits::kCmps2},
+      {"ACCELERATION TIME SERIES IN UNITS OF CM/SEC/SEC", AccelUnits::kCmps2},
+      {"ACCELERATION TIME SERIES IN UNITS OF CM/S^2", AccelUnits::kCmps2},
+      {"ACCELERATION TIME SERIES IN UNITS OF CM/S2", AccelUnits::kCmps2},
+      {"ACCELERATION TIME SERIES IN UNITS OF cm/sec**2", AccelUnits::kCmps2},
+      {"ACCELERATION TIME SERIES IN UNITS OF GAL", AccelUnits::kCmps2},
+      {"ACCELERATION IN CM/SEC2", AccelUnits::kCmps2},
+      {"ACCELERATION TIME SERIES IN UNITS OF M/S/S", AccelUnits::kMps2},
+      {"ACCELERATION TIME SERIES IN UNITS OF M/S2", AccelUnits::kMps2},
+      {"ACCELERATION TIME SERIES IN UNITS OF M/S^2.", AccelUnits::kMps2},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.line);
+    const RecordData r = ReadAt2(
+        Write("u.AT2",
+              std::string("PEER NGA STRONG MOTION DATABASE RECORD\nSomewhere, 1/1/2000, X, 0\n") +
+                  c.line + "\nNPTS=    2, DT=   .0100 SEC,\n  .1000000E+00  -.2000000E+00\n"));
+    EXPECT_EQ(r.header_units, c.units);
+    EXPECT_EQ(r.units_line, 3);
+    EXPECT_EQ(r.units_text, c.line);
+    EXPECT_EQ(r.values, (std::vector<double>{0.1, -0.2}));
+  }
+}
+
+// A header without a units line (free text, e.g. the pseudo-AT2 files of SOURCES.md) declares
+// nothing: the scene's units decide, g by default (MotionComponent::FromDef).
+TEST_F(RecordFiles, At2WithoutUnitsLineDeclaresNothing) {
+  const RecordData r =
+      ReadAt2(Write("free.AT2",
+                    "El Centro\nPeknold version\nACCELERATION TIME SERIES\nNPTS= 2, DT= .02\n"
+                    "0.1 0.2\n"));
+  EXPECT_FALSE(r.header_units.has_value());
+  EXPECT_EQ(r.units_line, 0);
+}
+
+// Velocity and displacement files (PEER's .VT2 and .DT2 share the AT2 layout) and units the
+// reader does not know are refused at the header line, quoting it and saying what is expected.
+TEST_F(RecordFiles, At2RefusesVelocityDisplacementAndUnknownUnits) {
+  struct Case {
+    const char* line;
+    std::vector<std::string> pieces;
+  };
+  const std::vector<Case> cases = {
+      {"VELOCITY TIME SERIES IN UNITS OF CM/S", {"reads acceleration", ".VT2"}},
+      {"VELOCITY TIME HISTORY IN UNITS OF CM/SEC", {"reads acceleration"}},
+      {"DISPLACEMENT TIME SERIES IN UNITS OF CM", {"reads acceleration", ".DT2"}},
+      {"DISPLACEMENT TIME SERIES", {"reads acceleration"}},
+      {"TIME SERIES IN UNITS OF CM/S", {"velocity unit", "reads acceleration"}},
+      {"ACCELERATION TIME SERIES IN UNITS OF CM", {"length", "reads acceleration"}},
+      {"ACCELERATION TIME SERIES IN UNITS OF FT/S/S", {"does not read", "CM/S/S", "M/S/S", "G"}},
+      {"ACCELERATION TIME SERIES IN UNITS OF KM/H", {"unknown units \"KM/H\"", "CM/S/S"}},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.line);
+    const fs::path p =
+        Write("v.AT2", std::string("PEER NGA STRONG MOTION DATABASE RECORD\nX, 1/1/2000\n") +
+                           c.line + "\nNPTS=    2, DT=   .0100 SEC,\n  .1000000E+00  .2E+00\n");
+    std::vector<std::string> pieces = c.pieces;
+    pieces.push_back(p.string() + ":3:");
+    pieces.push_back(std::string("\"") + c.line + "\"");
+    ExpectError([&] { ReadAt2(p); }, pieces);
+  }
+}
+
+// One unit of the last printed digit, in the file's units, for each notation the records use.
+TEST(PrintedResolution, TokenRule) {
+  EXPECT_EQ(PrintedResolution("-.1234567E-02"), 1e-9);  // AT2, E15.7
+  EXPECT_EQ(PrintedResolution(".1297983E-02"), 1e-9);
+  EXPECT_EQ(PrintedResolution("-1.2727865E-09"), 1e-16);  // NGA-West2, leading digit
+  EXPECT_EQ(PrintedResolution("-1.65951E-03"), 1e-8);
+  EXPECT_EQ(PrintedResolution("0.039111"), 1e-6);              // tabas, F
+  EXPECT_EQ(PrintedResolution("-0.0248394791700000"), 1e-16);  // trailing zeros are printed
+  EXPECT_EQ(PrintedResolution("0.10000"), 1e-5);
+  EXPECT_EQ(PrintedResolution("12"), 1.0);
+  EXPECT_EQ(PrintedResolution("12."), 1.0);
+  EXPECT_EQ(PrintedResolution("+3"), 1.0);
+  EXPECT_EQ(PrintedResolution("1.5e3"), 100.0);
+  EXPECT_EQ(PrintedResolution("1E+05"), 1e5);
+  EXPECT_EQ(PrintedResolution("-.5"), 0.1);
+  EXPECT_EQ(PrintedResolution("0"), 1.0);
+  EXPECT_EQ(PrintedResolution("0.0000000E+00"), 1e-7);
+  for (const char* bad : {"", "-", ".", "e5", "1e", "1e+", "1.2.3", "0x10", "nan", "inf", "1,5"}) {
+    EXPECT_TRUE(std::isnan(PrintedResolution(bad))) << "'" << bad << "'";
+  }
+}
+
+TEST_F(RecordFiles, ResolutionOfEachSample) {
+  // AT2: E15.7 values (1e-7 of the mantissa) with varying exponents, and a short F value.
+  const RecordData at2 =
+      ReadAt2(Write("res.AT2",
+                    "a\nb\nACCELERATION TIME SERIES IN UNITS OF G\nNPTS=    4, DT=   .0100 SEC,\n"
+                    "  -.1234567E-02   .7654321E+00  1.0000000E-04\n 0.25\n"));
+  EXPECT_EQ(at2.values, (std::vector<double>{-.1234567E-02, .7654321E+00, 1e-4, 0.25}));
+  EXPECT_EQ(at2.resolution, (std::vector<double>{1e-9, 1e-7, 1e-11, 1e-2}));
+  // Plain: the acceleration column (not the time column) sets the resolution.
+  const RecordData two = ReadPlain(Write("res.txt", "t a\n0.000 1.5e3\n0.010 -0.03\n0.020 7\n"), 0);
+  EXPECT_EQ(two.resolution, (std::vector<double>{100.0, 0.01, 1.0}));
+  const RecordData one = ReadPlain(Write("one.txt", "0.039111\n-0.0248394791700000\n"), 0.02);
+  EXPECT_EQ(one.resolution, (std::vector<double>{1e-6, 1e-16}));
+}
+
+TEST(ShippedRecords, ResolutionMatchesThePrintedDigits) {
+  // Every shipped record: one resolution per value, and the value is a whole number of
+  // resolution units. Both are the doubles nearest to decimals, so the quotient is within a few
+  // ulps of that whole number (8 eps relative).
+  for (const auto& s : kShipped) {
+    SCOPED_TRACE(s.file);
+    const RecordData r = ReadShipped(s);
+    ASSERT_EQ(r.resolution.size(), r.values.size());
+    for (size_t i = 0; i < r.values.size(); ++i) {
+      ASSERT_GT(r.resolution[i], 0.0) << i;
+      const double units = r.values[i] / r.resolution[i];
+      ASSERT_NEAR(units, std::round(units),
+                  8 * std::numeric_limits<double>::epsilon() * std::max(1.0, std::abs(units)))
+          << i;
+    }
+  }
+  const RecordData tabas = ReadShipped(kShipped.back());
+  EXPECT_EQ(tabas.resolution.front(), 1e-6);  // "     0.039111"
+  const RecordData christchurch = ReadShipped(kShipped.front());
+  EXPECT_EQ(christchurch.resolution.front(), 1e-16);  // "-0.0248394791700000"
+  const RecordData rinaldi = ReadShipped(kShipped[7]);
+  EXPECT_EQ(rinaldi.resolution.front(), 1e-9);  // "-.2556093E-02"
 }
 
 TEST_F(RecordFiles, At2Truncated) {

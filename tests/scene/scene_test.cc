@@ -117,6 +117,20 @@ TEST(ShippedScenes, HarmonicAndRinaldiWithVertical) {
   EXPECT_EQ(gm.vertical()->info().padded_samples, 0);         // same length as 228
 }
 
+TEST(ShippedScenes, RunGravityLeavesTheBaseMotionAlone) {
+  // [run] gravity is the simulation's; records in g and amplitude_g use standard gravity.
+  for (const char* scene : {"rinaldi_with_vertical.toml", "harmonic.toml"}) {
+    SCOPED_TRACE(scene);
+    const GroundMotion a = GroundMotion::FromScene(LoadScene(kScenes / scene));
+    const GroundMotion b = GroundMotion::FromScene(LoadScene(kScenes / scene, {"run.gravity=9.5"}));
+    for (double t = 0.0; t < 8.0; t += 0.0137) {
+      ASSERT_EQ(a.xg_mps2(t), b.xg_mps2(t)) << t;
+      ASSERT_EQ(a.yg_mps2(t), b.yg_mps2(t)) << t;
+    }
+    EXPECT_EQ(a.horizontal()->info().peak_g, b.horizontal()->info().peak_g);
+  }
+}
+
 TEST(Parse, DefaultsOfAMinimalScene) {
   const Scene s = ParseScene("[block1]\nwidth = 1\nheight = 2\nmass = 100\n", "");
   const Scene d;
@@ -175,7 +189,7 @@ step = 2e-4
 events = "thesis"
 equations = "linearized"
 overturn_angle = 1.0
-rest_rate = 0.001
+rest_rate_rel = 1e-6
 check_transitions = false
 [bullet]
 time_step = 5e-4
@@ -195,6 +209,12 @@ ground_depth = 2.0
 kinematic_highpass_hz = 0.2
 [compare]
 tolerance = 0.02
+members = 40
+engine_members = 12
+amplitude_rel = 1e-3
+sample_precision = 0.5
+initial_rel = 2e-3
+seed = 7
 )";
   const Scene s = ParseScene(text, "");
   EXPECT_EQ(s.title, "all keys");
@@ -221,7 +241,7 @@ tolerance = 0.02
   EXPECT_EQ(s.model.events, EventScheme::kThesis);
   EXPECT_EQ(s.model.equations, Equations::kLinearized);
   EXPECT_EQ(s.model.overturn_rad, 1.0);
-  EXPECT_EQ(s.model.rest_rate_radps, 0.001);
+  EXPECT_EQ(s.model.rest_rate_rel, 1e-6);
   EXPECT_FALSE(s.model.check_transitions);
   EXPECT_EQ(s.bullet.time_step_s, 5e-4);
   EXPECT_EQ(s.bullet.solver_iterations, 20);
@@ -240,6 +260,12 @@ tolerance = 0.02
   EXPECT_EQ(s.bullet.kinematic_highpass_hz, 0.2);
   ASSERT_TRUE(s.compare.tolerance_rad);
   EXPECT_EQ(*s.compare.tolerance_rad, 0.02);
+  EXPECT_EQ(s.compare.members, 40);
+  EXPECT_EQ(s.compare.engine_members, 12);
+  EXPECT_EQ(s.compare.amplitude_rel, 1e-3);
+  EXPECT_EQ(s.compare.sample_precision, 0.5);
+  EXPECT_EQ(s.compare.initial_rel, 2e-3);
+  EXPECT_EQ(s.compare.seed, 7u);
 }
 
 TEST(Parse, HarmonicWithoutDurationLastsForever) {
@@ -463,6 +489,20 @@ TEST(Errors, Validation) {
        ":6:",
        {"model.check_transitions", "true or false"}},
       {"zero tolerance", b1 + "[compare]\ntolerance = 0\n", ":6:", {"compare.tolerance"}},
+      {"negative members", b1 + "[compare]\nmembers = -1\n", ":6:", {"compare.members"}},
+      {"fractional members", b1 + "[compare]\nmembers = 2.5\n", ":6:", {"compare.members"}},
+      {"amplitude_rel above 1",
+       b1 + "[compare]\namplitude_rel = 2\n",
+       ":6:",
+       {"compare.amplitude_rel"}},
+      {"negative sample_precision",
+       b1 + "[compare]\nsample_precision = -1\n",
+       ":6:",
+       {"compare.sample_precision"}},
+      {"removed absolute rest rate",
+       b1 + "[model]\nrest_rate = 1e-4\n",
+       ":6:",
+       {"model.rest_rate", "rest_rate_rel"}},
       {"zero rtol", b1 + "[model]\nrtol = 0\n", ":6:", {"model.rtol"}},
       {"title not a string", "title = 3\n" + b1, ":1:", {"title", "string"}},
   };
@@ -570,8 +610,11 @@ TEST(Helpers, NamesAndUnits) {
   EXPECT_FALSE(IsAt2File("x.txt"));
   EXPECT_EQ(MotionKindName(MotionKind::kCosinePulse), "cosine_pulse");
   EXPECT_EQ(AccelUnitsName(AccelUnits::kCmps2), "cm/s2");
-  EXPECT_EQ(AccelUnitsToMps2(AccelUnits::kG, 9.5), 9.5);
-  EXPECT_EQ(AccelUnitsToMps2(AccelUnits::kCmps2, 9.5), 0.01);
+  // g is standard gravity by definition, whatever a scene's [run] gravity.
+  EXPECT_EQ(AccelUnitsToMps2(AccelUnits::kG), 9.80665);
+  EXPECT_EQ(kStandardGravity_mps2, 9.80665);
+  EXPECT_EQ(AccelUnitsToMps2(AccelUnits::kMps2), 1.0);
+  EXPECT_EQ(AccelUnitsToMps2(AccelUnits::kCmps2), 0.01);
 }
 
 }  // namespace

@@ -1,0 +1,115 @@
+#include "harness/compare_run.h"
+
+#include <algorithm>
+#include <cstdio>
+
+#include "harness/summary.h"
+
+namespace rockbench {
+namespace {
+
+std::string HorizonText(const std::optional<double>& h) {
+  if (!h) return "never (predictable for the whole run)";
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.2f s", *h);
+  return buf;
+}
+
+}  // namespace
+
+CompareRun RunCompare(const Scene& scene, const GroundMotion& motion,
+                      const std::vector<std::string>& engines, const CompareRunOptions& options) {
+  auto log = [&](const std::string& line) {
+    if (options.log) options.log(line);
+  };
+  char buf[512];
+  CompareRun out;
+  const CompareOptions base;
+  const bool two = scene.two_blocks();
+  const int nb = two ? 2 : 1;
+
+  // 1. The reference and its witness; comparisons use the witness when the default is not
+  //    converged.
+  out.reference = RunCheckedReference(scene, motion, true);
+  const reference::Result& ref = out.reference.used();
+  const ConvergenceCheck& check = *out.reference.check;
+  out.reference_scene = scene;
+  if (&ref != &out.reference.nominal) out.reference_scene.model = check.witness;
+  out.reference_run.engine = "reference";
+  out.reference_run.history = ref.history;
+  out.reference_run.wall_s = out.reference.nominal_wall_s;
+  out.reference_run.summary = ReferenceSummaryJson(scene, ref, out.reference.nominal_wall_s);
+  out.reference_run.summary["convergence"] = ConvergenceJson(scene, check);
+  std::snprintf(buf, sizeof buf, "reference: %s, %zu events, %.3g ms; witness within %.2g rad%s",
+                ref.summary.status.c_str(), ref.history.events.size(),
+                out.reference.nominal_wall_s * 1e3, check.max_abs_diff(),
+                check.converged ? ", converged" : "");
+  log(buf);
+  if (!check.converged) log("  WARNING: " + ConvergenceWarning(check));
+
+  // 2. The reference ensemble: the predictability horizon.
+  out.tolerance_rad[0] = AngleTolerance_rad(scene, 1, ref.summary.peak_theta1_rad);
+  out.tolerance_rad[1] = two ? AngleTolerance_rad(scene, 2, ref.summary.peak_theta2_rad) : 0.0;
+  std::optional<Horizons> horizons;
+  CompareOptions compare_options = base;
+  if (scene.compare.members > 0) {
+    out.ensemble =
+        RunReferenceEnsemble(out.reference_scene, motion, ref, scene.compare.members,
+                             out.tolerance_rad, options.jobs, base.min_impact_rate_radps);
+    horizons = Horizons{};
+    for (int b = 0; b < nb; ++b) {
+      horizons->horizon_s[b] = out.ensemble->horizon_s[b];
+      if (out.ensemble->horizon_s[b]) {
+        compare_options.predictability_horizon_s[b] = *out.ensemble->horizon_s[b];
+      }
+    }
+    std::string line = "predictability (" + std::to_string(scene.compare.members) + " members";
+    std::snprintf(buf, sizeof buf,
+                  ", amplitude +-%g, samples +-%g of their printed precision, initial state "
+                  "+-%g): theta1 horizon ",
+                  scene.compare.amplitude_rel, scene.compare.sample_precision,
+                  scene.compare.initial_rel);
+    line += buf + HorizonText(out.ensemble->horizon_s[0]);
+    if (two) line += ", theta2 horizon " + HorizonText(out.ensemble->horizon_s[1]);
+    std::snprintf(buf, sizeof buf, " (%.2f s)", out.ensemble->wall_s);
+    log(line + buf);
+  }
+  const bool horizon_within_run =
+      horizons && (horizons->horizon_s[0] || (two && horizons->horizon_s[1]));
+
+  // 3. Each engine: its nominal run, and its ensemble when the reference's horizon falls inside
+  //    the run (before it, one run is enough to judge) and the engine agrees up to it.
+  const int engine_members = std::min(scene.compare.engine_members, scene.compare.members);
+  for (const std::string& name : engines) {
+    EngineRun run = RunEngine(name, scene, motion);
+    log(run.one_line);
+    EngineAgreement a = CompareWithReference(scene, ref, run, compare_options);
+    std::optional<StatisticalComparison> statistics;
+    std::vector<MemberOutcome> outcomes;
+    Verdict v = MakeVerdict(scene, a, horizons, std::nullopt);
+    if (horizon_within_run && v.kind != "differs_before_horizon") {
+      if (engine_members > 0) {
+        outcomes = RunEngineEnsemble(name, scene, motion, engine_members, options.jobs,
+                                     base.min_impact_rate_radps);
+        statistics = CompareEnsembles(out.ensemble->outcomes, outcomes, two, out.tolerance_rad,
+                                      scene.run.output_interval_s);
+      }
+      v = MakeVerdict(scene, a, horizons, statistics);
+    }
+    a.verdict_kind = v.kind;
+    a.verdict = v.text;
+    a.verdict_agrees = v.agrees;
+    if (statistics) a.statistics = StatisticsJson(*statistics);
+    out.agreements.push_back(std::move(a));
+    out.engine_runs.push_back(std::move(run));
+    out.engine_outcomes.push_back(std::move(outcomes));
+  }
+
+  out.comparison = ComparisonJson(scene, ref, out.reference.nominal_wall_s, out.agreements, base);
+  out.comparison["reference"]["convergence"] = ConvergenceJson(scene, check);
+  out.comparison["predictability"] =
+      out.ensemble ? PredictabilityJson(scene, *out.ensemble) : nlohmann::json(nullptr);
+  return out;
+}
+
+}  // namespace rockbench

@@ -1,0 +1,47 @@
+#pragma once
+/// The whole comparison `rockbench compare` makes, in process: the reference checked against its
+/// witness, the reference ensemble (predictability horizon), each engine's run and, where the
+/// horizon falls inside the run, its ensemble and the statistical comparison; then one verdict
+/// per engine. Used by the CLI and by the agreement suite.
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "harness/compare.h"
+#include "harness/convergence.h"
+#include "harness/engines.h"
+#include "harness/ensemble.h"
+#include "harness/verdict.h"
+
+namespace rockbench {
+
+struct CompareRunOptions {
+  int jobs = 0;  ///< threads for the ensembles (0: every hardware thread)
+  /// Called with one line of progress text as each stage ends (the CLI prints them).
+  std::function<void(const std::string&)> log;
+};
+
+struct CompareRun {
+  CheckedReference reference;
+  Scene reference_scene;  ///< the scene with the model settings of the solution used
+  double tolerance_rad[2] = {0, 0};
+  std::optional<ReferenceEnsemble> ensemble;  ///< absent with compare.members = 0
+  std::vector<EngineRun> engine_runs;         ///< nominal runs, in the order asked
+  /// Per engine: its ensemble's outcomes (empty when none was run).
+  std::vector<std::vector<MemberOutcome>> engine_outcomes;
+  std::vector<EngineAgreement> agreements;  ///< with their verdicts
+  nlohmann::json comparison;                ///< comparison.json
+  /// The reference's run as written to DIR/reference (history of the solution used; summary
+  /// with "convergence").
+  EngineRun reference_run;
+};
+
+/// Runs the comparison of `engines` (names from AvailableEngines, "reference" excluded) on a
+/// scene. Throws SceneError for impossible settings.
+CompareRun RunCompare(const Scene& scene, const GroundMotion& motion,
+                      const std::vector<std::string>& engines,
+                      const CompareRunOptions& options = {});
+
+}  // namespace rockbench

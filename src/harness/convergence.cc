@@ -1,0 +1,126 @@
+#include "harness/convergence.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+#include "harness/summary.h"
+
+namespace rockbench {
+namespace {
+
+double Seconds(std::chrono::steady_clock::time_point since) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count();
+}
+
+bool EndsEarly(const reference::Result& r) {
+  return r.summary.status == "assumption_violated";
+}
+
+}  // namespace
+
+ModelConfig WitnessModel(const ModelConfig& model) {
+  ModelConfig w = model;
+  if (model.events == EventScheme::kThesis) {
+    w.step_s = model.step_s / 10.0;
+  } else if (model.integrator == Integrator::kRk4) {
+    w.step_s = model.step_s / 4.0;
+  } else {
+    w.rtol = model.rtol / 100.0;
+    w.atol = model.atol / 100.0;
+  }
+  return w;
+}
+
+ConvergenceCheck CompareWithWitness(const Scene& scene, const reference::Result& nominal,
+                                    const reference::Result& witness) {
+  ConvergenceCheck c;
+  c.witness = WitnessModel(scene.model);
+  const bool two = scene.two_blocks();
+  c.tolerance_rad[0] = AngleTolerance_rad(scene, 1, nominal.summary.peak_theta1_rad);
+  c.tolerance_rad[1] = two ? AngleTolerance_rad(scene, 2, nominal.summary.peak_theta2_rad) : 0.0;
+  // A run that stops on a violated assumption has no solution after its end: compare up to the
+  // earlier end. An overturned run stays overturned (Trajectory::At clamps to its end).
+  double until = scene.run.duration_s;
+  if (EndsEarly(nominal)) until = std::min(until, nominal.trajectory.end_s());
+  if (EndsEarly(witness)) until = std::min(until, witness.trajectory.end_s());
+  std::vector<double> grid;
+  grid.reserve(nominal.history.samples.size() + witness.history.samples.size());
+  for (const auto* r : {&nominal, &witness}) {
+    for (const Sample& s : r->history.samples) {
+      if (s.t_s <= until) grid.push_back(s.t_s);
+    }
+  }
+  std::sort(grid.begin(), grid.end());
+  grid.erase(std::unique(grid.begin(), grid.end()), grid.end());
+  for (double t : grid) {
+    const Sample a = nominal.trajectory.At(t), b = witness.trajectory.At(t);
+    const double d[2] = {std::abs(a.theta1_rad - b.theta1_rad),
+                         two ? std::abs(a.theta2_rad - b.theta2_rad) : 0.0};
+    for (int k = 0; k < 2; ++k) {
+      c.max_abs_diff_rad[k] = std::max(c.max_abs_diff_rad[k], d[k]);
+      if (!c.diverges_at_s && d[k] > c.tolerance_rad[k] && (k == 0 || two)) c.diverges_at_s = t;
+    }
+  }
+  c.same_status = nominal.summary.status == witness.summary.status &&
+                  nominal.summary.overturn_block == witness.summary.overturn_block;
+  c.converged = !c.diverges_at_s && c.same_status;
+  return c;
+}
+
+CheckedReference RunCheckedReference(const Scene& scene, const GroundMotion& motion,
+                                     bool with_witness) {
+  CheckedReference out;
+  auto start = std::chrono::steady_clock::now();
+  out.nominal = reference::Simulate(scene, motion);
+  out.nominal_wall_s = Seconds(start);
+  if (!with_witness) return out;
+  Scene tight = scene;
+  tight.model = WitnessModel(scene.model);
+  start = std::chrono::steady_clock::now();
+  out.witness = reference::Simulate(tight, motion);
+  const double witness_wall_s = Seconds(start);
+  out.check = CompareWithWitness(scene, out.nominal, *out.witness);
+  out.check->witness_wall_s = witness_wall_s;
+  return out;
+}
+
+nlohmann::json ConvergenceJson(const Scene& scene, const ConvergenceCheck& c) {
+  nlohmann::json j;
+  j["witness"] = ModelOptionsJson(c.witness);
+  j["max_abs_diff_rad"] = c.max_abs_diff();
+  j["max_abs_diff_rad_per_block"] = {{"theta1", c.max_abs_diff_rad[0]}};
+  j["tolerance_rad"] = {{"theta1", c.tolerance_rad[0]}};
+  if (scene.two_blocks()) {
+    j["max_abs_diff_rad_per_block"]["theta2"] = c.max_abs_diff_rad[1];
+    j["tolerance_rad"]["theta2"] = c.tolerance_rad[1];
+  }
+  j["converged"] = c.converged;
+  j["diverges_at_s"] = c.diverges_at_s ? nlohmann::json(*c.diverges_at_s) : nullptr;
+  j["same_status"] = c.same_status;
+  j["used"] = c.converged ? "nominal" : "witness";
+  j["witness_wall_s"] = c.witness_wall_s;
+  return j;
+}
+
+std::string ConvergenceWarning(const ConvergenceCheck& c) {
+  if (c.converged) return "";
+  char buf[512];
+  if (c.diverges_at_s) {
+    std::snprintf(buf, sizeof buf,
+                  "the reference is NOT converged: its witness (a tighter tolerance) differs by "
+                  "%.3g rad (more than the comparison tolerance) from t = %.3f s on; the "
+                  "comparison uses the witness (set a smaller model.rtol and atol, or model.step)",
+                  c.max_abs_diff(), *c.diverges_at_s);
+  } else {
+    std::snprintf(buf, sizeof buf,
+                  "the reference is NOT converged: at a tighter tolerance the run ends "
+                  "differently (status or overturned block); the comparison uses the tighter "
+                  "solution");
+  }
+  return buf;
+}
+
+}  // namespace rockbench

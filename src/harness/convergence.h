@@ -1,0 +1,63 @@
+#pragma once
+/// The reference's own convergence: every reference run is checked against a witness, the same
+/// model at a tighter tolerance. When the two differ by more than the comparison tolerance the
+/// reference is not converged, the run says so, and comparisons use the witness instead.
+#include <nlohmann/json.hpp>
+#include <optional>
+
+#include "harness/compare.h"
+#include "reference/simulate.h"
+#include "scene/ground_motion.h"
+#include "scene/scene.h"
+
+namespace rockbench {
+
+/// The witness's settings: dopri5 at rtol / 100 and atol / 100 (the error of a 5th-order
+/// scheme falls about 100x); rk4 at a quarter of the step (4th order: 256x); the thesis's
+/// event scheme (first order in the step) at a tenth of the step.
+ModelConfig WitnessModel(const ModelConfig& model);
+
+/// Difference between a reference run and its witness.
+struct ConvergenceCheck {
+  ModelConfig witness;                  ///< the witness's model settings
+  double tolerance_rad[2] = {0, 0};     ///< per block (AngleTolerance_rad of the nominal run)
+  double max_abs_diff_rad[2] = {0, 0};  ///< per block, over the run
+  /// First time either block's difference exceeds its tolerance; nullopt: never.
+  std::optional<double> diverges_at_s;
+  bool same_status = true;  ///< both runs end the same way (status and overturned block)
+  bool converged = true;    ///< never diverges and ends the same way
+  double witness_wall_s = 0.0;
+  double max_abs_diff() const { return std::max(max_abs_diff_rad[0], max_abs_diff_rad[1]); }
+};
+
+/// Compares two runs of the same scene (nominal and witness) on the union of their sample
+/// times. `two_blocks`: compare theta2 as well.
+ConvergenceCheck CompareWithWitness(const Scene& scene, const reference::Result& nominal,
+                                    const reference::Result& witness);
+
+/// A reference run with its convergence check.
+struct CheckedReference {
+  reference::Result nominal;
+  double nominal_wall_s = 0.0;
+  std::optional<reference::Result> witness;  ///< absent when the check was not asked for
+  std::optional<ConvergenceCheck> check;
+  /// The solution comparisons use: the witness when the nominal run is not converged.
+  const reference::Result& used() const {
+    return check && !check->converged && witness ? *witness : nominal;
+  }
+};
+
+/// Runs the reference on the scene and, when `with_witness`, its witness.
+CheckedReference RunCheckedReference(const Scene& scene, const GroundMotion& motion,
+                                     bool with_witness = true);
+
+/// summary.json "convergence": {"witness": {...settings}, "max_abs_diff_rad": x,
+/// "max_abs_diff_rad_per_block": {...}, "tolerance_rad": {...}, "converged": bool,
+/// "diverges_at_s": null | t, "same_status": bool, "used": "nominal" | "witness",
+/// "witness_wall_s": s}.
+nlohmann::json ConvergenceJson(const Scene& scene, const ConvergenceCheck& check);
+
+/// One plain-words sentence for the console and the report; empty when converged.
+std::string ConvergenceWarning(const ConvergenceCheck& check);
+
+}  // namespace rockbench

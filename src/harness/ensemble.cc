@@ -1,0 +1,307 @@
+#include "harness/ensemble.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+
+#include "harness/compare.h"
+#include "harness/parallel.h"
+#include "harness/summary.h"
+
+namespace rockbench {
+namespace {
+
+// SplitMix64 (Steele, Lea & Flood 2014): a counter-based generator, so a draw depends only on
+// (seed, member, slot) and never on the order in which members run.
+uint64_t SplitMix64(uint64_t x) {
+  x += 0x9E3779B97F4A7C15ull;
+  x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
+  x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
+  return x ^ (x >> 31);
+}
+
+// Uniform in [-1, 1): 53 random bits.
+double Uniform(uint64_t seed, uint64_t member, uint64_t slot) {
+  const uint64_t x = SplitMix64(seed ^ SplitMix64(member ^ SplitMix64(slot)));
+  return 2.0 * (static_cast<double>(x >> 11) * 0x1.0p-53) - 1.0;
+}
+
+// Slots: amplitude of each component, initial state, then each record sample.
+constexpr uint64_t kSlotAmplitude = 1, kSlotInitial = 8, kSlotSamples = 1ull << 32;
+
+MotionComponent PerturbedComponent(const MotionComponent& c, double factor, double precision,
+                                   uint64_t seed, uint64_t member, uint64_t component,
+                                   double* max_move_mps2) {
+  *max_move_mps2 = 0.0;
+  const std::vector<double>& res = c.sample_resolution_mps2();
+  if (precision > 0.0 && !c.samples_mps2().empty() && res.size() == c.samples_mps2().size()) {
+    std::vector<double> a = c.samples_mps2();
+    for (size_t k = 0; k < a.size(); ++k) {
+      const double move =
+          Uniform(seed, member, kSlotSamples * (component + 1) + k) * precision * 0.5 * res[k];
+      a[k] += move;
+      *max_move_mps2 = std::max(*max_move_mps2, std::abs(move));
+    }
+    return c.WithSamples(std::move(a)).Scaled(factor);
+  }
+  return c.Scaled(factor);
+}
+
+double Seconds(std::chrono::steady_clock::time_point since) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count();
+}
+
+std::string Num(double v) {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.9g", v);
+  return buf;
+}
+
+}  // namespace
+
+MemberInput PerturbedInput(const Scene& scene, const GroundMotion& motion, int member) {
+  const CompareConfig& cfg = scene.compare;
+  MemberInput in;
+  in.scene = scene;
+  MemberPerturbation& p = in.perturbation;
+  p.member = member;
+  const uint64_t m = static_cast<uint64_t>(member);
+  if (motion.horizontal()) {
+    p.horizontal_factor = 1.0 + Uniform(cfg.seed, m, kSlotAmplitude) * cfg.amplitude_rel;
+    in.motion.set_horizontal(PerturbedComponent(*motion.horizontal(), p.horizontal_factor,
+                                                cfg.sample_precision, cfg.seed, m, 0,
+                                                &p.horizontal_max_sample_move_mps2));
+  }
+  if (motion.vertical()) {
+    p.vertical_factor = 1.0 + Uniform(cfg.seed, m, kSlotAmplitude + 1) * cfg.amplitude_rel;
+    in.motion.set_vertical(PerturbedComponent(*motion.vertical(), p.vertical_factor,
+                                              cfg.sample_precision, cfg.seed, m, 1,
+                                              &p.vertical_max_sample_move_mps2));
+  }
+  // Block 1's angle and rate, and block 2's relative to block 1: a closed contact (block 1 flat,
+  // or block 2 flat on block 1: a relative value of 0) stays closed, so a member starts in the
+  // nominal mode.
+  InitialState& s = in.scene.initial;
+  const double rel_theta = s.theta2_rad - s.theta1_rad, rel_omega = s.omega2_radps - s.omega1_radps;
+  for (int k = 0; k < 4; ++k) {
+    p.initial_factor[k] = 1.0 + Uniform(cfg.seed, m, kSlotInitial + k) * cfg.initial_rel;
+  }
+  s.theta1_rad *= p.initial_factor[0];
+  s.omega1_radps *= p.initial_factor[2];
+  if (scene.two_blocks()) {
+    s.theta2_rad = s.theta1_rad + rel_theta * p.initial_factor[1];
+    s.omega2_radps = s.omega1_radps + rel_omega * p.initial_factor[3];
+  }
+  return in;
+}
+
+MemberOutcome OutcomeOf(const EngineRun& run, bool two_blocks, double min_impact_rate_radps) {
+  MemberOutcome o;
+  const nlohmann::json& s = run.summary;
+  o.status = s.value("status", std::string());
+  o.wall_s = run.wall_s;
+  if (s.contains("overturn") && s["overturn"].is_object()) {
+    o.overturned_block = s["overturn"].value("block", 0);
+    o.overturn_t_s = s["overturn"].value("t_s", 0.0);
+  }
+  for (int b = 0; b < (two_blocks ? 2 : 1); ++b) {
+    const char* key = b == 0 ? "theta1" : "theta2";
+    if (s.contains("peaks") && s["peaks"].contains(key)) {
+      o.peak_rad[b] = s["peaks"][key].value("abs_rad", 0.0);
+      o.peak_t_s[b] = s["peaks"][key].value("t_s", 0.0);
+    } else {
+      for (const Sample& x : run.history.samples) {
+        const double v = std::abs(b == 0 ? x.theta1_rad : x.theta2_rad);
+        if (v > o.peak_rad[b]) {
+          o.peak_rad[b] = v;
+          o.peak_t_s[b] = x.t_s;
+        }
+      }
+    }
+  }
+  if (!run.history.samples.empty()) {
+    o.residual_rad[0] = run.history.samples.back().theta1_rad;
+    o.residual_rad[1] = two_blocks ? run.history.samples.back().theta2_rad : 0.0;
+  }
+  o.impacts = CountComparedImpacts(run.history, min_impact_rate_radps);
+  return o;
+}
+
+ReferenceEnsemble RunReferenceEnsemble(const Scene& nominal_scene, const GroundMotion& motion,
+                                       const reference::Result& nominal, int members,
+                                       const double tolerance_rad[2], int threads,
+                                       double min_impact_rate_radps) {
+  const auto start = std::chrono::steady_clock::now();
+  const bool two = nominal_scene.two_blocks();
+  ReferenceEnsemble e;
+  e.members = members;
+  e.tolerance_rad[0] = tolerance_rad[0];
+  e.tolerance_rad[1] = tolerance_rad[1];
+  const double dt = nominal_scene.run.output_interval_s;
+  const auto n_grid = static_cast<size_t>(std::floor(nominal_scene.run.duration_s / dt + 1e-9)) + 1;
+  e.t_s.resize(n_grid);
+  for (size_t k = 0; k < n_grid; ++k) e.t_s[k] = static_cast<double>(k) * dt;
+  // The nominal run on the grid; beyond the end of a run stopped by a violated assumption
+  // there is nothing to compare (NaN).
+  auto on_grid = [&](const reference::Result& r, std::vector<double>* th) {
+    const bool stopped = r.summary.status == "assumption_violated";
+    const double end = r.trajectory.end_s();
+    th[0].assign(n_grid, std::nan(""));
+    th[1].assign(n_grid, std::nan(""));
+    for (size_t k = 0; k < n_grid; ++k) {
+      if (stopped && e.t_s[k] > end) break;
+      const Sample s = r.trajectory.At(e.t_s[k]);
+      th[0][k] = s.theta1_rad;
+      th[1][k] = two ? s.theta2_rad : 0.0;
+    }
+  };
+  std::vector<double> nominal_grid[2];
+  on_grid(nominal, nominal_grid);
+
+  e.perturbations.resize(members);
+  e.outcomes.resize(members);
+  std::vector<std::vector<double>> grids[2];
+  grids[0].resize(members);
+  grids[1].resize(members);
+  ProgressLine progress("reference ensemble");
+  ParallelFor(
+      members, threads,
+      [&](int i) {
+        const MemberInput in = PerturbedInput(nominal_scene, motion, i);
+        const auto t0 = std::chrono::steady_clock::now();
+        reference::Result r = reference::Simulate(in.scene, in.motion);
+        EngineRun run;
+        run.engine = "reference";
+        run.wall_s = Seconds(t0);
+        run.summary = ReferenceSummaryJson(in.scene, r, run.wall_s);
+        std::vector<double> th[2];
+        on_grid(r, th);
+        grids[0][i] = std::move(th[0]);
+        grids[1][i] = std::move(th[1]);
+        run.history = std::move(r.history);
+        e.perturbations[i] = in.perturbation;
+        e.outcomes[i] = OutcomeOf(run, two, min_impact_rate_radps);
+        e.outcomes[i].member = i;
+      },
+      [&](int done, int total) { progress.Update(done, total); });
+
+  for (int b = 0; b < (two ? 2 : 1); ++b) {
+    e.lo_rad[b] = nominal_grid[b];
+    e.hi_rad[b] = nominal_grid[b];
+    e.spread_rad[b].assign(n_grid, 0.0);
+    for (size_t k = 0; k < n_grid; ++k) {
+      const double nom = nominal_grid[b][k];
+      if (std::isnan(nom)) continue;
+      for (int i = 0; i < members; ++i) {
+        const double v = grids[b][i][k];
+        if (std::isnan(v)) continue;
+        e.lo_rad[b][k] = std::min(e.lo_rad[b][k], v);
+        e.hi_rad[b][k] = std::max(e.hi_rad[b][k], v);
+        e.spread_rad[b][k] = std::max(e.spread_rad[b][k], std::abs(v - nom));
+      }
+      e.max_spread_rad[b] = std::max(e.max_spread_rad[b], e.spread_rad[b][k]);
+      if (!e.horizon_s[b] && e.spread_rad[b][k] > e.tolerance_rad[b]) e.horizon_s[b] = e.t_s[k];
+    }
+  }
+  e.wall_s = Seconds(start);
+  return e;
+}
+
+std::vector<MemberOutcome> RunEngineEnsemble(const std::string& name, const Scene& scene,
+                                             const GroundMotion& motion, int members, int threads,
+                                             double min_impact_rate_radps) {
+  std::vector<MemberOutcome> out(members);
+  ProgressLine progress(name + " ensemble");
+  ParallelFor(
+      members, threads,
+      [&](int i) {
+        const MemberInput in = PerturbedInput(scene, motion, i);
+        const EngineRun run = RunEngine(name, in.scene, in.motion, {.reference_witness = false});
+        out[i] = OutcomeOf(run, scene.two_blocks(), min_impact_rate_radps);
+        out[i].member = i;
+      },
+      [&](int done, int total) { progress.Update(done, total); });
+  return out;
+}
+
+nlohmann::json PredictabilityJson(const Scene& scene, const ReferenceEnsemble& e) {
+  const bool two = scene.two_blocks();
+  const CompareConfig& c = scene.compare;
+  nlohmann::json j;
+  j["members"] = e.members;
+  j["perturbation"] = {
+      {"amplitude_rel", c.amplitude_rel},
+      {"sample_precision", c.sample_precision},
+      {"initial_rel", c.initial_rel},
+      {"seed", c.seed},
+      {"rule",
+       "each component's amplitude x (1 + u amplitude_rel), each record sample + u "
+       "sample_precision (half a unit of its last printed digit), each nonzero initial value x "
+       "(1 + u initial_rel); u uniform in [-1, 1], independent"}};
+  auto opt = [](const std::optional<double>& v) {
+    return v ? nlohmann::json(*v) : nlohmann::json(nullptr);
+  };
+  j["horizon_s"] = {{"theta1", opt(e.horizon_s[0])}};
+  j["spread_rad"] = {{"theta1", e.max_spread_rad[0]}};
+  j["tolerance_rad"] = {{"theta1", e.tolerance_rad[0]}};
+  if (two) {
+    j["horizon_s"]["theta2"] = opt(e.horizon_s[1]);
+    j["spread_rad"]["theta2"] = e.max_spread_rad[1];
+    j["tolerance_rad"]["theta2"] = e.tolerance_rad[1];
+  }
+  nlohmann::json statuses = nlohmann::json::object();
+  for (const MemberOutcome& o : e.outcomes) {
+    statuses[o.status] = statuses.value(o.status, 0) + 1;
+  }
+  j["statuses"] = statuses;
+  j["wall_s"] = e.wall_s;
+  return j;
+}
+
+std::string EnsembleBandCsv(const ReferenceEnsemble& e, bool two) {
+  std::string out = two ? "t,theta1_lo,theta1_hi,theta1_spread,theta2_lo,theta2_hi,theta2_spread\n"
+                        : "t,theta1_lo,theta1_hi,theta1_spread\n";
+  for (size_t k = 0; k < e.t_s.size(); ++k) {
+    if (std::isnan(e.lo_rad[0][k])) break;
+    out += Num(e.t_s[k]);
+    for (int b = 0; b < (two ? 2 : 1); ++b) {
+      for (double v : {e.lo_rad[b][k], e.hi_rad[b][k], e.spread_rad[b][k]}) {
+        out.append(",").append(Num(v));
+      }
+    }
+    out += "\n";
+  }
+  return out;
+}
+
+std::string OutcomesCsv(const std::vector<MemberOutcome>& outcomes,
+                        const std::vector<MemberPerturbation>& perturbations, bool two) {
+  std::string out =
+      "member,horizontal_factor,vertical_factor,initial_factor_theta1,status,overturned_block,"
+      "overturn_t_s,peak_theta1_rad,peak_theta1_t_s,residual_theta1_rad,";
+  out += two ? "peak_theta2_rad,peak_theta2_t_s,residual_theta2_rad,impacts\n" : "impacts\n";
+  for (const MemberOutcome& o : outcomes) {
+    const MemberPerturbation p = o.member >= 0 && o.member < static_cast<int>(perturbations.size())
+                                     ? perturbations[o.member]
+                                     : MemberPerturbation{};
+    // Appended piece by piece (GCC 12 warns, wrongly, on long chains of string +).
+    out.append(std::to_string(o.member));
+    for (double v : {p.horizontal_factor, p.vertical_factor, p.initial_factor[0]}) {
+      out.append(",").append(Num(v));
+    }
+    out.append(",").append(o.status).append(",");
+    if (o.overturned_block) out.append(std::to_string(o.overturned_block));
+    out.append(",");
+    if (o.overturned_block) out.append(Num(o.overturn_t_s));
+    for (int b = 0; b < (two ? 2 : 1); ++b) {
+      out.append(",").append(Num(o.peak_rad[b]));
+      out.append(",").append(Num(o.peak_t_s[b]));
+      out.append(",").append(Num(o.residual_rad[b]));
+    }
+    out.append(",").append(std::to_string(o.impacts)).append("\n");
+  }
+  return out;
+}
+
+}  // namespace rockbench

@@ -1,0 +1,102 @@
+#pragma once
+/// Ensembles on perturbed inputs: what the problem itself does when its inputs move within what
+/// they are known to. Member i's inputs depend only on ([compare] seed, i), so engine member i
+/// sees exactly the inputs of reference member i.
+///
+/// - The reference ensemble gives the predictability horizon: per block, the first time the
+///   members spread from the nominal run by more than the comparison tolerance.
+/// - Member outcomes (peaks, overturning, time of the largest excursion, impacts, residual
+///   angle) are what the statistical comparison beyond the horizon is made of.
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "harness/engines.h"
+#include "reference/simulate.h"
+#include "scene/ground_motion.h"
+#include "scene/scene.h"
+
+namespace rockbench {
+
+/// How member i's inputs differ from the nominal ones (factors are 1 + u * size, u in [-1, 1]).
+struct MemberPerturbation {
+  int member = 0;
+  double horizontal_factor = 1.0;  ///< amplitude factor of base.horizontal
+  double vertical_factor = 1.0;    ///< amplitude factor of base.vertical
+  /// Largest sample move of each record, m/s^2 (0 for analytic motions).
+  double horizontal_max_sample_move_mps2 = 0.0, vertical_max_sample_move_mps2 = 0.0;
+  /// Factors of theta1, theta2 - theta1, omega1, omega2 - omega1.
+  double initial_factor[4] = {1, 1, 1, 1};
+};
+
+/// A member's scene and base motion.
+struct MemberInput {
+  MemberPerturbation perturbation;
+  Scene scene;
+  GroundMotion motion;
+};
+
+/// Member i's inputs, from the nominal scene and motion and the [compare] perturbation sizes
+/// (amplitude_rel, sample_precision, initial_rel, seed). Deterministic: depends only on the
+/// nominal inputs, the sizes, the seed and i.
+MemberInput PerturbedInput(const Scene& scene, const GroundMotion& motion, int member);
+
+/// What a user cares about in one run.
+struct MemberOutcome {
+  int member = -1;
+  std::string status;               ///< as in summary.json
+  int overturned_block = 0;         ///< 0: none, 1 or 2
+  double overturn_t_s = 0.0;        ///< when overturned_block != 0
+  double peak_rad[2] = {0, 0};      ///< peak |theta1|, |theta2|
+  double peak_t_s[2] = {0, 0};      ///< their times (the time of the largest excursion)
+  int impacts = 0;                  ///< impacts at or above the comparison's minimum rate
+  double residual_rad[2] = {0, 0};  ///< theta1, theta2 at the end of the run
+  double wall_s = 0.0;
+  /// A run that stopped because the model's assumptions failed has no outcome to compare.
+  bool valid() const { return status != "assumption_violated"; }
+};
+
+/// The outcome of a run (reference or engine): summary "status", "peaks", "overturn"; the
+/// history's last sample and impacts.
+MemberOutcome OutcomeOf(const EngineRun& run, bool two_blocks, double min_impact_rate_radps);
+
+/// The reference ensemble and what it says about predictability.
+struct ReferenceEnsemble {
+  int members = 0;
+  std::vector<MemberPerturbation> perturbations;
+  std::vector<MemberOutcome> outcomes;
+  /// On the grid t_k = k * run.output_interval (to the end of the run): the band every member
+  /// and the nominal run span, and the largest |member - nominal|.
+  std::vector<double> t_s;
+  std::vector<double> lo_rad[2], hi_rad[2], spread_rad[2];
+  double tolerance_rad[2] = {0, 0};
+  std::optional<double> horizon_s[2];  ///< nullopt: within the tolerance for the whole run
+  double max_spread_rad[2] = {0, 0};
+  double wall_s = 0.0;  ///< wall-clock time of the whole ensemble
+};
+
+/// Runs `members` reference members with the model settings of `nominal_scene` (pass the scene
+/// whose model produced `nominal`, e.g. the witness's when the default was not converged) and
+/// measures their spread around `nominal`. `tolerance_rad`: per block.
+ReferenceEnsemble RunReferenceEnsemble(const Scene& nominal_scene, const GroundMotion& motion,
+                                       const reference::Result& nominal, int members,
+                                       const double tolerance_rad[2], int threads,
+                                       double min_impact_rate_radps);
+
+/// Runs engine `name` on members 0 .. members-1 (the first reference members' inputs).
+std::vector<MemberOutcome> RunEngineEnsemble(const std::string& name, const Scene& scene,
+                                             const GroundMotion& motion, int members, int threads,
+                                             double min_impact_rate_radps);
+
+/// comparison.json "predictability".
+nlohmann::json PredictabilityJson(const Scene& scene, const ReferenceEnsemble& e);
+
+/// reference/ensemble_band.csv: t,theta1_lo,theta1_hi,theta1_spread[,theta2_lo,...] (rad).
+std::string EnsembleBandCsv(const ReferenceEnsemble& e, bool two_blocks);
+
+/// <engine>/ensemble.csv: one row per member with its perturbation and outcome.
+std::string OutcomesCsv(const std::vector<MemberOutcome>& outcomes,
+                        const std::vector<MemberPerturbation>& perturbations, bool two_blocks);
+
+}  // namespace rockbench

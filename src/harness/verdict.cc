@@ -1,0 +1,317 @@
+#include "harness/verdict.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+namespace rockbench {
+namespace {
+
+// Fewer valid members than this on either side: no statistical comparison.
+constexpr int kMinMembers = 5;
+
+std::string Fmt(const char* format, double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, format, v);
+  return buf;
+}
+
+// A p-value in words: "p = 0.41", "p = 3e-05", "p < 1e-300".
+std::string PText(double p) {
+  if (std::isnan(p)) return "p undefined";
+  if (p == 0.0) return "p < 1e-300";
+  return p >= 0.001 ? Fmt("p = %.2g", p) : Fmt("p = %.1e", p);
+}
+
+nlohmann::json TestJson(const stats::TestResult& t) {
+  auto num = [](double v) { return std::isnan(v) ? nlohmann::json(nullptr) : nlohmann::json(v); };
+  return {{"test", t.test},     {"statistic", num(t.statistic)}, {"p_value", num(t.p_value)},
+          {"method", t.method}, {"n_reference", t.n_a},          {"n_engine", t.n_b}};
+}
+
+nlohmann::json SpreadJson(const std::vector<double>& v) {
+  if (v.empty()) return nullptr;
+  return {{"median", stats::Median(v)},
+          {"q05", stats::Quantile(v, 0.05)},
+          {"q95", stats::Quantile(v, 0.95)},
+          {"n", v.size()}};
+}
+
+std::string Value(double v, const std::string& unit) {
+  if (unit.empty()) return Fmt("%.3g", v);
+  return Fmt("%.3g", v) + " " + unit;
+}
+
+}  // namespace
+
+StatisticalComparison CompareEnsembles(const std::vector<MemberOutcome>& reference,
+                                       const std::vector<MemberOutcome>& engine, bool two_blocks,
+                                       const double tolerance_rad[2], double time_margin_s,
+                                       double alpha) {
+  StatisticalComparison s;
+  s.alpha = alpha;
+  // Members whose reference run stopped on a violated assumption have no reference outcome;
+  // the engine's run on the same inputs is left out with them.
+  std::vector<const MemberOutcome*> ref, eng;
+  for (const MemberOutcome& o : reference) {
+    if (o.valid()) {
+      ref.push_back(&o);
+    } else {
+      ++s.excluded;
+    }
+  }
+  for (const MemberOutcome& o : engine) {
+    const bool ref_valid = o.member >= 0 && o.member < static_cast<int>(reference.size()) &&
+                           reference[o.member].valid();
+    if (ref_valid) eng.push_back(&o);
+  }
+  s.reference_members = static_cast<int>(ref.size());
+  s.engine_members = static_cast<int>(eng.size());
+  if (s.reference_members < kMinMembers || s.engine_members < kMinMembers) {
+    s.unavailable_reason = "too few members with a valid reference run (" +
+                           std::to_string(s.reference_members) + " reference, " +
+                           std::to_string(s.engine_members) + " engine; at least " +
+                           std::to_string(kMinMembers) + " each)";
+    return s;
+  }
+  s.available = true;
+
+  auto add = [&](std::string key, std::string label, std::string unit, double margin, auto value,
+                 auto include) {
+    QuantityComparison q;
+    q.key = std::move(key);
+    q.label = std::move(label);
+    q.unit = std::move(unit);
+    q.margin = margin;
+    for (const MemberOutcome* o : ref) {
+      if (include(*o)) q.reference.push_back(value(*o));
+    }
+    for (const MemberOutcome* o : eng) {
+      if (include(*o)) q.engine.push_back(value(*o));
+    }
+    q.ks = stats::KolmogorovSmirnovSlackTest(q.reference, q.engine, margin);
+    q.ad = stats::AndersonDarlingTest(q.reference, q.engine);
+    s.quantities.push_back(std::move(q));
+  };
+  const int nb = two_blocks ? 2 : 1;
+  for (int b = 0; b < nb; ++b) {
+    const std::string th = b == 0 ? "theta1" : "theta2";
+    const double tol = tolerance_rad[b];
+    add(
+        "peak_" + th + "_rad", "peak |" + th + "|", "rad", 0.1 * tol,
+        [b](const MemberOutcome& o) { return o.peak_rad[b]; },
+        [](const MemberOutcome&) { return true; });
+  }
+  for (int b = 0; b < nb; ++b) {
+    const std::string th = b == 0 ? "theta1" : "theta2";
+    const double tol = tolerance_rad[b];
+    // The time of the largest excursion means something only for a block that moved.
+    add(
+        "peak_" + th + "_t_s", "time of the largest |" + th + "|", "s", time_margin_s,
+        [b](const MemberOutcome& o) { return o.peak_t_s[b]; },
+        [b, tol](const MemberOutcome& o) { return o.peak_rad[b] > tol; });
+  }
+  add(
+      "impacts", "impacts", "", 0.0,
+      [](const MemberOutcome& o) { return static_cast<double>(o.impacts); },
+      [](const MemberOutcome&) { return true; });
+  for (int b = 0; b < nb; ++b) {
+    const std::string th = b == 0 ? "theta1" : "theta2";
+    add(
+        "residual_" + th + "_rad", "residual " + th, "rad", 0.1 * tolerance_rad[b],
+        [b](const MemberOutcome& o) { return o.residual_rad[b]; },
+        [](const MemberOutcome&) { return true; });
+  }
+  for (const MemberOutcome* o : ref) ++s.overturn_reference[std::clamp(o->overturned_block, 0, 2)];
+  for (const MemberOutcome* o : eng) ++s.overturn_engine[std::clamp(o->overturned_block, 0, 2)];
+  // Categories that occur in neither ensemble are dropped (a column of zeros has no table).
+  std::vector<int> row_r, row_e;
+  for (int c = 0; c < 3; ++c) {
+    if (s.overturn_reference[c] + s.overturn_engine[c] == 0) continue;
+    row_r.push_back(s.overturn_reference[c]);
+    row_e.push_back(s.overturn_engine[c]);
+  }
+  if (row_r.size() >= 2) {
+    s.overturn = stats::FisherExactTest(row_r, row_e);
+  } else {
+    s.overturn.test = "Fisher-Freeman-Halton exact";
+    s.overturn.statistic = 1.0;
+    s.overturn.p_value = 1.0;
+    s.overturn.n_a = s.reference_members;
+    s.overturn.n_b = s.engine_members;
+    s.overturn.method = "exact (one outcome in both ensembles)";
+  }
+
+  // One family: every defined KS p-value and the overturning test.
+  std::vector<double> p;
+  for (const QuantityComparison& q : s.quantities) p.push_back(q.ks.p_value);
+  p.push_back(s.overturn.p_value);
+  const std::vector<double> holm = stats::HolmAdjust(p);
+  for (size_t k = 0; k < s.quantities.size(); ++k) {
+    QuantityComparison& q = s.quantities[k];
+    q.p_holm = holm[k];
+    if (!std::isnan(q.p_holm) && q.p_holm <= alpha) s.rejected.push_back(q.key);
+  }
+  s.overturn_p_holm = holm.back();
+  if (!std::isnan(s.overturn_p_holm) && s.overturn_p_holm <= alpha)
+    s.rejected.push_back("overturn");
+  s.consistent = s.rejected.empty();
+  return s;
+}
+
+Verdict MakeVerdict(const Scene& scene, const EngineAgreement& a,
+                    const std::optional<Horizons>& predictability,
+                    const std::optional<StatisticalComparison>& statistics) {
+  Verdict v;
+  const int nb = a.theta2 ? 2 : 1;
+  const AngleAgreement* ang[2] = {&a.theta1, a.theta2 ? &*a.theta2 : nullptr};
+  const double slack_s = scene.run.output_interval_s;
+  auto th = [](int b) { return std::string(b == 0 ? "theta1" : "theta2"); };
+
+  if (!predictability) {
+    bool all_within = true;
+    std::string out;
+    for (int b = 0; b < nb; ++b) {
+      if (ang[b]->within_tolerance) continue;
+      all_within = false;
+      out += (out.empty() ? "" : "; ") + th(b) + " leaves the tolerance (" +
+             Fmt("%.3g", ang[b]->tolerance_rad) + " rad) at " + Fmt("%.3f", ang[b]->horizon_s) +
+             " s";
+    }
+    v.kind = all_within ? "pointwise_only" : "pointwise_differs";
+    v.agrees = all_within;
+    v.text = all_within ? "agrees pointwise over the whole comparison (" +
+                              Fmt("%.3f", a.compared_until_s) +
+                              " s); no reference ensemble was run, so the reference's own "
+                              "predictability was not measured"
+                        : out +
+                              "; no reference ensemble was run, so whether the reference is "
+                              "itself predictable there is unknown";
+    return v;
+  }
+
+  // 1. Before the horizon: an error there is the engine's.
+  std::string before, agree_part;
+  bool whole_run = true;
+  for (int b = 0; b < nb; ++b) {
+    const std::optional<double>& hp = predictability->horizon_s[b];
+    const AngleAgreement& g = *ang[b];
+    whole_run = whole_run && !hp;
+    const bool ok = g.within_tolerance || (hp && g.horizon_s >= *hp - slack_s);
+    const std::string hp_text = hp ? Fmt("%.2f s", *hp) : "the end of the run";
+    if (!ok) {
+      before += (before.empty() ? "" : "; ") + th(b) + " leaves the tolerance (" +
+                Fmt("%.3g", g.tolerance_rad) + " rad) at " + Fmt("%.2f", g.horizon_s) +
+                " s while the reference is predictable until " + hp_text + " (max error there " +
+                Fmt("%.3g", g.max_abs_error_predictable_rad) + " rad)";
+    } else {
+      agree_part += (agree_part.empty() ? "" : "; ") + th(b) + " " +
+                    (g.within_tolerance ? "within the tolerance for the whole comparison"
+                                        : "until " + Fmt("%.2f", g.horizon_s) + " s") +
+                    (hp ? " (the reference's own horizon is " + hp_text + ")"
+                        : " (the reference is predictable throughout)");
+    }
+  }
+  if (!before.empty()) {
+    v.kind = "differs_before_horizon";
+    v.agrees = false;
+    v.text = "an engine error: " + before;
+    return v;
+  }
+  if (whole_run) {
+    v.kind = "agrees";
+    v.agrees = true;
+    v.text = "agrees pointwise: " + agree_part;
+    return v;
+  }
+  v.text = "agrees pointwise where the reference is predictable: " + agree_part;
+  // 2. Beyond the horizon: distributions.
+  if (!statistics || !statistics->available) {
+    v.kind = "agrees_to_horizon";
+    v.agrees = true;
+    v.text += "; beyond the horizon no statistical comparison was made (" +
+              (statistics ? statistics->unavailable_reason
+                          : std::string("no engine ensemble: compare.engine_members = 0")) +
+              ")";
+    return v;
+  }
+  const StatisticalComparison& s = *statistics;
+  if (s.consistent) {
+    v.kind = "agrees";
+    v.agrees = true;
+    // Name the headline quantity: the peak of the block that moves most.
+    const QuantityComparison* head = nullptr;
+    for (const QuantityComparison& q : s.quantities) {
+      if (q.key.rfind("peak_", 0) == 0 && q.unit == "rad" &&
+          (!head || stats::Median(q.reference) > stats::Median(head->reference))) {
+        head = &q;
+      }
+    }
+    v.text +=
+        "; beyond it, the engine's ensemble (" + std::to_string(s.engine_members) +
+        " members) is consistent with the reference's (" + std::to_string(s.reference_members) +
+        "): " + (head ? head->label + " KS " + PText(head->ks.p_value) + ", " : std::string()) +
+        "no quantity differs at a family-wise 5% level";
+    return v;
+  }
+  v.kind = "differs_beyond_horizon";
+  v.agrees = false;
+  std::string diffs;
+  for (const QuantityComparison& q : s.quantities) {
+    if (std::find(s.rejected.begin(), s.rejected.end(), q.key) == s.rejected.end()) continue;
+    diffs += (diffs.empty() ? "" : "; ") + q.label + " (engine median " +
+             Value(stats::Median(q.engine), q.unit) + " against " +
+             Value(stats::Median(q.reference), q.unit) + ", KS " + PText(q.ks.p_value) + ", Holm " +
+             PText(q.p_holm) + ")";
+  }
+  if (std::find(s.rejected.begin(), s.rejected.end(), "overturn") != s.rejected.end()) {
+    diffs += std::string(diffs.empty() ? "" : "; ") + "overturning (engine " +
+             std::to_string(s.overturn_engine[1] + s.overturn_engine[2]) + " of " +
+             std::to_string(s.engine_members) + " against " +
+             std::to_string(s.overturn_reference[1] + s.overturn_reference[2]) + " of " +
+             std::to_string(s.reference_members) + ", Fisher " + PText(s.overturn.p_value) + ")";
+  }
+  v.text += "; beyond it, the engine's ensemble differs from the reference's: " + diffs;
+  return v;
+}
+
+nlohmann::json StatisticsJson(const StatisticalComparison& s) {
+  nlohmann::json j;
+  j["available"] = s.available;
+  if (!s.available) {
+    j["reason"] = s.unavailable_reason;
+    return j;
+  }
+  j["reference_members"] = s.reference_members;
+  j["engine_members"] = s.engine_members;
+  j["excluded"] = s.excluded;
+  j["alpha"] = s.alpha;
+  j["family"] = "Holm-Bonferroni over every test below (KS p-values and the overturning test)";
+  nlohmann::json tests = nlohmann::json::object();
+  for (const QuantityComparison& q : s.quantities) {
+    nlohmann::json t = TestJson(q.ks);
+    t["p_holm"] = std::isnan(q.p_holm) ? nlohmann::json(nullptr) : nlohmann::json(q.p_holm);
+    t["margin"] = q.margin;
+    t["unit"] = q.unit;
+    t["reference"] = SpreadJson(q.reference);
+    t["engine"] = SpreadJson(q.engine);
+    t["anderson_darling"] = TestJson(q.ad);
+    tests[q.key] = t;
+  }
+  nlohmann::json ov = TestJson(s.overturn);
+  ov["p_holm"] =
+      std::isnan(s.overturn_p_holm) ? nlohmann::json(nullptr) : nlohmann::json(s.overturn_p_holm);
+  ov["reference"] = {{"none", s.overturn_reference[0]},
+                     {"block1", s.overturn_reference[1]},
+                     {"block2", s.overturn_reference[2]}};
+  ov["engine"] = {{"none", s.overturn_engine[0]},
+                  {"block1", s.overturn_engine[1]},
+                  {"block2", s.overturn_engine[2]}};
+  tests["overturn"] = ov;
+  j["tests"] = tests;
+  j["consistent"] = s.consistent;
+  j["rejected"] = s.rejected;
+  return j;
+}
+
+}  // namespace rockbench

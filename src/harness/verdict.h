@@ -1,0 +1,86 @@
+#pragma once
+/// An engine's verdict: what part of its difference from the reference is the engine's and what
+/// part is the problem's own sensitivity.
+///
+/// 1. Where the reference is predictable (before its predictability horizon), the engine must
+///    stay within the comparison tolerance of the reference: an error there is the engine's.
+/// 2. Beyond the horizon, runs whose inputs differ within what the inputs are known to spread by
+///    more than the tolerance, so one run's error ranks nothing: the engine's ensemble (the same
+///    perturbed inputs) is compared with the reference's by two-sample tests on what a user cares
+///    about (peaks, time of the largest excursion, impacts, residual angle, overturning), Holm-
+///    adjusted as one family at alpha = 0.05.
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "harness/compare.h"
+#include "harness/ensemble.h"
+#include "harness/statistics.h"
+
+namespace rockbench {
+
+/// One quantity's two-sample comparison.
+struct QuantityComparison {
+  std::string key;    ///< "peak_theta1_rad", "peak_theta1_t_s", "impacts", "residual_theta1_rad"
+  std::string label;  ///< "peak |theta1|", ...
+  std::string unit;   ///< "rad", "s", ""
+  /// The quantity's resolution: differences of value smaller than this are not differences
+  /// (the slack of the Kolmogorov-Smirnov test, stats::KolmogorovSmirnovSlackTest).
+  double margin = 0.0;
+  std::vector<double> reference, engine;  ///< the samples
+  stats::TestResult ks;                   ///< KS with the margin as slack: the verdict's test
+  stats::TestResult ad;                   ///< Anderson-Darling (no slack), reported beside KS
+  double p_holm = 1.0;                    ///< KS p-value, Holm-adjusted over the family
+};
+
+/// The engine's ensemble against the reference's.
+struct StatisticalComparison {
+  bool available = false;
+  std::string unavailable_reason;  ///< when not available
+  int reference_members = 0, engine_members = 0;
+  int excluded = 0;  ///< members whose reference run violated the model's assumptions
+  double alpha = 0.05;
+  std::vector<QuantityComparison> quantities;
+  /// Overturning: counts of none / block 1 / block 2 in each ensemble, Fisher-Freeman-Halton.
+  int overturn_reference[3] = {0, 0, 0}, overturn_engine[3] = {0, 0, 0};
+  stats::TestResult overturn;
+  double overturn_p_holm = 1.0;
+  bool consistent = true;             ///< no Holm-adjusted p-value at or below alpha
+  std::vector<std::string> rejected;  ///< keys of the quantities that differ
+};
+
+/// Compares the engine's member outcomes with the reference's. `tolerance_rad`: the comparison
+/// tolerances per block (they set the angle margins: 10% of them); `time_margin_s`: the margin
+/// of times (the scene's output interval).
+StatisticalComparison CompareEnsembles(const std::vector<MemberOutcome>& reference,
+                                       const std::vector<MemberOutcome>& engine, bool two_blocks,
+                                       const double tolerance_rad[2], double time_margin_s,
+                                       double alpha = 0.05);
+
+/// The verdict on one engine.
+struct Verdict {
+  /// "agrees" (pointwise over the whole run, or to the horizon and statistically beyond it),
+  /// "agrees_to_horizon" (no statistical comparison was made beyond it),
+  /// "differs_before_horizon" (an engine error where the reference is predictable),
+  /// "differs_beyond_horizon" (the engine's ensemble differs from the reference's),
+  /// "pointwise_only" / "pointwise_differs" (no reference ensemble was run).
+  std::string kind;
+  bool agrees = false;
+  std::string text;  ///< one paragraph in plain words
+};
+
+/// Horizons per block: nullopt inside means "predictable for the whole run"; an absent
+/// `predictability` means no ensemble was run.
+struct Horizons {
+  std::optional<double> horizon_s[2];
+};
+
+Verdict MakeVerdict(const Scene& scene, const EngineAgreement& agreement,
+                    const std::optional<Horizons>& predictability,
+                    const std::optional<StatisticalComparison>& statistics);
+
+/// comparison.json engines.<name>.statistics.
+nlohmann::json StatisticsJson(const StatisticalComparison& s);
+
+}  // namespace rockbench

@@ -1,0 +1,90 @@
+// The reference's convergence check: the witness's settings, the difference between a run and
+// its witness, the verdict "converged", and what a run does when it is not (the witness is used).
+#include "harness/convergence.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "harness/engines.h"
+#include "scene/ground_motion.h"
+#include "tests/common/housner_scene.h"
+
+namespace rockbench {
+namespace {
+
+// The thesis's free-rocking example (6.3.1): two blocks released together from 0.15 rad.
+Scene ThesisFreeRocking() {
+  Scene s;
+  s.block1 = {1.25, 1.25, 1.0, 2500.0 * 1.25 * 1.25, 2500.0};
+  s.block2 = BlockDef{1.0, 2.5, 1.0, 2500.0 * 2.5, 2500.0};
+  s.initial.theta1_rad = s.initial.theta2_rad = 0.15;
+  s.run.duration_s = 6.0;
+  return s;
+}
+
+TEST(WitnessModel, IsTighterByTheSchemesOrder) {
+  ModelConfig m;
+  m.rtol = 1e-9;
+  m.atol = 1e-11;
+  const ModelConfig w = WitnessModel(m);
+  EXPECT_DOUBLE_EQ(w.rtol, 1e-11);
+  EXPECT_DOUBLE_EQ(w.atol, 1e-13);
+  m.integrator = Integrator::kRk4;
+  m.step_s = 1e-3;
+  EXPECT_EQ(WitnessModel(m).step_s, 2.5e-4);
+  m.events = EventScheme::kThesis;
+  EXPECT_EQ(WitnessModel(m).step_s, 1e-4);
+}
+
+TEST(Convergence, TheDefaultToleranceIsConvergedOnTheThesisExample) {
+  // Measured: 1.6e-12 rad between rtol 1e-12 and 1e-14 over the 6 s and ~215 impacts; the
+  // bound 1e-9 rad is 0.1% of a Bullet error at dt 1e-4 s (6e-4 rad): "well below".
+  const Scene s = ThesisFreeRocking();
+  const CheckedReference r = RunCheckedReference(s, GroundMotion());
+  ASSERT_TRUE(r.check.has_value());
+  EXPECT_TRUE(r.check->converged);
+  EXPECT_FALSE(r.check->diverges_at_s.has_value());
+  EXPECT_LT(r.check->max_abs_diff(), 1e-9);
+  EXPECT_EQ(&r.used(), &r.nominal);
+}
+
+TEST(Convergence, ALooseReferenceIsCaughtAndTheWitnessIsUsed) {
+  // The thesis's event scheme at 20 ms sees each impact up to a step late: the first impacts
+  // move by up to 20 ms and theta2 by far more than 10% of its peak (measured 0.06-0.2 rad).
+  Scene s = ThesisFreeRocking();
+  s.model.integrator = Integrator::kRk4;
+  s.model.events = EventScheme::kThesis;
+  s.model.step_s = 0.02;
+  const CheckedReference r = RunCheckedReference(s, GroundMotion());
+  ASSERT_TRUE(r.check.has_value());
+  EXPECT_FALSE(r.check->converged);
+  ASSERT_TRUE(r.check->diverges_at_s.has_value());
+  // Before the first impact (0.6 s) both schemes integrate the same smooth motion.
+  EXPECT_GT(*r.check->diverges_at_s, 0.3);
+  EXPECT_GT(r.check->max_abs_diff(), r.check->tolerance_rad[1]);
+  EXPECT_EQ(&r.used(), &*r.witness);
+  const nlohmann::json j = ConvergenceJson(s, *r.check);
+  EXPECT_FALSE(j["converged"].get<bool>());
+  EXPECT_EQ(j["used"], "witness");
+  EXPECT_EQ(j["witness"]["step_s"], 0.002);
+  EXPECT_NE(ConvergenceWarning(*r.check).find("NOT converged"), std::string::npos);
+
+  // `run` (RunEngine) reports it and writes the witness's history.
+  const EngineRun run = RunEngine("reference", s, GroundMotion());
+  EXPECT_FALSE(run.summary["convergence"]["converged"].get<bool>());
+  EXPECT_EQ(run.history.samples.size(), r.witness->history.samples.size());
+  EXPECT_NE(run.one_line.find("NOT converged"), std::string::npos);
+}
+
+TEST(Convergence, RunsWithoutTheWitnessWhenNotAsked) {
+  const Scene s = testing_util::HousnerHalfAngleRelease(2.0);
+  const CheckedReference r = RunCheckedReference(s, GroundMotion(), false);
+  EXPECT_FALSE(r.check.has_value());
+  EXPECT_FALSE(r.witness.has_value());
+  const EngineRun run = RunEngine("reference", s, GroundMotion(), {.reference_witness = false});
+  EXPECT_FALSE(run.summary.contains("convergence"));
+}
+
+}  // namespace
+}  // namespace rockbench
