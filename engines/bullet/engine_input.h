@@ -4,6 +4,7 @@
 /// input drives the double-precision engine (in process) and the single-precision helper
 /// program (rockbench-bullet-float), so both see bit-identical excitation.
 #include <cstdint>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <vector>
@@ -43,6 +44,12 @@ struct EngineInput {
   double overturn_rad = 1.5707963267948966;  ///< |theta| that counts as overturned (model's)
   std::int64_t steps = 0;                    ///< number of Bullet steps, ceil(duration / dt)
   double motion_end_s = 0.0;                 ///< time after which the base is still, s
+  /// After this time (s) the base motion cannot start rocking from rest any more (every later
+  /// base acceleration keeps every corner force of the stack at rest compressive): a run that is
+  /// then at rest stops with status "at_rest", its outcome decided. Infinity (default): never.
+  /// Set for ensemble members, whose outcomes are all that is kept; never for a run whose
+  /// history is compared.
+  double stop_at_rest_after_s = std::numeric_limits<double>::infinity();
   DriveSamples drive;
 
   bool two_blocks() const { return block2.has_value(); }

@@ -66,6 +66,7 @@ Monitor::Monitor(const EngineInput& input, MonitorConfig config) : cfg_(config) 
   in_meta_.run = input.run;
   in_meta_.config = input.config;
   in_meta_.overturn_rad = input.overturn_rad;
+  in_meta_.stop_at_rest_after_s = input.stop_at_rest_after_s;
   in_meta_.steps = input.steps;
   two_ = input.two_blocks();
   b1_ = 0.5 * input.block1.width_m;
@@ -439,6 +440,19 @@ bool Monitor::Step(std::int64_t n, const StepReadout& s) {
     PushEvent(std::move(e));
     return false;
   }
+  // Settled: at rest once the base can no longer start rocking (ensemble members only).
+  if (cur.mode != Mode::kRest) {
+    rest_since_s_ = -1.0;
+  } else if (rest_since_s_ < 0.0) {
+    rest_since_s_ = t;
+  }
+  if (rest_since_s_ >= 0.0 && t >= in_meta_.stop_at_rest_after_s &&
+      t - rest_since_s_ >= cfg_.settled_for_s - 0.5 * dt_) {
+    status_ = "at_rest";
+    status_detail_ = "at rest after " + std::to_string(in_meta_.stop_at_rest_after_s) +
+                     " s, when the base motion can no longer start rocking";
+    return false;
+  }
   if (max_rate_radps_ > cfg_.blow_up_rate_radps) {
     status_ = "blow_up";
     status_detail_ = "|omega| above " + std::to_string(cfg_.blow_up_rate_radps) + " rad/s";
@@ -544,6 +558,10 @@ nlohmann::json Monitor::Summary() const {
   m["slip_flag_rel"] = cfg_.slip_flag_rel;
   m["penetration_flag_m"] = cfg_.penetration_flag_m;
   m["energy_growth_flag_rel"] = cfg_.energy_growth_flag_rel;
+  m["settled_for_s"] = cfg_.settled_for_s;
+  if (std::isfinite(in_meta_.stop_at_rest_after_s)) {
+    m["stop_at_rest_after_s"] = in_meta_.stop_at_rest_after_s;
+  }
   j["monitor"] = m;
   return j;
 }

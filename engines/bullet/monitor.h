@@ -37,6 +37,9 @@ struct MonitorConfig {
   /// input above blow_up_energy_rel times the tipping energy. The run stops there.
   double blow_up_rate_radps = 1e3;
   double blow_up_energy_rel = 1.0;
+  /// With EngineInput::stop_at_rest_after_s: the run stops once every block has been at rest
+  /// (mode rest: no block tilted beyond angle_enter_rad) for this long after that time.
+  double settled_for_s = 0.1;
   // No overturn setting here: a block overturns when |theta| reaches EngineInput::overturn_rad
   // (the scene's model.overturn_angle, the reference's definition), at the time interpolated
   // inside the step that crossed it.
@@ -130,6 +133,7 @@ class Monitor {
   std::vector<PendingImpact> pending_;
   int pivot_side1_ = 0, pivot_side2_ = 0;  // pivot sides of the last state (for the slip)
   int suppress_mode_events_ = 0;
+  double rest_since_s_ = -1.0;  // start of the current stretch at rest (mode rest); -1: moving
 
   // Peaks.
   double peak1_ = 0.0, peak1_t_ = 0.0, peak2_ = 0.0, peak2_t_ = 0.0;

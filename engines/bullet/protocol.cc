@@ -145,6 +145,7 @@ std::string SerializeInput(const EngineInput& in) {
   w.Put(in.overturn_rad);
   w.Put<std::int64_t>(in.steps);
   w.Put(in.motion_end_s);
+  w.Put(in.stop_at_rest_after_s);
   const DriveSamples& d = in.drive;
   w.PutVec(d.ax_mps2);
   w.PutVec(d.ay_mps2);
@@ -193,6 +194,7 @@ EngineInput ParseInput(const std::string& bytes) {
   in.overturn_rad = r.Get<double>();
   in.steps = r.Get<std::int64_t>();
   in.motion_end_s = r.Get<double>();
+  in.stop_at_rest_after_s = r.Get<double>();
   DriveSamples& d = in.drive;
   d.ax_mps2 = r.GetVec();
   d.ay_mps2 = r.GetVec();

@@ -46,7 +46,7 @@ EngineRun RunEngine(const std::string& name, const Scene& scene, const GroundMot
     return run;
   }
 #ifdef ROCKBENCH_HAVE_BULLET
-  if (name == "bullet") return RunBulletEngine(scene, motion);
+  if (name == "bullet") return RunBulletEngine(scene, motion, options.stop_at_rest_after_s);
 #endif
   std::string known;
   for (const auto& n : AvailableEngines()) known += (known.empty() ? "" : ", ") + n;

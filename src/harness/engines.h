@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include <limits>
 #include <nlohmann/json.hpp>
 
 #include "scene/ground_motion.h"
@@ -30,6 +31,10 @@ struct RunEngineOptions {
   /// The reference also runs its witness (a tighter tolerance) and reports summary.json
   /// "convergence"; its history is the witness's when the nominal run is not converged.
   bool reference_witness = true;
+  /// Engines: after this time (s) a run that is at rest stops with status "at_rest" (see
+  /// SettledAfter_s in harness/ensemble.h); infinity: never. For ensemble members only: their
+  /// outcomes are kept, their histories are not compared.
+  double stop_at_rest_after_s = std::numeric_limits<double>::infinity();
 };
 
 /// Runs engine `name`. Throws SceneError for an unknown engine or impossible settings.

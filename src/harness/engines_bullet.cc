@@ -10,8 +10,10 @@
 
 namespace rockbench {
 
-EngineRun RunBulletEngine(const Scene& scene, const GroundMotion& motion) {
-  const bullet::EngineInput input = bullet::MakeEngineInput(scene, motion);
+EngineRun RunBulletEngine(const Scene& scene, const GroundMotion& motion,
+                          double stop_at_rest_after_s) {
+  bullet::EngineInput input = bullet::MakeEngineInput(scene, motion);
+  input.stop_at_rest_after_s = stop_at_rest_after_s;
   bullet::EngineOutput out;
   if (scene.bullet.precision == BulletPrecision::kDouble) {
     out = bullet::Simulate(input);

@@ -10,6 +10,8 @@ namespace rockbench {
 /// the engine's part of summary.json (settings, wall_s, peaks, impacts, violations: slip,
 /// uplift, penetration, energy growth, blow-up; status). Physics outcomes never throw; throws
 /// SceneError for impossible [bullet] settings or a missing/failed helper program.
-EngineRun RunBulletEngine(const Scene& scene, const GroundMotion& motion);
+/// `stop_at_rest_after_s`: see RunEngineOptions.
+EngineRun RunBulletEngine(const Scene& scene, const GroundMotion& motion,
+                          double stop_at_rest_after_s);
 
 }  // namespace rockbench

@@ -8,6 +8,8 @@
 #include "harness/compare.h"
 #include "harness/parallel.h"
 #include "harness/summary.h"
+#include "reference/geometry.h"
+#include "reference/transitions.h"
 
 namespace rockbench {
 namespace {
@@ -96,7 +98,41 @@ MemberInput PerturbedInput(const Scene& scene, const GroundMotion& motion, int m
   return in;
 }
 
-MemberOutcome OutcomeOf(const EngineRun& run, bool two_blocks, double min_impact_rate_radps) {
+double SettledAfter_s(const Scene& scene, const GroundMotion& motion, double safety) {
+  const double end_s = motion.end_s();
+  if (!(end_s > 0.0)) return 0.0;
+  if (!std::isfinite(end_s)) return end_s;
+  const reference::Geometry geo = reference::MakeGeometry(scene);
+  // Whether safety times the base acceleration at t opens a face of the stack at rest.
+  auto opens = [&](double t) {
+    const double xg = safety * motion.xg_mps2(t);
+    const double yg = motion.yg_mps2(t);
+    const double yg_worst = yg - (safety - 1.0) * std::abs(yg);
+    const reference::ContactMargins m = reference::EvaluateContacts(
+        geo, Mode::kRest, reference::State{}, xg, yg_worst, scene.model.equations);
+    return !(m.face > 0.0);
+  };
+  auto analytic = [](const std::optional<MotionComponent>& c) {
+    return c.has_value() && c->samples_mps2().empty();
+  };
+  const bool scan = analytic(motion.horizontal()) || analytic(motion.vertical());
+  // Records: every sample time (and the window ends); analytic motions: also every 1e-3 s. A
+  // face that opens at t may open until the next point: that point is the bound.
+  double last_s = 0.0;
+  for (double t = 0.0; t < end_s;) {
+    double next = motion.next_breakpoint_after(t);
+    if (scan) next = std::min(next, t + 1e-3);
+    next = std::min(next, end_s);
+    if (opens(t)) last_s = next;
+    if (!(next > t)) break;
+    t = next;
+  }
+  if (opens(end_s)) last_s = end_s;
+  return last_s;
+}
+
+MemberOutcome OutcomeOf(const EngineRun& run, const Scene& scene, double min_impact_rate_radps) {
+  const bool two_blocks = scene.two_blocks();
   MemberOutcome o;
   const nlohmann::json& s = run.summary;
   o.status = s.value("status", std::string());
@@ -123,6 +159,15 @@ MemberOutcome OutcomeOf(const EngineRun& run, bool two_blocks, double min_impact
   if (!run.history.samples.empty()) {
     o.residual_rad[0] = run.history.samples.back().theta1_rad;
     o.residual_rad[1] = two_blocks ? run.history.samples.back().theta2_rad : 0.0;
+  }
+  // An overturned block's peak and residual are the overturn angle, whatever sample an engine
+  // stopped on after crossing it (Bullet's last step ends past the crossing).
+  if (o.overturned_block != 0) {
+    const int b = o.overturned_block - 1;
+    const double sign = o.residual_rad[b] < 0.0 ? -1.0 : 1.0;
+    o.peak_rad[b] = scene.model.overturn_rad;
+    o.peak_t_s[b] = o.overturn_t_s;
+    o.residual_rad[b] = sign * scene.model.overturn_rad;
   }
   o.impacts = CountComparedImpacts(run.history, min_impact_rate_radps);
   return o;
@@ -181,7 +226,7 @@ ReferenceEnsemble RunReferenceEnsemble(const Scene& nominal_scene, const GroundM
         grids[1][i] = std::move(th[1]);
         run.history = std::move(r.history);
         e.perturbations[i] = in.perturbation;
-        e.outcomes[i] = OutcomeOf(run, two, min_impact_rate_radps);
+        e.outcomes[i] = OutcomeOf(run, in.scene, min_impact_rate_radps);
         e.outcomes[i].member = i;
       },
       [&](int done, int total) { progress.Update(done, total); });
@@ -217,8 +262,11 @@ std::vector<MemberOutcome> RunEngineEnsemble(const std::string& name, const Scen
       members, threads,
       [&](int i) {
         const MemberInput in = PerturbedInput(scene, motion, i);
-        const EngineRun run = RunEngine(name, in.scene, in.motion, {.reference_witness = false});
-        out[i] = OutcomeOf(run, scene.two_blocks(), min_impact_rate_radps);
+        RunEngineOptions options;
+        options.reference_witness = false;
+        options.stop_at_rest_after_s = SettledAfter_s(in.scene, in.motion);
+        const EngineRun run = RunEngine(name, in.scene, in.motion, options);
+        out[i] = OutcomeOf(run, in.scene, min_impact_rate_radps);
         out[i].member = i;
       },
       [&](int done, int total) { progress.Update(done, total); });

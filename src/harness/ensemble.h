@@ -57,9 +57,11 @@ struct MemberOutcome {
   bool valid() const { return status != "assumption_violated"; }
 };
 
-/// The outcome of a run (reference or engine): summary "status", "peaks", "overturn"; the
-/// history's last sample and impacts.
-MemberOutcome OutcomeOf(const EngineRun& run, bool two_blocks, double min_impact_rate_radps);
+/// The outcome of a run (reference or engine) of `scene`: summary "status", "peaks",
+/// "overturn"; the history's last sample and impacts. An overturned block's peak and residual
+/// are model.overturn_angle (signed) and its peak time the overturn time: past the crossing an
+/// angle says nothing more, and engines stop on the step after it.
+MemberOutcome OutcomeOf(const EngineRun& run, const Scene& scene, double min_impact_rate_radps);
 
 /// The reference ensemble and what it says about predictability.
 struct ReferenceEnsemble {
@@ -84,7 +86,18 @@ ReferenceEnsemble RunReferenceEnsemble(const Scene& nominal_scene, const GroundM
                                        const double tolerance_rad[2], int threads,
                                        double min_impact_rate_radps);
 
-/// Runs engine `name` on members 0 .. members-1 (the first reference members' inputs).
+/// The time (s) after which the base motion can no longer start rocking from rest: the last time
+/// at which `safety` times the base acceleration (the vertical part taken at its worst sign)
+/// would open a face of the stack at rest (a corner force of block 1 on the ground or of block 2
+/// on block 1 turning tensile). Records are piecewise linear and the rest reactions linear in
+/// the accelerations, so their sample times decide (a face open at one sample may be open
+/// until the next: that is the bound); analytic motions are scanned every 1e-3 s. 0: never;
+/// infinity for an endless motion. An engine member at rest after this time
+/// has its outcome decided and can stop (RunEngineOptions::stop_at_rest_after_s).
+double SettledAfter_s(const Scene& scene, const GroundMotion& motion, double safety = 1.25);
+
+/// Runs engine `name` on members 0 .. members-1 (the first reference members' inputs); each
+/// stops once at rest after SettledAfter_s of its own inputs.
 std::vector<MemberOutcome> RunEngineEnsemble(const std::string& name, const Scene& scene,
                                              const GroundMotion& motion, int members, int threads,
                                              double min_impact_rate_radps);

@@ -47,7 +47,7 @@ PowerEstimate EstimateVerdictPower(const Scene& scene, const GroundMotion& motio
       run.engine = "reference";
       run.summary = ReferenceSummaryJson(in.scene, r, 0.0);
       run.history = std::move(r.history);
-      outcomes[i] = OutcomeOf(run, two, compare_options.min_impact_rate_radps);
+      outcomes[i] = OutcomeOf(run, in.scene, compare_options.min_impact_rate_radps);
       outcomes[i].member = i;
     });
     const std::vector<MemberOutcome> reference(outcomes.begin(), outcomes.begin() + n);

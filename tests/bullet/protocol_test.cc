@@ -36,6 +36,7 @@ EngineInput SomeInput() {
   in.overturn_rad = 1.2;
   in.steps = 1200;
   in.motion_end_s = 19.9;
+  in.stop_at_rest_after_s = 7.25;
   for (int k = 0; k < 1200; ++k) {
     in.drive.ax_mps2.push_back(std::sin(0.1 * k) / 7.0);
     in.drive.ay_mps2.push_back(std::cos(0.3 * k) / 3.0);
