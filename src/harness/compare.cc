@@ -229,8 +229,7 @@ EngineAgreement CompareWithReference(const Scene& scene, const reference::Result
     g.rms_error_rad = n > 0 ? std::sqrt(sum2[b] / n) : 0.0;
     g.rms_error_horizon_rad = n_h[b] > 0 ? std::sqrt(sum2_h[b] / n_h[b]) : 0.0;
     g.rms_error_predictable_rad = n_p[b] > 0 ? std::sqrt(sum2_p[b] / n_p[b]) : 0.0;
-    g.rms_error_beyond_rad =
-        g.samples_beyond > 0 ? std::sqrt(sum2_b[b] / g.samples_beyond) : 0.0;
+    g.rms_error_beyond_rad = g.samples_beyond > 0 ? std::sqrt(sum2_b[b] / g.samples_beyond) : 0.0;
     g.peak_reference_rad = peak_ref[b];
     g.peak_reference_t_s = peak_ref_t[b];
     EnginePeak(run, b + 1, &g.peak_engine_rad, &g.peak_engine_t_s);

@@ -1,12 +1,11 @@
 #pragma once
 /// Runs an engine on a scene and writes its files: the one place the harness knows every engine.
 #include <filesystem>
+#include <limits>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <vector>
-
-#include <limits>
-#include <nlohmann/json.hpp>
 
 #include "scene/ground_motion.h"
 #include "scene/history.h"
@@ -16,11 +15,11 @@ namespace rockbench {
 
 /// What an engine run produced.
 struct EngineRun {
-  std::string engine;        ///< "reference", "bullet", ...
+  std::string engine;  ///< "reference", "bullet", ...
   History history;
-  nlohmann::json summary;    ///< the engine's part of summary.json
-  double wall_s = 0.0;       ///< wall-clock time of the simulation alone, s
-  std::string one_line;      ///< one-line human summary
+  nlohmann::json summary;  ///< the engine's part of summary.json
+  double wall_s = 0.0;     ///< wall-clock time of the simulation alone, s
+  std::string one_line;    ///< one-line human summary
 };
 
 /// Engine names this build has ("reference" always; "bullet" when built with Bullet).

@@ -1,6 +1,8 @@
 #pragma once
 /// The Bullet branch of the engine registry (engines.cc calls it for "bullet" when the build
 /// has Bullet, ROCKBENCH_HAVE_BULLET).
+#include <limits>
+
 #include "harness/engines.h"
 
 namespace rockbench {
@@ -12,6 +14,6 @@ namespace rockbench {
 /// SceneError for impossible [bullet] settings or a missing/failed helper program.
 /// `stop_at_rest_after_s`: see RunEngineOptions.
 EngineRun RunBulletEngine(const Scene& scene, const GroundMotion& motion,
-                          double stop_at_rest_after_s);
+                          double stop_at_rest_after_s = std::numeric_limits<double>::infinity());
 
 }  // namespace rockbench

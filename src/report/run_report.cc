@@ -17,7 +17,11 @@
 #include "renders/gl_context.h"
 #include "renders/renderer.h"
 #include "report/gnuplot.h"
+#include "report/json_keys.h"
+#include "report/number_text.h"
 #include "report/page.h"
+#include "report/predictability.h"
+#include "report/verdict_section.h"
 #include "scene/ground_motion.h"
 
 namespace rockbench::report {
@@ -27,22 +31,10 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kInf = std::numeric_limits<double>::infinity();
 
 // Line colours of the engines after the reference (black): distinct in hue and in greyscale.
 constexpr const char* kEngineColours[] = {"#d95f02", "#1b9e77", "#7570b3", "#e7298a", "#66a61e"};
-
-std::string Num(double v, int significant = 4) {
-  if (std::isnan(v)) return "n/a";
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.*g", significant, v);
-  return buf;
-}
-
-std::string Fixed(double v, int decimals) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
-  return buf;
-}
 
 // Data-file numbers: enough digits to redraw exactly, "NaN" for a gap gnuplot understands.
 void AppendDat(std::string& out, double v) {
@@ -53,72 +45,6 @@ void AppendDat(std::string& out, double v) {
   char buf[64];
   std::snprintf(buf, sizeof buf, "%.9g", v);
   out += buf;
-}
-
-json ReadJson(const fs::path& path) {
-  const std::string text = ReadTextFile(path);
-  try {
-    return json::parse(text);
-  } catch (const json::exception& e) {
-    throw std::runtime_error(path.string() + ": not valid JSON: " + e.what());
-  }
-}
-
-// The value at a dotted key, or nullptr when any part is missing.
-const json* Find(const json& root, const std::string& dotted) {
-  const json* j = &root;
-  size_t start = 0;
-  while (start <= dotted.size()) {
-    const size_t dot = dotted.find('.', start);
-    const std::string part = dotted.substr(start, dot == std::string::npos ? dot : dot - start);
-    if (!j->is_object()) return nullptr;
-    const auto it = j->find(part);
-    if (it == j->end()) return nullptr;
-    j = &*it;
-    if (dot == std::string::npos) break;
-    start = dot + 1;
-  }
-  return j;
-}
-
-// A number at a dotted key; NaN when absent or null; an error naming file and key when the
-// value has the wrong type.
-double OptNumber(const json& root, const std::string& key, const fs::path& file) {
-  const json* j = Find(root, key);
-  if (j == nullptr || j->is_null()) return kNaN;
-  if (!j->is_number()) {
-    throw std::runtime_error(file.string() + ": key '" + key + "' must be a number, found " +
-                             j->dump());
-  }
-  return j->get<double>();
-}
-
-double NeedNumber(const json& root, const std::string& key, const fs::path& file) {
-  const double v = OptNumber(root, key, file);
-  if (std::isnan(v)) {
-    throw std::runtime_error(file.string() + ": key '" + key + "' is missing (expected a number)");
-  }
-  return v;
-}
-
-std::string OptString(const json& root, const std::string& key, const fs::path& file) {
-  const json* j = Find(root, key);
-  if (j == nullptr || j->is_null()) return "";
-  if (!j->is_string()) {
-    throw std::runtime_error(file.string() + ": key '" + key + "' must be a string, found " +
-                             j->dump());
-  }
-  return j->get<std::string>();
-}
-
-bool OptBool(const json& root, const std::string& key, const fs::path& file) {
-  const json* j = Find(root, key);
-  if (j == nullptr || j->is_null()) return false;
-  if (!j->is_boolean()) {
-    throw std::runtime_error(file.string() + ": key '" + key + "' must be true or false, found " +
-                             j->dump());
-  }
-  return j->get<bool>();
 }
 
 // ---- The run folder ----
@@ -141,7 +67,27 @@ struct RunData {
   std::vector<std::string> overrides;
   std::vector<EngineData> engines;  // the reference first
   double t_end_s = 0.0;             // the latest sample of any history
+  // The reference ensemble (comparison.json "predictability"; reference/ensemble_band.csv):
+  // nullopt when none was run.
+  std::optional<Predictability> predictability;
+  std::optional<EnsembleBand> band;
 };
+
+// The reference ensemble of a compare folder, when it has one.
+void ReadReferenceEnsemble(RunData& run) {
+  if (run.comparison) {
+    run.predictability =
+        ReadPredictability(*run.comparison, run.comparison_path, run.scene.two_blocks());
+  }
+  const fs::path csv = run.dir / "reference" / "ensemble_band.csv";
+  run.band = ReadEnsembleBand(csv);
+  if (run.band && run.band->two_blocks != run.scene.two_blocks()) {
+    throw std::runtime_error(csv.string() + ": has " +
+                             (run.band->two_blocks ? "two blocks" : "one block") +
+                             " but the scene " + run.scene.path.string() + " has " +
+                             (run.scene.two_blocks() ? "two" : "one"));
+  }
+}
 
 RunData ReadRunFolder(const fs::path& run_dir) {
   RunData run;
@@ -190,6 +136,7 @@ RunData ReadRunFolder(const fs::path& run_dir) {
 
   run.comparison_path = run_dir / "comparison.json";
   if (fs::exists(run.comparison_path)) run.comparison = ReadJson(run.comparison_path);
+  ReadReferenceEnsemble(run);
 
   // Engines: the reference, then those in summary.json's "engines" (sorted by name).
   std::vector<std::string> names;
@@ -257,17 +204,20 @@ std::string Quote(const std::string& s) {
   return GnuplotQuote(s);
 }
 
-// Vertical line at time t across the plot (arrow) with a label at the top.
-// The label sits right of the line, or left of it in the last 40% of the axis (t_end_s).
+// Vertical line at time t across the plot (arrow) with a label, both in front of filled areas.
+// The label sits right of the line, or left of it in the last 40% of the axis (t_end_s); a
+// `boxed` label is on a white box, readable over curves.
 std::string VerticalMark(double t, double t_end_s, const std::string& colour,
-                         const std::string& label, double label_y_graph = 0.95) {
+                         const std::string& label, double label_y_graph = 0.95,
+                         bool boxed = false) {
   const bool left = t > 0.6 * t_end_s;
   std::string s = "set arrow from " + Num(t, 9) + ", graph 0 to " + Num(t, 9) +
-                  ", graph 1 nohead dt 2 lw 1.5 lc rgb " + Quote(colour) + "\n";
+                  ", graph 1 nohead front dt 2 lw 1.5 lc rgb " + Quote(colour) + "\n";
   if (!label.empty()) {
+    if (boxed) s += "set style textbox opaque noborder\n";
     s += "set label " + Quote(label) + " at " + Num(t, 9) + ", graph " + Num(label_y_graph) +
-         (left ? " offset -0.5,0 right" : " offset 0.5,0 left") + " font ',10' tc rgb " +
-         Quote(colour) + "\n";
+         (left ? " offset -0.5,0 right" : " offset 0.5,0 left") + (boxed ? " boxed" : "") +
+         " front font ',10' tc rgb " + Quote(colour) + "\n";
   }
   return s;
 }
@@ -582,7 +532,10 @@ void SceneSection(const RunData& run, const GroundMotion& motion, Figures& fig) 
                         "; equations " +
                         (m.equations == Equations::kNonlinear ? "nonlinear" : "linearized") +
                         "; transitions " + (m.check_transitions ? "checked" : "not checked") +
-                        "; rest rate " + Num(m.rest_rate_rel) + " sqrt(g/R)"});
+                        "; rest rate " + Num(m.rest_rate_rel) + " sqrt(g/R)" +
+                        (OptString(run.summary, "convergence.used", run.summary_path) == "witness"
+                             ? " (not converged: the run used its witness, see Verdict)"
+                             : "")});
   for (const EngineData& e : run.engines) {
     if (e.name != "bullet") continue;
     const BulletConfig& b = s.bullet;
@@ -600,7 +553,67 @@ void SceneSection(const RunData& run, const GroundMotion& motion, Figures& fig) 
   page.Table({"engine", "settings"}, settings);
 }
 
-// theta1 and theta2 against time, every run on shared axes.
+// The reference ensemble: band fill and horizon lines (blue, apart from the engines' colours).
+constexpr const char* kBandColour = "#c6dbef";
+constexpr const char* kHorizonColour = "#2166ac";
+
+// Vertical line at block `block`'s predictability horizon; none when the block is predictable
+// for the whole run, no ensemble was run or the horizon is past the axis.
+std::string HorizonMark(const RunData& run, int block, double label_y_graph) {
+  if (!run.predictability) return "";
+  const std::optional<double>& h = run.predictability->horizon_s[block - 1];
+  if (!h || *h > run.t_end_s) return "";
+  return VerticalMark(*h, run.t_end_s, kHorizonColour,
+                      "predictability horizon " + Num(*h, 6) + " s", label_y_graph, true);
+}
+
+bool AnyHorizonMark(const RunData& run) {
+  return !HorizonMark(run, 1, 0.5).empty() ||
+         (run.scene.two_blocks() && !HorizonMark(run, 2, 0.5).empty());
+}
+
+// "t v1 v2 ..." rows of ensemble_band.csv's `columns` (each at least `floor`) up to the axis end,
+// and one row past it so the drawing reaches the border.
+std::string BandDat(const RunData& run, const std::string& header,
+                    const std::vector<const std::vector<double>*>& columns, double floor) {
+  std::string dat = header;
+  const EnsembleBand& band = *run.band;
+  for (size_t k = 0; k < band.t_s.size(); ++k) {
+    AppendDat(dat, band.t_s[k]);
+    for (const std::vector<double>* c : columns) {
+      dat += ' ';
+      AppendDat(dat, std::max((*c)[k], floor));
+    }
+    dat += '\n';
+    if (band.t_s[k] >= run.t_end_s) break;
+  }
+  return dat;
+}
+
+std::string BandTitle(const RunData& run) {
+  return run.predictability
+             ? "reference ensemble (" + std::to_string(run.predictability->members) + " members)"
+             : std::string("reference ensemble");
+}
+
+std::string AnglesCaption(const RunData& run) {
+  std::string caption =
+      "Block angles against time (rad; positive: tilted to the right), the reference model and "
+      "every engine on shared axes";
+  if (!OverturnMarks(run).empty()) caption += "; dashed vertical lines: overturning";
+  if (run.band) {
+    caption += "; shaded: the band " + BandTitle(run) +
+               " and the nominal reference span (reference/ensemble_band.csv)";
+  } else {
+    caption += "; no reference ensemble was run, so there is no band";
+  }
+  if (AnyHorizonMark(run)) {
+    caption += "; dashed blue vertical line: the block's predictability horizon";
+  }
+  return caption + ".";
+}
+
+// theta1 and theta2 against time, every run on shared axes, the reference ensemble's band behind.
 void AnglesFigure(const RunData& run, Figures& fig) {
   const bool two = run.scene.two_blocks();
   GnuplotFigure f;
@@ -620,10 +633,26 @@ void AnglesFigure(const RunData& run, Figures& fig) {
     }
     f.data_files.push_back({"angles." + e.name + ".dat", dat});
   }
+  if (run.band) {
+    const EnsembleBand& b = *run.band;
+    f.data_files.push_back(
+        {"angles.band.dat",
+         two ? BandDat(run, "# t_s theta1_lo_rad theta1_hi_rad theta2_lo_rad theta2_hi_rad\n",
+                       {&b.lo_rad[0], &b.hi_rad[0], &b.lo_rad[1], &b.hi_rad[1]}, -kInf)
+             : BandDat(run, "# t_s theta1_lo_rad theta1_hi_rad\n", {&b.lo_rad[0], &b.hi_rad[0]},
+                       -kInf)});
+  }
   const auto panel = [&](int block) {
-    std::string s = "set ylabel " + Quote("θ_" + std::to_string(block) + " (rad)") + "\n";
+    std::string s = "unset arrow\nunset label\n" + OverturnMarks(run) +
+                    HorizonMark(run, block, 0.62) + "set ylabel " +
+                    Quote("θ_" + std::to_string(block) + " (rad)") + "\n";
     s += "set title " + Quote(block == 1 ? "block 1 (lower)" : "block 2 (upper)") + "\n";
     std::string plot = "plot ";
+    if (run.band) {
+      plot += Quote("angles.band.dat") + " using 1:" + std::to_string(2 * block) + ":" +
+              std::to_string(2 * block + 1) + " with filledcurves fc rgb " + Quote(kBandColour) +
+              " fs solid 1.0 noborder title " + Quote(BandTitle(run)) + ", ";
+    }
     for (size_t i = 0; i < run.engines.size(); ++i) {
       const EngineData& e = run.engines[i];
       if (i > 0) plot += ", ";
@@ -633,15 +662,13 @@ void AnglesFigure(const RunData& run, Figures& fig) {
     }
     return s + plot + "\n";
   };
-  f.script = CommonAxes(run.t_end_s) + OverturnMarks(run);
+  f.script = CommonAxes(run.t_end_s);
   if (two) {
     f.script += "set multiplot layout 2,1\n" + panel(1) + panel(2) + "unset multiplot\n";
   } else {
     f.script += panel(1);
   }
-  fig.Add(f, std::string("Block angles against time (rad; positive: tilted to the right), the "
-                         "reference model and every engine on shared axes") +
-                 (OverturnMarks(run).empty() ? "." : "; dashed vertical lines: overturning."));
+  fig.Add(f, AnglesCaption(run));
 }
 
 struct EngineErrors {
@@ -719,24 +746,69 @@ void MetricsTable(const RunData& run, Page& page) {
                  " rad/s are not compared. Wall times are those of the run, not of the report.");
 }
 
-void AgreementSection(const RunData& run, const RunReportOptions& options, Figures& fig) {
-  Page& page = *fig.page;
-  page.Heading("Agreement with the reference");
-  if (run.engines.size() < 2) {
-    page.Paragraph(
-        "No engine was compared with the reference model in this run folder (a "
-        "`rockbench run` folder): there is no error figure or metrics table. "
-        "`rockbench compare SCENE --out DIR` runs the engines and compares them.");
-    return;
+// The error figure's panel of block `block`: errors of every engine, the reference ensemble's
+// spread, the comparison tolerance, the engines' agreement horizons and the predictability
+// horizon.
+std::string ErrorPanel(const RunData& run, int block) {
+  std::string s =
+      "set ylabel " +
+      Quote("|θ_" + std::to_string(block) + " - θ_" + std::to_string(block) + "^{ref}| (rad)") +
+      "\nset title " + Quote(block == 1 ? "block 1 (lower)" : "block 2 (upper)") +
+      "\nunset arrow\nunset label\n" + HorizonMark(run, block, 0.97);
+  std::string plot = "plot ";
+  double tol = run.predictability ? run.predictability->tolerance_rad[block - 1] : kNaN;
+  for (size_t i = 1; i < run.engines.size(); ++i) {
+    const EngineData& e = run.engines[i];
+    const std::string key = "engines." + e.name + ".theta" + std::to_string(block);
+    if (run.comparison && Find(*run.comparison, key) != nullptr) {
+      tol = OptNumber(*run.comparison, key + ".tolerance_rad", run.comparison_path);
+      if (!OptBool(*run.comparison, key + ".within_tolerance", run.comparison_path)) {
+        const double h = OptNumber(*run.comparison, key + ".horizon_s", run.comparison_path);
+        s += VerticalMark(h, run.t_end_s, e.colour,
+                          "agreement horizon (" + e.name + ") " + Num(h, 4) + " s",
+                          0.9 - 0.07 * static_cast<double>(i - 1));
+      }
+    }
+    if (i > 1) plot += ", ";
+    plot += Quote("angle_error." + e.name + ".dat") + " using 1:" + std::to_string(1 + block) +
+            " with lines lw 1.4 lc rgb " + Quote(e.colour) + " title " + Quote(e.label);
   }
-  if (run.comparison) {
-    MetricsTable(run, page);
-  } else {
-    page.Paragraph(
-        "This run folder has no comparison.json (engines run with `rockbench run`): "
-        "the metrics table and the agreement horizons are left out; the error figure "
-        "below is computed from the histories.");
+  if (run.band) {
+    plot += ", " + Quote("angle_error.ensemble_spread.dat") +
+            " using 1:" + std::to_string(1 + block) + " with lines lw 1.2 lc rgb " +
+            Quote(kHorizonColour) + " dt 3 title " + Quote("spread of the " + BandTitle(run));
   }
+  if (!std::isnan(tol)) {
+    plot += ", " + Num(tol, 9) + " with lines dt 2 lw 1.5 lc rgb '#b00000' title " +
+            Quote("comparison tolerance " + Num(tol, 3) + " rad");
+  }
+  return s + plot + "\n";
+}
+
+std::string ErrorCaption(const RunData& run, const RunReportOptions& options) {
+  std::string caption =
+      "Angle error |theta_engine - theta_reference| against time (rad, log scale), at the "
+      "engine's sample times, the reference interpolated between its samples with its rates "
+      "(cubic Hermite, pre-impact rates before each impact). Dashed red: the comparison "
+      "tolerance; dashed vertical lines in an engine's colour: its agreement horizon (none when "
+      "it stays within the tolerance).";
+  if (run.band) {
+    caption +=
+        " Dotted blue: the reference ensemble's spread, the largest |member - nominal| at each "
+        "time (reference/ensemble_band.csv).";
+  }
+  if (AnyHorizonMark(run)) {
+    caption +=
+        " Dashed blue vertical line: the predictability horizon, where that spread first "
+        "exceeds the tolerance; beyond it two correct runs differ by more than the tolerance.";
+  } else if (run.predictability) {
+    caption += " The reference is predictable for the whole run: no predictability horizon.";
+  }
+  return caption + " Errors below " + Num(options.error_floor_rad) + " rad are drawn at " +
+         Num(options.error_floor_rad) + " rad.";
+}
+
+void ErrorFigure(const RunData& run, const RunReportOptions& options, Figures& fig) {
   const EngineData& ref = run.engines.front();
   const HistoryInterpolator interp(ref.history, ref.events);
   const bool two = run.scene.two_blocks();
@@ -759,50 +831,45 @@ void AgreementSection(const RunData& run, const RunReportOptions& options, Figur
     }
     f.data_files.push_back({"angle_error." + e.name + ".dat", dat});
   }
-  const auto panel = [&](int block) {
-    std::string s =
-        "set ylabel " +
-        Quote("|θ_" + std::to_string(block) + " - θ_" + std::to_string(block) + "^{ref}| (rad)") +
-        "\nset title " + Quote(block == 1 ? "block 1 (lower)" : "block 2 (upper)") +
-        "\nunset arrow\nunset label\n";
-    std::string plot = "plot ";
-    double tol = kNaN;
-    for (size_t i = 1; i < run.engines.size(); ++i) {
-      const EngineData& e = run.engines[i];
-      const std::string key = "engines." + e.name + ".theta" + std::to_string(block);
-      if (run.comparison && Find(*run.comparison, key) != nullptr) {
-        tol = OptNumber(*run.comparison, key + ".tolerance_rad", run.comparison_path);
-        if (!OptBool(*run.comparison, key + ".within_tolerance", run.comparison_path)) {
-          const double h = OptNumber(*run.comparison, key + ".horizon_s", run.comparison_path);
-          s += VerticalMark(h, run.t_end_s, e.colour, "horizon " + e.name + " " + Num(h, 4) + " s",
-                            0.9 - 0.07 * static_cast<double>(i - 1));
-        }
-      }
-      if (i > 1) plot += ", ";
-      plot += Quote("angle_error." + e.name + ".dat") + " using 1:" + std::to_string(1 + block) +
-              " with lines lw 1.4 lc rgb " + Quote(e.colour) + " title " + Quote(e.label);
-    }
-    if (!std::isnan(tol)) {
-      plot += ", " + Num(tol, 9) + " with lines dt 2 lw 1.5 lc rgb '#b00000' title " +
-              Quote("horizon tolerance " + Num(tol, 3) + " rad");
-    }
-    return s + plot + "\n";
-  };
+  if (run.band) {
+    const EnsembleBand& b = *run.band;
+    f.data_files.push_back(
+        {"angle_error.ensemble_spread.dat",
+         two ? BandDat(run, "# t_s theta1_spread_rad theta2_spread_rad\n",
+                       {&b.spread_rad[0], &b.spread_rad[1]}, options.error_floor_rad)
+             : BandDat(run, "# t_s theta1_spread_rad\n", {&b.spread_rad[0]},
+                       options.error_floor_rad)});
+  }
   f.script = CommonAxes(run.t_end_s) +
              "set logscale y\nset format y '10^{%L}'\nset key bottom right box opaque\n";
   if (two) {
-    f.script += "set multiplot layout 2,1\n" + panel(1) + panel(2) + "unset multiplot\n";
+    f.script += "set multiplot layout 2,1\n" + ErrorPanel(run, 1) + ErrorPanel(run, 2) +
+                "unset multiplot\n";
   } else {
-    f.script += panel(1);
+    f.script += ErrorPanel(run, 1);
   }
-  fig.Add(f,
-          "Angle error |theta_engine - theta_reference| against time (rad, log scale), at "
-          "the engine's sample times, the reference interpolated between its samples with its "
-          "rates (cubic Hermite, pre-impact rates before each impact). Dashed red: the "
-          "horizon tolerance; dashed vertical lines: an engine's agreement horizon (none "
-          "when it stays within the tolerance). Errors below " +
-              Num(options.error_floor_rad) + " rad are drawn at " + Num(options.error_floor_rad) +
-              " rad.");
+  fig.Add(f, ErrorCaption(run, options));
+}
+
+void AgreementSection(const RunData& run, const RunReportOptions& options, Figures& fig) {
+  Page& page = *fig.page;
+  page.Heading("Agreement with the reference");
+  if (run.engines.size() < 2) {
+    page.Paragraph(
+        "No engine was compared with the reference model in this run folder (a "
+        "`rockbench run` folder): there is no error figure or metrics table. "
+        "`rockbench compare SCENE --out DIR` runs the engines and compares them.");
+    return;
+  }
+  if (run.comparison) {
+    MetricsTable(run, page);
+  } else {
+    page.Paragraph(
+        "This run folder has no comparison.json (engines run with `rockbench run`): "
+        "the metrics table and the agreement horizons are left out; the error figure "
+        "below is computed from the histories.");
+  }
+  ErrorFigure(run, options, fig);
 }
 
 int EventCode(const std::string& kind) {
@@ -1225,6 +1292,18 @@ std::string EngineWarnings(const EngineData& e, std::vector<std::string>& out) {
   return status;
 }
 
+void VerdictSection(const RunData& run, Page& page, RunReportResult& result) {
+  VerdictInput in;
+  in.comparison = run.comparison ? &*run.comparison : nullptr;
+  in.comparison_path = run.comparison_path;
+  in.summary = &run.summary;
+  in.summary_path = run.summary_path;
+  for (size_t i = 1; i < run.engines.size(); ++i) in.engines.push_back(run.engines[i].name);
+  in.two_blocks = run.scene.two_blocks();
+  in.predictability = run.predictability;
+  for (std::string& w : WriteVerdictSection(in, page)) result.warnings.push_back(std::move(w));
+}
+
 }  // namespace
 
 RunReportResult WriteRunReport(const fs::path& run_dir, const fs::path& out_dir,
@@ -1359,6 +1438,7 @@ RunReportResult WriteRunReport(const fs::path& run_dir, const fs::path& out_dir,
 
   page.Heading("Outcome");
   page.Paragraph(outcome);
+  VerdictSection(run, page, result);
   SceneSection(run, motion, fig);
   page.Heading("Angles");
   AnglesFigure(run, fig);

@@ -493,8 +493,8 @@ class Reader {
              "removed: the rest rule is dimensionless now; use model.rest_rate_rel (the rate "
              "relative to sqrt(g / R), default " +
                  Repr(ModelConfig{}.rest_rate_rel) + "; README \"Coming to rest\")");
-      m.rest_rate_rel =
-          Number(*model, "model", "rest_rate_rel", Rule::kNonNegative, "").value_or(m.rest_rate_rel);
+      m.rest_rate_rel = Number(*model, "model", "rest_rate_rel", Rule::kNonNegative, "")
+                            .value_or(m.rest_rate_rel);
       m.check_transitions =
           Bool(*model, "model", "check_transitions").value_or(m.check_transitions);
     }
@@ -546,8 +546,8 @@ class Reader {
                                .value_or(c.sample_precision);
       c.initial_rel =
           Number(*cmp, "compare", "initial_rel", Rule::kUnitInterval, "").value_or(c.initial_rel);
-      c.seed = static_cast<uint64_t>(
-          NonNegativeInteger(*cmp, "compare", "seed", INT64_MAX).value_or(1));
+      c.seed =
+          static_cast<uint64_t>(NonNegativeInteger(*cmp, "compare", "seed", INT64_MAX).value_or(1));
     }
     return s;
   }

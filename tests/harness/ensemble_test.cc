@@ -208,9 +208,8 @@ TEST(SettledAfter, ARecordOpensUntilTheSampleAfterItsLastOpeningSample) {
   s.initial = InitialState{};
   const double a_c = UpliftThreshold_mps2(s, UpliftKind::kStack);
   GroundMotion m;
-  m.set_horizontal(
-      MotionComponent::FromSamples({0.0, 2.0 * a_c, 0.0, 0.5 * a_c, -0.7 * a_c, 0.0}, 0.1, 0.0,
-                                   "spike"));
+  m.set_horizontal(MotionComponent::FromSamples({0.0, 2.0 * a_c, 0.0, 0.5 * a_c, -0.7 * a_c, 0.0},
+                                                0.1, 0.0, "spike"));
   EXPECT_NEAR(SettledAfter_s(s, m), 0.2, 1e-12);
   // Downward base acceleration lowers the threshold in proportion to g + yg: at 0.3 s, 0.5 a_c
   // x 1.25 (the horizontal safety) against a_c (1 - 1.25 x 0.5) (the vertical at its worst)

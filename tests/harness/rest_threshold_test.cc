@@ -24,8 +24,8 @@ double MaxAngleDifference(const reference::Result& a, const reference::Result& b
   double worst = 0.0;
   auto at = [&](double t) {
     const Sample p = a.trajectory.At(t), q = b.trajectory.At(t);
-    worst = std::max({worst, std::abs(p.theta1_rad - q.theta1_rad),
-                      std::abs(p.theta2_rad - q.theta2_rad)});
+    worst = std::max(
+        {worst, std::abs(p.theta1_rad - q.theta1_rad), std::abs(p.theta2_rad - q.theta2_rad)});
   };
   const int n = static_cast<int>(std::ceil(duration_s / 1e-3));
   for (int i = 0; i <= n; ++i) at(duration_s * i / n);
@@ -99,9 +99,10 @@ TEST(RestThresholdTest, DividingTheThresholdBy100ChangesNoCaseBeyondItsNumerical
   EXPECT_GT(cases, 50);
   // The threshold is exercised: dividing it adds impacts (the cascades go on) in many cases.
   EXPECT_GT(settling_cases, 20);
-  std::printf("[ rest rule ] %d cases, %d with more impacts at threshold / 100; worst |a - b| / "
-              "(U_a + U_b) = %.2f (%s)\n",
-              cases, settling_cases, worst_ratio, worst_case.c_str());
+  std::printf(
+      "[ rest rule ] %d cases, %d with more impacts at threshold / 100; worst |a - b| / "
+      "(U_a + U_b) = %.2f (%s)\n",
+      cases, settling_cases, worst_ratio, worst_case.c_str());
 }
 
 }  // namespace

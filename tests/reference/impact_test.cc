@@ -217,7 +217,8 @@ TEST(ImpactTest, RestRuleSettlesImpactsBelowTheRelativeRate) {
   const double e = 1.0 - 1.5 * std::pow(std::sin(geo.block1.theta_c), 2);
   for (const double f : {1.01, 0.99}) {
     const double w = -f * thr / e;  // post-impact rate f * thr
-    const ImpactResult r = ResolveImpact(geo, Mode::k3a, {0.0, 0.0, w, w}, ImpactKind::kGround, rel);
+    const ImpactResult r =
+        ResolveImpact(geo, Mode::k3a, {0.0, 0.0, w, w}, ImpactKind::kGround, rel);
     EXPECT_EQ(r.chosen.mode, f > 1 ? Mode::k3b : Mode::kRest) << f;
     EXPECT_EQ(r.settled, f < 1) << f;
   }

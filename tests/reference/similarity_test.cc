@@ -106,7 +106,8 @@ TEST(SimilarityTest, RecordedMotionRestAndImpactsScaleWithSqrtK) {
   MotionDef rec;
   rec.key = "base.horizontal";
   rec.kind = MotionKind::kFile;
-  rec.file = std::string(ROCKBENCH_SOURCE_DIR) + "/records/northridge1994_rinaldi_receiving_sta_228.AT2";
+  rec.file =
+      std::string(ROCKBENCH_SOURCE_DIR) + "/records/northridge1994_rinaldi_receiving_sta_228.AT2";
   rec.file_as_written = rec.file.string();
   rec.scale = 0.7;
   const MotionComponent base_motion = MotionComponent::FromDef(rec);
@@ -118,9 +119,8 @@ TEST(SimilarityTest, RecordedMotionRestAndImpactsScaleWithSqrtK) {
     sc.run.duration_s = duration * sk;
     sc.run.output_interval_s = 0.01 * sk;
     GroundMotion gm;
-    gm.set_horizontal(MotionComponent::FromSamples(base_motion.samples_mps2(),
-                                                   base_motion.dt_s() * sk,
-                                                   base_motion.t0_s() * sk, "scaled"));
+    gm.set_horizontal(MotionComponent::FromSamples(
+        base_motion.samples_mps2(), base_motion.dt_s() * sk, base_motion.t0_s() * sk, "scaled"));
     runs.push_back({sk, Simulate(sc, gm)});
   }
   const Summary& s = runs[0].result.summary;

@@ -55,6 +55,13 @@ TEST_F(CmdReportTest, APagePerRunAndAnIndexLinkingThem) {
   EXPECT_TRUE(fs::exists(out / "housner" / "figures" / "angle_error.svg"));
   EXPECT_FALSE(fs::exists(out / "harm" / "figures" / "angle_error.svg"));
   EXPECT_NE(Slurp(out / "harm" / "report.md").find("No engine was compared"), std::string::npos);
+  // The compared run's verdict, in comparison.json's words, near the top of its page.
+  const auto comparison =
+      nlohmann::json::parse(Slurp(base_ / "runs" / "housner" / "comparison.json"));
+  const std::string housner_md = Slurp(out / "housner" / "report.md");
+  EXPECT_LT(housner_md.find("## Verdict"), housner_md.find("## Scene"));
+  EXPECT_NE(housner_md.find(comparison["engines"]["bullet"]["verdict"].get<std::string>()),
+            std::string::npos);
   // --no-animation: no video, and the page says it was left out.
   EXPECT_FALSE(fs::exists(out / "housner" / "animation.mp4"));
   EXPECT_NE(Slurp(out / "housner" / "report.md").find("animation: left out on request"),

@@ -1,0 +1,406 @@
+#include "report/verdict_section.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "report/json_keys.h"
+#include "report/number_text.h"
+
+namespace rockbench::report {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+std::string Theta(int b) {
+  return "theta" + std::to_string(b + 1);
+}
+
+std::string Rad(double v) {
+  return Num(v, 3) + " rad";
+}
+
+// "theta1 X rad, theta2 Y rad" from an object {"theta1": x, "theta2": y}.
+std::string PerBlock(const json& root, const std::string& key, const fs::path& file, bool two) {
+  std::string out;
+  for (int b = 0; b < (two ? 2 : 1); ++b) {
+    const double v = OptNumber(root, key + "." + Theta(b), file);
+    if (std::isnan(v)) continue;
+    out += (out.empty() ? "" : ", ") + Theta(b) + " " + Rad(v);
+  }
+  return out;
+}
+
+// ---- Verdicts ----
+
+std::string KindInWords(const std::string& kind, bool statistics) {
+  if (kind == "agrees") {
+    return statistics ? "agrees up to the horizon and, beyond it, statistically"
+                      : "agrees pointwise over the whole run (the reference is predictable "
+                        "throughout)";
+  }
+  if (kind == "agrees_to_horizon")
+    return "agrees up to the horizon; not compared statistically beyond it";
+  if (kind == "differs_before_horizon") return "differs where the reference is predictable";
+  if (kind == "differs_beyond_horizon")
+    return "agrees up to the horizon; its ensemble differs from the reference's beyond it";
+  if (kind == "pointwise_only") return "agrees pointwise (no reference ensemble was run)";
+  if (kind == "pointwise_differs") return "differs pointwise (no reference ensemble was run)";
+  return kind;
+}
+
+void VerdictTable(const VerdictInput& in, Page& page) {
+  const json& c = *in.comparison;
+  const fs::path& file = in.comparison_path;
+  std::vector<std::vector<std::string>> rows;
+  bool old = false;
+  for (const std::string& name : in.engines) {
+    const std::string k = "engines." + name;
+    if (Find(c, k) == nullptr) continue;
+    const std::string text = OptString(c, k + ".verdict", file);
+    if (text.empty()) {
+      old = true;
+      rows.push_back({name, "not recorded", "", ""});
+      continue;
+    }
+    const std::string kind = OptString(c, k + ".verdict_kind", file);
+    rows.push_back({name, OptBool(c, k + ".agrees", file) ? "AGREES" : "DIFFERS",
+                    KindInWords(kind, Find(c, k + ".statistics") != nullptr &&
+                                          !Find(c, k + ".statistics")->is_null()),
+                    text + "."});
+  }
+  if (rows.empty()) {
+    page.Paragraph("comparison.json compares no engine with the reference: there is no verdict.");
+    return;
+  }
+  page.Table({"engine", "verdict", "what was found", "in words (comparison.json)"}, rows);
+  if (old) {
+    page.Paragraph(
+        "This comparison.json has no verdict (written by a rockbench before the verdicts): the "
+        "agreement table below is all there is.");
+  }
+}
+
+// ---- Convergence ----
+
+std::string WitnessSettings(const json& w, const fs::path& file) {
+  const std::string integrator = OptString(w, "integrator", file);
+  std::string s = integrator.empty() ? "settings not recorded" : integrator;
+  if (integrator == "dopri5") {
+    s += ", rtol " + Num(OptNumber(w, "rtol", file)) + ", atol " + Num(OptNumber(w, "atol", file));
+  } else if (integrator == "rk4") {
+    s += ", step " + Num(OptNumber(w, "step_s", file)) + " s";
+  }
+  const std::string events = OptString(w, "events", file);
+  if (!events.empty()) s += ", events " + events;
+  return s;
+}
+
+// The convergence check in plain words; `warning` is set when the reference is not converged.
+std::string ConvergenceText(const json& conv, const fs::path& file, bool two,
+                            std::string& warning) {
+  const json* w = Find(conv, "witness");
+  const std::string witness = w != nullptr ? WitnessSettings(*w, file) : "settings not recorded";
+  const double diff = OptNumber(conv, "max_abs_diff_rad", file);
+  const std::string per_block = PerBlock(conv, "max_abs_diff_rad_per_block", file, two);
+  const std::string diff_text =
+      Rad(diff) + (two && !per_block.empty() ? " (" + per_block + ")" : "");
+  const std::string tol = PerBlock(conv, "tolerance_rad", file, two);
+  const std::string tol_text = tol.empty() ? "" : " (" + tol + ")";
+  if (OptBool(conv, "converged", file)) {
+    return "The reference is converged: its witness (the same model at tighter settings: " +
+           witness + ") differs from it by at most " + diff_text +
+           ", within the comparison tolerance" + tol_text + ", and ends the run the same way.";
+  }
+  const double at = OptNumber(conv, "diverges_at_s", file);
+  const bool witness_used = OptString(conv, "used", file) == "witness";
+  std::string text = "The reference is NOT converged: the default reference ";
+  if (!std::isnan(at)) {
+    text += "differs from its tighter witness (" + witness + ") by up to " + diff_text +
+            " from t = " + Fixed(at, 3) + " s on, more than the comparison tolerance" + tol_text;
+  } else {
+    text += "and its tighter witness (" + witness +
+            ") end the run differently (status or overturned block), although their angles "
+            "differ by at most " +
+            diff_text;
+  }
+  text += witness_used ? ", so the comparison used the witness: the reference on this page is "
+                         "the witness's solution. Tighten model.rtol and model.atol (dopri5) or "
+                         "model.step (rk4) for a converged default."
+                       : ", and the comparison used the default reference nevertheless.";
+  warning = text;
+  return text;
+}
+
+std::vector<std::string> ConvergencePart(const VerdictInput& in, Page& page) {
+  page.Heading("Convergence of the reference", 3);
+  const json* conv = nullptr;
+  fs::path file;
+  if (in.comparison != nullptr) {
+    conv = Find(*in.comparison, "reference.convergence");
+    file = in.comparison_path;
+  }
+  if ((conv == nullptr || conv->is_null()) && in.summary != nullptr) {
+    conv = Find(*in.summary, "convergence");
+    file = in.summary_path;
+  }
+  if (conv == nullptr || !conv->is_object()) {
+    page.Paragraph(
+        "No convergence check was recorded (a folder from a rockbench older than the witness "
+        "check): whether the reference is converged is unknown.");
+    return {};
+  }
+  std::string warning;
+  page.Paragraph(ConvergenceText(*conv, file, in.two_blocks, warning));
+  if (warning.empty()) return {};
+  return {warning};
+}
+
+// ---- Predictability ----
+
+void PredictabilityPart(const VerdictInput& in, Page& page) {
+  page.Heading("Predictability horizon", 3);
+  if (!in.predictability) {
+    page.Paragraph(
+        "No reference ensemble was run (a `rockbench compare --quick` folder, or one from a "
+        "rockbench older than the ensembles): there is no predictability horizon, no ensemble "
+        "band and no statistical comparison. The verdicts rest on the pointwise comparison over "
+        "the whole run, and whether the reference is itself predictable there is unknown.");
+    return;
+  }
+  const Predictability& p = *in.predictability;
+  std::string perturbation =
+      "base-motion amplitude x (1 +- " + Num(p.amplitude_rel) + ") (amplitude_rel " +
+      Num(p.amplitude_rel) + "), each record sample moved by up to " + Num(p.sample_precision) +
+      " x half a unit of its last printed digit (sample_precision " + Num(p.sample_precision) +
+      "), each nonzero initial value x (1 +- " + Num(p.initial_rel) + ") (initial_rel " +
+      Num(p.initial_rel) + "), seed " + Num(p.seed, 12);
+  std::string statuses;
+  for (const auto& [status, n] : p.statuses) {
+    statuses += (statuses.empty() ? "" : ", ") + status + " " + std::to_string(n);
+  }
+  page.Paragraph("A reference ensemble of " + std::to_string(p.members) +
+                 " members, the nominal inputs perturbed within what they are known to: " +
+                 perturbation + "." + (p.rule.empty() ? "" : " Rule: " + p.rule + ".") +
+                 (statuses.empty() ? "" : " Members' outcomes: " + statuses + ".") +
+                 (std::isnan(p.wall_s) ? "" : " Wall time " + Num(p.wall_s, 3) + " s."));
+  std::vector<std::vector<std::string>> rows;
+  for (int b = 0; b < (in.two_blocks ? 2 : 1); ++b) {
+    const std::optional<double>& h = p.horizon_s[b];
+    rows.push_back(
+        {Theta(b), h ? Num(*h, 6) + " s" : "none", Rad(p.tolerance_rad[b]), Rad(p.spread_rad[b]),
+         h ? "predictable until " + Num(*h, 6) +
+                 " s; beyond it one run's error ranks nothing, the ensembles are compared instead"
+           : "predictable for the whole run: every member stays within the tolerance of the "
+             "nominal run to the end"});
+  }
+  page.Table({"angle", "predictability horizon", "comparison tolerance",
+              "largest spread |member - nominal|", "meaning"},
+             rows);
+  page.Paragraph(
+      "A block's predictability horizon is the first time any member leaves the nominal run "
+      "by more than the comparison tolerance; \"none\" (null in comparison.json) means the "
+      "reference is predictable for the whole run. Before the horizon an engine's error is the "
+      "engine's; beyond it the problem's own sensitivity is part of it. The angle figure shades "
+      "the band the members span; dashed blue lines mark the horizons on the angle and error "
+      "figures.");
+}
+
+// ---- Statistics ----
+
+// Display order of the tested quantities; others follow in comparison.json's order.
+int QuantityRank(const std::string& key) {
+  static const char* kOrder[] = {"peak_theta1_rad",     "peak_theta2_rad", "peak_theta1_t_s",
+                                 "peak_theta2_t_s",     "impacts",         "residual_theta1_rad",
+                                 "residual_theta2_rad", "overturn"};
+  for (size_t k = 0; k < std::size(kOrder); ++k) {
+    if (key == kOrder[k]) return static_cast<int>(k);
+  }
+  return static_cast<int>(std::size(kOrder));
+}
+
+std::string QuantityLabel(const std::string& key) {
+  for (int b = 0; b < 2; ++b) {
+    const std::string th = Theta(b);
+    if (key == "peak_" + th + "_rad") return "peak |" + th + "|";
+    if (key == "peak_" + th + "_t_s") return "time of the largest |" + th + "|";
+    if (key == "residual_" + th + "_rad") return "residual " + th + " (end of the run)";
+  }
+  if (key == "impacts") return "impacts";
+  if (key == "overturn") return "overturning (none, block 1, block 2)";
+  return key;
+}
+
+// "median [q05, q95] unit", or the overturning counts.
+std::string Spread(const json& t, const std::string& side, const fs::path& file) {
+  const json* s = Find(t, side);
+  if (s == nullptr || s->is_null()) return "no members";
+  if (Find(*s, "median") == nullptr) {
+    return "none " + Num(OptNumber(*s, "none", file)) + ", block 1 " +
+           Num(OptNumber(*s, "block1", file)) + ", block 2 " + Num(OptNumber(*s, "block2", file));
+  }
+  const std::string unit = OptString(t, "unit", file);
+  return Num(OptNumber(*s, "median", file)) + " [" + Num(OptNumber(*s, "q05", file)) + ", " +
+         Num(OptNumber(*s, "q95", file)) + "]" + (unit.empty() ? "" : " " + unit);
+}
+
+std::vector<std::vector<std::string>> TestRows(const json& st, const fs::path& file) {
+  const json* tests = Find(st, "tests");
+  if (tests == nullptr || !tests->is_object()) return {};
+  std::vector<std::string> keys;
+  for (auto it = tests->begin(); it != tests->end(); ++it) keys.push_back(it.key());
+  std::stable_sort(keys.begin(), keys.end(), [](const std::string& a, const std::string& b) {
+    return QuantityRank(a) < QuantityRank(b);
+  });
+  std::vector<std::string> rejected;
+  if (const json* r = Find(st, "rejected"); r != nullptr && r->is_array()) {
+    for (const json& k : *r) {
+      if (k.is_string()) rejected.push_back(k.get<std::string>());
+    }
+  }
+  std::vector<std::vector<std::string>> rows;
+  for (const std::string& key : keys) {
+    const json& t = (*tests)[key];
+    std::string test = OptString(t, "test", file);
+    const double margin = OptNumber(t, "margin", file);
+    if (margin > 0) {
+      const std::string unit = OptString(t, "unit", file);
+      test += " (margin " + Num(margin, 3) + (unit.empty() ? "" : " " + unit) + ")";
+    }
+    const double ad = OptNumber(t, "anderson_darling.p_value", file);
+    const bool flagged = std::find(rejected.begin(), rejected.end(), key) != rejected.end();
+    rows.push_back({QuantityLabel(key), Spread(t, "reference", file), Spread(t, "engine", file),
+                    test, Num(OptNumber(t, "statistic", file), 3),
+                    Num(OptNumber(t, "p_value", file), 3), Num(OptNumber(t, "p_holm", file), 3),
+                    std::isnan(ad) ? "" : Num(ad, 3), flagged ? "DIFFERS" : "no"});
+  }
+  return rows;
+}
+
+// Why an engine has no statistical comparison in comparison.json.
+std::string NoStatisticsReason(const VerdictInput& in, const std::string& name) {
+  const Predictability& p = *in.predictability;
+  const bool any_horizon = p.horizon_s[0] || (in.two_blocks && p.horizon_s[1]);
+  if (!any_horizon) {
+    return "the reference is predictable for the whole run, so the pointwise comparison is the "
+           "verdict and no engine ensemble was run";
+  }
+  const std::string kind =
+      OptString(*in.comparison, "engines." + name + ".verdict_kind", in.comparison_path);
+  if (kind == "differs_before_horizon") {
+    return "the engine already differs where the reference is predictable, so its ensemble "
+           "was not run";
+  }
+  return "no engine ensemble was run (compare.engine_members = 0, or an older rockbench)";
+}
+
+// The engine's tests as a table (true), or why there are none (false).
+bool EngineStatistics(const VerdictInput& in, const std::string& name, Page& page) {
+  const fs::path& file = in.comparison_path;
+  const json* st = Find(*in.comparison, "engines." + name + ".statistics");
+  if (st == nullptr || st->is_null()) {
+    page.Paragraph(name + ": no statistical comparison: " + NoStatisticsReason(in, name) + ".");
+    return false;
+  }
+  if (!OptBool(*st, "available", file)) {
+    const std::string reason = OptString(*st, "reason", file);
+    page.Paragraph(name + ": no statistical comparison" + (reason.empty() ? "" : ": " + reason) +
+                   ".");
+    return false;
+  }
+  const double alpha = OptNumber(*st, "alpha", file);
+  const double excluded = OptNumber(*st, "excluded", file);
+  const bool consistent = OptBool(*st, "consistent", file);
+  page.Paragraph(name + ": its ensemble of " + Num(OptNumber(*st, "engine_members", file)) +
+                 " members (the inputs of the first reference members) against the reference's " +
+                 Num(OptNumber(*st, "reference_members", file)) +
+                 (excluded > 0 ? " (" + Num(excluded) +
+                                     " left out: their reference run broke the model's "
+                                     "assumptions)"
+                               : "") +
+                 ". Family: " + OptString(*st, "family", file) + ", at alpha = " + Num(alpha) +
+                 "; a quantity is flagged when its Holm-adjusted p is at or below alpha. Result: " +
+                 (consistent ? "consistent, no quantity differs." : "the ensembles differ."));
+  page.Table(
+      {"quantity", "reference median [5%, 95%]", "engine median [5%, 95%]", "test (the verdict's)",
+       "statistic", "p", "Holm-adjusted p", "Anderson-Darling p (no margin)", "flagged"},
+      TestRows(*st, file));
+  return true;
+}
+
+void StatisticsPart(const VerdictInput& in, Page& page) {
+  if (!in.predictability || in.comparison == nullptr || in.engines.empty()) return;
+  page.Heading("Statistical comparison beyond the horizon", 3);
+  bool any_table = false;
+  for (const std::string& name : in.engines) {
+    if (Find(*in.comparison, "engines." + name) == nullptr) continue;
+    any_table = EngineStatistics(in, name, page) || any_table;
+  }
+  if (!any_table) return;
+  page.Paragraph(
+      "Beyond the horizon two correct runs differ by more than the tolerance, so the engine's "
+      "ensemble (the same perturbed inputs) is compared with the reference's on what a user "
+      "cares about. Medians with the 5% and 95% quantiles; overturning as counts of members. "
+      "The margin is the resolution below which values do not differ (the Kolmogorov-Smirnov "
+      "test's slack); Anderson-Darling, without a margin, is shown beside it and does not "
+      "decide.");
+}
+
+// ---- Errors split at the horizon ----
+
+void SplitErrorsPart(const VerdictInput& in, Page& page) {
+  // Without an ensemble there is no horizon to split at.
+  if (in.comparison == nullptr || in.engines.empty() || !in.predictability) return;
+  const json& c = *in.comparison;
+  const fs::path& file = in.comparison_path;
+  std::vector<std::vector<std::string>> rows;
+  for (const std::string& name : in.engines) {
+    for (int b = 0; b < (in.two_blocks ? 2 : 1); ++b) {
+      const std::string k = "engines." + name + "." + Theta(b);
+      if (Find(c, k + ".max_abs_error_predictable_rad") == nullptr) continue;
+      const double h = OptNumber(c, k + ".predictability_horizon_s", file);
+      const double beyond = OptNumber(c, k + ".samples_beyond", file);
+      const bool none_beyond = !(beyond > 0);
+      rows.push_back(
+          {name, Theta(b), std::isnan(h) ? "none (predictable throughout)" : Num(h, 6) + " s",
+           Rad(OptNumber(c, k + ".max_abs_error_predictable_rad", file)),
+           Rad(OptNumber(c, k + ".rms_error_predictable_rad", file)),
+           none_beyond ? "no sample" : Rad(OptNumber(c, k + ".max_abs_error_beyond_rad", file)),
+           none_beyond ? "no sample" : Rad(OptNumber(c, k + ".rms_error_beyond_rad", file)),
+           Num(beyond), Rad(OptNumber(c, k + ".tolerance_rad", file))});
+    }
+  }
+  if (rows.empty()) return;
+  page.Heading("Errors before and beyond the horizon", 3);
+  page.Table({"engine", "angle", "predictability horizon", "max error, predictable",
+              "RMS error, predictable", "max error, beyond", "RMS error, beyond", "samples beyond",
+              "tolerance"},
+             rows);
+  page.Paragraph(
+      "|theta_engine - theta_reference| over the compared run, split at the reference's "
+      "predictability horizon: before it an error is the engine's; beyond it two correct runs "
+      "may differ by the ensemble's spread.");
+}
+
+}  // namespace
+
+std::vector<std::string> WriteVerdictSection(const VerdictInput& in, Page& page) {
+  page.Heading("Verdict");
+  if (in.comparison == nullptr) {
+    page.Paragraph(
+        "This run folder has no comparison.json (a `rockbench run` folder): no engine was "
+        "compared with the reference, so there is no verdict.");
+  } else {
+    VerdictTable(in, page);
+  }
+  std::vector<std::string> warnings = ConvergencePart(in, page);
+  if (in.comparison != nullptr) {
+    PredictabilityPart(in, page);
+    StatisticsPart(in, page);
+    SplitErrorsPart(in, page);
+  }
+  return warnings;
+}
+
+}  // namespace rockbench::report
