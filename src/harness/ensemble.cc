@@ -187,18 +187,22 @@ ReferenceEnsemble RunReferenceEnsemble(const Scene& nominal_scene, const GroundM
   const auto n_grid = static_cast<size_t>(std::floor(nominal_scene.run.duration_s / dt + 1e-9)) + 1;
   e.t_s.resize(n_grid);
   for (size_t k = 0; k < n_grid; ++k) e.t_s[k] = static_cast<double>(k) * dt;
-  // The nominal run on the grid; beyond the end of a run stopped by a violated assumption
-  // there is nothing to compare (NaN).
+  // A run on the grid. Beyond the end of a run stopped by a violated assumption there is
+  // nothing to compare (NaN); beyond an overturn, the overturned block stays at its overturn
+  // angle (a lasting outcome that other members may not share) and the other block's angle is
+  // undefined (NaN: the model ends there).
   auto on_grid = [&](const reference::Result& r, std::vector<double>* th) {
     const bool stopped = r.summary.status == "assumption_violated";
+    const int overturned = r.summary.overturn_block.value_or(0);
     const double end = r.trajectory.end_s();
     th[0].assign(n_grid, std::nan(""));
     th[1].assign(n_grid, std::nan(""));
     for (size_t k = 0; k < n_grid; ++k) {
-      if (stopped && e.t_s[k] > end) break;
+      const bool after_end = e.t_s[k] > end;
+      if (stopped && after_end) break;
       const Sample s = r.trajectory.At(e.t_s[k]);
-      th[0][k] = s.theta1_rad;
-      th[1][k] = two ? s.theta2_rad : 0.0;
+      if (!after_end || overturned == 1) th[0][k] = s.theta1_rad;
+      if (!after_end || overturned == 2) th[1][k] = two ? s.theta2_rad : 0.0;
     }
   };
   std::vector<double> nominal_grid[2];
@@ -311,7 +315,8 @@ std::string EnsembleBandCsv(const ReferenceEnsemble& e, bool two) {
   std::string out = two ? "t,theta1_lo,theta1_hi,theta1_spread,theta2_lo,theta2_hi,theta2_spread\n"
                         : "t,theta1_lo,theta1_hi,theta1_spread\n";
   for (size_t k = 0; k < e.t_s.size(); ++k) {
-    if (std::isnan(e.lo_rad[0][k])) break;
+    // The band ends with the nominal run (a block's angle is undefined after it).
+    if (std::isnan(e.lo_rad[0][k]) || (two && std::isnan(e.lo_rad[1][k]))) break;
     out += Num(e.t_s[k]);
     for (int b = 0; b < (two ? 2 : 1); ++b) {
       for (double v : {e.lo_rad[b][k], e.hi_rad[b][k], e.spread_rad[b][k]}) {
