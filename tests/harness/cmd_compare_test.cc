@@ -85,6 +85,53 @@ TEST_F(CmdCompareTest, SameInputSameBytes) {
   EXPECT_FALSE(ev1.empty());
 }
 
+// The verdict path: the reference with its witness, the ensembles and the verdict, written to
+// comparison.json, summary.json and the ensemble CSVs; the ensembles' bytes do not depend on
+// the number of threads. Rinaldi 228 cut to 6 s (theta2's horizon, 4.45 s, falls inside and
+// block 2 overturns at 5.42 s), small ensembles to keep it quick.
+TEST_F(CmdCompareTest, WritesTheVerdictItRestsOn) {
+  const std::string scene = (kScenes / "thesis_rinaldi228.toml").string();
+  const fs::path one = dir_ / "jobs1", two = dir_ / "jobs2";
+  for (const auto& [out, jobs] : {std::pair{one, "1"}, std::pair{two, "2"}}) {
+    RunCli({"compare", scene, "--out", out.string(), "--members", "8", "--engine-members", "6",
+            "--jobs", jobs, "--set", "run.duration=6"});
+  }
+  const auto c = nlohmann::json::parse(Slurp(one / "comparison.json"));
+  const auto& conv = c["reference"]["convergence"];
+  EXPECT_TRUE(conv["converged"].get<bool>());
+  EXPECT_LT(conv["max_abs_diff_rad"].get<double>(), 1e-8);
+  EXPECT_EQ(conv["witness"]["rtol"], 1e-14);
+  const auto& p = c["predictability"];
+  EXPECT_EQ(p["members"], 8);
+  ASSERT_TRUE(p["horizon_s"]["theta2"].is_number());
+  EXPECT_GT(p["horizon_s"]["theta2"].get<double>(), 3.0);
+  EXPECT_LT(p["horizon_s"]["theta2"].get<double>(), 5.42);
+  const auto& b = c["engines"]["bullet"];
+  EXPECT_FALSE(b["verdict"].get<std::string>().empty());
+  EXPECT_EQ(b["verdict_kind"], "agrees") << b["verdict"];
+  const auto& st = b["statistics"];
+  ASSERT_TRUE(st["available"].get<bool>()) << st.dump();
+  EXPECT_EQ(st["engine_members"], 6);
+  for (const auto& [key, test] : st["tests"].items()) {
+    if (!test["p_value"].is_number()) continue;  // e.g. no peak above the tolerance
+    EXPECT_GE(test["p_value"].get<double>(), 0.0) << key;
+    EXPECT_LE(test["p_value"].get<double>(), 1.0) << key;
+    EXPECT_GE(test["p_holm"].get<double>(), test["p_value"].get<double>()) << key;
+  }
+  const auto s = nlohmann::json::parse(Slurp(one / "summary.json"));
+  EXPECT_EQ(s["convergence"]["converged"], true);
+  for (const char* f :
+       {"reference/ensemble_band.csv", "reference/ensemble.csv", "bullet/ensemble.csv"}) {
+    EXPECT_EQ(Slurp(one / f), Slurp(two / f)) << f;
+  }
+  // --quick: the pointwise comparison only.
+  const fs::path quick = dir_ / "quick";
+  RunCli({"compare", scene, "--out", quick.string(), "--quick", "--set", "run.duration=6"});
+  const auto q = nlohmann::json::parse(Slurp(quick / "comparison.json"));
+  EXPECT_EQ(q["engines"]["bullet"]["verdict_kind"], "pointwise_only");
+  EXPECT_FALSE(fs::exists(quick / "reference" / "ensemble_band.csv"));
+}
+
 TEST_F(CmdCompareTest, UnknownEngineIsBadInput) {
   try {
     RunCli({"compare", (kScenes / "housner_free_rocking.toml").string(), "--out", dir_.string(),
