@@ -395,6 +395,11 @@ bool Monitor::Step(std::int64_t n, const StepReadout& s) {
   last_recorded_ = false;
   end_t_s_ = t;
 
+  RecordOutput(cur, t);
+  return !Stopped(d, t_prev, abs1_prev, abs2_prev);
+}
+
+void Monitor::RecordOutput(const Sample& cur, double t) {
   // Output sample: the step nearest to each output time (every step without an interval).
   if (!(out_dt_ > 0.0)) {
     Record(cur);
@@ -404,7 +409,11 @@ bool Monitor::Step(std::int64_t n, const StepReadout& s) {
     last_recorded_ = true;
     next_out_ = static_cast<std::int64_t>(std::floor((t + 0.5 * dt_) / out_dt_)) + 1;
   }
+}
 
+bool Monitor::Stopped(const Derived& d, double t_prev, double abs1_prev, double abs2_prev) {
+  const Sample& cur = d.sample;
+  const double t = cur.t_s;
   // Stops: overturn, blow-up. A block overturns when |theta| reaches the model's overturn angle
   // (model.overturn_angle, the reference's definition, no slack). The crossing time is
   // interpolated linearly between the step's two ends, the same way for both blocks: Bullet turns
@@ -438,7 +447,7 @@ bool Monitor::Step(std::int64_t n, const StepReadout& s) {
     e.energy_before_j = e.energy_after_j = d.energy_j;
     e.note = "block " + std::to_string(over_block);
     PushEvent(std::move(e));
-    return false;
+    return true;
   }
   // Settled: at rest once the base can no longer start rocking (ensemble members only).
   if (cur.mode != Mode::kRest) {
@@ -451,19 +460,19 @@ bool Monitor::Step(std::int64_t n, const StepReadout& s) {
     status_ = "at_rest";
     status_detail_ = "at rest after " + std::to_string(in_meta_.stop_at_rest_after_s) +
                      " s, when the base motion can no longer start rocking";
-    return false;
+    return true;
   }
   if (max_rate_radps_ > cfg_.blow_up_rate_radps) {
     status_ = "blow_up";
     status_detail_ = "|omega| above " + std::to_string(cfg_.blow_up_rate_radps) + " rad/s";
-    return false;
+    return true;
   }
   if (energy_gain_max_j_ > cfg_.blow_up_energy_rel * tipping_energy_j_) {
     status_ = "blow_up";
     status_detail_ = "energy grew without base input by more than the tipping energy";
-    return false;
+    return true;
   }
-  return true;
+  return false;
 }
 
 void Monitor::Finish() {

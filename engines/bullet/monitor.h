@@ -105,6 +105,11 @@ class Monitor {
   // block 1 (in block 1's frame).
   void Pivots(const StepReadout& s, Derived* d, int* side1, int* side2) const;
   void Record(const Sample& s);
+  // Records the step's state if it is the one nearest to the next output time.
+  void RecordOutput(const Sample& cur, double t);
+  // Whether the run must stop after the step that produced `d` (overturn, settled at rest,
+  // blow-up); sets the status. |theta| of both blocks before the step: abs1_prev, abs2_prev.
+  bool Stopped(const Derived& d, double t_prev, double abs1_prev, double abs2_prev);
   void PushEvent(Event e);
 
   EngineInput in_meta_;  // geometry and settings (drive samples not kept)
