@@ -320,10 +320,24 @@ bool Monitor::Step(std::int64_t n, const StepReadout& s) {
   }
   if (suppress_mode_events_ > 0) --suppress_mode_events_;
 
+  MeasureContacts(s, &d);
+  MeasurePeaksAndEnergy(d, s.base_accelerating);
+
+  prev_ = d;
+  last_ = cur;
+  last_recorded_ = false;
+  end_t_s_ = t;
+
+  RecordOutput(cur, t);
+  return !Stopped(d, t_prev, abs1_prev, abs2_prev);
+}
+
+void Monitor::MeasureContacts(const StepReadout& s, Derived* d_ptr) {
+  const Derived& d = *d_ptr;
   // Slip: horizontal motion of the pivot point relative to the support while in contact.
   {
     int side1 = 0, side2 = 0;
-    Pivots(s, &d, &side1, &side2);
+    Pivots(s, d_ptr, &side1, &side2);
     if (side1 == pivot_side1_ && d.gap_ground_m < cfg_.uplift_tol_m) {
       slip_ground_m_ += std::abs(d.pivot_ground_x_m - prev_.pivot_ground_x_m);
     }
@@ -361,7 +375,11 @@ bool Monitor::Step(std::int64_t n, const StepReadout& s) {
   }
   out_of_plane_m_ = std::max(out_of_plane_m_, s.out_of_plane_m);
   out_of_plane_rad_ = std::max(out_of_plane_rad_, s.out_of_plane_rad);
+}
 
+void Monitor::MeasurePeaksAndEnergy(const Derived& d, bool base_accelerating) {
+  const Sample& cur = d.sample;
+  const double t = cur.t_s;
   // Peaks.
   if (std::abs(cur.theta1_rad) > peak1_) {
     peak1_ = std::abs(cur.theta1_rad);
@@ -375,7 +393,7 @@ bool Monitor::Step(std::int64_t n, const StepReadout& s) {
       {max_rate_radps_, std::abs(cur.omega1_radps), two_ ? std::abs(cur.omega2_radps) : 0.0});
 
   // Energy without input must not grow.
-  if (s.base_accelerating) {
+  if (base_accelerating) {
     free_ = false;
   } else {
     if (!free_) {
@@ -389,14 +407,6 @@ bool Monitor::Step(std::int64_t n, const StepReadout& s) {
       energy_gain_t_s_ = t;
     }
   }
-
-  prev_ = d;
-  last_ = cur;
-  last_recorded_ = false;
-  end_t_s_ = t;
-
-  RecordOutput(cur, t);
-  return !Stopped(d, t_prev, abs1_prev, abs2_prev);
 }
 
 void Monitor::RecordOutput(const Sample& cur, double t) {

@@ -105,6 +105,10 @@ class Monitor {
   // block 1 (in block 1's frame).
   void Pivots(const StepReadout& s, Derived* d, int* side1, int* side2) const;
   void Record(const Sample& s);
+  // Slip, drift, uplift, penetration and out-of-plane motion of the step (sets d's pivots).
+  void MeasureContacts(const StepReadout& s, Derived* d);
+  // Peaks, the largest rate, and energy gained while the base is still.
+  void MeasurePeaksAndEnergy(const Derived& d, bool base_accelerating);
   // Records the step's state if it is the one nearest to the next output time.
   void RecordOutput(const Sample& cur, double t);
   // Whether the run must stop after the step that produced `d` (overturn, settled at rest,
