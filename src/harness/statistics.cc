@@ -69,6 +69,38 @@ void Shuffle(std::vector<int>& labels, std::mt19937_64& rng) {
   }
 }
 
+/// Permutation p-value (1 + #{relabellings at least as extreme}) / (1 + B) over B random
+/// relabellings of `labels` (seeded by options.seed); `at_least_observed(labels)` says whether
+/// a relabelling's statistic reaches the observed one.
+template <class AtLeastObserved>
+double PermutationPValue(std::vector<int> labels, const PValueOptions& options,
+                         AtLeastObserved at_least_observed) {
+  std::mt19937_64 rng(options.seed);
+  long long at_least = 0;
+  for (int k = 0; k < options.permutations; ++k) {
+    Shuffle(labels, rng);
+    if (at_least_observed(labels)) ++at_least;
+  }
+  return (1.0 + at_least) / (1.0 + options.permutations);
+}
+
+/// A two-sample test's result with its name and sizes, after checking both samples for NaN
+/// (std::invalid_argument naming `where`). False when either sample is empty: the result then
+/// says the test is undefined.
+bool StartTwoSampleTest(std::span<const double> a, std::span<const double> b, const char* where,
+                        const char* test, TestResult* r) {
+  RequireNoNaN(a, where);
+  RequireNoNaN(b, where);
+  r->test = test;
+  r->n_a = static_cast<int>(a.size());
+  r->n_b = static_cast<int>(b.size());
+  if (a.empty() || b.empty()) {
+    r->method = "undefined: empty sample";
+    return false;
+  }
+  return true;
+}
+
 /// The pooled sample sorted by value then by sample, as sample labels, with its groups of equal
 /// values (in increasing order of value).
 struct Pooled {
@@ -284,14 +316,8 @@ double KolmogorovSurvival(double lambda) {
 
 TestResult KolmogorovSmirnovTest(std::span<const double> a, std::span<const double> b,
                                  const PValueOptions& options) {
-  RequireNoNaN(a, "KolmogorovSmirnovTest");
-  RequireNoNaN(b, "KolmogorovSmirnovTest");
   TestResult r;
-  r.test = "two-sample Kolmogorov-Smirnov";
-  r.n_a = static_cast<int>(a.size());
-  r.n_b = static_cast<int>(b.size());
-  if (a.empty() || b.empty()) {
-    r.method = "undefined: empty sample";
+  if (!StartTwoSampleTest(a, b, "KolmogorovSmirnovTest", "two-sample Kolmogorov-Smirnov", &r)) {
     return r;
   }
   const std::span<const double> samples[] = {a, b};
@@ -326,18 +352,12 @@ TestResult KolmogorovSmirnovTest(std::span<const double> a, std::span<const doub
       r.p_value = KsExactPValue(pooled.group_end, r.n_a, r.n_b, d);
       r.method = "exact";
       break;
-    case PValueMethod::kPermutation: {
-      std::mt19937_64 rng(options.seed);
-      std::vector<int> labels = pooled.labels;
-      long long at_least = 0;
-      for (int k = 0; k < options.permutations; ++k) {
-        Shuffle(labels, rng);
-        if (KsScaledStatistic(labels, pooled.group_end, n_a, n_b) >= d) ++at_least;
-      }
-      r.p_value = (1.0 + at_least) / (1.0 + options.permutations);
+    case PValueMethod::kPermutation:
+      r.p_value = PermutationPValue(pooled.labels, options, [&](const std::vector<int>& labels) {
+        return KsScaledStatistic(labels, pooled.group_end, n_a, n_b) >= d;
+      });
       r.method = PermutationMethod(options.permutations);
       break;
-    }
     case PValueMethod::kAsymptotic: {
       const double effective = static_cast<double>(n_a) * n_b / static_cast<double>(n_a + n_b);
       r.p_value = KolmogorovSurvival(std::sqrt(effective) * r.statistic);
@@ -354,17 +374,12 @@ TestResult KolmogorovSmirnovSlackTest(std::span<const double> a, std::span<const
     throw std::invalid_argument("KolmogorovSmirnovSlackTest: slack must be >= 0");
   }
   if (slack == 0.0) return KolmogorovSmirnovTest(a, b, options);
-  RequireNoNaN(a, "KolmogorovSmirnovSlackTest");
-  RequireNoNaN(b, "KolmogorovSmirnovSlackTest");
   if (options.permutations < 1) {
     throw std::invalid_argument("KolmogorovSmirnovSlackTest: permutations must be >= 1");
   }
   TestResult r;
-  r.test = "two-sample Kolmogorov-Smirnov with slack";
-  r.n_a = static_cast<int>(a.size());
-  r.n_b = static_cast<int>(b.size());
-  if (a.empty() || b.empty()) {
-    r.method = "undefined: empty sample";
+  if (!StartTwoSampleTest(a, b, "KolmogorovSmirnovSlackTest",
+                          "two-sample Kolmogorov-Smirnov with slack", &r)) {
     return r;
   }
   const std::span<const double> samples[] = {a, b};
@@ -387,16 +402,9 @@ TestResult KolmogorovSmirnovSlackTest(std::span<const double> a, std::span<const
     r.p_value = 1.0;
     return r;
   }
-  std::mt19937_64 rng(options.seed);
-  std::vector<int> labels = pooled.labels;
-  long long at_least = 0;
-  for (int k = 0; k < options.permutations; ++k) {
-    Shuffle(labels, rng);
-    if (KsSlackScaledStatistic(labels, pooled.group_end, upper, n_a, n_b, scratch) >= d) {
-      ++at_least;
-    }
-  }
-  r.p_value = (1.0 + at_least) / (1.0 + options.permutations);
+  r.p_value = PermutationPValue(pooled.labels, options, [&](const std::vector<int>& labels) {
+    return KsSlackScaledStatistic(labels, pooled.group_end, upper, n_a, n_b, scratch) >= d;
+  });
   return r;
 }
 
@@ -446,14 +454,8 @@ double AndersonDarlingNullVariance(std::span<const int> sample_sizes) {
 
 TestResult AndersonDarlingTest(std::span<const double> a, std::span<const double> b,
                                const PValueOptions& options) {
-  RequireNoNaN(a, "AndersonDarlingTest");
-  RequireNoNaN(b, "AndersonDarlingTest");
   TestResult r;
-  r.test = "two-sample Anderson-Darling (A2akN)";
-  r.n_a = static_cast<int>(a.size());
-  r.n_b = static_cast<int>(b.size());
-  if (a.empty() || b.empty()) {
-    r.method = "undefined: empty sample";
+  if (!StartTwoSampleTest(a, b, "AndersonDarlingTest", "two-sample Anderson-Darling (A2akN)", &r)) {
     return r;
   }
   if (options.method == PValueMethod::kAsymptotic) {
@@ -508,16 +510,9 @@ TestResult AndersonDarlingTest(std::span<const double> a, std::span<const double
     r.method = "exact";
     return r;
   }
-  std::mt19937_64 rng(options.seed);
-  std::vector<int> labels = pooled.labels;
-  long long at_least = 0;
-  for (int k = 0; k < options.permutations; ++k) {
-    Shuffle(labels, rng);
-    if (statistic(labels) >= floor) {
-      ++at_least;
-    }
-  }
-  r.p_value = (1.0 + at_least) / (1.0 + options.permutations);
+  r.p_value = PermutationPValue(pooled.labels, options, [&](const std::vector<int>& labels) {
+    return statistic(labels) >= floor;
+  });
   r.method = PermutationMethod(options.permutations);
   return r;
 }
