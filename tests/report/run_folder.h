@@ -45,6 +45,20 @@ inline std::string Slurp(const std::filesystem::path& p) {
   return ss.str();
 }
 
+/// Expects every file under `a` to exist under `b` with the same bytes; returns how many files
+/// were compared.
+inline int ExpectSameFiles(const std::filesystem::path& a, const std::filesystem::path& b) {
+  int files = 0;
+  for (const auto& e : std::filesystem::recursive_directory_iterator(a)) {
+    if (!e.is_regular_file()) continue;
+    const std::filesystem::path rel = std::filesystem::relative(e.path(), a);
+    EXPECT_TRUE(std::filesystem::exists(b / rel)) << rel;
+    EXPECT_EQ(Slurp(e.path()), Slurp(b / rel)) << rel << " differs between two reports";
+    ++files;
+  }
+  return files;
+}
+
 inline std::filesystem::path SceneFile(const std::string& name) {
   return std::filesystem::path(ROCKBENCH_SOURCE_DIR) / "scenes" / name;
 }
