@@ -7,13 +7,10 @@
 #include <vector>
 
 #include "harness/summary.h"
+#include "harness/wall_clock.h"
 
 namespace rockbench {
 namespace {
-
-double Seconds(std::chrono::steady_clock::time_point since) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count();
-}
 
 bool EndsEarly(const reference::Result& r) {
   return r.summary.status == "assumption_violated";
@@ -75,13 +72,13 @@ CheckedReference RunCheckedReference(const Scene& scene, const GroundMotion& mot
   CheckedReference out;
   auto start = std::chrono::steady_clock::now();
   out.nominal = reference::Simulate(scene, motion);
-  out.nominal_wall_s = Seconds(start);
+  out.nominal_wall_s = SecondsSince(start);
   if (!with_witness) return out;
   Scene tight = scene;
   tight.model = WitnessModel(scene.model);
   start = std::chrono::steady_clock::now();
   out.witness = reference::Simulate(tight, motion);
-  const double witness_wall_s = Seconds(start);
+  const double witness_wall_s = SecondsSince(start);
   out.check = CompareWithWitness(scene, out.nominal, *out.witness);
   out.check->witness_wall_s = witness_wall_s;
   return out;

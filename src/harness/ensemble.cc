@@ -8,6 +8,7 @@
 #include "harness/compare.h"
 #include "harness/parallel.h"
 #include "harness/summary.h"
+#include "harness/wall_clock.h"
 #include "reference/geometry.h"
 #include "reference/transitions.h"
 
@@ -48,10 +49,6 @@ MotionComponent PerturbedComponent(const MotionComponent& c, double factor, doub
     return c.WithSamples(std::move(a)).Scaled(factor);
   }
   return c.Scaled(factor);
-}
-
-double Seconds(std::chrono::steady_clock::time_point since) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count();
 }
 
 std::string Num(double v) {
@@ -222,7 +219,7 @@ ReferenceEnsemble RunReferenceEnsemble(const Scene& nominal_scene, const GroundM
         reference::Result r = reference::Simulate(in.scene, in.motion);
         EngineRun run;
         run.engine = "reference";
-        run.wall_s = Seconds(t0);
+        run.wall_s = SecondsSince(t0);
         run.summary = ReferenceSummaryJson(in.scene, r, run.wall_s);
         std::vector<double> th[2];
         on_grid(r, th);
@@ -253,7 +250,7 @@ ReferenceEnsemble RunReferenceEnsemble(const Scene& nominal_scene, const GroundM
       if (!e.horizon_s[b] && e.spread_rad[b][k] > e.tolerance_rad[b]) e.horizon_s[b] = e.t_s[k];
     }
   }
-  e.wall_s = Seconds(start);
+  e.wall_s = SecondsSince(start);
   return e;
 }
 

@@ -17,6 +17,7 @@
 
 #include "harness/compare.h"
 #include "harness/engines.h"
+#include "harness/wall_clock.h"
 #include "reference/geometry.h"
 #include "reference/kinematics.h"
 #include "reference/simulate.h"
@@ -193,7 +194,7 @@ StressRow RunReference(const StressCase& c, StressRow row) {
   const GroundMotion motion = GroundMotion::FromScene(c.scene);
   const auto start = std::chrono::steady_clock::now();
   const reference::Result r = reference::Simulate(c.scene, motion);
-  row.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  row.wall_s = SecondsSince(start);
   const reference::Summary& s = r.summary;
   row.status = s.status;
   row.detail = s.status_detail;

@@ -12,6 +12,7 @@
 #include <thread>
 
 #include "harness/engines.h"
+#include "harness/wall_clock.h"
 #include "reference/simulate.h"
 
 namespace rockbench {
@@ -105,8 +106,7 @@ std::vector<SweepRow> RunSweep(const Scene& scene, const GroundMotion& motion,
   const auto start = std::chrono::steady_clock::now();
   const reference::Result baseline = reference::Simulate(tight, motion);
   if (baseline_out) {
-    baseline_out->wall_s =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    baseline_out->wall_s = SecondsSince(start);
     baseline_out->status = baseline.summary.status;
     baseline_out->peak_theta1_rad = baseline.summary.peak_theta1_rad;
     baseline_out->peak_theta1_t_s = baseline.summary.peak_theta1_t_s;
