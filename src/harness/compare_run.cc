@@ -35,11 +35,7 @@ CompareRun RunCompare(const Scene& scene, const GroundMotion& motion,
   const ConvergenceCheck& check = *out.reference.check;
   out.reference_scene = scene;
   if (&ref != &out.reference.nominal) out.reference_scene.model = check.witness;
-  out.reference_run.engine = "reference";
-  out.reference_run.history = ref.history;
-  out.reference_run.wall_s = out.reference.nominal_wall_s;
-  out.reference_run.summary = ReferenceSummaryJson(scene, ref, out.reference.nominal_wall_s);
-  out.reference_run.summary["convergence"] = ConvergenceJson(scene, check);
+  out.reference_run = ReferenceRunOf(scene, out.reference);
   std::snprintf(buf, sizeof buf, "reference: %s, %zu events, %.3g ms; witness within %.2g rad%s",
                 ref.summary.status.c_str(), ref.history.events.size(),
                 out.reference.nominal_wall_s * 1e3, check.max_abs_diff(),

@@ -23,14 +23,9 @@ std::vector<std::string> AvailableEngines() {
 EngineRun RunEngine(const std::string& name, const Scene& scene, const GroundMotion& motion,
                     const RunEngineOptions& options) {
   if (name == "reference") {
-    EngineRun run;
-    run.engine = name;
-    CheckedReference checked = RunCheckedReference(scene, motion, options.reference_witness);
-    run.wall_s = checked.nominal_wall_s;
-    const reference::Result& used = checked.used();
-    run.summary = ReferenceSummaryJson(scene, used, run.wall_s);
-    if (checked.check) run.summary["convergence"] = ConvergenceJson(scene, *checked.check);
-    const reference::Summary& s = used.summary;
+    const CheckedReference checked = RunCheckedReference(scene, motion, options.reference_witness);
+    EngineRun run = ReferenceRunOf(scene, checked);
+    const reference::Summary& s = checked.used().summary;
     char line[256];
     std::snprintf(line, sizeof line,
                   "reference: %s, peak |theta1| %.4g rad at %.3f s, peak |theta2| %.4g rad at "
@@ -41,8 +36,6 @@ EngineRun RunEngine(const std::string& name, const Scene& scene, const GroundMot
     if (checked.check && !checked.check->converged) {
       run.one_line += "\n  WARNING: " + ConvergenceWarning(*checked.check);
     }
-    run.history = &used == &checked.nominal ? std::move(checked.nominal.history)
-                                            : std::move(checked.witness->history);
     return run;
   }
 #ifdef ROCKBENCH_HAVE_BULLET
