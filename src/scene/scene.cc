@@ -546,8 +546,9 @@ class Reader {
                                .value_or(c.sample_precision);
       c.initial_rel =
           Number(*cmp, "compare", "initial_rel", Rule::kUnitInterval, "").value_or(c.initial_rel);
-      c.seed =
-          static_cast<uint64_t>(NonNegativeInteger(*cmp, "compare", "seed", INT64_MAX).value_or(1));
+      if (const auto seed = NonNegativeInteger(*cmp, "compare", "seed", INT64_MAX)) {
+        c.seed = static_cast<uint64_t>(*seed);
+      }
     }
     return s;
   }
