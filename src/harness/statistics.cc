@@ -48,6 +48,25 @@ double LogChoose(const std::vector<double>& lf, int n, int k) {
   return lf[n] - lf[k] - lf[n - k];
 }
 
+// p-value of an exact test on a discrete statistic with support [lo, hi] and log-pmf log_pmf,
+// observed at `observed_x`: the probability of the outcomes at least as extreme (greater: x >=
+// observed_x; less: x <= observed_x; two-sided: no more probable than the observed one, to a
+// relative tolerance), capped at 1.
+template <typename LogPmf>
+double ExactPValue(int lo, int hi, int observed_x, const LogPmf& log_pmf, Alternative alternative) {
+  const double observed = log_pmf(observed_x);
+  double p = 0.0;
+  for (int x = lo; x <= hi; ++x) {
+    const double lp = log_pmf(x);
+    const bool counted = alternative == Alternative::kGreater ? x >= observed_x
+                         : alternative == Alternative::kLess
+                             ? x <= observed_x
+                             : lp <= observed + std::log1p(kRelativeTolerance);
+    if (counted) p += std::exp(lp);
+  }
+  return std::min(p, 1.0);
+}
+
 /// C(n, k), or cap + 1 if it exceeds cap (cap <= 2^40 keeps every product exact in 64 bits).
 std::uint64_t ChooseCapped(int n, int k, std::uint64_t cap) {
   k = std::min(k, n - k);
@@ -538,18 +557,8 @@ TestResult FisherExactTest(int a11, int a12, int a21, int a22, Alternative alter
     return LogChoose(lf, c1, x) + LogChoose(lf, c2, r.n_a - x) - log_total;
   };
   const int lo = std::max(0, r.n_a - c2), hi = std::min(r.n_a, c1);
-  const double observed = log_p(a11);
-  double p = 0.0;
-  for (int x = lo; x <= hi; ++x) {
-    const double lp = log_p(x);
-    const bool counted = alternative == Alternative::kGreater ? x >= a11
-                         : alternative == Alternative::kLess
-                             ? x <= a11
-                             : lp <= observed + std::log1p(kRelativeTolerance);
-    if (counted) p += std::exp(lp);
-  }
-  r.statistic = std::exp(observed);
-  r.p_value = std::min(p, 1.0);
+  r.statistic = std::exp(log_p(a11));
+  r.p_value = ExactPValue(lo, hi, a11, log_p, alternative);
   r.method = "exact";
   return r;
 }
@@ -652,17 +661,7 @@ TestResult BinomialTest(int successes, int trials, double probability, Alternati
     return LogChoose(lf, trials, i) + i * std::log(probability) +
            (trials - i) * std::log1p(-probability);
   };
-  const double observed = log_pmf(successes);
-  double p = 0.0;
-  for (int i = 0; i <= trials; ++i) {
-    const double lp = log_pmf(i);
-    const bool counted = alternative == Alternative::kGreater ? i >= successes
-                         : alternative == Alternative::kLess
-                             ? i <= successes
-                             : lp <= observed + std::log1p(kRelativeTolerance);
-    if (counted) p += std::exp(lp);
-  }
-  r.p_value = std::min(p, 1.0);
+  r.p_value = ExactPValue(0, trials, successes, log_pmf, alternative);
   r.method = "exact";
   return r;
 }
