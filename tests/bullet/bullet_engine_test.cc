@@ -70,8 +70,8 @@ Scene Load(const std::string& name, std::vector<std::string> overrides = {}) {
   return LoadScene(kScenes / name, overrides);
 }
 
-EngineOutput RunScene(const Scene& s) {
-  return Simulate(MakeEngineInput(s, GroundMotion::FromScene(s)));
+EngineResult RunScene(const Scene& s) {
+  return Simulate(MakeBulletInput(s, GroundMotion::FromScene(s)));
 }
 
 std::vector<Event> Impacts(const History& h, const char* kind = nullptr) {
@@ -106,8 +106,8 @@ TEST(BulletEngineTest, HousnerFreeRockingMatchesClosedFormsAndTheReference) {
   }
   Scene s = Load("housner_free_rocking.toml", {"run.output_interval=0.001"});
   ASSERT_NEAR(s.initial.theta1_rad, theta0, 1e-15);
-  ASSERT_EQ(s.bullet.time_step_s, 1e-4);
-  const EngineOutput out = RunScene(s);
+  ASSERT_EQ(MakeBulletInput(s, GroundMotion()).time_step_s, 1e-4);
+  const EngineResult out = RunScene(s);
   EXPECT_EQ(out.summary["status"], "completed");
   const std::vector<Event> imp = Impacts(out.history, "ground_impact");
   ASSERT_GE(imp.size(), 4u);
@@ -164,11 +164,11 @@ TEST(BulletEngineTest, UpliftStartsAtTheStaticThreshold) {
   s.block1 = {kB, kH, 1.0, 10000.0, 0.0};
   s.run.duration_s = 6.0;
   s.run.output_interval_s = 0.01;
-  s.bullet.split_impulse_threshold = 0.0;
+  SetEngineSetting(s, "bullet", "split_impulse_threshold", 0.0);
   const double a_c = kG * std::tan(hz.alpha);
   GroundMotion m;
   m.set_horizontal(MotionComponent::FromSamples({0.0, 2.0 * a_c}, 10.0, 0.0, "ramp"));
-  const EngineOutput out = Simulate(MakeEngineInput(s, m));
+  const EngineResult out = Simulate(MakeBulletInput(s, m));
   const Event* start = nullptr;
   for (const Event& e : out.history.events) {
     if (e.kind == "initiation") {
@@ -189,7 +189,7 @@ TEST(BulletEngineTest, UpliftStartsAtTheStaticThreshold) {
 TEST(BulletEngineTest, TwoBlocksAtRestStayWithin1e5RadFor10s) {
   Scene s =
       Load("thesis_free_rocking.toml", {"initial.theta1=0", "initial.theta2=0", "run.duration=10"});
-  const EngineOutput out = RunScene(s);
+  const EngineResult out = RunScene(s);
   // Peaks are tracked at every step.
   EXPECT_LT(out.summary["peaks"]["theta1"]["abs_rad"].get<double>(), 1e-5);
   EXPECT_LT(out.summary["peaks"]["theta2"]["abs_rad"].get<double>(), 1e-5);
@@ -271,7 +271,7 @@ TEST(BulletEngineTest, ThesisRinaldiAgreesWithTheReference) {
 // Overturn time error (Bullet minus reference, s) of a scene at time step dt; both must
 // overturn the same block.
 double OverturnTimeError(Scene s, double dt, int block) {
-  s.bullet.time_step_s = dt;
+  SetEngineSetting(s, "bullet", "time_step", double(dt));
   const EngineAgreement a = Agreement(s);
   EXPECT_TRUE(a.overturn_agree) << "dt " << dt;
   EXPECT_EQ(a.overturn_block_reference.value_or(0), block) << "dt " << dt;
@@ -299,7 +299,7 @@ TEST(BulletEngineTest, SingleBlockOverturnTimeConvergesAtFirstOrder) {
   pulse.start_s = 0.1;
   s.horizontal = pulse;
   s.run.duration_s = 1.0;
-  s.bullet.split_impulse_threshold = 0.0;
+  SetEngineSetting(s, "bullet", "split_impulse_threshold", 0.0);
   // A single block's side face meets the ground at exactly pi/2, where Bullet may hold it at
   // pi/2 within rounding (measured: released 1% outside its critical angle at dt 3e-5 s, max
   // |theta| = pi/2 - 4e-16; elsewhere it lands 2e-6 to 4e-2 rad past pi/2). Both engines read
@@ -376,10 +376,10 @@ TEST(BulletEngineTest, KinematicDriveWithoutBaselineCorrectionEqualsTheInertialD
   // 2.8e-5 rad (theta1) and 3.0e-5 rad (theta2) over the first 5 s (block 2 falls at 5.4 s);
   // rounding differences grow with the motion's sensitivity, so the bounds keep a factor ~2.
   Scene s = Load("thesis_rinaldi228.toml", {"run.duration=5"});
-  const EngineOutput inertial = RunScene(s);
-  s.bullet.drive = BulletDrive::kKinematic;
-  s.bullet.kinematic_highpass_hz = 0.0;
-  const EngineOutput kinematic = RunScene(s);
+  const EngineResult inertial = RunScene(s);
+  SetEngineSetting(s, "bullet", "drive", std::string("kinematic"));
+  SetEngineSetting(s, "bullet", "kinematic_highpass_hz", 0.0);
+  const EngineResult kinematic = RunScene(s);
   EXPECT_EQ(kinematic.summary["settings"]["drive"], "kinematic");
   ASSERT_EQ(inertial.history.samples.size(), kinematic.history.samples.size());
   double d1 = 0.0, d2 = 0.0;
@@ -393,8 +393,8 @@ TEST(BulletEngineTest, KinematicDriveWithoutBaselineCorrectionEqualsTheInertialD
   EXPECT_LT(d2, 2e-4) << "theta1 " << d1;
   // With the default 0.1 Hz baseline correction the excitation itself changes (by 0.022 m/s^2
   // at most here): reported, not hidden.
-  s.bullet.kinematic_highpass_hz = 0.1;
-  const EngineOutput corrected = RunScene(s);
+  SetEngineSetting(s, "bullet", "kinematic_highpass_hz", 0.1);
+  const EngineResult corrected = RunScene(s);
   EXPECT_GT(corrected.summary["kinematic"]["correction_max_accel_x_mps2"].get<double>(), 0.0);
   EXPECT_LT(corrected.summary["kinematic"]["peak_displacement_x_m"].get<double>(),
             corrected.summary["kinematic"]["raw_peak_displacement_x_m"].get<double>());
@@ -405,8 +405,8 @@ TEST(BulletEngineTest, DefaultSplitThresholdMakesTheBlockBounce) {
   // is recovered by a velocity bias erp2 * depth / dt = 0.02 m/s that throws the block up.
   // The monitor reports it: uplift, and a post-impact rate off Housner's by 0.5%.
   Scene s = LoadScene(kScenes / "housner_free_rocking.toml");
-  s.bullet.split_impulse_threshold = -0.04;
-  const EngineOutput out = RunScene(s);
+  SetEngineSetting(s, "bullet", "split_impulse_threshold", -0.04);
+  const EngineResult out = RunScene(s);
   const auto& v = out.summary["violations"];
   EXPECT_TRUE(v["uplift"].get<bool>());
   EXPECT_GT(v["uplift_ground_max_m"].get<double>(), 1e-5);
@@ -424,7 +424,7 @@ TEST(BulletEngineTest, ForbiddenBehaviourIsReportedNeverThrown) {
                  {"run.duration=4", "bullet.time_step=0.0166666666667",
                   "bullet.split_impulse=false", "bullet.erp2=1.0", "bullet.restitution=1.0",
                   "bullet.restitution_velocity_threshold=0", "bullet.friction=0.3"});
-  EngineOutput out;
+  EngineResult out;
   ASSERT_NO_THROW(out = RunScene(s));
   const auto& v = out.summary["violations"];
   EXPECT_TRUE(v["sliding"].get<bool>());
