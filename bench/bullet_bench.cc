@@ -39,7 +39,7 @@ bt::BulletInput ThesisInput(double dt, double seconds) {
 double BareSeconds(const bt::BulletInput& in) {
   bt::RockingWorld world(in);
   btDiscreteDynamicsWorld* w = world.world();
-  const btScalar dt = btScalar(in.time_step_s());
+  const btScalar dt = btScalar(in.time_step_s);
   const auto start = std::chrono::steady_clock::now();
   for (std::int64_t n = 0; n < in.steps; ++n) w->stepSimulation(dt, 0);
   benchmark::DoNotOptimize(world.block1()->getCenterOfMassTransform());
@@ -49,7 +49,7 @@ double BareSeconds(const bt::BulletInput& in) {
 // Adapter: what Simulate does per step (drive update, step, read-out, monitor).
 double AdapterSeconds(const bt::BulletInput& in) {
   bt::RockingWorld world(in);
-  bt::Monitor monitor(in);
+  rockbench::Monitor monitor(in);
   monitor.Start(world.Read(0));
   const auto start = std::chrono::steady_clock::now();
   for (std::int64_t n = 0; n < in.steps; ++n) {
@@ -109,12 +109,12 @@ void BM_AdapterWorkOnly(benchmark::State& state) {
   const bt::BulletInput in = ThesisInput(1e-4, 1.0);
   bt::RockingWorld world(in);
   for (int n = 0; n < 3000; ++n) world.Step();  // into the rocking motion (0.3 s)
-  bt::Monitor monitor(in);
+  rockbench::Monitor monitor(in);
   monitor.Start(world.Read(0));
   std::int64_t n = 0;
   for (auto _ : state) {
     world.ApplyDrive(n % in.steps);
-    const bt::StepReadout r = world.Read(n % in.steps + 1);
+    const rockbench::StepReadout r = world.Read(n % in.steps + 1);
     benchmark::DoNotOptimize(monitor.Step(n + 1, r));
     ++n;
   }
@@ -132,7 +132,7 @@ void RealTime(benchmark::State& state, const char* scene, double dt) {
   const bt::BulletInput in = bt::MakeBulletInput(s, GroundMotion::FromScene(s));
   double wall = 0.0, simulated = 0.0;
   for (auto _ : state) {
-    const bt::EngineResult out = bt::Simulate(in);
+    const rockbench::EngineResult out = bt::Simulate(in);
     wall += out.wall_s;
     simulated += out.history.samples.back().t_s;
     state.SetIterationTime(out.wall_s);

@@ -46,11 +46,11 @@ struct DartSettings {
   DartCollision collision = DartCollision::kDart;
 
   /// Boxed LCP solver. DART's default: Dantzig, with PGS as a fallback. Ours: the same.
-  /// Dantzig alone is not usable on the stack: its face contacts come as pairs of points at
-  /// z = +-depth/2 that the planar joints make identical rows, and Dantzig gives up on, or
-  /// returns NaN for, 12-22% of the stack's steps (DART then zeroes the impulses: the stack's
-  /// angle error grows to 0.4 rad at dt 1e-4 s without the fallback); PGS as the only
-  /// solver is as accurate as Dantzig + PGS.
+  /// Dantzig alone is not usable on the stack: the planar joints leave the contacts'
+  /// out-of-plane friction rows empty and make the rows of the points at z = +-depth/2 equal,
+  /// and Dantzig gives up on, or returns NaN for, 12-22% of the stack's steps (DART then zeroes
+  /// the impulses: without the fallback the stack's angle error is 0.4 rad at dt 1e-4 s). PGS as
+  /// the only solver measured as accurate as Dantzig + PGS.
   DartLcpSolver lcp_solver = DartLcpSolver::kDantzig;
   /// Whether PGS solves a contact group when Dantzig fails (DART runs Dantzig with early
   /// termination when a fallback is set). DART's default: yes. Ours: yes (see lcp_solver).
