@@ -9,7 +9,8 @@
 //       -ldart -ldart-external-odelcpsolver -lfcl -lccd -lassimp -loctomap -lboost_filesystem
 //       -ltomlplusplus
 //
-// Usage: dart_probe [single|stack|all|threads|--drives SCENE] [dt ...] [--collision dart|fcl] [--lcp dantzig|pgs]
+// Usage: dart_probe [single|stack|all|threads|--drives SCENE] [dt ...] [--collision dart|fcl]
+// [--lcp dantzig|pgs]
 //        [--erp X] [--erv X] [--cfm X] [--allowance X] [--friction X] [--stack-duration S]
 //        [--csv FILE] (writes t, theta1 of the last single-block run for plotting)
 #include <chrono>
@@ -290,8 +291,8 @@ void RunDrives(const std::string& scene_path, double dt) {
     const Sample& b = rk.history.samples[i];
     d1 = std::max(d1, std::abs(a.theta1_rad - b.theta1_rad));
     d2 = std::max(d2, std::abs(a.theta2_rad - b.theta2_rad));
-    const double d = std::max(std::abs(a.theta1_rad - b.theta1_rad),
-                              std::abs(a.theta2_rad - b.theta2_rad));
+    const double d =
+        std::max(std::abs(a.theta1_rad - b.theta1_rad), std::abs(a.theta2_rad - b.theta2_rad));
     if (first_1e8 < 0.0 && d > 1e-8) first_1e8 = a.t_s;
     if (first_1e5 < 0.0 && d > 1e-5) first_1e5 = a.t_s;
     const Sample y = ref.trajectory.At(a.t_s);
@@ -302,8 +303,8 @@ void RunDrives(const std::string& scene_path, double dt) {
       "drives %s dt=%.0e: inertial vs kinematic max|dtheta1| %.2e, max|dtheta2| %.2e (samples "
       "%zu/%zu); inertial vs reference %.2e / %.2e; status %s / %s; peak ground displacement "
       "%.3f m; wall %.2f / %.2f s\n",
-      scene_path.c_str(), dt, d1, d2, ri.history.samples.size(), rk.history.samples.size(), e1,
-      e2, ri.summary.value("status", std::string("?")).c_str(),
+      scene_path.c_str(), dt, d1, d2, ri.history.samples.size(), rk.history.samples.size(), e1, e2,
+      ri.summary.value("status", std::string("?")).c_str(),
       rk.summary.value("status", std::string("?")).c_str(), in_k.drive.peak_x_m, ri.wall_s,
       rk.wall_s);
   std::printf("  drives differ by 1e-8 rad from t = %.3f s, by 1e-5 rad from t = %.3f s\n",
@@ -314,16 +315,19 @@ void RunDrives(const std::string& scene_path, double dt) {
   const RunResult rg = RunDart(in_g, s);
   double g1 = 0.0, g2 = 0.0;
   for (size_t i = 0; i < std::min(n, rg.history.samples.size()); ++i) {
-    g1 = std::max(g1, std::abs(ri.history.samples[i].theta1_rad - rg.history.samples[i].theta1_rad));
-    g2 = std::max(g2, std::abs(ri.history.samples[i].theta2_rad - rg.history.samples[i].theta2_rad));
+    g1 =
+        std::max(g1, std::abs(ri.history.samples[i].theta1_rad - rg.history.samples[i].theta1_rad));
+    g2 =
+        std::max(g2, std::abs(ri.history.samples[i].theta2_rad - rg.history.samples[i].theta2_rad));
   }
-  std::printf("  inertial vs inertial with g * (1 + 1e-14): max|dtheta1| %.2e, max|dtheta2| %.2e; "
-              "reference initiation at t = %.4f s\n",
-              g1, g2, [&] {
-                for (const Event& e : ref.history.events)
-                  if (e.kind == "initiation") return e.t_s;
-                return -1.0;
-              }());
+  std::printf(
+      "  inertial vs inertial with g * (1 + 1e-14): max|dtheta1| %.2e, max|dtheta2| %.2e; "
+      "reference initiation at t = %.4f s\n",
+      g1, g2, [&] {
+        for (const Event& e : ref.history.events)
+          if (e.kind == "initiation") return e.t_s;
+        return -1.0;
+      }());
   PrintViolations(ri.summary);
   PrintViolations(rk.summary);
 }
@@ -350,10 +354,10 @@ void RunThreads(double dt) {
              r.history.samples[i].theta2_rad == serial.history.samples[i].theta2_rad;
     }
   }
-  std::printf("threads dt=%.0e: two concurrent worlds %s the serial run (wall %.2f s serial, "
-              "%.2f / %.2f s in parallel)\n",
-              dt, same ? "bit-identical to" : "DIFFER from", serial.wall_s, par[0].wall_s,
-              par[1].wall_s);
+  std::printf(
+      "threads dt=%.0e: two concurrent worlds %s the serial run (wall %.2f s serial, "
+      "%.2f / %.2f s in parallel)\n",
+      dt, same ? "bit-identical to" : "DIFFER from", serial.wall_s, par[0].wall_s, par[1].wall_s);
   // Another world with other contact parameters while one lives: refused.
   DartWorld a(in, s);
   DartSettings other = s;
@@ -423,12 +427,12 @@ int main(int argc, char** argv) {
     }
   }
   if (dts.empty()) dts = {1e-3, 1e-4, 1e-5};
-  std::printf("settings: collision %s, lcp %s, erp %g, max erv %g m/s, cfm %g, allowance %g m, "
-              "friction %g\n",
-              dart_engine::DartCollisionName(g_settings.collision),
-              dart_engine::DartLcpSolverName(g_settings.lcp_solver), g_settings.erp,
-              g_settings.max_erv_mps, g_settings.cfm, g_settings.error_allowance_m,
-              g_settings.friction);
+  std::printf(
+      "settings: collision %s, lcp %s, erp %g, max erv %g m/s, cfm %g, allowance %g m, "
+      "friction %g\n",
+      dart_engine::DartCollisionName(g_settings.collision),
+      dart_engine::DartLcpSolverName(g_settings.lcp_solver), g_settings.erp, g_settings.max_erv_mps,
+      g_settings.cfm, g_settings.error_allowance_m, g_settings.friction);
   for (double dt : dts) {
     if (what == "single" || what == "all") RunSingle(dt);
     if (what == "stack" || what == "all") RunStack(dt);

@@ -2,10 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <mutex>
-#include <stdexcept>
-#include <string>
-
 #include <dart/collision/dart/DARTCollisionDetector.hpp>
 #include <dart/collision/fcl/FCLCollisionDetector.hpp>
 #include <dart/config.hpp>
@@ -20,6 +16,9 @@
 #include <dart/dynamics/Skeleton.hpp>
 #include <dart/dynamics/TranslationalJoint2D.hpp>
 #include <dart/simulation/World.hpp>
+#include <mutex>
+#include <stdexcept>
+#include <string>
 
 #include "engines/common/placement.h"
 
@@ -105,8 +104,8 @@ class CountingLcpSolver final : public dart::constraint::BoxedLcpSolver {
     static const std::string type = "rockbench::CountingLcpSolver";
     return type;
   }
-  bool solve(int n, double* A, double* x, double* b, int nub, double* lo, double* hi,
-             int* findex, bool earlyTermination) override {
+  bool solve(int n, double* A, double* x, double* b, int nub, double* lo, double* hi, int* findex,
+             bool earlyTermination) override {
     ++*calls_;
     const bool ok = inner_->solve(n, A, x, b, nub, lo, hi, findex, earlyTermination);
     if (!ok) ++*failures_;
@@ -116,9 +115,13 @@ class CountingLcpSolver final : public dart::constraint::BoxedLcpSolver {
   // virtual canSolve, which its asserts call. Declared whatever our NDEBUG says, so that this
   // class's vtable has the slot the library expects.
 #ifndef NDEBUG
-  bool canSolve(int n, const double* A) override { return inner_->canSolve(n, A); }
+  bool canSolve(int n, const double* A) override {
+    return inner_->canSolve(n, A);
+  }
 #else
-  virtual bool canSolve(int /*n*/, const double* /*A*/) { return true; }
+  virtual bool canSolve(int /*n*/, const double* /*A*/) {
+    return true;
+  }
 #endif
 
  private:
@@ -172,8 +175,8 @@ struct DartWorld::Impl {
 };
 
 dart::dynamics::BodyNode* DartWorld::Impl::MakeBlock(const std::string& name, const BlockDef& def,
-                                                     const PlanarPose& pose, double ux0,
-                                                     double uy0, double gvx, double gvy,
+                                                     const PlanarPose& pose, double ux0, double uy0,
+                                                     double gvx, double gvy,
                                                      dart::dynamics::SkeletonPtr* skel) {
   using namespace dart::dynamics;
   *skel = Skeleton::create(name);
@@ -217,8 +220,8 @@ DartWorld::DartWorld(const EngineInput& input, const DartSettings& settings)
   m.world->setTimeStep(m.dt);
   m.world->setGravity(Eigen::Vector3d(0.0, -m.in.run.gravity_mps2, 0.0));
 
-  auto* solver = dynamic_cast<dart::constraint::BoxedLcpConstraintSolver*>(
-      m.world->getConstraintSolver());
+  auto* solver =
+      dynamic_cast<dart::constraint::BoxedLcpConstraintSolver*>(m.world->getConstraintSolver());
   if (solver == nullptr) throw std::logic_error("dart: the world's solver is not a boxed LCP");
   dart::constraint::PgsBoxedLcpSolver::Option pgs_option;
   pgs_option.mMaxIteration = m.s.pgs_iterations;
@@ -236,8 +239,8 @@ DartWorld::DartWorld(const EngineInput& input, const DartSettings& settings)
   solver->setBoxedLcpSolver(
       std::make_shared<CountingLcpSolver>(primary, &m.primary_calls, &m.primary_failures));
   if (m.s.lcp_solver == DartLcpSolver::kDantzig && m.s.pgs_fallback) {
-    solver->setSecondaryBoxedLcpSolver(std::make_shared<CountingLcpSolver>(
-        make_pgs(), &m.fallback_calls, &m.fallback_failures));
+    solver->setSecondaryBoxedLcpSolver(
+        std::make_shared<CountingLcpSolver>(make_pgs(), &m.fallback_calls, &m.fallback_failures));
   } else {
     solver->setSecondaryBoxedLcpSolver(nullptr);
   }
@@ -264,16 +267,16 @@ DartWorld::DartWorld(const EngineInput& input, const DartSettings& settings)
     m.ground_skel = Skeleton::create("ground");
     TranslationalJoint2D::Properties jp;
     jp.mName = "ground_xy";
-    auto [joint, body] = m.ground_skel->createJointAndBodyNodePair<TranslationalJoint2D>(nullptr,
-                                                                                         jp);
+    auto [joint, body] =
+        m.ground_skel->createJointAndBodyNodePair<TranslationalJoint2D>(nullptr, jp);
     joint->setXYPlane();
-    auto shape = std::make_shared<BoxShape>(Eigen::Vector3d(
-        80.0 * size, m.s.ground_depth_m, 2.0 * (std::max(d1, d2) + 1.0)));
+    auto shape = std::make_shared<BoxShape>(
+        Eigen::Vector3d(80.0 * size, m.s.ground_depth_m, 2.0 * (std::max(d1, d2) + 1.0)));
     ShapeNode* node =
         body->createShapeNodeWith<CollisionAspect, DynamicsAspect>(shape, "ground_shape");
     node->getDynamicsAspect()->setFrictionCoeff(m.s.friction);
     node->getDynamicsAspect()->setRestitutionCoeff(m.s.restitution);
-      // The box's centre is half its thickness below the body frame, the ground's reference point.
+    // The box's centre is half its thickness below the body frame, the ground's reference point.
     Eigen::Isometry3d offset = Eigen::Isometry3d::Identity();
     offset.translation() = Eigen::Vector3d(0.0, -0.5 * m.s.ground_depth_m, 0.0);
     node->setRelativeTransform(offset);

@@ -239,7 +239,7 @@ rockbench::Scene HousnerScene() {
 
 struct RunResult {
   double err1 = 0.0, err2 = 0.0, err1_t = 0.0, err2_t = 0.0;  // max |theta error| and when
-  double err1_exact = 0.0;  // Housner only: against the RK4 exact solution
+  double err1_exact = 0.0;                    // Housner only: against the RK4 exact solution
   double err1_early = 0.0, err2_early = 0.0;  // max |theta error| for t <= Args::window_s
   double wall_per_sim_s = 0.0;
   nlohmann::json summary, diagnostics;
@@ -249,8 +249,8 @@ struct RunResult {
 void Run(const Args& a, const std::string& name, const rockbench::Scene& scene,
          const rockbench::reference::Result& ref, rm::ContactModel contact, double dt) {
   const rockbench::GroundMotion motion = rockbench::GroundMotion::FromScene(scene);
-  const EngineInput in = rockbench::MakeEngineInput(scene, motion, "mujoco", dt,
-                                                    rockbench::DriveKind::kInertial, 0.0);
+  const EngineInput in =
+      rockbench::MakeEngineInput(scene, motion, "mujoco", dt, rockbench::DriveKind::kInertial, 0.0);
   rm::MujocoSettings s = a.base;
   s.time_step_s = dt;
   s.contact = contact;
@@ -289,8 +289,7 @@ void Run(const Args& a, const std::string& name, const rockbench::Scene& scene,
     }
     if (a.trace_s > 0.0 && std::fmod(t + 0.5 * dt, a.trace_s) < dt) {
       std::printf("      trace t %.5f theta1 %+.8f ref %+.8f err %+.3e omega1 %+.6f ref %+.6f\n", t,
-                  -phi1, rs.theta1_rad, -phi1 - rs.theta1_rad, -rd.block1.w_radps,
-                  rs.omega1_radps);
+                  -phi1, rs.theta1_rad, -phi1 - rs.theta1_rad, -rd.block1.w_radps, rs.omega1_radps);
     }
     if (exact) {
       double th, om;
@@ -407,14 +406,15 @@ void Run(const Args& a, const std::string& name, const rockbench::Scene& scene,
 int main(int argc, char** argv) {
   const Args a = ParseArgs(argc, argv);
   const rm::MujocoSettings& b = a.base;
-  std::printf("MuJoCo probe: solver %s, iterations %d, tolerance %g, integrator %s, cone %s, "
-              "friction %g, noslip %d, impratio %g; stiff: timeconst %g dt, dampratio %g, "
-              "solimp (%g, %g, %g, %g, %g)\n",
-              std::string(rm::SolverName(b.solver)).c_str(), b.iterations, b.tolerance,
-              std::string(rm::IntegratorName(b.integrator)).c_str(),
-              std::string(rm::ConeName(b.cone)).c_str(), b.friction, b.noslip_iterations,
-              b.impratio, b.stiff_timeconst_steps, b.stiff_dampratio, b.stiff_solimp[0],
-              b.stiff_solimp[1], b.stiff_solimp[2], b.stiff_solimp[3], b.stiff_solimp[4]);
+  std::printf(
+      "MuJoCo probe: solver %s, iterations %d, tolerance %g, integrator %s, cone %s, "
+      "friction %g, noslip %d, impratio %g; stiff: timeconst %g dt, dampratio %g, "
+      "solimp (%g, %g, %g, %g, %g)\n",
+      std::string(rm::SolverName(b.solver)).c_str(), b.iterations, b.tolerance,
+      std::string(rm::IntegratorName(b.integrator)).c_str(),
+      std::string(rm::ConeName(b.cone)).c_str(), b.friction, b.noslip_iterations, b.impratio,
+      b.stiff_timeconst_steps, b.stiff_dampratio, b.stiff_solimp[0], b.stiff_solimp[1],
+      b.stiff_solimp[2], b.stiff_solimp[3], b.stiff_solimp[4]);
   for (const auto& name : a.scenes) {
     rockbench::Scene scene;
     if (name == "housner") {
@@ -427,11 +427,12 @@ int main(int argc, char** argv) {
     }
     const rockbench::GroundMotion motion = rockbench::GroundMotion::FromScene(scene);
     const rockbench::reference::Result ref = rockbench::reference::Simulate(scene, motion);
-    std::printf("== %s: reference %s, %d ground + %d interface impacts, peak |theta1| %.5f, "
-                "friction required ground %.3f, interface %.3f\n",
-                name.c_str(), ref.summary.status.c_str(), ref.summary.impacts_ground,
-                ref.summary.impacts_interface, ref.summary.peak_theta1_rad,
-                ref.summary.friction_required_ground, ref.summary.friction_required_interface);
+    std::printf(
+        "== %s: reference %s, %d ground + %d interface impacts, peak |theta1| %.5f, "
+        "friction required ground %.3f, interface %.3f\n",
+        name.c_str(), ref.summary.status.c_str(), ref.summary.impacts_ground,
+        ref.summary.impacts_interface, ref.summary.peak_theta1_rad,
+        ref.summary.friction_required_ground, ref.summary.friction_required_interface);
     for (auto contact : a.contacts) {
       for (double dt : a.dts) Run(a, name, scene, ref, contact, dt);
     }

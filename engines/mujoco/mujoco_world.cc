@@ -100,9 +100,9 @@ void Check(bool ok, const std::string& what) {
 void CheckSettings(const EngineInput& in, const MujocoSettings& s) {
   Check(in.drive_kind == DriveKind::kInertial, "kinematic drive not supported");
   Check(std::isfinite(s.time_step_s) && s.time_step_s > 0.0, "time_step: expected a positive step");
-  Check(s.time_step_s == in.time_step_s,
-        "time_step " + Num(s.time_step_s) + " s differs from the input's " +
-            Num(in.time_step_s) + " s (the drive is sampled on the input's grid)");
+  Check(s.time_step_s == in.time_step_s, "time_step " + Num(s.time_step_s) +
+                                             " s differs from the input's " + Num(in.time_step_s) +
+                                             " s (the drive is sampled on the input's grid)");
   Check(std::isfinite(s.stiff_timeconst_steps) && s.stiff_timeconst_steps >= 2.0,
         "stiff_timeconst_steps: expected at least 2 (MuJoCo raises smaller time constants to "
         "2 dt)");
@@ -168,10 +168,12 @@ std::string ModelMjcf(const EngineInput& in, const MujocoSettings& s) {
   x += "  <default>\n";
   x += "    <joint limited=\"false\" damping=\"0\" armature=\"0\" stiffness=\"0\" "
        "frictionloss=\"0\"/>\n";
-  x += "    <geom condim=\"3\" friction=\"" + Num(s.friction) + " 0.005 0.0001\" margin=\"0\" "
-       "gap=\"0\" solref=\"" + Num(c.solref[0]) + " " + Num(c.solref[1]) + "\" solimp=\"" +
-       Num(c.solimp[0]) + " " + Num(c.solimp[1]) + " " + Num(c.solimp[2]) + " " +
-       Num(c.solimp[3]) + " " + Num(c.solimp[4]) + "\"/>\n";
+  x += "    <geom condim=\"3\" friction=\"" + Num(s.friction) +
+       " 0.005 0.0001\" margin=\"0\" "
+       "gap=\"0\" solref=\"" +
+       Num(c.solref[0]) + " " + Num(c.solref[1]) + "\" solimp=\"" + Num(c.solimp[0]) + " " +
+       Num(c.solimp[1]) + " " + Num(c.solimp[2]) + " " + Num(c.solimp[3]) + " " + Num(c.solimp[4]) +
+       "\"/>\n";
   x += "  </default>\n";
   x += "  <worldbody>\n";
   // The ground: a plane (half-space) whose normal is +y through the origin.
