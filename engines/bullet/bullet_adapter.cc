@@ -44,8 +44,7 @@ class BulletEngine final : public Engine {
       for (double dt : steps) {
         for (std::int64_t it : iterations) {
           SweepSetting s;
-          s.family = std::string("Bullet ") + precision + " (" + std::to_string(it) +
-                     " iterations)";
+          s.family = std::string("Bullet ") + precision + " (" + std::to_string(it) + " iterations)";
           s.label = TimeStepLabel(dt);
           s.time_step_s = dt;
           s.settings = {{"precision", std::string(precision)},
@@ -69,7 +68,7 @@ class BulletEngine final : public Engine {
       for (const Step& st : steps) {
         for (std::int64_t it : {1, 10, 50, 200}) {
           SweepSetting s;
-          s.family = "Bullet " + precision + ", " + std::to_string(it) + " solver iterations";
+          s.family = "Bullet " + precision + " (" + std::to_string(it) + " iterations)";
           s.label = st.label;
           s.time_step_s = st.dt_s;
           s.settings = {{"precision", precision},

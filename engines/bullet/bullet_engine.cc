@@ -20,20 +20,7 @@ EngineResult Simulate(const BulletInput& input) {
   out.summary["engine"] = "bullet";
   out.summary["settings"] = world.Settings();
   if (input.drive_kind == DriveKind::kKinematic) {
-    const DriveSamples& d = input.drive;
-    nlohmann::json k;
-    k["baseline"] = input.kinematic_highpass_hz > 0.0
-                        ? "zero-phase Butterworth high-pass (u minus forward-backward "
-                          "2nd-order low-pass of u)"
-                        : "none";
-    k["highpass_hz"] = input.kinematic_highpass_hz;
-    k["raw_peak_displacement_x_m"] = d.raw_peak_x_m;
-    k["raw_peak_displacement_y_m"] = d.raw_peak_y_m;
-    k["peak_displacement_x_m"] = d.peak_x_m;
-    k["peak_displacement_y_m"] = d.peak_y_m;
-    k["correction_max_accel_x_mps2"] = d.correction_max_x_mps2;
-    k["correction_max_accel_y_mps2"] = d.correction_max_y_mps2;
-    out.summary["kinematic"] = k;
+    out.summary["kinematic"] = KinematicDriveJson(input);
   }
   return out;
 }

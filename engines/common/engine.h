@@ -21,8 +21,8 @@ namespace rockbench {
 
 /// One point of an engine's work-precision grid: the settings it changes from the scene's.
 struct SweepSetting {
-  /// The curve this point belongs to: "Bullet double, 50 iterations" (the settings that stay
-  /// fixed along it).
+  /// The curve this point belongs to: "Bullet double (50 iterations)" (the settings that stay
+  /// fixed along it). No commas: it is a field of sweep.csv.
   std::string family;
   /// The point's label on the curve: its time step ("1e-3", "1/60") or accuracy knob.
   std::string label;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <cstdio>
 #include <numbers>
 #include <string>
@@ -83,21 +84,47 @@ std::vector<double> KinematicDisplacement(const std::vector<double>& accel_mps2,
 
 std::string TimeStepLabel(double dt_s) {
   char buf[40];
-  if (dt_s > 0.0 && std::isfinite(dt_s)) {
-    const double e = std::floor(std::log10(dt_s) + 1e-12);
-    const double m = dt_s / std::pow(10.0, e);
-    if (std::abs(m - std::round(m)) < 1e-9 && std::round(m) < 10.0) {
-      std::snprintf(buf, sizeof buf, "%.0fe%.0f", std::round(m), e);
-      return buf;
-    }
-    const double per_s = 1.0 / dt_s;
-    if (std::abs(per_s - std::round(per_s)) < 1e-6 * per_s) {
-      std::snprintf(buf, sizeof buf, "1/%.0f", std::round(per_s));
-      return buf;
-    }
+  if (!(dt_s > 0.0) || !std::isfinite(dt_s)) {
+    std::snprintf(buf, sizeof buf, "%.3g", dt_s);
+    return buf;
+  }
+  // Up to three significant digits, as "2.5e-3" (not "2.5e-03" or "0.0025").
+  for (int digits = 0; digits <= 2; ++digits) {
+    std::snprintf(buf, sizeof buf, "%.*e", digits, dt_s);
+    if (std::fabs(std::strtod(buf, nullptr) - dt_s) > 1e-9 * dt_s) continue;
+    const std::string e = buf;
+    const size_t pos = e.find('e');
+    const char sign = e[pos + 1];
+    std::string exponent = e.substr(pos + 2);
+    exponent.erase(0, std::min(exponent.find_first_not_of('0'), exponent.size() - 1));
+    if (exponent == "0") return e.substr(0, pos);
+    return e.substr(0, pos) + "e" + (sign == '-' ? "-" : "") + exponent;
+  }
+  // A frame rate's step, as "1/60".
+  const double per_s = 1.0 / dt_s;
+  if (std::fabs(per_s - std::round(per_s)) < 1e-6 * per_s) {
+    std::snprintf(buf, sizeof buf, "1/%.0f", std::round(per_s));
+    return buf;
   }
   std::snprintf(buf, sizeof buf, "%.3g", dt_s);
   return buf;
+}
+
+nlohmann::json KinematicDriveJson(const EngineInput& input) {
+  const DriveSamples& d = input.drive;
+  nlohmann::json k;
+  k["baseline"] = input.kinematic_highpass_hz > 0.0
+                      ? "zero-phase Butterworth high-pass (u minus forward-backward 2nd-order "
+                        "low-pass of u)"
+                      : "none";
+  k["highpass_hz"] = input.kinematic_highpass_hz;
+  k["raw_peak_displacement_x_m"] = d.raw_peak_x_m;
+  k["raw_peak_displacement_y_m"] = d.raw_peak_y_m;
+  k["peak_displacement_x_m"] = d.peak_x_m;
+  k["peak_displacement_y_m"] = d.peak_y_m;
+  k["correction_max_accel_x_mps2"] = d.correction_max_x_mps2;
+  k["correction_max_accel_y_mps2"] = d.correction_max_y_mps2;
+  return k;
 }
 
 const char* DriveKindName(DriveKind kind) {

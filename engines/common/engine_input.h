@@ -4,6 +4,7 @@
 /// (and Bullet's single-precision helper program) sees bit-identical excitation.
 #include <cstdint>
 #include <limits>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <vector>
@@ -72,6 +73,10 @@ struct EngineInput {
 EngineInput MakeEngineInput(const Scene& scene, const GroundMotion& motion,
                             const std::string& engine, double time_step_s, DriveKind drive,
                             double kinematic_highpass_hz);
+
+/// summary.json "kinematic" of a kinematic-drive run: the baseline correction and the peak
+/// displacements before and after it.
+nlohmann::json KinematicDriveJson(const EngineInput& input);
 
 /// Kinematic drive: ground displacement from the acceleration samples a_n (m/s^2) on the grid
 /// of step dt (s). Integrates twice with the leapfrog rule (u_{n+1} - 2 u_n + u_{n-1} = dt^2 a_n,

@@ -8,6 +8,9 @@
 #include <optional>
 #include <string_view>
 
+#include "engines/common/engine_input.h"
+#include "scene/engine_settings.h"
+
 namespace rockbench::ode {
 
 /// The ODE stepper.
@@ -127,5 +130,18 @@ struct OdeSettings {
   /// Thickness of the ground box, m (the top face is y = 0).
   double ground_depth_m = 1.0;
 };
+
+/// The [ode] table: every OdeSettings field, with ODE's own default beside ours.
+const EngineSettingsSchema& OdeSettingsSchema();
+
+/// The input of one ODE run: the common engine input (step, drive, base motion) and the settings.
+struct OdeRun {
+  EngineInput input;
+  OdeSettings settings;
+};
+
+/// Resolves the scene's [ode] table (SceneError naming FILE:LINE and the key for a bad value)
+/// and samples the base motion on its step.
+OdeRun MakeOdeRun(const Scene& scene, const GroundMotion& motion, double stop_at_rest_after_s);
 
 }  // namespace rockbench::ode

@@ -19,9 +19,6 @@
 namespace rockbench {
 namespace {
 
-// "1e-8" for a power of ten, else "%.3g".
-std::string Compact(double v) { return TimeStepLabel(v); }
-
 const char* IntegratorName(Integrator i) {
   return i == Integrator::kDopri5 ? "dopri5" : "rk4";
 }
@@ -172,7 +169,7 @@ std::string SweepCsv(const std::vector<SweepRow>& rows) {
                     settings.c_str());
     } else if (p.integrator == Integrator::kDopri5) {
       std::snprintf(buf, sizeof buf, "reference,reference dopri5,%s,,,%s,%.3g,%.3g,,",
-                    Compact(p.rtol).c_str(), IntegratorName(p.integrator), p.rtol, p.atol);
+                    TimeStepLabel(p.rtol).c_str(), IntegratorName(p.integrator), p.rtol, p.atol);
     } else {
       std::snprintf(buf, sizeof buf, "reference,reference RK4,%s,,,%s,,,%.9g,",
                     TimeStepLabel(p.rk4_step_s).c_str(), IntegratorName(p.integrator),

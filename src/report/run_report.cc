@@ -1047,7 +1047,11 @@ std::optional<std::pair<double, std::string>> EngineFriction(const RunData& run)
   std::optional<std::pair<double, std::string>> out;
   for (const EngineData& e : run.engines) {
     const json* set = Find(e.summary, "settings");
-    if (set == nullptr || !set->is_object() || !set->contains("friction_combined")) continue;
+    // An engine whose friction is unbounded (ODE's inf) states none.
+    if (set == nullptr || !set->is_object() || !set->contains("friction_combined") ||
+        !(*set)["friction_combined"].is_number()) {
+      continue;
+    }
     const double mu = (*set)["friction_combined"].get<double>();
     if (!out || mu < out->first) out = std::make_pair(mu, e.name);
   }

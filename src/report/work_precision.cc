@@ -69,25 +69,6 @@ std::string Fmt(const char* format, double v) {
   return buf;
 }
 
-// "5e-4" rather than "5e-04", "2.5e-3" rather than "0.0025"; empty when three significant
-// digits do not hold the value.
-std::string Compact(double v) {
-  for (int digits = 0; digits <= 2; ++digits) {
-    char format[16];
-    std::snprintf(format, sizeof format, "%%.%de", digits);
-    const std::string e = Fmt(format, v);
-    if (std::fabs(std::strtod(e.c_str(), nullptr) - v) > 1e-9 * std::fabs(v)) continue;
-    const size_t pos = e.find('e');
-    const std::string mantissa = e.substr(0, pos);
-    const char sign = e[pos + 1];
-    std::string exponent = e.substr(pos + 2);
-    exponent.erase(0, std::min(exponent.find_first_not_of('0'), exponent.size() - 1));
-    if (exponent == "0") return mantissa;
-    return mantissa + "e" + (sign == '-' ? "-" : "") + exponent;
-  }
-  return "";
-}
-
 // Reads one row's fields by column name, with messages naming file, line and column.
 class RowReader {
  public:
@@ -378,13 +359,14 @@ std::vector<SweepRecord> ParseSweepCsv(const std::string& text, const fs::path& 
     r.line = line;
     r.engine = rd.Text("engine");
     if (r.engine.empty()) rd.Fail("engine", "expected an engine name or reference, got ''");
+    r.setting = rd.Text("setting");
+    if (r.setting.empty()) rd.Fail("setting", "expected the point's label, got ''");
     if (r.engine != "reference") {
       r.family = rd.Text("family");
-      r.setting = rd.Text("setting");
       r.settings = rd.Text("settings");
       if (r.family.empty()) rd.Fail("family", "expected the engine's settings family, got ''");
       r.time_step_s = rd.Positive("time_step_s");
-    } else if (r.engine == "reference") {
+    } else {
       r.integrator = rd.Text("integrator");
       if (r.integrator == "dopri5") {
         r.rtol = rd.Positive("rtol");
@@ -464,18 +446,7 @@ double SweepSettingValue(const SweepRecord& r) {
   return r.integrator == "dopri5" ? r.rtol : r.rk4_step_s;
 }
 
-std::string SweepSettingLabel(const SweepRecord& r) {
-  if (r.engine != "reference" && !r.setting.empty()) return r.setting;
-  const double v = SweepSettingValue(r);
-  const std::string compact = Compact(v);
-  if (!compact.empty()) return compact;
-  // Bullet's classic 1/60 s (and the like): say it as a fraction.
-  const double inverse = 1.0 / v;
-  if (std::fabs(inverse - std::round(inverse)) < 1e-6 * inverse) {
-    return "1/" + Fmt("%.0f", std::round(inverse));
-  }
-  return Fmt("%.3g", v);
-}
+std::string SweepSettingLabel(const SweepRecord& r) { return r.setting; }
 
 double MaxAngleError(const SweepRecord& r) {
   return r.has_theta2 ? std::max(r.theta1_max_abs_error_rad, r.theta2_max_abs_error_rad)

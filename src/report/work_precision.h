@@ -57,8 +57,8 @@ std::vector<SweepRecord> ParseSweepCsv(const std::string& text, const std::files
 /// The family of a row: the engine's (sweep.csv "family", e.g. "Bullet double (50
 /// iterations)"), "reference dopri5", "reference RK4".
 std::string SweepFamily(const SweepRecord& r);
-/// The setting that varies within a family, as a point label: an engine's time step ("1e-3",
-/// "1/60"; s), dopri5's rtol ("1e-8"), RK4's step ("1e-3"; s).
+/// The setting that varies within a family, as the sweep labelled it (sweep.csv "setting"): an
+/// engine's time step ("1e-3", "1/60"; s), dopri5's rtol ("1e-8"), RK4's step ("2.5e-3"; s).
 std::string SweepSettingLabel(const SweepRecord& r);
 /// The varying setting's value (time step s, rtol, or step s): smaller is finer.
 double SweepSettingValue(const SweepRecord& r);

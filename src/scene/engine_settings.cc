@@ -26,6 +26,8 @@ std::string RangeText(SettingRange range) {
       return "a positive number";
     case SettingRange::kNonNegative:
       return "a number >= 0";
+    case SettingRange::kNonNegativeOrInfinite:
+      return "a number >= 0, or inf";
     case SettingRange::kFraction:
       return "a number in (0, 1]";
     case SettingRange::kUnitInterval:
@@ -35,6 +37,7 @@ std::string RangeText(SettingRange range) {
 }
 
 bool InRange(double v, SettingRange range) {
+  if (range == SettingRange::kNonNegativeOrInfinite) return v >= 0.0;  // false for NaN
   if (!std::isfinite(v)) return false;
   switch (range) {
     case SettingRange::kFinite:
@@ -42,6 +45,7 @@ bool InRange(double v, SettingRange range) {
     case SettingRange::kPositive:
       return v > 0.0;
     case SettingRange::kNonNegative:
+    case SettingRange::kNonNegativeOrInfinite:
       return v >= 0.0;
     case SettingRange::kFraction:
       return v > 0.0 && v <= 1.0;

@@ -27,6 +27,7 @@ enum class SettingRange {
   kFinite,
   kPositive,
   kNonNegative,
+  kNonNegativeOrInfinite,  ///< >= 0, or inf ("no bound"; JSON writes it as null)
   kFraction,      ///< (0, 1]
   kUnitInterval,  ///< [0, 1]
 };

@@ -565,6 +565,7 @@ std::map<std::string, std::string> ApplyOverrides(toml::table& root,
       if (dot == std::string::npos) break;
       start = dot + 1;
     }
+    bool engine_table = false;
     for (size_t i = 0; i < parts.size(); ++i) {
       auto it = Schema().find(prefix);
       bool found = false, is_table = false;
@@ -574,9 +575,10 @@ std::map<std::string, std::string> ApplyOverrides(toml::table& root,
         }
       }
       const std::string here = Join(prefix, parts[i]);
-      // engine.key: an engine's table, checked by the engine.
-      if (!found && i == 0 && parts.size() == 2) {
-        found = true, is_table = true;
+      // engine.key: an engine's table and its key, checked by the engine.
+      if (!found && parts.size() == 2 && (i == 0 || engine_table)) {
+        engine_table = true;
+        found = true, is_table = i == 0;
       }
       if (!found) fail("unknown key " + here);
       const bool last = i + 1 == parts.size();

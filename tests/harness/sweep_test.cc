@@ -35,11 +35,17 @@ std::vector<std::string> Lines(const std::string& text) {
 // The CSV with the wall-time column (10th) blanked.
 std::string WithoutWallTimes(const std::string& csv) {
   std::string out;
+  size_t wall = std::string::npos;
   for (const std::string& line : Lines(csv)) {
     std::vector<std::string> f;
     std::stringstream ss(line);
     for (std::string x; std::getline(ss, x, ',');) f.push_back(x);
-    if (f.size() > 9) f[9].clear();
+    // The header says which column is wall_s.
+    if (wall == std::string::npos) {
+      wall = static_cast<size_t>(std::find(f.begin(), f.end(), "wall_s") - f.begin());
+    } else if (wall < f.size()) {
+      f[wall].clear();
+    }
     for (size_t i = 0; i < f.size(); ++i) out += (i ? "," : "") + f[i];
     out += "\n";
   }
