@@ -11,9 +11,9 @@
 #include <vector>
 
 #include "engines/bullet/bullet_engine.h"
+#include "engines/bullet/rocking_world.h"
 #include "engines/common/engine_input.h"
 #include "engines/common/monitor.h"
-#include "engines/bullet/rocking_world.h"
 #include "scene/ground_motion.h"
 #include "scene/scene.h"
 

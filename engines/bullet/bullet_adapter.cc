@@ -44,12 +44,12 @@ class BulletEngine final : public Engine {
       for (double dt : steps) {
         for (std::int64_t it : iterations) {
           SweepSetting s;
-          s.family = std::string("Bullet ") + precision + " (" + std::to_string(it) + " iterations)";
+          s.family =
+              std::string("Bullet ") + precision + " (" + std::to_string(it) + " iterations)";
           s.label = TimeStepLabel(dt);
           s.time_step_s = dt;
-          s.settings = {{"precision", std::string(precision)},
-                        {"time_step", dt},
-                        {"solver_iterations", it}};
+          s.settings = {
+              {"precision", std::string(precision)}, {"time_step", dt}, {"solver_iterations", it}};
           grid.push_back(std::move(s));
         }
       }
@@ -71,9 +71,8 @@ class BulletEngine final : public Engine {
           s.family = "Bullet " + precision + " (" + std::to_string(it) + " iterations)";
           s.label = st.label;
           s.time_step_s = st.dt_s;
-          s.settings = {{"precision", precision},
-                        {"time_step", st.dt_s},
-                        {"solver_iterations", it}};
+          s.settings = {
+              {"precision", precision}, {"time_step", st.dt_s}, {"solver_iterations", it}};
           s.id = precision + "/dt=" + st.label + "/it=" + std::to_string(it);
           s.quick = (precision == "float" && st.dt_s > 0.01 && it == 1) ||
                     (precision == "double" && st.dt_s == 1e-3 && it == 200);
@@ -97,12 +96,10 @@ class BulletEngine final : public Engine {
         throw SceneError(e.what());
       }
     }
-    out.settings_line = std::string(input.config.precision == BulletPrecision::kDouble
-                                        ? "double"
-                                        : "float") +
-                        ", " + DriveKindName(input.drive_kind) + ", dt " +
-                        StepText(input.time_step_s) + " s, " +
-                        std::to_string(input.config.solver_iterations) + " it";
+    out.settings_line =
+        std::string(input.config.precision == BulletPrecision::kDouble ? "double" : "float") +
+        ", " + DriveKindName(input.drive_kind) + ", dt " + StepText(input.time_step_s) + " s, " +
+        std::to_string(input.config.solver_iterations) + " it";
     return out;
   }
 };
@@ -111,7 +108,9 @@ class BulletEngine final : public Engine {
 }  // namespace bullet
 
 namespace engine_registry {
-std::unique_ptr<Engine> Make_bullet() { return std::make_unique<bullet::BulletEngine>(); }
+std::unique_ptr<Engine> Make_bullet() {
+  return std::make_unique<bullet::BulletEngine>();
+}
 }  // namespace engine_registry
 
 }  // namespace rockbench

@@ -68,9 +68,8 @@ BulletInput MakeBulletInput(const Scene& scene, const GroundMotion& motion,
   const DriveKind drive =
       set.Choice("drive") == "kinematic" ? DriveKind::kKinematic : DriveKind::kInertial;
   BulletInput in;
-  static_cast<EngineInput&>(in) =
-      MakeEngineInput(scene, motion, "bullet", set.Number("time_step"), drive,
-                      set.Number("kinematic_highpass_hz"));
+  static_cast<EngineInput&>(in) = MakeEngineInput(scene, motion, "bullet", set.Number("time_step"),
+                                                  drive, set.Number("kinematic_highpass_hz"));
   in.stop_at_rest_after_s = stop_at_rest_after_s;
   BulletConfig& c = in.config;
   c.solver_iterations = static_cast<int>(set.Integer("solver_iterations"));

@@ -40,9 +40,8 @@ struct BulletInput : EngineInput {
 const EngineSettingsSchema& BulletSettingsSchema();
 
 /// Builds a run's input from the scene's resolved [bullet] settings (throws SceneError).
-BulletInput MakeBulletInput(
-    const Scene& scene, const GroundMotion& motion,
-    double stop_at_rest_after_s = std::numeric_limits<double>::infinity());
+BulletInput MakeBulletInput(const Scene& scene, const GroundMotion& motion,
+                            double stop_at_rest_after_s = std::numeric_limits<double>::infinity());
 
 /// Bullet's friction coefficient between two bodies of per-body friction f: f * f, clamped at
 /// 10 (btManifoldResult::calculateCombinedFriction; docs/bullet.md).

@@ -1,9 +1,9 @@
 #include "engines/bullet/protocol.h"
 
 #include <cstdint>
-#include <iterator>
 #include <cstring>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 #include <stdexcept>
 #include <type_traits>

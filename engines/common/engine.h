@@ -48,10 +48,10 @@ struct SimulateOptions {
 
 /// What one run returns.
 struct EngineResult {
-  History history;         ///< samples at the output interval (step times), events
-  RunOutcome outcome;      ///< typed: status, peaks, impacts, violations
-  nlohmann::json summary;  ///< the engine's part of summary.json (outcome, settings, monitor)
-  double wall_s = 0.0;     ///< wall-clock time of the simulation alone, s
+  History history;            ///< samples at the output interval (step times), events
+  RunOutcome outcome;         ///< typed: status, peaks, impacts, violations
+  nlohmann::json summary;     ///< the engine's part of summary.json (outcome, settings, monitor)
+  double wall_s = 0.0;        ///< wall-clock time of the simulation alone, s
   std::string settings_line;  ///< the settings that matter, one line ("double, dt 1e-4 s")
 };
 

@@ -519,13 +519,12 @@ RunOutcome Monitor::Outcome() const {
   o.impacts_interface = impacts_interface_;
   const double slip_flag1 = cfg_.slip_flag_rel * 2.0 * b1_;
   const double slip_flag2 = cfg_.slip_flag_rel * 2.0 * b2_;
-  const bool raised[] = {
-      slip_ground_m_ > slip_flag1 || (two_ && slip_interface_m_ > slip_flag2),
-      uplift_ground_episodes_ > 0 || (two_ && uplift_interface_episodes_ > 0),
-      penetration_ground_max_m_ > cfg_.penetration_flag_m ||
-          (two_ && penetration_interface_max_m_ > cfg_.penetration_flag_m),
-      energy_gain_max_j_ > cfg_.energy_growth_flag_rel * tipping_energy_j_,
-      status_ == "blow_up"};
+  const bool raised[] = {slip_ground_m_ > slip_flag1 || (two_ && slip_interface_m_ > slip_flag2),
+                         uplift_ground_episodes_ > 0 || (two_ && uplift_interface_episodes_ > 0),
+                         penetration_ground_max_m_ > cfg_.penetration_flag_m ||
+                             (two_ && penetration_interface_max_m_ > cfg_.penetration_flag_m),
+                         energy_gain_max_j_ > cfg_.energy_growth_flag_rel * tipping_energy_j_,
+                         status_ == "blow_up"};
   for (size_t i = 0; i < std::size(kViolationFlags); ++i) {
     if (raised[i]) o.violations.push_back(kViolationFlags[i]);
   }

@@ -50,8 +50,8 @@ class OdeEngine final : public Engine {
               : std::vector<double>{1.0 / 60.0, 5e-3, 1e-3, 5e-4, 1e-4, 5e-5, 1e-5};
     std::vector<SweepSetting> grid;
     for (double dt : steps) grid.push_back(Point("ODE world_step", dt, {}));
-    for (double dt : steps) grid.push_back(Point("ODE defaults (quick_step 20 it)", dt,
-                                                 OdeDefaults()));
+    for (double dt : steps)
+      grid.push_back(Point("ODE defaults (quick_step 20 it)", dt, OdeDefaults()));
     return grid;
   }
 
@@ -103,7 +103,9 @@ class OdeEngine final : public Engine {
 }  // namespace ode
 
 namespace engine_registry {
-std::unique_ptr<Engine> Make_ode() { return std::make_unique<ode::OdeEngine>(); }
+std::unique_ptr<Engine> Make_ode() {
+  return std::make_unique<ode::OdeEngine>();
+}
 }  // namespace engine_registry
 
 }  // namespace rockbench

@@ -283,8 +283,20 @@ void OdeWorld::Step() {
     // Only after block 2 has fallen off block 1 (as Bullet, which collides every pair).
     contacts_block2_ground_ = Collide(geom2_, ground_geom_, body2_, ground_body_);
   }
-  const int ok =
-      s_.stepper == OdeStepper::kQuickStep ? dWorldQuickStep(world_, dt_) : dWorldStep(world_, dt_);
+  int ok = 0;
+  if (s_.stepper == OdeStepper::kQuickStep) {
+    // QuickStep reorders its rows at random, drawing from ODE's one process-wide generator
+    // (dRandInt). Each world keeps its own generator state and steps with it under a lock, so a
+    // run does not depend on what other worlds, in this thread or another, drew before it
+    // (measured before this: the same sweep gave different errors from run to run).
+    static std::mutex quick_step_mutex;
+    std::lock_guard<std::mutex> lock(quick_step_mutex);
+    dRandSetSeed(rand_seed_);
+    ok = dWorldQuickStep(world_, dt_);
+    rand_seed_ = dRandGetSeed();
+  } else {
+    ok = dWorldStep(world_, dt_);
+  }
   dJointGroupEmpty(contacts_);
   if (!ok) throw std::runtime_error("ode: the step failed (out of memory)");
 }

@@ -35,7 +35,8 @@ namespace rockbench::ode {
 /// parallel, and four raw ODE worlds stepped at once on the default one aborted with "assertion
 /// failed in WaitWakeup() [threading_fake_sync.h:83]". With that, no collision space and each
 /// world's own step memory, worlds in different threads share nothing mutable (measured: 40 runs
-/// in 4 concurrent threads were bit-identical to sequential runs). One world must not be used by
+/// in 4 concurrent threads were bit-identical to sequential runs; QuickStep worlds step one at a
+/// time, each with its own state of ODE's random generator). One world must not be used by
 /// two threads at once; it may move from one thread to another between steps.
 class OdeWorld {
  public:
@@ -84,7 +85,8 @@ class OdeWorld {
   dxJoint* plane1_ = nullptr;
   dxJoint* plane2_ = nullptr;
   int contacts_ground_ = 0, contacts_interface_ = 0, contacts_block2_ground_ = 0;
-  std::thread::id thread_;  // last thread that allocated ODE's per-thread data for this world
+  unsigned long rand_seed_ = 0;  // this world's state of ODE's generator (QuickStep's order)
+  std::thread::id thread_;       // last thread that allocated ODE's per-thread data for this world
 };
 
 }  // namespace rockbench::ode

@@ -1,5 +1,5 @@
-// `rockbench compare SCENE --out DIR [--engines all|NAME,NAME] [--members N] [--quick] [--set k=v ...]`:
-// runs the reference (checked against its witness), its ensemble on perturbed inputs (the
+// `rockbench compare SCENE --out DIR [--engines all|NAME,NAME] [--members N] [--quick] [--set k=v
+// ...]`: runs the reference (checked against its witness), its ensemble on perturbed inputs (the
 // predictability horizon), each engine, and each engine's ensemble beyond the horizon; writes
 // histories, comparison.json, comparison.csv and summary.json, and prints one verdict per engine.
 #include <cmath>
@@ -45,8 +45,8 @@ std::vector<std::string> CheckedEngines(const std::string& requested) {
   std::string list;
   for (size_t start = 0; start <= requested.size();) {
     const size_t comma = requested.find(',', start);
-    const std::string name = requested.substr(start, comma == std::string::npos ? comma
-                                                                                : comma - start);
+    const std::string name =
+        requested.substr(start, comma == std::string::npos ? comma : comma - start);
     if (name != "reference") list += (list.empty() ? "" : ",") + name;
     if (comma == std::string::npos) break;
     start = comma + 1;

@@ -65,7 +65,8 @@ void RegisterRun(CLI::App& app) {
   auto* cmd = app.add_subcommand("run", "Run the reference model (or --engine NAME) on a scene");
   cmd->add_option("scene", opt->scene, "Scene file (TOML)")->required();
   cmd->add_option("--out,-o", opt->out, "Output folder")->capture_default_str();
-  cmd->add_option("--engine,-e", opt->engines, "Engine(s): reference or an engine of `rockbench engines`")
+  cmd->add_option("--engine,-e", opt->engines,
+                  "Engine(s): reference or an engine of `rockbench engines`")
       ->capture_default_str();
   cmd->add_option("--set", opt->overrides, "Override a scene value: key=value (repeatable)");
   cmd->callback([opt] { Execute(*opt); });

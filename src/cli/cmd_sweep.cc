@@ -10,8 +10,8 @@
 #include <vector>
 
 #include "cli/commands.h"
-#include "harness/parallel.h"
 #include "harness/engine_registry.h"
+#include "harness/parallel.h"
 #include "harness/sweep.h"
 #include "scene/ground_motion.h"
 #include "scene/history.h"

@@ -9,8 +9,9 @@ namespace rockbench::cli {
 
 void RegisterEngines(CLI::App& app) {
   auto* cmd = app.add_subcommand("engines", "List the engines of this build and those left out");
-  cmd->callback([] { std::printf("reference: the analytical model (always built)\n%s",
-                                 EngineListText().c_str()); });
+  cmd->callback([] {
+    std::printf("reference: the analytical model (always built)\n%s", EngineListText().c_str());
+  });
 }
 
 }  // namespace rockbench::cli

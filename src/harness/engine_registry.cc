@@ -18,8 +18,8 @@ const std::vector<RegisteredEngine>& EngineRegistry() {
     // The engines live as long as the program.
     static std::vector<std::unique_ptr<Engine>> owned;
     std::vector<RegisteredEngine> list;
-#define ROCKBENCH_BUILT_ENGINE(name)                        \
-  owned.push_back(engine_registry::Make_##name());          \
+#define ROCKBENCH_BUILT_ENGINE(name)               \
+  owned.push_back(engine_registry::Make_##name()); \
   list.push_back(RegisteredEngine{#name, owned.back().get(), ""});
 #define ROCKBENCH_MISSING_ENGINE(name, why) list.push_back(RegisteredEngine{#name, nullptr, why});
 #include "engines/engine_list.inc"
@@ -76,13 +76,12 @@ std::vector<std::string> ParseEngineList(const std::string& text) {
       if (e.name != name) continue;
       known = true;
       if (e.engine == nullptr) {
-        throw SceneError("--engines: " + name + " is not in this build (" + e.missing_reason +
-                         ")");
+        throw SceneError("--engines: " + name + " is not in this build (" + e.missing_reason + ")");
       }
     }
     if (!known) {
-      throw SceneError("--engines: unknown engine '" + name + "' (expected 'all' or some of: " +
-                       KnownList() + ")");
+      throw SceneError("--engines: unknown engine '" + name +
+                       "' (expected 'all' or some of: " + KnownList() + ")");
     }
     if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
     if (comma == std::string::npos) break;

@@ -4,9 +4,9 @@
 #include <cstdio>
 
 #include "harness/convergence.h"
+#include "harness/engine_registry.h"
 #include "harness/summary.h"
 #include "reference/simulate.h"
-#include "harness/engine_registry.h"
 
 namespace rockbench {
 

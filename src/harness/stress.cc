@@ -15,8 +15,8 @@
 #include <numbers>
 #include <thread>
 
-#include "harness/compare.h"
 #include "engines/common/monitor.h"
+#include "harness/compare.h"
 #include "harness/engine_registry.h"
 #include "harness/engines.h"
 #include "harness/wall_clock.h"
@@ -791,10 +791,10 @@ std::string StressCsv(const std::vector<StressRow>& rows) {
     out += (r.min_event_gap_s >= 0.0 ? Num("%.6e", r.min_event_gap_s) : "") + ",";
     out += Num("%.4f", r.wall_s) + ",";
     out += (ran ? g(r.peak_theta1_rad) : "") + "," + (ran ? g(r.peak_theta2_rad) : "") + ",";
-    out += (r.has_settings ? Num("%.6g", r.dt_s) + "," + Clean(r.settings) + "," +
-                                 Clean(r.violations)
-                           : ",,") +
-           ",";
+    out +=
+        (r.has_settings ? Num("%.6g", r.dt_s) + "," + Clean(r.settings) + "," + Clean(r.violations)
+                        : ",,") +
+        ",";
     if (r.has_agreement) {
       out += g(r.theta1_max_abs_error_rad) + "," + g(r.theta1_peak_rel_error) + "," +
              g(r.theta2_max_abs_error_rad) + "," + g(r.theta2_peak_rel_error) + "," +

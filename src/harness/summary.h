@@ -3,8 +3,8 @@
 #include <nlohmann/json.hpp>
 
 #include "reference/simulate.h"
-#include "scene/outcome.h"
 #include "scene/ground_motion.h"
+#include "scene/outcome.h"
 #include "scene/scene.h"
 
 namespace rockbench {

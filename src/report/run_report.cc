@@ -1094,9 +1094,9 @@ void FrictionSection(const RunData& run, const FrictionFacts& facts,
         "'interface (block 2 on block 1)'";
   }
   if (engine_mu) {
-    f.script += ", " + Num(engine_mu->first, 9) + " with lines dt 2 lw 1.5 lc rgb '#b00000' title " +
-                Quote(engine_mu->second + "'s friction " + Num(engine_mu->first) +
-                      " (between two bodies)");
+    f.script +=
+        ", " + Num(engine_mu->first, 9) + " with lines dt 2 lw 1.5 lc rgb '#b00000' title " +
+        Quote(engine_mu->second + "'s friction " + Num(engine_mu->first) + " (between two bodies)");
   }
   f.script += "\n";
   fig.Add(f,

@@ -446,7 +446,9 @@ double SweepSettingValue(const SweepRecord& r) {
   return r.integrator == "dopri5" ? r.rtol : r.rk4_step_s;
 }
 
-std::string SweepSettingLabel(const SweepRecord& r) { return r.setting; }
+std::string SweepSettingLabel(const SweepRecord& r) {
+  return r.setting;
+}
 
 double MaxAngleError(const SweepRecord& r) {
   return r.has_theta2 ? std::max(r.theta1_max_abs_error_rad, r.theta2_max_abs_error_rad)
@@ -531,9 +533,8 @@ CheapestSetting FindCheapestSetting(const std::vector<SweepRecord>& rows, double
                                     const std::string& engine) {
   return FindCheapestSetting(
       rows,
-      PeakAgreement(peak_tolerance, std::any_of(rows.begin(), rows.end(), [](const SweepRecord& r) {
-                      return r.has_theta2;
-                    })),
+      PeakAgreement(peak_tolerance, std::any_of(rows.begin(), rows.end(),
+                                                [](const SweepRecord& r) { return r.has_theta2; })),
       engine);
 }
 
@@ -596,15 +597,15 @@ CheapestSetting FindCheapestSetting(const std::vector<SweepRecord>& rows,
     out.statement +=
         " The reference reaches the same or better accuracy (max angle error, the "
         "max |error| over the run" +
-        std::string(b.has_theta2 ? " (the larger of theta1's and theta2's)" : "") +
-        ", <= the " + engine + " run's, and the same criterion) with " + SettingDescription(r) +
-        " at " +
+        std::string(b.has_theta2 ? " (the larger of theta1's and theta2's)" : "") + ", <= the " +
+        engine + " run's, and the same criterion) with " + SettingDescription(r) + " at " +
         Fmt("%.3g", r.wall_s) + " s wall (max angle error " + Fmt("%.2e", MaxAngleError(r)) +
         " rad), " + Fmt("%.3g", b.wall_s / r.wall_s) + " times cheaper.";
   } else {
     out.statement +=
         " No reference setting in this sweep reaches the same or better accuracy "
-        "(max angle error <= the " + engine + " run's, and the same criterion).";
+        "(max angle error <= the " +
+        engine + " run's, and the same criterion).";
   }
   return out;
 }
@@ -676,9 +677,9 @@ std::filesystem::path WriteSweepReport(const fs::path& sweep_dir, const fs::path
     page.Paragraph(cheapest.statement);
     if (info.present && cheapest.engine_row) {
       const SweepRecord& b = rows[*cheapest.engine_row];
-      page.Paragraph("That " + engine + " run simulates " + Fmt("%.3g", info.span_s()) +
-                     " s in " + Fmt("%.3g", b.wall_s) + " s: " +
-                     Fmt("%.3g", info.span_s() / b.wall_s) + " times faster than real time.");
+      page.Paragraph("That " + engine + " run simulates " + Fmt("%.3g", info.span_s()) + " s in " +
+                     Fmt("%.3g", b.wall_s) + " s: " + Fmt("%.3g", info.span_s() / b.wall_s) +
+                     " times faster than real time.");
     }
   }
   // When the peak criterion cannot tell runs apart, say so, and give a stricter one.

@@ -23,7 +23,7 @@ std::string SweepReportName(const std::filesystem::path& sweep_dir);
 
 /// One row of sweep.csv as read back (columns as src/harness/sweep.h's SweepCsv writes them).
 struct SweepRecord {
-  int line = 0;           ///< 1-based line number in sweep.csv
+  int line = 0;          ///< 1-based line number in sweep.csv
   std::string engine;    ///< an engine's name, or "reference"
   std::string family;    ///< engines: the settings family ("Bullet double (50 iterations)")
   std::string setting;   ///< engines: the point's label ("1e-3", "1/60")

@@ -136,13 +136,17 @@ const SettingValue& EngineSettings::Get(std::string_view key) const {
   throw std::logic_error("engine setting '" + std::string(key) + "' is not in the schema");
 }
 
-double EngineSettings::Number(std::string_view key) const { return std::get<double>(Get(key)); }
+double EngineSettings::Number(std::string_view key) const {
+  return std::get<double>(Get(key));
+}
 
 std::int64_t EngineSettings::Integer(std::string_view key) const {
   return std::get<std::int64_t>(Get(key));
 }
 
-bool EngineSettings::Flag(std::string_view key) const { return std::get<bool>(Get(key)); }
+bool EngineSettings::Flag(std::string_view key) const {
+  return std::get<bool>(Get(key));
+}
 
 const std::string& EngineSettings::Choice(std::string_view key) const {
   return std::get<std::string>(Get(key));

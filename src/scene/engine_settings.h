@@ -28,14 +28,14 @@ enum class SettingRange {
   kPositive,
   kNonNegative,
   kNonNegativeOrInfinite,  ///< >= 0, or inf ("no bound"; JSON writes it as null)
-  kFraction,      ///< (0, 1]
-  kUnitInterval,  ///< [0, 1]
+  kFraction,               ///< (0, 1]
+  kUnitInterval,           ///< [0, 1]
 };
 
 /// One key of an engine's table.
 struct SettingDef {
-  std::string key;              ///< "time_step"
-  SettingValue default_value;   ///< ours; its alternative is the setting's type
+  std::string key;                             ///< "time_step"
+  SettingValue default_value;                  ///< ours; its alternative is the setting's type
   SettingRange range = SettingRange::kFinite;  ///< numbers
   std::int64_t min_integer = 1;                ///< integers: the allowed range
   std::int64_t max_integer = std::numeric_limits<std::int64_t>::max();

@@ -13,7 +13,7 @@ struct RunOutcome {
   std::string status;
   int overturned_block = 0;  ///< 0: none; 1 or 2: the block that overturned first
   double overturn_t_s = std::numeric_limits<double>::quiet_NaN();
-  double end_t_s = 0.0;  ///< last simulated time, s
+  double end_t_s = 0.0;                                 ///< last simulated time, s
   double peak_theta1_rad = 0.0, peak_theta1_t_s = 0.0;  ///< largest |theta1| and when
   double peak_theta2_rad = 0.0, peak_theta2_t_s = 0.0;  ///< zero for a single block
   int impacts_ground = 0, impacts_interface = 0;

@@ -315,9 +315,8 @@ class Reader {
   void ReadEngineTables(const toml::table& root, Scene* s) const {
     for (auto&& [k, v] : root) {
       const std::string name(k.str());
-      if (Schema().at("").end() !=
-          std::find_if(Schema().at("").begin(), Schema().at("").end(),
-                       [&](const auto& e) { return e.first == name; })) {
+      if (Schema().at("").end() != std::find_if(Schema().at("").begin(), Schema().at("").end(),
+                                                [&](const auto& e) { return e.first == name; })) {
         continue;
       }
       RawEngineTable& t = s->engine_tables[name];
@@ -515,7 +514,6 @@ class Reader {
       m.check_transitions =
           Bool(*model, "model", "check_transitions").value_or(m.check_transitions);
     }
-
 
     if (const toml::table* cmp = Table(root, "", "compare")) {
       CompareConfig& c = s.compare;

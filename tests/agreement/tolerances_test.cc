@@ -233,16 +233,16 @@ TEST_F(UnguardedScenesTest, ASceneWithoutAnEngineBoundIsReported) {
   // guarded for Bullet only.
   std::vector<Bound> bounds = ParseTolerances(a + b_ref, kFile, dir_);
   std::vector<std::string> expected;
-  for (const std::string& scene : {"a.toml", "b.toml"}) {
+  for (const char* scene : {"a.toml", "b.toml"}) {
     for (const std::string& engine : KnownEngines()) {
-      if (engine == "reference" || (scene == "a.toml" && engine == "bullet")) continue;
-      expected.push_back(scene + ": " + engine);
+      if (engine == "reference" || (std::string(scene) == "a.toml" && engine == "bullet")) continue;
+      expected.push_back(std::string(scene) + ": " + engine);
     }
   }
   EXPECT_EQ(UnguardedScenes(bounds, dir_), expected);
   // A bound per scene and engine guards them all.
   std::string all;
-  for (const std::string& scene : {"a.toml", "b.toml"}) {
+  for (const char* scene : {"a.toml", "b.toml"}) {
     for (const std::string& engine : KnownEngines()) {
       if (engine == "reference") continue;
       std::string x = a;

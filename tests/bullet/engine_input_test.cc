@@ -1,7 +1,5 @@
 // The engine's input: [bullet] settings checks, base motion on the step grid, and the
 // kinematic drive's displacement (leapfrog double integration and baseline correction).
-#include "engines/bullet/bullet_settings.h"
-
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -9,6 +7,8 @@
 #include <numbers>
 #include <string>
 #include <vector>
+
+#include "engines/bullet/bullet_settings.h"
 
 namespace rockbench::bullet {
 namespace {
@@ -95,8 +95,9 @@ TEST(EngineInputTest, RejectsImpossibleSettingsNamingTheKey) {
     MakeBulletInput(s, GroundMotion());
     ADD_FAILURE() << "accepted bullet.time_stp";
   } catch (const SceneError& e) {
-    EXPECT_NE(std::string(e.what()).find("bullet.time_stp: unknown key (expected one of: time_step"),
-              std::string::npos)
+    EXPECT_NE(
+        std::string(e.what()).find("bullet.time_stp: unknown key (expected one of: time_step"),
+        std::string::npos)
         << e.what();
   }
 }

@@ -20,7 +20,8 @@ namespace {
 
 Scene Housner(BulletPrecision p) {
   Scene s = testing_util::HousnerHalfAngleRelease(2.0);
-  SetEngineSetting(s, "bullet", "precision", std::string(p == BulletPrecision::kFloat ? "float" : "double"));
+  SetEngineSetting(s, "bullet", "precision",
+                   std::string(p == BulletPrecision::kFloat ? "float" : "double"));
   SetEngineSetting(s, "bullet", "split_impulse_threshold", 0.0);
   return s;
 }

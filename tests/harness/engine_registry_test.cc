@@ -31,7 +31,9 @@ TEST(EngineRegistry, ListsEveryRegisteredEngineOnceBuiltOrNot) {
     EXPECT_TRUE(names.insert(e.name).second) << e.name;
     // Built, or left out with a reason: never silently neither.
     EXPECT_TRUE((e.engine != nullptr) != !e.missing_reason.empty()) << e.name;
-    if (e.engine != nullptr) EXPECT_EQ(e.engine->name(), e.name);
+    if (e.engine != nullptr) {
+      EXPECT_EQ(e.engine->name(), e.name);
+    }
     EXPECT_NE(EngineListText().find(e.name + ": "), std::string::npos) << e.name;
   }
   // Bullet is a required dependency (cmake/Dependencies.cmake).

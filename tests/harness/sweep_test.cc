@@ -1,6 +1,5 @@
 // The sweep: its grid, one row per run in a fixed order, results independent of the number of
 // threads, and the CSV format.
-#include "harness/engine_registry.h"
 #include "harness/sweep.h"
 
 #include <gtest/gtest.h>
@@ -12,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "harness/engine_registry.h"
 #include "harness/engines.h"
 #include "tests/common/housner_scene.h"
 
@@ -200,10 +200,9 @@ TEST(SweepTest, CsvHasOneRowPerRunAndAFixedWidth) {
   ASSERT_EQ(lines.size(), 4u);
   auto fields = [](const std::string& s) { return std::count(s.begin(), s.end(), ',') + 1; };
   for (const std::string& l : lines) EXPECT_EQ(fields(l), fields(lines[0])) << l;
-  EXPECT_EQ(lines[1].rfind(
-                "bullet,Bullet double (10 iterations),1e-3,0.001,precision=double;"
-                "solver_iterations=10,,,,,",
-                0),
+  EXPECT_EQ(lines[1].rfind("bullet,Bullet double (10 iterations),1e-3,0.001,precision=double;"
+                           "solver_iterations=10,,,,,",
+                           0),
             0u)
       << lines[1];
   EXPECT_EQ(lines[2].rfind("reference,reference dopri5,1e-6,,,dopri5,1e-06,1e-08,,", 0), 0u)

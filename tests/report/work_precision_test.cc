@@ -187,8 +187,8 @@ TEST(WorkPrecisionTest, FamiliesAndLabels) {
   std::vector<std::string> names;
   for (const auto& f : families) names.push_back(f.first);
   const std::vector<std::string> expected = {
-      "Bullet double (10 iterations)", "Bullet double (50 iterations)", "Bullet float (10 iterations)",
-      "reference dopri5", "reference RK4"};
+      "Bullet double (10 iterations)", "Bullet double (50 iterations)",
+      "Bullet float (10 iterations)", "reference dopri5", "reference RK4"};
   EXPECT_EQ(names, expected);
   EXPECT_EQ(families[0].second, (std::vector<size_t>{0, 1, 2}));
   EXPECT_EQ(families[2].second, (std::vector<size_t>{6, 5}));  // row 7 is non-finite

@@ -509,7 +509,8 @@ TEST(Overrides, AppliedBeforeValidation) {
   EXPECT_EQ(s.run.duration_s, 3.0);
   EXPECT_EQ(s.horizontal->scale, 0.5);
   EXPECT_EQ(s.model.integrator, Integrator::kRk4);
-  EXPECT_EQ(std::get<std::string>(s.engine_tables.at("bullet").values.at("precision").value), "float");
+  EXPECT_EQ(std::get<std::string>(s.engine_tables.at("bullet").values.at("precision").value),
+            "float");
   EXPECT_EQ(s.model.rtol, 1e-6);
   EXPECT_EQ(s.title, "Bare words here");
   // The scaled record's peak halves (records/SOURCES.md: 0.8741 g).
