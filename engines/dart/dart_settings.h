@@ -7,6 +7,9 @@
 #include <cstdint>
 #include <string>
 
+#include "engines/common/engine_input.h"
+#include "scene/engine_settings.h"
+
 namespace rockbench::dart_engine {
 
 /// DART's collision detectors that handle box-box pairs and are installed with libdart-dev.
@@ -97,5 +100,19 @@ struct DartSettings {
   /// Ground box thickness, m (the ground is a box whose top face is y = 0; as Bullet's).
   double ground_depth_m = 1.0;
 };
+
+/// The [dart] table: every DartSettings field, with DART's own default beside ours.
+const EngineSettingsSchema& DartSettingsSchema();
+
+/// The input of one DART run: the common engine input (step, drive, base motion) and the
+/// settings.
+struct DartRun {
+  EngineInput input;
+  DartSettings settings;
+};
+
+/// Resolves the scene's [dart] table (SceneError naming FILE:LINE and the key for a bad value)
+/// and samples the base motion on its step.
+DartRun MakeDartRun(const Scene& scene, const GroundMotion& motion, double stop_at_rest_after_s);
 
 }  // namespace rockbench::dart_engine

@@ -8,6 +8,9 @@
 #include <optional>
 #include <string_view>
 
+#include "engines/common/engine_input.h"
+#include "scene/engine_settings.h"
+
 namespace rockbench::mujoco {
 
 /// How the contacts are regularised (MuJoCo's soft constraints: the geoms' solref and solimp).
@@ -149,5 +152,21 @@ constexpr std::optional<Cone> ParseCone(std::string_view s) {
   if (s == "elliptic") return Cone::kElliptic;
   return std::nullopt;
 }
+
+/// The [mujoco] table: the MujocoSettings fields a scene may set, with MuJoCo's own default
+/// beside ours.
+const EngineSettingsSchema& MujocoSettingsSchema();
+
+/// The input of one MuJoCo run: the common engine input (step, drive, base motion) and the
+/// settings.
+struct MujocoRun {
+  EngineInput input;
+  MujocoSettings settings;
+};
+
+/// Resolves the scene's [mujoco] table (SceneError naming FILE:LINE and the key for a bad value)
+/// and samples the base motion on its step.
+MujocoRun MakeMujocoRun(const Scene& scene, const GroundMotion& motion,
+                        double stop_at_rest_after_s);
 
 }  // namespace rockbench::mujoco

@@ -343,6 +343,7 @@ nlohmann::json MujocoWorld::Settings() const {
   j["cone"] = std::string(ConeName(s_.cone));
   j["impratio"] = s_.impratio;
   j["friction"] = s_.friction;
+  j["friction_combined"] = s_.friction;  // MuJoCo takes the larger of the two geoms'
   j["noslip_iterations"] = s_.noslip_iterations;
   j["noslip_tolerance"] = s_.noslip_tolerance;
   j["condim"] = 3;
