@@ -1,8 +1,7 @@
 // DART behind the engine interface (engines/common/engine.h): DartWorld stepped by the shared
 // fixed-step loop, watched by the shared monitor.
-#include <dart/config.hpp>
-
 #include <cstdio>
+#include <dart/config.hpp>
 #include <memory>
 #include <stdexcept>
 
@@ -41,9 +40,9 @@ class DartEngine final : public Engine {
   const EngineSettingsSchema& settings_schema() const override { return DartSettingsSchema(); }
 
   std::vector<SweepSetting> SweepGrid(bool quick) const override {
-    const std::vector<double> steps =
-        quick ? std::vector<double>{1e-3, 1e-4}
-              : std::vector<double>{5e-3, 1e-3, 5e-4, 1e-4, 5e-5, 1e-5};
+    const std::vector<double> steps = quick
+                                          ? std::vector<double>{1e-3, 1e-4}
+                                          : std::vector<double>{5e-3, 1e-3, 5e-4, 1e-4, 5e-5, 1e-5};
     std::vector<SweepSetting> grid;
     for (const bool dart_default : {false, true}) {
       for (double dt : steps) grid.push_back(Point(dart_default, dt));
@@ -82,8 +81,9 @@ class DartEngine final : public Engine {
       out.summary["kinematic"] = KinematicDriveJson(run.input);
     }
     char line[160];
-    std::snprintf(line, sizeof line, "%s, %s, dt %.3g s", DartLcpSolverName(run.settings.lcp_solver),
-                  DriveKindName(run.input.drive_kind), run.input.time_step_s);
+    std::snprintf(line, sizeof line, "%s, %s, dt %.3g s",
+                  DartLcpSolverName(run.settings.lcp_solver), DriveKindName(run.input.drive_kind),
+                  run.input.time_step_s);
     out.settings_line = line;
     return out;
   }
@@ -93,7 +93,9 @@ class DartEngine final : public Engine {
 }  // namespace dart_engine
 
 namespace engine_registry {
-std::unique_ptr<Engine> Make_dart() { return std::make_unique<dart_engine::DartEngine>(); }
+std::unique_ptr<Engine> Make_dart() {
+  return std::make_unique<dart_engine::DartEngine>();
+}
 }  // namespace engine_registry
 
 }  // namespace rockbench

@@ -47,9 +47,9 @@ class MujocoEngine final : public Engine {
   const EngineSettingsSchema& settings_schema() const override { return MujocoSettingsSchema(); }
 
   std::vector<SweepSetting> SweepGrid(bool quick) const override {
-    const std::vector<double> steps =
-        quick ? std::vector<double>{1e-3, 1e-4}
-              : std::vector<double>{2e-3, 1e-3, 5e-4, 1e-4, 5e-5, 1e-5};
+    const std::vector<double> steps = quick
+                                          ? std::vector<double>{1e-3, 1e-4}
+                                          : std::vector<double>{2e-3, 1e-3, 5e-4, 1e-4, 5e-5, 1e-5};
     std::vector<SweepSetting> grid;
     for (const bool mujoco_default : {false, true}) {
       for (double dt : steps) grid.push_back(Point(mujoco_default, dt));
@@ -97,7 +97,9 @@ class MujocoEngine final : public Engine {
 }  // namespace mujoco
 
 namespace engine_registry {
-std::unique_ptr<Engine> Make_mujoco() { return std::make_unique<mujoco::MujocoEngine>(); }
+std::unique_ptr<Engine> Make_mujoco() {
+  return std::make_unique<mujoco::MujocoEngine>();
+}
 }  // namespace engine_registry
 
 }  // namespace rockbench

@@ -18,9 +18,8 @@ const EngineSettingsSchema& MujocoSettingsSchema() {
       def.engine_default = mujoco_default, def.doc = doc;
       s.settings.push_back(def);
     };
-    const auto choice = [&](const char* key, std::string_view v,
-                            std::vector<std::string> choices, const char* mujoco_default,
-                            const char* doc) {
+    const auto choice = [&](const char* key, std::string_view v, std::vector<std::string> choices,
+                            const char* mujoco_default, const char* doc) {
       SettingDef def;
       def.key = key, def.default_value = std::string(v), def.choices = std::move(choices);
       def.engine_default = mujoco_default, def.doc = doc;
@@ -44,11 +43,11 @@ const EngineSettingsSchema& MujocoSettingsSchema() {
            "stiff: solref 2 dt, damping ratio 10, solimp 0.9999, the only one that converges "
            "as dt falls; mujoco_default: MuJoCo's soft contact, 2e-3 rad off whatever the step");
     number("stiff_timeconst_steps", d.stiff_timeconst_steps, R::kPositive, "",
-           "- (0.02 s whatever dt)", "stiff: solref time constant in steps; 2 is MuJoCo's stiffest");
+           "- (0.02 s whatever dt)",
+           "stiff: solref time constant in steps; 2 is MuJoCo's stiffest");
     number("stiff_dampratio", d.stiff_dampratio, R::kPositive, "", "1",
            "stiff: solref damping ratio; at 1 a landing rebounds up to 25%");
-    choice("solver", SolverName(d.solver), {"newton", "cg", "pgs"}, "newton",
-           "constraint solver");
+    choice("solver", SolverName(d.solver), {"newton", "cg", "pgs"}, "newton", "constraint solver");
     integer("iterations", d.iterations, 1, 100000, "100", "solver iterations at most");
     number("tolerance", d.tolerance, R::kNonNegative, "", "1e-8", "solver tolerance");
     choice("integrator", IntegratorName(d.integrator), {"euler", "rk4", "implicit"}, "euler",
@@ -59,8 +58,7 @@ const EngineSettingsSchema& MujocoSettingsSchema() {
     number("friction", d.friction, R::kNonNegative, "", "1",
            "Coulomb coefficient of every geom; the stack needs 1.28 at the interface");
     integer("noslip_iterations", d.noslip_iterations, 0, 100000, "0", "noslip post-iterations");
-    number("noslip_tolerance", d.noslip_tolerance, R::kNonNegative, "", "1e-6",
-           "noslip tolerance");
+    number("noslip_tolerance", d.noslip_tolerance, R::kNonNegative, "", "1e-6", "noslip tolerance");
     return s;
   }();
   return kSchema;
@@ -70,8 +68,8 @@ MujocoRun MakeMujocoRun(const Scene& scene, const GroundMotion& motion,
                         double stop_at_rest_after_s) {
   const EngineSettings set = ResolveEngineSettings(scene, MujocoSettingsSchema());
   MujocoRun run;
-  run.input = MakeEngineInput(scene, motion, "mujoco", set.Number("time_step"),
-                              DriveKind::kInertial, 0.0);
+  run.input =
+      MakeEngineInput(scene, motion, "mujoco", set.Number("time_step"), DriveKind::kInertial, 0.0);
   run.input.stop_at_rest_after_s = stop_at_rest_after_s;
   MujocoSettings& s = run.settings;
   s.time_step_s = set.Number("time_step");
