@@ -11,9 +11,9 @@
 #include <vector>
 
 #include "engines/bullet/bullet_engine.h"
-#include "engines/bullet/engine_input.h"
-#include "engines/bullet/monitor.h"
 #include "engines/bullet/rocking_world.h"
+#include "engines/common/engine_input.h"
+#include "engines/common/monitor.h"
 #include "scene/ground_motion.h"
 #include "scene/scene.h"
 
@@ -26,20 +26,20 @@ namespace bt = rockbench::bullet;
 const std::filesystem::path kScenes = std::filesystem::path(ROCKBENCH_SOURCE_DIR) / "scenes";
 
 // The thesis's free-rocking example (two blocks from 0.15 rad), first `seconds` of it.
-bt::EngineInput ThesisInput(double dt, double seconds) {
+bt::BulletInput ThesisInput(double dt, double seconds) {
   char step[64], dur[64];
   std::snprintf(step, sizeof step, "bullet.time_step=%.17g", dt);
   std::snprintf(dur, sizeof dur, "run.duration=%.17g", seconds);
   const Scene s = rockbench::LoadScene(kScenes / "thesis_free_rocking.toml",
                                        {"bullet.split_impulse_threshold=0", step, dur});
-  return bt::MakeEngineInput(s, GroundMotion::FromScene(s));
+  return bt::MakeBulletInput(s, GroundMotion::FromScene(s));
 }
 
 // Bare: stepSimulation alone, the world built outside the timing.
-double BareSeconds(const bt::EngineInput& in) {
+double BareSeconds(const bt::BulletInput& in) {
   bt::RockingWorld world(in);
   btDiscreteDynamicsWorld* w = world.world();
-  const btScalar dt = btScalar(in.time_step_s());
+  const btScalar dt = btScalar(in.time_step_s);
   const auto start = std::chrono::steady_clock::now();
   for (std::int64_t n = 0; n < in.steps; ++n) w->stepSimulation(dt, 0);
   benchmark::DoNotOptimize(world.block1()->getCenterOfMassTransform());
@@ -47,9 +47,9 @@ double BareSeconds(const bt::EngineInput& in) {
 }
 
 // Adapter: what Simulate does per step (drive update, step, read-out, monitor).
-double AdapterSeconds(const bt::EngineInput& in) {
+double AdapterSeconds(const bt::BulletInput& in) {
   bt::RockingWorld world(in);
-  bt::Monitor monitor(in);
+  rockbench::Monitor monitor(in);
   monitor.Start(world.Read(0));
   const auto start = std::chrono::steady_clock::now();
   for (std::int64_t n = 0; n < in.steps; ++n) {
@@ -65,7 +65,7 @@ double AdapterSeconds(const bt::EngineInput& in) {
 // The two loops alternated in one benchmark, so both see the same machine state; counters give
 // the time per step of each and the adapter's overhead in percent.
 void BM_AdapterOverhead(benchmark::State& state) {
-  const bt::EngineInput in = ThesisInput(1e-4, 1.0);  // 10000 steps, impacts included
+  const bt::BulletInput in = ThesisInput(1e-4, 1.0);  // 10000 steps, impacts included
   double bare = 0.0, adapter = 0.0;
   for (auto _ : state) {
     bare += BareSeconds(in);
@@ -79,7 +79,7 @@ void BM_AdapterOverhead(benchmark::State& state) {
 BENCHMARK(BM_AdapterOverhead)->Unit(benchmark::kMillisecond)->Iterations(10);
 
 void BM_BareStep(benchmark::State& state) {
-  const bt::EngineInput in = ThesisInput(1e-4, 1.0);
+  const bt::BulletInput in = ThesisInput(1e-4, 1.0);
   double total = 0.0;
   for (auto _ : state) {
     const double s = BareSeconds(in);
@@ -91,7 +91,7 @@ void BM_BareStep(benchmark::State& state) {
 BENCHMARK(BM_BareStep)->UseManualTime()->Unit(benchmark::kMillisecond)->Iterations(5);
 
 void BM_AdapterStep(benchmark::State& state) {
-  const bt::EngineInput in = ThesisInput(1e-4, 1.0);
+  const bt::BulletInput in = ThesisInput(1e-4, 1.0);
   double total = 0.0;
   for (auto _ : state) {
     const double s = AdapterSeconds(in);
@@ -106,15 +106,15 @@ BENCHMARK(BM_AdapterStep)->UseManualTime()->Unit(benchmark::kMillisecond)->Itera
 // state is frozen mid-rocking: a direct measure of the overhead, compared with
 // bare_us_per_step above.
 void BM_AdapterWorkOnly(benchmark::State& state) {
-  const bt::EngineInput in = ThesisInput(1e-4, 1.0);
+  const bt::BulletInput in = ThesisInput(1e-4, 1.0);
   bt::RockingWorld world(in);
   for (int n = 0; n < 3000; ++n) world.Step();  // into the rocking motion (0.3 s)
-  bt::Monitor monitor(in);
+  rockbench::Monitor monitor(in);
   monitor.Start(world.Read(0));
   std::int64_t n = 0;
   for (auto _ : state) {
     world.ApplyDrive(n % in.steps);
-    const bt::StepReadout r = world.Read(n % in.steps + 1);
+    const rockbench::StepReadout r = world.Read(n % in.steps + 1);
     benchmark::DoNotOptimize(monitor.Step(n + 1, r));
     ++n;
   }
@@ -129,10 +129,10 @@ void RealTime(benchmark::State& state, const char* scene, double dt) {
   char step[64];
   std::snprintf(step, sizeof step, "bullet.time_step=%.17g", dt);
   const Scene s = rockbench::LoadScene(kScenes / scene, {"bullet.split_impulse_threshold=0", step});
-  const bt::EngineInput in = bt::MakeEngineInput(s, GroundMotion::FromScene(s));
+  const bt::BulletInput in = bt::MakeBulletInput(s, GroundMotion::FromScene(s));
   double wall = 0.0, simulated = 0.0;
   for (auto _ : state) {
-    const bt::EngineOutput out = bt::Simulate(in);
+    const rockbench::EngineResult out = bt::Simulate(in);
     wall += out.wall_s;
     simulated += out.history.samples.back().t_s;
     state.SetIterationTime(out.wall_s);

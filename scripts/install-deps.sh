@@ -1,10 +1,13 @@
 #!/usr/bin/env bash
 # Installs rockbench's build and test dependencies from Debian 12 packages (idempotent).
+# The engines besides Bullet are optional to the build (a missing one is left out, and said so);
+# the ones listed here are installed so that a set-up machine builds them all.
 set -euo pipefail
 packages=(build-essential cmake pkg-config
   libeigen3-dev libcli11-dev libtomlplusplus-dev nlohmann-json3-dev
   libgtest-dev libbenchmark-dev
   libbullet-dev
+  libode-dev
   libosmesa6-dev libpng-dev libfreetype-dev fonts-dejavu-core ffmpeg
   gnuplot-nox chromium)
 missing=()

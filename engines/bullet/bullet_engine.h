@@ -2,7 +2,8 @@
 /// The Bullet engine's entry point, free of Bullet headers. Compiled into rockbench_bullet
 /// (double precision, used in process by the harness) and rockbench_bullet_float (single
 /// precision, used only by the helper program rockbench-bullet-float).
-#include "engines/bullet/engine_input.h"
+#include "engines/bullet/bullet_settings.h"
+#include "engines/common/engine.h"
 
 namespace rockbench::bullet {
 
@@ -13,6 +14,6 @@ const char* CompiledPrecision();
 /// early at overturn or blow-up) and returns the history, events and summary. Physics
 /// outcomes never throw; throws std::invalid_argument when input.config.precision is not the
 /// precision this library was compiled with.
-EngineOutput Simulate(const EngineInput& input);
+EngineResult Simulate(const BulletInput& input);
 
 }  // namespace rockbench::bullet

@@ -78,7 +78,7 @@ std::filesystem::path FindFloatHelper() {
   throw std::runtime_error(msg);
 }
 
-EngineOutput RunFloatHelper(const EngineInput& input) {
+EngineResult RunFloatHelper(const BulletInput& input) {
   const std::filesystem::path helper = FindFloatHelper();
   TempFiles files;
   files.in = MakeTempFile();

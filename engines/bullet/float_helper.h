@@ -4,7 +4,8 @@
 /// temporary file (protocol.h), its output comes back in another; see docs/bullet.md.
 #include <filesystem>
 
-#include "engines/bullet/engine_input.h"
+#include "engines/bullet/bullet_settings.h"
+#include "engines/common/engine.h"
 
 namespace rockbench::bullet {
 
@@ -15,6 +16,6 @@ std::filesystem::path FindFloatHelper();
 
 /// Runs the single-precision engine in the helper program. Thread-safe (each call has its own
 /// temporary files). Throws std::runtime_error when the helper is missing or fails.
-EngineOutput RunFloatHelper(const EngineInput& input);
+EngineResult RunFloatHelper(const BulletInput& input);
 
 }  // namespace rockbench::bullet

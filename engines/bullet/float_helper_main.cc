@@ -32,9 +32,9 @@ int main(int argc, char** argv) {
     return 2;
   }
   try {
-    const rockbench::bullet::EngineInput input =
+    const rockbench::bullet::BulletInput input =
         rockbench::bullet::ParseInput(rockbench::bullet::ReadBinaryFile(in_path));
-    const rockbench::bullet::EngineOutput output = rockbench::bullet::Simulate(input);
+    const rockbench::EngineResult output = rockbench::bullet::Simulate(input);
     rockbench::bullet::WriteBinaryFile(out_path, rockbench::bullet::SerializeOutput(output));
   } catch (const std::exception& e) {
     std::fprintf(stderr, "rockbench-bullet-float: error: %s\n", e.what());

@@ -3,16 +3,20 @@
 #include <cstdint>
 #include <cstring>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 #include <stdexcept>
 #include <type_traits>
+
+#include "engines/common/monitor.h"
 
 namespace rockbench::bullet {
 namespace {
 
 constexpr char kInputMagic[8] = {'R', 'B', 'B', 'I', 'N', 'P', 'U', 'T'};
 constexpr char kOutputMagic[8] = {'R', 'B', 'B', 'O', 'U', 'T', 'P', 'T'};
-constexpr std::uint32_t kVersion = 1;
+constexpr std::uint32_t kVersion = 2;
+constexpr std::uint64_t kViolationFlagCount = std::size(kViolationFlags);
 
 class Writer {
  public:
@@ -112,7 +116,7 @@ BlockDef GetBlock(Reader& r) {
 
 }  // namespace
 
-std::string SerializeInput(const EngineInput& in) {
+std::string SerializeInput(const BulletInput& in) {
   Writer w;
   w.PutRaw(kInputMagic, 8);
   w.Put(kVersion);
@@ -127,10 +131,10 @@ std::string SerializeInput(const EngineInput& in) {
   w.Put(in.run.output_interval_s);
   w.Put(in.run.gravity_mps2);
   const BulletConfig& c = in.config;
-  w.Put(c.time_step_s);
+  w.Put(in.time_step_s);
   w.Put<std::int32_t>(c.solver_iterations);
   w.Put<std::int32_t>(static_cast<std::int32_t>(c.precision));
-  w.Put<std::int32_t>(static_cast<std::int32_t>(c.drive));
+  w.Put<std::int32_t>(static_cast<std::int32_t>(in.drive_kind));
   w.Put(c.erp);
   w.Put(c.erp2);
   w.PutBool(c.split_impulse);
@@ -141,7 +145,7 @@ std::string SerializeInput(const EngineInput& in) {
   w.Put(c.restitution_velocity_threshold);
   w.Put(c.margin_m);
   w.Put(c.ground_depth_m);
-  w.Put(c.kinematic_highpass_hz);
+  w.Put(in.kinematic_highpass_hz);
   w.Put(in.overturn_rad);
   w.Put<std::int64_t>(in.steps);
   w.Put(in.motion_end_s);
@@ -162,10 +166,10 @@ std::string SerializeInput(const EngineInput& in) {
   return w.Take();
 }
 
-EngineInput ParseInput(const std::string& bytes) {
+BulletInput ParseInput(const std::string& bytes) {
   Reader r(bytes);
   r.Expect(kInputMagic);
-  EngineInput in;
+  BulletInput in;
   in.block1 = GetBlock(r);
   if (r.GetBool()) in.block2 = GetBlock(r);
   in.initial.theta1_rad = r.Get<double>();
@@ -176,10 +180,10 @@ EngineInput ParseInput(const std::string& bytes) {
   in.run.output_interval_s = r.Get<double>();
   in.run.gravity_mps2 = r.Get<double>();
   BulletConfig& c = in.config;
-  c.time_step_s = r.Get<double>();
+  in.time_step_s = r.Get<double>();
   c.solver_iterations = r.Get<std::int32_t>();
   c.precision = static_cast<BulletPrecision>(r.Get<std::int32_t>());
-  c.drive = static_cast<BulletDrive>(r.Get<std::int32_t>());
+  in.drive_kind = static_cast<DriveKind>(r.Get<std::int32_t>());
   c.erp = r.Get<double>();
   c.erp2 = r.Get<double>();
   c.split_impulse = r.GetBool();
@@ -190,7 +194,7 @@ EngineInput ParseInput(const std::string& bytes) {
   c.restitution_velocity_threshold = r.Get<double>();
   c.margin_m = r.Get<double>();
   c.ground_depth_m = r.Get<double>();
-  c.kinematic_highpass_hz = r.Get<double>();
+  in.kinematic_highpass_hz = r.Get<double>();
   in.overturn_rad = r.Get<double>();
   in.steps = r.Get<std::int64_t>();
   in.motion_end_s = r.Get<double>();
@@ -212,7 +216,7 @@ EngineInput ParseInput(const std::string& bytes) {
   return in;
 }
 
-std::string SerializeOutput(const EngineOutput& out) {
+std::string SerializeOutput(const EngineResult& out) {
   Writer w;
   w.PutRaw(kOutputMagic, 8);
   w.Put(kVersion);
@@ -240,15 +244,28 @@ std::string SerializeOutput(const EngineOutput& out) {
     w.Put(e.energy_after_j);
     w.PutStr(e.note);
   }
+  const RunOutcome& o = out.outcome;
+  w.PutStr(o.status);
+  w.Put<std::int32_t>(o.overturned_block);
+  w.Put(o.overturn_t_s);
+  w.Put(o.end_t_s);
+  w.Put(o.peak_theta1_rad);
+  w.Put(o.peak_theta1_t_s);
+  w.Put(o.peak_theta2_rad);
+  w.Put(o.peak_theta2_t_s);
+  w.Put<std::int32_t>(o.impacts_ground);
+  w.Put<std::int32_t>(o.impacts_interface);
+  w.Put<std::uint64_t>(o.violations.size());
+  for (const std::string& v : o.violations) w.PutStr(v);
   w.PutStr(out.summary.dump());
   w.Put(out.wall_s);
   return w.Take();
 }
 
-EngineOutput ParseOutput(const std::string& bytes) {
+EngineResult ParseOutput(const std::string& bytes) {
   Reader r(bytes);
   r.Expect(kOutputMagic);
-  EngineOutput out;
+  EngineResult out;
   out.history.two_blocks = r.GetBool();
   const auto ns = r.Get<std::uint64_t>();
   if (ns > bytes.size()) throw std::runtime_error("bullet helper protocol: bad sample count");
@@ -277,6 +294,20 @@ EngineOutput ParseOutput(const std::string& bytes) {
     e.energy_after_j = r.Get<double>();
     e.note = r.GetStr();
   }
+  RunOutcome& o = out.outcome;
+  o.status = r.GetStr();
+  o.overturned_block = r.Get<std::int32_t>();
+  o.overturn_t_s = r.Get<double>();
+  o.end_t_s = r.Get<double>();
+  o.peak_theta1_rad = r.Get<double>();
+  o.peak_theta1_t_s = r.Get<double>();
+  o.peak_theta2_rad = r.Get<double>();
+  o.peak_theta2_t_s = r.Get<double>();
+  o.impacts_ground = r.Get<std::int32_t>();
+  o.impacts_interface = r.Get<std::int32_t>();
+  const auto nv = r.Get<std::uint64_t>();
+  if (nv > kViolationFlagCount) throw std::runtime_error("bullet helper protocol: bad flags");
+  for (std::uint64_t i = 0; i < nv; ++i) o.violations.push_back(r.GetStr());
   out.summary = nlohmann::json::parse(r.GetStr());
   out.wall_s = r.Get<double>();
   r.ExpectEnd();

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "engines/bullet/placement.h"
+#include "engines/common/placement.h"
 
 namespace rockbench::bullet {
 namespace {
@@ -44,10 +44,10 @@ const char* CompiledPrecision() {
   return sizeof(btScalar) == sizeof(double) ? "double" : "float";
 }
 
-RockingWorld::RockingWorld(const EngineInput& input) : in_(input) {
+RockingWorld::RockingWorld(const BulletInput& input) : in_(input) {
   const BulletConfig& c = in_.config;
-  dt_ = c.time_step_s;
-  kinematic_ = c.drive == BulletDrive::kKinematic;
+  dt_ = in_.time_step_s;
+  kinematic_ = in_.drive_kind == DriveKind::kKinematic;
 
   collision_config_ = std::make_unique<btDefaultCollisionConfiguration>();
   dispatcher_ = std::make_unique<btCollisionDispatcher>(collision_config_.get());
@@ -212,7 +212,7 @@ nlohmann::json RockingWorld::Settings() const {
   nlohmann::json j;
   j["precision"] = CompiledPrecision();
   j["drive"] = kinematic_ ? "kinematic" : "inertial";
-  j["time_step_s"] = c.time_step_s;
+  j["time_step_s"] = in_.time_step_s;
   j["output_interval_s"] = in_.run.output_interval_s;
   j["substeps_per_sample"] = std::max(1.0, std::round(in_.run.output_interval_s / dt_));
   j["solver_iterations"] = c.solver_iterations;
@@ -229,7 +229,7 @@ nlohmann::json RockingWorld::Settings() const {
   j["restitution_velocity_threshold"] = c.restitution_velocity_threshold;
   j["margin_m"] = c.margin_m;
   j["ground_depth_m"] = c.ground_depth_m;
-  j["kinematic_highpass_hz"] = c.kinematic_highpass_hz;
+  j["kinematic_highpass_hz"] = in_.kinematic_highpass_hz;
   j["deactivation"] = "disabled";
   j["warmstarting_factor"] = double(si.m_warmstartingFactor);
   j["solver_mode"] = si.m_solverMode;

@@ -10,8 +10,9 @@
 #include <nlohmann/json.hpp>
 
 #include "engines/bullet/bullet_engine.h"
-#include "engines/bullet/engine_input.h"
-#include "engines/bullet/monitor.h"
+#include "engines/bullet/bullet_settings.h"
+#include "engines/common/engine.h"
+#include "engines/common/monitor.h"
 
 namespace rockbench::bullet {
 
@@ -20,7 +21,7 @@ namespace rockbench::bullet {
 /// which must outlive it.
 class RockingWorld {
  public:
-  explicit RockingWorld(const EngineInput& input);
+  explicit RockingWorld(const BulletInput& input);
   ~RockingWorld();
   RockingWorld(const RockingWorld&) = delete;
   RockingWorld& operator=(const RockingWorld&) = delete;
@@ -45,7 +46,7 @@ class RockingWorld {
  private:
   btTransform GroundTransform(double ux_m, double uy_m) const;
 
-  const EngineInput& in_;
+  const BulletInput& in_;
   double dt_ = 0.0;
   bool kinematic_ = false;
   std::unique_ptr<btDefaultCollisionConfiguration> collision_config_;

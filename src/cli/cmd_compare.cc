@@ -1,5 +1,5 @@
-// `rockbench compare SCENE --out DIR [--engines bullet] [--members N] [--quick] [--set k=v ...]`:
-// runs the reference (checked against its witness), its ensemble on perturbed inputs (the
+// `rockbench compare SCENE --out DIR [--engines all|NAME,NAME] [--members N] [--quick] [--set k=v
+// ...]`: runs the reference (checked against its witness), its ensemble on perturbed inputs (the
 // predictability horizon), each engine, and each engine's ensemble beyond the horizon; writes
 // histories, comparison.json, comparison.csv and summary.json, and prints one verdict per engine.
 #include <cmath>
@@ -16,6 +16,7 @@
 #include "harness/compare.h"
 #include "harness/compare_run.h"
 #include "harness/convergence.h"
+#include "harness/engine_registry.h"
 #include "harness/engines.h"
 #include "harness/ensemble.h"
 #include "harness/summary.h"
@@ -31,7 +32,7 @@ namespace {
 struct CompareCliOptions {
   std::string scene;
   std::string out = "out";
-  std::vector<std::string> engines = {"bullet"};
+  std::string engines = "all";
   std::vector<std::string> overrides;
   int members = -1;         // -1: the scene's compare.members
   int engine_members = -1;  // -1: the scene's compare.engine_members
@@ -39,21 +40,19 @@ struct CompareCliOptions {
   int jobs = 0;             // 0: all hardware threads
 };
 
-std::vector<std::string> CheckedEngines(const std::vector<std::string>& requested) {
-  const std::vector<std::string> available = AvailableEngines();
-  std::vector<std::string> engines;
-  for (const std::string& name : requested) {
-    if (name == "reference") continue;  // always run: it is what the others are compared with
-    bool known = false;
-    for (const std::string& a : available) known = known || a == name;
-    if (!known) {
-      std::string list;
-      for (const std::string& a : available) list += (list.empty() ? "" : ", ") + a;
-      throw SceneError("--engines: unknown engine '" + name + "' (this build has: " + list + ")");
-    }
-    engines.push_back(name);
+// The engines of --engines, without "reference" (always run: the others are compared with it).
+std::vector<std::string> CheckedEngines(const std::string& requested) {
+  std::string list;
+  for (size_t start = 0; start <= requested.size();) {
+    const size_t comma = requested.find(',', start);
+    const std::string name =
+        requested.substr(start, comma == std::string::npos ? comma : comma - start);
+    if (name != "reference") list += (list.empty() ? "" : ",") + name;
+    if (comma == std::string::npos) break;
+    start = comma + 1;
   }
-  return engines;
+  if (list.empty()) return {};
+  return ParseEngineList(list);
 }
 
 void Execute(const CompareCliOptions& opt) {
@@ -64,6 +63,7 @@ void Execute(const CompareCliOptions& opt) {
     overrides.push_back("compare.engine_members=" + std::to_string(opt.engine_members));
   }
   const Scene scene = LoadScene(opt.scene, overrides);
+  CheckEngineTables(scene);
   const GroundMotion motion = GroundMotion::FromScene(scene);
   const std::vector<std::string> engines = CheckedEngines(opt.engines);
   const std::filesystem::path out(opt.out);
@@ -142,7 +142,9 @@ void RegisterCompare(CLI::App& app) {
       "compare", "Run the reference and engines on a scene and compare them with the reference");
   cmd->add_option("scene", opt->scene, "Scene file (TOML)")->required();
   cmd->add_option("--out,-o", opt->out, "Output folder")->capture_default_str();
-  cmd->add_option("--engines,-e", opt->engines, "Engines to compare with the reference")
+  cmd->add_option("--engines,-e", opt->engines,
+                  "Engines to compare with the reference: a comma-separated list, or all "
+                  "(`rockbench engines` lists them)")
       ->capture_default_str();
   cmd->add_option("--members", opt->members,
                   "Reference ensemble members (default: the scene's compare.members, 32); 0: "

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "cli/commands.h"
+#include "harness/engine_registry.h"
 #include "harness/engines.h"
 #include "scene/ground_motion.h"
 #include "scene/history.h"
@@ -23,6 +24,7 @@ struct RunOptions {
 
 void Execute(const RunOptions& opt) {
   const Scene scene = LoadScene(opt.scene, opt.overrides);
+  CheckEngineTables(scene);
   const GroundMotion motion = GroundMotion::FromScene(scene);
   for (const char* comp : {"horizontal", "vertical"}) {
     const auto& c = std::string(comp) == "horizontal" ? motion.horizontal() : motion.vertical();
@@ -63,7 +65,8 @@ void RegisterRun(CLI::App& app) {
   auto* cmd = app.add_subcommand("run", "Run the reference model (or --engine NAME) on a scene");
   cmd->add_option("scene", opt->scene, "Scene file (TOML)")->required();
   cmd->add_option("--out,-o", opt->out, "Output folder")->capture_default_str();
-  cmd->add_option("--engine,-e", opt->engines, "Engine(s): reference, bullet")
+  cmd->add_option("--engine,-e", opt->engines,
+                  "Engine(s): reference or an engine of `rockbench engines`")
       ->capture_default_str();
   cmd->add_option("--set", opt->overrides, "Override a scene value: key=value (repeatable)");
   cmd->callback([opt] { Execute(*opt); });

@@ -113,7 +113,8 @@ void Execute(const StressCliOptions& opt) {
 void RegisterStress(CLI::App& app) {
   auto opt = std::make_shared<StressCliOptions>();
   auto* cmd = app.add_subcommand(
-      "stress", "Stiff and extreme cases with the reference and Bullet, isolated (stress.csv)");
+      "stress",
+      "Stiff and extreme cases with the reference and every engine, isolated (stress.csv)");
   cmd->add_option("--out,-o", opt->out, "Output folder (writes stress.csv)");
   cmd->add_flag("--quick", opt->quick, "The CI subset of the catalogue");
   cmd->add_option("--case", opt->cases,

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "cli/commands.h"
+#include "harness/engine_registry.h"
 #include "harness/parallel.h"
 #include "harness/sweep.h"
 #include "scene/ground_motion.h"
@@ -26,15 +27,18 @@ struct SweepCliOptions {
   int repeat = 1;
   int threads = 0;
   std::vector<std::string> overrides;
+  std::string engines = "all";
 };
 
 void Execute(const SweepCliOptions& opt) {
   const Scene scene = LoadScene(opt.scene, opt.overrides);
+  CheckEngineTables(scene);
   const GroundMotion motion = GroundMotion::FromScene(scene);
   SweepOptions so;
   so.quick = opt.quick;
   so.repeat = opt.repeat;
   so.threads = opt.threads;
+  so.engines = ParseEngineList(opt.engines);
   const std::filesystem::path out(opt.out);
   std::filesystem::create_directories(out);
 
@@ -61,6 +65,9 @@ void RegisterSweep(CLI::App& app) {
       "sweep", "Accuracy and cost of engine settings against a tight reference (sweep.csv)");
   cmd->add_option("scene", opt->scene, "Scene file (TOML)")->required();
   cmd->add_option("--out,-o", opt->out, "Output folder")->capture_default_str();
+  cmd->add_option("--engines,-e", opt->engines,
+                  "Engines to sweep beside the reference: a comma-separated list, or all")
+      ->capture_default_str();
   cmd->add_flag("--quick", opt->quick, "Small grid (a few minutes on the shipped scenes)");
   cmd->add_option("--repeat", opt->repeat, "Repetitions per run; the wall time is their minimum")
       ->check(CLI::Range(1, 1000000))

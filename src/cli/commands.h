@@ -6,7 +6,7 @@ namespace rockbench::cli {
 
 /// `rockbench run SCENE --out DIR [--engine NAME] [--set key=value ...]` (cmd_run.cc)
 void RegisterRun(CLI::App& app);
-/// `rockbench compare SCENE --out DIR [--engines bullet]` (cmd_compare.cc)
+/// `rockbench compare SCENE --out DIR [--engines all|NAME,...]` (cmd_compare.cc)
 void RegisterCompare(CLI::App& app);
 /// `rockbench sweep SCENE --out DIR` (cmd_sweep.cc)
 void RegisterSweep(CLI::App& app);
@@ -16,6 +16,9 @@ void RegisterRender(CLI::App& app);
 void RegisterReport(CLI::App& app);
 /// `rockbench stress --out DIR [--quick]` (cmd_stress.cc)
 void RegisterStress(CLI::App& app);
+
+/// `rockbench engines`: the engines of this build, and those left out (main.cc)
+void RegisterEngines(CLI::App& app);
 
 /// Exit code for bad input (scene, record, option): 2. Physics outcomes exit 0.
 inline constexpr int kExitBadInput = 2;

@@ -3,18 +3,42 @@
 #include <exception>
 
 #include "cli/commands.h"
+#include "harness/engine_registry.h"
+
+namespace rockbench::cli {
+
+void RegisterEngines(CLI::App& app) {
+  auto* cmd = app.add_subcommand("engines", "List the engines of this build and those left out");
+  cmd->callback([] {
+    std::printf("reference: the analytical model (always built)\n%s", EngineListText().c_str());
+  });
+}
+
+}  // namespace rockbench::cli
 
 int main(int argc, char** argv) {
   CLI::App app{"rockbench: the two-block rocking model (Roussis 1999) beside physics engines"};
-  app.require_subcommand(1);
+  app.require_subcommand(0, 1);
+  bool version = false;
+  app.add_flag("--version", version, "Print the version and the engines of this build");
   rockbench::cli::RegisterRun(app);
   rockbench::cli::RegisterCompare(app);
   rockbench::cli::RegisterSweep(app);
   rockbench::cli::RegisterRender(app);
   rockbench::cli::RegisterReport(app);
   rockbench::cli::RegisterStress(app);
+  rockbench::cli::RegisterEngines(app);
   try {
     app.parse(argc, argv);
+    if (version) {
+      std::printf("rockbench %s\nreference: the analytical model\n%s", ROCKBENCH_VERSION,
+                  rockbench::EngineListText().c_str());
+      return 0;
+    }
+    if (app.get_subcommands().empty()) {
+      std::fprintf(stderr, "%s", app.help().c_str());
+      return rockbench::cli::kExitBadInput;
+    }
   } catch (const CLI::RuntimeError& e) {
     // A subcommand's own failure: it printed its message; keep its exit code.
     return e.get_exit_code();

@@ -28,25 +28,10 @@ std::vector<const Event*> Impacts(const History& h, double min_rate, int* all) {
   return out;
 }
 
-// Peak |theta_i| and its time: from the run's summary ("peaks": {"theta1": {"abs_rad", "t_s"}},
-// written per step by the engines) when present, else from the samples.
+// Peak |theta_i| and its time, measured by the run itself (at every step for the engines).
 void EnginePeak(const EngineRun& run, int block, double* peak, double* t) {
-  const char* key = block == 1 ? "theta1" : "theta2";
-  const nlohmann::json& s = run.summary;
-  if (s.is_object() && s.contains("peaks") && s["peaks"].contains(key)) {
-    *peak = s["peaks"][key].value("abs_rad", 0.0);
-    *t = s["peaks"][key].value("t_s", 0.0);
-    return;
-  }
-  *peak = 0.0;
-  *t = 0.0;
-  for (const Sample& x : run.history.samples) {
-    const double v = std::abs(block == 1 ? x.theta1_rad : x.theta2_rad);
-    if (v > *peak) {
-      *peak = v;
-      *t = x.t_s;
-    }
-  }
+  *peak = block == 1 ? run.outcome.peak_theta1_rad : run.outcome.peak_theta2_rad;
+  *t = block == 1 ? run.outcome.peak_theta1_t_s : run.outcome.peak_theta2_t_s;
 }
 
 // Mode family for the final-state check.
@@ -165,7 +150,8 @@ EngineAgreement CompareWithReference(const Scene& scene, const reference::Result
   EngineAgreement a;
   a.engine = run.engine;
   a.wall_s = run.wall_s;
-  a.status = run.summary.is_object() ? run.summary.value("status", std::string()) : "";
+  a.status = run.outcome.status;
+  // The monitor's measures behind the flags, passed through to comparison.json.
   if (run.summary.is_object() && run.summary.contains("violations")) {
     a.violations = run.summary["violations"];
   }
@@ -243,11 +229,10 @@ EngineAgreement CompareWithReference(const Scene& scene, const reference::Result
 
   // Overturning.
   a.overturn_block_reference = rs.overturn_block;
-  const nlohmann::json& es = run.summary;
-  if (es.is_object() && es.contains("overturn") && es["overturn"].is_object()) {
-    a.overturn_block_engine = es["overturn"].value("block", 0);
+  if (run.outcome.overturned()) {
+    a.overturn_block_engine = run.outcome.overturned_block;
     if (rs.overturn_block) {
-      a.overturn_time_error_s = es["overturn"].value("t_s", 0.0) - rs.overturn_t_s;
+      a.overturn_time_error_s = run.outcome.overturn_t_s - rs.overturn_t_s;
     }
   }
   a.overturn_agree = a.overturn_block_reference == a.overturn_block_engine;

@@ -128,6 +128,7 @@ EngineRun ReferenceRunOf(const Scene& scene, const CheckedReference& checked) {
   run.summary = ReferenceSummaryJson(scene, used, run.wall_s);
   if (checked.check) run.summary["convergence"] = ConvergenceJson(scene, *checked.check);
   run.history = used.history;
+  run.outcome = ReferenceOutcome(used);
   return run;
 }
 

@@ -4,19 +4,15 @@
 #include <cstdio>
 
 #include "harness/convergence.h"
+#include "harness/engine_registry.h"
 #include "harness/summary.h"
 #include "reference/simulate.h"
-#ifdef ROCKBENCH_HAVE_BULLET
-#include "harness/engines_bullet.h"
-#endif
 
 namespace rockbench {
 
 std::vector<std::string> AvailableEngines() {
   std::vector<std::string> names = {"reference"};
-#ifdef ROCKBENCH_HAVE_BULLET
-  names.push_back("bullet");
-#endif
+  for (const std::string& n : BuiltEngineNames()) names.push_back(n);
   return names;
 }
 
@@ -38,12 +34,31 @@ EngineRun RunEngine(const std::string& name, const Scene& scene, const GroundMot
     }
     return run;
   }
-#ifdef ROCKBENCH_HAVE_BULLET
-  if (name == "bullet") return RunBulletEngine(scene, motion, options.stop_at_rest_after_s);
-#endif
-  std::string known;
-  for (const auto& n : AvailableEngines()) known += (known.empty() ? "" : ", ") + n;
-  throw SceneError("unknown engine '" + name + "' (this build has: " + known + ")");
+  const Engine* engine = FindEngine(name);
+  if (engine == nullptr) {
+    ParseEngineList(name);  // throws, naming what this build has and what it left out
+    throw SceneError("unknown engine '" + name + "'");
+  }
+  SimulateOptions simulate;
+  simulate.stop_at_rest_after_s = options.stop_at_rest_after_s;
+  EngineResult result = engine->Simulate(scene, motion, simulate);
+  EngineRun run;
+  run.engine = name;
+  run.history = std::move(result.history);
+  run.outcome = std::move(result.outcome);
+  run.summary = std::move(result.summary);
+  run.wall_s = result.wall_s;
+  const RunOutcome& o = run.outcome;
+  std::string flags;
+  for (const std::string& f : o.violations) flags += (flags.empty() ? "" : ",") + f;
+  char line[320];
+  std::snprintf(line, sizeof line,
+                "%s (%s): %s, peak |theta1| %.4g rad at %.3f s, %d impacts, flags: %s, %.3g ms",
+                name.c_str(), result.settings_line.c_str(), o.status.c_str(), o.peak_theta1_rad,
+                o.peak_theta1_t_s, o.impacts(), flags.empty() ? "none" : flags.c_str(),
+                run.wall_s * 1e3);
+  run.one_line = line;
+  return run;
 }
 
 void WriteEngineFiles(const EngineRun& run, const std::filesystem::path& out_dir) {

@@ -9,6 +9,7 @@
 
 #include "scene/ground_motion.h"
 #include "scene/history.h"
+#include "scene/outcome.h"
 #include "scene/scene.h"
 
 namespace rockbench {
@@ -17,12 +18,13 @@ namespace rockbench {
 struct EngineRun {
   std::string engine;  ///< "reference", "bullet", ...
   History history;
-  nlohmann::json summary;  ///< the engine's part of summary.json
+  RunOutcome outcome;      ///< typed: status, peaks, impacts, violations
+  nlohmann::json summary;  ///< the engine's part of summary.json (everything it measured)
   double wall_s = 0.0;     ///< wall-clock time of the simulation alone, s
   std::string one_line;    ///< one-line human summary
 };
 
-/// Engine names this build has ("reference" always; "bullet" when built with Bullet).
+/// "reference" and the engines this build has (harness/engine_registry.h), in that order.
 std::vector<std::string> AvailableEngines();
 
 /// Options of RunEngine.

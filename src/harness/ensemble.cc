@@ -131,28 +131,15 @@ double SettledAfter_s(const Scene& scene, const GroundMotion& motion, double saf
 MemberOutcome OutcomeOf(const EngineRun& run, const Scene& scene, double min_impact_rate_radps) {
   const bool two_blocks = scene.two_blocks();
   MemberOutcome o;
-  const nlohmann::json& s = run.summary;
-  o.status = s.value("status", std::string());
+  const RunOutcome& s = run.outcome;
+  o.status = s.status;
   o.wall_s = run.wall_s;
-  if (s.contains("overturn") && s["overturn"].is_object()) {
-    o.overturned_block = s["overturn"].value("block", 0);
-    o.overturn_t_s = s["overturn"].value("t_s", 0.0);
+  if (s.overturned()) {
+    o.overturned_block = s.overturned_block;
+    o.overturn_t_s = s.overturn_t_s;
   }
-  for (int b = 0; b < (two_blocks ? 2 : 1); ++b) {
-    const char* key = b == 0 ? "theta1" : "theta2";
-    if (s.contains("peaks") && s["peaks"].contains(key)) {
-      o.peak_rad[b] = s["peaks"][key].value("abs_rad", 0.0);
-      o.peak_t_s[b] = s["peaks"][key].value("t_s", 0.0);
-    } else {
-      for (const Sample& x : run.history.samples) {
-        const double v = std::abs(b == 0 ? x.theta1_rad : x.theta2_rad);
-        if (v > o.peak_rad[b]) {
-          o.peak_rad[b] = v;
-          o.peak_t_s[b] = x.t_s;
-        }
-      }
-    }
-  }
+  o.peak_rad[0] = s.peak_theta1_rad, o.peak_t_s[0] = s.peak_theta1_t_s;
+  if (two_blocks) o.peak_rad[1] = s.peak_theta2_rad, o.peak_t_s[1] = s.peak_theta2_t_s;
   if (!run.history.samples.empty()) {
     o.residual_rad[0] = run.history.samples.back().theta1_rad;
     o.residual_rad[1] = two_blocks ? run.history.samples.back().theta2_rad : 0.0;
@@ -221,6 +208,7 @@ ReferenceEnsemble RunReferenceEnsemble(const Scene& nominal_scene, const GroundM
         run.engine = "reference";
         run.wall_s = SecondsSince(t0);
         run.summary = ReferenceSummaryJson(in.scene, r, run.wall_s);
+        run.outcome = ReferenceOutcome(r);
         std::vector<double> th[2];
         on_grid(r, th);
         grids[0][i] = std::move(th[0]);

@@ -15,7 +15,9 @@
 #include <numbers>
 #include <thread>
 
+#include "engines/common/monitor.h"
 #include "harness/compare.h"
+#include "harness/engine_registry.h"
 #include "harness/engines.h"
 #include "harness/wall_clock.h"
 #include "reference/geometry.h"
@@ -225,49 +227,32 @@ StressRow RunReference(const StressCase& c, StressRow row) {
   return row;
 }
 
-#ifdef ROCKBENCH_HAVE_BULLET
-constexpr bool kHaveBullet = true;
-#else
-constexpr bool kHaveBullet = false;
-#endif
-
-// The Bullet monitor resolves tilts above 1e-5 rad (MonitorConfig::angle_enter_rad); a block
+// The engines' monitor resolves tilts above MonitorConfig::angle_enter_rad (1e-5 rad); a block
 // tilted by a small angle a holds about M g b1 a of potential energy, so impacts with less
 // kinetic energy than M g b1 1e-5 are below what the monitor can see and are left out.
-constexpr double kBulletResolvedTilt_rad = 1e-5;
+const double kEngineResolvedTilt_rad = MonitorConfig{}.angle_enter_rad;
 
-StressRow RunBullet(const StressCase& c, StressRow row) {
+StressRow RunEngineCase(const StressCase& c, const std::string& engine, StressRow row) {
   const GroundMotion motion = GroundMotion::FromScene(c.scene);
-  const EngineRun run = RunEngine("bullet", c.scene, motion);
+  const EngineRun run = RunEngine(engine, c.scene, motion);
   row.wall_s = run.wall_s;
-  const nlohmann::json& s = run.summary;
-  row.status = s.value("status", "unknown");
-  row.detail = s.value("status_detail", "");
+  const RunOutcome& o = run.outcome;
+  row.status = o.status.empty() ? "unknown" : o.status;
+  row.detail = run.summary.value("status_detail", "");
   row.finished = row.status == "completed" || row.status == "overturned" ||
                  row.status == "at_rest" || row.status == "assumption_violated";
-  if (s.contains("peaks")) {
-    const auto& p = s["peaks"];
-    if (p.contains("theta1") && p["theta1"]["abs_rad"].is_number()) {
-      row.peak_theta1_rad = p["theta1"]["abs_rad"].get<double>();
-    }
-    if (p.contains("theta2") && p["theta2"]["abs_rad"].is_number()) {
-      row.peak_theta2_rad = p["theta2"]["abs_rad"].get<double>();
-    }
-  }
+  row.peak_theta1_rad = o.peak_theta1_rad;
+  row.peak_theta2_rad = o.peak_theta2_rad;
   row.nan = HistoryHasNonFinite(run.history) || row.detail.find("non-finite") != std::string::npos;
   CountEvents(run.history, &row);
   std::string flags;
-  if (s.contains("violations") && s["violations"].is_object()) {
-    for (const char* f : {"sliding", "uplift", "penetration", "energy_growth", "blow_up"}) {
-      if (s["violations"].value(f, false)) flags += std::string(flags.empty() ? "" : ";") + f;
-    }
-  }
+  for (const std::string& f : o.violations) flags += (flags.empty() ? "" : ";") + f;
   row.violations = flags.empty() ? "none" : flags;
   // Energy across each impact: the monitor records E = kinetic (base frame) + potential one
   // step before the crossing step and one step after it; the scale is the kinetic energy
   // before, from the recorded rates at the impact's angles (history interpolated).
   const reference::Geometry geo = reference::MakeGeometry(c.scene);
-  const double floor_j = geo.M * geo.g * geo.block1.b * kBulletResolvedTilt_rad;
+  const double floor_j = geo.M * geo.g * geo.block1.b * kEngineResolvedTilt_rad;
   for (const Event& e : run.history.events) {
     if (!IsImpact(e)) continue;
     const Sample at = AnglesAt(run.history, e.t_s);
@@ -292,11 +277,22 @@ StressRow RunBullet(const StressCase& c, StressRow row) {
 }
 
 void SetSettings(const StressCase& c, const std::string& engine, StressRow* row) {
-  if (engine != "bullet") return;
+  const Engine* e = FindEngine(engine);
+  if (e == nullptr) return;
   row->has_settings = true;
-  row->dt_s = c.scene.bullet.time_step_s;
-  row->iterations = c.scene.bullet.solver_iterations;
-  row->precision = c.scene.bullet.precision == BulletPrecision::kDouble ? "double" : "float";
+  try {
+    row->dt_s = ResolveEngineSettings(c.scene, e->settings_schema()).Number("time_step");
+  } catch (const std::exception&) {
+    row->dt_s = 0.0;  // the run reports the bad setting
+  }
+  if (c.setting) {
+    for (const auto& [key, value] : c.setting->settings) {
+      if (key == "time_step") continue;
+      std::string text = SettingText(value);
+      std::erase(text, '"');
+      row->settings += (row->settings.empty() ? "" : ";") + key + "=" + text;
+    }
+  }
 }
 
 // --- The catalogue -------------------------------------------------------------------------
@@ -485,32 +481,21 @@ void AddVertical(std::vector<StressCase>& cat) {
   }
 }
 
-void AddBulletSettings(std::vector<StressCase>& cat) {
-  struct Step {
-    const char* label;
-    double dt_s;
-  };
-  const Step steps[] = {{"1/60", 1.0 / 60.0}, {"1e-3", 1e-3}, {"1e-4", 1e-4}, {"1e-5", 1e-5}};
-  for (const char* prec : {"double", "float"}) {
-    for (const Step& st : steps) {
-      for (int it : {1, 10, 50, 200}) {
-        Scene s = StackScene(1.25, 1.25, 1.0, 2.5, 3.0);
-        Release(s, 0.15);
-        s.bullet.time_step_s = st.dt_s;
-        s.bullet.solver_iterations = it;
-        s.bullet.precision =
-            std::string(prec) == "double" ? BulletPrecision::kDouble : BulletPrecision::kFloat;
-        const bool quick = (std::string(prec) == "float" && st.dt_s > 0.01 && it == 1) ||
-                           (std::string(prec) == "double" && st.dt_s == 1e-3 && it == 200);
-        StressCase c =
-            Case(std::string("bullet_dt/") + prec + "/dt=" + st.label + "/it=" + std::to_string(it),
-                 std::string("Bullet ") + prec + ", dt " + st.label + " s, " + std::to_string(it) +
-                     " solver iterations, on the thesis's free rocking (3 s)",
-                 s, quick);
-        c.engines = {"bullet"};
-        c.wall_limit_s = st.dt_s < 5e-5 ? 300.0 : 60.0;
-        cat.push_back(std::move(c));
-      }
+// Every engine's settings cases (Engine::StressGrid) on the thesis's free rocking, 3 s.
+void AddEngineSettings(std::vector<StressCase>& cat) {
+  for (const std::string& name : BuiltEngineNames()) {
+    const Engine* engine = FindEngine(name);
+    for (const SweepSetting& st : engine->StressGrid()) {
+      Scene s = StackScene(1.25, 1.25, 1.0, 2.5, 3.0);
+      Release(s, 0.15);
+      for (const auto& [key, value] : st.settings) SetEngineSetting(s, name, key, value);
+      StressCase c = Case(name + "_dt/" + st.id,
+                          st.family + ", dt " + st.label + " s, on the thesis's free rocking (3 s)",
+                          s, st.quick);
+      c.engines = {name};
+      c.setting = st;
+      c.wall_limit_s = st.time_step_s < 5e-5 ? 300.0 : 60.0;
+      cat.push_back(std::move(c));
     }
   }
 }
@@ -556,12 +541,11 @@ std::vector<StressCase> StressCatalogue() {
   AddRelease(cat);
   AddCascade(cat);
   AddVertical(cat);
-  AddBulletSettings(cat);
-  if (!kHaveBullet) {
-    for (StressCase& c : cat) {
-      std::erase(c.engines, std::string("bullet"));
-    }
-    std::erase_if(cat, [](const StressCase& c) { return c.engines.empty(); });
+  AddEngineSettings(cat);
+  for (StressCase& c : cat) {
+    if (!c.engines.empty()) continue;
+    c.engines = {"reference"};
+    for (const std::string& name : BuiltEngineNames()) c.engines.push_back(name);
   }
   // Hidden self-tests of the isolation.
   StressCase crash = Case("selftest/crash", "the child kills itself with SIGSEGV", Scene{}, false);
@@ -622,8 +606,7 @@ StressRow RunStressCaseHere(const StressCase& c, const std::string& engine) {
   }
   try {
     if (engine == "reference") return RunReference(c, row);
-    if (engine == "bullet") return RunBullet(c, row);
-    throw SceneError("unknown engine '" + engine + "'");
+    return RunEngineCase(c, engine, row);
   } catch (const std::exception& e) {
     row.finished = false;
     row.status = "error";
@@ -652,8 +635,7 @@ nlohmann::json StressRowToJson(const StressRow& r) {
   j["peak_theta2_rad"] = num(r.peak_theta2_rad);
   j["has_settings"] = r.has_settings;
   j["dt_s"] = r.dt_s;
-  j["iterations"] = r.iterations;
-  j["precision"] = r.precision;
+  j["settings"] = r.settings;
   j["violations"] = r.violations;
   j["has_agreement"] = r.has_agreement;
   j["theta1_max_abs_error_rad"] = num(r.theta1_max_abs_error_rad);
@@ -687,8 +669,7 @@ StressRow StressRowFromJson(const nlohmann::json& j) {
   r.peak_theta2_rad = num("peak_theta2_rad");
   r.has_settings = j.at("has_settings").get<bool>();
   r.dt_s = j.at("dt_s").get<double>();
-  r.iterations = j.at("iterations").get<int>();
-  r.precision = j.at("precision").get<std::string>();
+  r.settings = j.at("settings").get<std::string>();
   r.violations = j.at("violations").get<std::string>();
   r.has_agreement = j.at("has_agreement").get<bool>();
   r.theta1_max_abs_error_rad = num("theta1_max_abs_error_rad");
@@ -796,7 +777,7 @@ std::vector<StressRow> RunStress(const std::vector<StressCase>& cases,
 std::string StressCsv(const std::vector<StressRow>& rows) {
   std::string out =
       "case,engine,finished,status,nan,max_energy_gain_rel,energy_impacts,events,impacts,"
-      "min_event_gap_s,wall_s,peak_theta1_rad,peak_theta2_rad,dt_s,iterations,precision,"
+      "min_event_gap_s,wall_s,peak_theta1_rad,peak_theta2_rad,dt_s,settings,"
       "violations,theta1_max_abs_error_rad,theta1_peak_rel_error,theta2_max_abs_error_rad,"
       "theta2_peak_rel_error,impacts_matched,reference_impacts,detail\n";
   auto g = [](double v) { return Num("%.6g", v); };
@@ -810,10 +791,10 @@ std::string StressCsv(const std::vector<StressRow>& rows) {
     out += (r.min_event_gap_s >= 0.0 ? Num("%.6e", r.min_event_gap_s) : "") + ",";
     out += Num("%.4f", r.wall_s) + ",";
     out += (ran ? g(r.peak_theta1_rad) : "") + "," + (ran ? g(r.peak_theta2_rad) : "") + ",";
-    out += (r.has_settings ? Num("%.6g", r.dt_s) + "," + std::to_string(r.iterations) + "," +
-                                 r.precision + "," + Clean(r.violations)
-                           : ",,,") +
-           ",";
+    out +=
+        (r.has_settings ? Num("%.6g", r.dt_s) + "," + Clean(r.settings) + "," + Clean(r.violations)
+                        : ",,") +
+        ",";
     if (r.has_agreement) {
       out += g(r.theta1_max_abs_error_rad) + "," + g(r.theta1_peak_rel_error) + "," +
              g(r.theta2_max_abs_error_rad) + "," + g(r.theta2_peak_rel_error) + "," +

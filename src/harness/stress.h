@@ -10,9 +10,11 @@
 #include <filesystem>
 #include <functional>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "engines/common/engine.h"
 #include "scene/scene.h"
 
 namespace rockbench {
@@ -25,7 +27,11 @@ struct StressCase {
   std::string name;         ///< hierarchical, e.g. "uplift/stack/below_1pct"
   std::string description;  ///< what it checks, one line
   Scene scene;              ///< built in code (no file)
-  std::vector<std::string> engines = {"reference", "bullet"};
+  /// The engines it runs on: "reference" and engine names; empty: the reference and every
+  /// engine of this build.
+  std::vector<std::string> engines;
+  /// An engine settings case: the engine's settings it sets (Engine::StressGrid).
+  std::optional<SweepSetting> setting;
   double wall_limit_s = 60.0;  ///< the child is killed after this wall time, s
   bool quick = false;          ///< part of the CI subset (--quick)
   /// Run only when a --case pattern names it (pattern starting with "selftest").
@@ -82,14 +88,13 @@ struct StressRow {
   double min_event_gap_s = -1.0;
   double wall_s = 0.0;  ///< the engine's simulation wall time (process time if it failed), s
   double peak_theta1_rad = 0.0, peak_theta2_rad = 0.0;
-  // Bullet rows: settings.
+  // Engine rows: settings.
   bool has_settings = false;
-  double dt_s = 0.0;
-  int iterations = 0;
-  std::string precision;
-  /// Bullet rows: violations flagged by its monitor ("sliding;uplift;..." or "none").
+  double dt_s = 0.0;     ///< the engine's time step, s
+  std::string settings;  ///< the settings the case sets besides the step ("k=v;k=v")
+  /// Engine rows: violations flagged by the monitor ("sliding;uplift;..." or "none").
   std::string violations;
-  // Bullet rows: agreement with the reference (CompareWithReference).
+  // Engine rows: agreement with the reference (CompareWithReference).
   bool has_agreement = false;
   double theta1_max_abs_error_rad = 0.0, theta1_peak_rel_error = 0.0;
   double theta2_max_abs_error_rad = 0.0, theta2_peak_rel_error = 0.0;

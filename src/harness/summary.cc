@@ -83,4 +83,18 @@ nlohmann::json ReferenceSummaryJson(const Scene& scene, const reference::Result&
   return j;
 }
 
+RunOutcome ReferenceOutcome(const reference::Result& result) {
+  const reference::Summary& s = result.summary;
+  RunOutcome o;
+  o.status = s.status;
+  o.overturned_block = s.overturn_block.value_or(0);
+  if (s.overturn_block) o.overturn_t_s = s.overturn_t_s;
+  o.end_t_s = result.history.samples.empty() ? 0.0 : result.history.samples.back().t_s;
+  o.peak_theta1_rad = s.peak_theta1_rad, o.peak_theta1_t_s = s.peak_theta1_t_s;
+  o.peak_theta2_rad = s.peak_theta2_rad, o.peak_theta2_t_s = s.peak_theta2_t_s;
+  o.impacts_ground = s.impacts_ground;
+  o.impacts_interface = s.impacts_interface;
+  return o;
+}
+
 }  // namespace rockbench

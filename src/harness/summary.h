@@ -4,9 +4,13 @@
 
 #include "reference/simulate.h"
 #include "scene/ground_motion.h"
+#include "scene/outcome.h"
 #include "scene/scene.h"
 
 namespace rockbench {
+
+/// The reference's typed outcome (status, overturn, peaks, impacts) of a result.
+RunOutcome ReferenceOutcome(const reference::Result& result);
 
 /// The reference's part of summary.json (status, peaks, impacts, overturn, friction...).
 nlohmann::json ReferenceSummaryJson(const Scene& scene, const reference::Result& result,

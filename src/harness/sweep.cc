@@ -11,6 +11,7 @@
 #include <mutex>
 #include <thread>
 
+#include "harness/engine_registry.h"
 #include "harness/engines.h"
 #include "harness/wall_clock.h"
 #include "reference/simulate.h"
@@ -18,34 +19,22 @@
 namespace rockbench {
 namespace {
 
-const char* PrecisionName(BulletPrecision p) {
-  return p == BulletPrecision::kDouble ? "double" : "float";
-}
 const char* IntegratorName(Integrator i) {
   return i == Integrator::kDopri5 ? "dopri5" : "rk4";
 }
 
 }  // namespace
 
-std::vector<SweepPoint> SweepGrid(bool quick, bool with_bullet) {
+std::vector<SweepPoint> SweepGrid(bool quick, const std::vector<std::string>& engines) {
   std::vector<SweepPoint> grid;
-  if (with_bullet) {
-    const std::vector<double> steps =
-        quick ? std::vector<double>{1.0 / 60.0, 1e-3, 1e-4}
-              : std::vector<double>{1.0 / 60.0, 5e-3, 1e-3, 5e-4, 1e-4, 5e-5, 1e-5};
-    const std::vector<int> iterations =
-        quick ? std::vector<int>{10, 50} : std::vector<int>{4, 10, 50, 200};
-    for (BulletPrecision p : {BulletPrecision::kDouble, BulletPrecision::kFloat}) {
-      for (double dt : steps) {
-        for (int it : iterations) {
-          SweepPoint s;
-          s.engine = "bullet";
-          s.precision = p;
-          s.time_step_s = dt;
-          s.solver_iterations = it;
-          grid.push_back(s);
-        }
-      }
+  for (const std::string& name : engines) {
+    const Engine* engine = FindEngine(name);
+    if (engine == nullptr) continue;
+    for (SweepSetting& setting : engine->SweepGrid(quick)) {
+      SweepPoint s;
+      s.engine = name;
+      s.setting = std::move(setting);
+      grid.push_back(std::move(s));
     }
   }
   const std::vector<double> rtols = quick ? std::vector<double>{1e-4, 1e-6, 1e-8}
@@ -72,10 +61,8 @@ std::vector<SweepPoint> SweepGrid(bool quick, bool with_bullet) {
 
 Scene SceneForPoint(const Scene& base, const SweepPoint& p) {
   Scene s = base;
-  if (p.engine == "bullet") {
-    s.bullet.precision = p.precision;
-    s.bullet.time_step_s = p.time_step_s;
-    s.bullet.solver_iterations = p.solver_iterations;
+  if (p.engine != "reference") {
+    for (const auto& [key, value] : p.setting.settings) SetEngineSetting(s, p.engine, key, value);
   } else {
     s.model.integrator = p.integrator;
     if (p.integrator == Integrator::kDopri5) {
@@ -93,10 +80,10 @@ std::vector<SweepRow> RunSweep(const Scene& scene, const GroundMotion& motion,
                                SweepBaseline* baseline_out) {
   if (options.repeat < 1) throw SceneError("--repeat: expected a positive integer");
   if (options.threads < 0) throw SceneError("--threads: expected a non-negative integer");
-  const std::vector<std::string> engines = AvailableEngines();
-  const bool with_bullet = std::find(engines.begin(), engines.end(), "bullet") != engines.end();
   const std::vector<SweepPoint> grid =
-      options.points.empty() ? SweepGrid(options.quick, with_bullet) : options.points;
+      options.points.empty()
+          ? SweepGrid(options.quick, options.engines.empty() ? BuiltEngineNames() : options.engines)
+          : options.points;
 
   // The tight reference every row is compared with.
   Scene tight = scene;
@@ -161,7 +148,7 @@ std::vector<SweepRow> RunSweep(const Scene& scene, const GroundMotion& motion,
 
 std::string SweepCsv(const std::vector<SweepRow>& rows) {
   std::string out =
-      "engine,precision,time_step_s,solver_iterations,integrator,rtol,atol,rk4_step_s,status,"
+      "engine,family,setting,time_step_s,settings,integrator,rtol,atol,rk4_step_s,status,"
       "wall_s,theta1_max_abs_error_rad,theta1_rms_error_rad,theta1_horizon_s,"
       "theta1_peak_rel_error,theta1_peak_time_error_s,theta2_max_abs_error_rad,"
       "theta2_rms_error_rad,theta2_horizon_s,theta2_peak_rel_error,theta2_peak_time_error_s,"
@@ -170,15 +157,22 @@ std::string SweepCsv(const std::vector<SweepRow>& rows) {
   char buf[1024];
   for (const SweepRow& r : rows) {
     const SweepPoint& p = r.point;
-    const bool bullet = p.engine == "bullet";
-    if (bullet) {
-      std::snprintf(buf, sizeof buf, "bullet,%s,%.9g,%d,,,,,", PrecisionName(p.precision),
-                    p.time_step_s, p.solver_iterations);
+    if (p.engine != "reference") {
+      std::string settings;
+      for (const auto& [key, value] : p.setting.settings) {
+        if (key == "time_step") continue;
+        settings += (settings.empty() ? "" : ";") + key + "=" + SettingText(value);
+      }
+      std::erase(settings, '"');
+      std::snprintf(buf, sizeof buf, "%s,%s,%s,%.9g,%s,,,,,", p.engine.c_str(),
+                    p.setting.family.c_str(), p.setting.label.c_str(), p.setting.time_step_s,
+                    settings.c_str());
     } else if (p.integrator == Integrator::kDopri5) {
-      std::snprintf(buf, sizeof buf, "reference,,,,%s,%.3g,%.3g,,", IntegratorName(p.integrator),
-                    p.rtol, p.atol);
+      std::snprintf(buf, sizeof buf, "reference,reference dopri5,%s,,,%s,%.3g,%.3g,,",
+                    TimeStepLabel(p.rtol).c_str(), IntegratorName(p.integrator), p.rtol, p.atol);
     } else {
-      std::snprintf(buf, sizeof buf, "reference,,,,%s,,,%.9g,", IntegratorName(p.integrator),
+      std::snprintf(buf, sizeof buf, "reference,reference RK4,%s,,,%s,,,%.9g,",
+                    TimeStepLabel(p.rk4_step_s).c_str(), IntegratorName(p.integrator),
                     p.rk4_step_s);
     }
     out += buf;

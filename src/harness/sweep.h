@@ -1,6 +1,6 @@
 #pragma once
-/// Accuracy/cost sweep: runs the engines over a grid of settings (Bullet: time step, solver
-/// iterations, precision; reference: dopri5 tolerances and fixed-step RK4 steps) and compares
+/// Accuracy/cost sweep: runs the engines over a grid of settings (each engine's own grid,
+/// Engine::SweepGrid; reference: dopri5 tolerances and fixed-step RK4 steps) and compares
 /// each run with a tight-tolerance reference (dopri5, rtol 1e-12). Runs in parallel on a
 /// std::thread pool; rows come out in the grid's fixed order, so every column but the wall
 /// times is independent of the number of threads.
@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "engines/common/engine.h"
 #include "harness/compare.h"
 #include "scene/ground_motion.h"
 #include "scene/scene.h"
@@ -17,23 +18,19 @@ namespace rockbench {
 
 /// One grid point.
 struct SweepPoint {
-  std::string engine;  ///< "bullet" or "reference"
-  // Bullet.
-  BulletPrecision precision = BulletPrecision::kDouble;
-  double time_step_s = 0.0;
-  int solver_iterations = 0;
+  std::string engine;  ///< a registered engine's name, or "reference"
+  /// Engines: the point of the engine's grid (family, label, time step, settings).
+  SweepSetting setting;
   // Reference.
   Integrator integrator = Integrator::kDopri5;
   double rtol = 0.0, atol = 0.0;  ///< dopri5 tolerances
   double rk4_step_s = 0.0;        ///< rk4 fixed step, s
 };
 
-/// The grid, in row order. Full: Bullet time steps 1/60, 5e-3, 1e-3, 5e-4, 1e-4, 5e-5, 1e-5 s
-/// x solver iterations 4, 10, 50, 200 x double, float (only when `with_bullet`); reference
-/// dopri5 rtol 1e-4 ... 1e-12 (atol = rtol / 100) and RK4 steps 1e-2, 1e-3, 1e-4 s. Quick:
-/// Bullet 1/60, 1e-3, 1e-4 s x 10, 50 iterations x both precisions; dopri5 rtol 1e-4, 1e-6,
-/// 1e-8; RK4 1e-3 s.
-std::vector<SweepPoint> SweepGrid(bool quick, bool with_bullet);
+/// The grid, in row order: every engine of `engines` with its own grid (Engine::SweepGrid),
+/// then the reference: full, dopri5 rtol 1e-4 ... 1e-12 (atol = rtol / 100) and RK4 steps
+/// 1e-2, 1e-3, 1e-4 s; quick, dopri5 rtol 1e-4, 1e-6, 1e-8 and RK4 1e-3 s.
+std::vector<SweepPoint> SweepGrid(bool quick, const std::vector<std::string>& engines);
 
 /// The scene of a grid point: `base` with the point's settings.
 Scene SceneForPoint(const Scene& base, const SweepPoint& point);
@@ -42,6 +39,8 @@ struct SweepOptions {
   bool quick = false;
   int repeat = 1;   ///< repetitions per point; the row's wall time is their minimum
   int threads = 0;  ///< worker threads; 0: std::thread::hardware_concurrency()
+  /// Engines swept (every built engine when empty); the reference is always swept.
+  std::vector<std::string> engines;
   /// When non-empty, these points are run instead of SweepGrid(quick, ...) (tests, studies).
   std::vector<SweepPoint> points;
 };

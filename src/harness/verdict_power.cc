@@ -46,6 +46,7 @@ PowerEstimate EstimateVerdictPower(const Scene& scene, const GroundMotion& motio
       EngineRun run;
       run.engine = "reference";
       run.summary = ReferenceSummaryJson(in.scene, r, 0.0);
+      run.outcome = ReferenceOutcome(r);
       run.history = std::move(r.history);
       outcomes[i] = OutcomeOf(run, in.scene, compare_options.min_impact_rate_radps);
       outcomes[i].member = i;

@@ -300,10 +300,6 @@ FrictionDemand RequiredFriction(const reference::Geometry& geo, Mode mode, const
   return d;
 }
 
-double BulletCombinedFriction(double per_body_friction) {
-  return std::min(per_body_friction * per_body_friction, 10.0);
-}
-
 HistoryInterpolator::HistoryInterpolator(const History& history, const std::vector<Event>& events) {
   // Pre-event rates by event time: the first event at a time holds the rates before them all.
   std::map<double, const Event*> first_event;
@@ -536,19 +532,18 @@ void SceneSection(const RunData& run, const GroundMotion& motion, Figures& fig) 
                         (OptString(run.summary, "convergence.used", run.summary_path) == "witness"
                              ? " (not converged: the run used its witness, see Verdict)"
                              : "")});
+  // Each engine's settings as its summary.json states them (ours and the values they set).
   for (const EngineData& e : run.engines) {
-    if (e.name != "bullet") continue;
-    const BulletConfig& b = s.bullet;
-    settings.push_back(
-        {"bullet",
-         "time step " + Num(b.time_step_s) + " s, " + std::to_string(b.solver_iterations) +
-             " solver iterations, " +
-             (b.precision == BulletPrecision::kDouble ? "double" : "float") + " precision, " +
-             (b.drive == BulletDrive::kInertial ? "inertial" : "kinematic") + " drive; friction " +
-             Num(b.friction) + " per body (" + Num(BulletCombinedFriction(b.friction)) +
-             " combined); restitution " + Num(b.restitution) + "; erp2 " + Num(b.erp2) +
-             "; split impulse " + (b.split_impulse ? "on" : "off") + " (threshold " +
-             Num(b.split_impulse_threshold) + " m); margin " + Num(b.margin_m) + " m"});
+    if (e.name == "reference") continue;
+    const json* set = Find(e.summary, "settings");
+    if (set == nullptr || !set->is_object()) continue;
+    std::string text;
+    for (const auto& [key, value] : set->items()) {
+      text += (text.empty() ? "" : "; ") + key + " " +
+              (value.is_string() ? value.get<std::string>()
+                                 : (value.is_number() ? Num(value.get<double>()) : value.dump()));
+    }
+    settings.push_back({e.name, text});
   }
   page.Table({"engine", "settings"}, settings);
 }
@@ -1045,6 +1040,24 @@ FrictionFacts ComputeFriction(const RunData& run, const reference::Geometry& geo
   return facts;
 }
 
+// The smallest friction coefficient between the blocks (and the ground) among the run's
+// engines, as each states it in summary.json settings.friction_combined, and that engine's
+// name; nullopt when no engine of the run states one.
+std::optional<std::pair<double, std::string>> EngineFriction(const RunData& run) {
+  std::optional<std::pair<double, std::string>> out;
+  for (const EngineData& e : run.engines) {
+    const json* set = Find(e.summary, "settings");
+    // An engine whose friction is unbounded (ODE's inf) states none.
+    if (set == nullptr || !set->is_object() || !set->contains("friction_combined") ||
+        !(*set)["friction_combined"].is_number()) {
+      continue;
+    }
+    const double mu = (*set)["friction_combined"].get<double>();
+    if (!out || mu < out->first) out = std::make_pair(mu, e.name);
+  }
+  return out;
+}
+
 void FrictionSection(const RunData& run, const FrictionFacts& facts,
                      const RunReportOptions& options, Figures& fig) {
   Page& page = *fig.page;
@@ -1052,8 +1065,8 @@ void FrictionSection(const RunData& run, const FrictionFacts& facts,
   const bool two = run.scene.two_blocks();
   Span span = facts.span;
   const auto& rows = facts.rows;
-  const double scene_mu = BulletCombinedFriction(run.scene.bullet.friction);
-  span.Add(scene_mu);
+  const auto engine_mu = EngineFriction(run);
+  if (engine_mu) span.Add(engine_mu->first);
   const bool log = span.Decades();
   const double floor_mu = span.hi * 1e-6;
   std::string dat = two ? "# t_s mu_ground mu_interface (NaN: normal force below the limit)\n"
@@ -1080,11 +1093,12 @@ void FrictionSection(const RunData& run, const FrictionFacts& facts,
         ", '' using 1:3 with lines lw 1.6 lc rgb '#d95f02' title "
         "'interface (block 2 on block 1)'";
   }
-  f.script +=
-      ", " + Num(scene_mu, 9) + " with lines dt 2 lw 1.5 lc rgb '#b00000' title " +
-      Quote("scene friction " + Num(scene_mu) + " (Bullet: " + Num(run.scene.bullet.friction) +
-            " per body, product clamped at 10)") +
-      "\n";
+  if (engine_mu) {
+    f.script +=
+        ", " + Num(engine_mu->first, 9) + " with lines dt 2 lw 1.5 lc rgb '#b00000' title " +
+        Quote(engine_mu->second + "'s friction " + Num(engine_mu->first) + " (between two bodies)");
+  }
+  f.script += "\n";
   fig.Add(f,
           "Friction coefficient the rigid-block model needs, |T|/N, against time, from the "
           "reference's contact reactions at each sample (the accelerations of its mode and "
@@ -1093,22 +1107,24 @@ void FrictionSection(const RunData& run, const FrictionFacts& facts,
               ". Samples where a contact's normal force is below " +
               Num(100.0 * options.friction_min_normal_fraction) +
               "% of the stack's weight are left out (" + std::to_string(facts.left_out) +
-              " of them): |T|/N has no meaning as N goes to 0. Dashed red: the scene's "
-              "friction coefficient.");
+              " of them): |T|/N has no meaning as N goes to 0. Dashed red: the smallest "
+              "friction coefficient of the run's engines.");
+  const std::string engine_mu_text =
+      engine_mu ? Num(engine_mu->first) + " (" + engine_mu->second + ")" : std::string("-");
   const double sum_g = OptNumber(run.summary, "friction_required.ground", run.summary_path);
   const double sum_i = OptNumber(run.summary, "friction_required.interface", run.summary_path);
   std::vector<std::vector<std::string>> table;
   table.push_back({"ground", Num(sum_g), Num(facts.max_ground),
                    Num(facts.min_N_ground, 6) + " N at " + Fixed(facts.min_N_ground_t, 3) + " s",
-                   Num(scene_mu)});
+                   engine_mu_text});
   if (two) {
     table.push_back(
         {"interface", Num(sum_i), Num(facts.max_interface),
          Num(facts.min_N_interface, 6) + " N at " + Fixed(facts.min_N_interface_t, 3) + " s",
-         Num(scene_mu)});
+         engine_mu_text});
   }
   page.Table({"contact", "largest |T|/N (reference run, every step, N -> 0 included)",
-              "largest |T|/N (samples plotted)", "smallest normal force", "scene friction"},
+              "largest |T|/N (samples plotted)", "smallest normal force", "engine friction"},
              table);
 }
 
@@ -1386,19 +1402,20 @@ RunReportResult WriteRunReport(const fs::path& run_dir, const fs::path& out_dir,
   // Friction: the largest |T|/N where the contact carries at least the option's share of the
   // weight (near N = 0, as at an uplift, the ratio grows without bound and says nothing).
   const FrictionFacts ff = ComputeFriction(run, geo, motion, options);
-  const double scene_mu = BulletCombinedFriction(run.scene.bullet.friction);
+  const auto engine_mu = EngineFriction(run);
   for (const char* contact : {"ground", "interface"}) {
+    if (!engine_mu) break;
     if (std::string(contact) == "interface" && !run.scene.two_blocks()) continue;
     const double need = std::string(contact) == "ground" ? ff.max_ground : ff.max_interface;
-    if (need > scene_mu) {
+    if (need > engine_mu->first) {
       result.warnings.push_back(
           std::string("Sliding would occur at the ") + contact +
           (std::string(contact) == "ground" ? " (block 1 on the ground)"
                                             : " (block 2 on block 1)") +
           ": the rigid-block model needs a friction coefficient of " + Num(need, 3) +
-          ", more than the scene's " + Num(scene_mu, 3) + " (Bullet's " +
-          Num(run.scene.bullet.friction) +
-          " per body, multiplied). The model assumes the blocks never slide.");
+          ", more than " + engine_mu->second + "'s " + Num(engine_mu->first, 3) +
+          " (between two bodies, its summary's settings.friction_combined). The model assumes "
+          "the blocks never slide.");
     }
   }
   // Tension: a normal force below zero by more than the located event's round-off (1e-6 of the

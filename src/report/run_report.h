@@ -103,10 +103,6 @@ struct FrictionDemand {
 FrictionDemand RequiredFriction(const reference::Geometry& geo, Mode mode, const Sample& sample,
                                 double xg_mps2, double yg_mps2, Equations equations);
 
-/// Bullet's friction coefficient between two bodies of per-body friction f: f * f, clamped at
-/// 10 (btManifoldResult::calculateCombinedFriction; docs/bullet.md).
-double BulletCombinedFriction(double per_body_friction);
-
 /// Angles of a reference history at any time: cubic Hermite between samples, using the rates
 /// before each event (events.csv omega*_before) at the end of the interval it closes, so that
 /// impacts do not smear. Clamped to the history's time span.

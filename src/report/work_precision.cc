@@ -20,9 +20,10 @@ namespace fs = std::filesystem;
 
 // The columns the report reads; sweep.csv may carry more (ignored).
 const std::vector<std::string> kColumns = {"engine",
-                                           "precision",
+                                           "family",
+                                           "setting",
                                            "time_step_s",
-                                           "solver_iterations",
+                                           "settings",
                                            "integrator",
                                            "rtol",
                                            "atol",
@@ -66,25 +67,6 @@ std::string Fmt(const char* format, double v) {
   char buf[64];
   std::snprintf(buf, sizeof buf, format, v);
   return buf;
-}
-
-// "5e-4" rather than "5e-04", "2.5e-3" rather than "0.0025"; empty when three significant
-// digits do not hold the value.
-std::string Compact(double v) {
-  for (int digits = 0; digits <= 2; ++digits) {
-    char format[16];
-    std::snprintf(format, sizeof format, "%%.%de", digits);
-    const std::string e = Fmt(format, v);
-    if (std::fabs(std::strtod(e.c_str(), nullptr) - v) > 1e-9 * std::fabs(v)) continue;
-    const size_t pos = e.find('e');
-    const std::string mantissa = e.substr(0, pos);
-    const char sign = e[pos + 1];
-    std::string exponent = e.substr(pos + 2);
-    exponent.erase(0, std::min(exponent.find_first_not_of('0'), exponent.size() - 1));
-    if (exponent == "0") return mantissa;
-    return mantissa + "e" + (sign == '-' ? "-" : "") + exponent;
-  }
-  return "";
 }
 
 // Reads one row's fields by column name, with messages naming file, line and column.
@@ -136,26 +118,27 @@ class RowReader {
   const std::vector<std::string>& fields_;
 };
 
-// A family's colour and style: line colour by iteration count, dashes for float.
+// A family's colour and style: the reference black and grey; each engine family a colour of
+// its own (in family order), each engine a point type and a dash pattern of its own.
 struct Style {
   std::string colour;
   int point_type = 7;
   int dash_type = 1;
 };
 
-Style FamilyStyle(const SweepRecord& r) {
+Style FamilyStyle(const SweepRecord& r, size_t family_index, size_t engine_index) {
   Style s;
   if (r.engine == "reference") {
     s.colour = r.integrator == "dopri5" ? "#000000" : "#8c8c8c";
     s.point_type = r.integrator == "dopri5" ? 5 : 9;
     return s;
   }
-  static const std::map<int, std::string> kByIterations = {
-      {4, "#1b9e77"}, {10, "#d95f02"}, {50, "#7570b3"}, {200, "#e7298a"}};
-  const auto it = kByIterations.find(r.solver_iterations);
-  s.colour = it != kByIterations.end() ? it->second : "#66a61e";
-  s.point_type = r.precision == "double" ? 7 : 6;
-  s.dash_type = r.precision == "double" ? 1 : 2;
+  static const char* kPalette[] = {"#1b9e77", "#d95f02", "#7570b3", "#e7298a", "#66a61e",
+                                   "#e6ab02", "#a6761d", "#1f78b4", "#b2df8a", "#fb9a99"};
+  static const int kPoints[] = {7, 6, 13, 11, 9};
+  s.colour = kPalette[family_index % std::size(kPalette)];
+  s.point_type = kPoints[engine_index % std::size(kPoints)];
+  s.dash_type = 1 + static_cast<int>(engine_index % 4);
   return s;
 }
 
@@ -228,10 +211,7 @@ SweepInfo ReadSweepInfo(const fs::path& path) {
 }
 
 std::string SettingDescription(const SweepRecord& r) {
-  if (r.engine == "bullet") {
-    return "Bullet " + r.precision + ", time step " + SweepSettingLabel(r) + " s, " +
-           std::to_string(r.solver_iterations) + " solver iterations";
-  }
+  if (r.engine != "reference") return r.family + ", time step " + SweepSettingLabel(r) + " s";
   if (r.integrator == "dopri5") return "reference dopri5, rtol " + SweepSettingLabel(r);
   return "reference RK4, step " + SweepSettingLabel(r) + " s";
 }
@@ -270,7 +250,11 @@ GnuplotFigure BuildFigure(const std::vector<SweepRecord>& rows, const FigureSpec
     }
     if (text.empty()) continue;
     data += (block > 0 ? "\n\n" : "") + std::string("# ") + family + "\n" + text;
-    const Style st = FamilyStyle(rows[indices.front()]);
+    const SweepRecord& head = rows[indices.front()];
+    const std::vector<std::string> engines = SweepEngines(rows);
+    const size_t engine_index = static_cast<size_t>(
+        std::find(engines.begin(), engines.end(), head.engine) - engines.begin());
+    const Style st = FamilyStyle(head, static_cast<size_t>(block), engine_index);
     const std::string idx = " index " + std::to_string(block);
     plot += std::string(block > 0 ? ", \\\n     " : "") + "'" + spec.name + ".dat'" + idx +
             " using 1:2 with linespoints lw 1.5 pt " + std::to_string(st.point_type) +
@@ -290,7 +274,7 @@ GnuplotFigure BuildFigure(const std::vector<SweepRecord>& rows, const FigureSpec
       "\n"
       "set grid xtics ytics mxtics mytics lc rgb '#dddddd'\n"
       "set key outside right top box font ',10' spacing 1.1\n"
-      "set title 'points labelled: Bullet time step (s), dopri5 rtol, RK4 step (s)' font ',10'\n";
+      "set title 'points labelled: engine time step (s), dopri5 rtol, RK4 step (s)' font ',10'\n";
   if (block == 0) {
     // Nothing usable: an empty frame that says so.
     script += "set xrange [1e-3:1]\nset yrange [1e-3:1]\n";
@@ -374,14 +358,15 @@ std::vector<SweepRecord> ParseSweepCsv(const std::string& text, const fs::path& 
     SweepRecord r;
     r.line = line;
     r.engine = rd.Text("engine");
-    if (r.engine == "bullet") {
-      r.precision = rd.Text("precision");
-      if (r.precision != "double" && r.precision != "float") {
-        rd.Fail("precision", "expected double or float, got '" + r.precision + "'");
-      }
+    if (r.engine.empty()) rd.Fail("engine", "expected an engine name or reference, got ''");
+    r.setting = rd.Text("setting");
+    if (r.setting.empty()) rd.Fail("setting", "expected the point's label, got ''");
+    if (r.engine != "reference") {
+      r.family = rd.Text("family");
+      r.settings = rd.Text("settings");
+      if (r.family.empty()) rd.Fail("family", "expected the engine's settings family, got ''");
       r.time_step_s = rd.Positive("time_step_s");
-      r.solver_iterations = rd.Integer("solver_iterations", 1);
-    } else if (r.engine == "reference") {
+    } else {
       r.integrator = rd.Text("integrator");
       if (r.integrator == "dopri5") {
         r.rtol = rd.Positive("rtol");
@@ -391,8 +376,6 @@ std::vector<SweepRecord> ParseSweepCsv(const std::string& text, const fs::path& 
       } else {
         rd.Fail("integrator", "expected dopri5 or rk4, got '" + r.integrator + "'");
       }
-    } else {
-      rd.Fail("engine", "expected bullet or reference, got '" + r.engine + "'");
     }
     r.status = rd.Text("status");
     r.error = rd.Text("error");
@@ -454,27 +437,17 @@ std::vector<SweepRecord> ParseSweepCsv(const std::string& text, const fs::path& 
 }
 
 std::string SweepFamily(const SweepRecord& r) {
-  if (r.engine == "bullet") {
-    return "Bullet " + r.precision + ", " + std::to_string(r.solver_iterations) + " iterations";
-  }
+  if (r.engine != "reference") return r.family;
   return r.integrator == "dopri5" ? "reference dopri5" : "reference RK4";
 }
 
 double SweepSettingValue(const SweepRecord& r) {
-  if (r.engine == "bullet") return r.time_step_s;
+  if (r.engine != "reference") return r.time_step_s;
   return r.integrator == "dopri5" ? r.rtol : r.rk4_step_s;
 }
 
 std::string SweepSettingLabel(const SweepRecord& r) {
-  const double v = SweepSettingValue(r);
-  const std::string compact = Compact(v);
-  if (!compact.empty()) return compact;
-  // Bullet's classic 1/60 s (and the like): say it as a fraction.
-  const double inverse = 1.0 / v;
-  if (std::fabs(inverse - std::round(inverse)) < 1e-6 * inverse) {
-    return "1/" + Fmt("%.0f", std::round(inverse));
-  }
-  return Fmt("%.3g", v);
+  return r.setting;
 }
 
 double MaxAngleError(const SweepRecord& r) {
@@ -493,10 +466,15 @@ bool ReachesPeakAgreement(const SweepRecord& r, double peak_tolerance) {
 
 std::vector<std::pair<std::string, std::vector<size_t>>> SweepFamilies(
     const std::vector<SweepRecord>& rows) {
-  // Sort key: engine/precision class, then iterations, then the family name.
-  auto rank = [](const SweepRecord& r) {
-    if (r.engine == "bullet") return r.precision == "double" ? 0 : 1;
-    return r.integrator == "dopri5" ? 2 : 3;
+  // Families in the order they first appear among the engines' rows (each engine's own grid
+  // order), then reference dopri5 and RK4; within a family from the coarsest setting.
+  std::map<std::string, size_t> first;
+  for (size_t i = 0; i < rows.size(); ++i) {
+    if (rows[i].engine != "reference") first.emplace(SweepFamily(rows[i]), first.size());
+  }
+  auto rank = [&](const SweepRecord& r) -> size_t {
+    if (r.engine != "reference") return first.at(SweepFamily(r));
+    return first.size() + (r.integrator == "dopri5" ? 0 : 1);
   };
   std::vector<size_t> order;
   for (size_t i = 0; i < rows.size(); ++i) {
@@ -506,9 +484,6 @@ std::vector<std::pair<std::string, std::vector<size_t>>> SweepFamilies(
     const SweepRecord& x = rows[a];
     const SweepRecord& y = rows[b];
     if (rank(x) != rank(y)) return rank(x) < rank(y);
-    if (x.solver_iterations != y.solver_iterations) {
-      return x.solver_iterations < y.solver_iterations;
-    }
     return SweepSettingValue(x) > SweepSettingValue(y);
   });
   std::vector<std::pair<std::string, std::vector<size_t>>> out;
@@ -554,31 +529,47 @@ AgreementCriterion HistoryAgreement(double fraction, double peak_theta1_rad,
   return c;
 }
 
-CheapestSetting FindCheapestSetting(const std::vector<SweepRecord>& rows, double peak_tolerance) {
+CheapestSetting FindCheapestSetting(const std::vector<SweepRecord>& rows, double peak_tolerance,
+                                    const std::string& engine) {
   return FindCheapestSetting(
       rows,
-      PeakAgreement(peak_tolerance, std::any_of(rows.begin(), rows.end(), [](const SweepRecord& r) {
-                      return r.has_theta2;
-                    })));
+      PeakAgreement(peak_tolerance, std::any_of(rows.begin(), rows.end(),
+                                                [](const SweepRecord& r) { return r.has_theta2; })),
+      engine);
+}
+
+std::vector<std::string> SweepEngines(const std::vector<SweepRecord>& rows) {
+  std::vector<std::string> out;
+  for (const SweepRecord& r : rows) {
+    if (r.engine != "reference" && std::find(out.begin(), out.end(), r.engine) == out.end()) {
+      out.push_back(r.engine);
+    }
+  }
+  return out;
 }
 
 CheapestSetting FindCheapestSetting(const std::vector<SweepRecord>& rows,
-                                    const AgreementCriterion& criterion) {
+                                    const AgreementCriterion& criterion,
+                                    const std::string& engine_name) {
   CheapestSetting out;
+  const std::vector<std::string> engines = SweepEngines(rows);
+  out.engine = !engine_name.empty() ? engine_name : (engines.empty() ? "" : engines.front());
+  const std::string& engine = out.engine;
   auto reaches = [&](const SweepRecord& r) { return r.failure.empty() && criterion.reaches(r); };
   for (size_t i = 0; i < rows.size(); ++i) {
     const SweepRecord& r = rows[i];
-    if (r.engine != "bullet" || !reaches(r)) continue;
-    if (!out.bullet || r.wall_s < rows[*out.bullet].wall_s) out.bullet = i;
+    if (r.engine != engine || !reaches(r)) continue;
+    if (!out.engine_row || r.wall_s < rows[*out.engine_row].wall_s) out.engine_row = i;
   }
-  if (!out.bullet) {
-    out.statement = "No Bullet setting in this sweep reaches " + criterion.name + " (" +
+  if (!out.engine_row) {
+    out.statement = "No " + (engine.empty() ? std::string("engine") : engine) +
+                    " setting in this sweep reaches " + criterion.name + " (" +
                     criterion.definition + ").";
     // Say how close the sweep came: the smallest max angle error.
     std::optional<size_t> closest;
     for (size_t i = 0; i < rows.size(); ++i) {
       const SweepRecord& r = rows[i];
-      if (r.engine != "bullet" || !r.failure.empty()) continue;
+      if (r.engine != engine || !r.failure.empty()) continue;
       if (!closest || MaxAngleError(r) < MaxAngleError(rows[*closest])) closest = i;
     }
     if (closest) {
@@ -590,14 +581,14 @@ CheapestSetting FindCheapestSetting(const std::vector<SweepRecord>& rows,
     }
     return out;
   }
-  const SweepRecord& b = rows[*out.bullet];
+  const SweepRecord& b = rows[*out.engine_row];
   const double bullet_error = MaxAngleError(b);
   for (size_t i = 0; i < rows.size(); ++i) {
     const SweepRecord& r = rows[i];
     if (r.engine != "reference" || !reaches(r) || MaxAngleError(r) > bullet_error) continue;
     if (!out.reference || r.wall_s < rows[*out.reference].wall_s) out.reference = i;
   }
-  out.statement = "The cheapest Bullet setting reaching " + criterion.name + " (" +
+  out.statement = "The cheapest " + engine + " setting reaching " + criterion.name + " (" +
                   criterion.definition + ") is " + SettingDescription(b) + ", at " +
                   Fmt("%.3g", b.wall_s) + " s wall (max angle error " + Fmt("%.2e", bullet_error) +
                   " rad, |peak relative error| " + Fmt("%.2g", MaxPeakRelError(b) * 100.0) + "%).";
@@ -606,14 +597,15 @@ CheapestSetting FindCheapestSetting(const std::vector<SweepRecord>& rows,
     out.statement +=
         " The reference reaches the same or better accuracy (max angle error, the "
         "max |error| over the run" +
-        std::string(b.has_theta2 ? " (the larger of theta1's and theta2's)" : "") +
-        ", <= the Bullet run's, and the same criterion) with " + SettingDescription(r) + " at " +
+        std::string(b.has_theta2 ? " (the larger of theta1's and theta2's)" : "") + ", <= the " +
+        engine + " run's, and the same criterion) with " + SettingDescription(r) + " at " +
         Fmt("%.3g", r.wall_s) + " s wall (max angle error " + Fmt("%.2e", MaxAngleError(r)) +
         " rad), " + Fmt("%.3g", b.wall_s / r.wall_s) + " times cheaper.";
   } else {
     out.statement +=
         " No reference setting in this sweep reaches the same or better accuracy "
-        "(max angle error <= the Bullet run's, and the same criterion).";
+        "(max angle error <= the " +
+        engine + " run's, and the same criterion).";
   }
   return out;
 }
@@ -644,10 +636,9 @@ std::filesystem::path WriteSweepReport(const fs::path& sweep_dir, const fs::path
         "No sweep.json beside sweep.csv (a sweep from an older rockbench): the "
         "simulated duration is unknown, so real time is not marked.");
   }
-  if (std::none_of(rows.begin(), rows.end(),
-                   [](const SweepRecord& r) { return r.engine == "bullet"; })) {
+  if (SweepEngines(rows).empty()) {
     page.Warning(
-        "The sweep has no Bullet runs (built without Bullet?): there is nothing to "
+        "The sweep has no engine runs (built without engines?): there is nothing to "
         "compare the reference with.");
   }
 
@@ -680,14 +671,16 @@ std::filesystem::path WriteSweepReport(const fs::path& sweep_dir, const fs::path
   page.Paragraph(about);
 
   // The statement.
-  const CheapestSetting cheapest = FindCheapestSetting(rows);
   page.Heading("Cheapest setting for 1% peak-angle agreement");
-  page.Paragraph(cheapest.statement);
-  if (info.present && cheapest.bullet) {
-    const SweepRecord& b = rows[*cheapest.bullet];
-    page.Paragraph("That Bullet run simulates " + Fmt("%.3g", info.span_s()) + " s in " +
-                   Fmt("%.3g", b.wall_s) + " s: " + Fmt("%.3g", info.span_s() / b.wall_s) +
-                   " times faster than real time.");
+  for (const std::string& engine : SweepEngines(rows)) {
+    const CheapestSetting cheapest = FindCheapestSetting(rows, 0.01, engine);
+    page.Paragraph(cheapest.statement);
+    if (info.present && cheapest.engine_row) {
+      const SweepRecord& b = rows[*cheapest.engine_row];
+      page.Paragraph("That " + engine + " run simulates " + Fmt("%.3g", info.span_s()) + " s in " +
+                     Fmt("%.3g", b.wall_s) + " s: " + Fmt("%.3g", info.span_s() / b.wall_s) +
+                     " times faster than real time.");
+    }
   }
   // When the peak criterion cannot tell runs apart, say so, and give a stricter one.
   if (info.present) {
@@ -715,9 +708,11 @@ std::filesystem::path WriteSweepReport(const fs::path& sweep_dir, const fs::path
     } else {
       page.Paragraph("A stricter criterion, on the whole history:");
     }
-    page.Paragraph(
-        FindCheapestSetting(rows, HistoryAgreement(0.01, info.tight_peak1, info.tight_peak2))
-            .statement);
+    for (const std::string& engine : SweepEngines(rows)) {
+      page.Paragraph(FindCheapestSetting(
+                         rows, HistoryAgreement(0.01, info.tight_peak1, info.tight_peak2), engine)
+                         .statement);
+    }
   }
   page.Paragraph(
       "Wall times are measured: they vary from run to run and with the load of the "

@@ -23,11 +23,12 @@ std::string SweepReportName(const std::filesystem::path& sweep_dir);
 
 /// One row of sweep.csv as read back (columns as src/harness/sweep.h's SweepCsv writes them).
 struct SweepRecord {
-  int line = 0;           ///< 1-based line number in sweep.csv
-  std::string engine;     ///< "bullet" | "reference"
-  std::string precision;  ///< bullet: "double" | "float"
+  int line = 0;          ///< 1-based line number in sweep.csv
+  std::string engine;    ///< an engine's name, or "reference"
+  std::string family;    ///< engines: the settings family ("Bullet double (50 iterations)")
+  std::string setting;   ///< engines: the point's label ("1e-3", "1/60")
+  std::string settings;  ///< engines: the settings besides the step ("k=v;k=v")
   double time_step_s = 0.0;
-  int solver_iterations = 0;
   std::string integrator;  ///< reference: "dopri5" | "rk4"
   double rtol = 0.0, atol = 0.0;
   double rk4_step_s = 0.0;  ///< s
@@ -53,11 +54,11 @@ struct SweepRecord {
 /// positive. Non-finite results (nan, inf) are not errors: the row is marked failed.
 std::vector<SweepRecord> ParseSweepCsv(const std::string& text, const std::filesystem::path& path);
 
-/// The family of a row: "Bullet double, 50 iterations", "Bullet float, 4 iterations",
-/// "reference dopri5", "reference RK4".
+/// The family of a row: the engine's (sweep.csv "family", e.g. "Bullet double (50
+/// iterations)"), "reference dopri5", "reference RK4".
 std::string SweepFamily(const SweepRecord& r);
-/// The setting that varies within a family, as a point label: Bullet's time step ("1e-3",
-/// "1/60"; s), dopri5's rtol ("1e-8"), RK4's step ("1e-3"; s).
+/// The setting that varies within a family, as the sweep labelled it (sweep.csv "setting"): an
+/// engine's time step ("1e-3", "1/60"; s), dopri5's rtol ("1e-8"), RK4's step ("2.5e-3"; s).
 std::string SweepSettingLabel(const SweepRecord& r);
 /// The varying setting's value (time step s, rtol, or step s): smaller is finer.
 double SweepSettingValue(const SweepRecord& r);
@@ -85,23 +86,28 @@ AgreementCriterion PeakAgreement(double tolerance, bool two_blocks);
 AgreementCriterion HistoryAgreement(double fraction, double peak_theta1_rad,
                                     double peak_theta2_rad);
 
-/// The cheapest Bullet setting reaching a criterion, and the cheapest reference setting with the
-/// same or better accuracy: max angle error <= the Bullet run's, and it reaches the criterion
-/// too. Indices into the rows; ties go to the earlier row.
+/// The cheapest setting of one engine reaching a criterion, and the cheapest reference setting
+/// with the same or better accuracy: max angle error <= the engine run's, and it reaches the
+/// criterion too. Indices into the rows; ties go to the earlier row.
 struct CheapestSetting {
-  std::optional<size_t> bullet;
+  std::string engine;  ///< the engine
+  std::optional<size_t> engine_row;
   std::optional<size_t> reference;
-  /// The statement in plain words (says so when no Bullet or no reference setting qualifies).
+  /// The statement in plain words (says so when no engine or no reference setting qualifies).
   std::string statement;
 };
+/// `engine`: empty for the first engine of the rows.
 CheapestSetting FindCheapestSetting(const std::vector<SweepRecord>& rows,
-                                    const AgreementCriterion& criterion);
+                                    const AgreementCriterion& criterion,
+                                    const std::string& engine = "");
 /// With PeakAgreement(peak_tolerance, any row has theta2).
 CheapestSetting FindCheapestSetting(const std::vector<SweepRecord>& rows,
-                                    double peak_tolerance = 0.01);
+                                    double peak_tolerance = 0.01, const std::string& engine = "");
+/// The engines of the rows, in the order they first appear.
+std::vector<std::string> SweepEngines(const std::vector<SweepRecord>& rows);
 
-/// Rows grouped by family, in the order Bullet double (iterations ascending), Bullet float,
-/// reference dopri5, reference RK4; within a family from the coarsest setting to the finest.
+/// Rows grouped by family, in the order the engines' families first appear, then reference
+/// dopri5, reference RK4; within a family from the coarsest setting to the finest.
 /// Failed rows are left out. (family name, row indices).
 std::vector<std::pair<std::string, std::vector<size_t>>> SweepFamilies(
     const std::vector<SweepRecord>& rows);

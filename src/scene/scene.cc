@@ -2,6 +2,7 @@
 
 #include <toml++/toml.h>
 
+#include <algorithm>
 #include <array>
 #include <charconv>
 #include <cmath>
@@ -103,7 +104,6 @@ const std::map<std::string, KeyList, std::less<>>& Schema() {
         {"base", true},
         {"run", true},
         {"model", true},
-        {"bullet", true},
         {"compare", true}}},
       {"block1", kBlock},
       {"block2", kBlock},
@@ -123,22 +123,6 @@ const std::map<std::string, KeyList, std::less<>>& Schema() {
         {"rest_rate", false},  // removed: an error naming rest_rate_rel
         {"rest_rate_rel", false},
         {"check_transitions", false}}},
-      {"bullet",
-       {{"time_step", false},
-        {"solver_iterations", false},
-        {"precision", false},
-        {"drive", false},
-        {"erp", false},
-        {"erp2", false},
-        {"split_impulse", false},
-        {"split_impulse_threshold", false},
-        {"restitution", false},
-        {"friction", false},
-        {"rolling_friction", false},
-        {"restitution_velocity_threshold", false},
-        {"margin", false},
-        {"ground_depth", false},
-        {"kinematic_highpass_hz", false}}},
       {"compare",
        {{"tolerance", false},
         {"members", false},
@@ -207,13 +191,14 @@ class Reader {
     throw SceneError(Loc(key, node) + ": " + key + ": " + msg);
   }
 
-  // Rejects keys that the schema does not list for `prefix`.
+  // Rejects keys that the schema does not list for `prefix`. At the top level, a table the
+  // schema does not list is an engine's settings table (checked by the engine).
   void CheckKeys(const toml::table& table, const std::string& prefix) const {
     const KeyList& allowed = Schema().at(prefix);
     for (auto&& [k, v] : table) {
       bool known = false;
       for (const auto& [name, is_table] : allowed) known = known || name == k.str();
-      if (known) continue;
+      if (known || (prefix.empty() && v.is_table())) continue;
       std::string list;
       for (const auto& [name, is_table] : allowed) {
         list += (list.empty() ? "" : ", ") + std::string(name);
@@ -326,6 +311,36 @@ class Reader {
     if (const toml::node* node = t.get(name)) Fail(Join(prefix, name), node, why);
   }
 
+  // Keeps every top-level table the schema does not list as an engine's table, as written.
+  void ReadEngineTables(const toml::table& root, Scene* s) const {
+    for (auto&& [k, v] : root) {
+      const std::string name(k.str());
+      if (Schema().at("").end() != std::find_if(Schema().at("").begin(), Schema().at("").end(),
+                                                [&](const auto& e) { return e.first == name; })) {
+        continue;
+      }
+      RawEngineTable& t = s->engine_tables[name];
+      t.where = Loc(name, &v);
+      for (auto&& [key, node] : *v.as_table()) {
+        const std::string dotted = name + "." + std::string(key.str());
+        SettingValue value;
+        if (auto f = node.as_floating_point()) {
+          value = f->get();
+        } else if (auto i = node.as_integer()) {
+          value = i->get();
+        } else if (auto b = node.as_boolean()) {
+          value = b->get();
+        } else if (auto str = node.as_string()) {
+          value = str->get();
+        } else {
+          Fail(dotted, &node,
+               "expected a number, an integer, true/false or a string, got " + Describe(node));
+        }
+        t.values[std::string(key.str())] = RawSetting{std::move(value), Loc(dotted, &node)};
+      }
+    }
+  }
+
   BlockDef ReadBlock(const toml::table& t, const std::string& prefix) const {
     BlockDef b;
     b.width_m = RequiredNumber(t, prefix, "width", Rule::kPositive, "m");
@@ -417,6 +432,7 @@ class Reader {
     Scene s;
     s.path = path;
     CheckKeys(root, "");
+    ReadEngineTables(root, &s);
     s.title = String(root, "", "title", "a string").value_or("");
 
     const toml::table* b1 = Table(root, "", "block1");
@@ -499,40 +515,6 @@ class Reader {
           Bool(*model, "model", "check_transitions").value_or(m.check_transitions);
     }
 
-    if (const toml::table* bt = Table(root, "", "bullet")) {
-      BulletConfig& b = s.bullet;
-      const std::string p = "bullet";
-      b.time_step_s = Number(*bt, p, "time_step", Rule::kPositive, "s").value_or(b.time_step_s);
-      b.solver_iterations = static_cast<int>(
-          PositiveInteger(*bt, p, "solver_iterations").value_or(b.solver_iterations));
-      b.precision = Enum(*bt, p, "precision",
-                         Choices<BulletPrecision>{{"double", BulletPrecision::kDouble},
-                                                  {"float", BulletPrecision::kFloat}})
-                        .value_or(b.precision);
-      b.drive = Enum(*bt, p, "drive",
-                     Choices<BulletDrive>{{"inertial", BulletDrive::kInertial},
-                                          {"kinematic", BulletDrive::kKinematic}})
-                    .value_or(b.drive);
-      b.erp = Number(*bt, p, "erp", Rule::kFraction, "").value_or(b.erp);
-      b.erp2 = Number(*bt, p, "erp2", Rule::kFraction, "").value_or(b.erp2);
-      b.split_impulse = Bool(*bt, p, "split_impulse").value_or(b.split_impulse);
-      b.split_impulse_threshold = Number(*bt, p, "split_impulse_threshold", Rule::kFinite, "")
-                                      .value_or(b.split_impulse_threshold);
-      b.restitution =
-          Number(*bt, p, "restitution", Rule::kUnitInterval, "").value_or(b.restitution);
-      b.friction = Number(*bt, p, "friction", Rule::kNonNegative, "").value_or(b.friction);
-      b.rolling_friction =
-          Number(*bt, p, "rolling_friction", Rule::kNonNegative, "").value_or(b.rolling_friction);
-      b.restitution_velocity_threshold =
-          Number(*bt, p, "restitution_velocity_threshold", Rule::kNonNegative, "m/s")
-              .value_or(b.restitution_velocity_threshold);
-      b.margin_m = Number(*bt, p, "margin", Rule::kNonNegative, "m").value_or(b.margin_m);
-      b.ground_depth_m =
-          Number(*bt, p, "ground_depth", Rule::kPositive, "m").value_or(b.ground_depth_m);
-      b.kinematic_highpass_hz = Number(*bt, p, "kinematic_highpass_hz", Rule::kNonNegative, "Hz")
-                                    .value_or(b.kinematic_highpass_hz);
-    }
-
     if (const toml::table* cmp = Table(root, "", "compare")) {
       CompareConfig& c = s.compare;
       c.tolerance_rad = Number(*cmp, "compare", "tolerance", Rule::kPositive, "rad");
@@ -581,6 +563,7 @@ std::map<std::string, std::string> ApplyOverrides(toml::table& root,
       if (dot == std::string::npos) break;
       start = dot + 1;
     }
+    bool engine_table = false;
     for (size_t i = 0; i < parts.size(); ++i) {
       auto it = Schema().find(prefix);
       bool found = false, is_table = false;
@@ -590,6 +573,11 @@ std::map<std::string, std::string> ApplyOverrides(toml::table& root,
         }
       }
       const std::string here = Join(prefix, parts[i]);
+      // engine.key: an engine's table and its key, checked by the engine.
+      if (!found && parts.size() == 2 && (i == 0 || engine_table)) {
+        engine_table = true;
+        found = true, is_table = i == 0;
+      }
       if (!found) fail("unknown key " + here);
       const bool last = i + 1 == parts.size();
       if (last && is_table)
@@ -780,23 +768,6 @@ void ValidateScene(const Scene& scene) {
   check("model.step", m.step_s, Rule::kPositive, "s");
   check("model.overturn_angle", m.overturn_rad, Rule::kPositive, "rad");
   check("model.rest_rate_rel", m.rest_rate_rel, Rule::kNonNegative, "");
-  const BulletConfig& b = scene.bullet;
-  check("bullet.time_step", b.time_step_s, Rule::kPositive, "s");
-  if (b.solver_iterations <= 0) {
-    fail("bullet.solver_iterations",
-         "expected a positive integer, got " + std::to_string(b.solver_iterations));
-  }
-  check("bullet.erp", b.erp, Rule::kFraction, "");
-  check("bullet.erp2", b.erp2, Rule::kFraction, "");
-  check("bullet.split_impulse_threshold", b.split_impulse_threshold, Rule::kFinite, "");
-  check("bullet.restitution", b.restitution, Rule::kUnitInterval, "");
-  check("bullet.friction", b.friction, Rule::kNonNegative, "");
-  check("bullet.rolling_friction", b.rolling_friction, Rule::kNonNegative, "");
-  check("bullet.restitution_velocity_threshold", b.restitution_velocity_threshold,
-        Rule::kNonNegative, "m/s");
-  check("bullet.margin", b.margin_m, Rule::kNonNegative, "m");
-  check("bullet.ground_depth", b.ground_depth_m, Rule::kPositive, "m");
-  check("bullet.kinematic_highpass_hz", b.kinematic_highpass_hz, Rule::kNonNegative, "Hz");
   const CompareConfig& c = scene.compare;
   if (c.tolerance_rad) check("compare.tolerance", *c.tolerance_rad, Rule::kPositive, "rad");
   if (c.members < 0) fail("compare.members", "expected a non-negative integer");

@@ -4,11 +4,14 @@
 #include <cstdint>
 #include <filesystem>
 #include <limits>
+#include <map>
 #include <optional>
 #include <stdexcept>
 #include <string>
 #include <string_view>
 #include <vector>
+
+#include "scene/engine_settings.h"
 
 namespace rockbench {
 
@@ -78,32 +81,6 @@ struct ModelConfig {
   bool check_transitions = true;  ///< evaluate no-impact transition criteria in every mode
 };
 
-enum class BulletPrecision { kDouble, kFloat };
-enum class BulletDrive { kInertial, kKinematic };
-
-/// Settings of the Bullet engine ([bullet] table). Defaults are ours; Bullet's are in the README.
-struct BulletConfig {
-  double time_step_s = 1e-4;   ///< fixed step, s
-  int solver_iterations = 50;  ///< sequential-impulse iterations (Bullet default 10)
-  BulletPrecision precision = BulletPrecision::kDouble;
-  BulletDrive drive = BulletDrive::kInertial;
-  double erp = 0.2;           ///< joint ERP (Bullet default 0.2; contacts use erp2)
-  double erp2 = 0.8;          ///< contact penetration recovery (Bullet 3.24 default 0.2)
-  bool split_impulse = true;  ///< Bullet default true
-  /// m; Bullet's default -0.04 corrects shallow penetration with a velocity bias that throws
-  /// the blocks up at every impact (docs/bullet.md): ours is 0, all through split impulse.
-  double split_impulse_threshold = 0.0;
-  double restitution = 0.0;       ///< per body; Bullet multiplies the two bodies' values
-  double friction = 3.0;          ///< per body; Bullet multiplies and clamps the product at 10
-  double rolling_friction = 0.0;  ///< per body
-  double restitution_velocity_threshold = 0.2;  ///< m/s (Bullet default 0.2)
-  double margin_m = 0.0;        ///< collision margin, m (Bullet default 0.04 for boxes)
-  double ground_depth_m = 1.0;  ///< ground box thickness, m
-  /// Kinematic drive: baseline-correction corner, Hz; 0 = none (the default: any correction
-  /// changes the excitation; docs/bullet.md).
-  double kinematic_highpass_hz = 0.0;
-};
-
 /// Comparison settings ([compare] table).
 struct CompareConfig {
   /// Agreement-horizon tolerance, rad; nullopt: 10% of the reference's peak |theta| of that
@@ -139,7 +116,9 @@ struct Scene {
   std::optional<MotionDef> vertical;
   RunConfig run;
   ModelConfig model;
-  BulletConfig bullet;
+  /// Every other top-level table: an engine's settings ([bullet], [ode], ...), as written;
+  /// the engine checks its own (scene/engine_settings.h).
+  std::map<std::string, RawEngineTable, std::less<>> engine_tables;
   CompareConfig compare;
 
   bool two_blocks() const { return block2.has_value(); }

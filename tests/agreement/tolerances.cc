@@ -12,6 +12,7 @@
 
 #include "harness/compare.h"
 #include "harness/compare_run.h"
+#include "harness/engine_registry.h"
 #include "harness/engines.h"
 #include "reference/simulate.h"
 #include "scene/ground_motion.h"
@@ -85,7 +86,9 @@ void Leaves(const nlohmann::json& j, const std::string& prefix, std::vector<std:
 // A scene loaded with overrides, or a ToleranceError naming the entry.
 Scene LoadFor(const Bound& b, const std::vector<std::string>& settings, const char* which) {
   try {
-    return LoadScene(b.scene_path, settings);
+    Scene scene = LoadScene(b.scene_path, settings);
+    CheckEngineTables(scene);
+    return scene;
   } catch (const SceneError& e) {
     throw ToleranceError(b.Name() + ": " + which + " do not load: " + e.what());
   }
@@ -116,7 +119,11 @@ std::string GroupKey(const std::string& scene, const std::string& engine,
 }  // namespace
 
 const std::vector<std::string>& KnownEngines() {
-  static const std::vector<std::string> kEngines = {"reference", "bullet"};
+  static const std::vector<std::string> kEngines = [] {
+    std::vector<std::string> names = {"reference"};
+    for (const RegisteredEngine& e : EngineRegistry()) names.push_back(e.name);
+    return names;
+  }();
   return kEngines;
 }
 

@@ -57,7 +57,8 @@ struct ToleranceError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-/// Engines a bound may name. Groups of an engine this build lacks (see AvailableEngines) are
+/// Engines a bound may name: "reference" and every engine of engines/CMakeLists.txt, built or
+/// left out. Groups of an engine this build left out (see AvailableEngines) are
 /// skipped, not failed.
 const std::vector<std::string>& KnownEngines();
 

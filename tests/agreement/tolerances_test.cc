@@ -229,12 +229,29 @@ TEST_F(UnguardedScenesTest, ASceneWithoutAnEngineBoundIsReported) {
   b_ref.replace(b_ref.find("a.toml"), 6, "b.toml");
   b_ref.replace(b_ref.find("\"bullet\""), 8, "\"reference\"");
   b_ref += "reference_settings = [\"model.rtol=1e-12\"]\n";
-  // b.toml has only a reference-against-itself bound: not guarded.
+  // b.toml has only a reference-against-itself bound: not guarded, for any engine; a.toml is
+  // guarded for Bullet only.
   std::vector<Bound> bounds = ParseTolerances(a + b_ref, kFile, dir_);
-  EXPECT_EQ(UnguardedScenes(bounds, dir_), std::vector<std::string>{"b.toml: bullet"});
-  std::string b = a;
-  b.replace(b.find("a.toml"), 6, "b.toml");
-  bounds = ParseTolerances(a + b_ref + b, kFile, dir_);
+  std::vector<std::string> expected;
+  for (const char* scene : {"a.toml", "b.toml"}) {
+    for (const std::string& engine : KnownEngines()) {
+      if (engine == "reference" || (std::string(scene) == "a.toml" && engine == "bullet")) continue;
+      expected.push_back(std::string(scene) + ": " + engine);
+    }
+  }
+  EXPECT_EQ(UnguardedScenes(bounds, dir_), expected);
+  // A bound per scene and engine guards them all.
+  std::string all;
+  for (const char* scene : {"a.toml", "b.toml"}) {
+    for (const std::string& engine : KnownEngines()) {
+      if (engine == "reference") continue;
+      std::string x = a;
+      x.replace(x.find("a.toml"), 6, scene);
+      x.replace(x.find("\"bullet\""), 8, "\"" + engine + "\"");
+      all += x;
+    }
+  }
+  bounds = ParseTolerances(all + b_ref, kFile, dir_);
   EXPECT_TRUE(UnguardedScenes(bounds, dir_).empty());
 }
 

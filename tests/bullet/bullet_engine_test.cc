@@ -1,7 +1,7 @@
-// The Bullet engine against closed forms (Housner's single block) and the reference model (the
-// thesis's scenes): impacts, peaks, uplift threshold, rest, agreement regression bounds,
-// convergence with the time step, precision, the two base drives, and what the engine does
-// that the model forbids.
+// The Bullet engine against the reference model (the thesis's scenes): agreement regression
+// bounds, convergence with the time step, precision, the two base drives, and what the engine
+// does that the model forbids. Housner's closed forms, the uplift threshold and rest are the
+// conformance suite's (tests/engines/conformance_test.cc), run for every engine.
 //
 // Every scene here sets [bullet] split_impulse_threshold = 0 (all penetration recovery through
 // split impulse). With Bullet's default -0.04 m, a shallow penetration at an impact is pushed
@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "common/housner_closed_forms.h"
 #include "harness/compare.h"
 #include "harness/engines.h"
 #include "reference/simulate.h"
@@ -31,47 +32,15 @@ namespace {
 
 const std::filesystem::path kScenes = std::filesystem::path(ROCKBENCH_SOURCE_DIR) / "scenes";
 
-// Housner's block of scenes/housner_free_rocking.toml: B = 1 m, H = 4 m.
-constexpr double kB = 1.0, kH = 4.0, kG = 9.81;
-
-struct Housner {
-  double b = kB / 2, h = kH / 2;
-  double R = std::hypot(b, h);
-  double alpha = std::atan2(b, h);                      // theta_c
-  double p2 = 3.0 * kG / (4.0 * R);                     // p^2 = m g R / I_O with I_O = 4/3 m R^2
-  double e = 1.0 - 1.5 * std::pow(std::sin(alpha), 2);  // Housner's coefficient of restitution
-
-  // |omega| at theta = 0 after release from rest at amplitude a (energy).
-  double RateAtZero(double a) const {
-    return std::sqrt(2.0 * p2 * (std::cos(alpha - a) - std::cos(alpha)));
-  }
-  // Amplitude reached from theta = 0 with rate w.
-  double Amplitude(double w) const {
-    return alpha - std::acos(std::cos(alpha) + w * w / (2.0 * p2));
-  }
-  // Time from rest at amplitude a to theta = 0: the energy quadrature
-  // t = int_0^a dtheta / sqrt(2 p^2 (cos(alpha - a) - cos(alpha - theta))), with theta = a - u^2
-  // removing the inverse-square-root end point; composite Simpson on u (smooth integrand).
-  double QuarterTime(double a) const {
-    const int n = 2000;
-    const double U = std::sqrt(a), du = U / n;
-    auto f = [&](double u) {
-      if (u == 0.0) return 2.0 / std::sqrt(2.0 * p2 * std::sin(alpha - a));
-      return 2.0 * u / std::sqrt(2.0 * p2 * (std::cos(alpha - a) - std::cos(alpha - a + u * u)));
-    };
-    double s = f(0.0) + f(U);
-    for (int k = 1; k < n; ++k) s += (k % 2 ? 4.0 : 2.0) * f(k * du);
-    return s * du / 3.0;
-  }
-};
+using testing_util::Housner;
 
 Scene Load(const std::string& name, std::vector<std::string> overrides = {}) {
   overrides.insert(overrides.begin(), "bullet.split_impulse_threshold=0");
   return LoadScene(kScenes / name, overrides);
 }
 
-EngineOutput RunScene(const Scene& s) {
-  return Simulate(MakeEngineInput(s, GroundMotion::FromScene(s)));
+EngineResult RunScene(const Scene& s) {
+  return Simulate(MakeBulletInput(s, GroundMotion::FromScene(s)));
 }
 
 std::vector<Event> Impacts(const History& h, const char* kind = nullptr) {
@@ -92,110 +61,13 @@ EngineAgreement Agreement(const Scene& s) {
   return CompareWithReference(s, ref, run);
 }
 
-TEST(BulletEngineTest, HousnerFreeRockingMatchesClosedFormsAndTheReference) {
-  const Housner hz;
-  const double theta0 = hz.alpha / 2;
-  // Closed forms: impact times from the energy quadrature, rates from Housner's restitution.
-  std::vector<double> t_closed, amp_closed;
-  double t = hz.QuarterTime(theta0), a = theta0;
-  for (int k = 0; k < 4; ++k) {
-    t_closed.push_back(t);
-    a = hz.Amplitude(hz.e * hz.RateAtZero(a));
-    amp_closed.push_back(a);
-    t += 2.0 * hz.QuarterTime(a);
-  }
-  Scene s = Load("housner_free_rocking.toml", {"run.output_interval=0.001"});
-  ASSERT_NEAR(s.initial.theta1_rad, theta0, 1e-15);
-  ASSERT_EQ(s.bullet.time_step_s, 1e-4);
-  const EngineOutput out = RunScene(s);
-  EXPECT_EQ(out.summary["status"], "completed");
-  const std::vector<Event> imp = Impacts(out.history, "ground_impact");
-  ASSERT_GE(imp.size(), 4u);
-  // Impact times within 1 ms of the closed forms for the first 4 impacts (measured errors
-  // -0.05, -0.47, -0.61, -0.86 ms: Bullet resolves an impact one step late, losing a fraction
-  // of p^2 sin(alpha) dt of rate, and the rocking period is very sensitive to the amplitude).
-  for (int k = 0; k < 4; ++k) {
-    EXPECT_NEAR(imp[k].t_s, t_closed[k], 1e-3) << "impact " << k + 1;
-  }
-  // The first impact: the rate before it from energy (measured 0.03% low: it is the rate one
-  // step before the crossing), after it Housner's e (measured ratio 0.911755 against
-  // e = 0.911765). Bound 0.1%: a first-order impact error of p^2 sin(alpha) dt / omega = 2e-4
-  // relative at dt = 1e-4.
-  EXPECT_NEAR(std::abs(imp[0].omega1_before), hz.RateAtZero(theta0), 1e-3 * hz.RateAtZero(theta0));
-  EXPECT_NEAR(imp[0].omega1_after / imp[0].omega1_before, hz.e, 1e-3);
-  EXPECT_EQ(imp[0].mode_before, Mode::k3a);
-  EXPECT_EQ(imp[0].mode_after, Mode::k3b);
-
-  // First peak after the first impact within 1% of the closed form and of the reference.
-  double peak = 0.0;
-  for (const Sample& x : out.history.samples) {
-    if (x.t_s > imp[0].t_s && x.t_s < imp[1].t_s) peak = std::max(peak, std::abs(x.theta1_rad));
-  }
-  EXPECT_NEAR(peak, amp_closed[0], 0.01 * amp_closed[0]);
-  const reference::Result ref = reference::Simulate(s, GroundMotion());
-  std::vector<double> t_ref;
-  for (const Event& e : ref.history.events) {
-    if (e.kind == "ground_impact") t_ref.push_back(e.t_s);
-  }
-  ASSERT_GE(t_ref.size(), 4u);
-  double ref_peak = 0.0;
-  for (double x = t_ref[0]; x < t_ref[1]; x += 1e-4) {
-    ref_peak = std::max(ref_peak, std::abs(ref.trajectory.At(x).theta1_rad));
-  }
-  EXPECT_NEAR(peak, ref_peak, 0.01 * ref_peak);
-  for (int k = 0; k < 4; ++k) {
-    EXPECT_NEAR(imp[k].t_s, t_ref[k], 1e-3) << "impact " << k + 1;
-  }
-  // Nothing the model forbids: no uplift, no sliding, shallow penetration (one step's travel of
-  // the landing corner, omega B dt = 4e-5 m at most).
-  const auto& v = out.summary["violations"];
-  EXPECT_FALSE(v["uplift"].get<bool>());
-  EXPECT_FALSE(v["sliding"].get<bool>());
-  EXPECT_LT(v["penetration_ground_max_m"].get<double>(), 4e-5);
-  EXPECT_LT(v["energy_gain_rel"].get<double>(), 1e-3);
-}
-
-TEST(BulletEngineTest, UpliftStartsAtTheStaticThreshold) {
-  // Housner's block on a slowly ramped base acceleration (0 to 2 g tan(theta_c) over 10 s):
-  // it must stay put until the inertial load reaches g tan(theta_c) = g b / h, then rock on
-  // its left corner (the ground pushes right, the block tilts left).
-  const Housner hz;
-  Scene s;
-  s.block1 = {kB, kH, 1.0, 10000.0, 0.0};
-  s.run.duration_s = 6.0;
-  s.run.output_interval_s = 0.01;
-  s.bullet.split_impulse_threshold = 0.0;
-  const double a_c = kG * std::tan(hz.alpha);
-  GroundMotion m;
-  m.set_horizontal(MotionComponent::FromSamples({0.0, 2.0 * a_c}, 10.0, 0.0, "ramp"));
-  const EngineOutput out = Simulate(MakeEngineInput(s, m));
-  const Event* start = nullptr;
-  for (const Event& e : out.history.events) {
-    if (e.kind == "initiation") {
-      start = &e;
-      break;
-    }
-  }
-  ASSERT_NE(start, nullptr);
-  EXPECT_EQ(start->mode_after, Mode::k3b);
-  // Initiation is seen once |theta| > 1e-5 rad; with the load growing at 0.2 a_c per second
-  // that takes a few tens of ms past the true start (measured ratio below).
-  const double ratio = m.xg_mps2(start->t_s) / a_c;
-  EXPECT_GE(ratio, 0.97);
-  EXPECT_LE(ratio, 1.03);
-  RecordProperty("uplift_ratio", std::to_string(ratio));
-}
-
-TEST(BulletEngineTest, TwoBlocksAtRestStayWithin1e5RadFor10s) {
-  Scene s =
-      Load("thesis_free_rocking.toml", {"initial.theta1=0", "initial.theta2=0", "run.duration=10"});
-  const EngineOutput out = RunScene(s);
-  // Peaks are tracked at every step.
-  EXPECT_LT(out.summary["peaks"]["theta1"]["abs_rad"].get<double>(), 1e-5);
-  EXPECT_LT(out.summary["peaks"]["theta2"]["abs_rad"].get<double>(), 1e-5);
-  for (const Sample& x : out.history.samples) EXPECT_EQ(x.mode, Mode::kRest) << x.t_s;
-  EXPECT_TRUE(out.history.events.empty());
-  EXPECT_LT(out.summary["violations"]["drift_ground_max_m"].get<double>(), 1e-6);
+// Bullet multiplies the two bodies' friction coefficients and clamps the product at 10
+// (btManifoldResult::calculateCombinedFriction); the report compares this with the friction the
+// reference needs.
+TEST(BulletEngineTest, CombinedFrictionIsTheClampedProduct) {
+  EXPECT_DOUBLE_EQ(BulletCombinedFriction(3.0), 9.0);
+  EXPECT_DOUBLE_EQ(BulletCombinedFriction(0.5), 0.25);
+  EXPECT_DOUBLE_EQ(BulletCombinedFriction(4.0), 10.0);  // clamped
 }
 
 TEST(BulletEngineTest, ThesisFreeRockingAgreesWithTheReference) {
@@ -271,7 +143,7 @@ TEST(BulletEngineTest, ThesisRinaldiAgreesWithTheReference) {
 // Overturn time error (Bullet minus reference, s) of a scene at time step dt; both must
 // overturn the same block.
 double OverturnTimeError(Scene s, double dt, int block) {
-  s.bullet.time_step_s = dt;
+  SetEngineSetting(s, "bullet", "time_step", double(dt));
   const EngineAgreement a = Agreement(s);
   EXPECT_TRUE(a.overturn_agree) << "dt " << dt;
   EXPECT_EQ(a.overturn_block_reference.value_or(0), block) << "dt " << dt;
@@ -299,7 +171,7 @@ TEST(BulletEngineTest, SingleBlockOverturnTimeConvergesAtFirstOrder) {
   pulse.start_s = 0.1;
   s.horizontal = pulse;
   s.run.duration_s = 1.0;
-  s.bullet.split_impulse_threshold = 0.0;
+  SetEngineSetting(s, "bullet", "split_impulse_threshold", 0.0);
   // A single block's side face meets the ground at exactly pi/2, where Bullet may hold it at
   // pi/2 within rounding (measured: released 1% outside its critical angle at dt 3e-5 s, max
   // |theta| = pi/2 - 4e-16; elsewhere it lands 2e-6 to 4e-2 rad past pi/2). Both engines read
@@ -376,10 +248,10 @@ TEST(BulletEngineTest, KinematicDriveWithoutBaselineCorrectionEqualsTheInertialD
   // 2.8e-5 rad (theta1) and 3.0e-5 rad (theta2) over the first 5 s (block 2 falls at 5.4 s);
   // rounding differences grow with the motion's sensitivity, so the bounds keep a factor ~2.
   Scene s = Load("thesis_rinaldi228.toml", {"run.duration=5"});
-  const EngineOutput inertial = RunScene(s);
-  s.bullet.drive = BulletDrive::kKinematic;
-  s.bullet.kinematic_highpass_hz = 0.0;
-  const EngineOutput kinematic = RunScene(s);
+  const EngineResult inertial = RunScene(s);
+  SetEngineSetting(s, "bullet", "drive", std::string("kinematic"));
+  SetEngineSetting(s, "bullet", "kinematic_highpass_hz", 0.0);
+  const EngineResult kinematic = RunScene(s);
   EXPECT_EQ(kinematic.summary["settings"]["drive"], "kinematic");
   ASSERT_EQ(inertial.history.samples.size(), kinematic.history.samples.size());
   double d1 = 0.0, d2 = 0.0;
@@ -393,8 +265,8 @@ TEST(BulletEngineTest, KinematicDriveWithoutBaselineCorrectionEqualsTheInertialD
   EXPECT_LT(d2, 2e-4) << "theta1 " << d1;
   // With the default 0.1 Hz baseline correction the excitation itself changes (by 0.022 m/s^2
   // at most here): reported, not hidden.
-  s.bullet.kinematic_highpass_hz = 0.1;
-  const EngineOutput corrected = RunScene(s);
+  SetEngineSetting(s, "bullet", "kinematic_highpass_hz", 0.1);
+  const EngineResult corrected = RunScene(s);
   EXPECT_GT(corrected.summary["kinematic"]["correction_max_accel_x_mps2"].get<double>(), 0.0);
   EXPECT_LT(corrected.summary["kinematic"]["peak_displacement_x_m"].get<double>(),
             corrected.summary["kinematic"]["raw_peak_displacement_x_m"].get<double>());
@@ -405,8 +277,8 @@ TEST(BulletEngineTest, DefaultSplitThresholdMakesTheBlockBounce) {
   // is recovered by a velocity bias erp2 * depth / dt = 0.02 m/s that throws the block up.
   // The monitor reports it: uplift, and a post-impact rate off Housner's by 0.5%.
   Scene s = LoadScene(kScenes / "housner_free_rocking.toml");
-  s.bullet.split_impulse_threshold = -0.04;
-  const EngineOutput out = RunScene(s);
+  SetEngineSetting(s, "bullet", "split_impulse_threshold", -0.04);
+  const EngineResult out = RunScene(s);
   const auto& v = out.summary["violations"];
   EXPECT_TRUE(v["uplift"].get<bool>());
   EXPECT_GT(v["uplift_ground_max_m"].get<double>(), 1e-5);
@@ -424,7 +296,7 @@ TEST(BulletEngineTest, ForbiddenBehaviourIsReportedNeverThrown) {
                  {"run.duration=4", "bullet.time_step=0.0166666666667",
                   "bullet.split_impulse=false", "bullet.erp2=1.0", "bullet.restitution=1.0",
                   "bullet.restitution_velocity_threshold=0", "bullet.friction=0.3"});
-  EngineOutput out;
+  EngineResult out;
   ASSERT_NO_THROW(out = RunScene(s));
   const auto& v = out.summary["violations"];
   EXPECT_TRUE(v["sliding"].get<bool>());

@@ -1,7 +1,5 @@
 // The engine's input: [bullet] settings checks, base motion on the step grid, and the
 // kinematic drive's displacement (leapfrog double integration and baseline correction).
-#include "engines/bullet/engine_input.h"
-
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -9,6 +7,8 @@
 #include <numbers>
 #include <string>
 #include <vector>
+
+#include "engines/bullet/bullet_settings.h"
 
 namespace rockbench::bullet {
 namespace {
@@ -28,11 +28,11 @@ double SecondDifference(const std::vector<double>& u, double v_before, double dt
 
 TEST(EngineInputTest, SamplesTheBaseMotionAtTheStepStarts) {
   Scene s = OneBlock();
-  s.bullet.time_step_s = 1e-3;
+  SetEngineSetting(s, "bullet", "time_step", 1e-3);
   s.run.duration_s = 0.0105;  // not a multiple of dt: 11 steps
   GroundMotion m;
   m.set_horizontal(MotionComponent::FromSamples({0.0, 1.0}, 0.01, 0.0, "ramp"));
-  const EngineInput in = MakeEngineInput(s, m);
+  const BulletInput in = MakeBulletInput(s, m);
   EXPECT_EQ(in.steps, 11);
   ASSERT_EQ(in.drive.ax_mps2.size(), 11u);
   ASSERT_EQ(in.drive.ay_mps2.size(), 11u);
@@ -43,45 +43,62 @@ TEST(EngineInputTest, SamplesTheBaseMotionAtTheStepStarts) {
   EXPECT_TRUE(in.drive.ux_m.empty());  // inertial drive: no ground displacement
   EXPECT_DOUBLE_EQ(in.motion_end_s, 0.01);
   // No base motion: nothing stored, the drive reads zeros.
-  const EngineInput still = MakeEngineInput(OneBlock(), GroundMotion());
+  const BulletInput still = MakeBulletInput(OneBlock(), GroundMotion());
   EXPECT_TRUE(still.drive.ax_mps2.empty());
   EXPECT_EQ(still.steps, 10000);
 }
 
 TEST(EngineInputTest, RejectsImpossibleSettingsNamingTheKey) {
+  // Each bad value is refused naming where it was set and the key (bullet.<key>), with what was
+  // expected: the [bullet] table's schema for the settings, the step count for the time step.
   struct Case {
-    void (*set)(BulletConfig&);
     const char* key;
+    SettingValue value;
   };
   const Case cases[] = {
-      {[](BulletConfig& c) { c.time_step_s = 0.0; }, "time_step"},
-      {[](BulletConfig& c) { c.time_step_s = -1e-3; }, "time_step"},
-      {[](BulletConfig& c) { c.time_step_s = 1e-12; }, "time_step"},  // too many steps
-      {[](BulletConfig& c) { c.solver_iterations = 0; }, "solver_iterations"},
-      {[](BulletConfig& c) { c.erp = 1.5; }, "erp"},
-      {[](BulletConfig& c) { c.erp2 = -0.1; }, "erp2"},
-      {[](BulletConfig& c) { c.restitution = 2.0; }, "restitution"},
-      {[](BulletConfig& c) { c.friction = -1.0; }, "friction"},
-      {[](BulletConfig& c) { c.rolling_friction = NAN; }, "rolling_friction"},
-      {[](BulletConfig& c) { c.restitution_velocity_threshold = -1.0; },
-       "restitution_velocity_threshold"},
-      {[](BulletConfig& c) { c.margin_m = -0.01; }, "margin"},
-      {[](BulletConfig& c) { c.ground_depth_m = 0.0; }, "ground_depth"},
-      {[](BulletConfig& c) { c.kinematic_highpass_hz = -0.1; }, "kinematic_highpass_hz"},
+      {"time_step", 0.0},
+      {"time_step", -1e-3},
+      {"time_step", 1e-12},  // too many steps
+      {"solver_iterations", std::int64_t{0}},
+      {"solver_iterations", 2.5},
+      {"erp", 1.5},
+      {"erp2", -0.1},
+      {"restitution", 2.0},
+      {"friction", -1.0},
+      {"rolling_friction", std::nan("")},
+      {"restitution_velocity_threshold", -1.0},
+      {"margin", -0.01},
+      {"ground_depth", 0.0},
+      {"kinematic_highpass_hz", -0.1},
+      {"precision", std::string("half")},
+      {"drive", std::string("pushed")},
+      {"split_impulse", 1.0},
   };
   for (const Case& c : cases) {
     Scene s = OneBlock();
     s.path = "scenes/x.toml";
-    c.set(s.bullet);
+    SetEngineSetting(s, "bullet", c.key, c.value);
     try {
-      MakeEngineInput(s, GroundMotion());
+      MakeBulletInput(s, GroundMotion());
       ADD_FAILURE() << "accepted a bad " << c.key;
     } catch (const SceneError& e) {
       const std::string what = e.what();
-      EXPECT_NE(what.find(std::string("[bullet] ") + c.key + ":"), std::string::npos) << what;
+      EXPECT_NE(what.find(std::string("bullet.") + c.key + ":"), std::string::npos) << what;
       EXPECT_NE(what.find("scenes/x.toml"), std::string::npos) << what;
       EXPECT_NE(what.find("expected"), std::string::npos) << what;
     }
+  }
+  // An unknown key names the known ones.
+  Scene s = OneBlock();
+  SetEngineSetting(s, "bullet", "time_stp", 1e-3);
+  try {
+    MakeBulletInput(s, GroundMotion());
+    ADD_FAILURE() << "accepted bullet.time_stp";
+  } catch (const SceneError& e) {
+    EXPECT_NE(
+        std::string(e.what()).find("bullet.time_stp: unknown key (expected one of: time_step"),
+        std::string::npos)
+        << e.what();
   }
 }
 
@@ -146,8 +163,8 @@ TEST(EngineInputTest, BaselineCorrectionRemovesDriftAndKeepsTheShaking) {
 TEST(EngineInputTest, KinematicDriveFillsTheGroundPathAndItsReport) {
   Scene s = OneBlock();
   s.run.duration_s = 2.0;
-  s.bullet.time_step_s = 1e-3;
-  s.bullet.drive = BulletDrive::kKinematic;
+  SetEngineSetting(s, "bullet", "time_step", 1e-3);
+  SetEngineSetting(s, "bullet", "drive", std::string("kinematic"));
   MotionDef h;
   h.key = "base.horizontal";
   h.kind = MotionKind::kHarmonic;
@@ -156,7 +173,7 @@ TEST(EngineInputTest, KinematicDriveFillsTheGroundPathAndItsReport) {
   h.duration_s = 1.0;
   s.horizontal = h;
   const GroundMotion m = GroundMotion::FromScene(s);
-  const EngineInput in = MakeEngineInput(s, m);
+  const BulletInput in = MakeBulletInput(s, m);
   ASSERT_EQ(in.drive.ux_m.size(), 2001u);
   ASSERT_EQ(in.drive.uy_m.size(), 2001u);
   EXPECT_EQ(*std::max_element(in.drive.uy_m.begin(), in.drive.uy_m.end()), 0.0);

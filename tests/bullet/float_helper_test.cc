@@ -12,7 +12,7 @@
 #include <string>
 
 #include "engines/bullet/bullet_engine.h"
-#include "harness/engines_bullet.h"
+#include "harness/engines.h"
 #include "tests/common/housner_scene.h"
 
 namespace rockbench::bullet {
@@ -20,8 +20,9 @@ namespace {
 
 Scene Housner(BulletPrecision p) {
   Scene s = testing_util::HousnerHalfAngleRelease(2.0);
-  s.bullet.precision = p;
-  s.bullet.split_impulse_threshold = 0.0;
+  SetEngineSetting(s, "bullet", "precision",
+                   std::string(p == BulletPrecision::kFloat ? "float" : "double"));
+  SetEngineSetting(s, "bullet", "split_impulse_threshold", 0.0);
   return s;
 }
 
@@ -49,13 +50,13 @@ class EnvGuard {
 };
 
 TEST(FloatHelperTest, RunsBulletInSinglePrecisionCloseToDouble) {
-  const EngineInput fin = MakeEngineInput(Housner(BulletPrecision::kFloat), GroundMotion());
-  const EngineOutput f = RunFloatHelper(fin);
+  const BulletInput fin = MakeBulletInput(Housner(BulletPrecision::kFloat), GroundMotion());
+  const EngineResult f = RunFloatHelper(fin);
   EXPECT_EQ(f.summary["settings"]["precision"], "float");
   EXPECT_EQ(f.summary["status"], "completed");
   EXPECT_GT(f.wall_s, 0.0);
-  const EngineInput din = MakeEngineInput(Housner(BulletPrecision::kDouble), GroundMotion());
-  const EngineOutput d = Simulate(din);
+  const BulletInput din = MakeBulletInput(Housner(BulletPrecision::kDouble), GroundMotion());
+  const EngineResult d = Simulate(din);
   EXPECT_EQ(std::string(CompiledPrecision()), "double");
   ASSERT_EQ(f.history.samples.size(), d.history.samples.size());
   double worst = 0.0;
@@ -77,11 +78,11 @@ TEST(FloatHelperTest, RunsBulletInSinglePrecisionCloseToDouble) {
 }
 
 TEST(FloatHelperTest, TheHarnessRoutesFloatScenesToTheHelper) {
-  const EngineRun run = RunBulletEngine(Housner(BulletPrecision::kFloat), GroundMotion());
+  const EngineRun run = RunEngine("bullet", Housner(BulletPrecision::kFloat), GroundMotion());
   EXPECT_EQ(run.engine, "bullet");
   EXPECT_EQ(run.summary["settings"]["precision"], "float");
   EXPECT_NE(run.one_line.find("float"), std::string::npos) << run.one_line;
-  const EngineRun dbl = RunBulletEngine(Housner(BulletPrecision::kDouble), GroundMotion());
+  const EngineRun dbl = RunEngine("bullet", Housner(BulletPrecision::kDouble), GroundMotion());
   EXPECT_EQ(dbl.summary["settings"]["precision"], "double");
 }
 
@@ -89,7 +90,7 @@ TEST(FloatHelperTest, MissingHelperIsAClearError) {
   EnvGuard guard("ROCKBENCH_BULLET_FLOAT_HELPER");
   setenv("ROCKBENCH_BULLET_FLOAT_HELPER", "/nonexistent/rockbench-bullet-float", 1);
   try {
-    RunBulletEngine(Housner(BulletPrecision::kFloat), GroundMotion());
+    RunEngine("bullet", Housner(BulletPrecision::kFloat), GroundMotion());
     ADD_FAILURE() << "ran without a helper";
   } catch (const SceneError& e) {
     EXPECT_NE(std::string(e.what()).find("/nonexistent/rockbench-bullet-float"), std::string::npos)
@@ -99,7 +100,7 @@ TEST(FloatHelperTest, MissingHelperIsAClearError) {
 
 TEST(FloatHelperTest, HelperFailureIsAnErrorNotACrash) {
   // The helper refuses a double-precision input (it is the float engine): exit status 2.
-  const EngineInput din = MakeEngineInput(Housner(BulletPrecision::kDouble), GroundMotion());
+  const BulletInput din = MakeBulletInput(Housner(BulletPrecision::kDouble), GroundMotion());
   try {
     RunFloatHelper(din);
     ADD_FAILURE() << "the float helper accepted a double input";
@@ -107,7 +108,7 @@ TEST(FloatHelperTest, HelperFailureIsAnErrorNotACrash) {
     EXPECT_NE(std::string(e.what()).find("exit status 2"), std::string::npos) << e.what();
   }
   // And the in-process double engine refuses a float input.
-  const EngineInput fin = MakeEngineInput(Housner(BulletPrecision::kFloat), GroundMotion());
+  const BulletInput fin = MakeBulletInput(Housner(BulletPrecision::kFloat), GroundMotion());
   EXPECT_THROW(Simulate(fin), std::invalid_argument);
 }
 

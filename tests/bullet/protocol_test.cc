@@ -12,16 +12,16 @@
 namespace rockbench::bullet {
 namespace {
 
-EngineInput SomeInput() {
-  EngineInput in;
+BulletInput SomeInput() {
+  BulletInput in;
   in.block1 = {1.25, 1.25, 0.7, 3906.25, 2500.0};
   in.block2 = BlockDef{1.0, 2.5, 1.1, 6250.0, 0.0};
   in.initial = {0.1, 0.2, -0.3, 1.0 / 3.0};
   in.run = {20.0, 0.01, 9.80665};
-  in.config.time_step_s = 1.0 / 60.0;
+  in.time_step_s = 1.0 / 60.0;
   in.config.solver_iterations = 77;
   in.config.precision = BulletPrecision::kFloat;
-  in.config.drive = BulletDrive::kKinematic;
+  in.drive_kind = DriveKind::kKinematic;
   in.config.erp = 0.1;
   in.config.erp2 = 0.7;
   in.config.split_impulse = false;
@@ -32,7 +32,7 @@ EngineInput SomeInput() {
   in.config.restitution_velocity_threshold = 0.1;
   in.config.margin_m = 0.002;
   in.config.ground_depth_m = 3.0;
-  in.config.kinematic_highpass_hz = 0.05;
+  in.kinematic_highpass_hz = 0.05;
   in.overturn_rad = 1.2;
   in.steps = 1200;
   in.motion_end_s = 19.9;
@@ -57,28 +57,28 @@ EngineInput SomeInput() {
 }
 
 TEST(ProtocolTest, InputRoundTripIsBitExact) {
-  const EngineInput a = SomeInput();
+  const BulletInput a = SomeInput();
   const std::string bytes = SerializeInput(a);
-  const EngineInput b = ParseInput(bytes);
+  const BulletInput b = ParseInput(bytes);
   EXPECT_EQ(SerializeInput(b), bytes);  // every field, every bit
   EXPECT_EQ(b.block2->depth_m, 1.1);
   EXPECT_EQ(b.initial.omega2_radps, 1.0 / 3.0);
   EXPECT_EQ(b.config.precision, BulletPrecision::kFloat);
-  EXPECT_EQ(b.config.drive, BulletDrive::kKinematic);
+  EXPECT_EQ(b.drive_kind, DriveKind::kKinematic);
   EXPECT_EQ(b.config.solver_iterations, 77);
   EXPECT_EQ(b.drive.ax_mps2, a.drive.ax_mps2);
   EXPECT_EQ(b.drive.uy_m, a.drive.uy_m);
   EXPECT_EQ(b.steps, 1200);
   // A single block and empty drive arrays survive too.
-  EngineInput one;
+  BulletInput one;
   one.block1 = {1.0, 4.0, 1.0, 1e4, 0.0};
-  const EngineInput c = ParseInput(SerializeInput(one));
+  const BulletInput c = ParseInput(SerializeInput(one));
   EXPECT_FALSE(c.block2.has_value());
   EXPECT_TRUE(c.drive.ax_mps2.empty());
 }
 
 TEST(ProtocolTest, OutputRoundTripIsBitExact) {
-  EngineOutput a;
+  EngineResult a;
   a.history.two_blocks = true;
   a.history.samples.push_back({0.0, 0.1, 0.2, 0.3, 0.4, Mode::k1a});
   a.history.samples.push_back({1e-3, -1.0 / 3.0, 2.0 / 7.0, 0.5, -0.5, Mode::k4b});
@@ -93,8 +93,14 @@ TEST(ProtocolTest, OutputRoundTripIsBitExact) {
   e.note = "a note";
   a.history.events.push_back(e);
   a.summary = {{"status", "completed"}, {"violations", {{"slip_ground_m", 1e-7}}}};
+  a.outcome.status = "overturned";
+  a.outcome.overturned_block = 2;
+  a.outcome.overturn_t_s = 3.25;
+  a.outcome.peak_theta2_rad = 1.5;
+  a.outcome.impacts_interface = 4;
+  a.outcome.violations = {"uplift", "energy_growth"};
   a.wall_s = 0.125;
-  const EngineOutput b = ParseOutput(SerializeOutput(a));
+  const EngineResult b = ParseOutput(SerializeOutput(a));
   EXPECT_EQ(SerializeOutput(b), SerializeOutput(a));
   ASSERT_EQ(b.history.samples.size(), 2u);
   EXPECT_EQ(b.history.samples[1].theta1_rad, -1.0 / 3.0);
@@ -103,6 +109,13 @@ TEST(ProtocolTest, OutputRoundTripIsBitExact) {
   EXPECT_EQ(b.history.events[0].kind, "ground_impact");
   EXPECT_EQ(b.history.events[0].note, "a note");
   EXPECT_EQ(b.summary["violations"]["slip_ground_m"], 1e-7);
+  // The typed outcome travels bit-exact.
+  EXPECT_EQ(b.outcome.status, "overturned");
+  EXPECT_EQ(b.outcome.overturned_block, 2);
+  EXPECT_EQ(b.outcome.overturn_t_s, 3.25);
+  EXPECT_EQ(b.outcome.peak_theta2_rad, 1.5);
+  EXPECT_EQ(b.outcome.impacts_interface, 4);
+  EXPECT_EQ(b.outcome.violations, a.outcome.violations);
   EXPECT_EQ(b.wall_s, 0.125);
 }
 
@@ -113,7 +126,7 @@ TEST(ProtocolTest, RefusesTruncatedForeignAndStaleData) {
   }
   EXPECT_THROW(ParseInput(bytes + "x"), std::runtime_error);
   // An output file is not an input file.
-  EngineOutput o;
+  EngineResult o;
   o.summary = nlohmann::json::object();
   EXPECT_THROW(ParseInput(SerializeOutput(o)), std::runtime_error);
   // Another version: the message says to rebuild both programs.

@@ -9,7 +9,7 @@
 #include <numbers>
 #include <vector>
 
-#include "engines/bullet/engine_input.h"
+#include "engines/common/engine_input.h"
 #include "reference/geometry.h"
 #include "reference/kinematics.h"
 #include "scene/ground_motion.h"
@@ -29,7 +29,7 @@ Scene ThesisStack(double theta1, double theta2, double omega1, double omega2) {
   s.block2 = BlockDef{1.0, 2.5, 1.0, 6250.0, 0.0};
   s.initial = {theta1, theta2, omega1, omega2};
   s.run.duration_s = 0.01;
-  s.bullet.split_impulse_threshold = 0.0;
+  SetEngineSetting(s, "bullet", "split_impulse_threshold", 0.0);
   return s;
 }
 
@@ -101,7 +101,7 @@ TEST(RockingWorldTest, PlacesBothBlocksByThePivotChainTo1e12) {
   for (const Case& c : cases) {
     SCOPED_TRACE(c.mode);
     const Scene scene = ThesisStack(c.t1, c.t2, c.w1, c.w2);
-    const EngineInput input = MakeEngineInput(scene, GroundMotion());
+    const BulletInput input = MakeBulletInput(scene, GroundMotion());
     RockingWorld world(input);
     const auto want = ChainCorners(scene);
     const auto got1 = BodyCorners(world.block1(), 0.625, 0.625);
@@ -152,7 +152,7 @@ TEST(RockingWorldTest, SingleBlockPlacementAndReadBack) {
   s.initial.theta1_rad = -0.1;
   s.initial.omega1_radps = 0.25;
   s.run.duration_s = 0.01;
-  const EngineInput input = MakeEngineInput(s, GroundMotion());
+  const BulletInput input = MakeBulletInput(s, GroundMotion());
   RockingWorld world(input);
   EXPECT_EQ(world.block2(), nullptr);
   const auto want = ChainCorners(s);
@@ -170,17 +170,17 @@ TEST(RockingWorldTest, SingleBlockPlacementAndReadBack) {
 
 TEST(RockingWorldTest, BodiesCarryTheSceneSettings) {
   Scene s = ThesisStack(0.0, 0.0, 0.0, 0.0);
-  s.bullet.friction = 0.7;
-  s.bullet.restitution = 0.1;
-  s.bullet.rolling_friction = 0.01;
-  s.bullet.margin_m = 0.001;
-  s.bullet.solver_iterations = 33;
-  s.bullet.erp = 0.3;
-  s.bullet.erp2 = 0.6;
-  s.bullet.split_impulse = false;
-  s.bullet.split_impulse_threshold = -0.01;
-  s.bullet.restitution_velocity_threshold = 0.05;
-  const EngineInput input = MakeEngineInput(s, GroundMotion());
+  SetEngineSetting(s, "bullet", "friction", 0.7);
+  SetEngineSetting(s, "bullet", "restitution", 0.1);
+  SetEngineSetting(s, "bullet", "rolling_friction", 0.01);
+  SetEngineSetting(s, "bullet", "margin", 0.001);
+  SetEngineSetting(s, "bullet", "solver_iterations", std::int64_t{33});
+  SetEngineSetting(s, "bullet", "erp", 0.3);
+  SetEngineSetting(s, "bullet", "erp2", 0.6);
+  SetEngineSetting(s, "bullet", "split_impulse", false);
+  SetEngineSetting(s, "bullet", "split_impulse_threshold", -0.01);
+  SetEngineSetting(s, "bullet", "restitution_velocity_threshold", 0.05);
+  const BulletInput input = MakeBulletInput(s, GroundMotion());
   RockingWorld world(input);
   for (btRigidBody* b : {world.block1(), world.block2(), world.ground()}) {
     EXPECT_DOUBLE_EQ(b->getFriction(), 0.7);
@@ -212,12 +212,12 @@ TEST(RockingWorldTest, BodiesCarryTheSceneSettings) {
 TEST(RockingWorldTest, InertialDriveSetsEffectiveGravityBeforeEachStep) {
   Scene s = ThesisStack(0.0, 0.0, 0.0, 0.0);
   s.run.duration_s = 0.003;
-  s.bullet.time_step_s = 1e-3;
+  SetEngineSetting(s, "bullet", "time_step", 1e-3);
   GroundMotion m;
   // A ramp 0, 1, 2, 3 m/s^2 at t = 0, 1, 2, 3 ms horizontally, and 0.5 m/s^2 vertically.
   m.set_horizontal(MotionComponent::FromSamples({0.0, 1.0, 2.0, 3.0}, 1e-3, 0.0, "ramp"));
   m.set_vertical(MotionComponent::FromSamples({0.5, 0.5, 0.5, 0.5}, 1e-3, 0.0, "up"));
-  const EngineInput input = MakeEngineInput(s, m);
+  const BulletInput input = MakeBulletInput(s, m);
   RockingWorld world(input);
   for (int n = 0; n < 3; ++n) {
     world.ApplyDrive(n);
@@ -233,7 +233,7 @@ TEST(RockingWorldTest, PlanarConstraintHoldsUnderShaking) {
   // Both components of a strong harmonic; every step's out-of-plane motion is tracked.
   Scene s = ThesisStack(0.05, 0.08, 0.0, 0.0);
   s.run.duration_s = 1.0;
-  s.bullet.time_step_s = 1e-3;
+  SetEngineSetting(s, "bullet", "time_step", 1e-3);
   MotionDef h;
   h.key = "base.horizontal";
   h.kind = MotionKind::kHarmonic;
@@ -246,9 +246,9 @@ TEST(RockingWorldTest, PlanarConstraintHoldsUnderShaking) {
   s.horizontal = h;
   s.vertical = v;
   const GroundMotion m = GroundMotion::FromScene(s);
-  for (BulletDrive drive : {BulletDrive::kInertial, BulletDrive::kKinematic}) {
-    s.bullet.drive = drive;
-    const EngineInput input = MakeEngineInput(s, m);
+  for (const char* drive : {"inertial", "kinematic"}) {
+    SetEngineSetting(s, "bullet", "drive", std::string(drive));
+    const BulletInput input = MakeBulletInput(s, m);
     RockingWorld world(input);
     double max_z = 0.0, max_tilt = 0.0;
     for (std::int64_t n = 0; n < input.steps; ++n) {
@@ -274,12 +274,12 @@ TEST(RockingWorldTest, PlanarConstraintHoldsUnderShaking) {
 TEST(RockingWorldTest, KinematicGroundFollowsTheDisplacementWithStepVelocity) {
   Scene s = ThesisStack(0.0, 0.0, 0.0, 0.0);
   s.run.duration_s = 0.01;
-  s.bullet.time_step_s = 1e-3;
-  s.bullet.drive = BulletDrive::kKinematic;
-  s.bullet.kinematic_highpass_hz = 0.0;
+  SetEngineSetting(s, "bullet", "time_step", 1e-3);
+  SetEngineSetting(s, "bullet", "drive", std::string("kinematic"));
+  SetEngineSetting(s, "bullet", "kinematic_highpass_hz", 0.0);
   GroundMotion m;
   m.set_horizontal(MotionComponent::FromSamples({2.0, 2.0}, 1.0, 0.0, "const"));
-  const EngineInput input = MakeEngineInput(s, m);
+  const BulletInput input = MakeBulletInput(s, m);
   RockingWorld world(input);
   for (int n = 0; n < 10; ++n) {
     world.ApplyDrive(n);

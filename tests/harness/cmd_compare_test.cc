@@ -136,10 +136,11 @@ TEST_F(CmdCompareTest, WritesTheVerdictItRestsOn) {
 TEST_F(CmdCompareTest, UnknownEngineIsBadInput) {
   try {
     RunCli({"compare", (kScenes / "housner_free_rocking.toml").string(), "--out", dir_.string(),
-            "--engines", "mujoco"});
+            "--engines", "bullet,mujocco"});
     ADD_FAILURE() << "accepted an unknown engine";
   } catch (const SceneError& e) {
-    EXPECT_NE(std::string(e.what()).find("mujoco"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("unknown engine 'mujocco'"), std::string::npos)
+        << e.what();
   }
   EXPECT_FALSE(fs::exists(dir_ / "comparison.json"));
 }

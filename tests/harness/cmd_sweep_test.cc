@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "cli/commands.h"
+#include "harness/engine_registry.h"
 #include "harness/sweep.h"
 
 namespace rockbench::cli {
@@ -41,8 +42,8 @@ TEST(CmdSweepTest, QuickSweepWritesOneRowPerRun) {
   std::ifstream f(dir / "sweep.csv");
   std::vector<std::string> lines;
   for (std::string l; std::getline(f, l);) lines.push_back(l);
-  ASSERT_EQ(lines.size(), SweepGrid(true, true).size() + 1);
-  EXPECT_EQ(lines[0].rfind("engine,precision,time_step_s,", 0), 0u);
+  ASSERT_EQ(lines.size(), SweepGrid(true, BuiltEngineNames()).size() + 1);
+  EXPECT_EQ(lines[0].rfind("engine,family,setting,time_step_s,", 0), 0u);
   for (size_t i = 1; i < lines.size(); ++i) {
     EXPECT_EQ(lines[i].find("error"), std::string::npos) << lines[i];
   }

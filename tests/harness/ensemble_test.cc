@@ -166,9 +166,9 @@ TEST(MemberOutcome, ReadsTheRunsSummaryAndHistory) {
   const Scene s = testing_util::HousnerHalfAngleRelease(4.0);
   const reference::Result r = reference::Simulate(s, GroundMotion());
   EngineRun run;
-  run.summary = {{"status", r.summary.status},
-                 {"peaks", {{"theta1", {{"abs_rad", 0.123}, {"t_s", 0.5}}}}},
-                 {"overturn", nullptr}};
+  run.outcome.status = r.summary.status;
+  run.outcome.peak_theta1_rad = 0.123;
+  run.outcome.peak_theta1_t_s = 0.5;
   run.history = r.history;
   const MemberOutcome o = OutcomeOf(run, s, 0.02);
   EXPECT_EQ(o.peak_rad[0], 0.123);
@@ -184,9 +184,11 @@ TEST(MemberOutcome, ReadsTheRunsSummaryAndHistory) {
 TEST(MemberOutcome, AnOverturnedBlocksPeakIsTheOverturnAngle) {
   const Scene s = testing_util::HousnerHalfAngleRelease(4.0);
   EngineRun run;
-  run.summary = {{"status", "overturned"},
-                 {"peaks", {{"theta1", {{"abs_rad", 1.5709}, {"t_s", 2.0}}}}},
-                 {"overturn", {{"block", 1}, {"t_s", 1.9995}}}};
+  run.outcome.status = "overturned";
+  run.outcome.peak_theta1_rad = 1.5709;
+  run.outcome.peak_theta1_t_s = 2.0;
+  run.outcome.overturned_block = 1;
+  run.outcome.overturn_t_s = 1.9995;
   Sample last;
   last.t_s = 2.0;
   last.theta1_rad = -1.5709;

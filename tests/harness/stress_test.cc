@@ -85,13 +85,18 @@ TEST(StressTest, CatalogueSpansTheIssue) {
     EXPECT_GT(c.wall_limit_s, 0.0) << c.name;
     EXPECT_NO_THROW(ValidateScene(c.scene)) << c.name;
     EXPECT_EQ(c.hidden, c.name.rfind("selftest/", 0) == 0) << c.name;
-    if (c.name.find('=') != std::string::npos && c.name.rfind("bullet_dt", 0) != 0) {
+    if (c.name.find('=') != std::string::npos && c.name.find("_dt/") == std::string::npos) {
       params[c.name.substr(0, c.name.rfind('='))].push_back(ParamOf(c.name));
     }
     if (c.name.rfind("bullet_dt/", 0) == 0) {
-      precisions.insert(c.scene.bullet.precision == BulletPrecision::kDouble ? "d" : "f");
-      steps.insert(c.scene.bullet.time_step_s);
-      iterations.insert(c.scene.bullet.solver_iterations);
+      ASSERT_TRUE(c.setting.has_value()) << c.name;
+      for (const auto& [key, value] : c.setting->settings) {
+        if (key == "precision") precisions.insert(std::get<std::string>(value));
+        if (key == "time_step") steps.insert(std::get<double>(value));
+        if (key == "solver_iterations") {
+          iterations.insert(static_cast<int>(std::get<std::int64_t>(value)));
+        }
+      }
     }
   }
   auto range = [&](const std::string& key) {
@@ -371,8 +376,7 @@ TEST(StressTest, RowRoundTripsThroughJsonAndCsvHasFixedColumns) {
   r.min_event_gap_s = 1e-4;
   r.has_settings = true;
   r.dt_s = 1e-3;
-  r.iterations = 10;
-  r.precision = "float";
+  r.settings = "precision=float;solver_iterations=10";
   r.violations = "uplift;blow_up";
   r.has_agreement = true;
   r.theta1_max_abs_error_rad = 0.5;
@@ -381,6 +385,7 @@ TEST(StressTest, RowRoundTripsThroughJsonAndCsvHasFixedColumns) {
   EXPECT_EQ(back.status, r.status);
   EXPECT_TRUE(std::isnan(back.max_energy_gain_rel));
   EXPECT_EQ(back.violations, r.violations);
+  EXPECT_EQ(back.settings, r.settings);
   EXPECT_EQ(back.theta1_max_abs_error_rad, 0.5);
   StressRow ref;
   ref.case_name = "c";
@@ -391,7 +396,7 @@ TEST(StressTest, RowRoundTripsThroughJsonAndCsvHasFixedColumns) {
   std::string header, line;
   std::getline(in, header);
   EXPECT_EQ(header.rfind("case,engine,finished,status,nan,max_energy_gain_rel,", 0), 0u);
-  for (const char* col : {"events", "min_event_gap_s", "wall_s", "dt_s", "violations",
+  for (const char* col : {"events", "min_event_gap_s", "wall_s", "dt_s", "settings", "violations",
                           "theta1_max_abs_error_rad", "impacts_matched"}) {
     EXPECT_NE(header.find(std::string(",") + col + ","), std::string::npos) << col;
   }

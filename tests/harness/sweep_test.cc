@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "harness/engine_registry.h"
 #include "harness/engines.h"
 #include "tests/common/housner_scene.h"
 
@@ -20,7 +21,7 @@ namespace {
 // Housner's block for 0.8 s: the first impact (0.698 s) is inside.
 Scene ShortHousner() {
   Scene s = testing_util::HousnerHalfAngleRelease(0.8);
-  s.bullet.split_impulse_threshold = 0.0;
+  SetEngineSetting(s, "bullet", "split_impulse_threshold", 0.0);
   return s;
 }
 
@@ -34,11 +35,17 @@ std::vector<std::string> Lines(const std::string& text) {
 // The CSV with the wall-time column (10th) blanked.
 std::string WithoutWallTimes(const std::string& csv) {
   std::string out;
+  size_t wall = std::string::npos;
   for (const std::string& line : Lines(csv)) {
     std::vector<std::string> f;
     std::stringstream ss(line);
     for (std::string x; std::getline(ss, x, ',');) f.push_back(x);
-    if (f.size() > 9) f[9].clear();
+    // The header says which column is wall_s.
+    if (wall == std::string::npos) {
+      wall = static_cast<size_t>(std::find(f.begin(), f.end(), "wall_s") - f.begin());
+    } else if (wall < f.size()) {
+      f[wall].clear();
+    }
     for (size_t i = 0; i < f.size(); ++i) out += (i ? "," : "") + f[i];
     out += "\n";
   }
@@ -46,17 +53,17 @@ std::string WithoutWallTimes(const std::string& csv) {
 }
 
 TEST(SweepTest, GridSpansTheRequestedRanges) {
-  const std::vector<SweepPoint> full = SweepGrid(false, true);
-  std::set<double> steps;
-  std::set<int> iterations;
-  std::set<BulletPrecision> precisions;
+  const std::vector<SweepPoint> full = SweepGrid(false, BuiltEngineNames());
   std::set<double> rtols;
   int rk4 = 0;
+  size_t engine_points = 0;
+  for (const std::string& name : BuiltEngineNames()) {
+    engine_points += FindEngine(name)->SweepGrid(false).size();
+  }
   for (const SweepPoint& p : full) {
-    if (p.engine == "bullet") {
-      steps.insert(p.time_step_s);
-      iterations.insert(p.solver_iterations);
-      precisions.insert(p.precision);
+    if (p.engine != "reference") {
+      EXPECT_GT(p.setting.time_step_s, 0.0);
+      EXPECT_FALSE(p.setting.family.empty());
     } else if (p.integrator == Integrator::kDopri5) {
       rtols.insert(p.rtol);
       EXPECT_DOUBLE_EQ(p.atol, p.rtol * 1e-2);
@@ -65,31 +72,48 @@ TEST(SweepTest, GridSpansTheRequestedRanges) {
       EXPECT_GT(p.rk4_step_s, 0.0);
     }
   }
+  EXPECT_DOUBLE_EQ(*rtols.rbegin(), 1e-4);
+  EXPECT_DOUBLE_EQ(*rtols.begin(), 1e-12);
+  EXPECT_EQ(rk4, 3);
+  EXPECT_EQ(full.size(), engine_points + rtols.size() + 3);
+  // Quick is a subset; without engines only reference rows remain.
+  EXPECT_LT(SweepGrid(true, BuiltEngineNames()).size(), full.size());
+  for (const SweepPoint& p : SweepGrid(true, {})) EXPECT_EQ(p.engine, "reference");
+}
+
+#ifdef ROCKBENCH_HAVE_BULLET
+TEST(SweepTest, BulletGridSpansItsStepsIterationsAndPrecisions) {
+  std::set<double> steps;
+  std::set<std::int64_t> iterations;
+  std::set<std::string> precisions;
+  for (const SweepSetting& p : FindEngine("bullet")->SweepGrid(false)) {
+    for (const auto& [key, value] : p.settings) {
+      if (key == "time_step") steps.insert(std::get<double>(value));
+      if (key == "solver_iterations") iterations.insert(std::get<std::int64_t>(value));
+      if (key == "precision") precisions.insert(std::get<std::string>(value));
+    }
+  }
   EXPECT_DOUBLE_EQ(*steps.rbegin(), 1.0 / 60.0);
   EXPECT_DOUBLE_EQ(*steps.begin(), 1e-5);
   EXPECT_EQ(*iterations.begin(), 4);
   EXPECT_EQ(*iterations.rbegin(), 200);
   EXPECT_EQ(precisions.size(), 2u);
-  EXPECT_DOUBLE_EQ(*rtols.rbegin(), 1e-4);
-  EXPECT_DOUBLE_EQ(*rtols.begin(), 1e-12);
-  EXPECT_EQ(rk4, 3);
-  EXPECT_EQ(full.size(), steps.size() * iterations.size() * 2 + rtols.size() + 3);
-  // Quick is a subset; without Bullet only reference rows remain.
-  EXPECT_LT(SweepGrid(true, true).size(), full.size());
-  for (const SweepPoint& p : SweepGrid(true, false)) EXPECT_EQ(p.engine, "reference");
 }
+#endif
 
 TEST(SweepTest, PointSettingsGoIntoTheScene) {
   SweepPoint p;
   p.engine = "bullet";
-  p.precision = BulletPrecision::kFloat;
-  p.time_step_s = 5e-4;
-  p.solver_iterations = 7;
+  p.setting.settings = {{"precision", std::string("float")},
+                        {"time_step", 5e-4},
+                        {"solver_iterations", std::int64_t{7}}};
   const Scene s = SceneForPoint(ShortHousner(), p);
-  EXPECT_EQ(s.bullet.precision, BulletPrecision::kFloat);
-  EXPECT_EQ(s.bullet.time_step_s, 5e-4);
-  EXPECT_EQ(s.bullet.solver_iterations, 7);
-  EXPECT_EQ(s.bullet.split_impulse_threshold, 0.0);  // the rest of the scene is kept
+  const RawEngineTable& t = s.engine_tables.at("bullet");
+  EXPECT_EQ(std::get<std::string>(t.values.at("precision").value), "float");
+  EXPECT_EQ(std::get<double>(t.values.at("time_step").value), 5e-4);
+  EXPECT_EQ(std::get<std::int64_t>(t.values.at("solver_iterations").value), 7);
+  // The rest of the scene is kept.
+  EXPECT_EQ(std::get<double>(t.values.at("split_impulse_threshold").value), 0.0);
   SweepPoint r;
   r.engine = "reference";
   r.integrator = Integrator::kRk4;
@@ -115,19 +139,19 @@ TEST(SweepTest, RowsAreInGridOrderAndIndependentOfTheThreadCount) {
         ++calls;
         EXPECT_EQ(done, last_done + 1);
         last_done = done;
-        EXPECT_EQ(total, static_cast<int>(SweepGrid(true, bullet).size()));
+        EXPECT_EQ(total, static_cast<int>(SweepGrid(true, BuiltEngineNames()).size()));
       });
   SweepOptions two = one;
   two.threads = 2;
   two.repeat = 2;
   const std::vector<SweepRow> b = RunSweep(s, GroundMotion(), two);
-  const std::vector<SweepPoint> grid = SweepGrid(true, bullet);
+  const std::vector<SweepPoint> grid = SweepGrid(true, BuiltEngineNames());
   ASSERT_EQ(a.size(), grid.size());
   EXPECT_EQ(calls, static_cast<int>(grid.size()));
   for (size_t i = 0; i < a.size(); ++i) {
     EXPECT_TRUE(a[i].error.empty()) << a[i].error;
     EXPECT_EQ(a[i].point.engine, grid[i].engine);
-    EXPECT_EQ(a[i].point.time_step_s, grid[i].time_step_s);
+    EXPECT_EQ(a[i].point.setting.time_step_s, grid[i].setting.time_step_s);
     EXPECT_GT(a[i].wall_s, 0.0);
   }
   EXPECT_EQ(WithoutWallTimes(SweepCsv(a)), WithoutWallTimes(SweepCsv(b)));
@@ -137,9 +161,9 @@ TEST(SweepTest, RowsAreInGridOrderAndIndependentOfTheThreadCount) {
   for (const SweepRow& r : a) {
     const double e = r.agreement.theta1.max_abs_error_rad;
     if (r.point.engine == "reference") reference_worst = std::max(reference_worst, e);
-    if (r.point.engine == "bullet" && r.point.precision == BulletPrecision::kDouble) {
-      if (r.point.time_step_s == 1e-4) bullet_fine = std::min(bullet_fine, e);
-      if (r.point.time_step_s > 0.01) bullet_coarse = std::max(bullet_coarse, e);
+    if (r.point.engine == "bullet" && r.point.setting.family.find("double") != std::string::npos) {
+      if (r.point.setting.time_step_s == 1e-4) bullet_fine = std::min(bullet_fine, e);
+      if (r.point.setting.time_step_s > 0.01) bullet_coarse = std::max(bullet_coarse, e);
     }
   }
   if (bullet) {
@@ -153,8 +177,12 @@ TEST(SweepTest, RowsAreInGridOrderAndIndependentOfTheThreadCount) {
 TEST(SweepTest, CsvHasOneRowPerRunAndAFixedWidth) {
   SweepRow ok;
   ok.point.engine = "bullet";
-  ok.point.time_step_s = 1e-3;
-  ok.point.solver_iterations = 10;
+  ok.point.setting.family = "Bullet double (10 iterations)";
+  ok.point.setting.label = "1e-3";
+  ok.point.setting.time_step_s = 1e-3;
+  ok.point.setting.settings = {{"precision", std::string("double")},
+                               {"time_step", 1e-3},
+                               {"solver_iterations", std::int64_t{10}}};
   ok.wall_s = 0.5;
   ok.agreement.status = "completed";
   ok.agreement.theta2 = AngleAgreement{};
@@ -172,8 +200,13 @@ TEST(SweepTest, CsvHasOneRowPerRunAndAFixedWidth) {
   ASSERT_EQ(lines.size(), 4u);
   auto fields = [](const std::string& s) { return std::count(s.begin(), s.end(), ',') + 1; };
   for (const std::string& l : lines) EXPECT_EQ(fields(l), fields(lines[0])) << l;
-  EXPECT_EQ(lines[1].rfind("bullet,double,0.001,10,", 0), 0u) << lines[1];
-  EXPECT_EQ(lines[2].rfind("reference,,,,dopri5,1e-06,1e-08,,", 0), 0u) << lines[2];
+  EXPECT_EQ(lines[1].rfind("bullet,Bullet double (10 iterations),1e-3,0.001,precision=double;"
+                           "solver_iterations=10,,,,,",
+                           0),
+            0u)
+      << lines[1];
+  EXPECT_EQ(lines[2].rfind("reference,reference dopri5,1e-6,,,dopri5,1e-06,1e-08,,", 0), 0u)
+      << lines[2];
   EXPECT_NE(lines[3].find("failed; badly second line"), std::string::npos) << lines[3];
 }
 

@@ -222,9 +222,6 @@ TEST(RequiredFriction, ARestingStackUnderConstantAccelerationNeedsAOverG) {
         RequiredFriction(two, Mode::kRest, Sample{}, a, -0.25 * 9.81, Equations::kNonlinear);
     EXPECT_NEAR(v.mu_ground, std::abs(a_g) / 0.75, 1e-12);
   }
-  EXPECT_DOUBLE_EQ(BulletCombinedFriction(3.0), 9.0);
-  EXPECT_DOUBLE_EQ(BulletCombinedFriction(0.5), 0.25);
-  EXPECT_DOUBLE_EQ(BulletCombinedFriction(4.0), 10.0);  // clamped
 }
 
 TEST(ModeFromAngles, TiltsPickTheCornerOnTheirSide) {

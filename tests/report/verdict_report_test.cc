@@ -43,10 +43,12 @@ class VerdictReportTest : public ::testing::Test {
     // 1.67 s, theta1 none), and Bullet's ensemble is compared beyond the horizon. About 3 s.
     RockbenchOk({"compare", SceneFile("thesis_free_rocking.toml").string(), "--out",
                  (base_ / "chaos").string(), "--set", "run.duration=3", "--set",
-                 "compare.initial_rel=0.02", "--engine-members", "8", "--jobs", "2"});
+                 "compare.initial_rel=0.02", "--engine-members", "8", "--jobs", "2", "--engines",
+                 "bullet"});
     // The same scene without ensembles.
     RockbenchOk({"compare", SceneFile("thesis_free_rocking.toml").string(), "--out",
-                 (base_ / "quick").string(), "--set", "run.duration=1", "--quick"});
+                 (base_ / "quick").string(), "--set", "run.duration=1", "--quick", "--engines",
+                 "bullet"});
   }
   static void TearDownTestSuite() { fs::remove_all(base_); }
 

@@ -3,12 +3,12 @@
 /// block 1 rotated by theta1 about its base corner on the side of the tilt, block 2 placed on
 /// block 1's top face at its pivot corner and rotated by theta2 about it. Coordinates are the
 /// base frame: origin at block 1's base centre at rest, x right, y up; phi = -theta is the
-/// counter-clockwise angle Bullet uses about +z.
+/// counter-clockwise angle about +z the engines use.
 #include <array>
 
 #include "scene/scene.h"
 
-namespace rockbench::bullet {
+namespace rockbench {
 
 struct Point2 {
   double x = 0.0, y = 0.0;
@@ -41,4 +41,4 @@ StackPlacement PlaceStack(double b1_m, double h1_m, double b2_m, double h2_m, bo
 /// bottom-left, bottom-right, top-right, top-left.
 std::array<Point2, 4> Corners(const PlanarPose& pose, double b_m, double h_m);
 
-}  // namespace rockbench::bullet
+}  // namespace rockbench

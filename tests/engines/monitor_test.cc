@@ -1,7 +1,7 @@
 // The monitor on synthetic states (no Bullet): angle read-back, mode inference, impacts with
 // interpolated times and post-impact rates, output sampling, and the measures of what the model
 // forbids (slip, uplift, penetration, energy growth, blow-up, overturning).
-#include "engines/bullet/monitor.h"
+#include "engines/common/monitor.h"
 
 #include <gtest/gtest.h>
 
@@ -10,9 +10,9 @@
 #include <numbers>
 #include <string>
 
-#include "engines/bullet/placement.h"
+#include "engines/common/placement.h"
 
-namespace rockbench::bullet {
+namespace rockbench {
 namespace {
 
 // Single block B = 1 m, H = 4 m, 10 t; or the thesis's two blocks.
@@ -24,7 +24,7 @@ EngineInput Input(bool two, double dt = 1e-3, double out = 1e-3) {
   } else {
     in.block1 = {1.0, 4.0, 1.0, 10000.0, 0.0};
   }
-  in.config.time_step_s = dt;
+  in.time_step_s = dt;
   in.run.output_interval_s = out;
   in.run.duration_s = 1.0;
   in.steps = static_cast<std::int64_t>(std::llround(1.0 / dt));
@@ -294,4 +294,4 @@ TEST(MonitorTest, OverturnOfTwoBlocksInOneStepIsTheFirstCrossing) {
 }
 
 }  // namespace
-}  // namespace rockbench::bullet
+}  // namespace rockbench

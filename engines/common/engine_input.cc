@@ -1,52 +1,19 @@
-#include "engines/bullet/engine_input.h"
+#include "engines/common/engine_input.h"
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <numbers>
 #include <string>
 
-namespace rockbench::bullet {
+#include "engines/common/engine.h"
+
+namespace rockbench {
 namespace {
 
 // Upper bound on the number of steps of one run (about a day of CPU at 1 us per step).
 constexpr std::int64_t kMaxSteps = 2'000'000'000;
-
-void Require(bool ok, const Scene& scene, const std::string& key, const std::string& expected) {
-  if (ok) return;
-  const std::string where = scene.path.empty() ? std::string("scene") : scene.path.string();
-  throw SceneError(where + ": [bullet] " + key + ": expected " + expected);
-}
-
-void CheckConfig(const Scene& scene) {
-  const BulletConfig& c = scene.bullet;
-  Require(std::isfinite(c.time_step_s) && c.time_step_s > 0.0, scene, "time_step",
-          "a positive time step in s");
-  Require(c.solver_iterations >= 1 && c.solver_iterations <= 100000, scene, "solver_iterations",
-          "an integer from 1 to 100000");
-  Require(std::isfinite(c.erp) && c.erp >= 0.0 && c.erp <= 1.0, scene, "erp", "a number in [0, 1]");
-  Require(std::isfinite(c.erp2) && c.erp2 >= 0.0 && c.erp2 <= 1.0, scene, "erp2",
-          "a number in [0, 1]");
-  Require(std::isfinite(c.split_impulse_threshold), scene, "split_impulse_threshold",
-          "a finite penetration in m (negative = penetrating)");
-  Require(std::isfinite(c.restitution) && c.restitution >= 0.0 && c.restitution <= 1.0, scene,
-          "restitution", "a number in [0, 1]");
-  Require(std::isfinite(c.friction) && c.friction >= 0.0, scene, "friction",
-          "a non-negative friction coefficient");
-  Require(std::isfinite(c.rolling_friction) && c.rolling_friction >= 0.0, scene, "rolling_friction",
-          "a non-negative coefficient");
-  Require(
-      std::isfinite(c.restitution_velocity_threshold) && c.restitution_velocity_threshold >= 0.0,
-      scene, "restitution_velocity_threshold", "a non-negative speed in m/s");
-  Require(std::isfinite(c.margin_m) && c.margin_m >= 0.0, scene, "margin",
-          "a non-negative collision margin in m");
-  Require(std::isfinite(c.ground_depth_m) && c.ground_depth_m > 0.0, scene, "ground_depth",
-          "a positive thickness in m");
-  Require(std::isfinite(c.kinematic_highpass_hz) && c.kinematic_highpass_hz >= 0.0, scene,
-          "kinematic_highpass_hz", "a non-negative frequency in Hz (0: no baseline correction)");
-  const double steps = std::ceil(scene.run.duration_s / c.time_step_s - 1e-9);
-  Require(steps <= static_cast<double>(kMaxSteps), scene, "time_step",
-          "at most 2e9 steps over run.duration (time step too small)");
-}
 
 // Second-order Butterworth low-pass (bilinear transform with pre-warping), transposed direct
 // form II. Runs over x in place; `steady` starts the filter in steady state for x[0].
@@ -115,16 +82,77 @@ std::vector<double> KinematicDisplacement(const std::vector<double>& accel_mps2,
   return out;
 }
 
-EngineInput MakeEngineInput(const Scene& scene, const GroundMotion& motion) {
-  CheckConfig(scene);
+std::string TimeStepLabel(double dt_s) {
+  char buf[40];
+  if (!(dt_s > 0.0) || !std::isfinite(dt_s)) {
+    std::snprintf(buf, sizeof buf, "%.3g", dt_s);
+    return buf;
+  }
+  // Up to three significant digits, as "2.5e-3" (not "2.5e-03" or "0.0025").
+  for (int digits = 0; digits <= 2; ++digits) {
+    std::snprintf(buf, sizeof buf, "%.*e", digits, dt_s);
+    if (std::fabs(std::strtod(buf, nullptr) - dt_s) > 1e-9 * dt_s) continue;
+    const std::string e = buf;
+    const size_t pos = e.find('e');
+    const char sign = e[pos + 1];
+    std::string exponent = e.substr(pos + 2);
+    exponent.erase(0, std::min(exponent.find_first_not_of('0'), exponent.size() - 1));
+    if (exponent == "0") return e.substr(0, pos);
+    return e.substr(0, pos) + "e" + (sign == '-' ? "-" : "") + exponent;
+  }
+  // A frame rate's step, as "1/60".
+  const double per_s = 1.0 / dt_s;
+  if (std::fabs(per_s - std::round(per_s)) < 1e-6 * per_s) {
+    std::snprintf(buf, sizeof buf, "1/%.0f", std::round(per_s));
+    return buf;
+  }
+  std::snprintf(buf, sizeof buf, "%.3g", dt_s);
+  return buf;
+}
+
+nlohmann::json KinematicDriveJson(const EngineInput& input) {
+  const DriveSamples& d = input.drive;
+  nlohmann::json k;
+  k["baseline"] = input.kinematic_highpass_hz > 0.0
+                      ? "zero-phase Butterworth high-pass (u minus forward-backward 2nd-order "
+                        "low-pass of u)"
+                      : "none";
+  k["highpass_hz"] = input.kinematic_highpass_hz;
+  k["raw_peak_displacement_x_m"] = d.raw_peak_x_m;
+  k["raw_peak_displacement_y_m"] = d.raw_peak_y_m;
+  k["peak_displacement_x_m"] = d.peak_x_m;
+  k["peak_displacement_y_m"] = d.peak_y_m;
+  k["correction_max_accel_x_mps2"] = d.correction_max_x_mps2;
+  k["correction_max_accel_y_mps2"] = d.correction_max_y_mps2;
+  return k;
+}
+
+const char* DriveKindName(DriveKind kind) {
+  return kind == DriveKind::kKinematic ? "kinematic" : "inertial";
+}
+
+EngineInput MakeEngineInput(const Scene& scene, const GroundMotion& motion,
+                            const std::string& engine, double time_step_s, DriveKind drive,
+                            double kinematic_highpass_hz) {
+  const double dt = time_step_s;
+  const std::string where = scene.path.empty() ? std::string("scene") : scene.path.string();
+  if (!(std::isfinite(dt) && dt > 0.0)) {
+    throw SceneError(where + ": " + engine + ".time_step: expected a positive time step in s");
+  }
+  if (std::ceil(scene.run.duration_s / dt - 1e-9) > static_cast<double>(kMaxSteps)) {
+    throw SceneError(where + ": " + engine +
+                     ".time_step: expected at most 2e9 steps over run.duration (time step too "
+                     "small)");
+  }
   EngineInput in;
   in.block1 = scene.block1;
   in.block2 = scene.block2;
   in.initial = scene.initial;
   in.run = scene.run;
-  in.config = scene.bullet;
+  in.time_step_s = dt;
+  in.drive_kind = drive;
+  in.kinematic_highpass_hz = kinematic_highpass_hz;
   in.overturn_rad = scene.model.overturn_rad;
-  const double dt = scene.bullet.time_step_s;
   in.steps = static_cast<std::int64_t>(std::max(0.0, std::ceil(scene.run.duration_s / dt - 1e-9)));
   in.motion_end_s = motion.empty() ? 0.0 : motion.end_s();
 
@@ -139,11 +167,11 @@ EngineInput MakeEngineInput(const Scene& scene, const GroundMotion& motion) {
       d.ay_mps2[i] = motion.yg_mps2(t);
     }
   }
-  if (scene.bullet.drive == BulletDrive::kKinematic) {
+  if (drive == DriveKind::kKinematic) {
     const std::vector<double> zeros(d.ax_mps2.empty() ? n : 0, 0.0);
     const std::vector<double>& ax = d.ax_mps2.empty() ? zeros : d.ax_mps2;
     const std::vector<double>& ay = d.ay_mps2.empty() ? zeros : d.ay_mps2;
-    const double fc = scene.bullet.kinematic_highpass_hz;
+    const double fc = kinematic_highpass_hz;
     d.ux_m = KinematicDisplacement(ax, dt, fc, &d.ux0_mps, &d.raw_peak_x_m);
     d.uy_m = KinematicDisplacement(ay, dt, fc, &d.uy0_mps, &d.raw_peak_y_m);
     // What the correction changed: the drive's acceleration against the record's.
@@ -164,4 +192,4 @@ EngineInput MakeEngineInput(const Scene& scene, const GroundMotion& motion) {
   return in;
 }
 
-}  // namespace rockbench::bullet
+}  // namespace rockbench

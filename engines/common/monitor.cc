@@ -1,10 +1,10 @@
-#include "engines/bullet/monitor.h"
+#include "engines/common/monitor.h"
 
 #include <algorithm>
 #include <cmath>
 #include <numbers>
 
-namespace rockbench::bullet {
+namespace rockbench {
 namespace {
 
 int Sign(double v) {
@@ -64,7 +64,9 @@ Monitor::Monitor(const EngineInput& input, MonitorConfig config) : cfg_(config) 
   in_meta_.block2 = input.block2;
   in_meta_.initial = input.initial;
   in_meta_.run = input.run;
-  in_meta_.config = input.config;
+  in_meta_.time_step_s = input.time_step_s;
+  in_meta_.drive_kind = input.drive_kind;
+  in_meta_.kinematic_highpass_hz = input.kinematic_highpass_hz;
   in_meta_.overturn_rad = input.overturn_rad;
   in_meta_.stop_at_rest_after_s = input.stop_at_rest_after_s;
   in_meta_.steps = input.steps;
@@ -80,7 +82,7 @@ Monitor::Monitor(const EngineInput& input, MonitorConfig config) : cfg_(config) 
     i2_ = m2_ * (b2_ * b2_ + h2_ * h2_) / 3.0;
   }
   g_ = input.run.gravity_mps2;
-  dt_ = input.time_step_s();
+  dt_ = input.time_step_s;
   out_dt_ = input.run.output_interval_s;
   tipping_energy_j_ = m1_ * g_ * (std::hypot(b1_, h1_) - h1_);
   if (two_) tipping_energy_j_ += m2_ * g_ * (std::hypot(b2_, h2_) - h2_);
@@ -505,6 +507,30 @@ void Monitor::Finish() {
   }
 }
 
+RunOutcome Monitor::Outcome() const {
+  RunOutcome o;
+  o.status = status_;
+  o.overturned_block = overturn_block_;
+  if (overturn_block_ != 0) o.overturn_t_s = overturn_t_s_;
+  o.end_t_s = end_t_s_;
+  o.peak_theta1_rad = peak1_, o.peak_theta1_t_s = peak1_t_;
+  if (two_) o.peak_theta2_rad = peak2_, o.peak_theta2_t_s = peak2_t_;
+  o.impacts_ground = impacts_ground_;
+  o.impacts_interface = impacts_interface_;
+  const double slip_flag1 = cfg_.slip_flag_rel * 2.0 * b1_;
+  const double slip_flag2 = cfg_.slip_flag_rel * 2.0 * b2_;
+  const bool raised[] = {slip_ground_m_ > slip_flag1 || (two_ && slip_interface_m_ > slip_flag2),
+                         uplift_ground_episodes_ > 0 || (two_ && uplift_interface_episodes_ > 0),
+                         penetration_ground_max_m_ > cfg_.penetration_flag_m ||
+                             (two_ && penetration_interface_max_m_ > cfg_.penetration_flag_m),
+                         energy_gain_max_j_ > cfg_.energy_growth_flag_rel * tipping_energy_j_,
+                         status_ == "blow_up"};
+  for (size_t i = 0; i < std::size(kViolationFlags); ++i) {
+    if (raised[i]) o.violations.push_back(kViolationFlags[i]);
+  }
+  return o;
+}
+
 nlohmann::json Monitor::Summary() const {
   using nlohmann::json;
   json j;
@@ -559,14 +585,11 @@ nlohmann::json Monitor::Summary() const {
   v["out_of_plane_m"] = out_of_plane_m_;
   v["out_of_plane_rad"] = out_of_plane_rad_;
   v["max_rate_radps"] = max_rate_radps_;
-  const double slip_flag1 = cfg_.slip_flag_rel * 2.0 * b1_;
-  const double slip_flag2 = cfg_.slip_flag_rel * 2.0 * b2_;
-  v["sliding"] = slip_ground_m_ > slip_flag1 || (two_ && slip_interface_m_ > slip_flag2);
-  v["uplift"] = uplift_ground_episodes_ > 0 || (two_ && uplift_interface_episodes_ > 0);
-  v["penetration"] = penetration_ground_max_m_ > cfg_.penetration_flag_m ||
-                     (two_ && penetration_interface_max_m_ > cfg_.penetration_flag_m);
-  v["energy_growth"] = energy_gain_max_j_ > cfg_.energy_growth_flag_rel * tipping_energy_j_;
-  v["blow_up"] = status_ == "blow_up";
+  const RunOutcome outcome = Outcome();
+  for (const char* flag : kViolationFlags) {
+    v[flag] = std::find(outcome.violations.begin(), outcome.violations.end(), flag) !=
+              outcome.violations.end();
+  }
   j["violations"] = v;
 
   json m;
@@ -585,4 +608,4 @@ nlohmann::json Monitor::Summary() const {
   return j;
 }
 
-}  // namespace rockbench::bullet
+}  // namespace rockbench

@@ -1,8 +1,8 @@
-#include "engines/bullet/placement.h"
+#include "engines/common/placement.h"
 
 #include <cmath>
 
-namespace rockbench::bullet {
+namespace rockbench {
 namespace {
 
 Point2 Rotate(double phi, Point2 v) {
@@ -61,4 +61,4 @@ std::array<Point2, 4> Corners(const PlanarPose& pose, double b, double h) {
           Add(c, Rotate(pose.phi_rad, {b, h})), Add(c, Rotate(pose.phi_rad, {-b, h}))};
 }
 
-}  // namespace rockbench::bullet
+}  // namespace rockbench

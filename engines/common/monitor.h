@@ -1,5 +1,5 @@
 #pragma once
-/// Watches a Bullet run step by step, independent of Bullet's precision: reads the thesis's
+/// Watches an engine's run step by step, whatever the engine: reads the thesis's
 /// angles back from the bodies' poses, infers the mode, detects impacts and mode changes, and
 /// measures what the model forbids (slip at either contact, uplift, penetration, energy growth
 /// without input, blow-up, out-of-plane motion).
@@ -8,10 +8,15 @@
 #include <string>
 #include <vector>
 
-#include "engines/bullet/engine_input.h"
+#include "engines/common/engine_input.h"
 #include "scene/history.h"
+#include "scene/outcome.h"
 
-namespace rockbench::bullet {
+namespace rockbench {
+
+/// The flags of RunOutcome::violations, in order.
+inline constexpr const char* kViolationFlags[] = {"sliding", "uplift", "penetration",
+                                                  "energy_growth", "blow_up"};
 
 /// Thresholds of the monitor. Angles in rad, rates in rad/s, lengths in m.
 struct MonitorConfig {
@@ -45,7 +50,7 @@ struct MonitorConfig {
   // inside the step that crossed it.
 };
 
-/// One body's planar pose and velocity as read from Bullet (world frame): mass centre (m), the
+/// One body's planar pose and velocity as read from the engine (world frame): mass centre (m), the
 /// first column of its rotation (cos phi, sin phi) with phi the CCW angle about +z, centre
 /// velocity (m/s) and CCW angular velocity (rad/s).
 struct BodyReadout {
@@ -83,6 +88,8 @@ class Monitor {
   History TakeHistory() { return std::move(history_); }
   /// The monitor's part of the summary: status, peaks, impact counts, violations.
   nlohmann::json Summary() const;
+  /// The typed outcome (the same numbers as Summary()).
+  RunOutcome Outcome() const;
   const std::string& status() const { return status_; }
   /// Last state read, in the thesis's convention.
   const Sample& last() const { return last_; }
@@ -130,8 +137,8 @@ class Monitor {
   std::int64_t next_out_ = 1;       // index of the next output time
   bool last_recorded_ = false;
 
-  // Pending impacts: completed with the state one step later (Bullet resolves a contact in the
-  // step after the one that brought the corner into the support).
+  // Pending impacts: completed with the state one step later (a fixed-step engine such as
+  // Bullet may resolve a contact in the step after the one that brought the corner down).
   struct PendingImpact {
     Event event;
     bool interface = false;  // block 2 on block 1 (else block 1 on the ground)
@@ -168,4 +175,4 @@ class Monitor {
   std::int64_t steps_done_ = 0;
 };
 
-}  // namespace rockbench::bullet
+}  // namespace rockbench

@@ -1,19 +1,19 @@
 #pragma once
-/// What the Bullet engine simulates, independent of Bullet's precision: the scene's blocks,
-/// initial state and settings, and the base motion sampled on the engine's step grid. The same
-/// input drives the double-precision engine (in process) and the single-precision helper
-/// program (rockbench-bullet-float), so both see bit-identical excitation.
+/// What a fixed-step engine simulates, whatever the engine: the scene's blocks, initial state,
+/// time step and drive, and the base motion sampled on the engine's step grid. Every engine
+/// (and Bullet's single-precision helper program) sees bit-identical excitation.
 #include <cstdint>
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "scene/ground_motion.h"
 #include "scene/history.h"
 #include "scene/scene.h"
 
-namespace rockbench::bullet {
+namespace rockbench {
 
 /// Base motion on the step grid t_n = n * time_step_s, n = 0..steps.
 struct DriveSamples {
@@ -34,15 +34,27 @@ struct DriveSamples {
   double raw_peak_x_m = 0.0, raw_peak_y_m = 0.0, peak_x_m = 0.0, peak_y_m = 0.0;
 };
 
+/// How the base motion reaches the blocks.
+enum class DriveKind {
+  kInertial,   ///< a still ground, the base acceleration as an inertial force (gravity tilts)
+  kKinematic,  ///< the ground moves along the twice-integrated record
+};
+
+/// "inertial" or "kinematic".
+const char* DriveKindName(DriveKind kind);
+
 /// Everything one engine run needs.
 struct EngineInput {
   BlockDef block1;
   std::optional<BlockDef> block2;
   InitialState initial;
   RunConfig run;
-  BulletConfig config;
+  double time_step_s = 1e-4;  ///< the engine's fixed step, s
+  DriveKind drive_kind = DriveKind::kInertial;
+  /// Kinematic drive: baseline-correction corner, Hz; 0 = none.
+  double kinematic_highpass_hz = 0.0;
   double overturn_rad = 1.5707963267948966;  ///< |theta| that counts as overturned (model's)
-  std::int64_t steps = 0;                    ///< number of Bullet steps, ceil(duration / dt)
+  std::int64_t steps = 0;                    ///< number of steps, ceil(duration / dt)
   double motion_end_s = 0.0;                 ///< time after which the base is still, s
   /// After this time (s) the base motion cannot start rocking from rest any more (every later
   /// base acceleration keeps every corner force of the stack at rest compressive): a run that is
@@ -53,19 +65,18 @@ struct EngineInput {
   DriveSamples drive;
 
   bool two_blocks() const { return block2.has_value(); }
-  double time_step_s() const { return config.time_step_s; }
 };
 
-/// What one engine run returns.
-struct EngineOutput {
-  History history;         ///< samples at the output interval (step times), events
-  nlohmann::json summary;  ///< the engine's part of summary.json
-  double wall_s = 0.0;     ///< wall-clock time of the simulation loop alone, s
-};
+/// Builds the input of a run of step `time_step_s` (s) with `drive`: samples the base motion on
+/// the step grid. Throws SceneError naming `engine`.time_step when the run would take more than
+/// 2e9 steps.
+EngineInput MakeEngineInput(const Scene& scene, const GroundMotion& motion,
+                            const std::string& engine, double time_step_s, DriveKind drive,
+                            double kinematic_highpass_hz);
 
-/// Builds the input of a run: checks the [bullet] settings (throws SceneError naming the key
-/// and what was expected) and samples the base motion on the step grid.
-EngineInput MakeEngineInput(const Scene& scene, const GroundMotion& motion);
+/// summary.json "kinematic" of a kinematic-drive run: the baseline correction and the peak
+/// displacements before and after it.
+nlohmann::json KinematicDriveJson(const EngineInput& input);
 
 /// Kinematic drive: ground displacement from the acceleration samples a_n (m/s^2) on the grid
 /// of step dt (s). Integrates twice with the leapfrog rule (u_{n+1} - 2 u_n + u_{n-1} = dt^2 a_n,
@@ -78,4 +89,4 @@ std::vector<double> KinematicDisplacement(const std::vector<double>& accel_mps2,
                                           double highpass_hz, double* velocity_before_mps,
                                           double* raw_peak_m);
 
-}  // namespace rockbench::bullet
+}  // namespace rockbench

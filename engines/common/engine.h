@@ -1,0 +1,78 @@
+#pragma once
+/// The engine interface: what every physics engine adapter (engines/<name>/) implements, and all
+/// the harness knows of an engine. An engine declares its settings (the scene's [<name>] table),
+/// the settings grid it offers to the work-precision sweep, and simulates a scene. The list of
+/// engines is engines/CMakeLists.txt (one line each); an engine whose library is missing at
+/// build time is left out and named by `rockbench engines`.
+#include <limits>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "scene/engine_settings.h"
+#include "scene/ground_motion.h"
+#include "scene/history.h"
+#include "scene/outcome.h"
+#include "scene/scene.h"
+
+namespace rockbench {
+
+/// One point of an engine's work-precision grid: the settings it changes from the scene's.
+struct SweepSetting {
+  /// The curve this point belongs to: "Bullet double (50 iterations)" (the settings that stay
+  /// fixed along it). No commas: it is a field of sweep.csv.
+  std::string family;
+  /// The point's label on the curve: its time step ("1e-3", "1/60") or accuracy knob.
+  std::string label;
+  double time_step_s = 0.0;  ///< the step of this point (the x of the order-of-convergence fit)
+  /// key -> value in the engine's table, applied as `--set <engine>.<key>=<value>` would.
+  std::vector<std::pair<std::string, SettingValue>> settings;
+  /// Stress cases: the case's name under "<engine>_dt/" ("double/dt=1e-3/it=200"), and whether
+  /// it is in the CI subset (stress --quick).
+  std::string id;
+  bool quick = false;
+};
+
+/// A time step as a point label: "1e-3", "5e-5", "1/60" (a whole number of steps per second
+/// that is not a power of ten), else "%.3g".
+std::string TimeStepLabel(double dt_s);
+
+/// Options of one run.
+struct SimulateOptions {
+  /// After this time (s) a run at rest stops with status "at_rest" (harness SettledAfter_s);
+  /// infinity: never. Ensemble members only: their histories are not compared.
+  double stop_at_rest_after_s = std::numeric_limits<double>::infinity();
+};
+
+/// What one run returns.
+struct EngineResult {
+  History history;            ///< samples at the output interval (step times), events
+  RunOutcome outcome;         ///< typed: status, peaks, impacts, violations
+  nlohmann::json summary;     ///< the engine's part of summary.json (outcome, settings, monitor)
+  double wall_s = 0.0;        ///< wall-clock time of the simulation alone, s
+  std::string settings_line;  ///< the settings that matter, one line ("double, dt 1e-4 s")
+};
+
+class Engine {
+ public:
+  virtual ~Engine() = default;
+  /// The engine's name and the name of its table: "bullet".
+  virtual std::string name() const = 0;
+  /// Library and version as built: "Bullet 3.24 (bullet-float64, double precision)".
+  virtual std::string version() const = 0;
+  /// The keys of its table [<name>] with our defaults (the engine's own beside them).
+  virtual const EngineSettingsSchema& settings_schema() const = 0;
+  /// The settings grid of the work-precision sweep (quick: the CI's few points).
+  virtual std::vector<SweepSetting> SweepGrid(bool quick) const = 0;
+  /// The settings the stress catalogue runs on the thesis's free rocking: the extremes (the
+  /// coarsest steps, the fewest iterations) where the engine's artefacts show.
+  virtual std::vector<SweepSetting> StressGrid() const = 0;
+  /// Simulates the scene under `motion`. Physics outcomes never throw (a blow-up is a status);
+  /// throws SceneError for settings the engine cannot run (naming the key).
+  virtual EngineResult Simulate(const Scene& scene, const GroundMotion& motion,
+                                const SimulateOptions& options) const = 0;
+};
+
+}  // namespace rockbench

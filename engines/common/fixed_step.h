@@ -1,0 +1,40 @@
+#pragma once
+/// The run loop every fixed-step engine shares: apply the base motion for step n, step, let the
+/// monitor read the state, stop when it says so. A World has ApplyDrive(n), Step() and Read(n)
+/// (see engines/bullet/rocking_world.h).
+#include <chrono>
+#include <cstdint>
+
+#include "engines/common/engine.h"
+#include "engines/common/engine_input.h"
+#include "engines/common/monitor.h"
+
+namespace rockbench {
+
+/// Runs `world` for input.steps steps (or until the monitor stops it) and returns the history,
+/// the outcome and the monitor's summary with the wall time and the real-time factor.
+template <typename World>
+EngineResult RunFixedStepWorld(const EngineInput& input, World& world,
+                               const MonitorConfig& monitor_config = {}) {
+  const auto start = std::chrono::steady_clock::now();
+  Monitor monitor(input, monitor_config);
+  monitor.Start(world.Read(0));
+  for (std::int64_t n = 0; n < input.steps; ++n) {
+    world.ApplyDrive(n);
+    world.Step();
+    if (!monitor.Step(n + 1, world.Read(n + 1))) break;
+  }
+  monitor.Finish();
+  const double wall_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  EngineResult r;
+  r.summary = monitor.Summary();
+  r.summary["wall_s"] = wall_s;
+  r.summary["real_time_factor"] = wall_s > 0.0 ? monitor.last().t_s / wall_s : 0.0;
+  r.outcome = monitor.Outcome();
+  r.wall_s = wall_s;
+  r.history = monitor.TakeHistory();
+  return r;
+}
+
+}  // namespace rockbench

@@ -1,0 +1,101 @@
+// DART behind the engine interface (engines/common/engine.h): DartWorld stepped by the shared
+// fixed-step loop, watched by the shared monitor.
+#include <cstdio>
+#include <dart/config.hpp>
+#include <memory>
+#include <stdexcept>
+
+#include "engines/common/fixed_step.h"
+#include "engines/dart/dart_settings.h"
+#include "engines/dart/dart_world.h"
+
+namespace rockbench {
+namespace dart_engine {
+namespace {
+
+constexpr const char* kOurs = "DART (Dantzig + PGS)";
+constexpr const char* kDefaults = "DART defaults (FCL friction 1)";
+
+// A grid point of a family at step dt. DART's contact ERP, allowance, cap and CFM are
+// process-wide, so every point keeps ours (equal to DART's defaults): runs may share a process.
+SweepSetting Point(bool dart_default, double dt_s) {
+  SweepSetting s;
+  s.family = dart_default ? kDefaults : kOurs;
+  s.label = TimeStepLabel(dt_s);
+  s.time_step_s = dt_s;
+  s.settings = {{"time_step", dt_s}};
+  if (dart_default) {
+    s.settings.emplace_back("collision", std::string("fcl"));
+    s.settings.emplace_back("friction", 1.0);
+  }
+  return s;
+}
+
+class DartEngine final : public Engine {
+ public:
+  std::string name() const override { return "dart"; }
+
+  std::string version() const override { return std::string("DART ") + DART_VERSION; }
+
+  const EngineSettingsSchema& settings_schema() const override { return DartSettingsSchema(); }
+
+  std::vector<SweepSetting> SweepGrid(bool quick) const override {
+    const std::vector<double> steps = quick
+                                          ? std::vector<double>{1e-3, 1e-4}
+                                          : std::vector<double>{5e-3, 1e-3, 5e-4, 1e-4, 5e-5, 1e-5};
+    std::vector<SweepSetting> grid;
+    for (const bool dart_default : {false, true}) {
+      for (double dt : steps) grid.push_back(Point(dart_default, dt));
+    }
+    return grid;
+  }
+
+  std::vector<SweepSetting> StressGrid() const override {
+    std::vector<SweepSetting> grid;
+    for (const bool dart_default : {false, true}) {
+      for (double dt : {1.0 / 60.0, 1e-3, 1e-4, 1e-5}) {
+        SweepSetting s = Point(dart_default, dt);
+        s.id = std::string(dart_default ? "defaults" : "ours") + "/dt=" + s.label;
+        // The CI subset: the coarsest step of each family.
+        s.quick = dt > 0.01;
+        grid.push_back(std::move(s));
+      }
+    }
+    return grid;
+  }
+
+  EngineResult Simulate(const Scene& scene, const GroundMotion& motion,
+                        const SimulateOptions& options) const override {
+    const DartRun run = MakeDartRun(scene, motion, options.stop_at_rest_after_s);
+    std::unique_ptr<DartWorld> world;
+    try {
+      world = std::make_unique<DartWorld>(run.input, run.settings);
+    } catch (const std::invalid_argument& e) {
+      throw SceneError(scene.path.string() + ": " + e.what());
+    }
+    EngineResult out = RunFixedStepWorld(run.input, *world);
+    out.summary["engine"] = "dart";
+    out.summary["settings"] = world->Settings();
+    out.summary["diagnostics"] = world->Diagnostics();
+    if (run.input.drive_kind == DriveKind::kKinematic) {
+      out.summary["kinematic"] = KinematicDriveJson(run.input);
+    }
+    char line[160];
+    std::snprintf(line, sizeof line, "%s, %s, dt %.3g s",
+                  DartLcpSolverName(run.settings.lcp_solver), DriveKindName(run.input.drive_kind),
+                  run.input.time_step_s);
+    out.settings_line = line;
+    return out;
+  }
+};
+
+}  // namespace
+}  // namespace dart_engine
+
+namespace engine_registry {
+std::unique_ptr<Engine> Make_dart() {
+  return std::make_unique<dart_engine::DartEngine>();
+}
+}  // namespace engine_registry
+
+}  // namespace rockbench

@@ -1,0 +1,428 @@
+#include "engines/dart/dart_world.h"
+
+#include <algorithm>
+#include <cmath>
+#include <dart/collision/dart/DARTCollisionDetector.hpp>
+#include <dart/collision/fcl/FCLCollisionDetector.hpp>
+#include <dart/config.hpp>
+#include <dart/constraint/BoxedLcpConstraintSolver.hpp>
+#include <dart/constraint/ContactConstraint.hpp>
+#include <dart/constraint/DantzigBoxedLcpSolver.hpp>
+#include <dart/constraint/PgsBoxedLcpSolver.hpp>
+#include <dart/dynamics/BodyNode.hpp>
+#include <dart/dynamics/BoxShape.hpp>
+#include <dart/dynamics/PlanarJoint.hpp>
+#include <dart/dynamics/ShapeNode.hpp>
+#include <dart/dynamics/Skeleton.hpp>
+#include <dart/dynamics/TranslationalJoint2D.hpp>
+#include <dart/simulation/World.hpp>
+#include <mutex>
+#include <stdexcept>
+#include <string>
+
+#include "engines/common/placement.h"
+
+namespace rockbench::dart_engine {
+
+const char* DartCollisionName(DartCollision c) {
+  return c == DartCollision::kFcl ? "fcl" : "dart";
+}
+
+const char* DartLcpSolverName(DartLcpSolver s) {
+  return s == DartLcpSolver::kPgs ? "pgs" : "dantzig";
+}
+
+namespace {
+
+// Ground accelerations below this count as no base input for the energy check (m/s^2), as in
+// Bullet's adapter.
+constexpr double kBaseStillMps2 = 1e-4;
+
+// DART's contact parameters are static members of ContactConstraint: one set per process.
+// Worlds alive at the same time must agree on them (checked under this lock); while any world
+// lives, nobody changes them, so the steps read them without a lock.
+struct ContactParams {
+  double erp = 0.0, allowance = 0.0, max_erv = 0.0, cfm = 0.0;
+  bool operator==(const ContactParams&) const = default;
+};
+std::mutex g_contact_mutex;
+int g_live_worlds = 0;
+ContactParams g_live_params;
+
+void AcquireContactParams(const ContactParams& p) {
+  std::lock_guard<std::mutex> lock(g_contact_mutex);
+  if (g_live_worlds > 0 && !(p == g_live_params)) {
+    throw std::invalid_argument(
+        "dart: contact erp, error allowance, max erv and cfm are process-wide in DART 6 "
+        "(ContactConstraint statics); another DART world alive in this process uses other "
+        "values");
+  }
+  if (g_live_worlds == 0) {
+    using dart::constraint::ContactConstraint;
+    ContactConstraint::setErrorReductionParameter(p.erp);
+    ContactConstraint::setErrorAllowance(p.allowance);
+    ContactConstraint::setMaxErrorReductionVelocity(p.max_erv);
+    ContactConstraint::setConstraintForceMixing(p.cfm);
+    g_live_params = p;
+  }
+  ++g_live_worlds;
+}
+
+void ReleaseContactParams() {
+  std::lock_guard<std::mutex> lock(g_contact_mutex);
+  --g_live_worlds;
+}
+
+void CheckSettings(const DartSettings& s) {
+  auto require = [](bool ok, const char* what) {
+    if (!ok) throw std::invalid_argument(std::string("dart: ") + what);
+  };
+  require(std::isfinite(s.time_step_s) && s.time_step_s > 0.0, "time_step must be positive");
+  require(s.pgs_iterations >= 1, "pgs_iterations must be at least 1");
+  require(std::isfinite(s.restitution) && s.restitution >= 0.0 && s.restitution <= 1.0,
+          "restitution must be in [0, 1]");
+  require(std::isfinite(s.friction) && s.friction >= 0.0, "friction must be non-negative");
+  require(std::isfinite(s.erp) && s.erp >= 0.0 && s.erp <= 1.0, "erp must be in [0, 1]");
+  require(std::isfinite(s.error_allowance_m) && s.error_allowance_m >= 0.0,
+          "error_allowance must be non-negative");
+  require(std::isfinite(s.max_erv_mps) && s.max_erv_mps >= 0.0, "max_erv must be non-negative");
+  require(std::isfinite(s.cfm) && s.cfm >= 1e-9, "cfm must be at least 1e-9 (DART's floor)");
+  require(s.max_contacts >= 1, "max_contacts must be at least 1");
+  require(std::isfinite(s.ground_depth_m) && s.ground_depth_m > 0.0,
+          "ground_depth must be positive");
+}
+
+// Forwards to a boxed LCP solver and counts its calls and failures (a failure of the primary
+// solver is when DART hands the problem to the fallback).
+class CountingLcpSolver final : public dart::constraint::BoxedLcpSolver {
+ public:
+  CountingLcpSolver(std::shared_ptr<dart::constraint::BoxedLcpSolver> inner, std::int64_t* calls,
+                    std::int64_t* failures)
+      : inner_(std::move(inner)), calls_(calls), failures_(failures) {}
+
+  const std::string& getType() const override {
+    static const std::string type = "rockbench::CountingLcpSolver";
+    return type;
+  }
+  bool solve(int n, double* A, double* x, double* b, int nub, double* lo, double* hi, int* findex,
+             bool earlyTermination) override {
+    ++*calls_;
+    const bool ok = inner_->solve(n, A, x, b, nub, lo, hi, findex, earlyTermination);
+    if (!ok) ++*failures_;
+    return ok;
+  }
+  // Debian's libdart 6.12 is built without NDEBUG: its BoxedLcpSolver has the debug-only
+  // virtual canSolve, which its asserts call. Declared whatever our NDEBUG says, so that this
+  // class's vtable has the slot the library expects.
+#ifndef NDEBUG
+  bool canSolve(int n, const double* A) override {
+    return inner_->canSolve(n, A);
+  }
+#else
+  virtual bool canSolve(int /*n*/, const double* /*A*/) {
+    return true;
+  }
+#endif
+
+ private:
+  std::shared_ptr<dart::constraint::BoxedLcpSolver> inner_;
+  std::int64_t* calls_;
+  std::int64_t* failures_;
+};
+
+double OutOfPlaneRotation(const Eigen::Matrix3d& r) {
+  return std::max({std::abs(r(2, 0)), std::abs(r(2, 1)), std::abs(r(0, 2)), std::abs(r(1, 2))});
+}
+
+void ReadBody(const dart::dynamics::BodyNode& body, BodyReadout* out) {
+  const Eigen::Isometry3d& t = body.getWorldTransform();
+  const Eigen::Vector3d com = body.getCOM();
+  const Eigen::Vector3d v = body.getCOMLinearVelocity();
+  const Eigen::Vector3d w = body.getAngularVelocity();
+  out->x_m = com.x();
+  out->y_m = com.y();
+  out->cos_phi = t.linear()(0, 0);
+  out->sin_phi = t.linear()(1, 0);
+  out->vx_mps = v.x();
+  out->vy_mps = v.y();
+  out->w_radps = w.z();
+}
+
+}  // namespace
+
+struct DartWorld::Impl {
+  const EngineInput& in;
+  DartSettings s;
+  double dt = 0.0;
+  bool kinematic = false;
+  dart::simulation::WorldPtr world;
+  dart::dynamics::SkeletonPtr ground_skel, skel1, skel2;
+  dart::dynamics::BodyNode* ground = nullptr;
+  dart::dynamics::BodyNode* block1 = nullptr;
+  dart::dynamics::BodyNode* block2 = nullptr;
+  double z1 = 0.0, z2 = 0.0;
+  bool params_acquired = false;
+  // Diagnostics.
+  std::int64_t steps = 0, primary_calls = 0, primary_failures = 0, fallback_calls = 0,
+               fallback_failures = 0;
+  std::size_t max_contacts_seen = 0, max_contacts_step = 0;
+
+  Impl(const EngineInput& input, const DartSettings& settings) : in(input), s(settings) {}
+
+  dart::dynamics::BodyNode* MakeBlock(const std::string& name, const BlockDef& def,
+                                      const PlanarPose& pose, double ux0, double uy0, double gvx,
+                                      double gvy, dart::dynamics::SkeletonPtr* skel);
+};
+
+dart::dynamics::BodyNode* DartWorld::Impl::MakeBlock(const std::string& name, const BlockDef& def,
+                                                     const PlanarPose& pose, double ux0, double uy0,
+                                                     double gvx, double gvy,
+                                                     dart::dynamics::SkeletonPtr* skel) {
+  using namespace dart::dynamics;
+  *skel = Skeleton::create(name);
+  PlanarJoint::Properties jp;
+  jp.mName = name + "_planar";
+  auto [joint, body] = (*skel)->createJointAndBodyNodePair<PlanarJoint>(nullptr, jp);
+  joint->setXYPlane();
+  auto shape = std::make_shared<BoxShape>(Eigen::Vector3d(def.width_m, def.height_m, def.depth_m));
+  ShapeNode* node =
+      body->createShapeNodeWith<CollisionAspect, DynamicsAspect>(shape, name + "_shape");
+  node->getDynamicsAspect()->setFrictionCoeff(s.friction);
+  node->getDynamicsAspect()->setRestitutionCoeff(s.restitution);
+  body->setInertia(
+      Inertia(def.mass_kg, Eigen::Vector3d::Zero(), shape->computeInertia(def.mass_kg)));
+  // No damping, no spring: PlanarJoint's defaults are zero; the coordinates are (x, y, phi) of
+  // the body frame (the box centre) in the world's x-y plane, their rates the world velocities.
+  joint->setPositions(Eigen::Vector3d(pose.x_m + ux0, pose.y_m + uy0, pose.phi_rad));
+  joint->setVelocities(Eigen::Vector3d(pose.vx_mps + gvx, pose.vy_mps + gvy, pose.w_radps));
+  world->addSkeleton(*skel);
+  return body;
+}
+
+DartWorld::DartWorld(const EngineInput& input, const DartSettings& settings)
+    : impl_(std::make_unique<Impl>(input, settings)) {
+  using namespace dart::dynamics;
+  Impl& m = *impl_;
+  CheckSettings(m.s);
+  m.dt = m.s.time_step_s;
+  if (m.in.time_step_s != m.dt) {
+    throw std::invalid_argument("dart: the input was sampled at time step " +
+                                std::to_string(m.in.time_step_s) + " s, the settings ask for " +
+                                std::to_string(m.dt) + " s");
+  }
+  m.kinematic = m.in.drive_kind == DriveKind::kKinematic;
+  const size_t samples = static_cast<size_t>(m.in.steps) + 1;
+  if (m.kinematic && (m.in.drive.ux_m.size() < samples || m.in.drive.uy_m.size() < samples)) {
+    throw std::invalid_argument("dart: kinematic drive without ground displacement samples");
+  }
+
+  m.world = dart::simulation::World::create("rockbench");
+  m.world->setTimeStep(m.dt);
+  m.world->setGravity(Eigen::Vector3d(0.0, -m.in.run.gravity_mps2, 0.0));
+
+  auto* solver =
+      dynamic_cast<dart::constraint::BoxedLcpConstraintSolver*>(m.world->getConstraintSolver());
+  if (solver == nullptr) throw std::logic_error("dart: the world's solver is not a boxed LCP");
+  dart::constraint::PgsBoxedLcpSolver::Option pgs_option;
+  pgs_option.mMaxIteration = m.s.pgs_iterations;
+  auto make_pgs = [&] {
+    auto pgs = std::make_shared<dart::constraint::PgsBoxedLcpSolver>();
+    pgs->setOption(pgs_option);
+    return pgs;
+  };
+  std::shared_ptr<dart::constraint::BoxedLcpSolver> primary;
+  if (m.s.lcp_solver == DartLcpSolver::kPgs) {
+    primary = make_pgs();
+  } else {
+    primary = std::make_shared<dart::constraint::DantzigBoxedLcpSolver>();
+  }
+  solver->setBoxedLcpSolver(
+      std::make_shared<CountingLcpSolver>(primary, &m.primary_calls, &m.primary_failures));
+  if (m.s.lcp_solver == DartLcpSolver::kDantzig && m.s.pgs_fallback) {
+    solver->setSecondaryBoxedLcpSolver(
+        std::make_shared<CountingLcpSolver>(make_pgs(), &m.fallback_calls, &m.fallback_failures));
+  } else {
+    solver->setSecondaryBoxedLcpSolver(nullptr);
+  }
+  if (m.s.collision == DartCollision::kFcl) {
+    auto fcl = dart::collision::FCLCollisionDetector::create();
+    fcl->setPrimitiveShapeType(dart::collision::FCLCollisionDetector::PRIMITIVE);
+    fcl->setContactPointComputationMethod(dart::collision::FCLCollisionDetector::DART);
+    solver->setCollisionDetector(fcl);
+  } else {
+    solver->setCollisionDetector(dart::collision::DARTCollisionDetector::create());
+  }
+  solver->getCollisionOption().maxNumContacts = static_cast<std::size_t>(m.s.max_contacts);
+
+  const double b1 = 0.5 * m.in.block1.width_m, h1 = 0.5 * m.in.block1.height_m;
+  const double b2 = m.in.block2 ? 0.5 * m.in.block2->width_m : 0.0;
+  const double h2 = m.in.block2 ? 0.5 * m.in.block2->height_m : 0.0;
+  const double d1 = m.in.block1.depth_m, d2 = m.in.block2 ? m.in.block2->depth_m : 0.0;
+
+  // Ground: a box whose top face is y = 0 in the base frame, much wider than the stack. An
+  // immobile skeleton (never integrated, never pushed by contacts) on a 2-D translational joint
+  // whose coordinates and rates the kinematic drive sets each step; contacts see its velocity.
+  {
+    const double size = std::max({b1, h1, b2, h2, 0.5});
+    m.ground_skel = Skeleton::create("ground");
+    TranslationalJoint2D::Properties jp;
+    jp.mName = "ground_xy";
+    auto [joint, body] =
+        m.ground_skel->createJointAndBodyNodePair<TranslationalJoint2D>(nullptr, jp);
+    joint->setXYPlane();
+    auto shape = std::make_shared<BoxShape>(
+        Eigen::Vector3d(80.0 * size, m.s.ground_depth_m, 2.0 * (std::max(d1, d2) + 1.0)));
+    ShapeNode* node =
+        body->createShapeNodeWith<CollisionAspect, DynamicsAspect>(shape, "ground_shape");
+    node->getDynamicsAspect()->setFrictionCoeff(m.s.friction);
+    node->getDynamicsAspect()->setRestitutionCoeff(m.s.restitution);
+    // The box's centre is half its thickness below the body frame, the ground's reference point.
+    Eigen::Isometry3d offset = Eigen::Isometry3d::Identity();
+    offset.translation() = Eigen::Vector3d(0.0, -0.5 * m.s.ground_depth_m, 0.0);
+    node->setRelativeTransform(offset);
+    m.ground_skel->setMobile(false);
+    m.ground = body;
+    if (m.kinematic) {
+      joint->setPositions(Eigen::Vector2d(m.in.drive.ux_m.front(), m.in.drive.uy_m.front()));
+      joint->setVelocities(Eigen::Vector2d(m.in.drive.ux0_mps, m.in.drive.uy0_mps));
+    }
+    m.world->addSkeleton(m.ground_skel);
+  }
+
+  // Blocks, placed by the pivot chain in the base frame then shifted with the ground.
+  const StackPlacement place = PlaceStack(b1, h1, b2, h2, m.in.two_blocks(), m.in.initial);
+  const double ux0 = m.kinematic ? m.in.drive.ux_m.front() : 0.0;
+  const double uy0 = m.kinematic ? m.in.drive.uy_m.front() : 0.0;
+  const double gvx = m.kinematic ? m.in.drive.ux0_mps : 0.0;
+  const double gvy = m.kinematic ? m.in.drive.uy0_mps : 0.0;
+  m.block1 = m.MakeBlock("block1", m.in.block1, place.block1, ux0, uy0, gvx, gvy, &m.skel1);
+  if (m.in.block2) {
+    m.block2 = m.MakeBlock("block2", *m.in.block2, place.block2, ux0, uy0, gvx, gvy, &m.skel2);
+  }
+  m.z1 = m.block1->getCOM().z();
+  m.z2 = m.block2 ? m.block2->getCOM().z() : 0.0;
+
+  AcquireContactParams({m.s.erp, m.s.error_allowance_m, m.s.max_erv_mps, m.s.cfm});
+  m.params_acquired = true;
+}
+
+DartWorld::~DartWorld() {
+  if (impl_ && impl_->params_acquired) ReleaseContactParams();
+}
+
+void DartWorld::ApplyDrive(std::int64_t n) {
+  Impl& m = *impl_;
+  const size_t i = static_cast<size_t>(n);
+  if (!m.kinematic) {
+    const double ax = m.in.drive.ax_mps2.empty() ? 0.0 : m.in.drive.ax_mps2[i];
+    const double ay = m.in.drive.ay_mps2.empty() ? 0.0 : m.in.drive.ay_mps2[i];
+    // The exact equivalent of a translating base: effective gravity in the base frame.
+    m.world->setGravity(Eigen::Vector3d(-ax, -(m.in.run.gravity_mps2 + ay), 0.0));
+    return;
+  }
+  // Kinematic: collision detection sees the ground at u_n, the contact LCP its velocity
+  // (u_{n+1} - u_n) / dt (the ground is immobile: World::step leaves both alone).
+  const auto& ux = m.in.drive.ux_m;
+  const auto& uy = m.in.drive.uy_m;
+  auto* joint = m.ground->getParentJoint();
+  joint->setPositions(Eigen::Vector2d(ux[i], uy[i]));
+  joint->setVelocities(Eigen::Vector2d((ux[i + 1] - ux[i]) / m.dt, (uy[i + 1] - uy[i]) / m.dt));
+}
+
+void DartWorld::Step() {
+  Impl& m = *impl_;
+  m.world->step();
+  ++m.steps;
+  const std::size_t contacts = m.world->getLastCollisionResult().getNumContacts();
+  if (contacts > m.max_contacts_seen) {
+    m.max_contacts_seen = contacts;
+    m.max_contacts_step = static_cast<std::size_t>(m.steps);
+  }
+}
+
+StepReadout DartWorld::Read(std::int64_t n) const {
+  const Impl& m = *impl_;
+  StepReadout s;
+  s.t_s = static_cast<double>(n) * m.dt;
+  ReadBody(*m.block1, &s.block1);
+  double oop_m = std::abs(m.block1->getCOM().z() - m.z1);
+  double oop_rad = OutOfPlaneRotation(m.block1->getWorldTransform().linear());
+  if (m.block2) {
+    ReadBody(*m.block2, &s.block2);
+    oop_m = std::max(oop_m, std::abs(m.block2->getCOM().z() - m.z2));
+    oop_rad = std::max(oop_rad, OutOfPlaneRotation(m.block2->getWorldTransform().linear()));
+  }
+  s.out_of_plane_m = oop_m;
+  s.out_of_plane_rad = oop_rad;
+  const size_t i = static_cast<size_t>(n);
+  if (m.kinematic) {
+    const auto& ux = m.in.drive.ux_m;
+    const auto& uy = m.in.drive.uy_m;
+    const double dt = m.dt;
+    s.ground_x_m = ux[i];
+    s.ground_y_m = uy[i];
+    // The blocks' velocities after step n are those of the step that ended at t_n.
+    s.ground_vx_mps = i == 0 ? m.in.drive.ux0_mps : (ux[i] - ux[i - 1]) / dt;
+    s.ground_vy_mps = i == 0 ? m.in.drive.uy0_mps : (uy[i] - uy[i - 1]) / dt;
+    if (i >= 1) {
+      const double prev_vx = i == 1 ? m.in.drive.ux0_mps : (ux[i - 1] - ux[i - 2]) / dt;
+      const double prev_vy = i == 1 ? m.in.drive.uy0_mps : (uy[i - 1] - uy[i - 2]) / dt;
+      s.base_accelerating = std::abs(s.ground_vx_mps - prev_vx) > kBaseStillMps2 * dt ||
+                            std::abs(s.ground_vy_mps - prev_vy) > kBaseStillMps2 * dt;
+    }
+  } else if (i >= 1) {
+    const double ax = m.in.drive.ax_mps2.empty() ? 0.0 : m.in.drive.ax_mps2[i - 1];
+    const double ay = m.in.drive.ay_mps2.empty() ? 0.0 : m.in.drive.ay_mps2[i - 1];
+    s.base_accelerating = std::abs(ax) > kBaseStillMps2 || std::abs(ay) > kBaseStillMps2;
+  }
+  return s;
+}
+
+std::size_t DartWorld::LastContactCount() const {
+  return impl_->world->getLastCollisionResult().getNumContacts();
+}
+
+nlohmann::json DartWorld::Diagnostics() const {
+  const Impl& m = *impl_;
+  nlohmann::json j;
+  j["steps"] = m.steps;
+  j["max_contacts"] = m.max_contacts_seen;
+  j["lcp_solves"] = m.primary_calls;
+  j["lcp_primary_failures"] = m.primary_failures;
+  j["lcp_fallback_solves"] = m.fallback_calls;
+  j["lcp_fallback_failures"] = m.fallback_failures;
+  return j;
+}
+
+nlohmann::json DartWorld::Settings() const {
+  const Impl& m = *impl_;
+  using dart::constraint::ContactConstraint;
+  nlohmann::json j;
+  j["dart_version"] = DART_VERSION;
+  j["drive"] = m.kinematic ? "kinematic" : "inertial";
+  j["time_step_s"] = m.s.time_step_s;
+  j["output_interval_s"] = m.in.run.output_interval_s;
+  j["substeps_per_sample"] = std::max(1.0, std::round(m.in.run.output_interval_s / m.dt));
+  j["collision"] = DartCollisionName(m.s.collision);
+  j["collision_detector"] = m.world->getConstraintSolver()->getCollisionDetector()->getType();
+  j["lcp_solver"] = DartLcpSolverName(m.s.lcp_solver);
+  j["pgs_fallback"] = m.s.lcp_solver == DartLcpSolver::kDantzig && m.s.pgs_fallback;
+  j["pgs_iterations"] = m.s.pgs_iterations;
+  j["restitution"] = m.s.restitution;
+  j["restitution_combined"] = m.s.restitution * m.s.restitution;  // DART: product
+  j["friction"] = m.s.friction;
+  j["friction_combined"] = m.s.friction;  // DART: the smaller of the two
+  // The values in force (process-wide statics), read back.
+  j["erp"] = ContactConstraint::getErrorReductionParameter();
+  j["error_allowance_m"] = ContactConstraint::getErrorAllowance();
+  j["max_erv_mps"] = ContactConstraint::getMaxErrorReductionVelocity();
+  j["cfm"] = ContactConstraint::getConstraintForceMixing();
+  j["max_contacts"] = m.s.max_contacts;
+  j["ground_depth_m"] = m.s.ground_depth_m;
+  j["kinematic_highpass_hz"] = m.in.kinematic_highpass_hz;
+  j["joint"] = "PlanarJoint (x-y plane) per block";
+  j["integrator"] = "semi-implicit Euler (DART World::step)";
+  return j;
+}
+
+}  // namespace rockbench::dart_engine

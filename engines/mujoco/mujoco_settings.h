@@ -1,0 +1,172 @@
+#pragma once
+/// Settings of the MuJoCo engine (2.2.2): ours, with MuJoCo's own default beside each and why
+/// ours differs. Free of MuJoCo headers. Each maps onto an MJCF <option> or <geom> attribute
+/// (MujocoWorld::Settings() lists the values in use). Measurements quoted here are from
+/// engines/mujoco/mujoco_probe.cc (Housner's block 0.4 m x 1.2 m from alpha / 2, 2.5 s, against
+/// its exact solution; the thesis's stack, 3 s, against the reference model).
+#include <array>
+#include <optional>
+#include <string_view>
+
+#include "engines/common/engine_input.h"
+#include "scene/engine_settings.h"
+
+namespace rockbench::mujoco {
+
+/// How the contacts are regularised (MuJoCo's soft constraints: the geoms' solref and solimp).
+///
+/// MuJoCo drives a contact's penetration r and normal velocity v towards the reference
+/// acceleration aref = -b v - k r, with b = 2 / (dmax timeconst) and
+/// k = 1 / (dmax^2 timeconst^2 dampratio^2), and lets a fraction 1 - d (the impedance d from
+/// solimp) of the constraint force go unenforced.
+enum class ContactModel {
+  /// solref = (stiff_timeconst_steps * dt, stiff_dampratio), solimp = stiff_solimp. With the
+  /// time constant at 2 dt, b dt = 1: a landing corner's approach velocity is removed in one
+  /// step, the plastic impact of the rigid model (no restitution; Housner's energy loss comes
+  /// from the geometry alone). Converges to the rigid model as dt falls (measured: Housner's
+  /// block 3.8e-3 / 2.5e-4 / 4.8e-5 rad at dt 1e-3 / 1e-4 / 1e-5 s; the stack 5.9e-3 / 2.9e-4 /
+  /// 2.1e-5 rad).
+  kStiff,
+  /// MuJoCo's own: solref (0.02 s, 1), solimp (0.9, 0.95, 0.001 m, 0.5, 2), whatever the step.
+  /// A 20 ms spring under each corner: 2.7 mm (block) to 6 mm (stack) of penetration, an
+  /// impact spread over ~20 ms, errors that do not shrink with dt (measured: Housner's block
+  /// 3.2e-3 / 2.0e-3 / 2.1e-3 rad, the stack 4.2e-3 / 3.8e-3 / 3.9e-3 rad at dt 1e-3 / 1e-4 /
+  /// 1e-5 s). Kept to show what MuJoCo's defaults do.
+  kMujocoDefault,
+};
+
+/// MuJoCo's constraint solver (mjtSolver).
+enum class Solver { kNewton, kCG, kPGS };
+/// MuJoCo's integrator (mjtIntegrator): semi-implicit Euler, RK4, implicit in velocity.
+enum class Integrator { kEuler, kRK4, kImplicit };
+/// MuJoCo's friction cone (mjtCone).
+enum class Cone { kPyramidal, kElliptic };
+
+struct MujocoSettings {
+  /// Fixed step, s. MuJoCo default 0.002 s. Ours 1e-4 s, as Bullet's: with the stiff contact
+  /// the step sets both the integration error and the contact's compliance (time constant
+  /// 2 dt). Must equal EngineInput::time_step_s (the drive is sampled on that grid).
+  double time_step_s = 1e-4;
+
+  /// Contact regularisation. MuJoCo default: kMujocoDefault's values. Ours kStiff, the only one
+  /// that converges to the rigid-block model as dt falls.
+  ContactModel contact = ContactModel::kStiff;
+  /// kStiff: solref time constant in steps (timeconst = this * dt), dimensionless. MuJoCo's
+  /// default time constant is 0.02 s whatever dt; its "refsafe" rule raises any time constant
+  /// below 2 dt to 2 dt, so 2 is the stiffest contact MuJoCo integrates, and the one whose
+  /// damping removes an approach velocity in exactly one step (at 5 or 10 steps the impact
+  /// spreads over that many steps and the errors grow: measured).
+  double stiff_timeconst_steps = 2.0;
+  /// kStiff: solref damping ratio, dimensionless. MuJoCo default 1 (critical). Ours 10: with
+  /// the time constant at 2 dt the stiffness term k r turns the penetration a landing corner
+  /// makes within its step (up to v dt) into a rebound velocity of up to v / (4 dampratio^2),
+  /// whatever dt: at 1 that is a restitution of up to 25% at the landing corner, which the
+  /// rigid model does not have (measured at 1: rate ratios 0.81-0.84 instead of Housner's 0.85
+  /// even at dt 1e-6, the stack airborne by 1 mm and 1.1e-2 rad off at dt 1e-5). At 10 the
+  /// rebound is below 0.25% and the penetration is recovered over 4 dampratio^2 = 400 steps
+  /// (40 ms at dt 1e-4; the penetration itself is O(v dt): 2e-5 m at dt 1e-4). Measured 3 to 30
+  /// give the same errors within their scatter; 100 leaves penetration from coarse steps.
+  double stiff_dampratio = 10.0;
+  /// kStiff: solimp (dmin, dmax, width m, midpoint, power). MuJoCo default
+  /// (0.9, 0.95, 0.001 m, 0.5, 2): 5-10% of the constraint force left unenforced, which shows
+  /// as creep (slip 1.5e-5 m at dt 1e-4, 4 times ours) and softer impacts (rate ratio 0.843
+  /// against Housner's 0.850, at every dt). Ours: the impedance
+  /// at MuJoCo's largest, mjMAXIMP = 0.9999, at every penetration (width, midpoint and power
+  /// then play no part): the rigid model's contact. (0.99, 0.9999, 1e-4 m) measured the same
+  /// within the scatter.
+  std::array<double, 5> stiff_solimp = {0.9999, 0.9999, 0.001, 0.5, 2.0};
+
+  /// Constraint solver. MuJoCo default Newton (kept: converges in at most 6 iterations here; CG
+  /// hits the iteration limit on the stack (2-3 times slower), PGS on both scenes (7-15 times
+  /// slower), neither more accurate).
+  Solver solver = Solver::kNewton;
+  /// Maximum solver iterations. MuJoCo default 100 (kept: Newton stops at the tolerance long
+  /// before).
+  int iterations = 100;
+  /// Solver tolerance (relative cost improvement), dimensionless. MuJoCo default 1e-8 (kept:
+  /// 1e-10 gives Housner's block the same errors to 4 digits).
+  double tolerance = 1e-8;
+  /// Integrator. MuJoCo default Euler (semi-implicit; kept: the error is the contacts' O(dt)
+  /// either way; RK4 re-solves the contacts in each of its 4 stages, costs 3-7 times as much
+  /// and was not consistently more accurate at equal dt; implicit is Euler when nothing has
+  /// joint damping, as here).
+  Integrator integrator = Integrator::kEuler;
+  /// Friction cone. MuJoCo default pyramidal. Ours elliptic: a pyramidal cone's edges mix the
+  /// normal with friction times the tangent, so their regularisation grows with the friction
+  /// squared and a large friction softens the normal contact (measured with friction 10 and
+  /// MuJoCo's default solimp: the block sinks 0.33 m; with the stiff solimp the impacts lose
+  /// almost nothing, ratio 0.98). The elliptic cone keeps normal and friction rows apart.
+  Cone cone = Cone::kElliptic;
+  /// Ratio of friction to normal impedance, dimensionless. MuJoCo default 1 (kept: 10 measured
+  /// the same, the slip is already far below the monitor's flag).
+  double impratio = 1.0;
+  /// Coulomb friction coefficient of every geom (MuJoCo takes the larger of the two geoms').
+  /// MuJoCo default 1. Ours 10: the rigid model assumes no sliding, and the reference needs a
+  /// friction ratio of 0.70 at the ground and 1.28 at the interface for the thesis's stack
+  /// (0.24 for Housner's block), which MuJoCo's 1 would not give. Measured 3 or 100 the same
+  /// within the scatter (elliptic cone).
+  double friction = 10.0;
+  /// Noslip post-iterations (remove the friction constraints' soft creep). MuJoCo default 0
+  /// (kept: the slip measured with the stiff contact is 2e-6 m at the ground and 1.5e-5 m at
+  /// the interface at dt 1e-4, far below the monitor's flag of 1e-3 of the width; 10 noslip
+  /// iterations change the errors by nothing measurable and cost a second solve).
+  int noslip_iterations = 0;
+  /// Noslip tolerance, dimensionless. MuJoCo default 1e-6 (kept).
+  double noslip_tolerance = 1e-6;
+};
+
+/// Names as used in summaries and scene tables.
+constexpr std::string_view ContactModelName(ContactModel c) {
+  return c == ContactModel::kStiff ? "stiff" : "mujoco_default";
+}
+constexpr std::string_view SolverName(Solver s) {
+  return s == Solver::kNewton ? "newton" : (s == Solver::kCG ? "cg" : "pgs");
+}
+constexpr std::string_view IntegratorName(Integrator i) {
+  return i == Integrator::kEuler ? "euler" : (i == Integrator::kRK4 ? "rk4" : "implicit");
+}
+constexpr std::string_view ConeName(Cone c) {
+  return c == Cone::kPyramidal ? "pyramidal" : "elliptic";
+}
+
+/// The inverse of the names above; nullopt for an unknown name.
+constexpr std::optional<ContactModel> ParseContactModel(std::string_view s) {
+  if (s == "stiff") return ContactModel::kStiff;
+  if (s == "mujoco_default") return ContactModel::kMujocoDefault;
+  return std::nullopt;
+}
+constexpr std::optional<Solver> ParseSolver(std::string_view s) {
+  if (s == "newton") return Solver::kNewton;
+  if (s == "cg") return Solver::kCG;
+  if (s == "pgs") return Solver::kPGS;
+  return std::nullopt;
+}
+constexpr std::optional<Integrator> ParseIntegrator(std::string_view s) {
+  if (s == "euler") return Integrator::kEuler;
+  if (s == "rk4") return Integrator::kRK4;
+  if (s == "implicit") return Integrator::kImplicit;
+  return std::nullopt;
+}
+constexpr std::optional<Cone> ParseCone(std::string_view s) {
+  if (s == "pyramidal") return Cone::kPyramidal;
+  if (s == "elliptic") return Cone::kElliptic;
+  return std::nullopt;
+}
+
+/// The [mujoco] table: the MujocoSettings fields a scene may set, with MuJoCo's own default
+/// beside ours.
+const EngineSettingsSchema& MujocoSettingsSchema();
+
+/// The input of one MuJoCo run: the common engine input (step, drive, base motion) and the
+/// settings.
+struct MujocoRun {
+  EngineInput input;
+  MujocoSettings settings;
+};
+
+/// Resolves the scene's [mujoco] table (SceneError naming FILE:LINE and the key for a bad value)
+/// and samples the base motion on its step.
+MujocoRun MakeMujocoRun(const Scene& scene, const GroundMotion& motion,
+                        double stop_at_rest_after_s);
+
+}  // namespace rockbench::mujoco

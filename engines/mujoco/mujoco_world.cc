@@ -1,0 +1,371 @@
+#include "engines/mujoco/mujoco_world.h"
+
+#include <mujoco/mujoco.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <limits>
+#include <memory>
+#include <mutex>
+#include <stdexcept>
+#include <string>
+
+#include "engines/common/placement.h"
+
+// Kinematic drive. A moving ground in MuJoCo would be a mocap body (or a body welded to one).
+// Mocap bodies have no degrees of freedom: mj_comVel gives them zero velocity, and the contact
+// Jacobian of a contact with a mocap geom has no columns for it, so the contact's relative
+// velocity (hence its damping term and the impact) is that of the blocks alone: moving the
+// mocap body teleports the ground by u_{n+1} - u_n every step and the contact sees it only as a
+// penetration to be pushed out by the contact spring. That is not the ground at u(t_n) moving
+// with (u_{n+1} - u_n) / dt that Bullet's kinematic drive is, so MujocoWorld refuses it.
+// (Checked on 2.2.2: a 100 kg box resting with friction 10 on a mocap ground moved at 1 m/s for
+// 0.5 s stays where it is, velocity 0, while the ground slides 0.5 m under it.)
+
+namespace rockbench::mujoco {
+namespace {
+
+// Ground accelerations below this count as no base input for the energy check (m/s^2), as in
+// Bullet's world.
+constexpr double kBaseStillMps2 = 1e-4;
+
+// mj_loadXML parses into a global (the model mj_saveLastXML writes) and compiles with MuJoCo's
+// error handlers; serialise it.
+std::mutex& CompileMutex() {
+  static std::mutex mutex;
+  return mutex;
+}
+
+// MuJoCo's default warning handler prints to stdout and appends to MUJOCO_LOG.TXT in the working
+// directory. The warnings it would print (buffers full, bad numbers) are counted in
+// mjData::warning, which Diagnostics() reports; so they are dropped here, once, unless the
+// program installed a handler of its own.
+void QuietWarning(const char*) {}
+void InstallQuietWarningHandler() {
+  static std::once_flag once;
+  std::call_once(once, [] {
+    if (mju_user_warning == nullptr) mju_user_warning = QuietWarning;
+  });
+}
+
+std::string Num(double v) {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.17g", v);
+  return buf;
+}
+
+const char* MjcfIntegrator(Integrator i) {
+  switch (i) {
+    case Integrator::kEuler:
+      return "Euler";
+    case Integrator::kRK4:
+      return "RK4";
+    case Integrator::kImplicit:
+      return "implicit";
+  }
+  return "Euler";
+}
+const char* MjcfSolver(Solver s) {
+  switch (s) {
+    case Solver::kNewton:
+      return "Newton";
+    case Solver::kCG:
+      return "CG";
+    case Solver::kPGS:
+      return "PGS";
+  }
+  return "Newton";
+}
+
+struct ContactParams {
+  double solref[2];
+  double solimp[5];
+};
+
+ContactParams ContactParamsOf(const MujocoSettings& s) {
+  if (s.contact == ContactModel::kMujocoDefault) {
+    return {{0.02, 1.0}, {0.9, 0.95, 0.001, 0.5, 2.0}};
+  }
+  ContactParams p{{s.stiff_timeconst_steps * s.time_step_s, s.stiff_dampratio}, {}};
+  for (int i = 0; i < 5; ++i) p.solimp[i] = s.stiff_solimp[i];
+  return p;
+}
+
+void Check(bool ok, const std::string& what) {
+  if (!ok) throw std::invalid_argument("mujoco: " + what);
+}
+
+void CheckSettings(const EngineInput& in, const MujocoSettings& s) {
+  Check(in.drive_kind == DriveKind::kInertial, "kinematic drive not supported");
+  Check(std::isfinite(s.time_step_s) && s.time_step_s > 0.0, "time_step: expected a positive step");
+  Check(s.time_step_s == in.time_step_s, "time_step " + Num(s.time_step_s) +
+                                             " s differs from the input's " + Num(in.time_step_s) +
+                                             " s (the drive is sampled on the input's grid)");
+  Check(std::isfinite(s.stiff_timeconst_steps) && s.stiff_timeconst_steps >= 2.0,
+        "stiff_timeconst_steps: expected at least 2 (MuJoCo raises smaller time constants to "
+        "2 dt)");
+  Check(std::isfinite(s.stiff_dampratio) && s.stiff_dampratio > 0.0,
+        "stiff_dampratio: expected a positive ratio");
+  const auto& si = s.stiff_solimp;
+  // MuJoCo would clamp impedances outside [mjMINIMP, mjMAXIMP] silently.
+  Check(si[0] >= mjMINIMP && si[0] <= mjMAXIMP && si[1] >= mjMINIMP && si[1] <= mjMAXIMP,
+        "stiff_solimp: dmin and dmax must lie in [0.0001, 0.9999] (MuJoCo's mjMINIMP, "
+        "mjMAXIMP)");
+  Check(si[2] >= 0.0 && si[3] > 0.0 && si[3] < 1.0 && si[4] >= 1.0,
+        "stiff_solimp: expected width >= 0, midpoint in (0, 1), power >= 1");
+  Check(s.iterations >= 1, "iterations: expected at least 1");
+  Check(std::isfinite(s.tolerance) && s.tolerance >= 0.0, "tolerance: expected >= 0");
+  Check(std::isfinite(s.impratio) && s.impratio > 0.0, "impratio: expected > 0");
+  Check(std::isfinite(s.friction) && s.friction >= 1e-5,
+        "friction: expected a coefficient of at least 1e-5 (MuJoCo's mjMINMU)");
+  Check(s.noslip_iterations >= 0, "noslip_iterations: expected >= 0");
+  Check(std::isfinite(s.noslip_tolerance) && s.noslip_tolerance >= 0.0,
+        "noslip_tolerance: expected >= 0");
+  auto block_ok = [](const BlockDef& b) {
+    return b.width_m > 0.0 && b.height_m > 0.0 && b.depth_m > 0.0 && b.mass_kg > 0.0;
+  };
+  Check(block_ok(in.block1) && (!in.block2 || block_ok(*in.block2)),
+        "blocks need a positive width, height, depth and mass");
+}
+
+// One block: a body at the world origin with slide x, slide y and hinge z joints (qpos = the
+// mass centre's x, y and the CCW angle), a box geom and its exact inertia.
+std::string BlockMjcf(const char* name, const BlockDef& b) {
+  const double m = b.mass_kg, w = b.width_m, h = b.height_m, d = b.depth_m;
+  const double ixx = m * (h * h + d * d) / 12.0, iyy = m * (w * w + d * d) / 12.0;
+  const double izz = m * (w * w + h * h) / 12.0;
+  const std::string n = name;
+  std::string s;
+  s += "    <body name=\"" + n + "\" pos=\"0 0 0\">\n";
+  s += "      <joint name=\"" + n + "_x\" type=\"slide\" axis=\"1 0 0\"/>\n";
+  s += "      <joint name=\"" + n + "_y\" type=\"slide\" axis=\"0 1 0\"/>\n";
+  s += "      <joint name=\"" + n + "_phi\" type=\"hinge\" axis=\"0 0 1\" pos=\"0 0 0\"/>\n";
+  s += "      <inertial pos=\"0 0 0\" mass=\"" + Num(m) + "\" diaginertia=\"" + Num(ixx) + " " +
+       Num(iyy) + " " + Num(izz) + "\"/>\n";
+  s += "      <geom name=\"" + n + "\" type=\"box\" size=\"" + Num(0.5 * w) + " " + Num(0.5 * h) +
+       " " + Num(0.5 * d) + "\"/>\n";
+  s += "    </body>\n";
+  return s;
+}
+
+std::string ModelMjcf(const EngineInput& in, const MujocoSettings& s) {
+  const ContactParams c = ContactParamsOf(s);
+  std::string x;
+  x += "<mujoco model=\"rockbench\">\n";
+  x += "  <compiler angle=\"radian\" inertiafromgeom=\"false\"/>\n";
+  // Contacts: at most 4 per block on the plane and 8 between the boxes; 4 rows each (pyramidal
+  // cone, condim 3) or 3 (elliptic).
+  x += "  <size njmax=\"400\" nconmax=\"100\"/>\n";
+  x += "  <option timestep=\"" + Num(s.time_step_s) + "\" gravity=\"0 " +
+       Num(-in.run.gravity_mps2) + " 0\" integrator=\"" + MjcfIntegrator(s.integrator) +
+       "\" solver=\"" + MjcfSolver(s.solver) + "\" iterations=\"" + std::to_string(s.iterations) +
+       "\" tolerance=\"" + Num(s.tolerance) + "\" cone=\"" + std::string(ConeName(s.cone)) +
+       "\" impratio=\"" + Num(s.impratio) + "\" noslip_iterations=\"" +
+       std::to_string(s.noslip_iterations) + "\" noslip_tolerance=\"" + Num(s.noslip_tolerance) +
+       "\"/>\n";
+  x += "  <default>\n";
+  x += "    <joint limited=\"false\" damping=\"0\" armature=\"0\" stiffness=\"0\" "
+       "frictionloss=\"0\"/>\n";
+  x += "    <geom condim=\"3\" friction=\"" + Num(s.friction) +
+       " 0.005 0.0001\" margin=\"0\" "
+       "gap=\"0\" solref=\"" +
+       Num(c.solref[0]) + " " + Num(c.solref[1]) + "\" solimp=\"" + Num(c.solimp[0]) + " " +
+       Num(c.solimp[1]) + " " + Num(c.solimp[2]) + " " + Num(c.solimp[3]) + " " + Num(c.solimp[4]) +
+       "\"/>\n";
+  x += "  </default>\n";
+  x += "  <worldbody>\n";
+  // The ground: a plane (half-space) whose normal is +y through the origin.
+  x += "    <geom name=\"ground\" type=\"plane\" size=\"0 0 1\" zaxis=\"0 1 0\"/>\n";
+  // Both blocks are children of the world body: MuJoCo's parent-child contact filter does not
+  // apply to them, so block 2 collides with block 1 (and with the ground).
+  x += BlockMjcf("block1", in.block1);
+  if (in.block2) x += BlockMjcf("block2", *in.block2);
+  x += "  </worldbody>\n";
+  x += "</mujoco>\n";
+  return x;
+}
+
+mjModel* CompileMjcf(const std::string& xml) {
+  static constexpr const char* kFile = "rockbench_mujoco.xml";
+  auto vfs = std::make_unique<mjVFS>();  // 2 MB of file names: not on the stack
+  mj_defaultVFS(vfs.get());
+  if (mj_makeEmptyFileVFS(vfs.get(), kFile, static_cast<int>(xml.size())) != 0) {
+    throw std::runtime_error("mujoco: cannot make the model's virtual file");
+  }
+  const int i = mj_findFileVFS(vfs.get(), kFile);
+  std::memcpy(vfs->filedata[i], xml.data(), xml.size());
+  char error[1000] = "";
+  mjModel* m = nullptr;
+  {
+    std::lock_guard<std::mutex> lock(CompileMutex());
+    m = mj_loadXML(kFile, vfs.get(), error, sizeof error);
+  }
+  mj_deleteVFS(vfs.get());
+  if (!m) throw std::runtime_error(std::string("mujoco: model does not compile: ") + error);
+  return m;
+}
+
+int JointQpos(const mjModel* m, const std::string& name, int* qvel_adr) {
+  const int j = mj_name2id(m, mjOBJ_JOINT, name.c_str());
+  if (j < 0) throw std::runtime_error("mujoco: joint " + name + " missing from the model");
+  *qvel_adr = m->jnt_dofadr[j];
+  return m->jnt_qposadr[j];
+}
+
+void SetPose(mjData* d, int qpos, int qvel, const PlanarPose& p) {
+  d->qpos[qpos + 0] = p.x_m;
+  d->qpos[qpos + 1] = p.y_m;
+  d->qpos[qpos + 2] = p.phi_rad;
+  d->qvel[qvel + 0] = p.vx_mps;
+  d->qvel[qvel + 1] = p.vy_mps;
+  d->qvel[qvel + 2] = p.w_radps;
+}
+
+void ReadBody(const mjData* d, int qpos, int qvel, BodyReadout* out) {
+  out->x_m = d->qpos[qpos + 0];
+  out->y_m = d->qpos[qpos + 1];
+  const double phi = d->qpos[qpos + 2];
+  out->cos_phi = std::cos(phi);
+  out->sin_phi = std::sin(phi);
+  out->vx_mps = d->qvel[qvel + 0];
+  out->vy_mps = d->qvel[qvel + 1];
+  out->w_radps = d->qvel[qvel + 2];
+}
+
+void SetNaN(BodyReadout* b) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  *b = {nan, nan, nan, nan, nan, nan, nan};
+}
+
+}  // namespace
+
+MujocoWorld::MujocoWorld(const EngineInput& input, const MujocoSettings& settings)
+    : in_(input), s_(settings) {
+  CheckSettings(in_, s_);
+  InstallQuietWarningHandler();
+  dt_ = in_.time_step_s;
+  xml_ = ModelMjcf(in_, s_);
+  m_ = CompileMjcf(xml_);
+  d_ = mj_makeData(m_);
+  if (!d_) {
+    mj_deleteModel(m_);
+    throw std::runtime_error("mujoco: mj_makeData failed");
+  }
+  // The joints are consecutive: (x, y, phi) at qpos1_ .. qpos1_ + 2.
+  int v = 0;
+  qpos1_ = JointQpos(m_, "block1_x", &qvel1_);
+  if (JointQpos(m_, "block1_phi", &v) != qpos1_ + 2 || v != qvel1_ + 2) {
+    throw std::runtime_error("mujoco: unexpected joint layout");
+  }
+  if (in_.block2) qpos2_ = JointQpos(m_, "block2_x", &qvel2_);
+
+  const double b1 = 0.5 * in_.block1.width_m, h1 = 0.5 * in_.block1.height_m;
+  const double b2 = in_.block2 ? 0.5 * in_.block2->width_m : 0.0;
+  const double h2 = in_.block2 ? 0.5 * in_.block2->height_m : 0.0;
+  const StackPlacement place = PlaceStack(b1, h1, b2, h2, in_.two_blocks(), in_.initial);
+  SetPose(d_, qpos1_, qvel1_, place.block1);
+  if (in_.block2) SetPose(d_, qpos2_, qvel2_, place.block2);
+  mj_forward(m_, d_);
+}
+
+MujocoWorld::~MujocoWorld() {
+  if (d_) mj_deleteData(d_);
+  if (m_) mj_deleteModel(m_);
+}
+
+void MujocoWorld::ApplyDrive(std::int64_t n) {
+  const size_t i = static_cast<size_t>(n);
+  const double ax = in_.drive.ax_mps2.empty() ? 0.0 : in_.drive.ax_mps2[i];
+  const double ay = in_.drive.ay_mps2.empty() ? 0.0 : in_.drive.ay_mps2[i];
+  // The exact equivalent of a translating base: effective gravity in the base frame.
+  m_->opt.gravity[0] = -ax;
+  m_->opt.gravity[1] = -(in_.run.gravity_mps2 + ay);
+  m_->opt.gravity[2] = 0.0;
+}
+
+void MujocoWorld::Step() {
+  if (blown_up_) return;
+  const double t_before = d_->time;
+  mj_step(m_, d_);
+  max_contacts_ = std::max(max_contacts_, d_->ncon);
+  max_iterations_ = std::max(max_iterations_, d_->solver_iter);
+  // MuJoCo resets the simulation (time back to 0) when it meets a bad number in qpos, qvel or
+  // qacc: that is the end of the run.
+  if (d_->warning[mjWARN_BADQPOS].number > 0 || d_->warning[mjWARN_BADQVEL].number > 0 ||
+      d_->warning[mjWARN_BADQACC].number > 0 || !(d_->time > t_before)) {
+    blown_up_ = true;
+  }
+}
+
+StepReadout MujocoWorld::Read(std::int64_t n) const {
+  StepReadout s;
+  s.t_s = static_cast<double>(n) * dt_;
+  if (blown_up_) {
+    SetNaN(&s.block1);
+    if (in_.block2) SetNaN(&s.block2);
+    return s;
+  }
+  ReadBody(d_, qpos1_, qvel1_, &s.block1);
+  if (in_.block2) ReadBody(d_, qpos2_, qvel2_, &s.block2);
+  // The joints hold the plane exactly: no out-of-plane motion to report.
+  s.out_of_plane_m = 0.0;
+  s.out_of_plane_rad = 0.0;
+  const size_t i = static_cast<size_t>(n);
+  if (i >= 1) {
+    const double ax = in_.drive.ax_mps2.empty() ? 0.0 : in_.drive.ax_mps2[i - 1];
+    const double ay = in_.drive.ay_mps2.empty() ? 0.0 : in_.drive.ay_mps2[i - 1];
+    s.base_accelerating = std::abs(ax) > kBaseStillMps2 || std::abs(ay) > kBaseStillMps2;
+  }
+  return s;
+}
+
+nlohmann::json MujocoWorld::Settings() const {
+  const ContactParams c = ContactParamsOf(s_);
+  nlohmann::json j;
+  j["mujoco_version"] = mj_versionString();
+  j["drive"] = "inertial";
+  j["time_step_s"] = dt_;
+  j["output_interval_s"] = in_.run.output_interval_s;
+  j["substeps_per_sample"] = std::max(1.0, std::round(in_.run.output_interval_s / dt_));
+  j["contact"] = std::string(ContactModelName(s_.contact));
+  j["solref"] = {c.solref[0], c.solref[1]};
+  j["solimp"] = {c.solimp[0], c.solimp[1], c.solimp[2], c.solimp[3], c.solimp[4]};
+  if (s_.contact == ContactModel::kStiff) {
+    j["stiff_timeconst_steps"] = s_.stiff_timeconst_steps;
+    j["stiff_dampratio"] = s_.stiff_dampratio;
+  }
+  j["solver"] = std::string(SolverName(s_.solver));
+  j["iterations"] = s_.iterations;
+  j["tolerance"] = s_.tolerance;
+  j["integrator"] = std::string(IntegratorName(s_.integrator));
+  j["cone"] = std::string(ConeName(s_.cone));
+  j["impratio"] = s_.impratio;
+  j["friction"] = s_.friction;
+  j["friction_combined"] = s_.friction;  // MuJoCo takes the larger of the two geoms'
+  j["noslip_iterations"] = s_.noslip_iterations;
+  j["noslip_tolerance"] = s_.noslip_tolerance;
+  j["condim"] = 3;
+  j["margin_m"] = 0.0;
+  j["ground"] = "plane y = 0";
+  j["planar_joints"] = "slide x, slide y, hinge z per block";
+  j["refsafe"] = (m_->opt.disableflags & mjDSBL_REFSAFE) == 0;
+  j["warmstart"] = (m_->opt.disableflags & mjDSBL_WARMSTART) == 0;
+  return j;
+}
+
+nlohmann::json MujocoWorld::Diagnostics() const {
+  nlohmann::json j;
+  j["contact_buffer_full"] = d_->warning[mjWARN_CONTACTFULL].number;
+  j["constraint_buffer_full"] = d_->warning[mjWARN_CNSTRFULL].number;
+  j["bad_qpos"] = d_->warning[mjWARN_BADQPOS].number;
+  j["bad_qvel"] = d_->warning[mjWARN_BADQVEL].number;
+  j["bad_qacc"] = d_->warning[mjWARN_BADQACC].number;
+  j["max_contacts"] = max_contacts_;
+  j["max_solver_iterations"] = max_iterations_;
+  j["blown_up"] = blown_up_;
+  return j;
+}
+
+}  // namespace rockbench::mujoco

@@ -1,0 +1,111 @@
+// ODE behind the engine interface (engines/common/engine.h): OdeWorld stepped by the shared
+// fixed-step loop, watched by the shared monitor.
+#include <ode/ode.h>
+
+#include <cstdio>
+#include <memory>
+#include <stdexcept>
+
+#include "engines/common/fixed_step.h"
+#include "engines/ode/ode_settings.h"
+#include "engines/ode/ode_world.h"
+
+namespace rockbench {
+namespace ode {
+namespace {
+
+// A grid point: `family` at step dt with `settings` besides the step.
+SweepSetting Point(const std::string& family, double dt_s,
+                   std::vector<std::pair<std::string, SettingValue>> settings) {
+  SweepSetting s;
+  s.family = family;
+  s.label = TimeStepLabel(dt_s);
+  s.time_step_s = dt_s;
+  s.settings = std::move(settings);
+  s.settings.emplace_back("time_step", dt_s);
+  return s;
+}
+
+// ODE's own contact handling: QuickStep with its 20 iterations, no cap on the push-out.
+std::vector<std::pair<std::string, SettingValue>> OdeDefaults() {
+  return {{"stepper", std::string("quick_step")},
+          {"quick_step_iterations", std::int64_t{20}},
+          {"contact_max_correcting_vel", std::numeric_limits<double>::infinity()}};
+}
+
+class OdeEngine final : public Engine {
+ public:
+  std::string name() const override { return "ode"; }
+
+  std::string version() const override {
+    return std::string("ODE ") + dODE_VERSION + " (double, " +
+           (dCheckConfiguration("ODE_double_precision") ? "checked" : "unchecked") + ")";
+  }
+
+  const EngineSettingsSchema& settings_schema() const override { return OdeSettingsSchema(); }
+
+  std::vector<SweepSetting> SweepGrid(bool quick) const override {
+    const std::vector<double> steps =
+        quick ? std::vector<double>{1e-3, 1e-4}
+              : std::vector<double>{1.0 / 60.0, 5e-3, 1e-3, 5e-4, 1e-4, 5e-5, 1e-5};
+    std::vector<SweepSetting> grid;
+    for (double dt : steps) grid.push_back(Point("ODE world_step", dt, {}));
+    for (double dt : steps)
+      grid.push_back(Point("ODE defaults (quick_step 20 it)", dt, OdeDefaults()));
+    return grid;
+  }
+
+  std::vector<SweepSetting> StressGrid() const override {
+    struct Step {
+      const char* label;
+      double dt_s;
+    };
+    const Step steps[] = {{"1/60", 1.0 / 60.0}, {"1e-3", 1e-3}, {"1e-4", 1e-4}, {"1e-5", 1e-5}};
+    std::vector<SweepSetting> grid;
+    for (const bool defaults : {false, true}) {
+      for (const Step& st : steps) {
+        SweepSetting s = defaults ? Point("ODE defaults (quick_step 20 it)", st.dt_s, OdeDefaults())
+                                  : Point("ODE world_step", st.dt_s, {});
+        s.label = st.label;
+        s.id = std::string(defaults ? "defaults" : "world_step") + "/dt=" + st.label;
+        // The CI subset: the coarsest step of each family.
+        s.quick = st.dt_s > 0.01;
+        grid.push_back(std::move(s));
+      }
+    }
+    return grid;
+  }
+
+  EngineResult Simulate(const Scene& scene, const GroundMotion& motion,
+                        const SimulateOptions& options) const override {
+    const OdeRun run = MakeOdeRun(scene, motion, options.stop_at_rest_after_s);
+    std::unique_ptr<OdeWorld> world;
+    try {
+      world = std::make_unique<OdeWorld>(run.input, run.settings);
+    } catch (const std::invalid_argument& e) {
+      throw SceneError(scene.path.string() + ": " + e.what());
+    }
+    EngineResult out = RunFixedStepWorld(run.input, *world);
+    out.summary["engine"] = "ode";
+    out.summary["settings"] = world->Settings();
+    if (run.input.drive_kind == DriveKind::kKinematic) {
+      out.summary["kinematic"] = KinematicDriveJson(run.input);
+    }
+    char line[160];
+    std::snprintf(line, sizeof line, "%s, %s, dt %.3g s", OdeStepperName(run.settings.stepper),
+                  DriveKindName(run.input.drive_kind), run.input.time_step_s);
+    out.settings_line = line;
+    return out;
+  }
+};
+
+}  // namespace
+}  // namespace ode
+
+namespace engine_registry {
+std::unique_ptr<Engine> Make_ode() {
+  return std::make_unique<ode::OdeEngine>();
+}
+}  // namespace engine_registry
+
+}  // namespace rockbench

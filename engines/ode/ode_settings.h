@@ -1,0 +1,147 @@
+#pragma once
+/// Settings of the ODE engine (Open Dynamics Engine 0.16, double precision). Defaults are ours,
+/// chosen for rocking blocks; ODE's own defaults are given with each field. ODE 0.16.2's world
+/// defaults were read back from a fresh dWorldCreate() (erp 0.2, cfm 1e-10, surface layer 0,
+/// max correcting velocity infinity, QuickStep 20 iterations with w = 1.3) and bodies'
+/// (finite rotation off, gyroscopic on).
+#include <limits>
+#include <optional>
+#include <string_view>
+
+#include "engines/common/engine_input.h"
+#include "scene/engine_settings.h"
+
+namespace rockbench::ode {
+
+/// The ODE stepper.
+enum class OdeStepper {
+  /// dWorldStep: builds the island's full constraint matrix and solves the mixed LCP with
+  /// Dantzig's pivoting method (exact to round-off). O(m^3) in the number of constraint rows,
+  /// which here is at most about 40: the accurate choice.
+  kWorldStep,
+  /// dWorldQuickStep: projected Gauss-Seidel (SOR) with a fixed number of iterations; does not
+  /// converge fully at impacts (the stack's rows are strongly coupled).
+  kQuickStep,
+};
+
+/// "world_step" or "quick_step".
+const char* OdeStepperName(OdeStepper stepper);
+/// Inverse of OdeStepperName; nullopt for an unknown name.
+std::optional<OdeStepper> ParseOdeStepper(std::string_view name);
+
+struct OdeSettings {
+  /// Fixed step, s (ODE has no default: the caller passes it to every dWorldStep). This is what
+  /// the caller gives MakeEngineInput; OdeWorld steps by EngineInput::time_step_s, the grid the
+  /// drive was sampled on, and reports that one.
+  double time_step_s = 1e-4;
+  /// Stepper (ODE offers both; its demos mostly use QuickStep for speed). Ours: dWorldStep, the
+  /// exact LCP solve: two boxes give at most ~40 rows, so it is also the faster one here.
+  /// Measured at dt = 1e-4 s (max |theta error|: single block / stack theta1 / theta2, rad):
+  /// world_step 2.1e-4 / 1.6e-4 / 1.7e-4; quick_step with 100 iterations 2.6e-4 / 2.0e-4 /
+  /// 1.1e-3 at 4-5 times the wall time, out-of-plane rotation 2e-7 rad (the Plane2D rows are
+  /// not solved exactly); with 20 iterations 6.8e-4 / 1.2e-4 / 1.2e-4 at 1.4 times.
+  OdeStepper stepper = OdeStepper::kWorldStep;
+  /// QuickStep only: SOR iterations per step (ODE default 20). Ours: 100; unused by dWorldStep.
+  int quick_step_iterations = 100;
+  /// QuickStep only: SOR over-relaxation w (ODE default 1.3). Unused by dWorldStep.
+  double quick_step_w = 1.3;
+
+  /// World ERP, dimensionless (ODE default 0.2): the fraction of a joint error removed in one
+  /// step. Here it only corrects the Plane2D joints' drift out of z = 0 (contacts use
+  /// contact_erp). ODE's default.
+  double erp = 0.2;
+  /// World CFM, m/(N s) for a row whose force is in N (ODE default 1e-10 in double precision):
+  /// constraint force mixing, the regularisation of every row, also what makes the redundant
+  /// rows of a box lying on a face (four corner points, the Plane2D rows) solvable. Here it
+  /// applies to the Plane2D rows (contacts use contact_cfm). ODE's default.
+  double cfm = 1e-10;
+
+  /// Contact ERP, dimensionless (ODE: the world ERP, 0.2, unless dContactSoftERP): a contact
+  /// penetrating by d (minus contact_surface_layer_m) is pushed out at contact_erp d / dt,
+  /// capped at contact_max_correcting_vel_mps. ODE's default value. ODE has no split impulse:
+  /// the push-out velocity stays in the body, so uncapped it acts after every impact as a
+  /// restitution of up to contact_erp on the landing corner's velocity (the landing step sinks
+  /// the corner by up to v dt). The cap, not this fraction, is what keeps that bounce small.
+  double contact_erp = 0.2;
+  /// Contact CFM, m/(N s) (ODE: the world CFM unless dContactSoftCFM). Ours: ODE's default
+  /// 1e-10. With contact_erp the pair is ODE's spring-damper k = erp / (dt cfm), c = (1 - erp)
+  /// / cfm: 2e13 N/m and 8e9 N s/m at dt = 1e-4 s, rigid for our blocks. A contact carrying a
+  /// force F creeps in at cfm F unless the push-out holds it: 2.5e-6 m/s under each corner of
+  /// the thesis stack (2.5e4 N), which contact_erp = 0 leaves uncorrected (measured: block 1
+  /// sank 7.5 um in 3 s at rest). Smaller values (1e-14) reduce the creep but leave the
+  /// redundant rows of a face contact nearly singular; 0 makes dWorldStep's LCP fail (ODE prints
+  /// "LCP internal error" at almost every step).
+  double contact_cfm = 1e-10;
+  /// Cap of the contact push-out velocity, m/s (ODE default infinity,
+  /// dWorldSetContactMaxCorrectingVel). Ours: 1e-4 m/s, from the physics of the blocks rather
+  /// than a fit: far below the landing corners' speeds (0.05..1 m/s), so the artificial bounce
+  /// is <= 1e-4 m/s (energy gains measured <= 5e-4 of the tipping energy, uplift never);
+  /// far above the creep cfm F (2.5e-6 m/s for the thesis stack; contacts up to 1e6 N per
+  /// point stay held); and fast enough to remove a landing's overshoot (v dt ~ 2e-5 m at
+  /// dt = 1e-4 s) in ~0.2 s, before the next impact, so that the pivot is back at the
+  /// surface. Measured at dt = 1e-4 s (max |theta error| vs the reference model; single block
+  /// / stack theta1 / stack theta2, rad): cap 1e-4: 2.1e-4 / 1.6e-4 / 1.7e-4; cap 1e-3:
+  /// 2.1e-4 / 3.9e-4 / 1.9e-3; cap 1e-5: 8.1e-4 / 1.6e-4 / 3.9e-4; contact_erp = 0 (no
+  /// correction): 9.0e-4 / 1.5e-4 / 5.2e-4, pivots stay sunk and the stack creeps at rest;
+  /// ODE's defaults (erp 0.2, no cap): 1.2e-4 / 1.3e-3 / 4.8e-3 with bounces (uplift
+  /// episodes, rate ratios 0.83 instead of 0.85).
+  double contact_max_correcting_vel_mps = 1e-4;
+  /// Penetration allowed without correction, m (ODE default 0, dWorldSetContactSurfaceLayer).
+  /// ODE's default: a layer makes resting contacts sit that deep, and does not stop the bounce
+  /// of landings that sink deeper.
+  double contact_surface_layer_m = 0.0;
+
+  /// Coulomb friction coefficient (ODE has no default; dInfinity means "never slips"). Ours:
+  /// infinity, rows without bounds: the model assumes the blocks never slide. The first
+  /// friction direction is set to the contact's in-plane tangent (dContactFDir1), the second
+  /// (along z) is redundant with the Plane2D joint. With friction_pyramid a finite value is
+  /// needed (ODE multiplies it by the normal force: infinity times zero would be NaN).
+  double friction = std::numeric_limits<double>::infinity();
+  /// dContactApprox1 (ODE default off: friction bounded by a constant force mu, in N): the
+  /// friction pyramid |f_t| <= mu f_n, each tangent direction separately. Ours: off, with
+  /// friction = infinity (no bound at all); turn on with a finite friction for Coulomb. Measured
+  /// at dt = 1e-4 s on the thesis stack, whose reference needs at most |T|/N = 0.70 at the
+  /// ground and 1.28 at the interface: friction 3 slid 1.6 mm at the ground and 4.1 mm at the
+  /// interface (max errors 1.4e-2 / 4.9e-2 rad), friction 10 still 0.4 mm and 4.4 mm (5.8e-3 /
+  /// 2.3e-2 rad). Presumably because dWorldStep's Dantzig solver bounds a friction row by the
+  /// normal force known when that row enters the pivoting, and an impact's normal impulses
+  /// grow after that. The single block did not slide (3e-6 m, as with infinity).
+  bool friction_pyramid = false;
+  /// Restitution of the contacts (dContactBounce; ODE default off). Ours: 0 and off: Housner's
+  /// impact is perfectly plastic at the landing corner; the energy it loses follows from the
+  /// geometry (rate ratio 1 - 1.5 sin^2 alpha), not from a coefficient.
+  double restitution = 0.0;
+  /// Contact points per box pair passed to dCollide (ODE's box-box collider makes up to 8 by
+  /// face clipping and culls to this many). A box on a face needs 4 (its face's corners), a
+  /// rocking one 2 (both ends of its pivot edge); block 2 on block 1 made up to 6 at some
+  /// steps. Ours: 8, the collider's maximum: no culling. Measured at dt = 1e-4 s: 4 and 8 give
+  /// identical runs of both probes; 2 culls a face contact to one z side (out-of-plane rotation
+  /// 1e-9 / 2.5e-7 rad instead of 1e-20; max error single block 3.5e-4 rad instead of 2.1e-4,
+  /// stack theta2 1.2e-3 instead of 1.7e-4); 1 (with no contact correction) let the single
+  /// block sink 9.5e-5 m.
+  int max_contacts = 8;
+
+  /// dBodySetFiniteRotationMode(1) with no axis (ODE default 0: the infinitesimal quaternion
+  /// update q += dt/2 w q, renormalised, which turns by 2 atan(w dt / 2) instead of w dt).
+  /// Ours: on, exact rotation for the step's angular velocity. Measured: no difference in the
+  /// probes' printed digits at dt = 1e-4 s (w dt <= 1e-4 rad: the tangent update's error
+  /// (w dt)^3 / 12 is 1e-13 rad per step).
+  bool finite_rotation = true;
+  /// Thickness of the ground box, m (the top face is y = 0).
+  double ground_depth_m = 1.0;
+};
+
+/// The [ode] table: every OdeSettings field, with ODE's own default beside ours.
+const EngineSettingsSchema& OdeSettingsSchema();
+
+/// The input of one ODE run: the common engine input (step, drive, base motion) and the settings.
+struct OdeRun {
+  EngineInput input;
+  OdeSettings settings;
+};
+
+/// Resolves the scene's [ode] table (SceneError naming FILE:LINE and the key for a bad value)
+/// and samples the base motion on its step.
+OdeRun MakeOdeRun(const Scene& scene, const GroundMotion& motion, double stop_at_rest_after_s);
+
+}  // namespace rockbench::ode

@@ -1,0 +1,379 @@
+#include "engines/ode/ode_world.h"
+
+#include <ode/ode.h>
+
+#include <algorithm>
+#include <cmath>
+#include <mutex>
+#include <stdexcept>
+#include <string>
+
+#include "engines/common/placement.h"
+
+#if !defined(dDOUBLE)
+#error "rockbench's ODE engine needs ODE built in double precision (dDOUBLE)"
+#endif
+
+namespace rockbench::ode {
+namespace {
+
+static_assert(sizeof(dReal) == sizeof(double), "ODE must be double precision");
+
+// Ground accelerations below this count as no base input for the energy check (m/s^2), as in
+// Bullet's RockingWorld.
+constexpr double kBaseStillMps2 = 1e-4;
+
+// Process-wide ODE library state. dInitODE2 / dCloseODE use an unguarded static counter in
+// ODE 0.16, and ODE's documentation allows dInitODE2 only once until dCloseODE: the first live
+// world initialises the library, the last one closes it, under this mutex. The same mutex
+// guards dAllocateODEDataForThread (whose bookkeeping is global in a build without TLS).
+std::mutex g_ode_mutex;
+int g_ode_worlds = 0;
+
+void AcquireOde() {
+  std::lock_guard<std::mutex> lock(g_ode_mutex);
+  if (g_ode_worlds == 0 && !dInitODE2(0)) throw std::runtime_error("ode: dInitODE2 failed");
+  ++g_ode_worlds;
+  if (!dAllocateODEDataForThread(dAllocateMaskAll)) {
+    if (--g_ode_worlds == 0) dCloseODE();
+    throw std::runtime_error("ode: dAllocateODEDataForThread failed");
+  }
+}
+
+void ReleaseOde() {
+  std::lock_guard<std::mutex> lock(g_ode_mutex);
+  if (--g_ode_worlds == 0) dCloseODE();
+}
+
+void AllocateForThisThread() {
+  std::lock_guard<std::mutex> lock(g_ode_mutex);
+  if (!dAllocateODEDataForThread(dAllocateMaskAll)) {
+    throw std::runtime_error("ode: dAllocateODEDataForThread failed");
+  }
+}
+
+void ReadBody(dBodyID body, BodyReadout* out) {
+  const dReal* p = dBodyGetPosition(body);
+  const dReal* r = dBodyGetRotation(body);  // 3x4, row major: r[4 * row + col]
+  const dReal* v = dBodyGetLinearVel(body);
+  const dReal* w = dBodyGetAngularVel(body);
+  out->x_m = p[0];
+  out->y_m = p[1];
+  out->cos_phi = r[0];
+  out->sin_phi = r[4];
+  out->vx_mps = v[0];
+  out->vy_mps = v[1];
+  out->w_radps = w[2];
+}
+
+// Largest out-of-plane rotation component of a body's rotation (0 for a rotation about z).
+double OutOfPlaneRotation(dBodyID body) {
+  const dReal* r = dBodyGetRotation(body);
+  return std::max({std::abs(r[8]), std::abs(r[9]), std::abs(r[2]), std::abs(r[6])});
+}
+
+void CheckSettings(const EngineInput& in, const OdeSettings& s) {
+  auto fail = [](const std::string& what) { throw std::invalid_argument("ode: " + what); };
+  if (!(std::isfinite(in.time_step_s) && in.time_step_s > 0.0)) {
+    fail("time step must be positive and finite");
+  }
+  if (s.quick_step_iterations < 1) fail("quick_step_iterations must be at least 1");
+  if (!(s.quick_step_w > 0.0 && s.quick_step_w < 2.0)) fail("quick_step_w must be in (0, 2)");
+  if (!(s.erp >= 0.0 && s.erp <= 1.0)) fail("erp must be in [0, 1]");
+  if (!(s.contact_erp >= 0.0 && s.contact_erp <= 1.0)) fail("contact_erp must be in [0, 1]");
+  if (!(s.cfm >= 0.0) || !std::isfinite(s.cfm)) fail("cfm must be finite and >= 0");
+  if (!(s.contact_cfm >= 0.0) || !std::isfinite(s.contact_cfm)) {
+    fail("contact_cfm must be finite and >= 0");
+  }
+  if (!(s.contact_max_correcting_vel_mps >= 0.0)) {
+    fail("contact_max_correcting_vel_mps must be >= 0");
+  }
+  if (!(s.contact_surface_layer_m >= 0.0) || !std::isfinite(s.contact_surface_layer_m)) {
+    fail("contact_surface_layer_m must be finite and >= 0");
+  }
+  if (!(s.friction >= 0.0)) fail("friction must be >= 0 (infinity: never slips)");
+  if (s.friction_pyramid && !std::isfinite(s.friction)) {
+    fail("friction_pyramid needs a finite friction (ODE multiplies it by the normal force)");
+  }
+  if (!(s.restitution >= 0.0 && s.restitution <= 1.0)) fail("restitution must be in [0, 1]");
+  if (s.max_contacts < 1 || s.max_contacts > 8) fail("max_contacts must be in 1..8");
+  if (!(s.ground_depth_m > 0.0) || !std::isfinite(s.ground_depth_m)) {
+    fail("ground_depth_m must be positive");
+  }
+  if (in.drive_kind == DriveKind::kKinematic) {
+    const size_t need = static_cast<size_t>(in.steps) + 1;
+    if (in.drive.ux_m.size() < need || in.drive.uy_m.size() < need) {
+      fail("kinematic drive needs ux_m and uy_m at n = 0..steps");
+    }
+  }
+}
+
+}  // namespace
+
+const char* OdeStepperName(OdeStepper stepper) {
+  return stepper == OdeStepper::kQuickStep ? "quick_step" : "world_step";
+}
+
+std::optional<OdeStepper> ParseOdeStepper(std::string_view name) {
+  if (name == "world_step") return OdeStepper::kWorldStep;
+  if (name == "quick_step") return OdeStepper::kQuickStep;
+  return std::nullopt;
+}
+
+OdeWorld::OdeWorld(const EngineInput& input, const OdeSettings& settings)
+    : in_(input), s_(settings) {
+  CheckSettings(in_, s_);
+  dt_ = in_.time_step_s;
+  s_.time_step_s = dt_;  // the input's step is the one used
+  kinematic_ = in_.drive_kind == DriveKind::kKinematic;
+
+  AcquireOde();
+  thread_ = std::this_thread::get_id();
+
+  world_ = dWorldCreate();
+  // A threading implementation of its own (see the class comment).
+  threading_ = dThreadingAllocateSelfThreadedImplementation();
+  if (threading_ == nullptr) {
+    dWorldDestroy(world_);
+    ReleaseOde();
+    throw std::runtime_error("ode: dThreadingAllocateSelfThreadedImplementation failed");
+  }
+  dWorldSetStepThreadingImplementation(world_, dThreadingImplementationGetFunctions(threading_),
+                                       threading_);
+  dWorldSetGravity(world_, 0, -in_.run.gravity_mps2, 0);
+  dWorldSetERP(world_, s_.erp);
+  dWorldSetCFM(world_, s_.cfm);
+  dWorldSetContactMaxCorrectingVel(world_, s_.contact_max_correcting_vel_mps);
+  dWorldSetContactSurfaceLayer(world_, s_.contact_surface_layer_m);
+  dWorldSetQuickStepNumIterations(world_, s_.quick_step_iterations);
+  dWorldSetQuickStepW(world_, s_.quick_step_w);
+  dWorldSetAutoDisableFlag(world_, 0);
+  dWorldSetLinearDamping(world_, 0);
+  dWorldSetAngularDamping(world_, 0);
+  contacts_ = dJointGroupCreate(0);
+
+  const double b1 = 0.5 * in_.block1.width_m, h1 = 0.5 * in_.block1.height_m;
+  const double b2 = in_.block2 ? 0.5 * in_.block2->width_m : 0.0;
+  const double h2 = in_.block2 ? 0.5 * in_.block2->height_m : 0.0;
+  const double d1 = in_.block1.depth_m, d2 = in_.block2 ? in_.block2->depth_m : 0.0;
+
+  // Ground: a box whose top face is y = 0 in the base frame, much wider than the stack and
+  // deeper (z) than the blocks, so that its z faces never give the separating axis.
+  const double size = std::max({b1, h1, b2, h2, 0.5});
+  ground_half_depth_m_ = 0.5 * s_.ground_depth_m;
+  ground_geom_ =
+      dCreateBox(nullptr, 80.0 * size, s_.ground_depth_m, 2.0 * (std::max(d1, d2) + 1.0));
+  const double ux0 = kinematic_ ? in_.drive.ux_m.front() : 0.0;
+  const double uy0 = kinematic_ ? in_.drive.uy_m.front() : 0.0;
+  if (kinematic_) {
+    ground_body_ = dBodyCreate(world_);
+    dBodySetKinematic(ground_body_);
+    dGeomSetBody(ground_geom_, ground_body_);
+    dBodySetPosition(ground_body_, ux0, uy0 - ground_half_depth_m_, 0);
+    dBodySetLinearVel(ground_body_, in_.drive.ux0_mps, in_.drive.uy0_mps, 0);
+  } else {
+    dGeomSetPosition(ground_geom_, 0, -ground_half_depth_m_, 0);
+  }
+
+  // Blocks, placed by the pivot chain in the base frame then shifted with the ground.
+  const StackPlacement place = PlaceStack(b1, h1, b2, h2, in_.two_blocks(), in_.initial);
+  const double gvx = kinematic_ ? in_.drive.ux0_mps : 0.0;
+  const double gvy = kinematic_ ? in_.drive.uy0_mps : 0.0;
+  auto make_block = [&](const BlockDef& def, const PlanarPose& pose, dBodyID* body, dGeomID* geom,
+                        dJointID* plane) {
+    *body = dBodyCreate(world_);
+    dMass m;
+    // Uniform box: I_zz = m (w^2 + h^2) / 12 about the centre, as the model's.
+    dMassSetBoxTotal(&m, def.mass_kg, def.width_m, def.height_m, def.depth_m);
+    dBodySetMass(*body, &m);
+    dBodySetPosition(*body, pose.x_m + ux0, pose.y_m + uy0, 0);
+    dMatrix3 r;
+    dRFromAxisAndAngle(r, 0, 0, 1, pose.phi_rad);
+    dBodySetRotation(*body, r);
+    dBodySetLinearVel(*body, pose.vx_mps + gvx, pose.vy_mps + gvy, 0);
+    dBodySetAngularVel(*body, 0, 0, pose.w_radps);
+    dBodySetAutoDisableFlag(*body, 0);
+    dBodySetDamping(*body, 0, 0);
+    if (s_.finite_rotation) {
+      dBodySetFiniteRotationMode(*body, 1);
+      dBodySetFiniteRotationAxis(*body, 0, 0, 0);  // full finite rotation
+    }
+    *geom = dCreateBox(nullptr, def.width_m, def.height_m, def.depth_m);
+    dGeomSetBody(*geom, *body);
+    // Planar motion: v_z = 0 (with ERP back to z = 0), w_x = w_y = 0. Attached to the static
+    // environment; the joint's rows do not involve w_z.
+    *plane = dJointCreatePlane2D(world_, nullptr);
+    dJointAttach(*plane, *body, nullptr);
+  };
+  make_block(in_.block1, place.block1, &body1_, &geom1_, &plane1_);
+  if (in_.block2) make_block(*in_.block2, place.block2, &body2_, &geom2_, &plane2_);
+}
+
+OdeWorld::~OdeWorld() {
+  if (contacts_) dJointGroupDestroy(contacts_);
+  if (geom2_) dGeomDestroy(geom2_);
+  if (geom1_) dGeomDestroy(geom1_);
+  if (ground_geom_) dGeomDestroy(ground_geom_);
+  // dWorldDestroy destroys the bodies and the (non-group) Plane2D joints.
+  if (world_) dWorldDestroy(world_);
+  if (threading_) dThreadingFreeImplementation(threading_);
+  ReleaseOde();
+}
+
+void OdeWorld::ApplyDrive(std::int64_t n) {
+  const size_t i = static_cast<size_t>(n);
+  if (!kinematic_) {
+    const double ax = in_.drive.ax_mps2.empty() ? 0.0 : in_.drive.ax_mps2[i];
+    const double ay = in_.drive.ay_mps2.empty() ? 0.0 : in_.drive.ay_mps2[i];
+    // The exact equivalent of a translating base: effective gravity in the base frame.
+    dWorldSetGravity(world_, -ax, -(in_.run.gravity_mps2 + ay), 0);
+    return;
+  }
+  // Kinematic: the ground at u_n (where collision detection sees it, with the blocks) moving
+  // with (u_{n+1} - u_n) / dt; dWorldStep moves it on to u_{n+1} (up to rounding, reset here).
+  const double ux = in_.drive.ux_m[i], uy = in_.drive.uy_m[i];
+  const double nx = in_.drive.ux_m[i + 1], ny = in_.drive.uy_m[i + 1];
+  dBodySetPosition(ground_body_, ux, uy - ground_half_depth_m_, 0);
+  dBodySetLinearVel(ground_body_, (nx - ux) / dt_, (ny - uy) / dt_, 0);
+}
+
+int OdeWorld::Collide(dxGeom* a, dxGeom* b, dxBody* body_a, dxBody* body_b) {
+  dContact contact[8];
+  const int n = dCollide(a, b, s_.max_contacts, &contact[0].geom, sizeof(dContact));
+  for (int k = 0; k < n; ++k) {
+    dContact& c = contact[k];
+    dSurfaceParameters& sp = c.surface;
+    sp.mode = dContactSoftERP | dContactSoftCFM;
+    sp.mu = s_.friction;
+    sp.soft_erp = s_.contact_erp;
+    sp.soft_cfm = s_.contact_cfm;
+    if (s_.friction_pyramid) sp.mode |= dContactApprox1;
+    if (s_.restitution > 0.0) {
+      sp.mode |= dContactBounce;
+      sp.bounce = s_.restitution;
+      sp.bounce_vel = 0.0;
+    }
+    // First friction direction: the in-plane tangent, so that the friction pyramid is exact
+    // Coulomb in the plane (the second direction, along z, is redundant with Plane2D).
+    const double nx = c.geom.normal[0], ny = c.geom.normal[1];
+    const double len = std::hypot(nx, ny);
+    if (len > 0.5) {
+      sp.mode |= dContactFDir1;
+      c.fdir1[0] = -ny / len;
+      c.fdir1[1] = nx / len;
+      c.fdir1[2] = 0;
+      c.fdir1[3] = 0;
+    }
+    dJointID j = dJointCreateContact(world_, contacts_, &c);
+    dJointAttach(j, body_a, body_b);
+  }
+  return n;
+}
+
+void OdeWorld::Step() {
+  if (std::this_thread::get_id() != thread_) {
+    AllocateForThisThread();
+    thread_ = std::this_thread::get_id();
+  }
+  contacts_ground_ = Collide(geom1_, ground_geom_, body1_, ground_body_);
+  contacts_interface_ = 0;
+  contacts_block2_ground_ = 0;
+  if (body2_) {
+    contacts_interface_ = Collide(geom2_, geom1_, body2_, body1_);
+    // Only after block 2 has fallen off block 1 (as Bullet, which collides every pair).
+    contacts_block2_ground_ = Collide(geom2_, ground_geom_, body2_, ground_body_);
+  }
+  int ok = 0;
+  if (s_.stepper == OdeStepper::kQuickStep) {
+    // QuickStep reorders its rows at random, drawing from ODE's one process-wide generator
+    // (dRandInt). Each world keeps its own generator state and steps with it under a lock, so a
+    // run does not depend on what other worlds, in this thread or another, drew before it
+    // (measured before this: the same sweep gave different errors from run to run).
+    static std::mutex quick_step_mutex;
+    std::lock_guard<std::mutex> lock(quick_step_mutex);
+    dRandSetSeed(rand_seed_);
+    ok = dWorldQuickStep(world_, dt_);
+    rand_seed_ = dRandGetSeed();
+  } else {
+    ok = dWorldStep(world_, dt_);
+  }
+  dJointGroupEmpty(contacts_);
+  if (!ok) throw std::runtime_error("ode: the step failed (out of memory)");
+}
+
+StepReadout OdeWorld::Read(std::int64_t n) const {
+  StepReadout s;
+  s.t_s = static_cast<double>(n) * dt_;
+  ReadBody(body1_, &s.block1);
+  double oop_m = std::abs(dBodyGetPosition(body1_)[2]);
+  double oop_rad = OutOfPlaneRotation(body1_);
+  if (body2_) {
+    ReadBody(body2_, &s.block2);
+    oop_m = std::max(oop_m, std::abs(dBodyGetPosition(body2_)[2]));
+    oop_rad = std::max(oop_rad, OutOfPlaneRotation(body2_));
+  }
+  s.out_of_plane_m = oop_m;
+  s.out_of_plane_rad = oop_rad;
+  const size_t i = static_cast<size_t>(n);
+  if (kinematic_) {
+    const auto& ux = in_.drive.ux_m;
+    const auto& uy = in_.drive.uy_m;
+    s.ground_x_m = ux[i];
+    s.ground_y_m = uy[i];
+    // The blocks' velocities after step n are those of the step that ended at t_n.
+    s.ground_vx_mps = i == 0 ? in_.drive.ux0_mps : (ux[i] - ux[i - 1]) / dt_;
+    s.ground_vy_mps = i == 0 ? in_.drive.uy0_mps : (uy[i] - uy[i - 1]) / dt_;
+    if (i >= 1) {
+      const double prev_vx = i == 1 ? in_.drive.ux0_mps : (ux[i - 1] - ux[i - 2]) / dt_;
+      const double prev_vy = i == 1 ? in_.drive.uy0_mps : (uy[i - 1] - uy[i - 2]) / dt_;
+      s.base_accelerating = std::abs(s.ground_vx_mps - prev_vx) > kBaseStillMps2 * dt_ ||
+                            std::abs(s.ground_vy_mps - prev_vy) > kBaseStillMps2 * dt_;
+    }
+  } else if (i >= 1) {
+    const double ax = in_.drive.ax_mps2.empty() ? 0.0 : in_.drive.ax_mps2[i - 1];
+    const double ay = in_.drive.ay_mps2.empty() ? 0.0 : in_.drive.ay_mps2[i - 1];
+    s.base_accelerating = std::abs(ax) > kBaseStillMps2 || std::abs(ay) > kBaseStillMps2;
+  }
+  return s;
+}
+
+nlohmann::json OdeWorld::Settings() const {
+  nlohmann::json j;
+  j["ode_version"] = dODE_VERSION;
+  j["ode_configuration"] = dGetConfiguration();
+  j["precision"] = "double";
+  j["drive"] = DriveKindName(in_.drive_kind);
+  j["time_step_s"] = dt_;
+  j["output_interval_s"] = in_.run.output_interval_s;
+  j["substeps_per_sample"] = std::max(1.0, std::round(in_.run.output_interval_s / dt_));
+  j["stepper"] = OdeStepperName(s_.stepper);
+  if (s_.stepper == OdeStepper::kQuickStep) {
+    j["quick_step_iterations"] = dWorldGetQuickStepNumIterations(world_);
+    j["quick_step_w"] = dWorldGetQuickStepW(world_);
+  }
+  j["erp"] = dWorldGetERP(world_);
+  j["cfm"] = dWorldGetCFM(world_);
+  j["contact_erp"] = s_.contact_erp;
+  j["contact_cfm"] = s_.contact_cfm;
+  // JSON has no infinity: null stands for ODE's dInfinity (no cap, never slips).
+  auto finite_or_null = [](double v) {
+    return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
+  };
+  j["contact_max_correcting_vel_mps"] = finite_or_null(dWorldGetContactMaxCorrectingVel(world_));
+  j["contact_surface_layer_m"] = dWorldGetContactSurfaceLayer(world_);
+  j["friction"] = finite_or_null(s_.friction);
+  j["friction_model"] =
+      s_.friction_pyramid
+          ? "pyramid (dContactApprox1: mu times the normal force)"
+          : (std::isfinite(s_.friction) ? "box (constant bound mu, N)" : "unbounded (never slips)");
+  j["restitution"] = s_.restitution;
+  j["max_contacts"] = s_.max_contacts;
+  j["finite_rotation"] = s_.finite_rotation;
+  j["planar_constraint"] = "Plane2D joint per block";
+  j["ground_depth_m"] = s_.ground_depth_m;
+  j["kinematic_highpass_hz"] = in_.kinematic_highpass_hz;
+  j["auto_disable"] = false;
+  return j;
+}
+
+}  // namespace rockbench::ode

@@ -1,0 +1,92 @@
+#pragma once
+/// The ODE scene of one block or two stacked blocks: the same semantics as Bullet's
+/// RockingWorld (engines/bullet/rocking_world.h), so that the Monitor reads both alike.
+#include <cstdint>
+#include <nlohmann/json.hpp>
+#include <thread>
+
+#include "engines/common/engine_input.h"
+#include "engines/common/monitor.h"
+#include "engines/ode/ode_settings.h"
+
+// ODE's handles (ode/common.h), declared here so that this header does not pull in ODE.
+struct dxWorld;
+struct dxBody;
+struct dxGeom;
+struct dxJoint;
+struct dxJointGroup;
+struct dxThreadingImplementation;
+
+namespace rockbench::ode {
+
+/// An ODE world holding a static (inertial drive) or kinematic (kinematic drive) ground box and
+/// one or two box blocks placed by the pivot chain (PlaceStack), each held in the x-y plane by a
+/// Plane2D joint. Contacts come from dCollide on the box pairs (block 1 - ground, block 2 -
+/// block 1, block 2 - ground) into a joint group emptied after every step. Keeps a reference to
+/// `input`, which must outlive it.
+///
+/// Threads: ODE 0.16.2 as Debian builds it has no TLS ("ODE_EXT_ou" is missing from
+/// dGetConfiguration()), and its library reference count (dInitODE2/dCloseODE) is a plain
+/// static counter. OdeWorld keeps its own count under a mutex: the first live world calls
+/// dInitODE2, the last one dCloseODE, and every thread that builds or steps a world calls
+/// dAllocateODEDataForThread under that mutex. Each world has its own self-threaded threading
+/// implementation: ODE's default one is a single process-wide object built on fake (no-op)
+/// locks; ODE's threading_impl.h says to give each world its own when worlds are stepped in
+/// parallel, and four raw ODE worlds stepped at once on the default one aborted with "assertion
+/// failed in WaitWakeup() [threading_fake_sync.h:83]". With that, no collision space and each
+/// world's own step memory, worlds in different threads share nothing mutable (measured: 40 runs
+/// in 4 concurrent threads were bit-identical to sequential runs; QuickStep worlds step one at a
+/// time, each with its own state of ODE's random generator). One world must not be used by
+/// two threads at once; it may move from one thread to another between steps.
+class OdeWorld {
+ public:
+  /// Throws std::invalid_argument for impossible settings (non-positive step, negative
+  /// friction, ...) and std::runtime_error when ODE cannot be initialised.
+  OdeWorld(const EngineInput& input, const OdeSettings& settings);
+  ~OdeWorld();
+  OdeWorld(const OdeWorld&) = delete;
+  OdeWorld& operator=(const OdeWorld&) = delete;
+
+  /// Sets the base motion for step n (from t_n to t_{n+1}). Inertial drive: gravity
+  /// (-xg''(t_n), -(g + yg''(t_n)), 0). Kinematic drive: the ground at u(t_n) moving with
+  /// (u_{n+1} - u_n) / dt during the step.
+  void ApplyDrive(std::int64_t n);
+  /// One fixed step: contact joints from dCollide at the current poses, dWorldStep (or
+  /// dWorldQuickStep), then the contact joints are dropped.
+  void Step();
+  /// The state after n steps, read from the bodies (ODE's body position is the mass centre).
+  StepReadout Read(std::int64_t n) const;
+  /// Settings in use (ours and the ODE values they set) for summary.json.
+  nlohmann::json Settings() const;
+
+  /// Contact points created in the last step: block 1 - ground, block 2 - block 1, block 2 -
+  /// ground (the last only once block 2 has fallen off).
+  int last_contacts_ground() const { return contacts_ground_; }
+  int last_contacts_interface() const { return contacts_interface_; }
+  int last_contacts_block2_ground() const { return contacts_block2_ground_; }
+
+ private:
+  int Collide(dxGeom* a, dxGeom* b, dxBody* body_a, dxBody* body_b);
+
+  const EngineInput& in_;
+  OdeSettings s_;
+  double dt_ = 0.0;
+  bool kinematic_ = false;
+  double ground_half_depth_m_ = 0.0;
+  dxThreadingImplementation* threading_ = nullptr;
+  dxWorld* world_ = nullptr;
+  dxJointGroup* contacts_ = nullptr;
+  dxBody* ground_body_ = nullptr;  // kinematic drive only
+  dxGeom* ground_geom_ = nullptr;
+  dxBody* body1_ = nullptr;
+  dxBody* body2_ = nullptr;  // null for a single block
+  dxGeom* geom1_ = nullptr;
+  dxGeom* geom2_ = nullptr;
+  dxJoint* plane1_ = nullptr;
+  dxJoint* plane2_ = nullptr;
+  int contacts_ground_ = 0, contacts_interface_ = 0, contacts_block2_ground_ = 0;
+  unsigned long rand_seed_ = 0;  // this world's state of ODE's generator (QuickStep's order)
+  std::thread::id thread_;       // last thread that allocated ODE's per-thread data for this world
+};
+
+}  // namespace rockbench::ode
