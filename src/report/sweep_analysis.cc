@@ -1,0 +1,162 @@
+#include "report/sweep_analysis.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include "report/number_text.h"
+
+namespace rockbench::report {
+
+bool ReachesPeakAgreement(const SweepRecord& r, double peak_tolerance) {
+  return r.failure.empty() && MaxPeakRelError(r) <= peak_tolerance && r.overturn_agree;
+}
+
+std::vector<std::pair<std::string, std::vector<size_t>>> SweepFamilies(
+    const std::vector<SweepRecord>& rows) {
+  // Families in the order they first appear among the engines' rows (each engine's own grid
+  // order), then reference dopri5 and RK4; within a family from the coarsest setting.
+  std::map<std::string, size_t> first;
+  for (size_t i = 0; i < rows.size(); ++i) {
+    if (rows[i].engine != "reference") first.emplace(SweepFamily(rows[i]), first.size());
+  }
+  auto rank = [&](const SweepRecord& r) -> size_t {
+    if (r.engine != "reference") return first.at(SweepFamily(r));
+    return first.size() + (r.integrator == "dopri5" ? 0 : 1);
+  };
+  std::vector<size_t> order;
+  for (size_t i = 0; i < rows.size(); ++i) {
+    if (rows[i].failure.empty()) order.push_back(i);
+  }
+  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) {
+    const SweepRecord& x = rows[a];
+    const SweepRecord& y = rows[b];
+    if (rank(x) != rank(y)) return rank(x) < rank(y);
+    return SweepSettingValue(x) > SweepSettingValue(y);
+  });
+  std::vector<std::pair<std::string, std::vector<size_t>>> out;
+  for (size_t i : order) {
+    const std::string f = SweepFamily(rows[i]);
+    if (out.empty() || out.back().first != f) out.push_back({f, {}});
+    out.back().second.push_back(i);
+  }
+  return out;
+}
+
+std::optional<double> ObservedOrder(const SweepRecord& coarse, const SweepRecord& fine) {
+  const double ec = MaxAngleError(coarse), ef = MaxAngleError(fine);
+  const double sc = SweepSettingValue(coarse), sf = SweepSettingValue(fine);
+  if (!(ec > 0.0) || !(ef > 0.0) || !(sc > 0.0) || !(sf > 0.0) || sc == sf) return std::nullopt;
+  return std::log(ec / ef) / std::log(sc / sf);
+}
+
+AgreementCriterion PeakAgreement(double tolerance, bool two_blocks) {
+  AgreementCriterion c;
+  c.name = Format("%g", tolerance * 100.0) + "% peak-angle agreement";
+  c.definition = "|peak relative error| <= " + Format("%g", tolerance * 100.0) + "% for theta1" +
+                 (two_blocks ? " and theta2" : "") +
+                 ", and the same overturn outcome as the reference";
+  c.reaches = [tolerance](const SweepRecord& r) { return ReachesPeakAgreement(r, tolerance); };
+  return c;
+}
+
+AgreementCriterion HistoryAgreement(double fraction, double peak_theta1_rad,
+                                    double peak_theta2_rad) {
+  AgreementCriterion c;
+  const double bound1 = fraction * peak_theta1_rad, bound2 = fraction * peak_theta2_rad;
+  c.name = Format("%g", fraction * 100.0) + "% history agreement";
+  c.definition = "max |angle error| over the whole run <= " + Format("%g", fraction * 100.0) +
+                 "% of the reference's peak angle: " + Format("%.3g", bound1) + " rad for theta1" +
+                 (peak_theta2_rad > 0.0 ? ", " + Format("%.3g", bound2) + " rad for theta2" : "") +
+                 "; and the same overturn outcome";
+  c.reaches = [bound1, bound2, two = peak_theta2_rad > 0.0](const SweepRecord& r) {
+    if (!r.failure.empty() || !r.overturn_agree) return false;
+    if (r.theta1_max_abs_error_rad > bound1) return false;
+    return !two || !r.has_theta2 || r.theta2_max_abs_error_rad <= bound2;
+  };
+  return c;
+}
+
+CheapestSetting FindCheapestSetting(const std::vector<SweepRecord>& rows, double peak_tolerance,
+                                    const std::string& engine) {
+  return FindCheapestSetting(
+      rows,
+      PeakAgreement(peak_tolerance, std::any_of(rows.begin(), rows.end(),
+                                                [](const SweepRecord& r) { return r.has_theta2; })),
+      engine);
+}
+
+std::vector<std::string> SweepEngines(const std::vector<SweepRecord>& rows) {
+  std::vector<std::string> out;
+  for (const SweepRecord& r : rows) {
+    if (r.engine != "reference" && std::find(out.begin(), out.end(), r.engine) == out.end()) {
+      out.push_back(r.engine);
+    }
+  }
+  return out;
+}
+
+CheapestSetting FindCheapestSetting(const std::vector<SweepRecord>& rows,
+                                    const AgreementCriterion& criterion,
+                                    const std::string& engine_name) {
+  CheapestSetting out;
+  const std::vector<std::string> engines = SweepEngines(rows);
+  out.engine = !engine_name.empty() ? engine_name : (engines.empty() ? "" : engines.front());
+  const std::string& engine = out.engine;
+  auto reaches = [&](const SweepRecord& r) { return r.failure.empty() && criterion.reaches(r); };
+  for (size_t i = 0; i < rows.size(); ++i) {
+    const SweepRecord& r = rows[i];
+    if (r.engine != engine || !reaches(r)) continue;
+    if (!out.engine_row || r.wall_s < rows[*out.engine_row].wall_s) out.engine_row = i;
+  }
+  if (!out.engine_row) {
+    out.statement = "No " + (engine.empty() ? std::string("engine") : engine) +
+                    " setting in this sweep reaches " + criterion.name + " (" +
+                    criterion.definition + ").";
+    // Say how close the sweep came: the smallest max angle error.
+    std::optional<size_t> closest;
+    for (size_t i = 0; i < rows.size(); ++i) {
+      const SweepRecord& r = rows[i];
+      if (r.engine != engine || !r.failure.empty()) continue;
+      if (!closest || MaxAngleError(r) < MaxAngleError(rows[*closest])) closest = i;
+    }
+    if (closest) {
+      const SweepRecord& c = rows[*closest];
+      out.statement += " The most accurate is " + SweepSettingDescription(c) +
+                       ": max angle error " + Format("%.2e", MaxAngleError(c)) +
+                       " rad, |peak relative error| " + Format("%.3g", MaxPeakRelError(c) * 100.0) +
+                       "%" + (c.overturn_agree ? "" : ", and its overturn outcome differs") + ".";
+    }
+    return out;
+  }
+  const SweepRecord& b = rows[*out.engine_row];
+  const double bullet_error = MaxAngleError(b);
+  for (size_t i = 0; i < rows.size(); ++i) {
+    const SweepRecord& r = rows[i];
+    if (r.engine != "reference" || !reaches(r) || MaxAngleError(r) > bullet_error) continue;
+    if (!out.reference || r.wall_s < rows[*out.reference].wall_s) out.reference = i;
+  }
+  out.statement = "The cheapest " + engine + " setting reaching " + criterion.name + " (" +
+                  criterion.definition + ") is " + SweepSettingDescription(b) + ", at " +
+                  Format("%.3g", b.wall_s) + " s wall (max angle error " +
+                  Format("%.2e", bullet_error) + " rad, |peak relative error| " +
+                  Format("%.2g", MaxPeakRelError(b) * 100.0) + "%).";
+  if (out.reference) {
+    const SweepRecord& r = rows[*out.reference];
+    out.statement +=
+        " The reference reaches the same or better accuracy (max angle error, the "
+        "max |error| over the run" +
+        std::string(b.has_theta2 ? " (the larger of theta1's and theta2's)" : "") + ", <= the " +
+        engine + " run's, and the same criterion) with " + SweepSettingDescription(r) + " at " +
+        Format("%.3g", r.wall_s) + " s wall (max angle error " + Format("%.2e", MaxAngleError(r)) +
+        " rad), " + Format("%.3g", b.wall_s / r.wall_s) + " times cheaper.";
+  } else {
+    out.statement +=
+        " No reference setting in this sweep reaches the same or better accuracy "
+        "(max angle error <= the " +
+        engine + " run's, and the same criterion).";
+  }
+  return out;
+}
+
+}  // namespace rockbench::report

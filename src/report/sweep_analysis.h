@@ -1,0 +1,65 @@
+#pragma once
+/// The work-precision analysis of a sweep's records: agreement criteria, the cheapest setting of
+/// an engine reaching one and the reference setting that beats it, families and observed orders.
+#include <functional>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "report/sweep_csv.h"
+
+namespace rockbench::report {
+
+/// The 1% criterion: |peak_rel_error| <= peak_tolerance for theta1 and theta2, and the same
+/// overturn outcome as the reference. Failed rows never qualify.
+bool ReachesPeakAgreement(const SweepRecord& r, double peak_tolerance);
+
+/// An agreement criterion: a run reaches it or not.
+struct AgreementCriterion {
+  std::string name;        ///< short, e.g. "1% peak-angle agreement"
+  std::string definition;  ///< in words, for the statement
+  /// Whether a row reaches it (failed rows never do, whatever this says).
+  std::function<bool(const SweepRecord&)> reaches;
+};
+
+/// The criterion: ReachesPeakAgreement(r, tolerance).
+AgreementCriterion PeakAgreement(double tolerance, bool two_blocks);
+/// A stricter one on the whole history: max |theta_i error| over the run <= fraction x the
+/// reference's peak |theta_i| for each block (peak_theta2_rad 0: one block), and the same
+/// overturn outcome.
+AgreementCriterion HistoryAgreement(double fraction, double peak_theta1_rad,
+                                    double peak_theta2_rad);
+
+/// The cheapest setting of one engine reaching a criterion, and the cheapest reference setting
+/// with the same or better accuracy: max angle error <= the engine run's, and it reaches the
+/// criterion too. Indices into the rows; ties go to the earlier row.
+struct CheapestSetting {
+  std::string engine;  ///< the engine
+  std::optional<size_t> engine_row;
+  std::optional<size_t> reference;
+  /// The statement in plain words (says so when no engine or no reference setting qualifies).
+  std::string statement;
+};
+/// `engine`: empty for the first engine of the rows.
+CheapestSetting FindCheapestSetting(const std::vector<SweepRecord>& rows,
+                                    const AgreementCriterion& criterion,
+                                    const std::string& engine = "");
+/// With PeakAgreement(peak_tolerance, any row has theta2).
+CheapestSetting FindCheapestSetting(const std::vector<SweepRecord>& rows,
+                                    double peak_tolerance = 0.01, const std::string& engine = "");
+/// The engines of the rows, in the order they first appear.
+std::vector<std::string> SweepEngines(const std::vector<SweepRecord>& rows);
+
+/// Rows grouped by family, in the order the engines' families first appear, then reference
+/// dopri5, reference RK4; within a family from the coarsest setting to the finest.
+/// Failed rows are left out. (family name, row indices).
+std::vector<std::pair<std::string, std::vector<size_t>>> SweepFamilies(
+    const std::vector<SweepRecord>& rows);
+
+/// Observed order of convergence between two rows of a family (coarse, fine):
+/// log(e_coarse / e_fine) / log(s_coarse / s_fine) with e the max angle error and s the setting
+/// value; empty when an error is zero or the settings are equal.
+std::optional<double> ObservedOrder(const SweepRecord& coarse, const SweepRecord& fine);
+
+}  // namespace rockbench::report

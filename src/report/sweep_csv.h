@@ -1,0 +1,59 @@
+#pragma once
+/// sweep.csv read back: one record per run, with what the work-precision report derives from a
+/// single record (its family, its setting's label and value, its largest errors).
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace rockbench::report {
+
+/// One row of sweep.csv as read back (columns as src/harness/sweep.h's SweepCsv writes them).
+struct SweepRecord {
+  int line = 0;          ///< 1-based line number in sweep.csv
+  std::string engine;    ///< an engine's name, or "reference"
+  std::string family;    ///< engines: the settings family ("Bullet double (50 iterations)")
+  std::string setting;   ///< engines: the point's label ("1e-3", "1/60")
+  std::string settings;  ///< engines: the settings besides the step ("k=v;k=v")
+  double time_step_s = 0.0;
+  std::string integrator;  ///< reference: "dopri5" | "rk4"
+  double rtol = 0.0, atol = 0.0;
+  double rk4_step_s = 0.0;  ///< s
+  std::string status;       ///< the run's status, "error" for a failed run
+  double wall_s = 0.0;      ///< s
+  double theta1_max_abs_error_rad = 0.0, theta1_rms_error_rad = 0.0, theta1_horizon_s = 0.0;
+  double theta1_peak_rel_error = 0.0, theta1_peak_time_error_s = 0.0;
+  bool has_theta2 = false;  ///< two-block scene (the theta2 columns are filled)
+  double theta2_max_abs_error_rad = 0.0, theta2_rms_error_rad = 0.0, theta2_horizon_s = 0.0;
+  double theta2_peak_rel_error = 0.0, theta2_peak_time_error_s = 0.0;
+  int impacts_reference = 0, impacts_engine = 0, impacts_matched = 0;
+  double max_abs_impact_time_error_s = 0.0;
+  bool overturn_agree = false, final_agree = false;
+  std::string error;  ///< the run's error message (non-empty: the run failed)
+  /// Why the row is not plotted: empty for a usable row; the error message, or the column
+  /// holding a non-finite value.
+  std::string failure;
+};
+
+/// Parses sweep.csv text; `path` names the file in messages. Throws std::runtime_error
+/// "PATH:LINE: ..." for a missing header column, a row with the wrong number of fields, an
+/// unknown engine/precision/integrator, a number that does not parse or a setting that is not
+/// positive. Non-finite results (nan, inf) are not errors: the row is marked failed.
+std::vector<SweepRecord> ParseSweepCsv(const std::string& text, const std::filesystem::path& path);
+
+/// The family of a row: the engine's (sweep.csv "family", e.g. "Bullet double (50
+/// iterations)"), "reference dopri5", "reference RK4".
+std::string SweepFamily(const SweepRecord& r);
+/// The setting that varies within a family, as the sweep labelled it (sweep.csv "setting"): an
+/// engine's time step ("1e-3", "1/60"; s), dopri5's rtol ("1e-8"), RK4's step ("2.5e-3"; s).
+std::string SweepSettingLabel(const SweepRecord& r);
+/// The varying setting's value (time step s, rtol, or step s): smaller is finer.
+double SweepSettingValue(const SweepRecord& r);
+/// Max over theta1 (and theta2) of the max |angle error| over the run, rad.
+double MaxAngleError(const SweepRecord& r);
+/// Max over theta1 (and theta2) of |peak relative error|.
+double MaxPeakRelError(const SweepRecord& r);
+/// A record's setting in words: "Bullet double (50 iterations), time step 1e-3 s", "reference
+/// dopri5, rtol 1e-8", "reference RK4, step 1e-3 s".
+std::string SweepSettingDescription(const SweepRecord& r);
+
+}  // namespace rockbench::report
