@@ -1,12 +1,14 @@
 #pragma once
 /// The stress catalogue: named stiff and extreme cases (slenderness, mass ratio, size, uplift
 /// thresholds, strong and fast excitation, release at the overturning angle, impact cascades,
-/// vertical acceleration past -g, Bullet's time step, precision and solver iterations), each
-/// run with the reference model and Bullet, each giving one row of stress.csv: finished or not,
-/// status, NaN/Inf seen, largest energy gain across an impact, event count, smallest time
-/// between impacts, wall time, and for Bullet its settings, violations and agreement with the
-/// reference. Every (case, engine) runs in a child process with a wall-clock limit, so a crash
-/// or a hang becomes a row, never the end of the command. See docs/stress.md.
+/// vertical acceleration past -g, every engine's extreme settings from its StressGrid), each
+/// run with the reference model and every built engine, each giving one row of stress.csv:
+/// finished or not, status, NaN/Inf seen, largest energy gain across an impact, event count,
+/// smallest time between impacts, wall time, and for an engine its settings, violations and
+/// agreement with the reference. Every (case, engine) runs in a child process with a wall-clock
+/// limit, so a crash or a hang becomes a row, never the end of the command. See docs/stress.md.
+/// Sources: stress_catalogue.cc (the cases), stress_run.cc (one run, and the pool of children),
+/// stress_rows.cc (a row as JSON and as CSV).
 #include <filesystem>
 #include <functional>
 #include <nlohmann/json.hpp>
@@ -73,7 +75,7 @@ struct StressRow {
   /// The run reached its end time or a physics ending (overturned, at rest, assumption
   /// violated); false for blow_up, crash, wall_limit and error.
   bool finished = false;
-  /// completed | overturned | at_rest | assumption_violated (reference) | blow_up (Bullet) |
+  /// completed | overturned | at_rest | assumption_violated (reference) | blow_up (engines) |
   /// "crash (signal N)" | wall_limit | "error (exit N)".
   std::string status;
   std::string detail;  ///< why (status detail, error message), no commas

@@ -4,23 +4,19 @@
 #include <cmath>
 #include <cstdio>
 
+#include "util/format.h"
+
 namespace rockbench {
 namespace {
 
 // Fewer valid members than this on either side: no statistical comparison.
 constexpr int kMinMembers = 5;
 
-std::string Fmt(const char* format, double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, format, v);
-  return buf;
-}
-
 // A p-value in words: "p = 0.41", "p = 3e-05", "p < 1e-300".
 std::string PText(double p) {
   if (std::isnan(p)) return "p undefined";
   if (p == 0.0) return "p < 1e-300";
-  return p >= 0.001 ? Fmt("p = %.2g", p) : Fmt("p = %.1e", p);
+  return p >= 0.001 ? Format("p = %.2g", p) : Format("p = %.1e", p);
 }
 
 nlohmann::json TestJson(const stats::TestResult& t) {
@@ -38,8 +34,8 @@ nlohmann::json SpreadJson(const std::vector<double>& v) {
 }
 
 std::string Value(double v, const std::string& unit) {
-  if (unit.empty()) return Fmt("%.3g", v);
-  return Fmt("%.3g", v) + " " + unit;
+  if (unit.empty()) return Format("%.3g", v);
+  return Format("%.3g", v) + " " + unit;
 }
 
 }  // namespace
@@ -175,13 +171,13 @@ Verdict MakeVerdict(const Scene& scene, const EngineAgreement& a,
       if (ang[b]->within_tolerance) continue;
       all_within = false;
       out += (out.empty() ? "" : "; ") + th(b) + " leaves the tolerance (" +
-             Fmt("%.3g", ang[b]->tolerance_rad) + " rad) at " + Fmt("%.3f", ang[b]->horizon_s) +
-             " s";
+             Format("%.3g", ang[b]->tolerance_rad) + " rad) at " +
+             Format("%.3f", ang[b]->horizon_s) + " s";
     }
     v.kind = all_within ? "pointwise_only" : "pointwise_differs";
     v.agrees = all_within;
     v.text = all_within ? "agrees pointwise over the whole comparison (" +
-                              Fmt("%.3f", a.compared_until_s) +
+                              Format("%.3f", a.compared_until_s) +
                               " s); no reference ensemble was run, so the reference's own "
                               "predictability was not measured"
                         : out +
@@ -198,16 +194,16 @@ Verdict MakeVerdict(const Scene& scene, const EngineAgreement& a,
     const AngleAgreement& g = *ang[b];
     whole_run = whole_run && !hp;
     const bool ok = g.within_tolerance || (hp && g.horizon_s >= *hp - slack_s);
-    const std::string hp_text = hp ? Fmt("%.2f s", *hp) : "the end of the run";
+    const std::string hp_text = hp ? Format("%.2f s", *hp) : "the end of the run";
     if (!ok) {
       before += (before.empty() ? "" : "; ") + th(b) + " leaves the tolerance (" +
-                Fmt("%.3g", g.tolerance_rad) + " rad) at " + Fmt("%.2f", g.horizon_s) +
+                Format("%.3g", g.tolerance_rad) + " rad) at " + Format("%.2f", g.horizon_s) +
                 " s while the reference is predictable until " + hp_text + " (max error there " +
-                Fmt("%.3g", g.max_abs_error_predictable_rad) + " rad)";
+                Format("%.3g", g.max_abs_error_predictable_rad) + " rad)";
     } else {
       agree_part += (agree_part.empty() ? "" : "; ") + th(b) + " " +
                     (g.within_tolerance ? "within the tolerance for the whole comparison"
-                                        : "until " + Fmt("%.2f", g.horizon_s) + " s") +
+                                        : "until " + Format("%.2f", g.horizon_s) + " s") +
                     (hp ? " (the reference's own horizon is " + hp_text + ")"
                         : " (the reference is predictable throughout)");
     }

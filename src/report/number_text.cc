@@ -12,12 +12,6 @@ std::string Num(double v, int significant) {
   return buf;
 }
 
-std::string Format(const char* printf_format, double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, printf_format, v);
-  return buf;
-}
-
 std::string Fixed(double v, int decimals) {
   char buf[64];
   std::snprintf(buf, sizeof buf, "%.*f", decimals, v);

@@ -7,9 +7,6 @@ namespace rockbench::report {
 /// `significant` significant digits (printf %g); "n/a" for NaN.
 std::string Num(double v, int significant = 4);
 
-/// `v` printed with one printf conversion, e.g. Format("%.2e", v).
-std::string Format(const char* printf_format, double v);
-
 /// `decimals` digits after the point (printf %f).
 std::string Fixed(double v, int decimals);
 

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <map>
 
-#include "report/number_text.h"
+#include "util/format.h"
 
 namespace rockbench::report {
 

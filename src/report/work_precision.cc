@@ -10,9 +10,9 @@
 #include <stdexcept>
 
 #include "report/gnuplot.h"
-#include "report/number_text.h"
 #include "report/page.h"
 #include "scene/history.h"
+#include "util/format.h"
 
 namespace rockbench::report {
 namespace {

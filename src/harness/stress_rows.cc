@@ -1,0 +1,122 @@
+// A stress row as the child prints it (one line of JSON) and as stress.csv holds it.
+#include <limits>
+
+#include "harness/stress.h"
+#include "util/format.h"
+
+namespace rockbench {
+namespace {
+
+// CSV-safe free text: no commas, no line breaks.
+std::string Clean(std::string s) {
+  for (char& ch : s) {
+    if (ch == ',') ch = ';';
+    if (ch == '\n' || ch == '\r' || ch == '"') ch = ' ';
+  }
+  return s;
+}
+
+}  // namespace
+
+nlohmann::json StressRowToJson(const StressRow& r) {
+  // Non-finite numbers become null (JSON has no NaN) and come back as NaN.
+  auto num = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(); };
+  nlohmann::json j;
+  j["case"] = r.case_name;
+  j["engine"] = r.engine;
+  j["finished"] = r.finished;
+  j["status"] = r.status;
+  j["detail"] = r.detail;
+  j["nan"] = r.nan;
+  j["max_energy_gain_rel"] = num(r.max_energy_gain_rel);
+  j["energy_impacts"] = r.energy_impacts;
+  j["events"] = r.events;
+  j["impacts"] = r.impacts;
+  j["min_event_gap_s"] = num(r.min_event_gap_s);
+  j["wall_s"] = num(r.wall_s);
+  j["peak_theta1_rad"] = num(r.peak_theta1_rad);
+  j["peak_theta2_rad"] = num(r.peak_theta2_rad);
+  j["has_settings"] = r.has_settings;
+  j["dt_s"] = r.dt_s;
+  j["settings"] = r.settings;
+  j["violations"] = r.violations;
+  j["has_agreement"] = r.has_agreement;
+  j["theta1_max_abs_error_rad"] = num(r.theta1_max_abs_error_rad);
+  j["theta1_peak_rel_error"] = num(r.theta1_peak_rel_error);
+  j["theta2_max_abs_error_rad"] = num(r.theta2_max_abs_error_rad);
+  j["theta2_peak_rel_error"] = num(r.theta2_peak_rel_error);
+  j["impacts_matched"] = r.impacts_matched;
+  j["reference_impacts"] = r.reference_impacts;
+  return j;
+}
+
+StressRow StressRowFromJson(const nlohmann::json& j) {
+  auto num = [&](const char* key) {
+    const nlohmann::json& v = j.at(key);
+    return v.is_null() ? std::numeric_limits<double>::quiet_NaN() : v.get<double>();
+  };
+  StressRow r;
+  r.case_name = j.at("case").get<std::string>();
+  r.engine = j.at("engine").get<std::string>();
+  r.finished = j.at("finished").get<bool>();
+  r.status = j.at("status").get<std::string>();
+  r.detail = j.at("detail").get<std::string>();
+  r.nan = j.at("nan").get<bool>();
+  r.max_energy_gain_rel = num("max_energy_gain_rel");
+  r.energy_impacts = j.at("energy_impacts").get<int>();
+  r.events = j.at("events").get<int>();
+  r.impacts = j.at("impacts").get<int>();
+  r.min_event_gap_s = num("min_event_gap_s");
+  r.wall_s = num("wall_s");
+  r.peak_theta1_rad = num("peak_theta1_rad");
+  r.peak_theta2_rad = num("peak_theta2_rad");
+  r.has_settings = j.at("has_settings").get<bool>();
+  r.dt_s = j.at("dt_s").get<double>();
+  r.settings = j.at("settings").get<std::string>();
+  r.violations = j.at("violations").get<std::string>();
+  r.has_agreement = j.at("has_agreement").get<bool>();
+  r.theta1_max_abs_error_rad = num("theta1_max_abs_error_rad");
+  r.theta1_peak_rel_error = num("theta1_peak_rel_error");
+  r.theta2_max_abs_error_rad = num("theta2_max_abs_error_rad");
+  r.theta2_peak_rel_error = num("theta2_peak_rel_error");
+  r.impacts_matched = j.at("impacts_matched").get<int>();
+  r.reference_impacts = j.at("reference_impacts").get<int>();
+  return r;
+}
+
+std::string StressCsv(const std::vector<StressRow>& rows) {
+  std::string out =
+      "case,engine,finished,status,nan,max_energy_gain_rel,energy_impacts,events,impacts,"
+      "min_event_gap_s,wall_s,peak_theta1_rad,peak_theta2_rad,dt_s,settings,"
+      "violations,theta1_max_abs_error_rad,theta1_peak_rel_error,theta2_max_abs_error_rad,"
+      "theta2_peak_rel_error,impacts_matched,reference_impacts,detail\n";
+  auto g = [](double v) { return Format("%.6g", v); };
+  for (const StressRow& r : rows) {
+    const bool ran = r.finished || r.status == "blow_up" || r.status == "error";
+    out += Clean(r.case_name) + "," + r.engine + "," + (r.finished ? "1" : "0") + "," +
+           Clean(r.status) + "," + (r.nan ? "1" : "0") + ",";
+    out += (r.energy_impacts > 0 ? Format("%.3e", r.max_energy_gain_rel) : "") + "," +
+           std::to_string(r.energy_impacts) + ",";
+    out += std::to_string(r.events) + "," + std::to_string(r.impacts) + ",";
+    out += (r.min_event_gap_s >= 0.0 ? Format("%.6e", r.min_event_gap_s) : "") + ",";
+    out += Format("%.4f", r.wall_s) + ",";
+    out += (ran ? g(r.peak_theta1_rad) : "") + "," + (ran ? g(r.peak_theta2_rad) : "") + ",";
+    out += (r.has_settings
+                ? Format("%.6g", r.dt_s) + "," + Clean(r.settings) + "," + Clean(r.violations)
+                : ",,") +
+           ",";
+    if (r.has_agreement) {
+      out += g(r.theta1_max_abs_error_rad) + "," + g(r.theta1_peak_rel_error) + "," +
+             g(r.theta2_max_abs_error_rad) + "," + g(r.theta2_peak_rel_error) + "," +
+             std::to_string(r.impacts_matched) + "," + std::to_string(r.reference_impacts);
+    } else {
+      out += ",,,,,";
+    }
+    out += ',';
+    out += Clean(r.detail);
+    out += '\n';
+  }
+  return out;
+}
+
+}  // namespace rockbench
