@@ -16,13 +16,7 @@ EngineResult Simulate(const BulletInput& input) {
                                 (want_double ? "double" : "float"));
   }
   RockingWorld world(input);
-  EngineResult out = RunFixedStepWorld(input, world);
-  out.summary["engine"] = "bullet";
-  out.summary["settings"] = world.Settings();
-  if (input.drive_kind == DriveKind::kKinematic) {
-    out.summary["kinematic"] = KinematicDriveJson(input);
-  }
-  return out;
+  return RunEngineWorld("bullet", input, world);
 }
 
 }  // namespace rockbench::bullet

@@ -8,10 +8,6 @@
 namespace rockbench::bullet {
 namespace {
 
-// Ground accelerations below this count as no base input for the energy check (m/s^2): the
-// kinematic drive's baseline tail and rounding of u's second difference stay far below it.
-constexpr double kBaseStillMps2 = 1e-4;
-
 btTransform PoseTransform(const PlanarPose& p, double ux, double uy, double z) {
   btTransform t;
   t.setIdentity();
@@ -183,26 +179,7 @@ StepReadout RockingWorld::Read(std::int64_t n) const {
   }
   s.out_of_plane_m = oop_m;
   s.out_of_plane_rad = oop_rad;
-  const size_t i = static_cast<size_t>(n);
-  if (kinematic_) {
-    const auto& ux = in_.drive.ux_m;
-    const auto& uy = in_.drive.uy_m;
-    s.ground_x_m = ux[i];
-    s.ground_y_m = uy[i];
-    // The blocks' velocities after step n are those of the step that ended at t_n.
-    s.ground_vx_mps = i == 0 ? in_.drive.ux0_mps : (ux[i] - ux[i - 1]) / dt_;
-    s.ground_vy_mps = i == 0 ? in_.drive.uy0_mps : (uy[i] - uy[i - 1]) / dt_;
-    if (i >= 1) {
-      const double prev_vx = i == 1 ? in_.drive.ux0_mps : (ux[i - 1] - ux[i - 2]) / dt_;
-      const double prev_vy = i == 1 ? in_.drive.uy0_mps : (uy[i - 1] - uy[i - 2]) / dt_;
-      s.base_accelerating = std::abs(s.ground_vx_mps - prev_vx) > kBaseStillMps2 * dt_ ||
-                            std::abs(s.ground_vy_mps - prev_vy) > kBaseStillMps2 * dt_;
-    }
-  } else if (i >= 1) {
-    const double ax = in_.drive.ax_mps2.empty() ? 0.0 : in_.drive.ax_mps2[i - 1];
-    const double ay = in_.drive.ay_mps2.empty() ? 0.0 : in_.drive.ay_mps2[i - 1];
-    s.base_accelerating = std::abs(ax) > kBaseStillMps2 || std::abs(ay) > kBaseStillMps2;
-  }
+  ReadBaseMotion(in_, n, &s);
   return s;
 }
 

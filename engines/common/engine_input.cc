@@ -110,6 +110,23 @@ std::string TimeStepLabel(double dt_s) {
   return buf;
 }
 
+EngineInput MakeEngineInput(const Scene& scene, const GroundMotion& motion,
+                            const std::string& engine, const EngineSettings& settings,
+                            double stop_at_rest_after_s) {
+  const auto has = [&](std::string_view key) {
+    return std::any_of(settings.values.begin(), settings.values.end(),
+                       [&](const auto& kv) { return kv.first == key; });
+  };
+  const DriveKind drive = has("drive") && settings.Choice("drive") == "kinematic"
+                              ? DriveKind::kKinematic
+                              : DriveKind::kInertial;
+  EngineInput in = MakeEngineInput(
+      scene, motion, engine, settings.Number("time_step"), drive,
+      has("kinematic_highpass_hz") ? settings.Number("kinematic_highpass_hz") : 0.0);
+  in.stop_at_rest_after_s = stop_at_rest_after_s;
+  return in;
+}
+
 nlohmann::json KinematicDriveJson(const EngineInput& input) {
   const DriveSamples& d = input.drive;
   nlohmann::json k;

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "scene/engine_settings.h"
 #include "scene/ground_motion.h"
 #include "scene/history.h"
 #include "scene/scene.h"
@@ -73,6 +74,14 @@ struct EngineInput {
 EngineInput MakeEngineInput(const Scene& scene, const GroundMotion& motion,
                             const std::string& engine, double time_step_s, DriveKind drive,
                             double kinematic_highpass_hz);
+
+/// The input of a run from an engine's resolved table (`settings`, of the engine `engine`): its
+/// time_step, its drive ("inertial" or "kinematic"; inertial when the table has no drive key) and
+/// kinematic_highpass_hz when the table has it (0 otherwise), stopping at rest after
+/// stop_at_rest_after_s.
+EngineInput MakeEngineInput(const Scene& scene, const GroundMotion& motion,
+                            const std::string& engine, const EngineSettings& settings,
+                            double stop_at_rest_after_s);
 
 /// summary.json "kinematic" of a kinematic-drive run: the baseline correction and the peak
 /// displacements before and after it.

@@ -4,6 +4,9 @@
 /// (see engines/bullet/rocking_world.h).
 #include <chrono>
 #include <cstdint>
+#include <memory>
+#include <stdexcept>
+#include <string>
 
 #include "engines/common/engine.h"
 #include "engines/common/engine_input.h"
@@ -35,6 +38,35 @@ EngineResult RunFixedStepWorld(const EngineInput& input, World& world,
   r.wall_s = wall_s;
   r.history = monitor.TakeHistory();
   return r;
+}
+
+/// RunFixedStepWorld, with summary.json's parts every engine writes: "engine", "settings"
+/// (World::Settings()), "diagnostics" (World::Diagnostics(), for a world that keeps them) and,
+/// for the kinematic drive, "kinematic".
+template <typename World>
+EngineResult RunEngineWorld(const std::string& engine, const EngineInput& input, World& world) {
+  EngineResult out = RunFixedStepWorld(input, world);
+  out.summary["engine"] = engine;
+  out.summary["settings"] = world.Settings();
+  if constexpr (requires { world.Diagnostics(); }) out.summary["diagnostics"] = world.Diagnostics();
+  if (input.drive_kind == DriveKind::kKinematic) {
+    out.summary["kinematic"] = KinematicDriveJson(input);
+  }
+  return out;
+}
+
+/// Builds World(input, settings) and runs it with RunEngineWorld. A setting the world cannot
+/// take (std::invalid_argument) is a SceneError naming the scene file.
+template <typename World, typename Settings>
+EngineResult SimulateWorld(const std::string& engine, const Scene& scene, const EngineInput& input,
+                           const Settings& settings) {
+  std::unique_ptr<World> world;
+  try {
+    world = std::make_unique<World>(input, settings);
+  } catch (const std::invalid_argument& e) {
+    throw SceneError(scene.path.string() + ": " + e.what());
+  }
+  return RunEngineWorld(engine, input, *world);
 }
 
 }  // namespace rockbench

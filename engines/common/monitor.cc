@@ -5,6 +5,31 @@
 #include <numbers>
 
 namespace rockbench {
+
+void ReadBaseMotion(const EngineInput& in, std::int64_t n, StepReadout* s) {
+  constexpr double kBaseStillMps2 = 1e-4;
+  const double dt = in.time_step_s;
+  const size_t i = static_cast<size_t>(n);
+  if (in.drive_kind == DriveKind::kKinematic) {
+    const auto& ux = in.drive.ux_m;
+    const auto& uy = in.drive.uy_m;
+    s->ground_x_m = ux[i];
+    s->ground_y_m = uy[i];
+    // The blocks' velocities after step n are those of the step that ended at t_n.
+    s->ground_vx_mps = i == 0 ? in.drive.ux0_mps : (ux[i] - ux[i - 1]) / dt;
+    s->ground_vy_mps = i == 0 ? in.drive.uy0_mps : (uy[i] - uy[i - 1]) / dt;
+    if (i >= 1) {
+      const double prev_vx = i == 1 ? in.drive.ux0_mps : (ux[i - 1] - ux[i - 2]) / dt;
+      const double prev_vy = i == 1 ? in.drive.uy0_mps : (uy[i - 1] - uy[i - 2]) / dt;
+      s->base_accelerating = std::abs(s->ground_vx_mps - prev_vx) > kBaseStillMps2 * dt ||
+                             std::abs(s->ground_vy_mps - prev_vy) > kBaseStillMps2 * dt;
+    }
+  } else if (i >= 1) {
+    const double ax = in.drive.ax_mps2.empty() ? 0.0 : in.drive.ax_mps2[i - 1];
+    const double ay = in.drive.ay_mps2.empty() ? 0.0 : in.drive.ay_mps2[i - 1];
+    s->base_accelerating = std::abs(ax) > kBaseStillMps2 || std::abs(ay) > kBaseStillMps2;
+  }
+}
 namespace {
 
 int Sign(double v) {

@@ -71,6 +71,12 @@ struct StepReadout {
   bool base_accelerating = false;
 };
 
+/// Fills the base's part of the state after step n from the run input: the ground's position and
+/// velocity (kinematic drive), and whether the base accelerated during the step that ended at
+/// t_n (faster than 1e-4 m/s^2: below that, the kinematic drive's baseline tail and the rounding
+/// of u's second difference, it counts as no base input for the energy check).
+void ReadBaseMotion(const EngineInput& input, std::int64_t n, StepReadout* s);
+
 class Monitor {
  public:
   explicit Monitor(const EngineInput& input, MonitorConfig config = {});

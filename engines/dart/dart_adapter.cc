@@ -3,7 +3,6 @@
 #include <cstdio>
 #include <dart/config.hpp>
 #include <memory>
-#include <stdexcept>
 
 #include "engines/common/fixed_step.h"
 #include "engines/dart/dart_settings.h"
@@ -67,19 +66,7 @@ class DartEngine final : public Engine {
   EngineResult Simulate(const Scene& scene, const GroundMotion& motion,
                         const SimulateOptions& options) const override {
     const DartRun run = MakeDartRun(scene, motion, options.stop_at_rest_after_s);
-    std::unique_ptr<DartWorld> world;
-    try {
-      world = std::make_unique<DartWorld>(run.input, run.settings);
-    } catch (const std::invalid_argument& e) {
-      throw SceneError(scene.path.string() + ": " + e.what());
-    }
-    EngineResult out = RunFixedStepWorld(run.input, *world);
-    out.summary["engine"] = "dart";
-    out.summary["settings"] = world->Settings();
-    out.summary["diagnostics"] = world->Diagnostics();
-    if (run.input.drive_kind == DriveKind::kKinematic) {
-      out.summary["kinematic"] = KinematicDriveJson(run.input);
-    }
+    EngineResult out = SimulateWorld<DartWorld>("dart", scene, run.input, run.settings);
     char line[160];
     std::snprintf(line, sizeof line, "%s, %s, dt %.3g s",
                   DartLcpSolverName(run.settings.lcp_solver), DriveKindName(run.input.drive_kind),

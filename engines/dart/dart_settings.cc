@@ -10,54 +10,31 @@ const EngineSettingsSchema& DartSettingsSchema() {
     EngineSettingsSchema s;
     s.engine = "dart";
     const DartSettings d;
-    const auto number = [&](const char* key, double v, R range, const char* unit,
-                            const char* dart_default, const char* doc) {
-      SettingDef def;
-      def.key = key, def.default_value = v, def.range = range, def.unit = unit;
-      def.engine_default = dart_default, def.doc = doc;
-      s.settings.push_back(def);
-    };
-    const auto choice = [&](const char* key, const char* v, std::vector<std::string> choices,
-                            const char* dart_default, const char* doc) {
-      SettingDef def;
-      def.key = key, def.default_value = std::string(v), def.choices = std::move(choices);
-      def.engine_default = dart_default, def.doc = doc;
-      s.settings.push_back(def);
-    };
-    const auto integer = [&](const char* key, int v, const char* dart_default, const char* doc) {
-      SettingDef def;
-      def.key = key, def.default_value = std::int64_t{v}, def.min_integer = 1;
-      def.max_integer = 1000000, def.engine_default = dart_default, def.doc = doc;
-      s.settings.push_back(def);
-    };
-    number("time_step", d.time_step_s, R::kPositive, "s", "1e-3 s", "fixed step");
-    choice("drive", "inertial", {"inertial", "kinematic"}, "-",
-           "base motion as tilted gravity (inertial) or a moving ground (kinematic)");
-    choice("collision", DartCollisionName(d.collision), {"dart", "fcl"}, "fcl",
-           "collision detector; DART's own box-box gives the corner-edge and face contacts");
-    choice("lcp_solver", DartLcpSolverName(d.lcp_solver), {"dantzig", "pgs"}, "dantzig",
-           "boxed LCP solver of the contact constraints");
-    SettingDef fallback;
-    fallback.key = "pgs_fallback", fallback.default_value = d.pgs_fallback;
-    fallback.engine_default = "true";
-    fallback.doc = "PGS when Dantzig fails (it fails on 12-22% of the stack's steps)";
-    s.settings.push_back(fallback);
-    integer("pgs_iterations", d.pgs_iterations, "30", "PGS iterations");
-    number("restitution", d.restitution, R::kUnitInterval, "", "0",
-           "per body (DART multiplies the two)");
-    number("friction", d.friction, R::kNonNegative, "", "1",
-           "per body (DART takes the smaller); with 1 block 2 slides 9 mm on the stack");
-    number("erp", d.erp, R::kUnitInterval, "", "0.01",
-           "contact error reduction (process-wide in DART)");
-    number("error_allowance", d.error_allowance_m, R::kNonNegative, "m", "0 m",
-           "penetration tolerated without correction (process-wide)");
-    number("max_erv", d.max_erv_mps, R::kNonNegative, "m/s", "1e-3 m/s",
-           "cap on the correction velocity (process-wide)");
-    number("cfm", d.cfm, R::kNonNegative, "", "1e-5", "relative constraint force mixing");
-    integer("max_contacts", d.max_contacts, "1000", "contacts per collision query");
-    number("ground_depth", d.ground_depth_m, R::kPositive, "m", "-", "ground box thickness");
-    number("kinematic_highpass_hz", 0.0, R::kNonNegative, "Hz", "-",
-           "kinematic drive's baseline-correction corner; 0: none (docs/bullet.md)");
+    s.Number("time_step", d.time_step_s, R::kPositive, "s", "1e-3 s", "fixed step");
+    s.Choice("drive", "inertial", {"inertial", "kinematic"}, "-",
+             "base motion as tilted gravity (inertial) or a moving ground (kinematic)");
+    s.Choice("collision", DartCollisionName(d.collision), {"dart", "fcl"}, "fcl",
+             "collision detector; DART's own box-box gives the corner-edge and face contacts");
+    s.Choice("lcp_solver", DartLcpSolverName(d.lcp_solver), {"dantzig", "pgs"}, "dantzig",
+             "boxed LCP solver of the contact constraints");
+    s.Flag("pgs_fallback", d.pgs_fallback, "true",
+           "PGS when Dantzig fails (it fails on 12-22% of the stack's steps)");
+    s.Integer("pgs_iterations", d.pgs_iterations, 1, 1000000, "30", "PGS iterations");
+    s.Number("restitution", d.restitution, R::kUnitInterval, "", "0",
+             "per body (DART multiplies the two)");
+    s.Number("friction", d.friction, R::kNonNegative, "", "1",
+             "per body (DART takes the smaller); with 1 block 2 slides 9 mm on the stack");
+    s.Number("erp", d.erp, R::kUnitInterval, "", "0.01",
+             "contact error reduction (process-wide in DART)");
+    s.Number("error_allowance", d.error_allowance_m, R::kNonNegative, "m", "0 m",
+             "penetration tolerated without correction (process-wide)");
+    s.Number("max_erv", d.max_erv_mps, R::kNonNegative, "m/s", "1e-3 m/s",
+             "cap on the correction velocity (process-wide)");
+    s.Number("cfm", d.cfm, R::kNonNegative, "", "1e-5", "relative constraint force mixing");
+    s.Integer("max_contacts", d.max_contacts, 1, 1000000, "1000", "contacts per collision query");
+    s.Number("ground_depth", d.ground_depth_m, R::kPositive, "m", "-", "ground box thickness");
+    s.Number("kinematic_highpass_hz", 0.0, R::kNonNegative, "Hz", "-",
+             "kinematic drive's baseline-correction corner; 0: none (docs/bullet.md)");
     return s;
   }();
   return kSchema;
@@ -65,12 +42,8 @@ const EngineSettingsSchema& DartSettingsSchema() {
 
 DartRun MakeDartRun(const Scene& scene, const GroundMotion& motion, double stop_at_rest_after_s) {
   const EngineSettings set = ResolveEngineSettings(scene, DartSettingsSchema());
-  const DriveKind drive =
-      set.Choice("drive") == "kinematic" ? DriveKind::kKinematic : DriveKind::kInertial;
   DartRun run;
-  run.input = MakeEngineInput(scene, motion, "dart", set.Number("time_step"), drive,
-                              set.Number("kinematic_highpass_hz"));
-  run.input.stop_at_rest_after_s = stop_at_rest_after_s;
+  run.input = MakeEngineInput(scene, motion, "dart", set, stop_at_rest_after_s);
   DartSettings& s = run.settings;
   s.time_step_s = set.Number("time_step");
   s.collision = set.Choice("collision") == "fcl" ? DartCollision::kFcl : DartCollision::kDart;

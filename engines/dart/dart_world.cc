@@ -34,10 +34,6 @@ const char* DartLcpSolverName(DartLcpSolver s) {
 
 namespace {
 
-// Ground accelerations below this count as no base input for the energy check (m/s^2), as in
-// Bullet's adapter.
-constexpr double kBaseStillMps2 = 1e-4;
-
 // DART's contact parameters are static members of ContactConstraint: one set per process.
 // Worlds alive at the same time must agree on them (checked under this lock); while any world
 // lives, nobody changes them, so the steps read them without a lock.
@@ -354,27 +350,7 @@ StepReadout DartWorld::Read(std::int64_t n) const {
   }
   s.out_of_plane_m = oop_m;
   s.out_of_plane_rad = oop_rad;
-  const size_t i = static_cast<size_t>(n);
-  if (m.kinematic) {
-    const auto& ux = m.in.drive.ux_m;
-    const auto& uy = m.in.drive.uy_m;
-    const double dt = m.dt;
-    s.ground_x_m = ux[i];
-    s.ground_y_m = uy[i];
-    // The blocks' velocities after step n are those of the step that ended at t_n.
-    s.ground_vx_mps = i == 0 ? m.in.drive.ux0_mps : (ux[i] - ux[i - 1]) / dt;
-    s.ground_vy_mps = i == 0 ? m.in.drive.uy0_mps : (uy[i] - uy[i - 1]) / dt;
-    if (i >= 1) {
-      const double prev_vx = i == 1 ? m.in.drive.ux0_mps : (ux[i - 1] - ux[i - 2]) / dt;
-      const double prev_vy = i == 1 ? m.in.drive.uy0_mps : (uy[i - 1] - uy[i - 2]) / dt;
-      s.base_accelerating = std::abs(s.ground_vx_mps - prev_vx) > kBaseStillMps2 * dt ||
-                            std::abs(s.ground_vy_mps - prev_vy) > kBaseStillMps2 * dt;
-    }
-  } else if (i >= 1) {
-    const double ax = m.in.drive.ax_mps2.empty() ? 0.0 : m.in.drive.ax_mps2[i - 1];
-    const double ay = m.in.drive.ay_mps2.empty() ? 0.0 : m.in.drive.ay_mps2[i - 1];
-    s.base_accelerating = std::abs(ax) > kBaseStillMps2 || std::abs(ay) > kBaseStillMps2;
-  }
+  ReadBaseMotion(m.in, n, &s);
   return s;
 }
 

@@ -4,7 +4,6 @@
 
 #include <cstdio>
 #include <memory>
-#include <stdexcept>
 
 #include "engines/common/fixed_step.h"
 #include "engines/mujoco/mujoco_settings.h"
@@ -74,16 +73,7 @@ class MujocoEngine final : public Engine {
   EngineResult Simulate(const Scene& scene, const GroundMotion& motion,
                         const SimulateOptions& options) const override {
     const MujocoRun run = MakeMujocoRun(scene, motion, options.stop_at_rest_after_s);
-    std::unique_ptr<MujocoWorld> world;
-    try {
-      world = std::make_unique<MujocoWorld>(run.input, run.settings);
-    } catch (const std::invalid_argument& e) {
-      throw SceneError(scene.path.string() + ": " + e.what());
-    }
-    EngineResult out = RunFixedStepWorld(run.input, *world);
-    out.summary["engine"] = "mujoco";
-    out.summary["settings"] = world->Settings();
-    out.summary["diagnostics"] = world->Diagnostics();
+    EngineResult out = SimulateWorld<MujocoWorld>("mujoco", scene, run.input, run.settings);
     char line[160];
     std::snprintf(line, sizeof line, "%s contact, %s, dt %.3g s",
                   std::string(ContactModelName(run.settings.contact)).c_str(),

@@ -27,10 +27,6 @@
 namespace rockbench::mujoco {
 namespace {
 
-// Ground accelerations below this count as no base input for the energy check (m/s^2), as in
-// Bullet's world.
-constexpr double kBaseStillMps2 = 1e-4;
-
 // mj_loadXML parses into a global (the model mj_saveLastXML writes) and compiles with MuJoCo's
 // error handlers; serialise it.
 std::mutex& CompileMutex() {
@@ -312,12 +308,7 @@ StepReadout MujocoWorld::Read(std::int64_t n) const {
   // The joints hold the plane exactly: no out-of-plane motion to report.
   s.out_of_plane_m = 0.0;
   s.out_of_plane_rad = 0.0;
-  const size_t i = static_cast<size_t>(n);
-  if (i >= 1) {
-    const double ax = in_.drive.ax_mps2.empty() ? 0.0 : in_.drive.ax_mps2[i - 1];
-    const double ay = in_.drive.ay_mps2.empty() ? 0.0 : in_.drive.ay_mps2[i - 1];
-    s.base_accelerating = std::abs(ax) > kBaseStillMps2 || std::abs(ay) > kBaseStillMps2;
-  }
+  ReadBaseMotion(in_, n, &s);
   return s;
 }
 

@@ -4,7 +4,6 @@
 
 #include <cstdio>
 #include <memory>
-#include <stdexcept>
 
 #include "engines/common/fixed_step.h"
 #include "engines/ode/ode_settings.h"
@@ -79,18 +78,7 @@ class OdeEngine final : public Engine {
   EngineResult Simulate(const Scene& scene, const GroundMotion& motion,
                         const SimulateOptions& options) const override {
     const OdeRun run = MakeOdeRun(scene, motion, options.stop_at_rest_after_s);
-    std::unique_ptr<OdeWorld> world;
-    try {
-      world = std::make_unique<OdeWorld>(run.input, run.settings);
-    } catch (const std::invalid_argument& e) {
-      throw SceneError(scene.path.string() + ": " + e.what());
-    }
-    EngineResult out = RunFixedStepWorld(run.input, *world);
-    out.summary["engine"] = "ode";
-    out.summary["settings"] = world->Settings();
-    if (run.input.drive_kind == DriveKind::kKinematic) {
-      out.summary["kinematic"] = KinematicDriveJson(run.input);
-    }
+    EngineResult out = SimulateWorld<OdeWorld>("ode", scene, run.input, run.settings);
     char line[160];
     std::snprintf(line, sizeof line, "%s, %s, dt %.3g s", OdeStepperName(run.settings.stepper),
                   DriveKindName(run.input.drive_kind), run.input.time_step_s);

@@ -129,6 +129,46 @@ const SettingDef* EngineSettingsSchema::Find(std::string_view key) const {
   return nullptr;
 }
 
+EngineSettingsSchema& EngineSettingsSchema::Number(std::string key, double value,
+                                                   SettingRange range, std::string unit,
+                                                   std::string engine_default, std::string doc) {
+  SettingDef d;
+  d.key = std::move(key), d.default_value = value, d.range = range, d.unit = std::move(unit);
+  d.engine_default = std::move(engine_default), d.doc = std::move(doc);
+  settings.push_back(std::move(d));
+  return *this;
+}
+
+EngineSettingsSchema& EngineSettingsSchema::Integer(std::string key, std::int64_t value,
+                                                    std::int64_t min_value, std::int64_t max_value,
+                                                    std::string engine_default, std::string doc) {
+  SettingDef d;
+  d.key = std::move(key), d.default_value = value;
+  d.min_integer = min_value, d.max_integer = max_value;
+  d.engine_default = std::move(engine_default), d.doc = std::move(doc);
+  settings.push_back(std::move(d));
+  return *this;
+}
+
+EngineSettingsSchema& EngineSettingsSchema::Flag(std::string key, bool value,
+                                                 std::string engine_default, std::string doc) {
+  SettingDef d;
+  d.key = std::move(key), d.default_value = value;
+  d.engine_default = std::move(engine_default), d.doc = std::move(doc);
+  settings.push_back(std::move(d));
+  return *this;
+}
+
+EngineSettingsSchema& EngineSettingsSchema::Choice(std::string key, std::string value,
+                                                   std::vector<std::string> choices,
+                                                   std::string engine_default, std::string doc) {
+  SettingDef d;
+  d.key = std::move(key), d.default_value = std::move(value), d.choices = std::move(choices);
+  d.engine_default = std::move(engine_default), d.doc = std::move(doc);
+  settings.push_back(std::move(d));
+  return *this;
+}
+
 const SettingValue& EngineSettings::Get(std::string_view key) const {
   for (const auto& [k, v] : values) {
     if (k == key) return v;

@@ -52,6 +52,18 @@ struct EngineSettingsSchema {
 
   /// The definition of `key`, or nullptr.
   const SettingDef* Find(std::string_view key) const;
+
+  // Adding keys, in the docs' order: the key, our default, what is allowed, the engine's own
+  // default as text ("1/60 s", "-" when it has none) and one line of doc.
+  EngineSettingsSchema& Number(std::string key, double value, SettingRange range, std::string unit,
+                               std::string engine_default, std::string doc);
+  EngineSettingsSchema& Integer(std::string key, std::int64_t value, std::int64_t min_value,
+                                std::int64_t max_value, std::string engine_default,
+                                std::string doc);
+  EngineSettingsSchema& Flag(std::string key, bool value, std::string engine_default,
+                             std::string doc);
+  EngineSettingsSchema& Choice(std::string key, std::string value, std::vector<std::string> choices,
+                               std::string engine_default, std::string doc);
 };
 
 /// One value a scene gave, and where: "FILE:LINE" or "FILE: override \"k=v\"".

@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "common/error_of.h"
 #include "common/housner_closed_forms.h"
 #include "common/scratch_dir_test.h"
 #include "harness/engine_registry.h"
@@ -54,14 +55,7 @@ class EngineConformance : public testing_util::ScratchDirTest,
   }
 };
 
-std::string ErrorOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const std::exception& e) {
-    return e.what();
-  }
-  return "no error";
-}
+using testing_util::ErrorOf;
 
 TEST_P(EngineConformance, DeclaresItsSettingsAndTheirDefaultsResolve) {
   const Engine& e = engine();

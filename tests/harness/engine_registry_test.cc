@@ -10,20 +10,14 @@
 #include <vector>
 
 #include "scene/scene.h"
+#include "tests/common/error_of.h"
 
 namespace rockbench {
 namespace {
 
 const std::string kBlock = "[block1]\nwidth = 1.0\nheight = 4.0\ndensity = 2500.0\n";
 
-std::string ErrorOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const std::exception& e) {
-    return e.what();
-  }
-  return "no error";
-}
+using testing_util::ErrorOf;
 
 TEST(EngineRegistry, ListsEveryRegisteredEngineOnceBuiltOrNot) {
   std::set<std::string> names;
