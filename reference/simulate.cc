@@ -213,6 +213,38 @@ class Simulator {
   }
   void DoImpact(double t, const State& s, ImpactKind kind);
   void RunRest();
+  // RunMoving's parts: one step of the mode's equations, the earliest event inside it, the
+  // step's record (trajectory, samples, peaks, reactions) and the event's handling.
+  enum class StepEvent { kNone, kGroundImpact, kInterfaceImpact, kOverturn, kMargin };
+  struct LocatedEvent {
+    StepEvent which = StepEvent::kNone;
+    double t = kInf;     // s, the located bracket's lower end (the event time)
+    double t_hi = kInf;  // s, its upper end (just past the root)
+  };
+  // The state at t inside the step that starts at (t0, y0), projected onto the mode.
+  struct StepDense {
+    const Simulator& sim;
+    const StepResult& st;
+    double t0;
+    Vec4 y0;
+    Vec4 operator()(double t) const { return sim.Project(t == t0 ? y0 : st.dense.At(t)); }
+  };
+  StepResult AdvanceOneStep(bool rk4, const Vec4& f0, double* h_taken);
+  // The first zero of fn in [t_pos, t_neg], given fn(t_pos) = f_pos >= 0 > fn(t_neg) = f_neg,
+  // kept in *ev when it is earlier than the event already there.
+  template <class Fn>
+  void Locate(StepEvent kind, const Fn& fn, double t_pos, double f_pos, double t_neg, double f_neg,
+              LocatedEvent* ev) const;
+  template <class Fn, class Rate>
+  void ConsiderCheap(StepEvent kind, const Fn& fn, const Rate& rate, double t1, bool thesis_events,
+                     LocatedEvent* ev) const;
+  LocatedEvent FindEvent(const StepDense& at, double t1, const ContactMargins& cm1,
+                         bool thesis_events);
+  void RecordStep(const StepDense& at, const DenseStep& dense, double t_seg_end, const Vec4& y_end,
+                  const ContactMargins& cm_end);
+  // True when more than 20 events fall at one instant (an endless cascade).
+  bool EventCascade(double t_ev);
+  void HandleEvent(const LocatedEvent& ev, const StepDense& at, double t1, State s);
   void RunMoving();
   double GapGround(const Vec4& y) const { return Side(ContactsOf(mode_).ground) * y[0]; }
   double GapInterface(const Vec4& y) const {
@@ -440,158 +472,242 @@ void Simulator::RunRest() {
   }
 }
 
+StepResult Simulator::AdvanceOneStep(bool rk4, const Vec4& f0, double* h_taken) {
+  Summary& sum = result_.summary;
+  const double t_break = motion_.next_breakpoint_after(t_);
+  double h = rk4 ? cfg_.step_s : std::min(h_, max_step_);
+  h = std::min({h, t_break - t_, t_end_ - t_});
+  if (h <= 0.0) h = std::max(t_end_ - t_, 0.0);
+  StepResult st;
+  if (rk4) {
+    st = Rk4Step([this](double t, const Vec4& y) { return Rhs(t, y); }, t_, y_, f0, h);
+  } else {
+    while (true) {
+      st = Dopri5Step([this](double t, const Vec4& y) { return Rhs(t, y); }, t_, y_, f0, h,
+                      cfg_.rtol, cfg_.atol);
+      if (st.err <= 1.0 || h < min_step_) break;
+      ++sum.steps_rejected;
+      h *= std::max(0.2, 0.9 * std::pow(st.err, -0.2));
+    }
+    const double fac = st.err > 0 ? std::min(5.0, 0.9 * std::pow(st.err, -0.2)) : 5.0;
+    h_ = h * fac;
+  }
+  ++sum.steps_accepted;
+  *h_taken = h;
+  return st;
+}
+
+template <class Fn>
+void Simulator::Locate(StepEvent kind, const Fn& fn, double t_pos, double f_pos, double t_neg,
+                       double f_neg, LocatedEvent* ev) const {
+  double lo = t_pos, hi = t_pos;
+  double ta = t_pos, fta = f_pos;
+  if (f_pos == 0.0) {
+    // The step starts on the event surface (a contact that just opened): the function may
+    // rise before it falls. Start the search from the last positive interior sample.
+    for (int k = 1; k < 16; ++k) {
+      const double tk = t_pos + (t_neg - t_pos) * k / 16.0;
+      const double fk = fn(tk);
+      if (fk > 0.0) {
+        ta = tk;
+        fta = fk;
+      }
+    }
+    // A short excursion near the start: look closer, geometrically.
+    for (int k = 5; k < 48 && !(fta > 0.0); ++k) {
+      const double tk = t_pos + std::ldexp(t_neg - t_pos, -k);
+      const double fk = fn(tk);
+      if (fk > 0.0) {
+        ta = tk;
+        fta = fk;
+      }
+    }
+  }
+  if (fta > 0.0) {
+    const auto br = BrentBracket(fn, ta, t_neg, fta, f_neg, EventTol(t_neg));
+    lo = br.first;
+    hi = br.second;
+  }
+  if (lo < ev->t) {
+    ev->t = lo;
+    ev->t_hi = hi;
+    ev->which = kind;
+  }
+}
+
+template <class Fn, class Rate>
+void Simulator::ConsiderCheap(StepEvent kind, const Fn& fn, const Rate& rate, double t1,
+                              bool thesis_events, LocatedEvent* ev) const {
+  const double fa = fn(t_);
+  const auto [t_neg, f_neg] = thesis_events
+                                  ? std::pair{t1, fn(t1)}
+                                  : ProbeCheap(fn, rate, t_, t1, kInteriorChecks, EventTol(t1));
+  if (f_neg < 0.0) Locate(kind, fn, t_, fa, t_neg, f_neg, ev);
+}
+
+Simulator::LocatedEvent Simulator::FindEvent(const StepDense& at, double t1,
+                                             const ContactMargins& cm1, bool thesis_events) {
+  // Event functions, positive while nothing happens; the earliest zero is located. Besides
+  // the step end, the step's interior is searched (ProbeCheap, ProbeExpensive) so that a
+  // function that dips below zero and comes back within one step is not missed (the
+  // thesis's scheme sees only the step end).
+  const Contacts c = ContactsOf(mode_);
+  const bool ground_moves = c.ground != Contact::kFace;
+  const bool interface_moves = geo_.two_blocks && c.interface != Contact::kFace;
+  LocatedEvent ev;
+  // The angles' event functions cost one dense-output evaluation: checked at interior points
+  // and at the minima between them (roots of their rates).
+  if (ground_moves) {
+    const double side = Side(c.ground);
+    ConsiderCheap(
+        StepEvent::kGroundImpact, [&](double t) { return GapGround(at(t)); },
+        [&](double t) { return side * at(t)[2]; }, t1, thesis_events, &ev);
+  }
+  if (interface_moves) {
+    const double side = Side(c.interface);
+    ConsiderCheap(
+        StepEvent::kInterfaceImpact, [&](double t) { return GapInterface(at(t)); },
+        [&](double t) {
+          const Vec4 y = at(t);
+          return side * (ground_moves ? y[3] - y[2] : y[3]);
+        },
+        t1, thesis_events, &ev);
+  }
+  // Overturning: each block's |theta| reaching overturn_angle.
+  const double over = cfg_.overturn_rad;
+  for (int k = 0; k < (geo_.two_blocks ? 2 : 1); ++k) {
+    ConsiderCheap(
+        StepEvent::kOverturn, [&](double t) { return over - std::abs(at(t)[k]); },
+        [&](double t) {
+          const Vec4 y = at(t);
+          return y[k] < 0.0 ? y[2 + k] : -y[2 + k];
+        },
+        t1, thesis_events, &ev);
+  }
+  // The contact margins (face corners opening: a transition; a point contact pulling: a
+  // violation) cost a contact-force evaluation: checked at the midpoint and at the minimum of
+  // the parabola through the values when it lies inside the step and near zero.
+  if (!cm0_valid_) cm0_ = Margins(t_, at(t_));
+  auto margin_of = [&](const ContactMargins& cm) {
+    return cfg_.check_transitions ? std::min(cm.face, cm.point) : cm.point;
+  };
+  {
+    auto fn = [&](double t) { return margin_of(Margins(t, at(t))); };
+    const double m0 = margin_of(cm0_), m1 = margin_of(cm1);
+    const auto [t_neg, f_neg] =
+        thesis_events ? std::pair{t1, m1} : ProbeExpensive(fn, t_, m0, t1, m1, EventTol(t1));
+    if (f_neg < 0.0) Locate(StepEvent::kMargin, fn, t_, m0, t_neg, f_neg, &ev);
+  }
+  if (thesis_events && ev.which != StepEvent::kNone) {
+    // The thesis's scheme: the event is seen at the step end, pre-impact rates are the
+    // previous step's.
+    ev.t = ev.t_hi = t1;
+  }
+  return ev;
+}
+
+void Simulator::RecordStep(const StepDense& at, const DenseStep& dense, double t_seg_end,
+                           const Vec4& y_end, const ContactMargins& cm_end) {
+  Summary& sum = result_.summary;
+  Trajectory::Segment seg{t_, t_seg_end, mode_, dense};
+  result_.trajectory.Append(seg);
+  EmitSamplesUntil(t_seg_end, false);
+  // Peaks: |theta| extremes sit where the rate vanishes inside the step, or at its ends.
+  for (int k = 0; k < (geo_.two_blocks ? 2 : 1); ++k) {
+    auto rate = [&](double t) { return at(t)[2 + k]; };
+    const double ra = rate(t_), rb = rate(t_seg_end);
+    if (ra * rb < 0.0) {
+      const auto br = BrentBracket(rate, t_, t_seg_end, ra, rb, EventTol(t_seg_end));
+      Track(br.first, ToState(at(br.first)));
+    }
+  }
+  Track(t_seg_end, ToState(y_end));
+  // Friction needed and normal forces along the solution (at step ends).
+  sum.friction_required_ground = std::max(sum.friction_required_ground, cm_end.mu_ground);
+  sum.friction_required_interface = std::max(sum.friction_required_interface, cm_end.mu_interface);
+  NoteNormalForces(cm_end.reactions);
+}
+
+bool Simulator::EventCascade(double t_ev) {
+  if (std::abs(t_ev - last_event_t_) <= EventTol(t_ev)) {
+    if (++same_time_events_ > 20) return true;
+  } else {
+    same_time_events_ = 0;
+  }
+  last_event_t_ = t_ev;
+  return false;
+}
+
+void Simulator::HandleEvent(const LocatedEvent& ev, const StepDense& at, double t1, State s) {
+  Summary& sum = result_.summary;
+  const Contacts c = ContactsOf(mode_);
+  const bool ground_moves = c.ground != Contact::kFace;
+  const bool interface_moves = geo_.two_blocks && c.interface != Contact::kFace;
+  t_ = ev.t;
+  switch (ev.which) {
+    case StepEvent::kGroundImpact:
+      s.theta1 = 0.0;
+      if (!interface_moves) s.theta2 = 0.0;
+      DoImpact(t_, s, ImpactKind::kGround);
+      break;
+    case StepEvent::kInterfaceImpact:
+      s.theta2 = ground_moves ? s.theta1 : 0.0;
+      DoImpact(t_, s, ImpactKind::kInterface);
+      break;
+    case StepEvent::kOverturn: {
+      const bool first = std::abs(s.theta1) >= std::abs(s.theta2) || !geo_.two_blocks;
+      sum.overturn_block = first ? 1 : 2;
+      sum.overturn_t_s = t_;
+      StopWith("overturn", s, first ? "block 1" : "block 2", "overturned");
+      break;
+    }
+    case StepEvent::kMargin: {
+      // Just past the located root: the smaller of the two margins is the one that crossed.
+      const ContactMargins cmh = Margins(ev.t_hi, at(ev.t_hi));
+      if (cfg_.check_transitions && cmh.face <= cmh.point) {
+        // A face force has turned tensile: the face opens.
+        t_ = SwitchTime(ev.t_hi, t1, mode_, [&](double t) { return ToState(at(t)); });
+        const State sh = ToState(at(t_));
+        y_ = ToVec(sh);
+        StartMode(t_, sh, "transition", mode_, "face opens");
+      } else {
+        sum.status_detail = "tensile normal force at a pivot (uplift)";
+        StopWith("assumption_violated", s, sum.status_detail, "assumption_violated");
+      }
+      break;
+    }
+    case StepEvent::kNone:
+      break;
+  }
+  if (done_) {
+    // The run stops at the event: the trajectory ends there.
+    Trajectory::Segment last{t_, t_, mode_, DenseStep{}};
+    last.dense.c[0] = y_;
+    result_.trajectory.Append(last);
+    const double stop = t_;
+    t_end_ = stop;
+    EmitSamplesUntil(stop, true);
+  }
+}
+
 void Simulator::RunMoving() {
   const bool thesis_events = cfg_.events == EventScheme::kThesis;
   const bool rk4 = cfg_.integrator == Integrator::kRk4 || thesis_events;
   Vec4 f0 = Rhs(t_, y_);
-  Summary& sum = result_.summary;
   cm0_valid_ = false;
   while (!done_) {
-    const double t_break = motion_.next_breakpoint_after(t_);
-    double h = rk4 ? cfg_.step_s : std::min(h_, max_step_);
-    h = std::min({h, t_break - t_, t_end_ - t_});
-    if (h <= 0.0) h = std::max(t_end_ - t_, 0.0);
-    StepResult st;
-    if (rk4) {
-      st = Rk4Step([this](double t, const Vec4& y) { return Rhs(t, y); }, t_, y_, f0, h);
-    } else {
-      while (true) {
-        st = Dopri5Step([this](double t, const Vec4& y) { return Rhs(t, y); }, t_, y_, f0, h,
-                        cfg_.rtol, cfg_.atol);
-        if (st.err <= 1.0 || h < min_step_) break;
-        ++sum.steps_rejected;
-        h *= std::max(0.2, 0.9 * std::pow(st.err, -0.2));
-      }
-      const double fac = st.err > 0 ? std::min(5.0, 0.9 * std::pow(st.err, -0.2)) : 5.0;
-      h_ = h * fac;
-    }
-    ++sum.steps_accepted;
+    double h = 0.0;
+    const StepResult st = AdvanceOneStep(rk4, f0, &h);
     const double t1 = t_ + h;
     const Vec4 y1 = Project(st.y1);
-    // Event functions, positive while nothing happens; the earliest zero is located. Besides
-    // the step end, the step's interior is searched (ProbeCheap, ProbeExpensive) so that a
-    // function that dips below zero and comes back within one step is not missed (the
-    // thesis's scheme sees only the step end).
-    const Contacts c = ContactsOf(mode_);
-    const bool ground_moves = c.ground != Contact::kFace;
-    const bool interface_moves = geo_.two_blocks && c.interface != Contact::kFace;
-    enum { kNone, kGroundImpact, kInterfaceImpact, kOverturn, kMargin } which = kNone;
-    double t_ev = kInf, t_ev_hi = kInf;
-    // The first zero of fn in [t_pos, t_neg], given fn(t_pos) = f_pos >= 0 > fn(t_neg) = f_neg.
-    auto locate = [&](int kind, const auto& fn, double t_pos, double f_pos, double t_neg,
-                      double f_neg) {
-      double lo = t_pos, hi = t_pos;
-      double ta = t_pos, fta = f_pos;
-      if (f_pos == 0.0) {
-        // The step starts on the event surface (a contact that just opened): the function may
-        // rise before it falls. Start the search from the last positive interior sample.
-        for (int k = 1; k < 16; ++k) {
-          const double tk = t_pos + (t_neg - t_pos) * k / 16.0;
-          const double fk = fn(tk);
-          if (fk > 0.0) {
-            ta = tk;
-            fta = fk;
-          }
-        }
-        // A short excursion near the start: look closer, geometrically.
-        for (int k = 5; k < 48 && !(fta > 0.0); ++k) {
-          const double tk = t_pos + std::ldexp(t_neg - t_pos, -k);
-          const double fk = fn(tk);
-          if (fk > 0.0) {
-            ta = tk;
-            fta = fk;
-          }
-        }
-      }
-      if (fta > 0.0) {
-        const auto br = BrentBracket(fn, ta, t_neg, fta, f_neg, EventTol(t_neg));
-        lo = br.first;
-        hi = br.second;
-      }
-      if (lo < t_ev) {
-        t_ev = lo;
-        t_ev_hi = hi;
-        which = static_cast<decltype(which)>(kind);
-      }
-    };
-    const double t_step0 = t_;
-    const Vec4 y_step0 = y_;
-    auto at = [&](double t) { return Project(t == t_step0 ? y_step0 : st.dense.At(t)); };
-    // The angles' event functions cost one dense-output evaluation: checked at interior points
-    // and at the minima between them (roots of their rates).
-    auto consider_cheap = [&](int kind, const auto& fn, const auto& rate) {
-      const double fa = fn(t_);
-      const auto [t_neg, f_neg] = thesis_events
-                                      ? std::pair{t1, fn(t1)}
-                                      : ProbeCheap(fn, rate, t_, t1, kInteriorChecks, EventTol(t1));
-      if (f_neg < 0.0) locate(kind, fn, t_, fa, t_neg, f_neg);
-    };
-    if (ground_moves) {
-      const double side = Side(c.ground);
-      consider_cheap(
-          kGroundImpact, [&](double t) { return GapGround(at(t)); },
-          [&](double t) { return side * at(t)[2]; });
-    }
-    if (interface_moves) {
-      const double side = Side(c.interface);
-      consider_cheap(
-          kInterfaceImpact, [&](double t) { return GapInterface(at(t)); },
-          [&](double t) {
-            const Vec4 y = at(t);
-            return side * (ground_moves ? y[3] - y[2] : y[3]);
-          });
-    }
-    // Overturning: each block's |theta| reaching overturn_angle.
-    const double over = cfg_.overturn_rad;
-    for (int k = 0; k < (geo_.two_blocks ? 2 : 1); ++k) {
-      consider_cheap(
-          kOverturn, [&](double t) { return over - std::abs(at(t)[k]); },
-          [&](double t) {
-            const Vec4 y = at(t);
-            return y[k] < 0.0 ? y[2 + k] : -y[2 + k];
-          });
-    }
-    // The contact margins (face corners opening: a transition; a point contact pulling: a
-    // violation) cost a contact-force evaluation: checked at the midpoint and at the minimum of
-    // the parabola through the values when it lies inside the step and near zero.
+    const StepDense at{*this, st, t_, y_};
     const ContactMargins cm1 = Margins(t1, y1);
-    if (!cm0_valid_) cm0_ = Margins(t_, at(t_));
-    auto margin_of = [&](const ContactMargins& cm) {
-      return cfg_.check_transitions ? std::min(cm.face, cm.point) : cm.point;
-    };
-    {
-      auto fn = [&](double t) { return margin_of(Margins(t, at(t))); };
-      const double m0 = margin_of(cm0_), m1 = margin_of(cm1);
-      const auto [t_neg, f_neg] =
-          thesis_events ? std::pair{t1, m1} : ProbeExpensive(fn, t_, m0, t1, m1, EventTol(t1));
-      if (f_neg < 0.0) locate(kMargin, fn, t_, m0, t_neg, f_neg);
-    }
-    if (thesis_events && which != kNone) {
-      // The thesis's scheme: the event is seen at the step end, pre-impact rates are the
-      // previous step's.
-      t_ev = t_ev_hi = t1;
-    }
-    const double t_seg_end = which == kNone ? t1 : t_ev;
-    Trajectory::Segment seg{t_, t_seg_end, mode_, st.dense};
-    result_.trajectory.Append(seg);
-    EmitSamplesUntil(t_seg_end, false);
-    // Peaks: |theta| extremes sit where the rate vanishes inside the step, or at its ends.
-    for (int k = 0; k < (geo_.two_blocks ? 2 : 1); ++k) {
-      auto rate = [&](double t) { return at(t)[2 + k]; };
-      const double ra = rate(t_), rb = rate(t_seg_end);
-      if (ra * rb < 0.0) {
-        const auto br = BrentBracket(rate, t_, t_seg_end, ra, rb, EventTol(t_seg_end));
-        Track(br.first, ToState(at(br.first)));
-      }
-    }
-    const Vec4 y_end = which == kNone ? y1 : at(t_ev);
-    Track(t_seg_end, ToState(y_end));
-    // Friction needed and normal forces along the solution (at step ends).
-    const ContactMargins& cmr = which == kNone ? cm1 : Margins(t_seg_end, y_end);
-    sum.friction_required_ground = std::max(sum.friction_required_ground, cmr.mu_ground);
-    sum.friction_required_interface = std::max(sum.friction_required_interface, cmr.mu_interface);
-    NoteNormalForces(cmr.reactions);
-    if (which == kNone) {
+    const LocatedEvent ev = FindEvent(at, t1, cm1, thesis_events);
+    const bool none = ev.which == StepEvent::kNone;
+    const double t_seg_end = none ? t1 : ev.t;
+    const Vec4 y_end = none ? y1 : at(ev.t);
+    RecordStep(at, st.dense, t_seg_end, y_end, none ? cm1 : Margins(t_seg_end, y_end));
+    if (none) {
       t_ = t1;
       y_ = y1;
       f0 = st.f1;
@@ -604,66 +720,17 @@ void Simulator::RunMoving() {
       continue;
     }
     // Guard against an endless cascade of events at one instant.
-    if (std::abs(t_ev - last_event_t_) <= EventTol(t_ev)) {
-      if (++same_time_events_ > 20) {
-        sum.status_detail = "event cascade at one instant";
-        Finish("assumption_violated");
-        return;
-      }
-    } else {
-      same_time_events_ = 0;
+    if (EventCascade(ev.t)) {
+      result_.summary.status_detail = "event cascade at one instant";
+      Finish("assumption_violated");
+      return;
     }
-    last_event_t_ = t_ev;
     State s = ToState(y_end);
     if (thesis_events) {
       s.omega1 = y_[2];
       s.omega2 = y_[3];
     }
-    t_ = t_ev;
-    switch (which) {
-      case kGroundImpact:
-        s.theta1 = 0.0;
-        if (!interface_moves) s.theta2 = 0.0;
-        DoImpact(t_, s, ImpactKind::kGround);
-        break;
-      case kInterfaceImpact:
-        s.theta2 = ground_moves ? s.theta1 : 0.0;
-        DoImpact(t_, s, ImpactKind::kInterface);
-        break;
-      case kOverturn: {
-        const bool first = std::abs(s.theta1) >= std::abs(s.theta2) || !geo_.two_blocks;
-        sum.overturn_block = first ? 1 : 2;
-        sum.overturn_t_s = t_;
-        StopWith("overturn", s, first ? "block 1" : "block 2", "overturned");
-        break;
-      }
-      case kMargin: {
-        // Just past the located root: the smaller of the two margins is the one that crossed.
-        const ContactMargins cmh = Margins(t_ev_hi, at(t_ev_hi));
-        if (cfg_.check_transitions && cmh.face <= cmh.point) {
-          // A face force has turned tensile: the face opens.
-          t_ = SwitchTime(t_ev_hi, t1, mode_, [&](double t) { return ToState(at(t)); });
-          const State sh = ToState(at(t_));
-          y_ = ToVec(sh);
-          StartMode(t_, sh, "transition", mode_, "face opens");
-        } else {
-          sum.status_detail = "tensile normal force at a pivot (uplift)";
-          StopWith("assumption_violated", s, sum.status_detail, "assumption_violated");
-        }
-        break;
-      }
-      default:
-        break;
-    }
-    if (done_) {
-      // The run stops at the event: the trajectory ends there.
-      Trajectory::Segment last{t_, t_, mode_, DenseStep{}};
-      last.dense.c[0] = y_;
-      result_.trajectory.Append(last);
-      const double stop = t_;
-      t_end_ = stop;
-      EmitSamplesUntil(stop, true);
-    }
+    HandleEvent(ev, at, t1, s);
     // After an event the caller restarts integration (new mode, new first stage).
     return;
   }
