@@ -204,55 +204,117 @@ struct TempFiles {
 
 }  // namespace
 
-AnimationResult ExportAnimation(FrameRenderer& renderer, const AnimationConfig& config) {
-  using Clock = std::chrono::steady_clock;
-  const auto t_start = Clock::now();
+namespace {
+
+void CheckRequest(const AnimationConfig& config, const RenderConfig& rc) {
   if (!config.frames && !config.mp4 && !config.gif) {
     throw std::invalid_argument("nothing to make: ask for frames, an MP4 or a GIF");
   }
-  const RenderConfig& rc = renderer.config();
   if (config.mp4 && (rc.width_px % 2 != 0 || rc.height_px % 2 != 0)) {
     throw std::invalid_argument("MP4 (H.264, yuv420p) needs an even width and height; " +
                                 std::to_string(rc.width_px) + "x" + std::to_string(rc.height_px) +
                                 " is not");
   }
+}
+
+// What the export makes: without ffmpeg, PNG frames instead of the videos (said in problems).
+struct Outputs {
+  bool frames = false, mp4 = false, gif = false;
+  std::optional<fs::path> ffmpeg;
+};
+
+Outputs ResolveOutputs(const AnimationConfig& config, std::vector<std::string>* problems) {
+  Outputs out{config.frames, config.mp4, config.gif, std::nullopt};
+  if (!out.mp4 && !out.gif) return out;
+  out.ffmpeg =
+      config.ffmpeg.empty() ? FindExecutable("ffmpeg") : FindExecutable(config.ffmpeg.string());
+  if (!out.ffmpeg) {
+    problems->push_back(
+        "ffmpeg not found (" +
+        (config.ffmpeg.empty() ? std::string("not on PATH") : config.ffmpeg.string()) +
+        "; install the Debian package ffmpeg): no " +
+        std::string(out.mp4 && out.gif ? "MP4 or GIF"
+                    : out.mp4          ? "MP4"
+                                       : "GIF") +
+        " written; the PNG frames are written instead");
+    out.frames = true;
+    out.mp4 = out.gif = false;
+  }
+  return out;
+}
+
+// Creates frames_dir and removes the frames of an earlier, longer export, which would be
+// mistaken for this one's.
+void PrepareFramesDir(const fs::path& frames_dir) {
+  fs::create_directories(frames_dir);
+  for (const auto& entry : fs::directory_iterator(frames_dir)) {
+    const std::string f = entry.path().filename().string();
+    if (f.starts_with("frame_") && f.ends_with(".png")) fs::remove(entry.path());
+  }
+}
+
+std::vector<std::string> Mp4Args(const Image& like, const AnimationConfig& config,
+                                 const fs::path& out) {
+  auto args = RawInput(like, config.fps);
+  for (const char* a : {"-an", "-c:v", "libx264", "-preset"}) args.push_back(a);
+  args.push_back(config.x264_preset);
+  args.push_back("-crf");
+  args.push_back(std::to_string(config.x264_crf));
+  for (const char* a : {"-pix_fmt", "yuv420p", "-movflags", "+faststart", "-f", "mp4", "-y"}) {
+    args.push_back(a);
+  }
+  args.push_back(out.string());
+  return args;
+}
+
+std::vector<std::string> PaletteArgs(const Image& like, double fps, const fs::path& out) {
+  auto args = RawInput(like, fps);
+  for (const char* a : {"-vf", "palettegen=stats_mode=full", "-f", "image2", "-y"}) {
+    args.push_back(a);
+  }
+  args.push_back(out.string());
+  return args;
+}
+
+std::vector<std::string> GifArgs(const Image& like, double fps, const fs::path& palette,
+                                 const fs::path& out) {
+  auto args = RawInput(like, fps);
+  args.push_back("-i");
+  args.push_back(palette.string());
+  for (const char* a : {"-lavfi", "[0:v][1:v]paletteuse=dither=bayer:bayer_scale=5", "-loop", "0",
+                        "-f", "gif", "-y"}) {
+    args.push_back(a);
+  }
+  args.push_back(out.string());
+  return args;
+}
+
+// "frame_00042.png": the index zero-padded to `digits`.
+std::string FrameName(size_t k, int digits) {
+  std::string index = std::to_string(k);
+  index.insert(0, static_cast<size_t>(std::max(0, digits - static_cast<int>(index.size()))), '0');
+  return "frame_" + index + ".png";
+}
+
+}  // namespace
+
+AnimationResult ExportAnimation(FrameRenderer& renderer, const AnimationConfig& config) {
+  using Clock = std::chrono::steady_clock;
+  const auto t_start = Clock::now();
+  const RenderConfig& rc = renderer.config();
+  CheckRequest(config, rc);
   const FrameLayout& lay = renderer.layout();
   AnimationResult result;
   result.frame_times_s = FrameTimes(lay.t_from_s, lay.t_to_s, config.fps, config.speed);
   const auto& times = result.frame_times_s;
   result.frame_count = static_cast<int>(times.size());
-
-  bool frames = config.frames, mp4 = config.mp4, gif = config.gif;
-  std::optional<fs::path> ffmpeg;
-  if (mp4 || gif) {
-    ffmpeg =
-        config.ffmpeg.empty() ? FindExecutable("ffmpeg") : FindExecutable(config.ffmpeg.string());
-    if (!ffmpeg) {
-      result.problems.push_back(
-          "ffmpeg not found (" +
-          (config.ffmpeg.empty() ? std::string("not on PATH") : config.ffmpeg.string()) +
-          "; install the Debian package ffmpeg): no " +
-          std::string(mp4 && gif ? "MP4 or GIF"
-                      : mp4      ? "MP4"
-                                 : "GIF") +
-          " written; the PNG frames are written instead");
-      frames = true;
-      mp4 = gif = false;
-    }
-  }
+  const Outputs out = ResolveOutputs(config, &result.problems);
 
   fs::create_directories(config.out_dir);
   const fs::path frames_dir = config.out_dir / "frames";
   int digits = 5;
   for (size_t n = times.size(); n >= 100000; n /= 10) ++digits;
-  if (frames) {
-    fs::create_directories(frames_dir);
-    // Frames of an earlier, longer export would be mistaken for this one's.
-    for (const auto& entry : fs::directory_iterator(frames_dir)) {
-      const std::string f = entry.path().filename().string();
-      if (f.starts_with("frame_") && f.ends_with(".png")) fs::remove(entry.path());
-    }
-  }
+  if (out.frames) PrepareFramesDir(frames_dir);
   const fs::path mp4_path = config.out_dir / (config.name + ".mp4");
   const fs::path gif_path = config.out_dir / (config.name + ".gif");
   const std::string tmp_suffix = ".tmp" + std::to_string(::getpid());
@@ -271,41 +333,25 @@ AnimationResult ExportAnimation(FrameRenderer& renderer, const AnimationConfig& 
     render_s += std::chrono::duration<double>(Clock::now() - a).count();
   };
   // Sizes of the raw input for ffmpeg.
-  Image like(rc.width_px, rc.height_px);
+  const Image like(rc.width_px, rc.height_px);
 
   // Pass 1: PNG frames, MP4, and the GIF's palette, from one rendering of each frame.
   {
     std::unique_ptr<FfmpegPipe> mp4_pipe, palette_pipe;
-    if (mp4) {
-      auto args = RawInput(like, config.fps);
-      for (const char* a : {"-an", "-c:v", "libx264", "-preset"}) args.push_back(a);
-      args.push_back(config.x264_preset);
-      for (const char* a : {"-crf"}) args.push_back(a);
-      args.push_back(std::to_string(config.x264_crf));
-      for (const char* a : {"-pix_fmt", "yuv420p", "-movflags", "+faststart", "-f", "mp4", "-y"}) {
-        args.push_back(a);
-      }
-      args.push_back(mp4_tmp.string());
-      mp4_pipe = std::make_unique<FfmpegPipe>(*ffmpeg, std::move(args));
+    if (out.mp4) {
+      mp4_pipe = std::make_unique<FfmpegPipe>(*out.ffmpeg, Mp4Args(like, config, mp4_tmp));
     }
-    if (gif) {
-      auto args = RawInput(like, config.fps);
-      for (const char* a : {"-vf", "palettegen=stats_mode=full", "-f", "image2", "-y"}) {
-        args.push_back(a);
-      }
-      args.push_back(palette_tmp.string());
-      palette_pipe = std::make_unique<FfmpegPipe>(*ffmpeg, std::move(args));
+    if (out.gif) {
+      palette_pipe =
+          std::make_unique<FfmpegPipe>(*out.ffmpeg, PaletteArgs(like, config.fps, palette_tmp));
     }
     for (size_t k = 0; k < times.size(); ++k) {
       render(times[k]);
       if (mp4_pipe) mp4_pipe->Write(frame);
       if (palette_pipe) palette_pipe->Write(frame);
-      if (frames) {
+      if (out.frames) {
         const auto a = Clock::now();
-        std::string index = std::to_string(k);
-        index.insert(0, static_cast<size_t>(std::max(0, digits - static_cast<int>(index.size()))),
-                     '0');
-        WritePng(frame, frames_dir / ("frame_" + index + ".png"), config.png);
+        WritePng(frame, frames_dir / FrameName(k, digits), config.png);
         png_s += std::chrono::duration<double>(Clock::now() - a).count();
       }
       if (config.progress) config.progress(static_cast<int>(k) + 1, result.frame_count);
@@ -313,23 +359,15 @@ AnimationResult ExportAnimation(FrameRenderer& renderer, const AnimationConfig& 
     if (mp4_pipe) mp4_pipe->Close();
     if (palette_pipe) palette_pipe->Close();
   }
-  if (frames) result.written.push_back(frames_dir);
-  if (mp4) {
+  if (out.frames) result.written.push_back(frames_dir);
+  if (out.mp4) {
     fs::rename(mp4_tmp, mp4_path);
     result.written.push_back(mp4_path);
   }
 
   // Pass 2: the GIF, drawn again with the palette of all frames.
-  if (gif) {
-    auto args = RawInput(like, config.fps);
-    args.push_back("-i");
-    args.push_back(palette_tmp.string());
-    for (const char* a : {"-lavfi", "[0:v][1:v]paletteuse=dither=bayer:bayer_scale=5", "-loop", "0",
-                          "-f", "gif", "-y"}) {
-      args.push_back(a);
-    }
-    args.push_back(gif_tmp.string());
-    FfmpegPipe gif_pipe(*ffmpeg, std::move(args));
+  if (out.gif) {
+    FfmpegPipe gif_pipe(*out.ffmpeg, GifArgs(like, config.fps, palette_tmp, gif_tmp));
     for (double t : times) {
       render(t);
       gif_pipe.Write(frame);

@@ -95,7 +95,8 @@ std::vector<std::string> RunFolderEngines(const fs::path& dir) {
   return names;
 }
 
-void Execute(const RenderOptions& opt) {
+// The drawing settings of the options, checked (a bad value exits with kExitBadInput).
+renders::RenderConfig ConfigFromOptions(const RenderOptions& opt) {
   if (!opt.frames && !opt.mp4 && !opt.gif) {
     Fail(kExitBadInput, "nothing to make: give --frames, --mp4 and/or --gif");
   }
@@ -124,56 +125,58 @@ void Execute(const RenderOptions& opt) {
   if (!std::isnan(opt.from_s) && !std::isnan(opt.to_s) && !(opt.to_s > opt.from_s)) {
     Fail(kExitBadInput, "--to must be later than --from");
   }
+  return config;
+}
 
-  // The motion: read from a run folder, or simulated now from a scene file.
-  const fs::path input(opt.input);
-  if (!fs::exists(input)) Fail(kExitBadInput, opt.input + ": no such scene file or run folder");
-  // Before any work: can this build draw at all?
-  if (!renders::GlAvailable()) Fail(kExitCannotRender, renders::GlUnavailableReason());
+// What is drawn: the scene, one track per engine, and the base motion when it can be built.
+struct Motion {
   Scene scene;
   std::vector<renders::Track> tracks;
-  GroundMotion motion;
-  bool have_motion = true;
-  if (fs::is_directory(input)) {
-    if (!opt.overrides.empty()) {
-      Fail(kExitBadInput, "--set applies to a scene file; a run folder is drawn as it was run");
-    }
-    scene = RunFolderScene(input);
-    std::vector<std::string> names = opt.engines.empty() ? RunFolderEngines(input) : opt.engines;
-    if (names.empty()) Fail(kExitBadInput, opt.input + ": no <engine>/history.csv in this folder");
-    for (const std::string& name : names) {
-      const fs::path path = input / name / "history.csv";
-      if (!fs::exists(path)) Fail(kExitBadInput, path.string() + ": not found");
-      tracks.push_back({name, ReadHistoryCsv(path)});
-    }
-    try {
-      motion = GroundMotion::FromScene(scene);
-    } catch (const SceneError& e) {
-      have_motion = false;
-      std::fprintf(stderr, "rockbench render: warning: base motion not drawn (%s)\n", e.what());
-    }
-  } else {
-    scene = LoadScene(input, opt.overrides);
-    motion = GroundMotion::FromScene(scene);
-    const std::vector<std::string> names =
-        opt.engines.empty() ? std::vector<std::string>{"reference"} : opt.engines;
-    for (const std::string& name : names) {
-      EngineRun run = RunEngine(name, scene, motion);
-      std::printf("%s\n", run.one_line.c_str());
-      tracks.push_back({name, std::move(run.history)});
-    }
-  }
-  for (const auto& t : tracks) {
-    if (t.history.samples.empty()) Fail(kExitBadInput, "the " + t.engine + " history is empty");
-  }
+  GroundMotion ground_motion;
+  bool have_ground_motion = true;
+};
 
-  // Base displacement by double integration of the ground acceleration.
-  double t_end_s = std::isnan(opt.to_s) ? 0.0 : opt.to_s;
-  for (const auto& t : tracks) t_end_s = std::max(t_end_s, t.history.samples.back().t_s);
-  renders::BaseDisplacement base;
-  if (have_motion && !opt.no_base) base = renders::IntegrateBaseDisplacement(motion, t_end_s);
-  config.title = scene.title;
+// The motion of a run folder, drawn as it was run.
+Motion MotionOfRunFolder(const RenderOptions& opt, const fs::path& input) {
+  if (!opt.overrides.empty()) {
+    Fail(kExitBadInput, "--set applies to a scene file; a run folder is drawn as it was run");
+  }
+  Motion m;
+  m.scene = RunFolderScene(input);
+  std::vector<std::string> names = opt.engines.empty() ? RunFolderEngines(input) : opt.engines;
+  if (names.empty()) Fail(kExitBadInput, opt.input + ": no <engine>/history.csv in this folder");
+  for (const std::string& name : names) {
+    const fs::path path = input / name / "history.csv";
+    if (!fs::exists(path)) Fail(kExitBadInput, path.string() + ": not found");
+    m.tracks.push_back({name, ReadHistoryCsv(path)});
+  }
+  try {
+    m.ground_motion = GroundMotion::FromScene(m.scene);
+  } catch (const SceneError& e) {
+    m.have_ground_motion = false;
+    std::fprintf(stderr, "rockbench render: warning: base motion not drawn (%s)\n", e.what());
+  }
+  return m;
+}
 
+// The motion of a scene file, simulated now (the reference unless --engines says otherwise).
+Motion MotionOfScene(const RenderOptions& opt, const fs::path& input) {
+  Motion m;
+  m.scene = LoadScene(input, opt.overrides);
+  m.ground_motion = GroundMotion::FromScene(m.scene);
+  const std::vector<std::string> names =
+      opt.engines.empty() ? std::vector<std::string>{"reference"} : opt.engines;
+  for (const std::string& name : names) {
+    EngineRun run = RunEngine(name, m.scene, m.ground_motion);
+    std::printf("%s\n", run.one_line.c_str());
+    m.tracks.push_back({name, std::move(run.history)});
+  }
+  return m;
+}
+
+// Draws the frames and videos; a failure to draw exits with kExitCannotRender.
+void Draw(const RenderOptions& opt, const renders::RenderConfig& config, Motion motion,
+          renders::BaseDisplacement base) {
   renders::AnimationConfig anim;
   anim.out_dir = opt.out;
   anim.fps = opt.fps;
@@ -184,7 +187,8 @@ void Execute(const RenderOptions& opt) {
   anim.name = opt.name;
   try {
     // The GL context is created here, and only here.
-    renders::FrameRenderer renderer(scene, std::move(tracks), std::move(base), config);
+    renders::FrameRenderer renderer(motion.scene, std::move(motion.tracks), std::move(base),
+                                    config);
     const auto& lay = renderer.layout();
     const auto times = renders::FrameTimes(lay.t_from_s, lay.t_to_s, opt.fps, opt.speed);
     std::printf("rendering %zu frames (%dx%d, %g fps, t = %g..%g s, speed %g) into %s\n",
@@ -209,6 +213,30 @@ void Execute(const RenderOptions& opt) {
   } catch (const std::runtime_error& e) {
     Fail(kExitCannotRender, e.what());
   }
+}
+
+void Execute(const RenderOptions& opt) {
+  renders::RenderConfig config = ConfigFromOptions(opt);
+  // The motion: read from a run folder, or simulated now from a scene file.
+  const fs::path input(opt.input);
+  if (!fs::exists(input)) Fail(kExitBadInput, opt.input + ": no such scene file or run folder");
+  // Before any work: can this build draw at all?
+  if (!renders::GlAvailable()) Fail(kExitCannotRender, renders::GlUnavailableReason());
+  Motion motion =
+      fs::is_directory(input) ? MotionOfRunFolder(opt, input) : MotionOfScene(opt, input);
+  for (const auto& t : motion.tracks) {
+    if (t.history.samples.empty()) Fail(kExitBadInput, "the " + t.engine + " history is empty");
+  }
+
+  // Base displacement by double integration of the ground acceleration.
+  double t_end_s = std::isnan(opt.to_s) ? 0.0 : opt.to_s;
+  for (const auto& t : motion.tracks) t_end_s = std::max(t_end_s, t.history.samples.back().t_s);
+  renders::BaseDisplacement base;
+  if (motion.have_ground_motion && !opt.no_base) {
+    base = renders::IntegrateBaseDisplacement(motion.ground_motion, t_end_s);
+  }
+  config.title = motion.scene.title;
+  Draw(opt, config, std::move(motion), std::move(base));
 }
 
 }  // namespace
