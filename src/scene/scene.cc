@@ -428,6 +428,90 @@ class Reader {
     return m;
   }
 
+  // [initial]: the angles and rates at t = 0 (theta2, omega2 only with a [block2]).
+  void ReadInitial(const toml::table& in, Scene* s) const {
+    s->initial.theta1_rad = Number(in, "initial", "theta1", Rule::kFinite, "rad").value_or(0.0);
+    s->initial.omega1_radps = Number(in, "initial", "omega1", Rule::kFinite, "rad/s").value_or(0.0);
+    if (!s->two_blocks()) {
+      const std::string why = "not allowed in a single-block scene (there is no [block2])";
+      Forbid(in, "initial", "theta2", why);
+      Forbid(in, "initial", "omega2", why);
+    }
+    s->initial.theta2_rad = Number(in, "initial", "theta2", Rule::kFinite, "rad").value_or(0.0);
+    s->initial.omega2_radps = Number(in, "initial", "omega2", Rule::kFinite, "rad/s").value_or(0.0);
+  }
+
+  // [run]: duration, output interval, gravity.
+  RunConfig ReadRun(const toml::table& run) const {
+    RunConfig r;
+    r.duration_s = Number(run, "run", "duration", Rule::kPositive, "s").value_or(r.duration_s);
+    r.output_interval_s =
+        Number(run, "run", "output_interval", Rule::kPositive, "s").value_or(r.output_interval_s);
+    r.gravity_mps2 =
+        Number(run, "run", "gravity", Rule::kPositive, "m/s^2").value_or(r.gravity_mps2);
+    if (r.output_interval_s > r.duration_s) {
+      if (const toml::node* node = run.get("output_interval")) {
+        Fail("run.output_interval", node,
+             "must not exceed run.duration (" + Repr(r.duration_s) + " s), got " +
+                 Repr(r.output_interval_s));
+      }
+      Fail("run.duration", run.get("duration"),
+           "must be at least run.output_interval (" + Repr(r.output_interval_s) +
+               " s, the default), got " + Repr(r.duration_s));
+    }
+    return r;
+  }
+
+  // [model]: the reference's integrator, events and rules.
+  ModelConfig ReadModel(const toml::table& model) const {
+    ModelConfig m;
+    m.integrator =
+        Enum(model, "model", "integrator",
+             Choices<Integrator>{{"dopri5", Integrator::kDopri5}, {"rk4", Integrator::kRk4}})
+            .value_or(m.integrator);
+    m.rtol = Number(model, "model", "rtol", Rule::kPositive, "").value_or(m.rtol);
+    m.atol = Number(model, "model", "atol", Rule::kPositive, "rad, rad/s").value_or(m.atol);
+    m.step_s = Number(model, "model", "step", Rule::kPositive, "s").value_or(m.step_s);
+    m.events = Enum(model, "model", "events",
+                    Choices<EventScheme>{{"located", EventScheme::kLocated},
+                                         {"thesis", EventScheme::kThesis}})
+                   .value_or(m.events);
+    m.equations = Enum(model, "model", "equations",
+                       Choices<Equations>{{"nonlinear", Equations::kNonlinear},
+                                          {"linearized", Equations::kLinearized}})
+                      .value_or(m.equations);
+    m.overturn_rad =
+        Number(model, "model", "overturn_angle", Rule::kPositive, "rad").value_or(m.overturn_rad);
+    Forbid(model, "model", "rest_rate",
+           "removed: the rest rule is dimensionless now; use model.rest_rate_rel (the rate "
+           "relative to sqrt(g / R), default " +
+               Repr(ModelConfig{}.rest_rate_rel) + "; README \"Coming to rest\")");
+    m.rest_rate_rel =
+        Number(model, "model", "rest_rate_rel", Rule::kNonNegative, "").value_or(m.rest_rate_rel);
+    m.check_transitions = Bool(model, "model", "check_transitions").value_or(m.check_transitions);
+    return m;
+  }
+
+  // [compare]: the verdict's tolerance and ensembles.
+  CompareConfig ReadCompare(const toml::table& cmp) const {
+    CompareConfig c;
+    c.tolerance_rad = Number(cmp, "compare", "tolerance", Rule::kPositive, "rad");
+    c.members =
+        static_cast<int>(NonNegativeInteger(cmp, "compare", "members", 100000).value_or(c.members));
+    c.engine_members = static_cast<int>(
+        NonNegativeInteger(cmp, "compare", "engine_members", 100000).value_or(c.engine_members));
+    c.amplitude_rel =
+        Number(cmp, "compare", "amplitude_rel", Rule::kUnitInterval, "").value_or(c.amplitude_rel);
+    c.sample_precision = Number(cmp, "compare", "sample_precision", Rule::kNonNegative, "")
+                             .value_or(c.sample_precision);
+    c.initial_rel =
+        Number(cmp, "compare", "initial_rel", Rule::kUnitInterval, "").value_or(c.initial_rel);
+    if (const auto seed = NonNegativeInteger(cmp, "compare", "seed", INT64_MAX)) {
+      c.seed = static_cast<uint64_t>(*seed);
+    }
+    return c;
+  }
+
   Scene Read(const toml::table& root, const std::filesystem::path& path) const {
     Scene s;
     s.path = path;
@@ -444,19 +528,7 @@ class Reader {
     s.block1 = ReadBlock(*b1, "block1");
     if (const toml::table* b2 = Table(root, "", "block2")) s.block2 = ReadBlock(*b2, "block2");
 
-    if (const toml::table* in = Table(root, "", "initial")) {
-      s.initial.theta1_rad = Number(*in, "initial", "theta1", Rule::kFinite, "rad").value_or(0.0);
-      s.initial.omega1_radps =
-          Number(*in, "initial", "omega1", Rule::kFinite, "rad/s").value_or(0.0);
-      if (!s.two_blocks()) {
-        const std::string why = "not allowed in a single-block scene (there is no [block2])";
-        Forbid(*in, "initial", "theta2", why);
-        Forbid(*in, "initial", "omega2", why);
-      }
-      s.initial.theta2_rad = Number(*in, "initial", "theta2", Rule::kFinite, "rad").value_or(0.0);
-      s.initial.omega2_radps =
-          Number(*in, "initial", "omega2", Rule::kFinite, "rad/s").value_or(0.0);
-    }
+    if (const toml::table* in = Table(root, "", "initial")) ReadInitial(*in, &s);
 
     if (const toml::table* base = Table(root, "", "base")) {
       if (const toml::table* h = Table(*base, "base", "horizontal")) {
@@ -467,71 +539,11 @@ class Reader {
       }
     }
 
-    if (const toml::table* run = Table(root, "", "run")) {
-      RunConfig& r = s.run;
-      r.duration_s = Number(*run, "run", "duration", Rule::kPositive, "s").value_or(r.duration_s);
-      r.output_interval_s = Number(*run, "run", "output_interval", Rule::kPositive, "s")
-                                .value_or(r.output_interval_s);
-      r.gravity_mps2 =
-          Number(*run, "run", "gravity", Rule::kPositive, "m/s^2").value_or(r.gravity_mps2);
-      if (r.output_interval_s > r.duration_s) {
-        if (const toml::node* node = run->get("output_interval")) {
-          Fail("run.output_interval", node,
-               "must not exceed run.duration (" + Repr(r.duration_s) + " s), got " +
-                   Repr(r.output_interval_s));
-        }
-        Fail("run.duration", run->get("duration"),
-             "must be at least run.output_interval (" + Repr(r.output_interval_s) +
-                 " s, the default), got " + Repr(r.duration_s));
-      }
-    }
+    if (const toml::table* run = Table(root, "", "run")) s.run = ReadRun(*run);
 
-    if (const toml::table* model = Table(root, "", "model")) {
-      ModelConfig& m = s.model;
-      m.integrator =
-          Enum(*model, "model", "integrator",
-               Choices<Integrator>{{"dopri5", Integrator::kDopri5}, {"rk4", Integrator::kRk4}})
-              .value_or(m.integrator);
-      m.rtol = Number(*model, "model", "rtol", Rule::kPositive, "").value_or(m.rtol);
-      m.atol = Number(*model, "model", "atol", Rule::kPositive, "rad, rad/s").value_or(m.atol);
-      m.step_s = Number(*model, "model", "step", Rule::kPositive, "s").value_or(m.step_s);
-      m.events = Enum(*model, "model", "events",
-                      Choices<EventScheme>{{"located", EventScheme::kLocated},
-                                           {"thesis", EventScheme::kThesis}})
-                     .value_or(m.events);
-      m.equations = Enum(*model, "model", "equations",
-                         Choices<Equations>{{"nonlinear", Equations::kNonlinear},
-                                            {"linearized", Equations::kLinearized}})
-                        .value_or(m.equations);
-      m.overturn_rad = Number(*model, "model", "overturn_angle", Rule::kPositive, "rad")
-                           .value_or(m.overturn_rad);
-      Forbid(*model, "model", "rest_rate",
-             "removed: the rest rule is dimensionless now; use model.rest_rate_rel (the rate "
-             "relative to sqrt(g / R), default " +
-                 Repr(ModelConfig{}.rest_rate_rel) + "; README \"Coming to rest\")");
-      m.rest_rate_rel = Number(*model, "model", "rest_rate_rel", Rule::kNonNegative, "")
-                            .value_or(m.rest_rate_rel);
-      m.check_transitions =
-          Bool(*model, "model", "check_transitions").value_or(m.check_transitions);
-    }
+    if (const toml::table* model = Table(root, "", "model")) s.model = ReadModel(*model);
 
-    if (const toml::table* cmp = Table(root, "", "compare")) {
-      CompareConfig& c = s.compare;
-      c.tolerance_rad = Number(*cmp, "compare", "tolerance", Rule::kPositive, "rad");
-      c.members = static_cast<int>(
-          NonNegativeInteger(*cmp, "compare", "members", 100000).value_or(c.members));
-      c.engine_members = static_cast<int>(
-          NonNegativeInteger(*cmp, "compare", "engine_members", 100000).value_or(c.engine_members));
-      c.amplitude_rel = Number(*cmp, "compare", "amplitude_rel", Rule::kUnitInterval, "")
-                            .value_or(c.amplitude_rel);
-      c.sample_precision = Number(*cmp, "compare", "sample_precision", Rule::kNonNegative, "")
-                               .value_or(c.sample_precision);
-      c.initial_rel =
-          Number(*cmp, "compare", "initial_rel", Rule::kUnitInterval, "").value_or(c.initial_rel);
-      if (const auto seed = NonNegativeInteger(*cmp, "compare", "seed", INT64_MAX)) {
-        c.seed = static_cast<uint64_t>(*seed);
-      }
-    }
+    if (const toml::table* cmp = Table(root, "", "compare")) s.compare = ReadCompare(*cmp);
     return s;
   }
 
