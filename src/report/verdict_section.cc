@@ -82,6 +82,34 @@ void VerdictTable(const VerdictInput& in, Page& page) {
   }
 }
 
+// ---- Ranking ----
+
+void RankingPart(const VerdictInput& in, Page& page) {
+  const std::vector<EngineRank> ranks = RankEngines(*in.comparison, in.engines, in.comparison_path);
+  if (ranks.size() < 2) return;
+  page.Heading("Ranking", 3);
+  std::vector<std::vector<std::string>> rows;
+  for (size_t i = 0; i < ranks.size(); ++i) {
+    const EngineRank& r = ranks[i];
+    rows.push_back({std::to_string(i + 1), r.engine, r.agrees ? "AGREES" : "DIFFERS",
+                    r.first_block.empty()
+                        ? "whole comparison (" + Fixed(r.compared_until_s, 3) + " s)"
+                        : Fixed(r.agreement_horizon_s, 3) + " s (" + r.first_block + ")",
+                    Fixed(r.ranked_horizon_s, 3) + " s", Num(r.wall_s, 3) + " s",
+                    std::isnan(r.wall_per_simulated_s) ? "" : Num(r.wall_per_simulated_s, 3)});
+  }
+  page.Table({"rank", "engine", "verdict", "agreement horizon (first block to leave)",
+              "ranked horizon", "wall time", "wall s per simulated s"},
+             rows);
+  page.Paragraph(
+      "Ranked by verdict, then by the ranked horizon, then by wall time per simulated second. "
+      "An engine's agreement horizon is the first time one of its blocks leaves the comparison "
+      "tolerance of the reference; the ranked horizon caps each block's at the reference's "
+      "predictability horizon, beyond which two correct runs differ too, so a later departure "
+      "ranks nothing. Each engine ran at its own settings (comparison.json engines.<name>): the "
+      "cost of equal accuracy is the work-precision report's (`rockbench sweep`).");
+}
+
 // ---- Convergence ----
 
 std::string WitnessSettings(const json& w, const fs::path& file) {
@@ -385,6 +413,50 @@ void SplitErrorsPart(const VerdictInput& in, Page& page) {
 
 }  // namespace
 
+std::vector<EngineRank> RankEngines(const json& comparison, const std::vector<std::string>& engines,
+                                    const fs::path& file) {
+  std::vector<EngineRank> ranks;
+  for (const std::string& name : engines) {
+    const std::string k = "engines." + name;
+    if (Find(comparison, k) == nullptr) continue;
+    EngineRank r;
+    r.engine = name;
+    r.compared_until_s = OptNumber(comparison, k + ".compared_until_s", file);
+    r.wall_s = OptNumber(comparison, k + ".wall_s", file);
+    r.wall_per_simulated_s = r.compared_until_s > 0.0 ? r.wall_s / r.compared_until_s : NAN;
+    r.agreement_horizon_s = r.compared_until_s;
+    r.ranked_horizon_s = r.compared_until_s;
+    bool all_within = true;
+    for (int b = 0; b < 2; ++b) {
+      const std::string kb = k + "." + Theta(b);
+      if (Find(comparison, kb) == nullptr) continue;
+      const bool within = OptBool(comparison, kb + ".within_tolerance", file);
+      const double h = within ? r.compared_until_s : OptNumber(comparison, kb + ".horizon_s", file);
+      all_within = all_within && within;
+      if (!within && (r.first_block.empty() || h < r.agreement_horizon_s)) {
+        r.agreement_horizon_s = h;
+        r.first_block = Theta(b);
+      }
+      const double hp = OptNumber(comparison, kb + ".predictability_horizon_s", file);
+      r.ranked_horizon_s = std::min(r.ranked_horizon_s, std::isnan(hp) ? h : std::min(h, hp));
+    }
+    r.agrees = Find(comparison, k + ".agrees") != nullptr ? OptBool(comparison, k + ".agrees", file)
+                                                          : all_within;
+    ranks.push_back(std::move(r));
+  }
+  std::stable_sort(ranks.begin(), ranks.end(), [](const EngineRank& a, const EngineRank& b) {
+    if (a.agrees != b.agrees) return a.agrees;
+    // NaN (not recorded) ranks last.
+    const double ha = std::isnan(a.ranked_horizon_s) ? -INFINITY : a.ranked_horizon_s;
+    const double hb = std::isnan(b.ranked_horizon_s) ? -INFINITY : b.ranked_horizon_s;
+    if (ha != hb) return ha > hb;
+    const double ca = std::isnan(a.wall_per_simulated_s) ? INFINITY : a.wall_per_simulated_s;
+    const double cb = std::isnan(b.wall_per_simulated_s) ? INFINITY : b.wall_per_simulated_s;
+    return ca < cb;
+  });
+  return ranks;
+}
+
 std::vector<std::string> WriteVerdictSection(const VerdictInput& in, Page& page) {
   page.Heading("Verdict");
   if (in.comparison == nullptr) {
@@ -393,6 +465,7 @@ std::vector<std::string> WriteVerdictSection(const VerdictInput& in, Page& page)
         "compared with the reference, so there is no verdict.");
   } else {
     VerdictTable(in, page);
+    RankingPart(in, page);
   }
   std::vector<std::string> warnings = ConvergencePart(in, page);
   if (in.comparison != nullptr) {

@@ -1,9 +1,10 @@
 #pragma once
 /// The "Verdict" section of a run report, from comparison.json: per engine the verdict (agrees
-/// or differs, in the run's own words); whether the reference is converged against its tighter
-/// witness; the predictability horizon of each block with the perturbation that measured it;
-/// the statistical comparison of the ensembles beyond the horizon; the pointwise errors split at
-/// the horizon. A folder without an ensemble (--quick, or an older rockbench) says so.
+/// or differs, in the run's own words) and the engines' ranking; whether the reference is converged
+/// against its tighter witness; the predictability horizon of each block with the perturbation that
+/// measured it; the statistical comparison of the ensembles beyond the horizon; the pointwise
+/// errors split at the horizon. A folder without an ensemble (--quick, or an older rockbench) says
+/// so.
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -26,6 +27,31 @@ struct VerdictInput {
   bool two_blocks = false;
   std::optional<Predictability> predictability;  ///< nullopt: no reference ensemble was run
 };
+
+/// One engine's place in the ranking of a comparison.
+struct EngineRank {
+  std::string engine;
+  bool agrees = false;  ///< the verdict (without one: every block within the tolerance)
+  /// The earliest time at which a block leaves the comparison tolerance of the reference
+  /// (comparison.json theta_i.horizon_s); the end of the comparison when none does, s.
+  double agreement_horizon_s = 0.0;
+  std::string first_block;  ///< "theta2": the block that leaves first; empty when none does
+  /// What ranks: per block the agreement horizon capped at the reference's predictability
+  /// horizon (beyond it two correct runs differ too, so a later departure ranks nothing); the
+  /// earliest of the blocks, s.
+  double ranked_horizon_s = 0.0;
+  double compared_until_s = 0.0;      ///< s
+  double wall_s = 0.0;                ///< the engine's wall time for the run, s
+  double wall_per_simulated_s = 0.0;  ///< wall_s / compared_until_s (NaN: nothing compared)
+};
+
+/// The engines of `comparison` (comparison.json), in the order of `engines`, ranked: those that
+/// agree first, then the later ranked horizon, then the cheaper run (wall time per simulated
+/// second); ties keep the given order. Engines without an entry are left out. Throws
+/// std::runtime_error naming `file` and the key when a value has the wrong type.
+std::vector<EngineRank> RankEngines(const nlohmann::json& comparison,
+                                    const std::vector<std::string>& engines,
+                                    const std::filesystem::path& file);
 
 /// Writes the section onto `page`. Returns the validity warnings it found (the reference not
 /// converged), in plain words, for the top of the page. Throws std::runtime_error naming the

@@ -20,6 +20,7 @@
 #include "report/page.h"
 #include "report/run_folder.h"
 #include "report/run_report.h"
+#include "report/verdict_section.h"
 #include "scene/history.h"
 
 namespace rockbench::report {
@@ -341,6 +342,85 @@ TEST_F(VerdictReportTest, TheSameFolderGivesTheSameBytes) {
   const RunReportResult a = Render(base_ / "chaos", "same_a");
   const RunReportResult b = Render(base_ / "chaos", "same_b");
   EXPECT_GT(testing_util::ExpectSameFiles(a.page_dir, b.page_dir), 15);
+}
+
+// comparison.json engines.<name> with theta2 leaving the tolerance at h2 (NaN: within it for
+// the whole 3 s compared), the reference's theta2 horizon hp (NaN: none), and the wall time.
+json RankedEngine(bool agrees, double h2, double hp, double wall_s) {
+  json e;
+  e["agrees"] = agrees;
+  e["compared_until_s"] = 3.0;
+  e["wall_s"] = wall_s;
+  e["theta1"] = {
+      {"within_tolerance", true}, {"horizon_s", 3.0}, {"predictability_horizon_s", nullptr}};
+  e["theta2"] = {{"within_tolerance", std::isnan(h2)},
+                 {"horizon_s", std::isnan(h2) ? 3.0 : h2},
+                 {"predictability_horizon_s", std::isnan(hp) ? json(nullptr) : json(hp)}};
+  return e;
+}
+
+// The ranking: verdict first, then how long an engine stays within the tolerance, but only up to
+// the reference's own predictability horizon (a departure beyond it ranks nothing), then cost.
+TEST(RankEngines, VerdictThenHorizonCappedAtPredictabilityThenCost) {
+  json c;
+  const double hp = 1.5;
+  c["engines"]["late_but_slow"] = RankedEngine(true, 2.0, hp, 2.0);  // leaves after hp
+  c["engines"]["differs"] = RankedEngine(false, 1.0, hp, 0.1);       // cheapest, but differs
+  c["engines"]["late_and_fast"] = RankedEngine(true, 2.5, hp, 1.0);  // leaves after hp
+  c["engines"]["never_leaves"] = RankedEngine(true, NAN, hp, 5.0);   // within throughout
+  const std::vector<std::string> order = {"late_but_slow", "differs", "late_and_fast",
+                                          "never_leaves", "not_in_the_file"};
+  const std::vector<EngineRank> r = RankEngines(c, order, "comparison.json");
+  ASSERT_EQ(r.size(), 4u);
+  // All three that agree stay within the tolerance up to the horizon: equal ranked horizons,
+  // so the cheaper run ranks first; the one that differs comes last, however cheap.
+  EXPECT_EQ(r[0].engine, "late_and_fast");
+  EXPECT_EQ(r[1].engine, "late_but_slow");
+  EXPECT_EQ(r[2].engine, "never_leaves");
+  EXPECT_EQ(r[3].engine, "differs");
+  for (int i = 0; i < 3; ++i) EXPECT_DOUBLE_EQ(r[i].ranked_horizon_s, hp) << r[i].engine;
+  EXPECT_DOUBLE_EQ(r[3].ranked_horizon_s, 1.0);
+  EXPECT_EQ(r[1].first_block, "theta2");
+  EXPECT_DOUBLE_EQ(r[1].agreement_horizon_s, 2.0);
+  EXPECT_TRUE(r[2].first_block.empty());
+  EXPECT_DOUBLE_EQ(r[2].agreement_horizon_s, 3.0);
+  EXPECT_DOUBLE_EQ(r[0].wall_per_simulated_s, 1.0 / 3.0);
+
+  // Without a predictability horizon the agreement horizon itself ranks: the engine that stays
+  // within the tolerance longer wins although it is slower.
+  json d;
+  d["engines"]["leaves"] = RankedEngine(true, 2.9, NAN, 0.1);
+  d["engines"]["stays"] = RankedEngine(true, NAN, NAN, 9.0);
+  const std::vector<EngineRank> q = RankEngines(d, {"leaves", "stays"}, "comparison.json");
+  ASSERT_EQ(q.size(), 2u);
+  EXPECT_EQ(q[0].engine, "stays");
+  EXPECT_DOUBLE_EQ(q[1].ranked_horizon_s, 2.9);
+
+  // On the page: a table with one row per engine, in rank order.
+  VerdictInput in;
+  in.comparison = &c;
+  in.comparison_path = "comparison.json";
+  in.engines = order;
+  in.two_blocks = true;
+  Page page("t");
+  WriteVerdictSection(in, page);
+  const std::string md = page.Markdown();
+  const std::vector<std::string> rows = TableRows(md, "rank | engine");
+  ASSERT_EQ(rows.size(), 4u) << md;
+  EXPECT_EQ(rows[0].rfind("| 1 | late_and_fast | AGREES | 2.500 s (theta2) | 1.500 s |", 0), 0u)
+      << rows[0];
+  EXPECT_EQ(rows[3].rfind("| 4 | differs | DIFFERS |", 0), 0u) << rows[3];
+
+  // A wrongly typed value is an error naming the file and the key.
+  c["engines"]["differs"]["wall_s"] = "fast";
+  try {
+    RankEngines(c, order, "comparison.json");
+    FAIL() << "no error";
+  } catch (const std::runtime_error& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("comparison.json"), std::string::npos) << what;
+    EXPECT_NE(what.find("engines.differs.wall_s"), std::string::npos) << what;
+  }
 }
 
 }  // namespace
