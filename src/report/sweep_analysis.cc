@@ -159,4 +159,82 @@ CheapestSetting FindCheapestSetting(const std::vector<SweepRecord>& rows,
   return out;
 }
 
+std::optional<FittedOrder> FitOrder(const std::vector<SweepRecord>& rows,
+                                    const std::vector<size_t>& family_rows,
+                                    const std::string& family) {
+  FittedOrder f;
+  f.family = family;
+  double sx = 0, sy = 0, sxx = 0, sxy = 0;
+  for (size_t i : family_rows) {
+    const SweepRecord& r = rows[i];
+    const double e = MaxAngleError(r), s = SweepSettingValue(r);
+    if (!r.failure.empty() || !(e > 0.0) || !(s > 0.0)) continue;
+    const double x = std::log(s), y = std::log(e);
+    sx += x;
+    sy += y;
+    sxx += x * x;
+    sxy += x * y;
+    f.finest = f.points == 0 ? s : std::min(f.finest, s);
+    f.coarsest = f.points == 0 ? s : std::max(f.coarsest, s);
+    ++f.points;
+  }
+  const double n = f.points;
+  const double den = n * sxx - sx * sx;
+  if (f.points < 2 || !(den > 0.0)) return std::nullopt;
+  f.order = (n * sxy - sx * sy) / den;
+  return f;
+}
+
+std::vector<EngineAtLevels> RankAtEqualAccuracy(const std::vector<SweepRecord>& rows,
+                                                const std::vector<AgreementCriterion>& levels,
+                                                size_t sort_level) {
+  std::vector<EngineAtLevels> out;
+  const auto families = SweepFamilies(rows);
+  for (const std::string& engine : SweepEngines(rows)) {
+    if (engine == "reference") continue;
+    EngineAtLevels e;
+    e.engine = engine;
+    for (const AgreementCriterion& level : levels) {
+      e.cheapest.push_back(FindCheapestSetting(rows, level, engine).engine_row);
+    }
+    for (size_t i = 0; i < rows.size(); ++i) {
+      const SweepRecord& r = rows[i];
+      if (r.engine != engine || !r.failure.empty()) continue;
+      if (!e.most_accurate || MaxAngleError(r) < MaxAngleError(rows[*e.most_accurate])) {
+        e.most_accurate = i;
+      }
+    }
+    for (const auto& [family, indices] : families) {
+      if (indices.empty() || rows[indices.front()].engine != engine) continue;
+      e.order = FitOrder(rows, indices, family);
+      break;
+    }
+    out.push_back(std::move(e));
+  }
+  // Ranks by wall time at each level; ties share the better rank's order of appearance.
+  for (size_t k = 0; k < levels.size(); ++k) {
+    std::vector<size_t> reached;
+    for (size_t i = 0; i < out.size(); ++i) {
+      out[i].rank.push_back(0);
+      if (out[i].cheapest[k]) reached.push_back(i);
+    }
+    std::stable_sort(reached.begin(), reached.end(), [&](size_t a, size_t b) {
+      return rows[*out[a].cheapest[k]].wall_s < rows[*out[b].cheapest[k]].wall_s;
+    });
+    for (size_t r = 0; r < reached.size(); ++r) out[reached[r]].rank[k] = static_cast<int>(r) + 1;
+  }
+  auto error_of = [&](const EngineAtLevels& e) {
+    return e.most_accurate ? MaxAngleError(rows[*e.most_accurate]) : INFINITY;
+  };
+  std::stable_sort(out.begin(), out.end(), [&](const EngineAtLevels& a, const EngineAtLevels& b) {
+    if (sort_level < levels.size()) {
+      const int ra = a.rank[sort_level], rb = b.rank[sort_level];
+      if ((ra > 0) != (rb > 0)) return ra > 0;
+      if (ra > 0) return ra < rb;
+    }
+    return error_of(a) < error_of(b);
+  });
+  return out;
+}
+
 }  // namespace rockbench::report

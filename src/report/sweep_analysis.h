@@ -62,4 +62,33 @@ std::vector<std::pair<std::string, std::vector<size_t>>> SweepFamilies(
 /// value; empty when an error is zero or the settings are equal.
 std::optional<double> ObservedOrder(const SweepRecord& coarse, const SweepRecord& fine);
 
+/// An engine's fitted order of convergence: the least-squares slope of log(max angle error)
+/// against log(setting) over the rows of one family (zero errors left out); empty with fewer
+/// than two usable rows.
+struct FittedOrder {
+  std::string family;
+  double order = 0.0;
+  double finest = 0.0, coarsest = 0.0;  ///< the settings fitted (time steps, s)
+  int points = 0;
+};
+std::optional<FittedOrder> FitOrder(const std::vector<SweepRecord>& rows,
+                                    const std::vector<size_t>& family_rows,
+                                    const std::string& family);
+
+/// One engine at several accuracy levels: its cheapest row reaching each (empty: none does), its
+/// rank by wall time among the engines reaching it (1: the cheapest; 0: not reached), and its
+/// most accurate row.
+struct EngineAtLevels {
+  std::string engine;
+  std::vector<std::optional<size_t>> cheapest;
+  std::vector<int> rank;
+  std::optional<size_t> most_accurate;
+  std::optional<FittedOrder> order;  ///< over the engine's first family (its defaults)
+};
+/// Every engine of the rows (not the reference) at each criterion, sorted by rank at
+/// `sort_level` (engines that do not reach it after, by their most accurate row's error).
+std::vector<EngineAtLevels> RankAtEqualAccuracy(const std::vector<SweepRecord>& rows,
+                                                const std::vector<AgreementCriterion>& levels,
+                                                size_t sort_level);
+
 }  // namespace rockbench::report

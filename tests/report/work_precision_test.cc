@@ -280,6 +280,56 @@ TEST(WorkPrecisionTest, ObservedOrder) {
   EXPECT_FALSE(ObservedOrder(coarse, Parse({Rk4(1e-3, 1.0, 0.0)})[0]).has_value());
 }
 
+// A row of engine `name` (its family "<name> ours"), time step dt, theta2's max error err_rad
+// (theta1's a quarter of it).
+SweepRow EngineRow(const std::string& name, double dt, double wall_s, double err_rad) {
+  SweepRow r = Bullet("double", dt, 10, wall_s, err_rad, 1e-4);
+  r.point.engine = name;
+  r.point.setting.family = name + " ours";
+  r.point.setting.settings = {{"time_step", dt}};
+  return r;
+}
+
+// Equal accuracy: at each level, the cheapest setting of each engine that reaches it, ranked by
+// wall time; the fitted order is the slope of log(error) on log(dt).
+TEST(WorkPrecisionTest, EnginesRankedByCostAtEachAccuracyLevel) {
+  // Peaks 0.2 and 0.4 rad: 10% is 0.02 / 0.04 rad, 1% 2e-3 / 4e-3, 0.1% 2e-4 / 4e-4.
+  const std::vector<SweepRecord> r = Parse({
+      EngineRow("bullet", 1e-2, 0.01, 3e-2),  // 10%
+      EngineRow("bullet", 1e-3, 0.05, 3e-3),  // 1%
+      EngineRow("bullet", 1e-4, 0.50, 3e-4),  // 0.1%
+      EngineRow("ode", 1e-2, 0.002, 2e-1),    // none
+      EngineRow("ode", 1e-3, 0.02, 2e-3),     // 1%, cheaper than Bullet's
+      EngineRow("ode", 1e-4, 0.20, 1e-3),     // a floor: not 0.1%
+      Dopri(1e-8, 0.0015, 1e-9),              // the reference is not ranked
+  });
+  std::vector<AgreementCriterion> levels;
+  for (double f : {0.1, 0.01, 0.001}) levels.push_back(HistoryAgreement(f, 0.2, 0.4));
+  const std::vector<EngineAtLevels> ranked = RankAtEqualAccuracy(r, levels, 1);
+  ASSERT_EQ(ranked.size(), 2u);
+  // Sorted by rank at 1%: ODE (0.02 s) before Bullet (0.05 s).
+  const EngineAtLevels& ode = ranked[0];
+  const EngineAtLevels& bullet = ranked[1];
+  ASSERT_EQ(ode.engine, "ode");
+  ASSERT_EQ(bullet.engine, "bullet");
+  EXPECT_EQ(bullet.cheapest[0], std::optional<size_t>(0));
+  EXPECT_EQ(ode.cheapest[0], std::optional<size_t>(4));
+  EXPECT_EQ(bullet.rank, (std::vector<int>{1, 2, 1}));
+  EXPECT_EQ(ode.rank, (std::vector<int>{2, 1, 0}));
+  EXPECT_FALSE(ode.cheapest[2].has_value());
+  EXPECT_EQ(ode.most_accurate, std::optional<size_t>(5));
+  // Bullet's error falls tenfold per decade of dt: order 1 (the CSV keeps 7 digits).
+  ASSERT_TRUE(bullet.order.has_value());
+  EXPECT_NEAR(bullet.order->order, 1.0, 1e-5);
+  EXPECT_EQ(bullet.order->points, 3);
+  EXPECT_DOUBLE_EQ(bullet.order->finest, 1e-4);
+  EXPECT_EQ(bullet.order->family, "bullet ours");
+  // ODE's: the least-squares slope through log10 errors -0.699, -2.699, -3 at log10 dt -2, -3,
+  // -4: 1.1505.
+  ASSERT_TRUE(ode.order.has_value());
+  EXPECT_NEAR(ode.order->order, 1.1505, 1e-4);
+}
+
 class WorkPrecisionFilesTest : public ScratchDirTest {};
 
 TEST_F(WorkPrecisionFilesTest, MalformedCsvNamesFileAndLine) {
@@ -392,6 +442,11 @@ TEST_F(WorkPrecisionFilesTest, ReportOfTheSyntheticSweep) {
       md.find(
           FindCheapestSetting(Parse(SyntheticRows()), HistoryAgreement(0.01, 0.2, 0.4)).statement),
       std::string::npos);
+  // The engines at equal accuracy: Bullet's cheapest run within 1% of the peaks over the whole
+  // run is 1e-3 s with 10 iterations (theta2 4e-3 rad <= 1% of 0.4 rad), the only engine: #1.
+  EXPECT_NE(md.find("#1: 0.05 s (Bullet double (10 iterations), time step 1e-3 s)"),
+            std::string::npos)
+      << md;
   // Self-contained HTML with both figures embedded.
   const std::string html = ReadAll(page / "report.html");
   size_t figures = 0;
