@@ -20,9 +20,11 @@ const EngineSettingsSchema& BulletSettingsSchema() {
              "btScalar: double in process (bullet-float64), float in a helper program");
     s.Choice("drive", "inertial", {"inertial", "kinematic"}, "-",
              "base motion as tilted gravity (inertial) or a moving ground (kinematic)");
-    s.Number("erp", d.erp, R::kFraction, "", "0.2", "joint error reduction (contacts use erp2)");
-    s.Number("erp2", d.erp2, R::kFraction, "", "0.2",
-             "contact penetration recovery through split impulse");
+    s.Number("erp", d.erp, R::kUnitInterval, "", "0.2",
+             "joint error reduction (contacts use erp2); 0: no position correction");
+    s.Number("erp2", d.erp2, R::kUnitInterval, "", "0.2",
+             "contact penetration recovery through split impulse; 0: none (SimBenchmark's "
+             "setting)");
     s.Flag("split_impulse", d.split_impulse, "true", "position correction apart from velocities");
     s.Number("split_impulse_threshold", d.split_impulse_threshold, R::kFinite, "m", "-0.04 m",
              "penetration below which split impulse is used; -0.04 throws the blocks up");
