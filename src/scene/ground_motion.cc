@@ -27,6 +27,7 @@ double AnalyticLength(const MotionDef& def) {
     case MotionKind::kRicker:
       return 2.0 / def.frequency_hz;
     case MotionKind::kFile:
+    case MotionKind::kKanaiTajimi:
       break;
   }
   return 0.0;
@@ -87,6 +88,22 @@ MotionComponent MotionComponent::FromSamples(std::vector<double> accel_mps2, dou
   return c;
 }
 
+MotionComponent MotionComponent::FromSynthetic(const MotionDef& def) {
+  SyntheticMotionDef d = def.synthetic;
+  d.target_peak_mps2 = def.amplitude_g * kStandardGravity_mps2;
+  std::vector<double> a;
+  try {
+    a = GenerateSyntheticMotion(d);
+  } catch (const std::invalid_argument& e) {
+    throw SceneError(def.key + ": " + e.what());
+  }
+  for (double& v : a) v *= def.scale;
+  MotionComponent c = FromSamples(std::move(a), d.dt_s, def.start_s,
+                                  "kanai_tajimi (seed " + std::to_string(d.seed) + ")");
+  c.info_.format = "synthetic";
+  return c;
+}
+
 MotionComponent MotionComponent::FromDef(const MotionDef& def) {
   if (def.kind == MotionKind::kFile) {
     const bool at2 = IsAt2File(def.file);
@@ -127,6 +144,7 @@ MotionComponent MotionComponent::FromDef(const MotionDef& def) {
     c.info_.format = rec.format;
     return c;
   }
+  if (def.kind == MotionKind::kKanaiTajimi) return FromSynthetic(def);
   MotionComponent c;
   c.kind_ = def.kind;
   c.t0_ = def.start_s;
@@ -165,6 +183,7 @@ MotionComponent MotionComponent::FromDef(const MotionDef& def) {
       c.info_.peak_t_s = c.t0_ + 1.0 / def.frequency_hz;
       break;
     case MotionKind::kFile:
+    case MotionKind::kKanaiTajimi:  // sampled records (FromDef, FromSynthetic)
       break;
   }
   return c;
@@ -204,6 +223,7 @@ double MotionComponent::accel_mps2(double t_s) const {
       return amplitude_mps2_ * (1.0 - 2.0 * x * x) * std::exp(-x * x);
     }
     case MotionKind::kFile:
+    case MotionKind::kKanaiTajimi:  // sampled: kind_ is kFile
       break;
   }
   return 0.0;

@@ -37,6 +37,7 @@ struct MotionInfo {
 /// - rectangular_pulse: A                                 on [t0, t0 + duration_s]
 /// - ricker:            A (1 - 2 pi^2 f^2 tau^2) exp(-pi^2 f^2 tau^2), tau = t - t0 - 1/f,
 ///                                                        on [t0, t0 + 2/f] (peak A at t0 + 1/f)
+/// A synthetic kind (kanai_tajimi) is generated once into a sampled record.
 class MotionComponent {
  public:
   /// Builds from a scene definition (reads the file when kind is kFile). The units of an AT2
@@ -44,6 +45,9 @@ class MotionComponent {
   /// agree, and acceleration in other units than g is read only when def.units says which.
   /// Throws SceneError naming the file, line and what was expected.
   static MotionComponent FromDef(const MotionDef& def);
+  /// kind = "kanai_tajimi": the generated record (GenerateSyntheticMotion; its peak amplitude_g
+  /// when given) times scale, first sample at start_s; info().format "synthetic".
+  static MotionComponent FromSynthetic(const MotionDef& def);
   /// A sampled record in m/s^2, first sample at t0_s. `resolution_mps2`, empty or one per
   /// sample (>= 0), is each sample's printed precision (see sample_resolution_mps2()).
   static MotionComponent FromSamples(std::vector<double> accel_mps2, double dt_s, double t0_s,

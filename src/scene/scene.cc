@@ -91,10 +91,26 @@ using KeyList = std::vector<std::pair<std::string_view, bool>>;
 const std::map<std::string, KeyList, std::less<>>& Schema() {
   static const KeyList kBlock = {
       {"width", false}, {"height", false}, {"density", false}, {"mass", false}, {"depth", false}};
-  static const KeyList kMotion = {
-      {"file", false},         {"kind", false},       {"units", false},
-      {"scale", false},        {"dt", false},         {"amplitude_g", false},
-      {"frequency_hz", false}, {"duration_s", false}, {"start_s", false}};
+  static const KeyList kMotion = {{"file", false},
+                                  {"kind", false},
+                                  {"units", false},
+                                  {"scale", false},
+                                  {"dt", false},
+                                  {"amplitude_g", false},
+                                  {"frequency_hz", false},
+                                  {"duration_s", false},
+                                  {"start_s", false},
+                                  // kind = "kanai_tajimi"
+                                  {"intensity", false},
+                                  {"ground_frequency_hz", false},
+                                  {"ground_damping", false},
+                                  {"filter_frequency_hz", false},
+                                  {"filter_damping", false},
+                                  {"envelope", false},
+                                  {"rise_s", false},
+                                  {"strong_end_s", false},
+                                  {"decay_per_s", false},
+                                  {"seed", false}};
   static const std::map<std::string, KeyList, std::less<>> kSchema = {
       {"",
        {{"title", false},
@@ -166,7 +182,10 @@ const Choices<MotionKind> kKinds = {{"harmonic", MotionKind::kHarmonic},
                                     {"sine_pulse", MotionKind::kSinePulse},
                                     {"cosine_pulse", MotionKind::kCosinePulse},
                                     {"rectangular_pulse", MotionKind::kRectangularPulse},
-                                    {"ricker", MotionKind::kRicker}};
+                                    {"ricker", MotionKind::kRicker},
+                                    {"kanai_tajimi", MotionKind::kKanaiTajimi}};
+const Choices<SyntheticEnvelope> kEnvelopes = {{"jennings", SyntheticEnvelope::kJennings},
+                                               {"none", SyntheticEnvelope::kNone}};
 const Choices<AccelUnits> kUnits = {
     {"g", AccelUnits::kG}, {"m/s2", AccelUnits::kMps2}, {"cm/s2", AccelUnits::kCmps2}};
 
@@ -364,6 +383,55 @@ class Reader {
     return b;
   }
 
+  // kind = "kanai_tajimi": the filtered white noise, its envelope, sampling and seed.
+  void ReadSynthetic(const toml::table& t, const std::string& prefix, MotionDef* m) const {
+    SyntheticMotionDef& d = m->synthetic;
+    const auto intensity = Number(t, prefix, "intensity", Rule::kPositive, "m^2/s^3");
+    const auto peak = Number(t, prefix, "amplitude_g", Rule::kPositive, "g");
+    if (intensity && peak) {
+      Fail(prefix, &t,
+           "give intensity (the white noise's PSD, m^2/s^3) or amplitude_g (the record's peak, "
+           "g), not both");
+    }
+    if (!intensity && !peak) {
+      Fail(prefix, &t,
+           "missing intensity = ... (the white noise's two-sided PSD, m^2/s^3) or amplitude_g = "
+           "... (the peak the record is scaled to, g)");
+    }
+    d.intensity_m2ps3 = intensity.value_or(0.0);
+    m->amplitude_g = peak.value_or(0.0);
+    Forbid(t, prefix, "frequency_hz",
+           "not used by kind = \"kanai_tajimi\" (ground_frequency_hz is the soil's)");
+    d.ground_frequency_hz = RequiredNumber(t, prefix, "ground_frequency_hz", Rule::kPositive, "Hz");
+    d.ground_damping = RequiredNumber(t, prefix, "ground_damping", Rule::kPositive, "");
+    d.filter_frequency_hz =
+        Number(t, prefix, "filter_frequency_hz", Rule::kNonNegative, "Hz").value_or(0.0);
+    if (d.filter_frequency_hz > 0.0) {
+      d.filter_damping = RequiredNumber(t, prefix, "filter_damping", Rule::kPositive, "");
+    } else {
+      Forbid(t, prefix, "filter_damping", "only with filter_frequency_hz > 0");
+    }
+    d.envelope = Enum(t, prefix, "envelope", kEnvelopes).value_or(SyntheticEnvelope::kJennings);
+    if (d.envelope == SyntheticEnvelope::kJennings) {
+      d.rise_s = RequiredNumber(t, prefix, "rise_s", Rule::kPositive, "s");
+      d.strong_end_s = RequiredNumber(t, prefix, "strong_end_s", Rule::kPositive, "s");
+      d.decay_per_s = RequiredNumber(t, prefix, "decay_per_s", Rule::kPositive, "1/s");
+    } else {
+      for (const char* key : {"rise_s", "strong_end_s", "decay_per_s"}) {
+        Forbid(t, prefix, key, "only for envelope = \"jennings\"");
+      }
+    }
+    d.dt_s = Number(t, prefix, "dt", Rule::kPositive, "s").value_or(d.dt_s);
+    d.duration_s = RequiredNumber(t, prefix, "duration_s", Rule::kPositive, "s");
+    m->duration_s = d.duration_s;
+    if (const auto seed = NonNegativeInteger(t, prefix, "seed", INT64_MAX)) {
+      d.seed = static_cast<std::uint64_t>(*seed);
+    }
+    if (peak) d.target_peak_mps2 = *peak * kStandardGravity_mps2;
+    const std::string problem = SyntheticMotionProblem(d);
+    if (!problem.empty()) Fail(prefix, &t, problem);
+  }
+
   MotionDef ReadMotion(const toml::table& t, const std::string& prefix,
                        const std::filesystem::path& scene_path) const {
     MotionDef m;
@@ -392,6 +460,11 @@ class Reader {
       Forbid(t, prefix, "amplitude_g", why);
       Forbid(t, prefix, "frequency_hz", why);
       Forbid(t, prefix, "duration_s", why);
+      for (const char* key :
+           {"intensity", "ground_frequency_hz", "ground_damping", "filter_frequency_hz",
+            "filter_damping", "envelope", "rise_s", "strong_end_s", "decay_per_s", "seed"}) {
+        Forbid(t, prefix, key, "only for kind = \"kanai_tajimi\", not for a record file");
+      }
       const bool at2 = IsAt2File(m.file);
       if (auto u = Enum(t, prefix, "units", kUnits)) {
         m.units = *u;
@@ -410,7 +483,17 @@ class Reader {
     m.kind = *Enum(t, prefix, "kind", kKinds);
     const std::string kind_name(MotionKindName(m.kind));
     Forbid(t, prefix, "units", "not used by kind = \"" + kind_name + "\" (amplitude_g is in g)");
-    Forbid(t, prefix, "dt", "only for one-column record files");
+    if (m.kind == MotionKind::kKanaiTajimi) {
+      ReadSynthetic(t, prefix, &m);
+      return m;
+    }
+    const std::string only_synthetic = "only for kind = \"kanai_tajimi\"";
+    for (const char* key :
+         {"intensity", "ground_frequency_hz", "ground_damping", "filter_frequency_hz",
+          "filter_damping", "envelope", "rise_s", "strong_end_s", "decay_per_s", "seed"}) {
+      Forbid(t, prefix, key, only_synthetic);
+    }
+    Forbid(t, prefix, "dt", "only for one-column record files and kind = \"kanai_tajimi\"");
     m.amplitude_g = RequiredNumber(t, prefix, "amplitude_g", Rule::kFinite, "g");
     if (m.kind == MotionKind::kRectangularPulse) {
       Forbid(t, prefix, "frequency_hz", "not used by kind = \"rectangular_pulse\"");
@@ -653,6 +736,8 @@ std::string_view MotionKindName(MotionKind kind) {
       return "rectangular_pulse";
     case MotionKind::kRicker:
       return "ricker";
+    case MotionKind::kKanaiTajimi:
+      return "kanai_tajimi";
   }
   return "file";
 }
@@ -753,6 +838,14 @@ void ValidateScene(const Scene& scene) {
       }
       if (at2 && d.dt_s != 0.0) fail(p + ".dt", "not allowed for an AT2 file");
       if (!at2) check(p + ".dt", d.dt_s, Rule::kNonNegative, "s");
+      continue;
+    }
+    if (d.kind == MotionKind::kKanaiTajimi) {
+      check(p + ".amplitude_g", d.amplitude_g, Rule::kNonNegative, "g");
+      SyntheticMotionDef synthetic = d.synthetic;
+      synthetic.target_peak_mps2 = d.amplitude_g * kStandardGravity_mps2;
+      const std::string problem = SyntheticMotionProblem(synthetic);
+      if (!problem.empty()) fail(p, problem);
       continue;
     }
     check(p + ".amplitude_g", d.amplitude_g, Rule::kFinite, "g");

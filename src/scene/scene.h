@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "scene/engine_settings.h"
+#include "scene/synthetic_motion.h"
 
 namespace rockbench {
 
@@ -33,7 +34,15 @@ struct InitialState {
 };
 
 enum class AccelUnits { kG, kMps2, kCmps2 };
-enum class MotionKind { kFile, kHarmonic, kSinePulse, kCosinePulse, kRectangularPulse, kRicker };
+enum class MotionKind {
+  kFile,
+  kHarmonic,
+  kSinePulse,
+  kCosinePulse,
+  kRectangularPulse,
+  kRicker,
+  kKanaiTajimi,  ///< synthetic: filtered white noise with an envelope (synthetic_motion.h)
+};
 
 /// One component of base motion: a record file or an analytic kind. Acceleration is positive to
 /// the right (+x) for horizontal and upwards (+y) for vertical.
@@ -50,6 +59,9 @@ struct MotionDef {
   double frequency_hz = 0.0;  ///< analytic kinds: frequency f
   double duration_s = std::numeric_limits<double>::infinity();  ///< harmonic/rectangular length
   double start_s = 0.0;  ///< first sample time / pulse start t0
+  /// kind = "kanai_tajimi": the process, its envelope, sampling and seed. amplitude_g, when
+  /// given, is the generated record's peak (its intensity then plays no part).
+  SyntheticMotionDef synthetic;
 };
 
 struct RunConfig {

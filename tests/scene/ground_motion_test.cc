@@ -222,6 +222,7 @@ double Expected(MotionKind kind, double a_mps2, double f, double t0, double leng
       return a_mps2 * (1 - 2 * kPi * kPi * f * f * s * s) * std::exp(-kPi * kPi * f * f * s * s);
     }
     case MotionKind::kFile:
+    case MotionKind::kKanaiTajimi:  // sampled: synthetic_motion_test.cc
       break;
   }
   return 0.0;

@@ -1,0 +1,81 @@
+#pragma once
+/// Synthetic ground motion: a stationary filtered white noise (Kanai-Tajimi, optionally with the
+/// Clough-Penzien high-pass) times a deterministic envelope (Jennings et al. 1968), reproducible
+/// bit for bit from a seed on every machine.
+///
+/// The process: a white noise w(t) of two-sided power spectral density S0 (E[w(t) w(t + tau)] =
+/// 2 pi S0 delta(tau), m^2/s^3) drives the ground filter (Kanai 1957, Tajimi 1960) whose
+/// absolute acceleration has the transfer function
+///   H_KT(s) = (w_g^2 + 2 z_g w_g s) / (s^2 + 2 z_g w_g s + w_g^2),
+/// and, when filter_frequency_hz > 0, the Clough-Penzien high-pass that keeps the ground
+/// velocity and displacement finite,
+///   H_CP(s) = s^2 / (s^2 + 2 z_f w_f s + w_f^2).
+/// Sampled at dt, w is a sequence of independent standard normal numbers times
+/// sqrt(2 pi S0 / dt); each filter is discretised with the bilinear (Tustin) transform, so the
+/// sampled process has exactly the PSD S0 |H_KT(z) H_CP(z)|^2, z = exp(i w dt)
+/// (SyntheticPsd), which matches the continuous one to the bilinear transform's frequency warping
+/// (tan(w dt / 2) / (dt / 2) for w: 0.8% at a fifth of the Nyquist frequency).
+///
+/// Reproducibility: the normal numbers come from std::mt19937_64 (specified bit for bit by the
+/// C++ standard) through Marsaglia's polar method with our own logarithm, and the envelope's
+/// exponential is our own too, both made of IEEE-754 basic operations only (the library's log and
+/// exp may differ in the last bit between C libraries); the file is compiled without
+/// floating-point contraction (-ffp-contract=off). The same definition gives the same bytes on
+/// every IEEE-754 machine.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace rockbench {
+
+/// The envelope e(t) of the stationary process, t from the record's start.
+enum class SyntheticEnvelope {
+  kNone,      ///< e = 1: the stationary process itself (after the filters' start from rest)
+  kJennings,  ///< (t / rise)^2 before rise, 1 until strong_end, exp(-decay (t - strong_end)) after
+};
+
+/// The definition of one synthetic component (the [base.horizontal] or [base.vertical] keys of
+/// kind = "kanai_tajimi").
+struct SyntheticMotionDef {
+  /// S0, two-sided PSD of the bedrock white noise, m^2/s^3 (the omega convention above). Used
+  /// when target_peak_mps2 is 0.
+  double intensity_m2ps3 = 0.0;
+  /// When > 0: the record is scaled so that its peak |acceleration| is this, m/s^2 (the
+  /// intensity is then irrelevant).
+  double target_peak_mps2 = 0.0;
+  double ground_frequency_hz = 2.5;  ///< w_g / 2 pi, Hz (firm soil ~2.5 Hz)
+  double ground_damping = 0.6;       ///< z_g
+  double filter_frequency_hz = 0.0;  ///< w_f / 2 pi, Hz; 0: no Clough-Penzien filter
+  double filter_damping = 0.6;       ///< z_f
+  SyntheticEnvelope envelope = SyntheticEnvelope::kJennings;
+  double rise_s = 2.0;         ///< Jennings: end of the quadratic rise, s
+  double strong_end_s = 10.0;  ///< Jennings: end of the strong phase, s
+  double decay_per_s = 0.3;    ///< Jennings: exponential decay rate after it, 1/s
+  double dt_s = 0.005;         ///< sample interval, s
+  double duration_s = 20.0;    ///< the record's length, s (samples at 0, dt, ..., duration)
+  std::uint64_t seed = 1;      ///< the random stream
+};
+
+/// Checks a definition; returns an empty string when it is valid, else what is wrong, naming
+/// the key ("ground_damping must be > 0, got -1").
+std::string SyntheticMotionProblem(const SyntheticMotionDef& def);
+
+/// The record: acceleration samples at t = n dt, n = 0 .. round(duration / dt), m/s^2. Throws
+/// std::invalid_argument with SyntheticMotionProblem's text for an invalid definition.
+std::vector<double> GenerateSyntheticMotion(const SyntheticMotionDef& def);
+
+/// The exact two-sided PSD of the sampled stationary process (no envelope, no target peak) at
+/// angular frequency omega (rad/s, |omega| <= pi / dt): S0 |H_KT(z) H_CP(z)|^2, m^2/s^3.
+double SyntheticPsd(const SyntheticMotionDef& def, double omega_radps);
+/// The continuous process's PSD at omega: S0 |H_KT(i omega) H_CP(i omega)|^2, m^2/s^3.
+double ContinuousKanaiTajimiPsd(const SyntheticMotionDef& def, double omega_radps);
+
+/// The envelope at t (s from the record's start).
+double SyntheticEnvelopeAt(const SyntheticMotionDef& def, double t_s);
+
+/// exp(x) and log(x) (x > 0) from IEEE-754 basic operations, ldexp and frexp only: the same
+/// bits on every IEEE-754 machine; within 2 ulp of the correctly rounded values.
+double PortableExp(double x);
+double PortableLog(double x);
+
+}  // namespace rockbench
