@@ -81,6 +81,11 @@ class MotionComponent {
   const std::vector<double>& sample_resolution_mps2() const { return resolution_; }
   double t0_s() const { return t0_; }
   double dt_s() const { return dt_; }
+  /// kFile for every sampled record (files, FromSamples, synthetic kinds); else the analytic
+  /// kind, with its frequency (Hz) and the length of its window (s; +inf: an endless harmonic).
+  MotionKind kind() const { return kind_; }
+  double frequency_hz() const { return frequency_hz_; }
+  double window_s() const { return duration_s_; }
 
  private:
   MotionKind kind_ = MotionKind::kFile;
