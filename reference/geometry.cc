@@ -4,9 +4,7 @@
 #include <sstream>
 
 namespace rockbench::reference {
-namespace {
-
-BlockProps MakeBlock(double B, double H, double m) {
+BlockProps MakeBlockProps(double B, double H, double m) {
   BlockProps p;
   p.b = 0.5 * B;
   p.h = 0.5 * H;
@@ -18,12 +16,10 @@ BlockProps MakeBlock(double B, double H, double m) {
   return p;
 }
 
-}  // namespace
-
 Geometry MakeGeometry(double B1, double H1, double m1, double B2, double H2, double m2, double g) {
   Geometry geo;
   geo.g = g;
-  geo.block1 = MakeBlock(B1, H1, m1);
+  geo.block1 = MakeBlockProps(B1, H1, m1);
   geo.two_blocks = B2 > 0.0;
   const BlockProps& p1 = geo.block1;
   if (!geo.two_blocks) {
@@ -34,7 +30,7 @@ Geometry MakeGeometry(double B1, double H1, double m1, double B2, double H2, dou
     geo.I_O = p1.I_O;
     return geo;
   }
-  geo.block2 = MakeBlock(B2, H2, m2);
+  geo.block2 = MakeBlockProps(B2, H2, m2);
   const BlockProps& p2 = geo.block2;
   geo.xi = p1.b - p2.b;
   geo.xi_p = p1.b + p2.b;

@@ -32,6 +32,9 @@ struct Geometry {
   double d = 0.0, omega_d = 0.0;
 };
 
+/// The properties of one block from its full width B and height H (m) and mass m (kg).
+BlockProps MakeBlockProps(double B, double H, double m);
+
 /// Builds the geometry of a scene. Throws SceneError when block 2 is wider than block 1 (its
 /// pivots would not be on block 1: outside the thesis's model).
 Geometry MakeGeometry(const Scene& scene);

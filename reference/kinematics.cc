@@ -259,19 +259,6 @@ BodyVelocities Velocities(const Geometry& geo, Mode mode, const State& s) {
   return v;
 }
 
-double Energy(const Geometry& geo, Mode mode, const State& s) {
-  const Chain ch = EvaluateChain(geo, mode, s);
-  const BodyVelocities v = Velocities(geo, mode, s);
-  const double m[2] = {geo.block1.m, geo.block2.m};
-  const double IG[2] = {geo.block1.I_G, geo.block2.I_G};
-  double e = 0.0;
-  for (int b = 0; b < (geo.two_blocks ? 2 : 1); ++b) {
-    e += 0.5 * m[b] * Dot(v.vG[b], v.vG[b]) + 0.5 * IG[b] * v.w[b] * v.w[b] +
-         m[b] * geo.g * ch.G[b].y;
-  }
-  return e;
-}
-
 double AngularMomentum(const Geometry& geo, Mode mode, const State& s, Vec2 A, int body) {
   const Chain ch = EvaluateChain(geo, mode, s);
   const BodyVelocities v = Velocities(geo, mode, s);

@@ -112,7 +112,8 @@ Reactions ContactLoads(const Geometry& geo, Mode mode, const State& s,
                        const std::array<Vec2, 2>& aG, const std::array<double, 2>& alpha,
                        Vec2 g_eff);
 
-/// Kinetic energy in the base frame plus gravitational potential m g y_G, J.
+/// Kinetic energy in the base frame plus gravitational potential m g y_G, J: StateEnergy(geo,
+/// mode, s).total_j (observables.h, where it is defined with the energy of each block).
 double Energy(const Geometry& geo, Mode mode, const State& s);
 /// Angular momentum about point A (base frame) of block `body` (0 or 1) or of both (-1),
 /// counter-clockwise positive, kg m^2/s.

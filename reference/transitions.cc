@@ -4,14 +4,17 @@
 #include <cmath>
 
 #include "reference/modes.h"
+#include "reference/observables.h"
 
 namespace rockbench::reference {
 
 ContactMargins EvaluateContacts(const Geometry& geo, Mode mode, const State& s, double xg,
                                 double yg, Equations equations) {
   ContactMargins cm;
-  const auto acc = ModeAccelerations(geo, mode, s, xg, yg, equations);
-  cm.reactions = ComputeReactions(geo, mode, s, acc, xg, yg);
+  const ContactDemand demand = ContactReactions(geo, mode, s, xg, yg, equations);
+  cm.reactions = demand.reactions;
+  cm.mu_ground = demand.mu_ground;
+  cm.mu_interface = demand.mu_interface;
   const Reactions& r = cm.reactions;
   const double W = geo.M * geo.g;
   const Contacts c = ContactsOf(mode);
@@ -26,9 +29,7 @@ ContactMargins EvaluateContacts(const Geometry& geo, Mode mode, const State& s, 
     } else {
       cm.point = std::min(cm.point, r.N_interface / W);
     }
-    cm.mu_interface = r.N_interface > 0 ? std::abs(r.T_interface) / r.N_interface : 0.0;
   }
-  cm.mu_ground = r.N_ground > 0 ? std::abs(r.T_ground) / r.N_ground : 0.0;
   return cm;
 }
 

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "reference/observables.h"
+
 namespace rockbench {
 
 void ReadBaseMotion(const EngineInput& in, std::int64_t n, StepReadout* s) {
@@ -74,12 +76,13 @@ bool UpdateSide(int* side, double prev, double angle, double t_prev, double t, d
   return impact;
 }
 
-Mode ModeFromSides(int s1, int s2, bool two_blocks) {
-  if (!two_blocks) return s1 == 0 ? Mode::kRest : (s1 > 0 ? Mode::k3a : Mode::k3b);
-  if (s1 == 0) return s2 == 0 ? Mode::kRest : (s2 > 0 ? Mode::k4a : Mode::k4b);
-  if (s2 == 0) return s1 > 0 ? Mode::k3a : Mode::k3b;
-  if (s1 > 0) return s2 > 0 ? Mode::k1a : Mode::k2a;
-  return s2 < 0 ? Mode::k1b : Mode::k2b;
+// The hysteresis's side (+1 right, -1 left, 0 flat) as the contact it implies, and back.
+reference::Contact ContactOfSide(int side) {
+  return side > 0 ? reference::Contact::kRight
+                  : (side < 0 ? reference::Contact::kLeft : reference::Contact::kFace);
+}
+int SideOfContact(reference::Contact c) {
+  return c == reference::Contact::kRight ? 1 : (c == reference::Contact::kLeft ? -1 : 0);
 }
 
 }  // namespace
@@ -99,12 +102,12 @@ Monitor::Monitor(const EngineInput& input, MonitorConfig config) : cfg_(config) 
   b1_ = 0.5 * input.block1.width_m;
   h1_ = 0.5 * input.block1.height_m;
   m1_ = input.block1.mass_kg;
-  i1_ = m1_ * (b1_ * b1_ + h1_ * h1_) / 3.0;
+  props1_ = reference::MakeBlockProps(input.block1.width_m, input.block1.height_m, m1_);
   if (two_) {
     b2_ = 0.5 * input.block2->width_m;
     h2_ = 0.5 * input.block2->height_m;
     m2_ = input.block2->mass_kg;
-    i2_ = m2_ * (b2_ * b2_ + h2_ * h2_) / 3.0;
+    props2_ = reference::MakeBlockProps(input.block2->width_m, input.block2->height_m, m2_);
   }
   g_ = input.run.gravity_mps2;
   dt_ = input.time_step_s;
@@ -134,9 +137,7 @@ Monitor::Derived Monitor::Derive(const StepReadout& s) {
   const double yl_top = y1 - s1 * b1_ + c1 * h1_;
   const double yr_top = y1 + s1 * b1_ + c1 * h1_;
   d.gap_ground_m = std::min(std::min(yl, yr), std::min(yl_top, yr_top));
-  d.energy_j = 0.5 * m1_ * (vx1 * vx1 + vy1 * vy1) +
-               0.5 * (m1_ * (b1_ * b1_ + h1_ * h1_) / 3.0) * r1.w_radps * r1.w_radps +
-               m1_ * g_ * y1;
+  d.energy_j = reference::BlockEnergy_j(props1_, g_, {{x1, y1}, {vx1, vy1}, r1.w_radps});
   if (two_) {
     const BodyReadout& r2 = s.block2;
     phi2_ += std::remainder(std::atan2(r2.sin_phi, r2.cos_phi) - phi2_, 2.0 * std::numbers::pi);
@@ -144,8 +145,7 @@ Monitor::Derived Monitor::Derive(const StepReadout& s) {
     d.sample.omega2_radps = -r2.w_radps;
     const double x2 = r2.x_m - s.ground_x_m, y2 = r2.y_m - s.ground_y_m;
     const double vx2 = r2.vx_mps - s.ground_vx_mps, vy2 = r2.vy_mps - s.ground_vy_mps;
-    d.energy_j +=
-        0.5 * m2_ * (vx2 * vx2 + vy2 * vy2) + 0.5 * i2_ * r2.w_radps * r2.w_radps + m2_ * g_ * y2;
+    d.energy_j += reference::BlockEnergy_j(props2_, g_, {{x2, y2}, {vx2, vy2}, r2.w_radps});
     // Block 2's bottom corners in block 1's frame: gap above block 1's top face (y = h1).
     const double c2 = r2.cos_phi, s2 = r2.sin_phi;
     double gap = 1e300;
@@ -165,16 +165,12 @@ void Monitor::Pivots(const StepReadout& s, Derived* d, int* side1, int* side2) c
   const Sample& cur = d->sample;
   const double c1 = s.block1.cos_phi, s1 = s.block1.sin_phi;
   const double x1 = s.block1.x_m - s.ground_x_m, y1 = s.block1.y_m - s.ground_y_m;
-  *side1 = ground_.side;
-  if (*side1 == 0 && std::abs(cur.omega1_radps) > cfg_.rate_tol_radps) {
-    *side1 = Sign(cur.omega1_radps);
-  }
+  int pivot_side2 = 0;
+  TiltSides(cur, side1, &pivot_side2);
   // Block 1's pivot: bottom corner (side1 b1, -h1) in its frame (bottom centre when flat).
   d->pivot_ground_x_m = x1 + c1 * (*side1 * b1_) + s1 * h1_;
   if (!two_) return;
-  *side2 = interface_.side;
-  const double rel = cur.omega2_radps - cur.omega1_radps;
-  if (*side2 == 0 && std::abs(rel) > cfg_.rate_tol_radps) *side2 = Sign(rel);
+  *side2 = pivot_side2;
   // Block 2's pivot (side2 b2, -h2) in its frame, expressed in block 1's frame.
   const double c2 = s.block2.cos_phi, s2 = s.block2.sin_phi;
   const double x2 = s.block2.x_m - s.ground_x_m, y2 = s.block2.y_m - s.ground_y_m;
@@ -184,16 +180,22 @@ void Monitor::Pivots(const StepReadout& s, Derived* d, int* side1, int* side2) c
   d->pivot_interface_x_m = c1 * dx + s1 * dy;
 }
 
-Mode Monitor::InferMode(const Sample& s) const {
-  int s1 = ground_.side;
-  if (s1 == 0 && std::abs(s.omega1_radps) > cfg_.rate_tol_radps) s1 = Sign(s.omega1_radps);
-  int s2 = 0;
+void Monitor::TiltSides(const Sample& s, int* side1, int* side2) const {
+  // The reference's rule (reference/observables.h TiltContact), with the angle's side from the
+  // hysteresis and the flat band's rate threshold of MonitorConfig.
+  *side1 = SideOfContact(
+      reference::TiltContact(ContactOfSide(ground_.side), s.omega1_radps, cfg_.rate_tol_radps));
+  *side2 = 0;
   if (two_) {
-    s2 = interface_.side;
-    const double rel = s.omega2_radps - s.omega1_radps;
-    if (s2 == 0 && std::abs(rel) > cfg_.rate_tol_radps) s2 = Sign(rel);
+    *side2 = SideOfContact(reference::TiltContact(
+        ContactOfSide(interface_.side), s.omega2_radps - s.omega1_radps, cfg_.rate_tol_radps));
   }
-  return ModeFromSides(s1, s2, two_);
+}
+
+Mode Monitor::InferMode(const Sample& s) const {
+  int s1 = 0, s2 = 0;
+  TiltSides(s, &s1, &s2);
+  return reference::ModeOf({ContactOfSide(s1), ContactOfSide(s2)}, two_);
 }
 
 void Monitor::Record(const Sample& s) {
@@ -238,45 +240,67 @@ bool Monitor::Step(std::int64_t n, const StepReadout& s) {
   }
   Derived d = Derive(s);
   Sample& cur = d.sample;
-  const Sample& prev = prev_.sample;
-  const double t_prev = prev.t_s, t = cur.t_s;
+  const double t_prev = prev_.sample.t_s, t = cur.t_s;
   // |theta| of both blocks before this step (prev_ is overwritten before the overturn check).
-  const double abs1_prev = std::abs(prev.theta1_rad), abs2_prev = std::abs(prev.theta2_rad);
+  const double abs1_prev = std::abs(prev_.sample.theta1_rad);
+  const double abs2_prev = std::abs(prev_.sample.theta2_rad);
 
-  // Impacts: a tilted block lands.
-  const double rel = two_ ? cur.theta2_rad - cur.theta1_rad : 0.0;
-  const double rel_prev = interface_.prev;
-  const double theta1_prev = ground_.prev;
-  double t_ground = 0.0, t_interface = 0.0;
-  bool crossed_ground = false, crossed_interface = false;
-  const int side_ground = ground_.side, side_interface = interface_.side;
-  const bool ground_impact =
-      UpdateSide(&ground_.side, ground_.prev, cur.theta1_rad, t_prev, t, cfg_.angle_enter_rad,
-                 cfg_.angle_leave_rad, &t_ground, &crossed_ground);
-  ground_.prev = cur.theta1_rad;
-  bool interface_impact = false;
-  if (two_) {
-    interface_impact =
-        UpdateSide(&interface_.side, interface_.prev, rel, t_prev, t, cfg_.angle_enter_rad,
-                   cfg_.angle_leave_rad, &t_interface, &crossed_interface);
-    interface_.prev = rel;
-  }
+  const Landings landings = DetectLandings(cur, t_prev);
   cur.mode = InferMode(cur);
+  CompletePendingImpacts(d, landings);
+  OpenImpacts(landings);
+  RecordModeChange(d);
 
+  MeasureContacts(s, &d);
+  MeasurePeaksAndEnergy(d, s.base_accelerating);
+
+  prev_ = d;
+  last_ = cur;
+  last_recorded_ = false;
+  end_t_s_ = t;
+
+  RecordOutput(cur, t);
+  return !Stopped(d, t_prev, abs1_prev, abs2_prev);
+}
+
+Monitor::Landings Monitor::DetectLandings(const Sample& cur, double t_prev) {
+  // Impacts: a tilted block lands.
+  Landings l;
+  l.t_prev = t_prev;
+  l.rel = two_ ? cur.theta2_rad - cur.theta1_rad : 0.0;
+  l.rel_prev = interface_.prev;
+  l.theta1_prev = ground_.prev;
+  l.side_ground = ground_.side;
+  l.side_interface = interface_.side;
+  l.ground = UpdateSide(&ground_.side, ground_.prev, cur.theta1_rad, t_prev, cur.t_s,
+                        cfg_.angle_enter_rad, cfg_.angle_leave_rad, &l.t_ground, &l.crossed_ground);
+  ground_.prev = cur.theta1_rad;
+  if (two_) {
+    l.interface =
+        UpdateSide(&interface_.side, interface_.prev, l.rel, t_prev, cur.t_s, cfg_.angle_enter_rad,
+                   cfg_.angle_leave_rad, &l.t_interface, &l.crossed_interface);
+    interface_.prev = l.rel;
+  }
+  return l;
+}
+
+void Monitor::CompletePendingImpacts(const Derived& d, const Landings& l) {
   // Pending impacts: Bullet resolves a contact in the step after the one that brought the
   // corner into the support, so an impact is complete one step after its angle crossed zero
   // (or after kImpactWaitSteps steps if it landed without crossing).
   constexpr int kImpactWaitSteps = 10;
+  const Sample& cur = d.sample;
+  const Sample& prev = prev_.sample;
   for (size_t k = 0; k < pending_.size();) {
     PendingImpact& p = pending_[k];
-    const double angle = p.interface ? rel : cur.theta1_rad;
-    const double angle_prev = p.interface ? rel_prev : theta1_prev;
+    const double angle = p.interface ? l.rel : cur.theta1_rad;
+    const double angle_prev = p.interface ? l.rel_prev : l.theta1_prev;
     bool done = false;
     if (p.crossed) {
       done = true;
     } else if (p.side * angle <= 0.0) {
       p.crossed = true;
-      p.event.t_s = CrossingTime(angle_prev, angle, t_prev, t);
+      p.event.t_s = CrossingTime(angle_prev, angle, l.t_prev, cur.t_s);
       p.event.omega1_before = prev.omega1_radps;
       p.event.omega2_before = prev.omega2_radps;
       p.event.energy_before_j = prev_.energy_j;
@@ -296,6 +320,10 @@ bool Monitor::Step(std::int64_t n, const StepReadout& s) {
       ++k;
     }
   }
+}
+
+void Monitor::OpenImpacts(const Landings& l) {
+  const Sample& prev = prev_.sample;
   auto make_impact = [&](const char* kind, bool interface, int side, double when, bool crossed) {
     PendingImpact p;
     p.interface = interface;
@@ -312,51 +340,43 @@ bool Monitor::Step(std::int64_t n, const StepReadout& s) {
     p.event.energy_before_j = prev_.energy_j;
     pending_.push_back(std::move(p));
   };
-  if (ground_impact) {
+  if (l.ground) {
     ++impacts_ground_;
-    make_impact("ground_impact", false, side_ground, t_ground, crossed_ground);
+    make_impact("ground_impact", false, l.side_ground, l.t_ground, l.crossed_ground);
   }
-  if (interface_impact) {
+  if (l.interface) {
     ++impacts_interface_;
-    make_impact("interface_impact", true, side_interface, t_interface, crossed_interface);
+    make_impact("interface_impact", true, l.side_interface, l.t_interface, l.crossed_interface);
   }
+}
+
+void Monitor::RecordModeChange(const Derived& d) {
+  const Sample& cur = d.sample;
+  const Sample& prev = prev_.sample;
   const bool impact_busy = !pending_.empty() || suppress_mode_events_ > 0;
   // Mode changes without impact.
-  if (cur.mode != prev.mode) {
-    if (!impact_busy) {
-      Event e;
-      e.t_s = t;
-      e.mode_before = prev.mode;
-      e.mode_after = cur.mode;
-      e.omega1_before = e.omega1_after = cur.omega1_radps;
-      e.omega2_before = e.omega2_after = cur.omega2_radps;
-      e.energy_before_j = prev_.energy_j;
-      e.energy_after_j = d.energy_j;
-      if (prev.mode == Mode::kRest) {
-        e.kind = "initiation";
-        ++initiations_;
-      } else if (cur.mode == Mode::kRest) {
-        e.kind = "rest";
-        ++rests_;
-      } else {
-        e.kind = "transition";
-        ++transitions_;
-      }
-      PushEvent(std::move(e));
+  if (cur.mode != prev.mode && !impact_busy) {
+    Event e;
+    e.t_s = cur.t_s;
+    e.mode_before = prev.mode;
+    e.mode_after = cur.mode;
+    e.omega1_before = e.omega1_after = cur.omega1_radps;
+    e.omega2_before = e.omega2_after = cur.omega2_radps;
+    e.energy_before_j = prev_.energy_j;
+    e.energy_after_j = d.energy_j;
+    if (prev.mode == Mode::kRest) {
+      e.kind = "initiation";
+      ++initiations_;
+    } else if (cur.mode == Mode::kRest) {
+      e.kind = "rest";
+      ++rests_;
+    } else {
+      e.kind = "transition";
+      ++transitions_;
     }
+    PushEvent(std::move(e));
   }
   if (suppress_mode_events_ > 0) --suppress_mode_events_;
-
-  MeasureContacts(s, &d);
-  MeasurePeaksAndEnergy(d, s.base_accelerating);
-
-  prev_ = d;
-  last_ = cur;
-  last_recorded_ = false;
-  end_t_s_ = t;
-
-  RecordOutput(cur, t);
-  return !Stopped(d, t_prev, abs1_prev, abs2_prev);
 }
 
 void Monitor::MeasureContacts(const StepReadout& s, Derived* d_ptr) {

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "engines/common/engine_input.h"
+#include "reference/geometry.h"
 #include "scene/history.h"
 #include "scene/outcome.h"
 
@@ -20,6 +21,10 @@ inline constexpr const char* kViolationFlags[] = {"sliding", "uplift", "penetrat
 
 /// Thresholds of the monitor. Angles in rad, rates in rad/s, lengths in m.
 struct MonitorConfig {
+  /// The mode of a state is the reference's rule (reference/observables.h TiltContact,
+  /// ModeOfState) with the thresholds below, above the engines' noise: the reference's exact
+  /// states need none, but two bodies of an engine tilted together differ by ~1e-13 rad, which
+  /// the exact rule would read as block 2 rocking on block 1.
   /// A block (or block 2 on block 1) counts as tilted to a side once |angle| exceeds
   /// angle_enter_rad, and as landed once its angle falls below angle_leave_rad (hysteresis, so
   /// numerical noise at rest does not chatter).
@@ -113,6 +118,28 @@ class Monitor {
     double energy_j = 0.0;  // kinetic (base frame) + m g y_G, J, as the reference
   };
   Derived Derive(const StepReadout& s);
+  // The landings of one step (a tilted block's angle crossing zero or falling below
+  // angle_leave_rad), from the hysteresis before the step; the angles before it.
+  struct Landings {
+    bool ground = false, interface = false;
+    double t_ground = 0.0, t_interface = 0.0;  // interpolated zero crossings
+    bool crossed_ground = false, crossed_interface = false;
+    int side_ground = 0, side_interface = 0;  // sides before the step
+    double t_prev = 0.0, theta1_prev = 0.0;
+    double rel = 0.0, rel_prev = 0.0;  // theta2 - theta1 after and before the step
+  };
+  // Updates the hysteresis with the step's state and returns its landings.
+  Landings DetectLandings(const Sample& cur, double t_prev);
+  // Completes the pending impacts the step resolves (their post-impact state is `d`).
+  void CompletePendingImpacts(const Derived& d, const Landings& l);
+  // Opens a pending impact per landing, with the state before the step as the pre-impact one.
+  void OpenImpacts(const Landings& l);
+  // A mode change without impact: an initiation, a transition or a rest event.
+  void RecordModeChange(const Derived& d);
+  // The side each tilt pivots on (+1 right, -1 left, 0 flat): the hysteresis's side, or for a
+  // flat tilt the side of its rate above MonitorConfig::rate_tol_radps.
+  void TiltSides(const Sample& s, int* side1, int* side2) const;
+  // The mode of those sides (reference::ModeOf).
   Mode InferMode(const Sample& s) const;
   // Pivot points and sides of the state (for slip): block 1's on the ground, block 2's on
   // block 1 (in block 1's frame).
@@ -132,7 +159,8 @@ class Monitor {
   EngineInput in_meta_;  // geometry and settings (drive samples not kept)
   MonitorConfig cfg_;
   bool two_ = false;
-  double b1_ = 0.0, h1_ = 0.0, b2_ = 0.0, h2_ = 0.0, m1_ = 0.0, m2_ = 0.0, i1_ = 0.0, i2_ = 0.0;
+  double b1_ = 0.0, h1_ = 0.0, b2_ = 0.0, h2_ = 0.0, m1_ = 0.0, m2_ = 0.0;
+  reference::BlockProps props1_, props2_;  // for the energy (reference/observables.h)
   double g_ = 9.81, dt_ = 0.0, out_dt_ = 0.0, tipping_energy_j_ = 0.0;
 
   History history_;

@@ -3,16 +3,16 @@
 /// scene, written as a self-contained report.html and its Markdown twin report.md, with the
 /// gnuplot figures (SVG plus the kept .gp script and .dat data of each) in figures/, keyframes
 /// from renders/ in keyframes/ and the animation beside the page. docs/report.md lists what a
-/// page contains and how to restyle a figure.
-#include <array>
+/// page contains and how to restyle a figure. The page's parts are one file each: run_readers.h
+/// (reading the folder), run_figures.h (what the figures share), interpolation.h, and the
+/// sections (outcome, scene, angles, agreement, impacts, energy, friction, pictures); this file
+/// assembles them.
 #include <filesystem>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
-#include "reference/geometry.h"
 #include "scene/history.h"
-#include "scene/mode.h"
 #include "scene/scene.h"
 
 namespace rockbench::report {
@@ -73,54 +73,5 @@ struct IndexEntry {
 
 /// Writes OUT_DIR/index.html and index.md linking OUT_DIR/<name>/report.html (.md).
 void WriteReportIndex(const std::filesystem::path& out_dir, const std::vector<IndexEntry>& pages);
-
-// ---- The physics behind the figures (public for the tests). ----
-
-/// The mode the angles and rates of a sample imply (contacts: a block tilted or turning to a
-/// side pivots on that side's corner; flat and still, it sits on its face). Engines' mode
-/// columns come from their own monitors; this rule gives the energy one definition for all.
-Mode ModeFromAngles(const Sample& sample, bool two_blocks);
-
-/// Kinetic energy in the base frame plus gravitational potential energy (reference::Energy: the
-/// value events.csv holds), J, of a sample, from its angles and rates in the mode of
-/// ModeFromAngles.
-double StateEnergy_j(const reference::Geometry& geo, const Sample& sample);
-
-/// Kinetic energy in the base frame plus potential energy above the rest position, J, of a
-/// sample, from its angles and rates with the rigid-block model (reference/kinematics.h) in the
-/// mode of ModeFromAngles.
-double EnergyAboveRest_j(const reference::Geometry& geo, const Sample& sample);
-
-/// Friction the rigid-block model needs at a state: contact reactions (reference/kinematics.h
-/// ComputeReactions) with the accelerations of `mode` (reference/modes.h) under base
-/// acceleration (xg'', yg'').
-struct FrictionDemand {
-  double N_ground_n = 0.0, T_ground_n = 0.0;        ///< normal (compression > 0), tangential, N
-  double N_interface_n = 0.0, T_interface_n = 0.0;  ///< block 1 on block 2, N
-  double mu_ground = 0.0;                           ///< |T|/N at the ground (0 when N <= 0)
-  double mu_interface = 0.0;                        ///< |T|/N at the interface (0 when N <= 0)
-};
-FrictionDemand RequiredFriction(const reference::Geometry& geo, Mode mode, const Sample& sample,
-                                double xg_mps2, double yg_mps2, Equations equations);
-
-/// Angles of a reference history at any time: cubic Hermite between samples, using the rates
-/// before each event (events.csv omega*_before) at the end of the interval it closes, so that
-/// impacts do not smear. Clamped to the history's time span.
-class HistoryInterpolator {
- public:
-  HistoryInterpolator(const History& history, const std::vector<Event>& events);
-  /// (theta1, theta2) at t, rad.
-  std::array<double, 2> Angles(double t_s) const;
-  double end_s() const;
-
- private:
-  struct Node {
-    double t = 0.0;
-    double theta[2] = {0, 0};
-    double rate_right[2] = {0, 0};  ///< rates just after t
-    double rate_left[2] = {0, 0};   ///< rates just before t (differ at an impact)
-  };
-  std::vector<Node> nodes_;
-};
 
 }  // namespace rockbench::report

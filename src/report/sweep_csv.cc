@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <map>
+#include <sstream>
 #include <stdexcept>
 
 namespace rockbench::report {
@@ -104,22 +105,21 @@ class RowReader {
   const std::vector<std::string>& fields_;
 };
 
-}  // namespace
-
-std::vector<SweepRecord> ParseSweepCsv(const std::string& text, const fs::path& path) {
+// sweep.csv's lines, without a trailing '\r' each, and without the empty lines at the end.
+std::vector<std::string> SplitLines(const std::string& text) {
   std::vector<std::string> lines;
-  {
-    std::istringstream in(text);
-    for (std::string l; std::getline(in, l);) {
-      if (!l.empty() && l.back() == '\r') l.pop_back();
-      lines.push_back(l);
-    }
+  std::istringstream in(text);
+  for (std::string l; std::getline(in, l);) {
+    if (!l.empty() && l.back() == '\r') l.pop_back();
+    lines.push_back(l);
   }
   while (!lines.empty() && lines.back().empty()) lines.pop_back();
-  const std::string where = path.string() + ":";
-  if (lines.empty())
-    throw std::runtime_error(where + "1: empty file (expected sweep.csv's header)");
-  const std::vector<std::string> header = SplitCsv(lines[0]);
+  return lines;
+}
+
+// The header's column indices; every column of kColumns must be there.
+std::map<std::string, size_t> ReadHeader(const std::vector<std::string>& header,
+                                         const std::string& where) {
   std::map<std::string, size_t> index;
   for (size_t i = 0; i < header.size(); ++i) index[header[i]] = i;
   for (const std::string& c : kColumns) {
@@ -128,6 +128,94 @@ std::vector<SweepRecord> ParseSweepCsv(const std::string& text, const fs::path& 
                                "' (is this a sweep.csv from `rockbench sweep`?)");
     }
   }
+  return index;
+}
+
+// What was run: the engine and its settings, or the reference's integrator and tolerances.
+void ReadRunSettings(const RowReader& rd, SweepRecord& r) {
+  r.engine = rd.Text("engine");
+  if (r.engine.empty()) rd.Fail("engine", "expected an engine name or reference, got ''");
+  r.setting = rd.Text("setting");
+  if (r.setting.empty()) rd.Fail("setting", "expected the point's label, got ''");
+  if (r.engine != "reference") {
+    r.family = rd.Text("family");
+    r.settings = rd.Text("settings");
+    if (r.family.empty()) rd.Fail("family", "expected the engine's settings family, got ''");
+    r.time_step_s = rd.Positive("time_step_s");
+  } else {
+    r.integrator = rd.Text("integrator");
+    if (r.integrator == "dopri5") {
+      r.rtol = rd.Positive("rtol");
+      r.atol = rd.Positive("atol");
+    } else if (r.integrator == "rk4") {
+      r.rk4_step_s = rd.Positive("rk4_step_s");
+    } else {
+      rd.Fail("integrator", "expected dopri5 or rk4, got '" + r.integrator + "'");
+    }
+  }
+}
+
+// The results of a run that did not fail: wall time, errors, impacts, agreement flags; marks the
+// row failed when a result is not finite or the wall time not positive.
+void ReadRunResults(const RowReader& rd, SweepRecord& r) {
+  if (r.status.empty()) rd.Fail("status", "expected the run's status, got an empty field");
+  struct NumberColumn {
+    const char* name;
+    double* value;
+  };
+  const std::vector<NumberColumn> numbers = {
+      {"wall_s", &r.wall_s},
+      {"theta1_max_abs_error_rad", &r.theta1_max_abs_error_rad},
+      {"theta1_rms_error_rad", &r.theta1_rms_error_rad},
+      {"theta1_horizon_s", &r.theta1_horizon_s},
+      {"theta1_peak_rel_error", &r.theta1_peak_rel_error},
+      {"theta1_peak_time_error_s", &r.theta1_peak_time_error_s},
+      {"max_abs_impact_time_error_s", &r.max_abs_impact_time_error_s}};
+  const std::vector<NumberColumn> theta2 = {
+      {"theta2_max_abs_error_rad", &r.theta2_max_abs_error_rad},
+      {"theta2_rms_error_rad", &r.theta2_rms_error_rad},
+      {"theta2_horizon_s", &r.theta2_horizon_s},
+      {"theta2_peak_rel_error", &r.theta2_peak_rel_error},
+      {"theta2_peak_time_error_s", &r.theta2_peak_time_error_s}};
+  for (const NumberColumn& c : numbers) *c.value = rd.Number(c.name);
+  // The theta2 columns: all filled (two blocks) or all empty (one block).
+  int filled = 0;
+  for (const NumberColumn& c : theta2) filled += rd.Text(c.name).empty() ? 0 : 1;
+  if (filled != 0 && filled != static_cast<int>(theta2.size())) {
+    for (const NumberColumn& c : theta2) {
+      if (rd.Text(c.name).empty()) rd.Fail(c.name, "empty while other theta2 columns are set");
+    }
+  }
+  r.has_theta2 = filled > 0;
+  if (r.has_theta2) {
+    for (const NumberColumn& c : theta2) *c.value = rd.Number(c.name);
+  }
+  r.impacts_reference = rd.Integer("impacts_reference", 0);
+  r.impacts_engine = rd.Integer("impacts_engine", 0);
+  r.impacts_matched = rd.Integer("impacts_matched", 0);
+  r.overturn_agree = rd.Flag("overturn_agree");
+  r.final_agree = rd.Flag("final_agree");
+  // Non-finite results: the run is listed, not plotted.
+  std::vector<NumberColumn> all = numbers;
+  if (r.has_theta2) all.insert(all.end(), theta2.begin(), theta2.end());
+  for (const NumberColumn& c : all) {
+    if (!std::isfinite(*c.value)) {
+      r.failure = std::string("non-finite ") + c.name + " (" + rd.Text(c.name) + ")";
+      break;
+    }
+  }
+  if (r.failure.empty() && !(r.wall_s > 0.0)) r.failure = "wall_s is not positive";
+}
+
+}  // namespace
+
+std::vector<SweepRecord> ParseSweepCsv(const std::string& text, const fs::path& path) {
+  const std::vector<std::string> lines = SplitLines(text);
+  const std::string where = path.string() + ":";
+  if (lines.empty())
+    throw std::runtime_error(where + "1: empty file (expected sweep.csv's header)");
+  const std::vector<std::string> header = SplitCsv(lines[0]);
+  const std::map<std::string, size_t> index = ReadHeader(header, where);
   std::vector<SweepRecord> rows;
   for (size_t n = 1; n < lines.size(); ++n) {
     const int line = static_cast<int>(n) + 1;
@@ -140,80 +228,14 @@ std::vector<SweepRecord> ParseSweepCsv(const std::string& text, const fs::path& 
     const RowReader rd(path, line, index, f);
     SweepRecord r;
     r.line = line;
-    r.engine = rd.Text("engine");
-    if (r.engine.empty()) rd.Fail("engine", "expected an engine name or reference, got ''");
-    r.setting = rd.Text("setting");
-    if (r.setting.empty()) rd.Fail("setting", "expected the point's label, got ''");
-    if (r.engine != "reference") {
-      r.family = rd.Text("family");
-      r.settings = rd.Text("settings");
-      if (r.family.empty()) rd.Fail("family", "expected the engine's settings family, got ''");
-      r.time_step_s = rd.Positive("time_step_s");
-    } else {
-      r.integrator = rd.Text("integrator");
-      if (r.integrator == "dopri5") {
-        r.rtol = rd.Positive("rtol");
-        r.atol = rd.Positive("atol");
-      } else if (r.integrator == "rk4") {
-        r.rk4_step_s = rd.Positive("rk4_step_s");
-      } else {
-        rd.Fail("integrator", "expected dopri5 or rk4, got '" + r.integrator + "'");
-      }
-    }
+    ReadRunSettings(rd, r);
     r.status = rd.Text("status");
     r.error = rd.Text("error");
     if (!r.error.empty() || r.status == "error") {
       r.failure = r.error.empty() ? "failed (no message)" : r.error;
-      rows.push_back(r);
-      continue;
+    } else {
+      ReadRunResults(rd, r);
     }
-    if (r.status.empty()) rd.Fail("status", "expected the run's status, got an empty field");
-    struct NumberColumn {
-      const char* name;
-      double* value;
-    };
-    const std::vector<NumberColumn> numbers = {
-        {"wall_s", &r.wall_s},
-        {"theta1_max_abs_error_rad", &r.theta1_max_abs_error_rad},
-        {"theta1_rms_error_rad", &r.theta1_rms_error_rad},
-        {"theta1_horizon_s", &r.theta1_horizon_s},
-        {"theta1_peak_rel_error", &r.theta1_peak_rel_error},
-        {"theta1_peak_time_error_s", &r.theta1_peak_time_error_s},
-        {"max_abs_impact_time_error_s", &r.max_abs_impact_time_error_s}};
-    const std::vector<NumberColumn> theta2 = {
-        {"theta2_max_abs_error_rad", &r.theta2_max_abs_error_rad},
-        {"theta2_rms_error_rad", &r.theta2_rms_error_rad},
-        {"theta2_horizon_s", &r.theta2_horizon_s},
-        {"theta2_peak_rel_error", &r.theta2_peak_rel_error},
-        {"theta2_peak_time_error_s", &r.theta2_peak_time_error_s}};
-    for (const NumberColumn& c : numbers) *c.value = rd.Number(c.name);
-    // The theta2 columns: all filled (two blocks) or all empty (one block).
-    int filled = 0;
-    for (const NumberColumn& c : theta2) filled += rd.Text(c.name).empty() ? 0 : 1;
-    if (filled != 0 && filled != static_cast<int>(theta2.size())) {
-      for (const NumberColumn& c : theta2) {
-        if (rd.Text(c.name).empty()) rd.Fail(c.name, "empty while other theta2 columns are set");
-      }
-    }
-    r.has_theta2 = filled > 0;
-    if (r.has_theta2) {
-      for (const NumberColumn& c : theta2) *c.value = rd.Number(c.name);
-    }
-    r.impacts_reference = rd.Integer("impacts_reference", 0);
-    r.impacts_engine = rd.Integer("impacts_engine", 0);
-    r.impacts_matched = rd.Integer("impacts_matched", 0);
-    r.overturn_agree = rd.Flag("overturn_agree");
-    r.final_agree = rd.Flag("final_agree");
-    // Non-finite results: the run is listed, not plotted.
-    std::vector<NumberColumn> all = numbers;
-    if (r.has_theta2) all.insert(all.end(), theta2.begin(), theta2.end());
-    for (const NumberColumn& c : all) {
-      if (!std::isfinite(*c.value)) {
-        r.failure = std::string("non-finite ") + c.name + " (" + rd.Text(c.name) + ")";
-        break;
-      }
-    }
-    if (r.failure.empty() && !(r.wall_s > 0.0)) r.failure = "wall_s is not positive";
     rows.push_back(r);
   }
   return rows;

@@ -1,8 +1,9 @@
 // WriteRunReport on real run folders (made by `rockbench compare` / `rockbench run`): every
 // figure comes with its script and data and is on both pages, warnings come first, the energy
-// and friction the figures show are the model's (checked against the reference's own event
-// energies and a closed form), the error figure reproduces comparison.json, the same folder
-// gives the same bytes, and bad folders are errors naming the file.
+// the figure shows is the model's (checked against the reference's own event energies; the
+// observables' closed forms are tested in tests/reference/observables_test.cc), the error figure
+// reproduces comparison.json, the same folder gives the same bytes, and bad folders are errors
+// naming the file.
 #include "report/run_report.h"
 
 #include <gtest/gtest.h>
@@ -21,7 +22,9 @@
 #include <vector>
 
 #include "reference/geometry.h"
+#include "reference/observables.h"
 #include "report/gnuplot.h"
+#include "report/interpolation.h"
 #include "report/page.h"
 #include "report/run_folder.h"
 #include "scene/history.h"
@@ -192,53 +195,15 @@ TEST_F(RunReportTest, EnergyFromTheStatesMatchesTheReferenceEventEnergies) {
     ASSERT_NE(s, nullptr) << "no sample at event time " << e.t_s;
     // Angles and rates are written with 13 significant digits: the energy (about 1.8e5 J,
     // smooth in them) agrees to far better than 1e-9 relative.
-    EXPECT_NEAR(StateEnergy_j(geo, *s), e.energy_after_j, 1e-9 * std::abs(e.energy_after_j))
+    EXPECT_NEAR(reference::StateEnergy(geo, reference::StateOf(*s, true)).total_j, e.energy_after_j,
+                1e-9 * std::abs(e.energy_after_j))
         << e.kind << " at " << e.t_s;
     ++checked;
   }
   EXPECT_GE(checked, 10);
   // Above rest: zero at rest, positive for the stack released tilted at t = 0.
-  EXPECT_DOUBLE_EQ(EnergyAboveRest_j(geo, Sample{}), 0.0);
-  EXPECT_GT(EnergyAboveRest_j(geo, h.samples.front()), 0.0);
-}
-
-TEST(RequiredFriction, ARestingStackUnderConstantAccelerationNeedsAOverG) {
-  // At rest in the base frame every block carries its weight m g and the inertial force m a:
-  // |T|/N = a / g at the ground (whole stack) and at the interface (block 2), exactly.
-  const reference::Geometry two = reference::MakeGeometry(1.25, 1.25, 3906.25, 1.0, 2.5, 6250.0);
-  const reference::Geometry one = reference::MakeGeometry(1.0, 4.0, 4000.0, 0.0, 0.0, 0.0);
-  for (double a_g : {0.05, 0.2, -0.3}) {
-    const double a = a_g * 9.81;
-    const FrictionDemand d =
-        RequiredFriction(two, Mode::kRest, Sample{}, a, 0.0, Equations::kNonlinear);
-    EXPECT_NEAR(d.mu_ground, std::abs(a_g), 1e-12);
-    EXPECT_NEAR(d.mu_interface, std::abs(a_g), 1e-12);
-    EXPECT_NEAR(d.N_ground_n, two.M * 9.81, 1e-9 * two.M * 9.81);
-    const FrictionDemand s =
-        RequiredFriction(one, Mode::kRest, Sample{}, a, 0.0, Equations::kNonlinear);
-    EXPECT_NEAR(s.mu_ground, std::abs(a_g), 1e-12);
-    // With a vertical acceleration the normal force is m (g + a_v): |T|/N = a / (g + a_v).
-    const FrictionDemand v =
-        RequiredFriction(two, Mode::kRest, Sample{}, a, -0.25 * 9.81, Equations::kNonlinear);
-    EXPECT_NEAR(v.mu_ground, std::abs(a_g) / 0.75, 1e-12);
-  }
-}
-
-TEST(ModeFromAngles, TiltsPickTheCornerOnTheirSide) {
-  Sample s;
-  EXPECT_EQ(ModeFromAngles(s, true), Mode::kRest);
-  s.theta1_rad = s.theta2_rad = 0.1;
-  EXPECT_EQ(ModeFromAngles(s, true), Mode::k3a);
-  s.theta2_rad = 0.2;
-  EXPECT_EQ(ModeFromAngles(s, true), Mode::k1a);
-  s.theta2_rad = -0.1;
-  EXPECT_EQ(ModeFromAngles(s, true), Mode::k2a);
-  s = Sample{};
-  s.theta2_rad = -0.1;
-  EXPECT_EQ(ModeFromAngles(s, true), Mode::k4b);
-  s = Sample{};
-  s.omega1_radps = s.omega2_radps = -0.5;  // flat but turning left: rocking on the left corner
-  EXPECT_EQ(ModeFromAngles(s, true), Mode::k3b);
+  EXPECT_DOUBLE_EQ(reference::EnergyAboveRest_j(geo, reference::State{}), 0.0);
+  EXPECT_GT(reference::EnergyAboveRest_j(geo, reference::StateOf(h.samples.front(), true)), 0.0);
 }
 
 TEST(HistoryInterpolator, ReproducesACubicAndKeepsTheRateJumpOfAnImpact) {

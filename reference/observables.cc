@@ -1,0 +1,87 @@
+#include "reference/observables.h"
+
+#include <cmath>
+
+#include "reference/modes.h"
+
+namespace rockbench::reference {
+
+State StateOf(const Sample& sample, bool two_blocks) {
+  State st;
+  st.theta1 = sample.theta1_rad;
+  st.omega1 = sample.omega1_radps;
+  st.theta2 = two_blocks ? sample.theta2_rad : sample.theta1_rad;
+  st.omega2 = two_blocks ? sample.omega2_radps : sample.omega1_radps;
+  return st;
+}
+
+Contact TiltContact(Contact angle_side, double rate_radps, double rate_threshold_radps) {
+  if (angle_side != Contact::kFace) return angle_side;
+  if (!(std::abs(rate_radps) > rate_threshold_radps)) return Contact::kFace;
+  return rate_radps > 0.0 ? Contact::kRight : Contact::kLeft;
+}
+
+Contact TiltContact(double angle_rad, double rate_radps, TiltThresholds thresholds) {
+  Contact angle_side = Contact::kFace;
+  if (std::abs(angle_rad) > thresholds.angle_rad) {
+    angle_side = angle_rad > 0.0 ? Contact::kRight : Contact::kLeft;
+  }
+  return TiltContact(angle_side, rate_radps, thresholds.rate_radps);
+}
+
+Mode ModeOfState(const State& s, bool two_blocks, TiltThresholds thresholds) {
+  Contacts c;
+  c.ground = TiltContact(s.theta1, s.omega1, thresholds);
+  c.interface = two_blocks ? TiltContact(s.theta2 - s.theta1, s.omega2 - s.omega1, thresholds)
+                           : Contact::kFace;
+  return ModeOf(c, two_blocks);
+}
+
+double BlockEnergy_j(const BlockProps& block, double g_mps2, const BodyMotion& body) {
+  return 0.5 * block.m * Dot(body.vG, body.vG) + 0.5 * block.I_G * body.w_radps * body.w_radps +
+         block.m * g_mps2 * body.G.y;
+}
+
+MechanicalEnergy StateEnergy(const Geometry& geo, Mode mode, const State& s) {
+  const Chain ch = EvaluateChain(geo, mode, s);
+  const BodyVelocities v = Velocities(geo, mode, s);
+  MechanicalEnergy e;
+  e.block1_j = BlockEnergy_j(geo.block1, geo.g, {ch.G[0], v.vG[0], v.w[0]});
+  e.total_j = e.block1_j;
+  if (geo.two_blocks) {
+    e.block2_j = BlockEnergy_j(geo.block2, geo.g, {ch.G[1], v.vG[1], v.w[1]});
+    e.total_j += e.block2_j;
+  }
+  return e;
+}
+
+MechanicalEnergy StateEnergy(const Geometry& geo, const State& s) {
+  return StateEnergy(geo, ModeOfState(s, geo.two_blocks), s);
+}
+
+double EnergyAboveRest_j(const Geometry& geo, const State& s) {
+  return StateEnergy(geo, s).total_j - StateEnergy(geo, Mode::kRest, State{}).total_j;
+}
+
+// Declared in kinematics.h, beside the other whole-chain quantities.
+double Energy(const Geometry& geo, Mode mode, const State& s) {
+  return StateEnergy(geo, mode, s).total_j;
+}
+
+double RequiredFriction(double normal_n, double tangential_n) {
+  return normal_n > 0.0 ? std::abs(tangential_n) / normal_n : 0.0;
+}
+
+ContactDemand ContactReactions(const Geometry& geo, Mode mode, const State& s, double xg_mps2,
+                               double yg_mps2, Equations equations) {
+  const auto acc = ModeAccelerations(geo, mode, s, xg_mps2, yg_mps2, equations);
+  ContactDemand d;
+  d.reactions = ComputeReactions(geo, mode, s, acc, xg_mps2, yg_mps2);
+  d.mu_ground = RequiredFriction(d.reactions.N_ground, d.reactions.T_ground);
+  if (geo.two_blocks) {
+    d.mu_interface = RequiredFriction(d.reactions.N_interface, d.reactions.T_interface);
+  }
+  return d;
+}
+
+}  // namespace rockbench::reference

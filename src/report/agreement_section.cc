@@ -1,0 +1,219 @@
+#include "report/agreement_section.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "report/interpolation.h"
+#include "report/json_keys.h"
+#include "report/number_text.h"
+
+namespace rockbench::report {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+struct EngineErrors {
+  std::vector<double> t, e1, e2;
+  double max1 = 0.0, max2 = 0.0;
+};
+
+EngineErrors AngleErrors(const RunData& run, const EngineData& e, const HistoryInterpolator& ref) {
+  EngineErrors out;
+  double until = ref.end_s();
+  if (run.comparison) {
+    const double c =
+        OptNumber(*run.comparison, "engines." + e.name + ".compared_until_s", run.comparison_path);
+    if (!std::isnan(c)) until = std::min(until, c);
+  }
+  for (const Sample& s : e.history.samples) {
+    if (s.t_s > until + 1e-12) break;
+    const auto a = ref.Angles(s.t_s);
+    out.t.push_back(s.t_s);
+    out.e1.push_back(std::abs(s.theta1_rad - a[0]));
+    out.e2.push_back(run.scene.two_blocks() ? std::abs(s.theta2_rad - a[1]) : 0.0);
+    out.max1 = std::max(out.max1, out.e1.back());
+    out.max2 = std::max(out.max2, out.e2.back());
+  }
+  return out;
+}
+
+void MetricsTable(const RunData& run, Page& page) {
+  const json& c = *run.comparison;
+  const fs::path& file = run.comparison_path;
+  std::vector<std::vector<std::string>> rows;
+  std::vector<std::vector<std::string>> impacts;
+  for (const EngineData& e : run.engines) {
+    if (e.name == "reference") continue;
+    const std::string k = "engines." + e.name;
+    if (Find(c, k) == nullptr) continue;
+    for (int b = 1; b <= (run.scene.two_blocks() ? 2 : 1); ++b) {
+      const std::string kb = k + ".theta" + std::to_string(b);
+      const bool within = OptBool(c, kb + ".within_tolerance", file);
+      rows.push_back({e.name, "theta" + std::to_string(b),
+                      Num(NeedNumber(c, kb + ".max_abs_error_rad", file), 3),
+                      Num(NeedNumber(c, kb + ".rms_error_rad", file), 3),
+                      Num(OptNumber(c, kb + ".tolerance_rad", file), 3),
+                      within ? "whole run (" + Num(NeedNumber(c, kb + ".horizon_s", file)) + " s)"
+                             : Num(NeedNumber(c, kb + ".horizon_s", file), 5) + " s",
+                      Num(100.0 * NeedNumber(c, kb + ".peak_rel_error", file), 3) + " %",
+                      Num(1e3 * NeedNumber(c, kb + ".peak_time_error_s", file), 3) + " ms"});
+    }
+    const double matched = NeedNumber(c, k + ".impacts_matched", file);
+    const double nref = OptNumber(c, k + ".impacts_reference", file);
+    const double neng = OptNumber(c, k + ".impacts_engine", file);
+    const std::string mismatch = Find(c, k + ".first_impact_mismatch") != nullptr &&
+                                         Find(c, k + ".first_impact_mismatch")->is_string()
+                                     ? Find(c, k + ".first_impact_mismatch")->get<std::string>()
+                                     : "";
+    impacts.push_back({e.name, Num(matched) + " of " + Num(nref) + " (engine: " + Num(neng) + ")",
+                       Num(1e3 * OptNumber(c, k + ".max_abs_impact_time_error_s", file), 3) + " ms",
+                       mismatch.empty() ? "none" : mismatch,
+                       OptBool(c, k + ".overturn.agree", file) ? "agrees" : "DIFFERS",
+                       OptBool(c, k + ".final.agree", file) ? "agrees" : "DIFFERS",
+                       Num(NeedNumber(c, k + ".wall_s", file), 3) + " s"});
+  }
+  page.Table({"engine", "angle", "max error (rad)", "RMS error (rad)", "tolerance (rad)",
+              "agreement horizon", "peak error", "peak time error"},
+             rows);
+  page.Table({"engine", "impacts matched", "max impact time error", "first mismatch", "overturning",
+              "final state", "wall time"},
+             impacts);
+  page.Paragraph("From comparison.json (reference wall time " +
+                 Num(OptNumber(c, "reference.wall_s", file), 3) +
+                 " s). Errors are taken at the engine's sample times against the reference's "
+                 "dense output; the agreement horizon is the first time the error exceeds the "
+                 "tolerance. Impacts slower than " +
+                 Num(OptNumber(c, "impact_min_rate_radps", file)) +
+                 " rad/s are not compared. Wall times are those of the run, not of the report.");
+}
+
+// The error figure's panel of block `block`: errors of every engine, the reference ensemble's
+// spread, the comparison tolerance, the engines' agreement horizons and the predictability
+// horizon.
+std::string ErrorPanel(const RunData& run, int block) {
+  std::string s =
+      "set ylabel " +
+      Quote("|θ_" + std::to_string(block) + " - θ_" + std::to_string(block) + "^{ref}| (rad)") +
+      "\nset title " + Quote(block == 1 ? "block 1 (lower)" : "block 2 (upper)") +
+      "\nunset arrow\nunset label\n" + HorizonMark(run, block, 0.97);
+  std::string plot = "plot ";
+  double tol = run.predictability ? run.predictability->tolerance_rad[block - 1] : kNaN;
+  for (size_t i = 1; i < run.engines.size(); ++i) {
+    const EngineData& e = run.engines[i];
+    const std::string key = "engines." + e.name + ".theta" + std::to_string(block);
+    if (run.comparison && Find(*run.comparison, key) != nullptr) {
+      tol = OptNumber(*run.comparison, key + ".tolerance_rad", run.comparison_path);
+      if (!OptBool(*run.comparison, key + ".within_tolerance", run.comparison_path)) {
+        const double h = OptNumber(*run.comparison, key + ".horizon_s", run.comparison_path);
+        s += VerticalMark(h, run.t_end_s, e.colour,
+                          "agreement horizon (" + e.name + ") " + Num(h, 4) + " s",
+                          0.9 - 0.07 * static_cast<double>(i - 1));
+      }
+    }
+    if (i > 1) plot += ", ";
+    plot += Quote("angle_error." + e.name + ".dat") + " using 1:" + std::to_string(1 + block) +
+            " with lines lw 1.4 lc rgb " + Quote(e.colour) + " title " + Quote(e.label);
+  }
+  if (run.band) {
+    plot += ", " + Quote("angle_error.ensemble_spread.dat") +
+            " using 1:" + std::to_string(1 + block) + " with lines lw 1.2 lc rgb " +
+            Quote(kHorizonColour) + " dt 3 title " + Quote("spread of the " + BandTitle(run));
+  }
+  if (!std::isnan(tol)) {
+    plot += ", " + Num(tol, 9) + " with lines dt 2 lw 1.5 lc rgb '#b00000' title " +
+            Quote("comparison tolerance " + Num(tol, 3) + " rad");
+  }
+  return s + plot + "\n";
+}
+
+std::string ErrorCaption(const RunData& run, const RunReportOptions& options) {
+  std::string caption =
+      "Angle error |theta_engine - theta_reference| against time (rad, log scale), at the "
+      "engine's sample times, the reference interpolated between its samples with its rates "
+      "(cubic Hermite, pre-impact rates before each impact). Dashed red: the comparison "
+      "tolerance; dashed vertical lines in an engine's colour: its agreement horizon (none when "
+      "it stays within the tolerance).";
+  if (run.band) {
+    caption +=
+        " Dotted blue: the reference ensemble's spread, the largest |member - nominal| at each "
+        "time (reference/ensemble_band.csv).";
+  }
+  if (AnyHorizonMark(run)) {
+    caption +=
+        " Dashed blue vertical line: the predictability horizon, where that spread first "
+        "exceeds the tolerance; beyond it two correct runs differ by more than the tolerance.";
+  } else if (run.predictability) {
+    caption += " The reference is predictable for the whole run: no predictability horizon.";
+  }
+  return caption + " Errors below " + Num(options.error_floor_rad) + " rad are drawn at " +
+         Num(options.error_floor_rad) + " rad.";
+}
+
+void ErrorFigure(const RunData& run, const RunReportOptions& options, Figures& fig) {
+  const EngineData& ref = run.engines.front();
+  const HistoryInterpolator interp(ref.history, ref.events);
+  const bool two = run.scene.two_blocks();
+  GnuplotFigure f;
+  f.name = "angle_error";
+  f.height_px = two ? 720 : 420;
+  for (size_t i = 1; i < run.engines.size(); ++i) {
+    const EngineData& e = run.engines[i];
+    const EngineErrors err = AngleErrors(run, e, interp);
+    std::string dat = two ? "# t_s err_theta1_rad err_theta2_rad\n" : "# t_s err_theta1_rad\n";
+    for (size_t k = 0; k < err.t.size(); ++k) {
+      AppendDat(dat, err.t[k]);
+      dat += ' ';
+      AppendDat(dat, std::max(err.e1[k], options.error_floor_rad));
+      if (two) {
+        dat += ' ';
+        AppendDat(dat, std::max(err.e2[k], options.error_floor_rad));
+      }
+      dat += '\n';
+    }
+    f.data_files.push_back({"angle_error." + e.name + ".dat", dat});
+  }
+  if (run.band) {
+    const EnsembleBand& b = *run.band;
+    f.data_files.push_back(
+        {"angle_error.ensemble_spread.dat",
+         two ? BandDat(run, "# t_s theta1_spread_rad theta2_spread_rad\n",
+                       {&b.spread_rad[0], &b.spread_rad[1]}, options.error_floor_rad)
+             : BandDat(run, "# t_s theta1_spread_rad\n", {&b.spread_rad[0]},
+                       options.error_floor_rad)});
+  }
+  f.script = CommonAxes(run.t_end_s) +
+             "set logscale y\nset format y '10^{%L}'\nset key bottom right box opaque\n";
+  if (two) {
+    f.script += "set multiplot layout 2,1\n" + ErrorPanel(run, 1) + ErrorPanel(run, 2) +
+                "unset multiplot\n";
+  } else {
+    f.script += ErrorPanel(run, 1);
+  }
+  fig.Add(f, ErrorCaption(run, options));
+}
+
+}  // namespace
+
+void AgreementSection(const RunData& run, const RunReportOptions& options, Figures& fig) {
+  Page& page = *fig.page;
+  page.Heading("Agreement with the reference");
+  if (run.engines.size() < 2) {
+    page.Paragraph(
+        "No engine was compared with the reference model in this run folder (a "
+        "`rockbench run` folder): there is no error figure or metrics table. "
+        "`rockbench compare SCENE --out DIR` runs the engines and compares them.");
+    return;
+  }
+  if (run.comparison) {
+    MetricsTable(run, page);
+  } else {
+    page.Paragraph(
+        "This run folder has no comparison.json (engines run with `rockbench run`): "
+        "the metrics table and the agreement horizons are left out; the error figure "
+        "below is computed from the histories.");
+  }
+  ErrorFigure(run, options, fig);
+}
+
+}  // namespace rockbench::report

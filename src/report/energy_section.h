@@ -1,0 +1,12 @@
+#pragma once
+/// The page's Energy section: every run's energy above rest against time, evaluated from its
+/// angles and rates with the reference's observables (reference/observables.h), and its
+/// initial, final and largest values.
+#include "reference/geometry.h"
+#include "report/run_figures.h"
+
+namespace rockbench::report {
+
+void EnergySection(const RunData& run, const reference::Geometry& geo, Figures& fig);
+
+}  // namespace rockbench::report

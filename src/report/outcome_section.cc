@@ -1,0 +1,148 @@
+#include "report/outcome_section.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "report/json_keys.h"
+#include "report/number_text.h"
+#include "report/run_figures.h"
+#include "report/verdict_section.h"
+
+namespace rockbench::report {
+namespace {
+
+using nlohmann::json;
+
+std::string EngineWarnings(const EngineData& e, std::vector<std::string>& out) {
+  const json* v = Find(e.summary, "violations");
+  std::string status = e.summary.value("status", std::string("unknown"));
+  if (v == nullptr || !v->is_object()) return status;
+  const auto flag = [&](const char* k) {
+    return v->contains(k) && (*v)[k].is_boolean() && (*v)[k].get<bool>();
+  };
+  const auto num = [&](const char* k) {
+    return v->contains(k) && (*v)[k].is_number() ? (*v)[k].get<double>() : kNaN;
+  };
+  const std::string who = "The " + e.name + " run";
+  if (flag("sliding")) {
+    out.push_back(who + " slid: the blocks slipped " + Num(1e3 * num("slip_ground_m"), 3) +
+                  " mm at the ground and " + Num(1e3 * num("slip_interface_m"), 3) +
+                  " mm at the interface. The rigid-block model assumes no sliding, so the two "
+                  "are not simulating the same system.");
+  }
+  if (flag("uplift")) {
+    std::string where;
+    for (const char* c : {"ground", "interface"}) {
+      const double n = num((std::string("uplift_") + c + "_episodes").c_str());
+      if (!(n > 0)) continue;
+      where += std::string(where.empty() ? "" : " and ") + Num(n) + " time(s) at the " + c +
+               " (up to " + Num(1e3 * num((std::string("uplift_") + c + "_max_m").c_str()), 3) +
+               " mm)";
+    }
+    out.push_back(who + " lifted off" + (where.empty() ? "" : ": " + where) +
+                  ". The model assumes the pivots stay in contact (no bouncing or jumping).");
+  }
+  if (flag("penetration")) {
+    out.push_back(
+        who + " let the blocks sink into each other or the ground by up to " +
+        Num(1e3 * std::max(num("penetration_ground_max_m"), num("penetration_interface_max_m")),
+            3) +
+        " mm: its contacts are soft at this time step.");
+  }
+  if (flag("energy_growth")) {
+    out.push_back(who + " gained energy without input: up to " + Num(num("energy_gain_max_j")) +
+                  " J (" + Num(100.0 * num("energy_gain_rel"), 3) +
+                  " % of the energy needed to tip the stack) at t = " +
+                  Num(num("energy_gain_t_s"), 4) + " s.");
+  }
+  if (flag("blow_up")) {
+    out.push_back(who +
+                  " blew up (non-finite state, runaway rate or energy) and stopped early; "
+                  "its results after that are meaningless.");
+  }
+  return status;
+}
+
+}  // namespace
+
+std::string ReferenceOutcome(const RunData& run, std::vector<std::string>& warnings) {
+  const EngineData& ref = run.engines.front();
+  std::string outcome;
+  const std::string status = OptString(run.summary, "status", run.summary_path);
+  if (status == "overturned") {
+    outcome =
+        "The reference model: block " +
+        Num(OptNumber(run.summary, "overturn.block", run.summary_path)) +
+        " overturned at t = " + Fixed(OptNumber(run.summary, "overturn.t_s", run.summary_path), 4) +
+        " s.";
+  } else if (status == "at_rest") {
+    outcome = "The reference model: the blocks came to rest (run to " +
+              Fixed(ref.history.samples.back().t_s, 3) + " s).";
+  } else if (status == "assumption_violated") {
+    outcome = "The reference model stopped: an assumption was violated.";
+    std::string when;
+    for (const Event& ev : ref.events) {
+      if (ev.kind == "assumption_violated") when = Fixed(ev.t_s, 4);
+    }
+    warnings.push_back("The reference model's assumptions were violated" +
+                       (when.empty() ? std::string() : " at t = " + when + " s") + ": " +
+                       OptString(run.summary, "status_detail", run.summary_path) +
+                       ". The run stopped there; nothing after that time is simulated.");
+  } else {
+    outcome = "The reference model ran to t = " + Fixed(ref.history.samples.back().t_s, 3) +
+              " s (" + status + ").";
+  }
+  const double inadmissible = OptNumber(run.summary, "impacts.inadmissible", run.summary_path);
+  if (inadmissible > 0) {
+    warnings.push_back(
+        Num(inadmissible) +
+        " impact(s) of the reference had no admissible outcome (every "
+        "candidate needs a pulling impulse or moves a body into another); the thesis's velocity "
+        "check chose the outcome (notes in reference/events.csv).");
+  }
+  const double gain = OptNumber(run.summary, "impacts.energy_gain", run.summary_path);
+  if (gain > 0) {
+    warnings.push_back(Num(gain) + " impact(s) of the reference added energy.");
+  }
+  return outcome;
+}
+
+std::string EnginesOutcome(const RunData& run, std::vector<std::string>& warnings) {
+  std::string text;
+  std::vector<std::string> engine_status;
+  for (size_t i = 1; i < run.engines.size(); ++i) {
+    const std::string st = EngineWarnings(run.engines[i], warnings);
+    std::string line = run.engines[i].name + ": " + st;
+    const double ot = OptNumber(run.engines[i].summary, "overturn.t_s", run.summary_path);
+    if (!std::isnan(ot)) {
+      line += ", block " +
+              Num(OptNumber(run.engines[i].summary, "overturn.block", run.summary_path)) +
+              " overturned at t = " + Fixed(ot, 4) + " s";
+    }
+    engine_status.push_back(line);
+  }
+  if (run.engines.size() > 1) {
+    text += " Engines compared:";
+    for (size_t i = 0; i < engine_status.size(); ++i) {
+      text += (i ? "; " : " ") + engine_status[i];
+    }
+    text += ".";
+  } else {
+    text += " No engine was compared with it.";
+  }
+  return text;
+}
+
+void VerdictSection(const RunData& run, Page& page, RunReportResult& result) {
+  VerdictInput in;
+  in.comparison = run.comparison ? &*run.comparison : nullptr;
+  in.comparison_path = run.comparison_path;
+  in.summary = &run.summary;
+  in.summary_path = run.summary_path;
+  for (size_t i = 1; i < run.engines.size(); ++i) in.engines.push_back(run.engines[i].name);
+  in.two_blocks = run.scene.two_blocks();
+  in.predictability = run.predictability;
+  for (std::string& w : WriteVerdictSection(in, page)) result.warnings.push_back(std::move(w));
+}
+
+}  // namespace rockbench::report

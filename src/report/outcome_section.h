@@ -1,0 +1,24 @@
+#pragma once
+/// The page's Outcome: the reference's status and each engine's in one line, the validity
+/// warnings of their summaries (assumptions violated, inadmissible impacts, energy gain;
+/// engines' sliding, uplift, penetration, energy growth, blow-up), and the Verdict section.
+#include <string>
+#include <vector>
+
+#include "report/page.h"
+#include "report/run_readers.h"
+#include "report/run_report.h"
+
+namespace rockbench::report {
+
+/// The reference's outcome in words; appends the warnings of its summary.
+std::string ReferenceOutcome(const RunData& run, std::vector<std::string>& warnings);
+
+/// The engines' outcomes in words (" Engines compared: ...", or that none was); appends the
+/// warnings of each engine's summary.
+std::string EnginesOutcome(const RunData& run, std::vector<std::string>& warnings);
+
+/// The Verdict section (verdict_section.h) of the run; appends its warnings to result.
+void VerdictSection(const RunData& run, Page& page, RunReportResult& result);
+
+}  // namespace rockbench::report

@@ -1,0 +1,141 @@
+#include "report/run_readers.h"
+
+#include <algorithm>
+#include <stdexcept>
+
+#include "report/json_keys.h"
+
+namespace rockbench::report {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+// Line colours of the engines after the reference (black): distinct in hue and in greyscale.
+constexpr const char* kEngineColours[] = {"#d95f02", "#1b9e77", "#7570b3", "#e7298a", "#66a61e"};
+
+// The reference ensemble of a compare folder, when it has one.
+void ReadReferenceEnsemble(RunData& run) {
+  if (run.comparison) {
+    run.predictability =
+        ReadPredictability(*run.comparison, run.comparison_path, run.scene.two_blocks());
+  }
+  const fs::path csv = run.dir / "reference" / "ensemble_band.csv";
+  run.band = ReadEnsembleBand(csv);
+  if (run.band && run.band->two_blocks != run.scene.two_blocks()) {
+    throw std::runtime_error(csv.string() + ": has " +
+                             (run.band->two_blocks ? "two blocks" : "one block") +
+                             " but the scene " + run.scene.path.string() + " has " +
+                             (run.scene.two_blocks() ? "two" : "one"));
+  }
+}
+
+// summary.json, the overrides it lists and the scene it names, reloaded.
+void ReadSummaryAndScene(const fs::path& run_dir, RunData& run) {
+  if (!fs::is_directory(run_dir)) {
+    throw std::runtime_error(run_dir.string() +
+                             ": not a folder (expected a run folder written by " +
+                             "`rockbench run` or `rockbench compare`)");
+  }
+  run.summary_path = run_dir / "summary.json";
+  if (!fs::exists(run.summary_path)) {
+    throw std::runtime_error(run.summary_path.string() +
+                             ": not found (a run folder from `rockbench run` or `rockbench "
+                             "compare` has one)");
+  }
+  run.summary = ReadJson(run.summary_path);
+  if (!run.summary.is_object()) {
+    throw std::runtime_error(run.summary_path.string() + ": expected a JSON object");
+  }
+  const std::string scene_path = OptString(run.summary, "scene.path", run.summary_path);
+  if (scene_path.empty()) {
+    throw std::runtime_error(run.summary_path.string() +
+                             ": key 'scene.path' is missing (the scene file the run used)");
+  }
+  if (const json* o = Find(run.summary, "scene.overrides"); o != nullptr && !o->is_null()) {
+    if (!o->is_array()) {
+      throw std::runtime_error(run.summary_path.string() +
+                               ": key 'scene.overrides' must be a list of \"key=value\" strings");
+    }
+    for (const json& v : *o) {
+      if (!v.is_string()) {
+        throw std::runtime_error(run.summary_path.string() +
+                                 ": key 'scene.overrides' must be a list of strings, found " +
+                                 v.dump());
+      }
+      run.overrides.push_back(v.get<std::string>());
+    }
+  }
+  if (!fs::exists(scene_path)) {
+    throw std::runtime_error("the scene file " + scene_path + " (scene.path in " +
+                             run.summary_path.string() +
+                             ") is gone: the report reloads it for the geometry, base motion "
+                             "and friction");
+  }
+  run.scene = LoadScene(scene_path, run.overrides);
+}
+
+// The reference's and every engine's history.csv and events.csv, with colour and label.
+void ReadEngines(const fs::path& run_dir, RunData& run) {
+  const std::string scene_path = run.scene.path.string();
+  // Engines: the reference, then those in summary.json's "engines" (sorted by name).
+  std::vector<std::string> names;
+  if (!fs::exists(run_dir / "reference" / "history.csv")) {
+    throw std::runtime_error(
+        (run_dir / "reference" / "history.csv").string() +
+        ": not found; a report compares with the reference model, so the run "
+        "folder needs it (`rockbench run SCENE` or `rockbench compare SCENE`)");
+  }
+  names.push_back("reference");
+  if (const json* e = Find(run.summary, "engines"); e != nullptr && !e->is_null()) {
+    if (!e->is_object()) {
+      throw std::runtime_error(run.summary_path.string() + ": key 'engines' must be an object");
+    }
+    for (auto it = e->begin(); it != e->end(); ++it) {
+      if (it.key() != "reference") names.push_back(it.key());
+    }
+  }
+  int colour = 0;
+  for (const std::string& name : names) {
+    EngineData d;
+    d.name = name;
+    d.history = ReadHistoryCsv(run_dir / name / "history.csv");
+    d.events = ReadEventsCsv(run_dir / name / "events.csv");
+    if (d.history.samples.empty()) {
+      throw std::runtime_error((run_dir / name / "history.csv").string() + ": has no samples");
+    }
+    if (d.history.two_blocks != run.scene.two_blocks()) {
+      throw std::runtime_error((run_dir / name / "history.csv").string() + ": has " +
+                               (d.history.two_blocks ? "two blocks" : "one block") +
+                               " but the scene " + scene_path + " has " +
+                               (run.scene.two_blocks() ? "two" : "one"));
+    }
+    if (name == "reference") {
+      d.summary = run.summary;
+      d.colour = "#000000";
+      d.label = "reference model";
+    } else {
+      d.summary = run.summary["engines"][name];
+      d.colour = kEngineColours[colour++ % std::size(kEngineColours)];
+      d.label = name;
+    }
+    run.t_end_s = std::max(run.t_end_s, d.history.samples.back().t_s);
+    run.engines.push_back(std::move(d));
+  }
+}
+
+}  // namespace
+
+RunData ReadRunFolder(const fs::path& run_dir) {
+  RunData run;
+  run.dir = run_dir;
+  ReadSummaryAndScene(run_dir, run);
+  run.comparison_path = run_dir / "comparison.json";
+  if (fs::exists(run.comparison_path)) run.comparison = ReadJson(run.comparison_path);
+  ReadReferenceEnsemble(run);
+
+  ReadEngines(run_dir, run);
+  return run;
+}
+
+}  // namespace rockbench::report
