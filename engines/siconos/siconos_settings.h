@@ -1,0 +1,62 @@
+#pragma once
+/// Settings of the Siconos engine (Siconos 4.4, Debian libsiconos-kernel-dev: the kernel and
+/// numerics only, not siconos mechanics, see engines/siconos/CMakeLists.txt). Every field says
+/// its unit, Siconos's own default and why ours differs.
+///
+/// Measured with `rockbench compare` on Housner's block (scenes/housner_free_rocking.toml) and
+/// the thesis's free-rocking stack (scenes/thesis_free_rocking.toml): see the notes per field
+/// and docs/engines.md.
+#include <string>
+
+#include "engines/common/engine_input.h"
+#include "engines/siconos/siconos_system.h"
+#include "scene/engine_settings.h"
+
+namespace rockbench::siconos_engine {
+
+struct SiconosSettings {
+  /// Fixed step of the time discretisation, s. Siconos has no default (TimeDiscretisation
+  /// needs one). Ours: the project's step. Must equal EngineInput::time_step_s.
+  double time_step_s = 1e-4;
+  /// Moreau-Jean theta (MoreauJeanOSI(theta)): the weight of the step's end in the smooth
+  /// part (theta = 0.5: trapezoidal, energy-conserving between impacts; 1: implicit Euler,
+  /// dissipative). Siconos's default 0.5. Ours: the same.
+  double theta = 0.5;
+  /// Newton's normal restitution e of every contact (NewtonImpactFrictionNSL). Siconos has no
+  /// default. Ours: 0: a landing corner stops dead and, with sticking friction, the impulse
+  /// conserves the angular momentum about it (Housner's impact); the old pivot lifts off with
+  /// zero impulse.
+  double restitution = 0.0;
+  /// Coulomb friction coefficient of every contact (NewtonImpactFrictionNSL's mu). Siconos has
+  /// no default. Ours: 10, as DART's and MuJoCo's: the model assumes no sliding and the thesis
+  /// stack needs |T|/N up to 1.28 at the interface.
+  double friction = 10.0;
+  /// Numerics solver of the 2-D frictional contact problem. Siconos's default for
+  /// FrictionContact is 3-D NSGS (not a 2-D solver); ours: Lemke's pivoting on the problem's
+  /// LCP form, exact.
+  SiconosSolver solver = SiconosSolver::kLemke;
+  /// Solver tolerance and iteration cap (SolverOptions dparam[TOL], iparam[MAX_ITER]).
+  /// Siconos's defaults: Lemke 1e-6 / 10000, NSGS 1e-4 / 1000. Ours: 1e-8 / 10000.
+  double solver_tolerance = 1e-8;
+  int solver_max_iterations = 10000;
+  /// TimeStepping's Newton loop on the nonlinear contact relations: tolerance and cap.
+  /// Siconos's defaults: 1e-6 and 50. Ours: the same.
+  double newton_tolerance = 1e-6;
+  int newton_max_iterations = 50;
+};
+
+/// The [siconos] table: every SiconosSettings field, with Siconos's own default beside ours.
+const EngineSettingsSchema& SiconosSettingsSchema();
+
+/// The input of one Siconos run: the common engine input and the settings.
+struct SiconosRun {
+  EngineInput input;
+  SiconosSettings settings;
+};
+
+/// Resolves the scene's [siconos] table (SceneError naming FILE:LINE and the key for a bad
+/// value) and samples the base motion on its step.
+SiconosRun MakeSiconosRun(const Scene& scene, const GroundMotion& motion,
+                          double stop_at_rest_after_s);
+
+}  // namespace rockbench::siconos_engine
