@@ -21,11 +21,12 @@ const EngineSettingsSchema& SiconosSettingsSchema() {
     s.Number("friction", d.friction, R::kNonNegative, "", "none",
              "Coulomb coefficient of every contact; the model assumes no sliding");
     s.Choice("solver", SiconosSolverName(d.solver), {"lemke", "nsgs", "enum"},
-             "- (FrictionContact's 3-D NSGS)", "numerics solver of the 2-D frictional contact");
-    s.Number("solver_tolerance", d.solver_tolerance, R::kPositive, "", "1e-6 (lemke), 1e-4 (nsgs)",
+             "- (FrictionContact's 3-D NSGS)",
+             "numerics solver of the 2-D frictional contact; lemke mis-steps at rocking onset");
+    s.Number("solver_tolerance", d.solver_tolerance, R::kPositive, "", "1e-4 (nsgs), 1e-6 (lemke)",
              "numerics solver tolerance");
     s.Integer("solver_max_iterations", d.solver_max_iterations, 1, 100000000,
-              "10000 (lemke), 1000 (nsgs)", "numerics solver iteration cap");
+              "1000 (nsgs), 10000 (lemke)", "numerics solver iteration cap");
     s.Number("newton_tolerance", d.newton_tolerance, R::kPositive, "", "1e-6",
              "TimeStepping's Newton loop tolerance (nonlinear contact relations)");
     s.Integer("newton_max_iterations", d.newton_max_iterations, 1, 1000000, "50",

@@ -119,6 +119,12 @@ int SolverId(SiconosSolver s) {
   return SICONOS_FRICTION_2D_LEMKE;
 }
 
+// OpenBLAS (Debian's libblas.so.3 for Siconos numerics is OpenBLAS's pthread build) would run
+// the contact problem's tiny matrix products on a thread pool whose workers spin on
+// sched_yield: measured 58% of a stack run's time in the kernel's sched_yield. Weak, so that a
+// Siconos linked against another BLAS needs nothing.
+extern "C" void openblas_set_num_threads(int) __attribute__((weak));
+
 // TimeStepping's hook on the numerics solver's return code (a function pointer without a
 // context): counts into the counter of the system stepping on this thread.
 thread_local std::int64_t* t_failures = nullptr;
@@ -169,6 +175,7 @@ SiconosSystem::SiconosSystem(const SiconosSystemConfig& config) : impl_(std::mak
   if (!(std::isfinite(c.friction) && c.friction >= 0.0)) {
     throw std::invalid_argument("siconos: friction must be finite in the contact problem");
   }
+  if (openblas_set_num_threads != nullptr) openblas_set_num_threads(1);
   try {
     m.nsds = std::make_shared<NonSmoothDynamicalSystem>(0.0, 1e12);
     for (const SiconosBlock& b : c.blocks) {
