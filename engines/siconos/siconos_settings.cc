@@ -27,10 +27,8 @@ const EngineSettingsSchema& SiconosSettingsSchema() {
              "numerics solver tolerance");
     s.Integer("solver_max_iterations", d.solver_max_iterations, 1, 100000000,
               "1000 (nsgs), 10000 (lemke)", "numerics solver iteration cap");
-    s.Number("newton_tolerance", d.newton_tolerance, R::kPositive, "", "1e-6",
-             "TimeStepping's Newton loop tolerance (nonlinear contact relations)");
-    s.Integer("newton_max_iterations", d.newton_max_iterations, 1, 1000000, "50",
-              "TimeStepping's Newton loop iteration cap");
+    s.Choice("newton", d.newton_linear ? "linear" : "nonlinear", {"linear", "nonlinear"},
+             "nonlinear", "TimeStepping's Newton loop; both make one iteration here");
     s.Number("kinematic_highpass_hz", 0.0, R::kNonNegative, "Hz", "-",
              "kinematic drive's baseline-correction corner; 0: none (docs/bullet.md)");
     return s;
@@ -54,8 +52,7 @@ SiconosRun MakeSiconosRun(const Scene& scene, const GroundMotion& motion,
                                 : SiconosSolver::kLemke;
   s.solver_tolerance = set.Number("solver_tolerance");
   s.solver_max_iterations = static_cast<int>(set.Integer("solver_max_iterations"));
-  s.newton_tolerance = set.Number("newton_tolerance");
-  s.newton_max_iterations = static_cast<int>(set.Integer("newton_max_iterations"));
+  s.newton_linear = set.Choice("newton") == "linear";
   return run;
 }
 

@@ -43,10 +43,13 @@ struct SiconosSettings {
   /// contact impulses of a step to 1e-8 relative.
   double solver_tolerance = 1e-8;
   int solver_max_iterations = 10000;
-  /// TimeStepping's Newton loop on the nonlinear contact relations: tolerance and cap.
-  /// Siconos's defaults: 1e-6 and 50. Ours: the same.
-  double newton_tolerance = 1e-6;
-  int newton_max_iterations = 50;
+  /// TimeStepping's Newton loop (setNewtonOptions). Siconos's default: SICONOS_TS_NONLINEAR,
+  /// iterations until the dynamical systems' residual converges; a LagrangianLinearTIDS has
+  /// none and the relations' residual is not checked by default, so it stops after one
+  /// iteration (measured on every scene), with the contact Jacobians at the step's start. Ours:
+  /// SICONOS_TS_LINEAR, the same single iteration without the loop's residual bookkeeping: the
+  /// same angles to the last digit, 1.2x faster (Kobe, 4 s: 3.1 s against 3.8 s).
+  bool newton_linear = true;
 };
 
 /// The [siconos] table: every SiconosSettings field, with Siconos's own default beside ours.

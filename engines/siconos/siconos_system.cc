@@ -82,16 +82,19 @@ class CornerR final : public LagrangianScleronomousR {
     double rx = 0.0, ry = 0.0, dx = 0.0, dy = 0.0;
     double nx = 0.0, ny = 1.0, tx = 1.0, ty = 0.0;
     Geometry(const CornerR& r, const BlockVector& q) {
-      const int o = r.two_ ? 3 : 0;
-      const double xb = q.getValue(o + 0), yb = q.getValue(o + 1), pb = q.getValue(o + 2);
+      // The blocks of q are the bodies' own (x, y, phi) vectors: read them directly
+      // (BlockVector::getValue walks the blocks for every entry).
+      const double* qb = q.vector(r.two_ ? 1 : 0)->getArray();
+      const double xb = qb[0], yb = qb[1], pb = qb[2];
       const double cb = std::cos(pb), sb = std::sin(pb);
       rx = cb * r.px_ - sb * r.py_;
       ry = sb * r.px_ + cb * r.py_;
       double xa = 0.0, ya = 0.0;
       if (r.two_) {
-        xa = q.getValue(0);
-        ya = q.getValue(1);
-        const double pa = q.getValue(2);
+        const double* qa = q.vector(0)->getArray();
+        xa = qa[0];
+        ya = qa[1];
+        const double pa = qa[2];
         const double ca = std::cos(pa), sa = std::sin(pa);
         tx = ca;
         ty = sa;
@@ -231,8 +234,7 @@ SiconosSystem::SiconosSystem(const SiconosSystemConfig& config) : impl_(std::mak
     m.osnspb->numericsSolverOptions()->iparam[SICONOS_IPARAM_MAX_ITER] = c.solver_max_iterations;
     m.osnspb->numericsSolverOptions()->dparam[SICONOS_DPARAM_TOL] = c.solver_tolerance;
     m.sim = std::make_shared<TimeStepping>(m.nsds, td, osi, m.osnspb);
-    m.sim->setNewtonTolerance(c.newton_tolerance);
-    m.sim->setNewtonMaxIteration(static_cast<unsigned>(c.newton_max_iterations));
+    m.sim->setNewtonOptions(c.newton_linear ? SICONOS_TS_LINEAR : SICONOS_TS_NONLINEAR);
     m.sim->setWarnOnNonConvergence(false);
     m.sim->setCheckSolverFunction(&CountSolverFailure);
     m.sim->initialize();
@@ -286,6 +288,13 @@ bool SiconosSystem::Step() {
     m.counters.max_newton_iterations = std::max(m.counters.max_newton_iterations, it);
     const std::int64_t active = static_cast<std::int64_t>(m.sim->indexSet(1)->size());
     m.counters.max_active_contacts = std::max(m.counters.max_active_contacts, active);
+    if (active > 0) {
+      const std::int64_t iters =
+          m.osnspb->numericsSolverOptions()->iparam[SICONOS_IPARAM_ITER_DONE];
+      ++m.counters.solves;
+      m.counters.solver_iterations += iters;
+      m.counters.max_solver_iterations = std::max(m.counters.max_solver_iterations, iters);
+    }
     m.sim->nextStep();
   } catch (const std::exception& e) {
     m.last_error = e.what();

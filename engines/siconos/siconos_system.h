@@ -42,8 +42,7 @@ struct SiconosSystemConfig {
   SiconosSolver solver = SiconosSolver::kLemke;
   double solver_tolerance = 1e-6;
   int solver_max_iterations = 10000;
-  double newton_tolerance = 1e-6;
-  int newton_max_iterations = 50;
+  bool newton_linear = true;  ///< SICONOS_TS_LINEAR (else SICONOS_TS_NONLINEAR, the default)
   /// The ground a moving body (kinematic drive): its initial position and velocity (m, m/s).
   bool moving_ground = false;
   double ground_x_m = 0.0, ground_y_m = 0.0, ground_vx_mps = 0.0, ground_vy_mps = 0.0;
@@ -61,6 +60,9 @@ struct SiconosCounters {
   std::int64_t newton_iterations = 0;  ///< cumulative Newton iterations of TimeStepping
   std::int64_t max_newton_iterations = 0;
   std::int64_t max_active_contacts = 0;  ///< largest index set 1 (contacts in the problem)
+  std::int64_t solves = 0;               ///< steps with a contact problem to solve
+  std::int64_t solver_iterations = 0;    ///< numerics solver iterations, all solves
+  std::int64_t max_solver_iterations = 0;
 };
 
 /// "lemke", "nsgs", "enum".

@@ -27,9 +27,6 @@ void CheckSettings(const SiconosSettings& s) {
   require(std::isfinite(s.solver_tolerance) && s.solver_tolerance > 0.0,
           "solver_tolerance must be positive");
   require(s.solver_max_iterations >= 1, "solver_max_iterations must be at least 1");
-  require(std::isfinite(s.newton_tolerance) && s.newton_tolerance > 0.0,
-          "newton_tolerance must be positive");
-  require(s.newton_max_iterations >= 1, "newton_max_iterations must be at least 1");
 }
 
 SiconosBlock Block(const BlockDef& def, const PlanarPose& pose, double ux0, double uy0, double gvx,
@@ -92,8 +89,7 @@ SiconosWorld::SiconosWorld(const EngineInput& input, const SiconosSettings& sett
   c.solver = s_.solver;
   c.solver_tolerance = s_.solver_tolerance;
   c.solver_max_iterations = s_.solver_max_iterations;
-  c.newton_tolerance = s_.newton_tolerance;
-  c.newton_max_iterations = s_.newton_max_iterations;
+  c.newton_linear = s_.newton_linear;
   c.moving_ground = kinematic_;
   c.ground_x_m = ux0;
   c.ground_y_m = uy0;
@@ -155,6 +151,9 @@ nlohmann::json SiconosWorld::Diagnostics() const {
   j["newton_iterations"] = c.newton_iterations;
   j["max_newton_iterations_per_step"] = c.max_newton_iterations;
   j["max_active_contacts"] = c.max_active_contacts;
+  j["solves"] = c.solves;
+  j["solver_iterations"] = c.solver_iterations;
+  j["max_solver_iterations"] = c.max_solver_iterations;
   j["siconos_error"] = sys_->LastError();
   return j;
 }
@@ -172,8 +171,8 @@ nlohmann::json SiconosWorld::Settings() const {
   j["solver"] = SiconosSolverName(s_.solver);
   j["solver_tolerance"] = s_.solver_tolerance;
   j["solver_max_iterations"] = s_.solver_max_iterations;
-  j["newton_tolerance"] = s_.newton_tolerance;
-  j["newton_max_iterations"] = s_.newton_max_iterations;
+  j["newton"] =
+      s_.newton_linear ? "linear (SICONOS_TS_LINEAR)" : "nonlinear (SICONOS_TS_NONLINEAR)";
   j["kinematic_highpass_hz"] = in_.kinematic_highpass_hz;
   j["integrator"] = "Moreau-Jean time stepping (TimeStepping + MoreauJeanOSI)";
   j["contact"] = "FrictionContact (2-D), NewtonImpactFrictionNSL per bottom corner";

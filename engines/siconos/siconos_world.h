@@ -39,7 +39,8 @@ class SiconosWorld {
   nlohmann::json Settings() const;
   /// Counts since construction, for summary.json: steps, solver_failures (steps whose numerics
   /// solver reported no solution), newton_iterations (total and per step at most),
-  /// max_active_contacts (index set 1), siconos_error (the exception that stopped the run).
+  /// max_active_contacts (index set 1), solves, solver_iterations (all solves) and
+  /// max_solver_iterations, siconos_error (the exception that stopped the run).
   nlohmann::json Diagnostics() const;
 
  private:
