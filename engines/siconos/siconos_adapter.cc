@@ -25,6 +25,7 @@ SweepSetting Point(bool nsgs, double dt_s) {
   s.settings = {{"time_step", dt_s}};
   if (nsgs) {
     s.settings.emplace_back("solver_tolerance", 1e-4);
+    s.settings.emplace_back("lemke_fallback", false);
     s.settings.emplace_back("solver_max_iterations", std::int64_t{1000});
   }
   return s;

@@ -27,6 +27,8 @@ const EngineSettingsSchema& SiconosSettingsSchema() {
              "numerics solver tolerance");
     s.Integer("solver_max_iterations", d.solver_max_iterations, 1, 100000000,
               "1000 (nsgs), 10000 (lemke)", "numerics solver iteration cap");
+    s.Flag("lemke_fallback", d.lemke_fallback, "false (none)",
+           "a step NSGS does not converge on is solved again by Lemke");
     s.Choice("newton", d.newton_linear ? "linear" : "nonlinear", {"linear", "nonlinear"},
              "nonlinear", "TimeStepping's Newton loop; both make one iteration here");
     s.Number("kinematic_highpass_hz", 0.0, R::kNonNegative, "Hz", "-",
@@ -52,6 +54,7 @@ SiconosRun MakeSiconosRun(const Scene& scene, const GroundMotion& motion,
                                 : SiconosSolver::kLemke;
   s.solver_tolerance = set.Number("solver_tolerance");
   s.solver_max_iterations = static_cast<int>(set.Integer("solver_max_iterations"));
+  s.lemke_fallback = set.Flag("lemke_fallback");
   s.newton_linear = set.Choice("newton") == "linear";
   return run;
 }

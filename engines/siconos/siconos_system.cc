@@ -128,11 +128,29 @@ int SolverId(SiconosSolver s) {
 // Siconos linked against another BLAS needs nothing.
 extern "C" void openblas_set_num_threads(int) __attribute__((weak));
 
+// What the solver hook needs of the system stepping on this thread.
+struct SolverHookContext {
+  SiconosCounters* counters = nullptr;
+  FrictionContact* osnspb = nullptr;
+  SolverOptions* fallback = nullptr;  // Lemke's options; null: no fallback
+};
+thread_local SolverHookContext t_hook;
+
 // TimeStepping's hook on the numerics solver's return code (a function pointer without a
-// context): counts into the counter of the system stepping on this thread.
-thread_local std::int64_t* t_failures = nullptr;
-void CountSolverFailure(int info, Simulation* /*sim*/) {
-  if (info != 0 && t_failures != nullptr) ++*t_failures;
+// context, called after the problem's compute(), before the state update): counts a failure
+// and, with the fallback, solves the step's problem again with Lemke (the options swapped in
+// and out: OneStepNSProblem has no setter that keeps both). compute() writes the new impulses
+// into the interactions as the first solve did.
+void OnSolverOutput(int info, Simulation* sim) {
+  if (info == 0 || t_hook.counters == nullptr) return;
+  ++t_hook.counters->solver_failures;
+  if (t_hook.fallback == nullptr) return;
+  SolverOptions& current = *t_hook.osnspb->numericsSolverOptions();
+  std::swap(current, *t_hook.fallback);
+  const int again = t_hook.osnspb->compute(sim->nextTime());
+  std::swap(current, *t_hook.fallback);
+  ++t_hook.counters->fallback_solves;
+  if (again != 0) ++t_hook.counters->fallback_failures;
 }
 
 }  // namespace
@@ -146,6 +164,7 @@ struct SiconosSystem::Impl {
   SP::SiconosVector ground_velocity;  // the prescribed velocity (x, y, phi)
   SP::TimeStepping sim;
   SP::FrictionContact osnspb;
+  SP::SolverOptions lemke;  // the fallback's options
   SiconosCounters counters;
   std::string last_error;
 
@@ -236,7 +255,10 @@ SiconosSystem::SiconosSystem(const SiconosSystemConfig& config) : impl_(std::mak
     m.sim = std::make_shared<TimeStepping>(m.nsds, td, osi, m.osnspb);
     m.sim->setNewtonOptions(c.newton_linear ? SICONOS_TS_LINEAR : SICONOS_TS_NONLINEAR);
     m.sim->setWarnOnNonConvergence(false);
-    m.sim->setCheckSolverFunction(&CountSolverFailure);
+    m.sim->setCheckSolverFunction(&OnSolverOutput);
+    if (c.lemke_fallback && c.solver != SiconosSolver::kLemke) {
+      m.lemke.reset(solver_options_create(SICONOS_FRICTION_2D_LEMKE), solver_options_delete);
+    }
     m.sim->initialize();
   } catch (const std::invalid_argument&) {
     throw;
@@ -279,7 +301,7 @@ void SiconosSystem::SetGround(double x_m, double y_m, double vx_mps, double vy_m
 
 bool SiconosSystem::Step() {
   Impl& m = *impl_;
-  t_failures = &m.counters.solver_failures;
+  t_hook = {&m.counters, m.osnspb.get(), m.lemke.get()};
   bool ok = true;
   try {
     m.sim->computeOneStep();
@@ -303,7 +325,7 @@ bool SiconosSystem::Step() {
     m.last_error = "Siconos exception";
     ok = false;
   }
-  t_failures = nullptr;
+  t_hook = {};
   ++m.counters.steps;
   return ok;
 }

@@ -42,6 +42,8 @@ struct SiconosSystemConfig {
   SiconosSolver solver = SiconosSolver::kLemke;
   double solver_tolerance = 1e-6;
   int solver_max_iterations = 10000;
+  /// Whether a step whose iterative solver (NSGS) did not converge is solved again by Lemke.
+  bool lemke_fallback = true;
   bool newton_linear = true;  ///< SICONOS_TS_LINEAR (else SICONOS_TS_NONLINEAR, the default)
   /// The ground a moving body (kinematic drive): its initial position and velocity (m, m/s).
   bool moving_ground = false;
@@ -57,6 +59,8 @@ struct SiconosBodyState {
 struct SiconosCounters {
   std::int64_t steps = 0;
   std::int64_t solver_failures = 0;    ///< steps whose numerics solver reported no solution
+  std::int64_t fallback_solves = 0;    ///< of those, solved again by Lemke
+  std::int64_t fallback_failures = 0;  ///< Lemke failed too (its result is kept)
   std::int64_t newton_iterations = 0;  ///< cumulative Newton iterations of TimeStepping
   std::int64_t max_newton_iterations = 0;
   std::int64_t max_active_contacts = 0;  ///< largest index set 1 (contacts in the problem)

@@ -89,6 +89,7 @@ SiconosWorld::SiconosWorld(const EngineInput& input, const SiconosSettings& sett
   c.solver = s_.solver;
   c.solver_tolerance = s_.solver_tolerance;
   c.solver_max_iterations = s_.solver_max_iterations;
+  c.lemke_fallback = s_.lemke_fallback;
   c.newton_linear = s_.newton_linear;
   c.moving_ground = kinematic_;
   c.ground_x_m = ux0;
@@ -148,6 +149,8 @@ nlohmann::json SiconosWorld::Diagnostics() const {
   nlohmann::json j;
   j["steps"] = c.steps;
   j["solver_failures"] = c.solver_failures;
+  j["fallback_solves"] = c.fallback_solves;
+  j["fallback_failures"] = c.fallback_failures;
   j["newton_iterations"] = c.newton_iterations;
   j["max_newton_iterations_per_step"] = c.max_newton_iterations;
   j["max_active_contacts"] = c.max_active_contacts;
@@ -171,6 +174,7 @@ nlohmann::json SiconosWorld::Settings() const {
   j["solver"] = SiconosSolverName(s_.solver);
   j["solver_tolerance"] = s_.solver_tolerance;
   j["solver_max_iterations"] = s_.solver_max_iterations;
+  j["lemke_fallback"] = s_.lemke_fallback && s_.solver != SiconosSolver::kLemke;
   j["newton"] =
       s_.newton_linear ? "linear (SICONOS_TS_LINEAR)" : "nonlinear (SICONOS_TS_NONLINEAR)";
   j["kinematic_highpass_hz"] = in_.kinematic_highpass_hz;

@@ -38,9 +38,10 @@ class SiconosWorld {
   /// Settings in use, for summary.json.
   nlohmann::json Settings() const;
   /// Counts since construction, for summary.json: steps, solver_failures (steps whose numerics
-  /// solver reported no solution), newton_iterations (total and per step at most),
-  /// max_active_contacts (index set 1), solves, solver_iterations (all solves) and
-  /// max_solver_iterations, siconos_error (the exception that stopped the run).
+  /// solver reported no solution), fallback_solves and fallback_failures (Lemke after NSGS),
+  /// newton_iterations (total and per step at most), max_active_contacts (index set 1), solves,
+  /// solver_iterations (all solves) and max_solver_iterations, siconos_error (the exception that
+  /// stopped the run).
   nlohmann::json Diagnostics() const;
 
  private:
