@@ -7,7 +7,7 @@ packages=(build-essential cmake pkg-config
   libeigen3-dev libcli11-dev libtomlplusplus-dev nlohmann-json3-dev
   libgtest-dev libbenchmark-dev libgsl-dev
   libbullet-dev
-  libode-dev libmujoco-dev libdart-dev
+  libode-dev libmujoco-dev libdart-dev libsiconos-kernel-dev
   libosmesa6-dev libpng-dev libfreetype-dev fonts-dejavu-core ffmpeg
   gnuplot-nox chromium)
 missing=()

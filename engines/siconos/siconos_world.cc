@@ -1,0 +1,186 @@
+#include "engines/siconos/siconos_world.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+#include "engines/common/placement.h"
+#include "engines/siconos/siconos_system.h"
+
+namespace rockbench::siconos_engine {
+
+namespace {
+
+void CheckSettings(const SiconosSettings& s) {
+  auto require = [](bool ok, const char* what) {
+    if (!ok) throw std::invalid_argument(std::string("siconos: ") + what);
+  };
+  require(std::isfinite(s.time_step_s) && s.time_step_s > 0.0, "time_step must be positive");
+  require(std::isfinite(s.theta) && s.theta >= 0.5 && s.theta <= 1.0,
+          "theta must be in [0.5, 1] (Moreau-Jean is unstable below 0.5)");
+  require(std::isfinite(s.restitution) && s.restitution >= 0.0 && s.restitution <= 1.0,
+          "restitution must be in [0, 1]");
+  require(std::isfinite(s.friction) && s.friction >= 0.0,
+          "friction must be a finite non-negative number");
+  require(std::isfinite(s.solver_tolerance) && s.solver_tolerance > 0.0,
+          "solver_tolerance must be positive");
+  require(s.solver_max_iterations >= 1, "solver_max_iterations must be at least 1");
+}
+
+SiconosBlock Block(const BlockDef& def, const PlanarPose& pose, double ux0, double uy0, double gvx,
+                   double gvy) {
+  SiconosBlock b;
+  b.b_m = 0.5 * def.width_m;
+  b.h_m = 0.5 * def.height_m;
+  b.mass_kg = def.mass_kg;
+  b.inertia_kgm2 = def.mass_kg * (def.width_m * def.width_m + def.height_m * def.height_m) / 12.0;
+  b.x_m = pose.x_m + ux0;
+  b.y_m = pose.y_m + uy0;
+  b.phi_rad = pose.phi_rad;
+  b.vx_mps = pose.vx_mps + gvx;
+  b.vy_mps = pose.vy_mps + gvy;
+  b.w_radps = pose.w_radps;
+  return b;
+}
+
+void ReadBody(const SiconosBodyState& st, BodyReadout* out) {
+  out->x_m = st.x_m;
+  out->y_m = st.y_m;
+  out->cos_phi = std::cos(st.phi_rad);
+  out->sin_phi = std::sin(st.phi_rad);
+  out->vx_mps = st.vx_mps;
+  out->vy_mps = st.vy_mps;
+  out->w_radps = st.w_radps;
+}
+
+}  // namespace
+
+SiconosWorld::SiconosWorld(const EngineInput& input, const SiconosSettings& settings)
+    : in_(input), s_(settings) {
+  CheckSettings(s_);
+  if (in_.time_step_s != s_.time_step_s) {
+    throw std::invalid_argument("siconos: the input was sampled at time step " +
+                                std::to_string(in_.time_step_s) + " s, the settings ask for " +
+                                std::to_string(s_.time_step_s) + " s");
+  }
+  kinematic_ = in_.drive_kind == DriveKind::kKinematic;
+  const size_t samples = static_cast<size_t>(in_.steps) + 1;
+  if (kinematic_ && (in_.drive.ux_m.size() < samples || in_.drive.uy_m.size() < samples)) {
+    throw std::invalid_argument("siconos: kinematic drive without ground displacement samples");
+  }
+  const double b1 = 0.5 * in_.block1.width_m, h1 = 0.5 * in_.block1.height_m;
+  const double b2 = in_.block2 ? 0.5 * in_.block2->width_m : 0.0;
+  const double h2 = in_.block2 ? 0.5 * in_.block2->height_m : 0.0;
+  const StackPlacement place = PlaceStack(b1, h1, b2, h2, in_.two_blocks(), in_.initial);
+  const double ux0 = kinematic_ ? in_.drive.ux_m.front() : 0.0;
+  const double uy0 = kinematic_ ? in_.drive.uy_m.front() : 0.0;
+  const double gvx = kinematic_ ? in_.drive.ux0_mps : 0.0;
+  const double gvy = kinematic_ ? in_.drive.uy0_mps : 0.0;
+
+  SiconosSystemConfig c;
+  c.blocks.push_back(Block(in_.block1, place.block1, ux0, uy0, gvx, gvy));
+  if (in_.block2) c.blocks.push_back(Block(*in_.block2, place.block2, ux0, uy0, gvx, gvy));
+  c.time_step_s = s_.time_step_s;
+  c.theta = s_.theta;
+  c.restitution = s_.restitution;
+  c.friction = s_.friction;
+  c.solver = s_.solver;
+  c.solver_tolerance = s_.solver_tolerance;
+  c.solver_max_iterations = s_.solver_max_iterations;
+  c.lemke_fallback = s_.lemke_fallback;
+  c.newton_linear = s_.newton_linear;
+  c.moving_ground = kinematic_;
+  c.ground_x_m = ux0;
+  c.ground_y_m = uy0;
+  c.ground_vx_mps = gvx;
+  c.ground_vy_mps = gvy;
+  sys_ = std::make_unique<SiconosSystem>(c);
+}
+
+SiconosWorld::~SiconosWorld() = default;
+
+void SiconosWorld::ApplyDrive(std::int64_t n) {
+  const size_t i = static_cast<size_t>(n);
+  const double g = in_.run.gravity_mps2;
+  double ax = 0.0, ay = 0.0;
+  if (kinematic_) {
+    const auto& ux = in_.drive.ux_m;
+    const auto& uy = in_.drive.uy_m;
+    const double dt = s_.time_step_s;
+    sys_->SetGround(ux[i], uy[i], (ux[i + 1] - ux[i]) / dt, (uy[i + 1] - uy[i]) / dt);
+  } else {
+    ax = in_.drive.ax_mps2.empty() ? 0.0 : in_.drive.ax_mps2[i];
+    ay = in_.drive.ay_mps2.empty() ? 0.0 : in_.drive.ay_mps2[i];
+  }
+  // The exact equivalent of a translating base: each block's weight in the tilted gravity.
+  const double m1 = in_.block1.mass_kg;
+  sys_->SetForce(0, -m1 * ax, -m1 * (g + ay), 0.0);
+  if (in_.block2) {
+    const double m2 = in_.block2->mass_kg;
+    sys_->SetForce(1, -m2 * ax, -m2 * (g + ay), 0.0);
+  }
+}
+
+void SiconosWorld::Step() {
+  if (failed_) return;
+  if (!sys_->Step()) failed_ = true;
+}
+
+StepReadout SiconosWorld::Read(std::int64_t n) const {
+  StepReadout s;
+  s.t_s = static_cast<double>(n) * s_.time_step_s;
+  ReadBody(sys_->Body(0), &s.block1);
+  if (in_.block2) ReadBody(sys_->Body(1), &s.block2);
+  if (failed_) {
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    s.block1.x_m = s.block1.y_m = s.block2.x_m = s.block2.y_m = nan;
+  }
+  // Planar by construction: the dynamical systems have no out-of-plane coordinates.
+  s.out_of_plane_m = 0.0;
+  s.out_of_plane_rad = 0.0;
+  ReadBaseMotion(in_, n, &s);
+  return s;
+}
+
+nlohmann::json SiconosWorld::Diagnostics() const {
+  const SiconosCounters& c = sys_->Counters();
+  nlohmann::json j;
+  j["steps"] = c.steps;
+  j["solver_failures"] = c.solver_failures;
+  j["fallback_solves"] = c.fallback_solves;
+  j["fallback_failures"] = c.fallback_failures;
+  j["newton_iterations"] = c.newton_iterations;
+  j["max_newton_iterations_per_step"] = c.max_newton_iterations;
+  j["max_active_contacts"] = c.max_active_contacts;
+  j["solves"] = c.solves;
+  j["solver_iterations"] = c.solver_iterations;
+  j["max_solver_iterations"] = c.max_solver_iterations;
+  j["siconos_error"] = sys_->LastError();
+  return j;
+}
+
+nlohmann::json SiconosWorld::Settings() const {
+  nlohmann::json j;
+  j["siconos_version"] = SiconosVersionString();
+  j["drive"] = kinematic_ ? "kinematic" : "inertial";
+  j["time_step_s"] = s_.time_step_s;
+  j["output_interval_s"] = in_.run.output_interval_s;
+  j["substeps_per_sample"] = std::max(1.0, std::round(in_.run.output_interval_s / s_.time_step_s));
+  j["theta"] = s_.theta;
+  j["restitution"] = s_.restitution;
+  j["friction"] = s_.friction;
+  j["solver"] = SiconosSolverName(s_.solver);
+  j["solver_tolerance"] = s_.solver_tolerance;
+  j["solver_max_iterations"] = s_.solver_max_iterations;
+  j["lemke_fallback"] = s_.lemke_fallback && s_.solver != SiconosSolver::kLemke;
+  j["newton"] =
+      s_.newton_linear ? "linear (SICONOS_TS_LINEAR)" : "nonlinear (SICONOS_TS_NONLINEAR)";
+  j["kinematic_highpass_hz"] = in_.kinematic_highpass_hz;
+  j["integrator"] = "Moreau-Jean time stepping (TimeStepping + MoreauJeanOSI)";
+  j["contact"] = "FrictionContact (2-D), NewtonImpactFrictionNSL per bottom corner";
+  return j;
+}
+
+}  // namespace rockbench::siconos_engine
