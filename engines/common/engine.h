@@ -4,6 +4,7 @@
 /// the settings grid it offers to the work-precision sweep, and simulates a scene. The list of
 /// engines is engines/CMakeLists.txt (one line each); an engine whose library is missing at
 /// build time is left out and named by `rockbench engines`.
+#include <functional>
 #include <limits>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -38,6 +39,21 @@ struct SweepSetting {
 /// A time step as a point label: "1e-3", "5e-5", "1/60" (a whole number of steps per second
 /// that is not a power of ten), else "%.3g".
 std::string TimeStepLabel(double dt_s);
+
+/// Two settings families of an engine, ours and the engine's own defaults, over time steps: the
+/// shape of most engines' sweep and stress grids.
+struct TwoFamilyGrid {
+  /// One point: the family's settings at step dt (family, label, time_step_s, settings).
+  std::function<SweepSetting(bool engine_defaults, double dt_s)> point;
+  /// The stress cases' name prefixes: "<id>/dt=<label>".
+  std::string ours_id = "ours", defaults_id = "defaults";
+
+  /// Ours over steps_s, then the engine's defaults over steps_s (SweepGrid).
+  std::vector<SweepSetting> Sweep(const std::vector<double>& steps_s) const;
+  /// The same as stress cases, each in the CI subset when quick(dt) (StressGrid).
+  std::vector<SweepSetting> Stress(const std::vector<double>& steps_s,
+                                   const std::function<bool(double dt_s)>& quick) const;
+};
 
 /// Options of one run.
 struct SimulateOptions {

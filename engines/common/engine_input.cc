@@ -82,6 +82,25 @@ std::vector<double> KinematicDisplacement(const std::vector<double>& accel_mps2,
   return out;
 }
 
+std::vector<SweepSetting> TwoFamilyGrid::Sweep(const std::vector<double>& steps_s) const {
+  std::vector<SweepSetting> grid;
+  for (const bool engine_defaults : {false, true}) {
+    for (double dt : steps_s) grid.push_back(point(engine_defaults, dt));
+  }
+  return grid;
+}
+
+std::vector<SweepSetting> TwoFamilyGrid::Stress(const std::vector<double>& steps_s,
+                                                const std::function<bool(double)>& quick) const {
+  std::vector<SweepSetting> grid = Sweep(steps_s);
+  for (SweepSetting& s : grid) {
+    const bool engine_defaults = &s - grid.data() >= static_cast<std::ptrdiff_t>(steps_s.size());
+    s.id = (engine_defaults ? defaults_id : ours_id) + "/dt=" + s.label;
+    s.quick = quick(s.time_step_s);
+  }
+  return grid;
+}
+
 std::string TimeStepLabel(double dt_s) {
   char buf[40];
   if (!(dt_s > 0.0) || !std::isfinite(dt_s)) {

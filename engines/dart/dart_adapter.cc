@@ -39,28 +39,15 @@ class DartEngine final : public Engine {
   const EngineSettingsSchema& settings_schema() const override { return DartSettingsSchema(); }
 
   std::vector<SweepSetting> SweepGrid(bool quick) const override {
-    const std::vector<double> steps = quick
-                                          ? std::vector<double>{1e-3, 1e-4}
-                                          : std::vector<double>{5e-3, 1e-3, 5e-4, 1e-4, 5e-5, 1e-5};
-    std::vector<SweepSetting> grid;
-    for (const bool dart_default : {false, true}) {
-      for (double dt : steps) grid.push_back(Point(dart_default, dt));
-    }
-    return grid;
+    return TwoFamilyGrid{&Point}.Sweep(
+        quick ? std::vector<double>{1e-3, 1e-4}
+              : std::vector<double>{5e-3, 1e-3, 5e-4, 1e-4, 5e-5, 1e-5});
   }
 
   std::vector<SweepSetting> StressGrid() const override {
-    std::vector<SweepSetting> grid;
-    for (const bool dart_default : {false, true}) {
-      for (double dt : {1.0 / 60.0, 1e-3, 1e-4, 1e-5}) {
-        SweepSetting s = Point(dart_default, dt);
-        s.id = std::string(dart_default ? "defaults" : "ours") + "/dt=" + s.label;
-        // The CI subset: the coarsest step of each family.
-        s.quick = dt > 0.01;
-        grid.push_back(std::move(s));
-      }
-    }
-    return grid;
+    // The CI subset: the coarsest step of each family.
+    return TwoFamilyGrid{&Point}.Stress({1.0 / 60.0, 1e-3, 1e-4, 1e-5},
+                                        [](double dt) { return dt > 0.01; });
   }
 
   EngineResult Simulate(const Scene& scene, const GroundMotion& motion,

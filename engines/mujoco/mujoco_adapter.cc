@@ -46,28 +46,15 @@ class MujocoEngine final : public Engine {
   const EngineSettingsSchema& settings_schema() const override { return MujocoSettingsSchema(); }
 
   std::vector<SweepSetting> SweepGrid(bool quick) const override {
-    const std::vector<double> steps = quick
-                                          ? std::vector<double>{1e-3, 1e-4}
-                                          : std::vector<double>{2e-3, 1e-3, 5e-4, 1e-4, 5e-5, 1e-5};
-    std::vector<SweepSetting> grid;
-    for (const bool mujoco_default : {false, true}) {
-      for (double dt : steps) grid.push_back(Point(mujoco_default, dt));
-    }
-    return grid;
+    return TwoFamilyGrid{&Point}.Sweep(
+        quick ? std::vector<double>{1e-3, 1e-4}
+              : std::vector<double>{2e-3, 1e-3, 5e-4, 1e-4, 5e-5, 1e-5});
   }
 
   std::vector<SweepSetting> StressGrid() const override {
-    std::vector<SweepSetting> grid;
-    for (const bool mujoco_default : {false, true}) {
-      for (double dt : {2e-3, 1e-3, 1e-4, 1e-5}) {
-        SweepSetting s = Point(mujoco_default, dt);
-        s.id = std::string(mujoco_default ? "mujoco_default" : "stiff") + "/dt=" + s.label;
-        // The CI subset: MuJoCo's own step (2e-3 s) in each family.
-        s.quick = dt == 2e-3;
-        grid.push_back(std::move(s));
-      }
-    }
-    return grid;
+    // The CI subset: MuJoCo's own step (2e-3 s) in each family.
+    return TwoFamilyGrid{&Point, "stiff", "mujoco_default"}.Stress(
+        {2e-3, 1e-3, 1e-4, 1e-5}, [](double dt) { return dt == 2e-3; });
   }
 
   EngineResult Simulate(const Scene& scene, const GroundMotion& motion,

@@ -32,6 +32,15 @@ std::vector<std::pair<std::string, SettingValue>> OdeDefaults() {
           {"contact_max_correcting_vel", std::numeric_limits<double>::infinity()}};
 }
 
+// Ours (dWorldStep) and ODE's own contact handling.
+TwoFamilyGrid Families() {
+  return {[](bool ode_defaults, double dt_s) {
+            return ode_defaults ? Point("ODE defaults (quick_step 20 it)", dt_s, OdeDefaults())
+                                : Point("ODE world_step", dt_s, {});
+          },
+          "world_step", "defaults"};
+}
+
 class OdeEngine final : public Engine {
  public:
   std::string name() const override { return "ode"; }
@@ -44,35 +53,14 @@ class OdeEngine final : public Engine {
   const EngineSettingsSchema& settings_schema() const override { return OdeSettingsSchema(); }
 
   std::vector<SweepSetting> SweepGrid(bool quick) const override {
-    const std::vector<double> steps =
+    return Families().Sweep(
         quick ? std::vector<double>{1e-3, 1e-4}
-              : std::vector<double>{1.0 / 60.0, 5e-3, 1e-3, 5e-4, 1e-4, 5e-5, 1e-5};
-    std::vector<SweepSetting> grid;
-    for (double dt : steps) grid.push_back(Point("ODE world_step", dt, {}));
-    for (double dt : steps)
-      grid.push_back(Point("ODE defaults (quick_step 20 it)", dt, OdeDefaults()));
-    return grid;
+              : std::vector<double>{1.0 / 60.0, 5e-3, 1e-3, 5e-4, 1e-4, 5e-5, 1e-5});
   }
 
   std::vector<SweepSetting> StressGrid() const override {
-    struct Step {
-      const char* label;
-      double dt_s;
-    };
-    const Step steps[] = {{"1/60", 1.0 / 60.0}, {"1e-3", 1e-3}, {"1e-4", 1e-4}, {"1e-5", 1e-5}};
-    std::vector<SweepSetting> grid;
-    for (const bool defaults : {false, true}) {
-      for (const Step& st : steps) {
-        SweepSetting s = defaults ? Point("ODE defaults (quick_step 20 it)", st.dt_s, OdeDefaults())
-                                  : Point("ODE world_step", st.dt_s, {});
-        s.label = st.label;
-        s.id = std::string(defaults ? "defaults" : "world_step") + "/dt=" + st.label;
-        // The CI subset: the coarsest step of each family.
-        s.quick = st.dt_s > 0.01;
-        grid.push_back(std::move(s));
-      }
-    }
-    return grid;
+    // The CI subset: the coarsest step of each family.
+    return Families().Stress({1.0 / 60.0, 1e-3, 1e-4, 1e-5}, [](double dt) { return dt > 0.01; });
   }
 
   EngineResult Simulate(const Scene& scene, const GroundMotion& motion,

@@ -204,8 +204,11 @@ std::vector<EngineAtLevels> RankAtEqualAccuracy(const std::vector<SweepRecord>& 
         e.most_accurate = i;
       }
     }
+    // The order of the family of its most accurate run (an engine's first family need not be
+    // its defaults: Bullet's is 4 iterations, which stall).
+    const std::string best_family = e.most_accurate ? SweepFamily(rows[*e.most_accurate]) : "";
     for (const auto& [family, indices] : families) {
-      if (indices.empty() || rows[indices.front()].engine != engine) continue;
+      if (family != best_family) continue;
       e.order = FitOrder(rows, indices, family);
       break;
     }

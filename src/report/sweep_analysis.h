@@ -83,7 +83,7 @@ struct EngineAtLevels {
   std::vector<std::optional<size_t>> cheapest;
   std::vector<int> rank;
   std::optional<size_t> most_accurate;
-  std::optional<FittedOrder> order;  ///< over the engine's first family (its defaults)
+  std::optional<FittedOrder> order;  ///< over the family of the engine's most accurate run
 };
 /// Every engine of the rows (not the reference) at each criterion, sorted by rank at
 /// `sort_level` (engines that do not reach it after, by their most accurate row's error).

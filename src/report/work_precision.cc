@@ -152,10 +152,11 @@ GnuplotFigure BuildFigure(const std::vector<SweepRecord>& rows, const FigureSpec
         std::find(engines.begin(), engines.end(), head.engine) - engines.begin());
     const Style st = FamilyStyle(head, static_cast<size_t>(block), engine_index);
     const std::string idx = " index " + std::to_string(block);
+    // A family's title as written ("ODE world_step"): no enhanced-text subscripts.
     plot += std::string(block > 0 ? ", \\\n     " : "") + "'" + spec.name + ".dat'" + idx +
             " using 1:2 with linespoints lw 1.5 pt " + std::to_string(st.point_type) +
             " ps 0.8 dt " + std::to_string(st.dash_type) + " lc rgb '" + st.colour + "' title " +
-            GnuplotQuote(family) + ", \\\n     '" + spec.name + ".dat'" + idx +
+            GnuplotQuote(family) + " noenhanced, \\\n     '" + spec.name + ".dat'" + idx +
             " using 1:2:3 with labels font ',7' offset char 0.4,0.55 left tc rgb '" + st.colour +
             "' notitle";
     ++block;
@@ -373,8 +374,8 @@ void RankingSection(const std::vector<SweepRecord>& rows, const SweepInfo& info,
       "reference's peak |theta_i| for each block, with the same overturning. Each cell is the "
       "engine's cheapest setting reaching the level, ranked by wall time among the engines that "
       "reach it (#1 the cheapest); rows in rank order at 1%. The fitted order is the "
-      "least-squares slope of log(max angle error) against log(time step) over the engine's "
-      "first family (its defaults); it mixes regimes when the error stops falling (a floor set "
+      "least-squares slope of log(max angle error) against log(time step) over the family of "
+      "the engine's most accurate run; it mixes regimes when the error stops falling (a floor set "
       "by the contact model or, on a chaotic scene, by the predictability horizon), so read it "
       "with the figure and the order column of the table of all runs.");
 }
