@@ -6,11 +6,11 @@
 #     scenes/thesis_free_rocking.toml and scenes/thesis_rinaldi228.toml;
 #   - the angles and angle-error figures of the compare report of scenes/thesis_free_rocking.toml
 #     (the reference and every built engine).
-# Builds first if needed (scripts/build.sh, incremental). The full grid, timed one run at a time
-# (--threads 1 --repeat 3, the settings for timing-grade wall times), takes about 13 minutes on
-# a 2-core machine (measured 446 s for free rocking and 339 s for Rinaldi 228 while the machine
-# was busy with other work); --quick runs the quick grids instead (well under a minute, for
-# checking the pipeline; not for the committed figures).
+# Builds first if needed (scripts/build.sh, incremental). The full grid of every built engine,
+# one run at a time, took 10 minutes on a 2-core machine with --repeat 1 (2026-11-23: Housner
+# 35 s, free rocking 3.5 min, Rinaldi 228 6 min); the default --repeat 3 (the minimum of three
+# wall times, for timing-grade figures) takes about three times that. --quick runs the quick grids
+# instead (well under a minute, for checking the pipeline; not for the committed figures).
 #
 # Usage: scripts/figures.sh [--quick] [--out DIR]      (DIR default: out/figures)
 # Environment: ROCKBENCH_BUILD_DIR (default build), ROCKBENCH_SWEEP_ARGS (replaces the timing
