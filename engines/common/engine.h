@@ -53,6 +53,10 @@ struct TwoFamilyGrid {
   /// The same as stress cases, each in the CI subset when quick(dt) (StressGrid).
   std::vector<SweepSetting> Stress(const std::vector<double>& steps_s,
                                    const std::function<bool(double dt_s)>& quick) const;
+  /// Sweep over the usual steps: quick {1e-3, 1e-4}; else coarsest_s, then 1e-3 to 1e-5 s.
+  std::vector<SweepSetting> StandardSweep(bool quick, double coarsest_s) const;
+  /// Stress over 1/60, 1e-3, 1e-4 and 1e-5 s, the CI subset the coarsest step of each family.
+  std::vector<SweepSetting> StandardStress() const;
 };
 
 /// Options of one run.

@@ -101,6 +101,15 @@ std::vector<SweepSetting> TwoFamilyGrid::Stress(const std::vector<double>& steps
   return grid;
 }
 
+std::vector<SweepSetting> TwoFamilyGrid::StandardSweep(bool quick, double coarsest_s) const {
+  return Sweep(quick ? std::vector<double>{1e-3, 1e-4}
+                     : std::vector<double>{coarsest_s, 1e-3, 5e-4, 1e-4, 5e-5, 1e-5});
+}
+
+std::vector<SweepSetting> TwoFamilyGrid::StandardStress() const {
+  return Stress({1.0 / 60.0, 1e-3, 1e-4, 1e-5}, [](double dt) { return dt > 0.01; });
+}
+
 std::string TimeStepLabel(double dt_s) {
   char buf[40];
   if (!(dt_s > 0.0) || !std::isfinite(dt_s)) {

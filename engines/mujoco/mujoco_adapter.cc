@@ -46,9 +46,7 @@ class MujocoEngine final : public Engine {
   const EngineSettingsSchema& settings_schema() const override { return MujocoSettingsSchema(); }
 
   std::vector<SweepSetting> SweepGrid(bool quick) const override {
-    return TwoFamilyGrid{&Point}.Sweep(
-        quick ? std::vector<double>{1e-3, 1e-4}
-              : std::vector<double>{2e-3, 1e-3, 5e-4, 1e-4, 5e-5, 1e-5});
+    return TwoFamilyGrid{&Point}.StandardSweep(quick, 2e-3);
   }
 
   std::vector<SweepSetting> StressGrid() const override {

@@ -58,10 +58,7 @@ class OdeEngine final : public Engine {
               : std::vector<double>{1.0 / 60.0, 5e-3, 1e-3, 5e-4, 1e-4, 5e-5, 1e-5});
   }
 
-  std::vector<SweepSetting> StressGrid() const override {
-    // The CI subset: the coarsest step of each family.
-    return Families().Stress({1.0 / 60.0, 1e-3, 1e-4, 1e-5}, [](double dt) { return dt > 0.01; });
-  }
+  std::vector<SweepSetting> StressGrid() const override { return Families().StandardStress(); }
 
   EngineResult Simulate(const Scene& scene, const GroundMotion& motion,
                         const SimulateOptions& options) const override {

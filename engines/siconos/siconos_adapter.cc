@@ -40,15 +40,11 @@ class SiconosEngine final : public Engine {
   const EngineSettingsSchema& settings_schema() const override { return SiconosSettingsSchema(); }
 
   std::vector<SweepSetting> SweepGrid(bool quick) const override {
-    return TwoFamilyGrid{&Point}.Sweep(
-        quick ? std::vector<double>{1e-3, 1e-4}
-              : std::vector<double>{5e-3, 1e-3, 5e-4, 1e-4, 5e-5, 1e-5});
+    return TwoFamilyGrid{&Point}.StandardSweep(quick, 5e-3);
   }
 
   std::vector<SweepSetting> StressGrid() const override {
-    // The CI subset: the coarsest step of each family.
-    return TwoFamilyGrid{&Point}.Stress({1.0 / 60.0, 1e-3, 1e-4, 1e-5},
-                                        [](double dt) { return dt > 0.01; });
+    return TwoFamilyGrid{&Point}.StandardStress();
   }
 
   EngineResult Simulate(const Scene& scene, const GroundMotion& motion,
