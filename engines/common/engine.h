@@ -43,11 +43,15 @@ std::string TimeStepLabel(double dt_s);
 /// Two settings families of an engine, ours and the engine's own defaults, over time steps: the
 /// shape of most engines' sweep and stress grids.
 struct TwoFamilyGrid {
-  /// One point: the family's settings at step dt (family, label, time_step_s, settings).
-  std::function<SweepSetting(bool engine_defaults, double dt_s)> point;
+  std::string ours_family;      ///< "DART (Dantzig + PGS)": our defaults
+  std::string defaults_family;  ///< "DART defaults (FCL friction 1)": the engine's own
+  /// What the engine's-defaults family sets besides the step (key -> value in the table).
+  std::vector<std::pair<std::string, SettingValue>> defaults_settings;
   /// The stress cases' name prefixes: "<id>/dt=<label>".
   std::string ours_id = "ours", defaults_id = "defaults";
 
+  /// One point: the family at step dt (its label TimeStepLabel(dt)).
+  SweepSetting Point(bool engine_defaults, double dt_s) const;
   /// Ours over steps_s, then the engine's defaults over steps_s (SweepGrid).
   std::vector<SweepSetting> Sweep(const std::vector<double>& steps_s) const;
   /// The same as stress cases, each in the CI subset when quick(dt) (StressGrid).

@@ -82,10 +82,22 @@ std::vector<double> KinematicDisplacement(const std::vector<double>& accel_mps2,
   return out;
 }
 
+SweepSetting TwoFamilyGrid::Point(bool engine_defaults, double dt_s) const {
+  SweepSetting s;
+  s.family = engine_defaults ? defaults_family : ours_family;
+  s.label = TimeStepLabel(dt_s);
+  s.time_step_s = dt_s;
+  s.settings = {{"time_step", dt_s}};
+  if (engine_defaults) {
+    s.settings.insert(s.settings.end(), defaults_settings.begin(), defaults_settings.end());
+  }
+  return s;
+}
+
 std::vector<SweepSetting> TwoFamilyGrid::Sweep(const std::vector<double>& steps_s) const {
   std::vector<SweepSetting> grid;
   for (const bool engine_defaults : {false, true}) {
-    for (double dt : steps_s) grid.push_back(point(engine_defaults, dt));
+    for (double dt : steps_s) grid.push_back(Point(engine_defaults, dt));
   }
   return grid;
 }
@@ -94,8 +106,7 @@ std::vector<SweepSetting> TwoFamilyGrid::Stress(const std::vector<double>& steps
                                                 const std::function<bool(double)>& quick) const {
   std::vector<SweepSetting> grid = Sweep(steps_s);
   for (SweepSetting& s : grid) {
-    const bool engine_defaults = &s - grid.data() >= static_cast<std::ptrdiff_t>(steps_s.size());
-    s.id = (engine_defaults ? defaults_id : ours_id) + "/dt=" + s.label;
+    s.id = (s.family == defaults_family ? defaults_id : ours_id) + "/dt=" + s.label;
     s.quick = quick(s.time_step_s);
   }
   return grid;

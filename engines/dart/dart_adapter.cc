@@ -12,22 +12,13 @@ namespace rockbench {
 namespace dart_engine {
 namespace {
 
-constexpr const char* kOurs = "DART (Dantzig + PGS)";
-constexpr const char* kDefaults = "DART defaults (FCL friction 1)";
-
-// A grid point of a family at step dt. DART's contact ERP, allowance, cap and CFM are
-// process-wide, so every point keeps ours (equal to DART's defaults): runs may share a process.
-SweepSetting Point(bool dart_default, double dt_s) {
-  SweepSetting s;
-  s.family = dart_default ? kDefaults : kOurs;
-  s.label = TimeStepLabel(dt_s);
-  s.time_step_s = dt_s;
-  s.settings = {{"time_step", dt_s}};
-  if (dart_default) {
-    s.settings.emplace_back("collision", std::string("fcl"));
-    s.settings.emplace_back("friction", 1.0);
-  }
-  return s;
+// Ours, and DART's own collision detector and friction. DART's contact ERP, allowance, cap and
+// CFM are process-wide, so every point keeps ours (equal to DART's defaults): runs may share a
+// process.
+TwoFamilyGrid Families() {
+  return {"DART (Dantzig + PGS)",
+          "DART defaults (FCL friction 1)",
+          {{"collision", std::string("fcl")}, {"friction", 1.0}}};
 }
 
 class DartEngine final : public Engine {
@@ -39,12 +30,10 @@ class DartEngine final : public Engine {
   const EngineSettingsSchema& settings_schema() const override { return DartSettingsSchema(); }
 
   std::vector<SweepSetting> SweepGrid(bool quick) const override {
-    return TwoFamilyGrid{&Point}.StandardSweep(quick, 5e-3);
+    return Families().StandardSweep(quick, 5e-3);
   }
 
-  std::vector<SweepSetting> StressGrid() const override {
-    return TwoFamilyGrid{&Point}.StandardStress();
-  }
+  std::vector<SweepSetting> StressGrid() const override { return Families().StandardStress(); }
 
   EngineResult Simulate(const Scene& scene, const GroundMotion& motion,
                         const SimulateOptions& options) const override {

@@ -13,23 +13,16 @@ namespace rockbench {
 namespace mujoco {
 namespace {
 
-constexpr const char* kStiffFamily = "MuJoCo stiff contact";
-constexpr const char* kDefaultFamily = "MuJoCo defaults (soft contact)";
-
-// A grid point of a family at step dt.
-SweepSetting Point(bool mujoco_default, double dt_s) {
-  SweepSetting s;
-  s.family = mujoco_default ? kDefaultFamily : kStiffFamily;
-  s.label = TimeStepLabel(dt_s);
-  s.time_step_s = dt_s;
-  s.settings = {{"time_step", dt_s}};
-  // MuJoCo's own contact, friction and cone: what a user of its defaults gets.
-  if (mujoco_default) {
-    s.settings.emplace_back("contact", std::string("mujoco_default"));
-    s.settings.emplace_back("friction", 1.0);
-    s.settings.emplace_back("cone", std::string("pyramidal"));
-  }
-  return s;
+// Stiff contact (ours), and MuJoCo's own contact, friction and cone: what a user of its defaults
+// gets.
+TwoFamilyGrid Families() {
+  return {"MuJoCo stiff contact",
+          "MuJoCo defaults (soft contact)",
+          {{"contact", std::string("mujoco_default")},
+           {"friction", 1.0},
+           {"cone", std::string("pyramidal")}},
+          "stiff",
+          "mujoco_default"};
 }
 
 class MujocoEngine final : public Engine {
@@ -46,13 +39,12 @@ class MujocoEngine final : public Engine {
   const EngineSettingsSchema& settings_schema() const override { return MujocoSettingsSchema(); }
 
   std::vector<SweepSetting> SweepGrid(bool quick) const override {
-    return TwoFamilyGrid{&Point}.StandardSweep(quick, 2e-3);
+    return Families().StandardSweep(quick, 2e-3);
   }
 
   std::vector<SweepSetting> StressGrid() const override {
     // The CI subset: MuJoCo's own step (2e-3 s) in each family.
-    return TwoFamilyGrid{&Point, "stiff", "mujoco_default"}.Stress(
-        {2e-3, 1e-3, 1e-4, 1e-5}, [](double dt) { return dt == 2e-3; });
+    return Families().Stress({2e-3, 1e-3, 1e-4, 1e-5}, [](double dt) { return dt == 2e-3; });
   }
 
   EngineResult Simulate(const Scene& scene, const GroundMotion& motion,

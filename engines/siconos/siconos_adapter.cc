@@ -12,23 +12,14 @@ namespace rockbench {
 namespace siconos_engine {
 namespace {
 
-constexpr const char* kOurs = "Siconos Moreau-Jean (NSGS 1e-8)";
-constexpr const char* kNsgs = "Siconos defaults (NSGS 1e-4)";
-
-// A grid point of a family at step dt: ours (NSGS to 1e-8) or NSGS at the numerics' own
-// tolerance and cap (1e-4, 1000).
-SweepSetting Point(bool nsgs, double dt_s) {
-  SweepSetting s;
-  s.family = nsgs ? kNsgs : kOurs;
-  s.label = TimeStepLabel(dt_s);
-  s.time_step_s = dt_s;
-  s.settings = {{"time_step", dt_s}};
-  if (nsgs) {
-    s.settings.emplace_back("solver_tolerance", 1e-4);
-    s.settings.emplace_back("lemke_fallback", false);
-    s.settings.emplace_back("solver_max_iterations", std::int64_t{1000});
-  }
-  return s;
+// Ours (NSGS to 1e-8, Lemke fallback), and NSGS at the numerics' own tolerance and cap (1e-4,
+// 1000) without a fallback.
+TwoFamilyGrid Families() {
+  return {"Siconos Moreau-Jean (NSGS 1e-8)",
+          "Siconos defaults (NSGS 1e-4)",
+          {{"solver_tolerance", 1e-4},
+           {"lemke_fallback", false},
+           {"solver_max_iterations", std::int64_t{1000}}}};
 }
 
 class SiconosEngine final : public Engine {
@@ -40,12 +31,10 @@ class SiconosEngine final : public Engine {
   const EngineSettingsSchema& settings_schema() const override { return SiconosSettingsSchema(); }
 
   std::vector<SweepSetting> SweepGrid(bool quick) const override {
-    return TwoFamilyGrid{&Point}.StandardSweep(quick, 5e-3);
+    return Families().StandardSweep(quick, 5e-3);
   }
 
-  std::vector<SweepSetting> StressGrid() const override {
-    return TwoFamilyGrid{&Point}.StandardStress();
-  }
+  std::vector<SweepSetting> StressGrid() const override { return Families().StandardStress(); }
 
   EngineResult Simulate(const Scene& scene, const GroundMotion& motion,
                         const SimulateOptions& options) const override {
