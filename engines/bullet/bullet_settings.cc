@@ -18,8 +18,7 @@ const EngineSettingsSchema& BulletSettingsSchema() {
               "sequential-impulse iterations; 10 leaves the stack's contacts unconverged");
     s.Choice("precision", "double", {"double", "float"}, "float (libbullet-dev)",
              "btScalar: double in process (bullet-float64), float in a helper program");
-    s.Choice("drive", "inertial", {"inertial", "kinematic"}, "-",
-             "base motion as tilted gravity (inertial) or a moving ground (kinematic)");
+    AddDriveSetting(s);
     s.Number("erp", d.erp, R::kUnitInterval, "", "0.2",
              "joint error reduction (contacts use erp2); 0: no position correction");
     s.Number("erp2", d.erp2, R::kUnitInterval, "", "0.2",
@@ -38,8 +37,7 @@ const EngineSettingsSchema& BulletSettingsSchema() {
     s.Number("margin", d.margin_m, R::kNonNegative, "m", "0.04 m",
              "collision margin; a margin rounds the corners the blocks pivot on");
     s.Number("ground_depth", d.ground_depth_m, R::kPositive, "m", "-", "ground box thickness");
-    s.Number("kinematic_highpass_hz", 0.0, R::kNonNegative, "Hz", "-",
-             "kinematic drive's baseline-correction corner; 0: none (docs/bullet.md)");
+    AddKinematicHighpassSetting(s);
     return s;
   }();
   return kSchema;

@@ -121,6 +121,16 @@ std::vector<SweepSetting> TwoFamilyGrid::StandardStress() const {
   return Stress({1.0 / 60.0, 1e-3, 1e-4, 1e-5}, [](double dt) { return dt > 0.01; });
 }
 
+void AddDriveSetting(EngineSettingsSchema& schema) {
+  schema.Choice("drive", "inertial", {"inertial", "kinematic"}, "-",
+                "base motion as tilted gravity (inertial) or a moving ground (kinematic)");
+}
+
+void AddKinematicHighpassSetting(EngineSettingsSchema& schema) {
+  schema.Number("kinematic_highpass_hz", 0.0, SettingRange::kNonNegative, "Hz", "-",
+                "kinematic drive's baseline-correction corner; 0: none (docs/bullet.md)");
+}
+
 std::string TimeStepLabel(double dt_s) {
   char buf[40];
   if (!(dt_s > 0.0) || !std::isfinite(dt_s)) {

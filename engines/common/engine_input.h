@@ -83,6 +83,12 @@ EngineInput MakeEngineInput(const Scene& scene, const GroundMotion& motion,
                             const std::string& engine, const EngineSettings& settings,
                             double stop_at_rest_after_s);
 
+/// The two keys of an engine's table that MakeEngineInput reads, defined once for every engine
+/// with both drives: `drive` ("inertial", the default, or "kinematic") and
+/// `kinematic_highpass_hz` (the kinematic drive's baseline-correction corner, default 0: none).
+void AddDriveSetting(EngineSettingsSchema& schema);
+void AddKinematicHighpassSetting(EngineSettingsSchema& schema);
+
 /// summary.json "kinematic" of a kinematic-drive run: the baseline correction and the peak
 /// displacements before and after it.
 nlohmann::json KinematicDriveJson(const EngineInput& input);

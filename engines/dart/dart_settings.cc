@@ -11,8 +11,7 @@ const EngineSettingsSchema& DartSettingsSchema() {
     s.engine = "dart";
     const DartSettings d;
     s.Number("time_step", d.time_step_s, R::kPositive, "s", "1e-3 s", "fixed step");
-    s.Choice("drive", "inertial", {"inertial", "kinematic"}, "-",
-             "base motion as tilted gravity (inertial) or a moving ground (kinematic)");
+    AddDriveSetting(s);
     s.Choice("collision", DartCollisionName(d.collision), {"dart", "fcl"}, "fcl",
              "collision detector; DART's own box-box gives the corner-edge and face contacts");
     s.Choice("lcp_solver", DartLcpSolverName(d.lcp_solver), {"dantzig", "pgs"}, "dantzig",
@@ -33,8 +32,7 @@ const EngineSettingsSchema& DartSettingsSchema() {
     s.Number("cfm", d.cfm, R::kNonNegative, "", "1e-5", "relative constraint force mixing");
     s.Integer("max_contacts", d.max_contacts, 1, 1000000, "1000", "contacts per collision query");
     s.Number("ground_depth", d.ground_depth_m, R::kPositive, "m", "-", "ground box thickness");
-    s.Number("kinematic_highpass_hz", 0.0, R::kNonNegative, "Hz", "-",
-             "kinematic drive's baseline-correction corner; 0: none (docs/bullet.md)");
+    AddKinematicHighpassSetting(s);
     return s;
   }();
   return kSchema;

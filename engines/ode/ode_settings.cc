@@ -13,8 +13,7 @@ const EngineSettingsSchema& OdeSettingsSchema() {
     const OdeSettings d;
     s.Number("time_step", d.time_step_s, R::kPositive, "s", "none (the caller's)",
              "fixed step of dWorldStep");
-    s.Choice("drive", "inertial", {"inertial", "kinematic"}, "-",
-             "base motion as tilted gravity (inertial) or a moving ground (kinematic)");
+    AddDriveSetting(s);
     s.Choice("stepper", OdeStepperName(d.stepper), {"world_step", "quick_step"},
              "- (demos use quick_step)",
              "dWorldStep (Dantzig LCP, exact) or dWorldQuickStep (SOR, fixed iterations)");
@@ -46,8 +45,7 @@ const EngineSettingsSchema& OdeSettingsSchema() {
     s.Flag("finite_rotation", d.finite_rotation, "false",
            "exact rotation of a step instead of the tangent update");
     s.Number("ground_depth", d.ground_depth_m, R::kPositive, "m", "-", "ground box thickness");
-    s.Number("kinematic_highpass_hz", 0.0, R::kNonNegative, "Hz", "-",
-             "kinematic drive's baseline-correction corner; 0: none (docs/bullet.md)");
+    AddKinematicHighpassSetting(s);
     return s;
   }();
   return kSchema;

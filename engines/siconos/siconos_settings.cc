@@ -12,8 +12,7 @@ const EngineSettingsSchema& SiconosSettingsSchema() {
     const SiconosSettings d;
     s.Number("time_step", d.time_step_s, R::kPositive, "s", "none (TimeDiscretisation's h)",
              "fixed step of the Moreau-Jean time stepping");
-    s.Choice("drive", "inertial", {"inertial", "kinematic"}, "-",
-             "base motion as tilted gravity (inertial) or a moving ground (kinematic)");
+    AddDriveSetting(s);
     s.Number("theta", d.theta, R::kUnitInterval, "", "0.5",
              "Moreau-Jean theta, in [0.5, 1] (0.5 trapezoidal, 1 implicit Euler)");
     s.Number("restitution", d.restitution, R::kUnitInterval, "", "none",
@@ -31,8 +30,7 @@ const EngineSettingsSchema& SiconosSettingsSchema() {
            "a step NSGS does not converge on is solved again by Lemke");
     s.Choice("newton", d.newton_linear ? "linear" : "nonlinear", {"linear", "nonlinear"},
              "nonlinear", "TimeStepping's Newton loop; both make one iteration here");
-    s.Number("kinematic_highpass_hz", 0.0, R::kNonNegative, "Hz", "-",
-             "kinematic drive's baseline-correction corner; 0: none (docs/bullet.md)");
+    AddKinematicHighpassSetting(s);
     return s;
   }();
   return kSchema;
