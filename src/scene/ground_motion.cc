@@ -89,8 +89,7 @@ MotionComponent MotionComponent::FromSamples(std::vector<double> accel_mps2, dou
 }
 
 MotionComponent MotionComponent::FromSynthetic(const MotionDef& def) {
-  SyntheticMotionDef d = def.synthetic;
-  d.target_peak_mps2 = def.amplitude_g * kStandardGravity_mps2;
+  const SyntheticMotionDef d = def.SyntheticProcess();
   std::vector<double> a;
   try {
     a = GenerateSyntheticMotion(d);

@@ -427,8 +427,7 @@ class Reader {
     if (const auto seed = NonNegativeInteger(t, prefix, "seed", INT64_MAX)) {
       d.seed = static_cast<std::uint64_t>(*seed);
     }
-    if (peak) d.target_peak_mps2 = *peak * kStandardGravity_mps2;
-    const std::string problem = SyntheticMotionProblem(d);
+    const std::string problem = SyntheticMotionProblem(m->SyntheticProcess());
     if (!problem.empty()) Fail(prefix, &t, problem);
   }
 
@@ -722,6 +721,12 @@ bool IsAt2File(const std::filesystem::path& file) {
   return ext == ".at2";
 }
 
+SyntheticMotionDef MotionDef::SyntheticProcess() const {
+  SyntheticMotionDef d = synthetic;
+  d.target_peak_mps2 = amplitude_g * kStandardGravity_mps2;
+  return d;
+}
+
 std::string_view MotionKindName(MotionKind kind) {
   switch (kind) {
     case MotionKind::kFile:
@@ -842,9 +847,7 @@ void ValidateScene(const Scene& scene) {
     }
     if (d.kind == MotionKind::kKanaiTajimi) {
       check(p + ".amplitude_g", d.amplitude_g, Rule::kNonNegative, "g");
-      SyntheticMotionDef synthetic = d.synthetic;
-      synthetic.target_peak_mps2 = d.amplitude_g * kStandardGravity_mps2;
-      const std::string problem = SyntheticMotionProblem(synthetic);
+      const std::string problem = SyntheticMotionProblem(d.SyntheticProcess());
       if (!problem.empty()) fail(p, problem);
       continue;
     }

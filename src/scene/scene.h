@@ -60,8 +60,12 @@ struct MotionDef {
   double duration_s = std::numeric_limits<double>::infinity();  ///< harmonic/rectangular length
   double start_s = 0.0;  ///< first sample time / pulse start t0
   /// kind = "kanai_tajimi": the process, its envelope, sampling and seed. amplitude_g, when
-  /// given, is the generated record's peak (its intensity then plays no part).
+  /// given, is the generated record's peak (its intensity then plays no part); the peak is read
+  /// from amplitude_g alone (SyntheticProcess), never from synthetic.target_peak_mps2.
   SyntheticMotionDef synthetic;
+
+  /// The synthetic process to generate: `synthetic` with its target peak amplitude_g, in m/s^2.
+  SyntheticMotionDef SyntheticProcess() const;
 };
 
 struct RunConfig {
