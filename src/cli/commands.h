@@ -17,6 +17,9 @@ void RegisterReport(CLI::App& app);
 /// `rockbench stress --out DIR [--quick]` (cmd_stress.cc)
 void RegisterStress(CLI::App& app);
 
+/// `rockbench ensemble STUDY --out DIR [--jobs N] [--resume]` (cmd_ensemble.cc)
+void RegisterEnsemble(CLI::App& app);
+
 /// `rockbench engines`: the engines of this build, and those left out (main.cc)
 void RegisterEngines(CLI::App& app);
 

@@ -4,13 +4,21 @@
 
 #include "cli/commands.h"
 #include "harness/engine_registry.h"
+#include "harness/study_mpi.h"
 
 namespace rockbench::cli {
+
+// Whether `mpirun ... rockbench ensemble` works in this build.
+std::string MpiLine() {
+  return MpiBuilt() ? "mpi: built (mpirun -n N rockbench ensemble ...)\n"
+                    : "mpi: left out of this build (" + MpiMissingReason() + ")\n";
+}
 
 void RegisterEngines(CLI::App& app) {
   auto* cmd = app.add_subcommand("engines", "List the engines of this build and those left out");
   cmd->callback([] {
-    std::printf("reference: the analytical model (always built)\n%s", EngineListText().c_str());
+    std::printf("reference: the analytical model (always built)\n%s%s", EngineListText().c_str(),
+                MpiLine().c_str());
   });
 }
 
@@ -27,12 +35,13 @@ int main(int argc, char** argv) {
   rockbench::cli::RegisterRender(app);
   rockbench::cli::RegisterReport(app);
   rockbench::cli::RegisterStress(app);
+  rockbench::cli::RegisterEnsemble(app);
   rockbench::cli::RegisterEngines(app);
   try {
     app.parse(argc, argv);
     if (version) {
-      std::printf("rockbench %s\nreference: the analytical model\n%s", ROCKBENCH_VERSION,
-                  rockbench::EngineListText().c_str());
+      std::printf("rockbench %s\nreference: the analytical model\n%s%s", ROCKBENCH_VERSION,
+                  rockbench::EngineListText().c_str(), rockbench::cli::MpiLine().c_str());
       return 0;
     }
     if (app.get_subcommands().empty()) {

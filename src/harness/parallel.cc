@@ -73,8 +73,9 @@ void ProgressLine::Update(int done, int total) {
   last_draw_s_ = now;
   const double elapsed = now - start_s_;
   const double left = done > 0 ? elapsed * (total - done) / done : 0.0;
-  std::fprintf(out_, "\r%s: %d/%d, %.1f s elapsed, about %.1f s left   ", label_.c_str(), done,
-               total, elapsed, left);
+  const double rate = elapsed > 0.0 ? done / elapsed : 0.0;
+  std::fprintf(out_, "\r%s: %d/%d, %.3g/s, %.1f s elapsed, about %.1f s left   ", label_.c_str(),
+               done, total, rate, elapsed, left);
   std::fflush(out_);
   drawn_ = true;
 }

@@ -12,7 +12,8 @@ namespace rockbench {
 void ParallelFor(int n, int threads, const std::function<void(int)>& job,
                  const std::function<void(int done, int total)>& progress = {});
 
-/// A progress line on standard error ("label: 12/64, 3.1 s elapsed, about 2.0 s left") that
+/// A progress line on standard error ("label: 12/64, 3.87/s, 3.1 s elapsed, about 2.0 s left")
+/// (done, total, rate per second, elapsed and remaining time) that
 /// redraws itself in place, only when standard error is a terminal; quiet otherwise.
 class ProgressLine {
  public:

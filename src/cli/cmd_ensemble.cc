@@ -1,0 +1,214 @@
+// `rockbench ensemble STUDY.toml --out DIR [--jobs N] [--resume] [--keep-histories]`, and the
+// same under `mpirun -n N`: every (member, run) of a study in a worker process
+// (`rockbench ensemble STUDY --worker`, hidden), rows to DIR/members.csv as they finish, the
+// file in member order at the end, and DIR/study.json (src/harness/study_runner.h,
+// docs/ensemble.md).
+#include <sys/resource.h>
+
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <string>
+#include <thread>
+
+#include "cli/commands.h"
+#include "harness/parallel.h"
+#include "harness/study.h"
+#include "harness/study_mpi.h"
+#include "harness/study_runner.h"
+#include "scene/scene.h"
+
+namespace rockbench::cli {
+namespace {
+
+struct EnsembleCliOptions {
+  std::string study;
+  std::string out;
+  int jobs = 0;
+  bool resume = false;
+  bool keep_histories = false;
+  bool list = false;
+  bool worker = false;
+  // Tests of the isolation: the worker crashes (SIGSEGV) or hangs on this member.
+  long long crash_member = -1, hang_member = -1;
+};
+
+double Now_s() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+// The worker: runs on standard input, rows on standard output.
+void RunWorker(const StudyDef& study, const EnsembleCliOptions& opt) {
+  std::optional<std::filesystem::path> keep;
+  if (opt.keep_histories) keep = std::filesystem::path(opt.out);
+  if (opt.crash_member < 0 && opt.hang_member < 0) {
+    RunWorkerLoop(study, stdin, stdout, keep);
+    return;
+  }
+  // Self-test: read one run at a time and fail on the named member.
+  long long member = 0;
+  int engine = 0;
+  while (std::fscanf(stdin, "%lld %d", &member, &engine) == 2) {
+    if (member == opt.crash_member) {
+      // No core file for a deliberate crash, and the default action (a sanitizer's handler
+      // would turn the signal into an exit status).
+      const rlimit none{0, 0};
+      ::setrlimit(RLIMIT_CORE, &none);
+      std::fflush(nullptr);
+      std::signal(SIGSEGV, SIG_DFL);
+      std::raise(SIGSEGV);
+    }
+    if (member == opt.hang_member) {
+      while (true) std::this_thread::sleep_for(std::chrono::seconds(1));
+    }
+    const std::string line = std::to_string(member) + " " + std::to_string(engine) + "\n";
+    std::FILE* one = fmemopen(const_cast<char*>(line.data()), line.size(), "r");
+    RunWorkerLoop(study, one, stdout, keep);
+    std::fclose(one);
+  }
+}
+
+void List(const StudyDef& study) {
+  std::printf("%s: %lld members x %zu runs (", study.path.string().c_str(),
+              static_cast<long long>(study.member_count()), study.engines.size());
+  for (size_t i = 0; i < study.engines.size(); ++i) {
+    std::printf("%s%s", i ? ", " : "", study.engines[i].c_str());
+  }
+  std::printf(")\n");
+  for (const StudyAxis& a : study.axes) {
+    std::printf("  %s: %zu values (%s ... %s)%s\n", a.key.c_str(), a.values.size(),
+                a.values.front().text.c_str(), a.values.back().text.c_str(),
+                a.derived ? ", derived" : "");
+  }
+}
+
+void WriteStudyJson(const StudyDef& study, const std::filesystem::path& dir, int ranks, int jobs,
+                    double wall_s, double serial_s, int64_t resumed_rows) {
+  nlohmann::json j = {{"study", study.path.string()},
+                      {"title", study.title},
+                      {"scene", study.scene_path.string()},
+                      {"members", study.member_count()},
+                      {"engines", study.engines},
+                      {"ranks", ranks},
+                      {"jobs_per_rank", jobs},
+                      {"wall_s", wall_s},
+                      {"serial_s", serial_s},
+                      {"rows_resumed", resumed_rows}};
+  for (const StudyAxis& a : study.axes) {
+    nlohmann::json values = nlohmann::json::array();
+    for (const AxisValue& v : a.values) values.push_back(v.text);
+    j["axes"].push_back({{"key", a.key}, {"values", values}, {"derived", a.derived}});
+  }
+  const std::filesystem::path path = dir / "study.json";
+  const std::filesystem::path tmp = path.string() + ".tmp";
+  {
+    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    out << j.dump(2) << "\n";
+    if (!out) throw SceneError(tmp.string() + ": cannot write");
+  }
+  std::filesystem::rename(tmp, path);
+}
+
+void RunStudy(const EnsembleCliOptions& opt, double start_s) {
+  const StudyDef study = LoadStudy(opt.study);
+  if (opt.worker) {
+    RunWorker(study, opt);
+    return;
+  }
+  if (opt.list) {
+    List(study);
+    return;
+  }
+  if (opt.out.empty()) throw SceneError("--out: required (the study's folder)");
+  if (opt.jobs < 0) throw SceneError("--jobs: expected 1 or more (0: every core)");
+  const std::filesystem::path dir(opt.out);
+  const int ranks = LaunchedRanks();
+  std::unique_ptr<MpiSession> session;
+  if (ranks > 1) session = std::make_unique<MpiSession>();
+  const bool root = !session || session->rank() == 0;
+  // Under MPI one worker per rank unless told (start one rank per core).
+  const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  const int jobs = opt.jobs > 0 ? opt.jobs : (session ? 1 : cores);
+  WorkerPoolOptions pool;
+  pool.jobs = jobs;
+  pool.out_dir = dir;
+  pool.keep_histories = opt.keep_histories;
+  pool.worker_log = dir / "workers.log";
+  if (opt.crash_member >= 0) {
+    pool.extra_worker_args = {"--selftest-crash-member", std::to_string(opt.crash_member)};
+  }
+  if (opt.hang_member >= 0) {
+    pool.extra_worker_args = {"--selftest-hang-member", std::to_string(opt.hang_member)};
+  }
+  if (!root) {
+    session->Barrier();  // rank 0 has opened the journal (and created the folder)
+    std::unique_ptr<StudyScheduler> s = MakeMpiRankScheduler(*session);
+    RunWorkerPool(study, *s, pool);
+    session->Barrier();
+    return;
+  }
+  std::unique_ptr<MembersJournal> opened;
+  try {
+    opened = std::make_unique<MembersJournal>(study, dir, opt.resume);
+  } catch (const std::exception& e) {
+    if (!session) throw;
+    std::fprintf(stderr, "rockbench ensemble: %s\n", e.what());
+    session->Abort(kExitBadInput);  // the other ranks wait for rank 0
+  }
+  MembersJournal& journal = *opened;
+  std::vector<StudyTask> tasks = PendingTasks(study, journal);
+  const double serial_start_s = Now_s() - start_s;
+  ProgressLine line("ensemble");
+  auto progress = [&](int64_t done, int64_t total) {
+    line.Update(static_cast<int>(done), static_cast<int>(total));
+  };
+  std::unique_ptr<StudyScheduler> s;
+  if (session) {
+    session->Barrier();
+    s = MakeMpiRootScheduler(*session, std::move(tasks), journal, progress);
+  } else {
+    s = std::make_unique<LocalScheduler>(std::move(tasks), journal, progress);
+  }
+  RunWorkerPool(study, *s, pool);
+  const double merge_start_s = Now_s();
+  journal.Finish();
+  const double merge_s = Now_s() - merge_start_s;
+  WriteStudyJson(study, dir, ranks, jobs, Now_s() - start_s, serial_start_s + merge_s,
+                 journal.rows_at_open());
+  if (session) session->Barrier();
+  std::fprintf(stderr, "ensemble: %lld members x %zu runs in %s\n",
+               static_cast<long long>(study.member_count()), study.engines.size(),
+               (dir / "members.csv").string().c_str());
+}
+
+}  // namespace
+
+void RegisterEnsemble(CLI::App& app) {
+  auto opt = std::make_shared<EnsembleCliOptions>();
+  auto* cmd = app.add_subcommand(
+      "ensemble", "Run a study (members x runs) on every core, or under mpirun on many ranks");
+  cmd->add_option("study", opt->study, "The study file (TOML; docs/ensemble.md)")->required();
+  cmd->add_option("--out", opt->out, "Output folder: members.csv, study.json");
+  cmd->add_option("--jobs", opt->jobs, "Worker processes (per rank under MPI); 0: every core");
+  cmd->add_flag("--resume", opt->resume, "Go on with DIR/members.csv, skipping its rows");
+  cmd->add_flag("--keep-histories", opt->keep_histories,
+                "Write each run's history.csv and events.csv under DIR/members/ID/ENGINE/");
+  cmd->add_flag("--list", opt->list, "Print the study's members and axes, run nothing");
+  cmd->add_flag("--worker", opt->worker)->group("");
+  cmd->add_option("--selftest-crash-member", opt->crash_member)->group("");
+  cmd->add_option("--selftest-hang-member", opt->hang_member)->group("");
+  cmd->callback([opt] {
+    const double start_s = Now_s();
+    try {
+      RunStudy(*opt, start_s);
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "rockbench ensemble: %s\n", e.what());
+      throw CLI::RuntimeError(kExitBadInput);
+    }
+  });
+}
+
+}  // namespace rockbench::cli

@@ -1,0 +1,113 @@
+#pragma once
+/// Runs a study: every (member, run) in a worker process under the study's wall-clock limit, its
+/// row appended to DIR/members.csv as soon as it is done, and at the end the file rewritten in
+/// member order. A worker that crashes or hangs costs only its run (a row with its status) and
+/// is replaced. `--resume` skips the rows already in the file; a study killed at any moment and
+/// resumed ends with the same file as one never interrupted (wall times aside). Under MPI the
+/// ranks share the runs through rank 0 (harness/study_mpi.h), which alone writes the file.
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "harness/study.h"
+#include "harness/study_member.h"
+
+namespace rockbench {
+
+/// One run of a study: a member and one of the study's engines.
+struct StudyTask {
+  int64_t member = 0;
+  int engine = 0;  ///< index into StudyDef::engines
+};
+
+/// Where a process gets its runs and leaves its rows: locally, or through MPI.
+class StudyScheduler {
+ public:
+  virtual ~StudyScheduler() = default;
+  /// The next run for this process; nullopt: none left for it.
+  virtual std::optional<StudyTask> Next() = 0;
+  /// A run of this process is done.
+  virtual void Done(const MemberRow& row) = 0;
+  /// Called on every turn of the pool's loop (MPI: answer the other ranks).
+  virtual void Service() {}
+  /// The longest the pool may wait between two calls of Service(), s.
+  virtual double service_interval_s() const { return 0.5; }
+  /// Whether the process may stop once Next() gave nullopt and its workers are idle (rank 0
+  /// waits for every other rank's rows).
+  virtual bool Finished() { return true; }
+};
+
+/// How the pool runs its workers.
+struct WorkerPoolOptions {
+  /// The program run as `PROGRAM ensemble STUDY --worker [--out DIR --keep-histories]`; empty:
+  /// SelfExecutable().
+  std::filesystem::path executable;
+  int jobs = 1;                   ///< workers at once (>= 1)
+  double wall_limit_s = 0;        ///< a run is killed after this (0: the study's)
+  std::filesystem::path out_dir;  ///< with keep_histories: histories under out_dir/members/ID
+  bool keep_histories = false;
+  std::filesystem::path worker_log;  ///< the workers' standard error is appended here
+  /// Added to a worker's arguments (tests: a hidden crash or hang).
+  std::vector<std::string> extra_worker_args;
+};
+
+/// Runs the scheduler's runs on a pool of worker processes until it has none left.
+void RunWorkerPool(const StudyDef& study, StudyScheduler& scheduler,
+                   const WorkerPoolOptions& options);
+
+/// What a worker does: reads "MEMBER ENGINE_INDEX" lines on `in`, answers each with one line of
+/// JSON (MemberRowToJson) on `out`, until end of input. With `keep_dir`, each run's histories go
+/// to keep_dir/members/ID/<engine>/.
+void RunWorkerLoop(const StudyDef& study, std::FILE* in, std::FILE* out,
+                   const std::optional<std::filesystem::path>& keep_dir);
+
+/// The journal DIR/members.csv.
+class MembersJournal {
+ public:
+  /// Opens (or creates) DIR/members.csv. An existing file is an error unless `resume`, and then
+  /// must have this study's header; a last line cut short is dropped. Throws SceneError.
+  MembersJournal(const StudyDef& study, const std::filesystem::path& dir, bool resume);
+  ~MembersJournal();
+  MembersJournal(const MembersJournal&) = delete;
+  MembersJournal& operator=(const MembersJournal&) = delete;
+  /// Whether the file already holds this run's row.
+  bool Has(const StudyTask& task) const;
+  /// Rows already in the file when it was opened.
+  int64_t rows_at_open() const { return static_cast<int64_t>(done_.size()); }
+  /// Appends a row (one write: a kill leaves at most one line cut short).
+  void Append(const MemberRow& row);
+  /// Rewrites the file in member order (then engine order), atomically. Throws SceneError when
+  /// a run of the study has no row.
+  void Finish();
+
+ private:
+  const StudyDef& study_;
+  std::filesystem::path path_;
+  std::vector<std::vector<bool>> done_by_member_;  // [member][engine]
+  std::vector<StudyTask> done_;
+  int fd_ = -1;
+};
+
+/// The runs of the study not yet in the journal, in member order.
+std::vector<StudyTask> PendingTasks(const StudyDef& study, const MembersJournal& journal);
+
+/// The local scheduler: the pending runs in order, rows to the journal, progress to `progress`.
+class LocalScheduler : public StudyScheduler {
+ public:
+  LocalScheduler(std::vector<StudyTask> tasks, MembersJournal& journal,
+                 std::function<void(int64_t done, int64_t total)> progress = {});
+  std::optional<StudyTask> Next() override;
+  void Done(const MemberRow& row) override;
+
+ private:
+  std::vector<StudyTask> tasks_;
+  size_t next_ = 0;
+  int64_t done_ = 0;
+  MembersJournal& journal_;
+  std::function<void(int64_t, int64_t)> progress_;
+};
+
+}  // namespace rockbench

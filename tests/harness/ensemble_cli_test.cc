@@ -1,0 +1,223 @@
+// `rockbench ensemble` as a program: the same members.csv (wall times aside) at any --jobs and
+// any number of MPI ranks; a crashing or hanging run becomes a row, never the end of the study;
+// a study killed with SIGKILL and resumed ends with the file of one never interrupted; bad
+// input exits 2 naming what is wrong; --keep-histories keeps the runs' histories.
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "common/scratch_dir_test.h"
+
+extern char** environ;
+
+namespace rockbench {
+namespace {
+
+struct CliRun {
+  int exit_code = -1;
+  std::string output;  // stdout and stderr
+};
+
+CliRun Shell(const std::string& cmd) {
+  CliRun r;
+  FILE* p = popen((cmd + " 2>&1").c_str(), "r");
+  if (!p) return r;
+  char buf[4096];
+  size_t n;
+  while ((n = fread(buf, 1, sizeof buf, p)) > 0) r.output.append(buf, n);
+  const int status = pclose(p);
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+CliRun Rockbench(const std::string& args) {
+  return Shell(std::string(ROCKBENCH_EXE) + " " + args);
+}
+
+std::string ReadFile(const std::filesystem::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+// members.csv with its wall_s column emptied (the one column that depends on the run).
+std::string WithoutWallTimes(const std::string& csv) {
+  std::istringstream in(csv);
+  std::string line, out;
+  int wall = -1;
+  for (bool header = true; std::getline(in, line); header = false) {
+    std::vector<std::string> cells;
+    std::stringstream ss(line);
+    for (std::string c; std::getline(ss, c, ',');) cells.push_back(c);
+    if (!line.empty() && line.back() == ',') cells.push_back("");
+    if (header) {
+      for (size_t i = 0; i < cells.size(); ++i) {
+        if (cells[i] == "wall_s") wall = static_cast<int>(i);
+      }
+    } else if (wall >= 0 && wall < static_cast<int>(cells.size())) {
+      cells[wall] = "";
+    }
+    for (size_t i = 0; i < cells.size(); ++i) out += (i ? "," : "") + cells[i];
+    out += "\n";
+  }
+  return out;
+}
+
+int Rows(const std::string& csv) {
+  int n = -1;  // the header
+  for (char c : csv) n += c == '\n';
+  return n;
+}
+
+class EnsembleCliTest : public testing_util::ScratchDirTest {
+ protected:
+  void SetUp() override {
+    ScratchDirTest::SetUp();
+    // A 0.4 x 1.2 m block under a sine pulse: small amplitudes leave it at rest, middle ones
+    // rock it, large ones overturn it; 2 s of simulated time.
+    Write("block.toml",
+          "[block1]\nwidth = 0.4\nheight = 1.2\ndensity = 2000.0\n"
+          "[base.horizontal]\nkind = \"sine_pulse\"\namplitude_g = 0.3\nfrequency_hz = 2.0\n"
+          "[run]\nduration = 2.0\n[bullet]\ntime_step = 2e-4\n");
+    study_ = Write("study.toml",
+                   "scene = \"block.toml\"\nengines = [\"reference\", \"bullet\"]\n"
+                   "wall_limit_s = 60\n"
+                   "[[axis]]\nkey = \"pulse.amplitude_ratio\"\nvalues = [0.5, 1.5, 3, 6]\n"
+                   "[[axis]]\nkey = \"pulse.frequency_ratio\"\nvalues = [2, 6]\n");
+  }
+  std::string Out(const std::string& name) { return (dir_ / name).string(); }
+  std::filesystem::path study_;
+};
+
+TEST_F(EnsembleCliTest, RowsAreTheSameAtAnyJobs) {
+  const CliRun one = Rockbench("ensemble " + study_.string() + " --out " + Out("j1") + " --jobs 1");
+  ASSERT_EQ(one.exit_code, 0) << one.output;
+  const CliRun two = Rockbench("ensemble " + study_.string() + " --out " + Out("j2") + " --jobs 2");
+  ASSERT_EQ(two.exit_code, 0) << two.output;
+  const std::string a = ReadFile(dir_ / "j1" / "members.csv");
+  EXPECT_EQ(Rows(a), 16);  // 8 members x (reference, bullet)
+  EXPECT_EQ(WithoutWallTimes(a), WithoutWallTimes(ReadFile(dir_ / "j2" / "members.csv")));
+  // The physics spans the three outcomes: at rest, rocking, overturned.
+  EXPECT_NE(a.find(",reference,at_rest,,,0,0,0,"), std::string::npos) << a;
+  EXPECT_NE(a.find(",reference,overturned,1,"), std::string::npos) << a;
+  EXPECT_TRUE(std::filesystem::exists(dir_ / "j1" / "study.json"));
+}
+
+TEST_F(EnsembleCliTest, RowsAreTheSameAtOneTwoAndFourMpiRanks) {
+#ifndef ROCKBENCH_MPIEXEC
+  GTEST_SKIP() << "MPI was left out of this build (rockbench --version says why)";
+#else
+  const CliRun local =
+      Rockbench("ensemble " + study_.string() + " --out " + Out("local") + " --jobs 2");
+  ASSERT_EQ(local.exit_code, 0) << local.output;
+  const std::string expected = WithoutWallTimes(ReadFile(dir_ / "local" / "members.csv"));
+  for (int ranks : {1, 2, 4}) {
+    const std::string out = Out("mpi" + std::to_string(ranks));
+    const CliRun r = Shell(std::string(ROCKBENCH_MPIEXEC) +
+                           " --allow-run-as-root --oversubscribe -n " + std::to_string(ranks) +
+                           " " + ROCKBENCH_EXE + " ensemble " + study_.string() + " --out " + out);
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_EQ(WithoutWallTimes(ReadFile(std::filesystem::path(out) / "members.csv")), expected)
+        << ranks << " ranks";
+  }
+#endif
+}
+
+TEST_F(EnsembleCliTest, ACrashOrAHangIsARowNotTheEndOfTheStudy) {
+  const std::string crash_study =
+      Write("crash.toml",
+            "scene = \"block.toml\"\nwall_limit_s = 3\n"
+            "[[axis]]\nkey = \"pulse.amplitude_ratio\"\nvalues = [0.5, 1.5, 3]\n")
+          .string();
+  const CliRun c = Rockbench("ensemble " + crash_study + " --out " + Out("crash") +
+                             " --jobs 2 --selftest-crash-member 1");
+  ASSERT_EQ(c.exit_code, 0) << c.output;
+  const std::string crashed = ReadFile(dir_ / "crash" / "members.csv");
+  EXPECT_EQ(Rows(crashed), 3);
+  EXPECT_NE(crashed.find("\n1,1.5,,,,,,,,,,,reference,crash (signal 11),"), std::string::npos)
+      << crashed;
+  EXPECT_NE(crashed.find("\n2,3,"), std::string::npos);
+  const CliRun h = Rockbench("ensemble " + crash_study + " --out " + Out("hang") +
+                             " --jobs 1 --selftest-hang-member 0");
+  ASSERT_EQ(h.exit_code, 0) << h.output;
+  const std::string hung = ReadFile(dir_ / "hang" / "members.csv");
+  EXPECT_EQ(Rows(hung), 3);
+  EXPECT_NE(hung.find("\n0,0.5,,,,,,,,,,,reference,wall_limit,"), std::string::npos) << hung;
+  EXPECT_NE(hung.find("\n1,1.5,"), std::string::npos);
+}
+
+TEST_F(EnsembleCliTest, KilledAndResumedEndsWithTheUninterruptedFile) {
+  const CliRun whole =
+      Rockbench("ensemble " + study_.string() + " --out " + Out("whole") + " --jobs 1");
+  ASSERT_EQ(whole.exit_code, 0) << whole.output;
+  // The same study, killed (SIGKILL, no chance to tidy up) once some rows are written.
+  const std::string out = Out("killed");
+  std::vector<std::string> argv = {ROCKBENCH_EXE, "ensemble", study_.string(), "--out", out,
+                                   "--jobs",      "1"};
+  std::vector<char*> args;
+  for (std::string& a : argv) args.push_back(a.data());
+  args.push_back(nullptr);
+  pid_t pid = -1;
+  ASSERT_EQ(::posix_spawn(&pid, args[0], nullptr, nullptr, args.data(), environ), 0);
+  const auto start = std::chrono::steady_clock::now();
+  while (Rows(ReadFile(std::filesystem::path(out) / "members.csv")) < 5 &&
+         std::chrono::steady_clock::now() - start < std::chrono::seconds(120)) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  ::kill(pid, SIGKILL);
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  ASSERT_TRUE(WIFSIGNALED(status)) << "the study ended before it was killed";
+  const int before = Rows(ReadFile(std::filesystem::path(out) / "members.csv"));
+  EXPECT_GE(before, 5);
+  EXPECT_LT(before, 16);
+  const CliRun again = Rockbench("ensemble " + study_.string() + " --out " + out);
+  EXPECT_EQ(again.exit_code, 2) << again.output;  // an existing journal needs --resume
+  EXPECT_NE(again.output.find("--resume"), std::string::npos) << again.output;
+  const CliRun resumed =
+      Rockbench("ensemble " + study_.string() + " --out " + out + " --jobs 2 --resume");
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.output;
+  EXPECT_EQ(WithoutWallTimes(ReadFile(std::filesystem::path(out) / "members.csv")),
+            WithoutWallTimes(ReadFile(dir_ / "whole" / "members.csv")));
+}
+
+TEST_F(EnsembleCliTest, BadInputExitsTwoNamingIt) {
+  const CliRun missing = Rockbench("ensemble " + Out("nosuch.toml") + " --out " + Out("x"));
+  EXPECT_EQ(missing.exit_code, 2);
+  EXPECT_NE(missing.output.find("nosuch.toml: cannot open the study file"), std::string::npos)
+      << missing.output;
+  const std::string bad = Write("bad.toml", "scene = \"block.toml\"\nengine = [\"bullet\"]\n");
+  const CliRun r = Rockbench("ensemble " + bad + " --out " + Out("x"));
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.output.find("bad.toml:2: engine: unknown key"), std::string::npos) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "x"));
+}
+
+TEST_F(EnsembleCliTest, KeepHistoriesWritesEachRunsHistory) {
+  const std::string one = Write("one.toml",
+                                "scene = \"block.toml\"\nengines = [\"reference\", \"bullet\"]\n"
+                                "[[axis]]\nkey = \"pulse.amplitude_ratio\"\nvalues = [1.5]\n")
+                              .string();
+  const CliRun r = Rockbench("ensemble " + one + " --out " + Out("k") + " --keep-histories");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_TRUE(std::filesystem::exists(dir_ / "k" / "members" / "0" / "reference" / "history.csv"));
+  EXPECT_TRUE(std::filesystem::exists(dir_ / "k" / "members" / "0" / "bullet" / "history.csv"));
+  const CliRun plain = Rockbench("ensemble " + one + " --out " + Out("p"));
+  ASSERT_EQ(plain.exit_code, 0) << plain.output;
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "p" / "members"));
+}
+
+}  // namespace
+}  // namespace rockbench
