@@ -5,7 +5,7 @@
 set -euo pipefail
 packages=(build-essential cmake pkg-config
   libeigen3-dev libcli11-dev libtomlplusplus-dev nlohmann-json3-dev
-  libgtest-dev libbenchmark-dev libgsl-dev
+  libgtest-dev libbenchmark-dev libgsl-dev libopenmpi-dev openmpi-bin
   libbullet-dev
   libode-dev libmujoco-dev libdart-dev libsiconos-kernel-dev
   libosmesa6-dev libpng-dev libfreetype-dev fonts-dejavu-core ffmpeg

@@ -11,6 +11,8 @@
 #include <vector>
 
 #include "cli/commands.h"
+#include "report/ensemble_csv.h"
+#include "report/ensemble_report.h"
 #include "report/run_report.h"
 #include "report/work_precision.h"
 #include "scene/scene.h"
@@ -72,8 +74,10 @@ void Execute(const ReportOptions& opt) {
       Fail(kExitBadInput, in + ": not a run folder (expected a folder written by `rockbench run`, "
                                "`compare` or `sweep`)");
     }
-    if (!fs::exists(dir / "sweep.csv") && !fs::exists(dir / "summary.json")) {
-      Fail(kExitBadInput, in + ": has neither summary.json (run or compare) nor sweep.csv (sweep)");
+    if (!fs::exists(dir / "sweep.csv") && !fs::exists(dir / "summary.json") &&
+        !report::IsEnsembleFolder(dir)) {
+      Fail(kExitBadInput, in + ": has neither summary.json (run or compare), sweep.csv (sweep) "
+                               "nor study.json and members.csv (ensemble)");
     }
     const std::string name = RunName(dir);
     const auto [it, fresh] = seen.emplace(name, in);
@@ -88,6 +92,13 @@ void Execute(const ReportOptions& opt) {
   for (const std::string& in : opt.inputs) {
     const fs::path dir(in);
     try {
+      if (report::IsEnsembleFolder(dir)) {
+        const fs::path page = report::WriteEnsembleReport(dir, out);
+        index.push_back(
+            {page.filename().string(), "ensemble report: " + RunName(dir), "ensemble", 0});
+        std::printf("%s: %s\n", in.c_str(), (page / "report.html").string().c_str());
+        continue;
+      }
       if (fs::exists(dir / "sweep.csv")) {
         const fs::path page = report::WriteSweepReport(dir, out);
         index.push_back(

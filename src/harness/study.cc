@@ -81,7 +81,7 @@ AxisValue ValueOf(const toml::node& v, const std::string& key, const std::filesy
     a.text = *s;
     // A record file is relative to the study file, as the scene's is to the scene.
     const bool is_file = EndsWith(key, ".file");
-    a.toml = Quoted(is_file ? (dir / *s).lexically_normal().string() : *s);
+    a.toml = Quoted(is_file ? std::filesystem::absolute(dir / *s).lexically_normal().string() : *s);
     return a;
   } else if (auto b = v.value_exact<bool>()) {
     a.text = a.toml = *b ? "true" : "false";

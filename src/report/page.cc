@@ -147,6 +147,11 @@ void Page::Link(std::filesystem::path file, std::string text) {
   blocks_.push_back({Kind::kLink, std::move(text), std::move(file), {}, {}});
 }
 
+void Page::Append(const Page& other) {
+  warnings_.insert(warnings_.end(), other.warnings_.begin(), other.warnings_.end());
+  blocks_.insert(blocks_.end(), other.blocks_.begin(), other.blocks_.end());
+}
+
 std::vector<std::filesystem::path> Page::figures() const {
   std::vector<std::filesystem::path> out;
   for (const Block& b : blocks_) {

@@ -28,6 +28,10 @@ class Page {
   /// A link to another file (relative to the page's folder) with its text.
   void Link(std::filesystem::path file, std::string text);
 
+  /// Every block (and warning) of `other`, after this page's own (sections built before the
+  /// summary that must come above them).
+  void Append(const Page& other);
+
   const std::string& title() const { return title_; }
   /// Figures in the order they were added (relative paths).
   std::vector<std::filesystem::path> figures() const;

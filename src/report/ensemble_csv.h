@@ -1,0 +1,47 @@
+#pragma once
+/// An ensemble folder read back: study.json (the study's axes and engines) and members.csv (one
+/// record per member and run, src/harness/study_member.h). The report groups, fits and draws
+/// from these records only.
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace rockbench::report {
+
+/// One row of members.csv.
+struct EnsembleRecord {
+  int line = 0;  ///< 1-based line in members.csv
+  long long member = 0;
+  std::vector<std::string> axis_values;  ///< in the study's axis order
+  std::string engine, status;
+  std::optional<double> pga_g, pgv_mps, pulse_period_s, p1_radps, alpha1_rad;
+  int overturned_block = 0;  ///< 0: none
+  double peak_theta1_rad = 0.0, peak_theta2_rad = 0.0, wall_s = 0.0;
+  int impacts = 0;
+  bool has_result = false;  ///< the run gave an outcome (not crash, wall_limit, error)
+  /// The run's outcome can be used: it has a result and the model's assumptions held.
+  bool usable() const { return has_result && status != "assumption_violated"; }
+};
+
+struct EnsembleData {
+  std::string title;
+  std::vector<std::string> axes;     ///< axis keys, in order
+  std::vector<std::string> engines;  ///< "reference" first when run
+  long long members = 0;
+  int ranks = 1, jobs = 1;
+  double wall_s = 0.0, serial_s = 0.0;
+  std::vector<EnsembleRecord> records;  ///< in file order (member, then engine)
+  /// The column of `key` among the axes; -1 when the study has no such axis.
+  int Axis(const std::string& key) const;
+};
+
+/// True when DIR holds an ensemble (study.json and members.csv).
+bool IsEnsembleFolder(const std::filesystem::path& dir);
+
+/// Reads DIR/study.json and DIR/members.csv. Throws ReportInputError naming the file and line
+/// of a malformed one.
+EnsembleData ReadEnsemble(const std::filesystem::path& dir);
+
+}  // namespace rockbench::report

@@ -1,0 +1,262 @@
+// Fragility curves over PGA for motion-suite studies (reference and each engine, per group of
+// the geometry axes), the paired bootstrap of the difference of medians, and the peak-angle
+// scatter.
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <random>
+
+#include "harness/fragility.h"
+#include "harness/statistics.h"
+#include "report/ensemble_sections.h"
+#include "report/gnuplot.h"
+#include "report/number_text.h"
+
+namespace rockbench::report {
+namespace {
+
+// Axes that choose or scale the motion: the rest are the geometry (and settings) groups.
+const std::vector<std::string>& MotionAxes() {
+  static const std::vector<std::string> keys = {
+      "base.horizontal.file",    "base.horizontal.seed",     "base.horizontal.pga_g",
+      "base.horizontal.pgv_mps", "base.horizontal.scale",    "base.horizontal.amplitude_g",
+      "pulse.amplitude_ratio",   "base.horizontal.intensity"};
+  return keys;
+}
+
+std::vector<int> MotionAxisColumns(const EnsembleData& d) {
+  std::vector<int> cols;
+  for (const std::string& k : MotionAxes()) {
+    if (d.Axis(k) >= 0) cols.push_back(d.Axis(k));
+  }
+  return cols;
+}
+
+// Members of one group: member -> (PGA, failed) per engine, usable runs only.
+struct GroupData {
+  std::map<long long, std::map<std::string, stats::FragilityPoint>> members;
+};
+
+// The paired bootstrap of median(engine) - median(reference): members drawn with replacement,
+// the same draw for both; each resample refitted. Percentile interval at 95%.
+struct MedianDifference {
+  double estimate = std::nan("");
+  double lo = std::nan(""), hi = std::nan("");
+  int resamples = 0, degenerate = 0;
+};
+
+MedianDifference PairedDifference(const std::vector<stats::FragilityPoint>& ref,
+                                  const std::vector<stats::FragilityPoint>& eng, int draws) {
+  MedianDifference out;
+  const stats::LognormalFragility a = stats::FitLognormalFragility(ref, 0);
+  const stats::LognormalFragility b = stats::FitLognormalFragility(eng, 0);
+  if (!a.available || !b.available) return out;
+  out.estimate = b.median - a.median;
+  std::mt19937_64 rng(0x656e73656d626c65);
+  std::vector<double> diffs;
+  std::vector<stats::FragilityPoint> ra(ref.size()), rb(eng.size());
+  for (int k = 0; k < draws; ++k) {
+    for (size_t i = 0; i < ref.size(); ++i) {
+      const size_t j = stats::UniformBelow(rng, ref.size());
+      ra[i] = ref[j];
+      rb[i] = eng[j];
+    }
+    const stats::LognormalFragility fa = stats::FitLognormalFragility(ra, 0);
+    const stats::LognormalFragility fb = stats::FitLognormalFragility(rb, 0);
+    if (!fa.available || !fb.available) {
+      ++out.degenerate;
+      continue;
+    }
+    diffs.push_back(fb.median - fa.median);
+  }
+  out.resamples = draws;
+  if (diffs.size() < 20) return out;
+  std::sort(diffs.begin(), diffs.end());
+  const auto at = [&](double q) {
+    return diffs[static_cast<size_t>(std::floor(q * (diffs.size() - 1)))];
+  };
+  out.lo = at(0.025);
+  out.hi = at(0.975);
+  return out;
+}
+
+std::string FitText(const stats::LognormalFragility& f) {
+  if (!f.available) return "no fit (" + f.reason + ")";
+  return Num(f.median, 3) + " g [" + Num(f.median_lo, 3) + ", " + Num(f.median_hi, 3) + "]";
+}
+
+}  // namespace
+
+bool HasMotionSuite(const EnsembleData& d) {
+  return d.Axis("base.horizontal.file") >= 0 || d.Axis("base.horizontal.seed") >= 0;
+}
+
+void FragilitySection(const EnsembleData& d, const std::filesystem::path& fig_dir, Page& page,
+                      std::vector<std::string>& findings) {
+  page.Heading("Fragility curves");
+  page.Paragraph(
+      "P(overturn | PGA), the lognormal form Phi(ln(PGA / median) / beta) fitted by maximum "
+      "likelihood (Baker 2015) to the members whose run has an outcome (runs where the "
+      "reference's model stopped, and runs without a result, are left out of both fits: they "
+      "are counted in the table). Medians with the 95% percentile bootstrap interval of 1000 "
+      "resamples; the difference of an engine's median from the reference's with the interval "
+      "of a paired bootstrap (the same members drawn for both, 400 resamples). Points: the "
+      "fraction of members overturned at each PGA of the study; lines: the fits; band: the "
+      "fit's curve at the two ends of its median's interval.");
+  const std::vector<int> motion = MotionAxisColumns(d);
+  std::map<std::string, GroupData> groups;
+  std::vector<std::string> order;
+  std::map<std::string, int> left_out;  // engine -> runs left out
+  for (const EnsembleRecord& r : d.records) {
+    const std::string g = GroupLabel(d, r, motion);
+    if (!groups.count(g)) order.push_back(g);
+    if (!r.usable() || !r.pga_g || !(*r.pga_g > 0.0)) {
+      ++left_out[r.engine];
+      continue;
+    }
+    groups[g].members[r.member][r.engine] = {*r.pga_g, r.overturned_block != 0};
+  }
+  std::vector<std::vector<std::string>> table;
+  int index = 0;
+  for (const std::string& g : order) {
+    GnuplotFigure fig;
+    fig.name = "fragility_" + std::to_string(index++);
+    std::string script =
+        "set xlabel \"PGA (g)\"\nset ylabel \"P(overturn)\"\nset yrange [-0.02:1.02]\n"
+        "set key left top\nset style fill transparent solid 0.15 noborder\n";
+    std::string plots;
+    std::vector<stats::FragilityPoint> ref_points;
+    std::map<std::string, std::vector<stats::FragilityPoint>> by_engine;
+    for (const auto& [m, runs] : groups[g].members) {
+      for (const auto& [e, p] : runs) by_engine[e].push_back(p);
+    }
+    double max_pga = 0.0;
+    for (const auto& [e, pts] : by_engine) {
+      for (const auto& p : pts) max_pga = std::max(max_pga, p.im);
+    }
+    int colour = 1;
+    for (const std::string& e : d.engines) {
+      const auto it = by_engine.find(e);
+      if (it == by_engine.end()) continue;
+      const stats::LognormalFragility fit = stats::FitLognormalFragility(it->second, 1000);
+      // Empirical fractions per PGA value.
+      std::map<double, std::pair<int, int>> bins;
+      for (const auto& p : it->second) {
+        bins[p.im].first += p.failed;
+        bins[p.im].second += 1;
+      }
+      std::string pts, curve;
+      for (const auto& [x, c] : bins) {
+        pts += Num(x, 10) + " " + Num(static_cast<double>(c.first) / c.second, 10) + "\n";
+      }
+      if (fit.available) {
+        for (int k = 1; k <= 200; ++k) {
+          const double x = 1.1 * max_pga * k / 200.0;
+          const double lo = stats::FragilityAt({true, "", fit.median_hi, fit.beta}, x);
+          const double hi = stats::FragilityAt({true, "", fit.median_lo, fit.beta}, x);
+          curve += Num(x, 10) + " " + Num(stats::FragilityAt(fit, x), 10) + " " + Num(lo, 10) +
+                   " " + Num(hi, 10) + "\n";
+        }
+      }
+      const std::string pf = fig.name + "_" + e + "_points.dat";
+      fig.data_files.push_back({pf, pts});
+      const std::string lc = " lc " + std::to_string(colour);
+      plots += (plots.empty() ? "" : ", ") + GnuplotQuote(pf) + " using 1:2 with points pt 7" + lc +
+               " title " + GnuplotQuote(e + " (fraction)");
+      if (fit.available) {
+        const std::string cf = fig.name + "_" + e + "_fit.dat";
+        fig.data_files.push_back({cf, curve});
+        plots += ", " + GnuplotQuote(cf) + " using 1:3:4 with filledcurves" + lc + " notitle, " +
+                 GnuplotQuote(cf) + " using 1:2 with lines lw 2" + lc + " title " +
+                 GnuplotQuote(e + " (lognormal fit)");
+      }
+      ++colour;
+      std::string diff = "";
+      if (e == "reference") {
+        ref_points = it->second;
+      }
+      table.push_back({g.empty() ? "all" : g, e, std::to_string(fit.n),
+                       std::to_string(fit.failures), FitText(fit),
+                       fit.available ? Num(fit.beta, 3) : "", diff});
+      if (e != "reference" && !ref_points.empty()) {
+        // Pair the members both runs have.
+        std::vector<stats::FragilityPoint> a, b;
+        for (const auto& [m, runs] : groups[g].members) {
+          const auto r = runs.find("reference");
+          const auto q = runs.find(e);
+          if (r == runs.end() || q == runs.end()) continue;
+          a.push_back(r->second);
+          b.push_back(q->second);
+        }
+        const MedianDifference md = PairedDifference(a, b, 400);
+        if (!std::isnan(md.lo)) {
+          table.back().back() =
+              Num(md.estimate, 3) + " g [" + Num(md.lo, 3) + ", " + Num(md.hi, 3) + "]";
+          const bool differs = md.lo > 0.0 || md.hi < 0.0;
+          findings.push_back(
+              e + (g.empty() ? std::string() : " (" + g + ")") + ": median PGA of overturning " +
+              FitText(fit) + " against the reference's " +
+              FitText(stats::FitLognormalFragility(ref_points, 1000)) + "; the difference, " +
+              Num(md.estimate, 3) + " g [" + Num(md.lo, 3) + ", " + Num(md.hi, 3) + "], " +
+              (differs ? "excludes zero: the engine's fragility curve differs from the "
+                         "reference's."
+                       : "contains zero: no difference is detected with these members."));
+        } else {
+          table.back().back() = "no paired fit";
+        }
+      }
+    }
+    fig.script = script + "plot " + plots + "\n";
+    RenderGnuplot(fig_dir, fig);
+    page.Figure(std::filesystem::path("figures") / (fig.name + ".svg"),
+                "Fragility over PGA" + (g.empty() ? std::string() : ": " + g));
+  }
+  page.Table({"group", "run", "members", "overturned", "median PGA [95%]", "beta",
+              "median - reference's [95%, paired]"},
+             table);
+  std::string out;
+  for (const auto& [e, n] : left_out) {
+    out += (out.empty() ? "" : "; ") + e + " " + std::to_string(n);
+  }
+  if (!out.empty()) {
+    page.Paragraph(
+        "Runs left out of the fits (no outcome, or the reference's model stopped): " + out + ".");
+  }
+}
+
+void ScatterSection(const EnsembleData& d, const std::filesystem::path& fig_dir, Page& page) {
+  page.Heading("Peak angle against PGA");
+  GnuplotFigure fig;
+  fig.name = "peak_theta1_vs_pga";
+  std::string plots;
+  int colour = 1;
+  for (const std::string& e : d.engines) {
+    std::string data;
+    for (const EnsembleRecord& r : d.records) {
+      if (r.engine != e || !r.usable() || !r.pga_g || !(r.peak_theta1_rad > 0.0)) continue;
+      data += Num(*r.pga_g, 10) + " " + Num(r.peak_theta1_rad, 10) + "\n";
+    }
+    if (data.empty()) continue;
+    const std::string f = fig.name + "_" + e + ".dat";
+    fig.data_files.push_back({f, data});
+    plots += (plots.empty() ? "" : ", ") + GnuplotQuote(f) + " using 1:2 with points pt " +
+             std::to_string(colour == 1 ? 7 : 6) + " lc " + std::to_string(colour) + " title " +
+             GnuplotQuote(e);
+    ++colour;
+  }
+  if (plots.empty()) {
+    page.Paragraph("No run rocked: nothing to draw.");
+    return;
+  }
+  fig.script =
+      "set logscale y\nset xlabel \"PGA (g)\"\nset ylabel \"peak |theta1| (rad)\"\n"
+      "set key left top\nplot " +
+      plots + "\n";
+  RenderGnuplot(fig_dir, fig);
+  page.Figure(std::filesystem::path("figures") / (fig.name + ".svg"),
+              "Peak |theta1| of every run that rocked against the PGA of its motion (an "
+              "overturned block at its overturn angle); runs at rest are left out of the log "
+              "axis.");
+}
+
+}  // namespace rockbench::report

@@ -1,0 +1,47 @@
+#pragma once
+/// The sections of an ensemble report (ensemble_report.cc assembles them): overturning spectra
+/// of pulse studies (ensemble_spectra.cc), fragility curves and the peak-angle scatter of
+/// motion-suite studies (ensemble_fragility.cc). Each adds its headings, tables and figures to
+/// the page and its findings, in plain words, to `findings`.
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "report/ensemble_csv.h"
+#include "report/page.h"
+
+namespace rockbench::report {
+
+/// How a run ended, as the maps colour it.
+enum class OverturnClass {
+  kNone,     ///< no block overturned
+  kBlock1,   ///< block 1 overturned (and with it the stack)
+  kBlock2,   ///< block 2 fell off block 1
+  kStopped,  ///< the reference's model stopped (assumption_violated: uplift, sliding)
+  kFailed,   ///< no result (crash, wall_limit, error) or an engine's blow-up
+};
+OverturnClass ClassOf(const EnsembleRecord& r);
+std::string ClassName(OverturnClass c);
+
+/// Whether the study is a pulse spectrum: numeric frequency and amplitude axes
+/// (pulse.frequency_ratio and pulse.amplitude_ratio, or base.horizontal.frequency_hz and
+/// base.horizontal.amplitude_g).
+bool HasSpectrumAxes(const EnsembleData& d);
+void SpectraSection(const EnsembleData& d, const std::filesystem::path& fig_dir, Page& page,
+                    std::vector<std::string>& findings);
+
+/// Whether the study varies the motion over a suite (base.horizontal.file or
+/// base.horizontal.seed) so that a fragility curve over PGA is defined.
+bool HasMotionSuite(const EnsembleData& d);
+void FragilitySection(const EnsembleData& d, const std::filesystem::path& fig_dir, Page& page,
+                      std::vector<std::string>& findings);
+
+/// Peak |theta1| against PGA, one series per engine.
+void ScatterSection(const EnsembleData& d, const std::filesystem::path& fig_dir, Page& page);
+
+/// The values of every axis but `except`, as one label ("kind=sine_pulse, size_factor=2"),
+/// for grouping; empty when no other axis.
+std::string GroupLabel(const EnsembleData& d, const EnsembleRecord& r,
+                       const std::vector<int>& except);
+
+}  // namespace rockbench::report

@@ -1,0 +1,145 @@
+// The ensemble report (src/report/ensemble_report.h) on ensemble folders written with the
+// harness's own members.csv writer: a spectrum whose engine differs from the reference on one
+// member says so and marks that member; a fragility study whose engine overturns at twice the
+// reference's PGA says the difference excludes zero, and one whose engine agrees says it
+// contains zero; a malformed members.csv is an error naming its line.
+#include "report/ensemble_report.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include "common/scratch_dir_test.h"
+#include "harness/study_member.h"
+#include "report/run_report.h"
+
+namespace rockbench::report {
+namespace {
+
+std::string ReadFile(const std::filesystem::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+StudyAxis Axis(const std::string& key, const std::vector<double>& values) {
+  StudyAxis a;
+  a.key = key;
+  for (double v : values) {
+    std::ostringstream t;
+    t << v;
+    a.values.push_back({t.str(), t.str(), v, true});
+  }
+  return a;
+}
+
+MemberRow Row(long long member, const std::string& engine, int overturned, double pga_g,
+              int impacts = 0) {
+  MemberRow r;
+  r.member = member;
+  r.engine = engine;
+  r.status = overturned ? "overturned" : "completed";
+  r.overturned_block = overturned;
+  r.peak_theta1_rad = overturned ? 1.25 : 0.05;
+  r.impacts = impacts;
+  r.pga_g = pga_g;
+  r.has_result = true;
+  r.p1_radps = 1.9;
+  r.alpha1_rad = 0.245;
+  return r;
+}
+
+class EnsembleReportTest : public testing_util::ScratchDirTest {
+ protected:
+  // Writes study.json and members.csv for `study` and `rows`.
+  std::filesystem::path WriteEnsemble(const std::string& name, const StudyDef& study,
+                                      const std::vector<MemberRow>& rows) {
+    const std::filesystem::path dir = dir_ / name;
+    std::filesystem::create_directories(dir);
+    std::string csv = MembersCsvHeader(study);
+    for (const MemberRow& r : rows) csv += MembersCsvLine(study, r);
+    std::ofstream(dir / "members.csv", std::ios::binary) << csv;
+    std::string axes;
+    for (const StudyAxis& a : study.axes) {
+      axes += std::string(axes.empty() ? "" : ",") + "{\"key\":\"" + a.key + "\"}";
+    }
+    std::ofstream(dir / "study.json")
+        << "{\"title\":\"t\",\"members\":" << study.member_count() << ",\"engines\":"
+        << "[\"reference\",\"bullet\"],\"axes\":[" << axes << "],\"wall_s\":1,\"serial_s\":0}";
+    return dir;
+  }
+};
+
+TEST_F(EnsembleReportTest, ASpectrumMarksTheMemberWhereTheEngineDiffers) {
+  StudyDef s;
+  s.engines = {"reference", "bullet"};
+  s.axes = {Axis("pulse.frequency_ratio", {2, 4}), Axis("pulse.amplitude_ratio", {1, 2, 4})};
+  std::vector<MemberRow> rows;
+  for (long long m = 0; m < 6; ++m) {
+    const int ref = m % 3 == 2 ? 1 : 0;  // the largest amplitude overturns
+    rows.push_back(Row(m, "reference", ref, 0.3, ref ? 1 : 0));
+    rows.push_back(Row(m, "bullet", m == 4 ? 1 : ref, 0.3));  // member 4 differs
+  }
+  const auto page = WriteEnsembleReport(WriteEnsemble("spectrum", s, rows), dir_ / "out");
+  const std::string md = ReadFile(page / "report.md");
+  EXPECT_NE(md.find("the same outcome as the reference on 5 of 6 members"), std::string::npos)
+      << md;
+  EXPECT_NE(md.find("0 members overturn without an impact and 2 after one or more"),
+            std::string::npos)
+      << md;
+  EXPECT_EQ(ReadFile(page / "figures" / "spectrum_0_bullet_differs.dat"), "4 2\n");
+  EXPECT_TRUE(std::filesystem::exists(page / "figures" / "spectrum_0.svg"));
+}
+
+TEST_F(EnsembleReportTest, FragilitySaysWhetherTheMediansDiffer) {
+  StudyDef s;
+  s.engines = {"reference", "bullet"};
+  std::vector<double> pgas = {0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.8, 1.0, 1.2, 1.5};
+  s.axes = {Axis("base.horizontal.seed", {1, 2, 3, 4, 5, 6, 7, 8, 9, 10}),
+            Axis("base.horizontal.pga_g", pgas)};
+  const auto interleave = [&](double engine_median) {
+    // Member i is (seed, pga) in product order, pga varying fastest; at each PGA x, seed k
+    // of 10 fails when k < round(10 Phi(ln(x / median) / beta)): the failures follow a
+    // lognormal fragility (beta 0.4) as closely as 10 members allow.
+    std::vector<MemberRow> out;
+    for (int seed = 0; seed < 10; ++seed) {
+      for (size_t j = 0; j < pgas.size(); ++j) {
+        const long long m = seed * static_cast<long long>(pgas.size()) + j;
+        const double pr = 0.5 * std::erfc(-std::log(pgas[j] / 0.4) / (0.4 * std::sqrt(2.0)));
+        const double pe =
+            0.5 * std::erfc(-std::log(pgas[j] / engine_median) / (0.4 * std::sqrt(2.0)));
+        out.push_back(Row(m, "reference", seed < std::lround(10 * pr) ? 1 : 0, pgas[j]));
+        out.push_back(Row(m, "bullet", seed < std::lround(10 * pe) ? 1 : 0, pgas[j]));
+      }
+    }
+    return out;
+  };
+  const auto differ =
+      WriteEnsembleReport(WriteEnsemble("differ", s, interleave(0.8)), dir_ / "out");
+  EXPECT_NE(ReadFile(differ / "report.md").find("excludes zero"), std::string::npos);
+  const auto same = WriteEnsembleReport(WriteEnsemble("same", s, interleave(0.4)), dir_ / "out");
+  const std::string md = ReadFile(same / "report.md");
+  EXPECT_NE(md.find("contains zero"), std::string::npos) << md;
+  EXPECT_TRUE(std::filesystem::exists(same / "figures" / "fragility_0.svg"));
+  EXPECT_TRUE(std::filesystem::exists(same / "figures" / "peak_theta1_vs_pga.svg"));
+}
+
+TEST_F(EnsembleReportTest, AMalformedRowNamesItsLine) {
+  StudyDef s;
+  s.engines = {"reference", "bullet"};
+  s.axes = {Axis("pulse.frequency_ratio", {2})};
+  const auto dir = WriteEnsemble("bad", s, {Row(0, "reference", 0, 0.3)});
+  std::ofstream(dir / "members.csv", std::ios::app) << "1,2,x\n";
+  try {
+    WriteEnsembleReport(dir, dir_ / "out");
+    FAIL() << "no error";
+  } catch (const ReportInputError& e) {
+    EXPECT_NE(std::string(e.what()).find("members.csv:3: 3 fields"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace rockbench::report
