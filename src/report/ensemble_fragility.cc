@@ -189,18 +189,28 @@ void FragilitySection(const EnsembleData& d, const std::filesystem::path& fig_di
           b.push_back(q->second);
         }
         const MedianDifference md = PairedDifference(a, b, 400);
+        int same = 0;
+        for (size_t i = 0; i < a.size(); ++i) same += a[i].failed == b[i].failed;
         if (!std::isnan(md.lo)) {
           table.back().back() =
               Num(md.estimate, 3) + " g [" + Num(md.lo, 3) + ", " + Num(md.hi, 3) + "]";
           const bool differs = md.lo > 0.0 || md.hi < 0.0;
-          findings.push_back(
-              e + (g.empty() ? std::string() : " (" + g + ")") + ": median PGA of overturning " +
-              FitText(fit) + " against the reference's " +
-              FitText(stats::FitLognormalFragility(ref_points, 1000)) + "; the difference, " +
-              Num(md.estimate, 3) + " g [" + Num(md.lo, 3) + ", " + Num(md.hi, 3) + "], " +
-              (differs ? "excludes zero: the engine's fragility curve differs from the "
-                         "reference's."
-                       : "contains zero: no difference is detected with these members."));
+          std::string f =
+              e + (g.empty() ? std::string() : " (" + g + ")") + ", on the " +
+              std::to_string(a.size()) + " members where both runs have an " +
+              "outcome (the same outcome on " + std::to_string(same) +
+              "): median PGA of overturning " + FitText(stats::FitLognormalFragility(b, 1000)) +
+              " against the reference's " + FitText(stats::FitLognormalFragility(a, 1000)) +
+              "; the difference, " + Num(md.estimate, 3) + " g [" + Num(md.lo, 3) + ", " +
+              Num(md.hi, 3) + "], ";
+          if (same == static_cast<int>(a.size())) {
+            f += "is zero: the two curves are the same.";
+          } else if (differs) {
+            f += "excludes zero: the engine's fragility curve differs from the reference's.";
+          } else {
+            f += "contains zero: no difference is detected with these members.";
+          }
+          findings.push_back(f);
         } else {
           table.back().back() = "no paired fit";
         }

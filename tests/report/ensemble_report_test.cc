@@ -100,7 +100,7 @@ TEST_F(EnsembleReportTest, FragilitySaysWhetherTheMediansDiffer) {
   std::vector<double> pgas = {0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.8, 1.0, 1.2, 1.5};
   s.axes = {Axis("base.horizontal.seed", {1, 2, 3, 4, 5, 6, 7, 8, 9, 10}),
             Axis("base.horizontal.pga_g", pgas)};
-  const auto interleave = [&](double engine_median) {
+  const auto interleave = [&](double engine_median, bool reversed = false) {
     // Member i is (seed, pga) in product order, pga varying fastest; at each PGA x, seed k
     // of 10 fails when k < round(10 Phi(ln(x / median) / beta)): the failures follow a
     // lognormal fragility (beta 0.4) as closely as 10 members allow.
@@ -112,7 +112,8 @@ TEST_F(EnsembleReportTest, FragilitySaysWhetherTheMediansDiffer) {
         const double pe =
             0.5 * std::erfc(-std::log(pgas[j] / engine_median) / (0.4 * std::sqrt(2.0)));
         out.push_back(Row(m, "reference", seed < std::lround(10 * pr) ? 1 : 0, pgas[j]));
-        out.push_back(Row(m, "bullet", seed < std::lround(10 * pe) ? 1 : 0, pgas[j]));
+        const int rank = reversed ? 9 - seed : seed;
+        out.push_back(Row(m, "bullet", rank < std::lround(10 * pe) ? 1 : 0, pgas[j]));
       }
     }
     return out;
@@ -121,7 +122,12 @@ TEST_F(EnsembleReportTest, FragilitySaysWhetherTheMediansDiffer) {
       WriteEnsembleReport(WriteEnsemble("differ", s, interleave(0.8)), dir_ / "out");
   EXPECT_NE(ReadFile(differ / "report.md").find("excludes zero"), std::string::npos);
   const auto same = WriteEnsembleReport(WriteEnsemble("same", s, interleave(0.4)), dir_ / "out");
-  const std::string md = ReadFile(same / "report.md");
+  EXPECT_NE(ReadFile(same / "report.md").find("is zero: the two curves are the same"),
+            std::string::npos);
+  // The same fractions at every PGA from other members (the seeds' order reversed).
+  const auto other =
+      WriteEnsembleReport(WriteEnsemble("other", s, interleave(0.4, true)), dir_ / "out");
+  const std::string md = ReadFile(other / "report.md");
   EXPECT_NE(md.find("contains zero"), std::string::npos) << md;
   EXPECT_TRUE(std::filesystem::exists(same / "figures" / "fragility_0.svg"));
   EXPECT_TRUE(std::filesystem::exists(same / "figures" / "peak_theta1_vs_pga.svg"));
