@@ -167,10 +167,17 @@ void SpectraSection(const EnsembleData& d, const std::filesystem::path& fig_dir,
     const int panels = static_cast<int>(d.engines.size());
     fig.width_px = std::max(480, 420 * panels);
     fig.height_px = 460;
+    double x0 = cells.front().x, x1 = x0, y0 = cells.front().y, y1 = y0;
+    for (const Cell& c : cells) {
+      x0 = std::min(x0, c.x), x1 = std::max(x1, c.x);
+      y0 = std::min(y0, c.y), y1 = std::max(y1, c.y);
+    }
+    const double dx = x1 > x0 ? 0.04 * (x1 - x0) : 0.5;
     std::string script = "set multiplot layout 1," + std::to_string(panels) + "\n";
+    script += "set xrange [" + Num(x0 - dx, 6) + ":" + Num(x1 + dx, 6) + "]\nset yrange [" +
+              Num(y0 / 1.1, 6) + ":" + Num(y1 * 1.1, 6) + "]\n";
     script += "set xlabel " + GnuplotQuote(ax.x_label) + "\nset ylabel " +
-              GnuplotQuote(ax.y_label) + "\nset key off\nset logscale y\n" +
-              "set offsets graph 0.04, graph 0.04, graph 0.04, graph 0.04\n";
+              GnuplotQuote(ax.y_label) + "\nset key off\nset logscale y\n";
     for (const std::string& e : d.engines) {
       std::string data, crosses;
       int agree = 0, disagree = 0, stopped = 0;
