@@ -139,11 +139,13 @@ void FragilitySection(const EnsembleData& d, const std::filesystem::path& fig_di
       const auto it = by_engine.find(e);
       if (it == by_engine.end()) continue;
       const stats::LognormalFragility fit = stats::FitLognormalFragility(it->second, 1000);
-      // Empirical fractions per PGA value.
+      // Empirical fractions per PGA value (a record scaled to a target PGA measures it back
+      // to within rounding: 6 significant digits make one bin).
       std::map<double, std::pair<int, int>> bins;
       for (const auto& p : it->second) {
-        bins[p.im].first += p.failed;
-        bins[p.im].second += 1;
+        const double key = std::stod(Num(p.im, 6));
+        bins[key].first += p.failed;
+        bins[key].second += 1;
       }
       std::string pts, curve;
       for (const auto& [x, c] : bins) {
