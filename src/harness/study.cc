@@ -18,13 +18,6 @@
 namespace rockbench {
 namespace {
 
-// Shortest text that reads back as the same double.
-std::string Repr(double v) {
-  std::array<char, 64> buf{};
-  auto res = std::to_chars(buf.data(), buf.data() + buf.size(), v);
-  return std::string(buf.data(), res.ptr);
-}
-
 std::string Where(const std::filesystem::path& file, const toml::node& node) {
   return file.string() + ":" + std::to_string(node.source().begin.line);
 }
@@ -93,7 +86,7 @@ AxisValue ValueOf(const toml::node& v, const std::string& key, const std::filesy
   if (!std::isfinite(a.number)) {
     throw SceneError(Where(file, v) + ": axis " + key + ": values: expected finite numbers");
   }
-  a.text = a.toml = Repr(a.number);
+  a.text = a.toml = ShortestText(a.number);
   return a;
 }
 

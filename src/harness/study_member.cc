@@ -15,17 +15,8 @@
 namespace rockbench {
 namespace {
 
-// Shortest text that reads back as the same double (the same bytes on every run).
-std::string Repr(double v) {
-  if (std::isnan(v)) return "nan";
-  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
-  std::array<char, 64> buf{};
-  auto res = std::to_chars(buf.data(), buf.data() + buf.size(), v);
-  return std::string(buf.data(), res.ptr);
-}
-
 std::string Cell(const std::optional<double>& v) {
-  return v ? Repr(*v) : std::string();
+  return v ? ShortestText(*v) : std::string();
 }
 
 // A free-text cell: no separators or line breaks.
@@ -250,8 +241,8 @@ std::string MembersCsvLine(const StudyDef& study, const MemberRow& r) {
     s += cell;
   };
   const bool res = r.has_result;
-  add(res ? Repr(r.p1_radps) : "");
-  add(res ? Repr(r.alpha1_rad) : "");
+  add(res ? ShortestText(r.p1_radps) : "");
+  add(res ? ShortestText(r.alpha1_rad) : "");
   add(Cell(r.p2_radps));
   add(Cell(r.alpha2_rad));
   for (const auto* v :
@@ -261,17 +252,17 @@ std::string MembersCsvLine(const StudyDef& study, const MemberRow& r) {
   add(r.engine);
   add(TextCell(r.status));
   add(res && r.overturned_block != 0 ? std::to_string(r.overturned_block) : "");
-  add(res && r.overturned_block != 0 ? Repr(r.overturn_t_s) : "");
-  add(res ? Repr(r.peak_theta1_rad) : "");
-  add(res ? Repr(r.peak_theta2_rad) : "");
+  add(res && r.overturned_block != 0 ? ShortestText(r.overturn_t_s) : "");
+  add(res ? ShortestText(r.peak_theta1_rad) : "");
+  add(res ? ShortestText(r.peak_theta2_rad) : "");
   add(res ? std::to_string(r.impacts) : "");
-  add(Repr(r.wall_s));
+  add(ShortestText(r.wall_s));
   add(r.converged ? (*r.converged ? "true" : "false") : "");
   if (r.agreement) {
     const MemberRow::Agreement& a = *r.agreement;
-    add(Repr(a.theta1_max_abs_error_rad));
+    add(ShortestText(a.theta1_max_abs_error_rad));
     add(Cell(a.theta2_max_abs_error_rad));
-    add(Repr(a.theta1_horizon_s));
+    add(ShortestText(a.theta1_horizon_s));
     add(Cell(a.theta2_horizon_s));
     add(std::to_string(a.impacts_matched));
     add(std::to_string(a.reference_impacts));

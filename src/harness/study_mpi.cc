@@ -62,25 +62,12 @@ namespace {
 // sends a row (its JSON text).
 constexpr int kTagRequest = 1, kTagTask = 2, kTagRow = 3;
 
-class RootScheduler : public StudyScheduler {
+class RootScheduler : public LocalScheduler {
  public:
   RootScheduler(const MpiSession& session, std::vector<StudyTask> tasks, MembersJournal& journal,
                 std::function<void(int64_t, int64_t)> progress)
-      : tasks_(std::move(tasks)),
-        journal_(journal),
-        progress_(std::move(progress)),
+      : LocalScheduler(std::move(tasks), journal, std::move(progress)),
         active_ranks_(session.size() - 1) {}
-
-  std::optional<StudyTask> Next() override {
-    if (next_ >= tasks_.size()) return std::nullopt;
-    return tasks_[next_++];
-  }
-
-  void Done(const MemberRow& row) override {
-    journal_.Append(row);
-    ++done_;
-    if (progress_) progress_(done_, static_cast<int64_t>(tasks_.size()));
-  }
 
   void Service() override {
     int flag = 0;
@@ -116,11 +103,6 @@ class RootScheduler : public StudyScheduler {
   bool Finished() override { return active_ranks_ == 0 && outstanding_ == 0; }
 
  private:
-  std::vector<StudyTask> tasks_;
-  size_t next_ = 0;
-  int64_t done_ = 0;
-  MembersJournal& journal_;
-  std::function<void(int64_t, int64_t)> progress_;
   int active_ranks_ = 0;
   int64_t outstanding_ = 0;  // runs handed to other ranks whose rows have not come back
 };

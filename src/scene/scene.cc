@@ -14,15 +14,6 @@
 namespace rockbench {
 namespace {
 
-// Shortest text that reads back as the same double ("-1", "0.15", "1e-10", "inf").
-std::string Repr(double v) {
-  if (std::isnan(v)) return "nan";
-  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
-  std::array<char, 64> buf{};
-  auto res = std::to_chars(buf.data(), buf.data() + buf.size(), v);
-  return std::string(buf.data(), res.ptr);
-}
-
 // What a number must be; the message text names it and the unit.
 enum class Rule { kFinite, kPositive, kNonNegative, kFraction, kUnitInterval };
 
@@ -80,7 +71,7 @@ std::string Describe(const toml::node& node) {
   if (auto s = node.as_string()) return Quote(s->get());
   if (auto b = node.as_boolean()) return b->get() ? "true" : "false";
   if (auto i = node.as_integer()) return std::to_string(i->get());
-  if (auto f = node.as_floating_point()) return Repr(f->get());
+  if (auto f = node.as_floating_point()) return ShortestText(f->get());
   if (node.is_array()) return "an array";
   if (node.is_table()) return "a table";
   return "a date/time";
@@ -255,7 +246,7 @@ class Reader {
       Fail(key, node, "expected " + Expectation(rule, unit) + ", got " + Describe(*node));
     }
     if (!Satisfies(v, rule)) {
-      Fail(key, node, "expected " + Expectation(rule, unit) + ", got " + Repr(v));
+      Fail(key, node, "expected " + Expectation(rule, unit) + ", got " + ShortestText(v));
     }
     return v;
   }
@@ -534,12 +525,12 @@ class Reader {
     if (r.output_interval_s > r.duration_s) {
       if (const toml::node* node = run.get("output_interval")) {
         Fail("run.output_interval", node,
-             "must not exceed run.duration (" + Repr(r.duration_s) + " s), got " +
-                 Repr(r.output_interval_s));
+             "must not exceed run.duration (" + ShortestText(r.duration_s) + " s), got " +
+                 ShortestText(r.output_interval_s));
       }
       Fail("run.duration", run.get("duration"),
-           "must be at least run.output_interval (" + Repr(r.output_interval_s) +
-               " s, the default), got " + Repr(r.duration_s));
+           "must be at least run.output_interval (" + ShortestText(r.output_interval_s) +
+               " s, the default), got " + ShortestText(r.duration_s));
     }
     return r;
   }
@@ -567,7 +558,7 @@ class Reader {
     Forbid(model, "model", "rest_rate",
            "removed: the rest rule is dimensionless now; use model.rest_rate_rel (the rate "
            "relative to sqrt(g / R), default " +
-               Repr(ModelConfig{}.rest_rate_rel) + "; README \"Coming to rest\")");
+               ShortestText(ModelConfig{}.rest_rate_rel) + "; README \"Coming to rest\")");
     m.rest_rate_rel =
         Number(model, "model", "rest_rate_rel", Rule::kNonNegative, "").value_or(m.rest_rate_rel);
     m.check_transitions = Bool(model, "model", "check_transitions").value_or(m.check_transitions);
@@ -788,6 +779,14 @@ Scene ParseScene(std::string_view toml_text, const std::filesystem::path& path,
   return scene;
 }
 
+std::string ShortestText(double v) {
+  if (std::isnan(v)) return "nan";
+  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
+  std::array<char, 64> buf{};
+  auto res = std::to_chars(buf.data(), buf.data() + buf.size(), v);
+  return std::string(buf.data(), res.ptr);
+}
+
 Scene LoadScene(const std::filesystem::path& path, const std::vector<std::string>& overrides) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw SceneError(path.string() + ": cannot open the scene file");
@@ -802,7 +801,7 @@ void ValidateScene(const Scene& scene) {
   const auto check = [&](const std::string& key, double v, Rule rule, std::string_view unit) {
     if (!Satisfies(v, rule)) {
       throw SceneError(file + ": " + key + ": expected " + Expectation(rule, unit) + ", got " +
-                       Repr(v));
+                       ShortestText(v));
     }
   };
   const auto fail = [&](const std::string& key, const std::string& msg) {
@@ -867,8 +866,9 @@ void ValidateScene(const Scene& scene) {
   check("run.output_interval", scene.run.output_interval_s, Rule::kPositive, "s");
   check("run.gravity", scene.run.gravity_mps2, Rule::kPositive, "m/s^2");
   if (scene.run.output_interval_s > scene.run.duration_s) {
-    fail("run.output_interval", "must not exceed run.duration (" + Repr(scene.run.duration_s) +
-                                    " s), got " + Repr(scene.run.output_interval_s));
+    fail("run.output_interval", "must not exceed run.duration (" +
+                                    ShortestText(scene.run.duration_s) + " s), got " +
+                                    ShortestText(scene.run.output_interval_s));
   }
   const ModelConfig& m = scene.model;
   check("model.rtol", m.rtol, Rule::kPositive, "");

@@ -162,6 +162,9 @@ void ValidateScene(const Scene& scene);
 bool IsAt2File(const std::filesystem::path& file);
 /// "harmonic", "sine_pulse", ...; "file" for kFile.
 std::string_view MotionKindName(MotionKind kind);
+/// The shortest text that reads back as the same double ("-1", "0.15", "1e-10", "inf", "nan"):
+/// the same bytes for the same number on every run and machine.
+std::string ShortestText(double v);
 /// "g", "m/s2", "cm/s2".
 std::string_view AccelUnitsName(AccelUnits units);
 /// The unit g of records, `units = "g"` and `amplitude_g`: standard gravity, m/s^2 by

@@ -18,38 +18,19 @@
 #include <vector>
 
 #include "common/scratch_dir_test.h"
+#include "common/shell_test.h"
 
 extern char** environ;
 
 namespace rockbench {
 namespace {
 
-struct CliRun {
-  int exit_code = -1;
-  std::string output;  // stdout and stderr
-};
-
-CliRun Shell(const std::string& cmd) {
-  CliRun r;
-  FILE* p = popen((cmd + " 2>&1").c_str(), "r");
-  if (!p) return r;
-  char buf[4096];
-  size_t n;
-  while ((n = fread(buf, 1, sizeof buf, p)) > 0) r.output.append(buf, n);
-  const int status = pclose(p);
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
-}
+using testing_util::ReadFile;
+using testing_util::Shell;
+using CliRun = testing_util::ShellRun;
 
 CliRun Rockbench(const std::string& args) {
   return Shell(std::string(ROCKBENCH_EXE) + " " + args);
-}
-
-std::string ReadFile(const std::filesystem::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
 }
 
 // members.csv with its wall_s column emptied (the one column that depends on the run).

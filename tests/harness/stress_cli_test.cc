@@ -14,33 +14,16 @@
 #include <vector>
 
 #include "common/scratch_dir_test.h"
+#include "common/shell_test.h"
 
 namespace rockbench {
 namespace {
 
-struct CliRun {
-  int exit_code = -1;
-  std::string output;  // stdout and stderr
-};
+using testing_util::ReadFile;
+using CliRun = testing_util::ShellRun;
 
 CliRun Rockbench(const std::string& args) {
-  const std::string cmd = std::string(ROCKBENCH_EXE) + " " + args + " 2>&1";
-  CliRun r;
-  FILE* p = popen(cmd.c_str(), "r");
-  if (!p) return r;
-  char buf[4096];
-  size_t n;
-  while ((n = fread(buf, 1, sizeof buf, p)) > 0) r.output.append(buf, n);
-  const int status = pclose(p);
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
-}
-
-std::string ReadFile(const std::filesystem::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
+  return testing_util::Shell(std::string(ROCKBENCH_EXE) + " " + args);
 }
 
 using Row = std::map<std::string, std::string>;
