@@ -24,14 +24,6 @@ const std::vector<std::string>& MotionAxes() {
   return keys;
 }
 
-std::vector<int> MotionAxisColumns(const EnsembleData& d) {
-  std::vector<int> cols;
-  for (const std::string& k : MotionAxes()) {
-    if (d.Axis(k) >= 0) cols.push_back(d.Axis(k));
-  }
-  return cols;
-}
-
 // Members of one group: member -> (PGA, failed) per engine, usable runs only.
 struct GroupData {
   std::map<long long, std::map<std::string, stats::FragilityPoint>> members;
@@ -86,6 +78,14 @@ std::string FitText(const stats::LognormalFragility& f) {
 }
 
 }  // namespace
+
+std::vector<int> MotionAxisColumns(const EnsembleData& d) {
+  std::vector<int> cols;
+  for (const std::string& k : MotionAxes()) {
+    if (d.Axis(k) >= 0) cols.push_back(d.Axis(k));
+  }
+  return cols;
+}
 
 bool HasMotionSuite(const EnsembleData& d) {
   return d.Axis("base.horizontal.file") >= 0 || d.Axis("base.horizontal.seed") >= 0;

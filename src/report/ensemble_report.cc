@@ -63,7 +63,10 @@ std::filesystem::path WriteEnsembleReport(const std::filesystem::path& ensemble_
   Page body("");
   StudySection(d, body);
   if (HasSpectrumAxes(d)) SpectraSection(d, fig_dir, body, findings);
-  if (HasMotionSuite(d)) FragilitySection(d, fig_dir, body, findings);
+  if (HasMotionSuite(d)) {
+    FragilitySection(d, fig_dir, body, findings);
+    FragilitySurfaceSection(d, fig_dir, body, findings);
+  }
   if (d.Axis("base.horizontal.pga_g") >= 0 || HasMotionSuite(d)) ScatterSection(d, fig_dir, body);
   page.Heading("In plain words");
   if (findings.empty()) {

@@ -33,8 +33,16 @@ void SpectraSection(const EnsembleData& d, const std::filesystem::path& fig_dir,
 /// Whether the study varies the motion over a suite (base.horizontal.file or
 /// base.horizontal.seed) so that a fragility curve over PGA is defined.
 bool HasMotionSuite(const EnsembleData& d);
+/// The columns of the axes that choose or scale the motion (record, seed, PGA or PGV target,
+/// scale, amplitude): the other axes make a fragility study's groups.
+std::vector<int> MotionAxisColumns(const EnsembleData& d);
 void FragilitySection(const EnsembleData& d, const std::filesystem::path& fig_dir, Page& page,
                       std::vector<std::string>& findings);
+
+/// The two-parameter fragility (PGA and PGV/PGA, Purvance et al. 2008) per group and run: the
+/// median contours on one figure and a table of their parameters.
+void FragilitySurfaceSection(const EnsembleData& d, const std::filesystem::path& fig_dir,
+                             Page& page, std::vector<std::string>& findings);
 
 /// Peak |theta1| against PGA, one series per engine.
 void ScatterSection(const EnsembleData& d, const std::filesystem::path& fig_dir, Page& page);

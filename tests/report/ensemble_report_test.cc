@@ -37,7 +37,7 @@ StudyAxis Axis(const std::string& key, const std::vector<double>& values) {
 }
 
 MemberRow Row(long long member, const std::string& engine, int overturned, double pga_g,
-              int impacts = 0) {
+              int impacts = 0, double pgv_over_pga_s = 0.1) {
   MemberRow r;
   r.member = member;
   r.engine = engine;
@@ -46,6 +46,7 @@ MemberRow Row(long long member, const std::string& engine, int overturned, doubl
   r.peak_theta1_rad = overturned ? 1.25 : 0.05;
   r.impacts = impacts;
   r.pga_g = pga_g;
+  r.pgv_mps = pga_g * 9.80665 * pgv_over_pga_s;
   r.has_result = true;
   r.p1_radps = 1.9;
   r.alpha1_rad = 0.245;
@@ -111,9 +112,12 @@ TEST_F(EnsembleReportTest, FragilitySaysWhetherTheMediansDiffer) {
         const double pr = 0.5 * std::erfc(-std::log(pgas[j] / 0.4) / (0.4 * std::sqrt(2.0)));
         const double pe =
             0.5 * std::erfc(-std::log(pgas[j] / engine_median) / (0.4 * std::sqrt(2.0)));
-        out.push_back(Row(m, "reference", seed < std::lround(10 * pr) ? 1 : 0, pgas[j]));
+        // PGV/PGA from 0.05 to 0.14 s over the seeds, shuffled against the order in which
+        // they fail (the surface's second axis, not a line that separates the outcomes).
+        const double ratio = 0.05 + 0.01 * ((3 * seed) % 10);
+        out.push_back(Row(m, "reference", seed < std::lround(10 * pr) ? 1 : 0, pgas[j], 0, ratio));
         const int rank = reversed ? 9 - seed : seed;
-        out.push_back(Row(m, "bullet", rank < std::lround(10 * pe) ? 1 : 0, pgas[j]));
+        out.push_back(Row(m, "bullet", rank < std::lround(10 * pe) ? 1 : 0, pgas[j], 0, ratio));
       }
     }
     return out;
@@ -122,8 +126,13 @@ TEST_F(EnsembleReportTest, FragilitySaysWhetherTheMediansDiffer) {
       WriteEnsembleReport(WriteEnsemble("differ", s, interleave(0.8)), dir_ / "out");
   EXPECT_NE(ReadFile(differ / "report.md").find("excludes zero"), std::string::npos);
   const auto same = WriteEnsembleReport(WriteEnsemble("same", s, interleave(0.4)), dir_ / "out");
-  EXPECT_NE(ReadFile(same / "report.md").find("is zero: the two curves are the same"),
-            std::string::npos);
+  const std::string same_md = ReadFile(same / "report.md");
+  EXPECT_NE(same_md.find("is zero: the two curves are the same"), std::string::npos);
+  // Identical members give identical surfaces: the median ratio is 1 across PGV/PGA.
+  EXPECT_NE(same_md.find("over the reference's, across the study's PGV/PGA: 1 at 0.05 s, 1 at "),
+            std::string::npos)
+      << same_md;
+  EXPECT_TRUE(std::filesystem::exists(same / "figures" / "fragility_surface_0.svg"));
   // The same fractions at every PGA from other members (the seeds' order reversed).
   const auto other =
       WriteEnsembleReport(WriteEnsemble("other", s, interleave(0.4, true)), dir_ / "out");
