@@ -66,16 +66,22 @@ bool OverturnsWithoutImpact(Scene s, double amplitude_g, double f_hz, Equations 
   return sum.status == "overturned" && sum.impacts_ground == 0;
 }
 
-// The smallest amplitude (in g) that overturns, by bisection to 1e-10 relative.
-double Threshold(const Scene& s, double t1_s, Equations equations, double guess) {
-  double lo = 0.9 * guess, hi = 1.1 * guess;
-  EXPECT_FALSE(Overturns(s, lo, t1_s, equations));
-  EXPECT_TRUE(Overturns(s, hi, t1_s, equations));
+// The smallest amplitude in [lo, hi] at which `overturns` holds, by bisection to 1e-10
+// relative (it must not hold at lo and must hold at hi).
+template <typename Predicate>
+double Bisect(double lo, double hi, const Predicate& overturns) {
+  EXPECT_FALSE(overturns(lo));
+  EXPECT_TRUE(overturns(hi));
   while (hi - lo > 1e-10 * hi) {
     const double mid = 0.5 * (lo + hi);
-    (Overturns(s, mid, t1_s, equations) ? hi : lo) = mid;
+    (overturns(mid) ? hi : lo) = mid;
   }
   return hi;
+}
+
+double Threshold(const Scene& s, double t1_s, Equations equations, double guess) {
+  return Bisect(0.9 * guess, 1.1 * guess,
+                [&](double a) { return Overturns(s, a, t1_s, equations); });
 }
 
 TEST(PulseOverturning, LinearizedModelHasHousnersRectangularPulseThreshold) {
@@ -159,14 +165,8 @@ double SineModeTwoThreshold(double w, double q, double tan_a) {
 }
 
 double SineThreshold(const Scene& s, double f_hz, Equations equations, double guess) {
-  double lo = 0.98 * guess, hi = 1.02 * guess;
-  EXPECT_FALSE(OverturnsWithoutImpact(s, lo, f_hz, equations));
-  EXPECT_TRUE(OverturnsWithoutImpact(s, hi, f_hz, equations));
-  while (hi - lo > 1e-10 * hi) {
-    const double mid = 0.5 * (lo + hi);
-    (OverturnsWithoutImpact(s, mid, f_hz, equations) ? hi : lo) = mid;
-  }
-  return hi;
+  return Bisect(0.98 * guess, 1.02 * guess,
+                [&](double a) { return OverturnsWithoutImpact(s, a, f_hz, equations); });
 }
 
 TEST(PulseOverturning, LinearizedModelHasTheClosedFormSinePulseModeTwoBoundary) {
