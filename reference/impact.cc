@@ -2,7 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
+#include <string>
+#include <utility>
 
 namespace rockbench::reference {
 namespace {
@@ -63,8 +64,9 @@ std::vector<Mode> ImpactCandidates(Mode before, ImpactKind kind, bool two_blocks
 }
 
 State PostImpactState(const Geometry& geo, Mode before, const State& pre, Mode after) {
-  const BodyVelocities v = Velocities(geo, before, pre);
-  const Chain ch = EvaluateChain(geo, after, pre);
+  const Tilts tilts = TiltsOf(pre);
+  const BodyVelocities v = Velocities(EvaluateChain(geo, before, pre, tilts));
+  const Chain ch = EvaluateChain(geo, after, pre, tilts);
   const double m[2] = {geo.block1.m, geo.block2.m};
   const double IG[2] = {geo.block1.I_G, geo.block2.I_G};
   double M[2][2] = {{0, 0}, {0, 0}}, p[2] = {0, 0};
@@ -108,11 +110,13 @@ ImpactOutcome Evaluate(const Geometry& geo, Mode before, const State& pre, Mode 
   }
   out.velocity_admissible = ok;
   // Impulse check: velocity jumps give the impulses; normal components must push.
-  const BodyVelocities vm = Velocities(geo, before, pre);
-  const BodyVelocities vp = Velocities(geo, after, out.state);
+  // An impact changes rates, not angles: one set of tilts serves before and after.
+  const Tilts tilts = TiltsOf(pre);
+  const BodyVelocities vm = Velocities(EvaluateChain(geo, before, pre, tilts));
+  const BodyVelocities vp = Velocities(EvaluateChain(geo, after, out.state, tilts));
   std::array<Vec2, 2> dv{vp.vG[0] - vm.vG[0], vp.vG[1] - vm.vG[1]};
   std::array<double, 2> dw{vp.w[0] - vm.w[0], vp.w[1] - vm.w[1]};
-  const Reactions imp = ContactLoads(geo, after, pre, dv, dw, Vec2{});
+  const Reactions imp = ContactLoads(geo, after, tilts, dv, dw, Vec2{});
   double min_imp =
       c.ground == Contact::kFace ? std::min(imp.ground_left, imp.ground_right) : imp.N_ground;
   if (geo.two_blocks) {
@@ -165,7 +169,8 @@ ImpactResult ResolveImpact(const Geometry& geo, Mode before, const State& pre, I
       break;
     }
   }
-  std::ostringstream note;
+  // The note is built only when there is something to say (most impacts have none).
+  std::string note;
   if (!pick) {
     res.admissible = false;
     for (const auto& c : res.candidates) {
@@ -174,10 +179,12 @@ ImpactResult ResolveImpact(const Geometry& geo, Mode before, const State& pre, I
         break;
       }
     }
-    note << "inadmissible: no outcome both separates and pushes;";
+    note = "inadmissible: no outcome both separates and pushes;";
     for (const auto& c : res.candidates) {
-      note << " " << ModeName(c.mode) << (c.velocity_admissible ? "" : " moves-into")
-           << (c.impulse_admissible ? "" : " pulls");
+      note += " ";
+      note += ModeName(c.mode);
+      if (!c.velocity_admissible) note += " moves-into";
+      if (!c.impulse_admissible) note += " pulls";
     }
   }
   if (!pick) {
@@ -193,9 +200,9 @@ ImpactResult ResolveImpact(const Geometry& geo, Mode before, const State& pre, I
   if (settled != res.chosen.mode) {
     res.settled = true;
     res.chosen = Evaluate(geo, before, pre, settled);
-    note << (note.tellp() > 0 ? " " : "") << "settled (rest rule)";
+    note += note.empty() ? "settled (rest rule)" : " settled (rest rule)";
   }
-  res.note = note.str();
+  res.note = std::move(note);
   return res;
 }
 

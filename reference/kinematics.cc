@@ -9,10 +9,10 @@ double SideSign(Contact c) {
   return c == Contact::kLeft ? -1.0 : 1.0;
 }
 
-// Rotation by CCW angle phi.
-Vec2 Rotate(double phi, Vec2 v) {
-  const double c = std::cos(phi), s = std::sin(phi);
-  return {c * v.x - s * v.y, s * v.x + c * v.y};
+// Rotation by the CCW angle phi = -theta, from theta's sine and cosine (cos phi = cos theta,
+// sin phi = -sin theta).
+Vec2 RotateBack(double sin_theta, double cos_theta, Vec2 v) {
+  return {cos_theta * v.x + sin_theta * v.y, -sin_theta * v.x + cos_theta * v.y};
 }
 
 // Positions of the chain points for pivot sides s1 (ground) and s2 (interface).
@@ -21,7 +21,7 @@ struct Points {
   double s1, s2;
 };
 
-Points Place(const Geometry& geo, Contacts c, const State& s) {
+Points Place(const Geometry& geo, Contacts c, const Tilts& tl) {
   const BlockProps& p1 = geo.block1;
   const BlockProps& p2 = geo.block2;
   Points pts;
@@ -29,14 +29,18 @@ Points Place(const Geometry& geo, Contacts c, const State& s) {
   // Locked interface: any corner gives the same motion; take block 1's side.
   pts.s2 = c.interface == Contact::kFace ? pts.s1 : SideSign(c.interface);
   pts.P1 = {pts.s1 * p1.b, 0.0};
-  const double phi1 = -s.theta1, phi2 = -s.theta2;
-  pts.G1 = pts.P1 + Rotate(phi1, Vec2{0.0, p1.h} - Vec2{pts.s1 * p1.b, 0.0});
-  pts.Q2 = pts.P1 + Rotate(phi1, Vec2{pts.s2 * p2.b, 2.0 * p1.h} - Vec2{pts.s1 * p1.b, 0.0});
-  pts.G2 = pts.Q2 + Rotate(phi2, Vec2{0.0, p2.h} - Vec2{pts.s2 * p2.b, 0.0});
+  pts.G1 = pts.P1 + RotateBack(tl.sin1, tl.cos1, Vec2{0.0, p1.h} - Vec2{pts.s1 * p1.b, 0.0});
+  pts.Q2 = pts.P1 +
+           RotateBack(tl.sin1, tl.cos1, Vec2{pts.s2 * p2.b, 2.0 * p1.h} - Vec2{pts.s1 * p1.b, 0.0});
+  pts.G2 = pts.Q2 + RotateBack(tl.sin2, tl.cos2, Vec2{0.0, p2.h} - Vec2{pts.s2 * p2.b, 0.0});
   return pts;
 }
 
 }  // namespace
+
+Tilts TiltsOf(const State& s) {
+  return {std::sin(s.theta1), std::cos(s.theta1), std::sin(s.theta2), std::cos(s.theta2)};
+}
 
 Contacts ContactsOf(Mode mode) {
   switch (mode) {
@@ -82,9 +86,14 @@ int DofCount(Mode mode, bool two_blocks) {
 }
 
 Chain EvaluateChain(const Geometry& geo, Mode mode, const State& s) {
+  return EvaluateChain(geo, mode, s, TiltsOf(s));
+}
+
+Chain EvaluateChain(const Geometry& geo, Mode mode, const State& s, const Tilts& tilts) {
   const Contacts c = ContactsOf(mode);
-  const Points pts = Place(geo, c, s);
+  const Points pts = Place(geo, c, tilts);
   Chain ch;
+  ch.tilts = tilts;
   ch.P1 = pts.P1;
   ch.Q2 = pts.Q2;
   ch.G = {pts.G1, pts.G2};
@@ -184,8 +193,13 @@ void SplitFace(Vec2 cL, Vec2 cR, Vec2 n, Vec2 F, double Mx, Vec2 X, double* NL, 
 
 Reactions ComputeReactions(const Geometry& geo, Mode mode, const State& s,
                            const std::array<double, 2>& acc, double xg_mps2, double yg_mps2) {
+  return ComputeReactions(geo, mode, s, TiltsOf(s), acc, xg_mps2, yg_mps2);
+}
+
+Reactions ComputeReactions(const Geometry& geo, Mode mode, const State& s, const Tilts& tilts,
+                           const std::array<double, 2>& acc, double xg_mps2, double yg_mps2) {
   const Contacts c = ContactsOf(mode);
-  const Chain ch = EvaluateChain(geo, mode, s);
+  const Chain ch = EvaluateChain(geo, mode, s, tilts);
   // Generalized accelerations of the mode.
   double ud[2] = {0.0, 0.0};
   if (ch.ndof == 2) {
@@ -204,23 +218,28 @@ Reactions ComputeReactions(const Geometry& geo, Mode mode, const State& s,
       alpha[b] += ch.Jphi[b][k] * ud[k];
     }
   }
-  return ContactLoads(geo, mode, s, aG, alpha, Vec2{-xg_mps2, -(geo.g + yg_mps2)});
+  return ContactLoads(geo, mode, tilts, aG, alpha, Vec2{-xg_mps2, -(geo.g + yg_mps2)});
 }
 
 Reactions ContactLoads(const Geometry& geo, Mode mode, const State& s,
                        const std::array<Vec2, 2>& aG, const std::array<double, 2>& alpha,
                        Vec2 g_eff) {
+  return ContactLoads(geo, mode, TiltsOf(s), aG, alpha, g_eff);
+}
+
+Reactions ContactLoads(const Geometry& geo, Mode mode, const Tilts& tl,
+                       const std::array<Vec2, 2>& aG, const std::array<double, 2>& alpha,
+                       Vec2 g_eff) {
   const Contacts c = ContactsOf(mode);
-  const Points pts = Place(geo, c, s);
+  const Points pts = Place(geo, c, tl);
   const Vec2 G1 = pts.G1, G2 = pts.G2;
   const BlockProps& p1 = geo.block1;
   const BlockProps& p2 = geo.block2;
   Reactions r;
-  Vec2 F_int{};           // force of block 1 on block 2
-  double M_int_G1 = 0.0;  // moment of that force system about G1
-  const double phi1 = -s.theta1;
-  const Vec2 n1{-std::sin(phi1), std::cos(phi1)};  // block 1's top-face normal
-  const Vec2 t1{std::cos(phi1), std::sin(phi1)};
+  Vec2 F_int{};                     // force of block 1 on block 2
+  double M_int_G1 = 0.0;            // moment of that force system about G1
+  const Vec2 n1{tl.sin1, tl.cos1};  // block 1's top-face normal
+  const Vec2 t1{tl.cos1, -tl.sin1};
   if (geo.two_blocks) {
     F_int = p2.m * (aG[1] - g_eff);
     // Moment of the interface forces about G2 equals I_G2 alpha2.
@@ -230,7 +249,7 @@ Reactions ContactLoads(const Geometry& geo, Mode mode, const State& s,
     r.T_interface = Dot(F_int, t1);
     if (c.interface == Contact::kFace) {
       // Block 2's base corners, on block 1's top face.
-      const Vec2 base_c = G2 - p2.h * Vec2{-std::sin(-s.theta2), std::cos(-s.theta2)};
+      const Vec2 base_c = G2 - p2.h * Vec2{tl.sin2, tl.cos2};
       const Vec2 cL = base_c - p2.b * t1, cR = base_c + p2.b * t1;
       SplitFace(cL, cR, n1, F_int, M_G2, G2, &r.interface_left, &r.interface_right);
     }
@@ -248,7 +267,10 @@ Reactions ContactLoads(const Geometry& geo, Mode mode, const State& s,
 }
 
 BodyVelocities Velocities(const Geometry& geo, Mode mode, const State& s) {
-  const Chain ch = EvaluateChain(geo, mode, s);
+  return Velocities(EvaluateChain(geo, mode, s));
+}
+
+BodyVelocities Velocities(const Chain& ch) {
   BodyVelocities v;
   for (int b = 0; b < 2; ++b) {
     for (int k = 0; k < ch.ndof; ++k) {
@@ -261,7 +283,7 @@ BodyVelocities Velocities(const Geometry& geo, Mode mode, const State& s) {
 
 double AngularMomentum(const Geometry& geo, Mode mode, const State& s, Vec2 A, int body) {
   const Chain ch = EvaluateChain(geo, mode, s);
-  const BodyVelocities v = Velocities(geo, mode, s);
+  const BodyVelocities v = Velocities(ch);
   const double m[2] = {geo.block1.m, geo.block2.m};
   const double IG[2] = {geo.block1.I_G, geo.block2.I_G};
   double h = 0.0;
@@ -273,15 +295,16 @@ double AngularMomentum(const Geometry& geo, Mode mode, const State& s, Vec2 A, i
 }
 
 std::array<std::array<Vec2, 4>, 2> BlockCorners(const Geometry& geo, Mode mode, const State& s) {
-  const Points pts = Place(geo, ContactsOf(mode), s);
+  const Tilts tl = TiltsOf(s);
+  const Points pts = Place(geo, ContactsOf(mode), tl);
   std::array<std::array<Vec2, 4>, 2> out{};
   const BlockProps* p[2] = {&geo.block1, &geo.block2};
   const Vec2 G[2] = {pts.G1, pts.G2};
-  const double phi[2] = {-s.theta1, -s.theta2};
+  const double sin_t[2] = {tl.sin1, tl.sin2}, cos_t[2] = {tl.cos1, tl.cos2};
   for (int b = 0; b < (geo.two_blocks ? 2 : 1); ++b) {
     const double bx = p[b]->b, hy = p[b]->h;
     const Vec2 local[4] = {{-bx, -hy}, {bx, -hy}, {bx, hy}, {-bx, hy}};
-    for (int k = 0; k < 4; ++k) out[b][k] = G[b] + Rotate(phi[b], local[k]);
+    for (int k = 0; k < 4; ++k) out[b][k] = G[b] + RotateBack(sin_t[b], cos_t[b], local[k]);
   }
   return out;
 }

@@ -40,6 +40,15 @@ struct State {
   double theta1 = 0.0, theta2 = 0.0, omega1 = 0.0, omega2 = 0.0;
 };
 
+/// Sines and cosines of the two tilts of a state. Every function of the chain needs them;
+/// taken once per state and passed down, they are not taken again by each (they were a third
+/// of the reference's run time: docs/performance-reference.md).
+struct Tilts {
+  double sin1 = 0.0, cos1 = 1.0;  ///< of theta1
+  double sin2 = 0.0, cos2 = 1.0;  ///< of theta2
+};
+Tilts TiltsOf(const State& s);
+
 /// How a contact is closed: a whole face, or a single corner on the right (+x) or left side.
 enum class Contact { kFace, kRight, kLeft };
 struct Contacts {
@@ -64,11 +73,14 @@ struct Chain {
   std::array<std::array<double, 2>, 2> Jphi{};
   std::array<Vec2, 2> a_vp;   ///< velocity-product (centripetal) accelerations of G_i
   std::array<double, 2> u{};  ///< generalized rates of the mode
+  Tilts tilts;                ///< of the state it was evaluated at
 };
 
 /// Evaluates the chain. Modes 1/2: u = (omega1, omega2); mode 3: u = omega1 (= omega2);
 /// mode 4: u = omega2; rest: none.
 Chain EvaluateChain(const Geometry& geo, Mode mode, const State& s);
+/// The same with the state's tilts already taken (TiltsOf(s)).
+Chain EvaluateChain(const Geometry& geo, Mode mode, const State& s, const Tilts& tilts);
 
 /// Angular accelerations (theta1'', theta2'') of a mode from the generic Lagrangian assembly
 /// M(q) u' = J^T (F - M_b a_vp), with effective gravity (-xg'', -(g + yg'')). Mode 3 returns
@@ -97,6 +109,9 @@ struct Reactions {
 /// Reactions for given accelerations (theta1'', theta2'') consistent with the mode.
 Reactions ComputeReactions(const Geometry& geo, Mode mode, const State& s,
                            const std::array<double, 2>& acc, double xg_mps2, double yg_mps2);
+/// The same with the state's tilts already taken (TiltsOf(s)).
+Reactions ComputeReactions(const Geometry& geo, Mode mode, const State& s, const Tilts& tilts,
+                           const std::array<double, 2>& acc, double xg_mps2, double yg_mps2);
 
 /// Mass-centre velocities and CCW angular velocities of the two blocks.
 struct BodyVelocities {
@@ -104,11 +119,17 @@ struct BodyVelocities {
   std::array<double, 2> w{};
 };
 BodyVelocities Velocities(const Geometry& geo, Mode mode, const State& s);
+/// The same from the chain already evaluated at the state.
+BodyVelocities Velocities(const Chain& ch);
 
 /// Contact loads (ground on block 1, block 1 on block 2) that give the blocks mass-centre
 /// accelerations aG and CCW angular accelerations alpha under effective gravity g_eff. With
 /// velocity jumps in place of accelerations and g_eff = 0 it gives the impact impulses.
 Reactions ContactLoads(const Geometry& geo, Mode mode, const State& s,
+                       const std::array<Vec2, 2>& aG, const std::array<double, 2>& alpha,
+                       Vec2 g_eff);
+/// The same with the state's tilts already taken (TiltsOf(s)).
+Reactions ContactLoads(const Geometry& geo, Mode mode, const Tilts& tilts,
                        const std::array<Vec2, 2>& aG, const std::array<double, 2>& alpha,
                        Vec2 g_eff);
 

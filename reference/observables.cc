@@ -44,7 +44,7 @@ double BlockEnergy_j(const BlockProps& block, double g_mps2, const BodyMotion& b
 
 MechanicalEnergy StateEnergy(const Geometry& geo, Mode mode, const State& s) {
   const Chain ch = EvaluateChain(geo, mode, s);
-  const BodyVelocities v = Velocities(geo, mode, s);
+  const BodyVelocities v = Velocities(ch);
   MechanicalEnergy e;
   e.block1_j = BlockEnergy_j(geo.block1, geo.g, {ch.G[0], v.vG[0], v.w[0]});
   e.total_j = e.block1_j;

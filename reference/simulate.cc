@@ -73,12 +73,17 @@ double MotionTimeScale(const GroundMotion& motion) {
 // (fn(tb) >= 0 then). For a cheap fn with a known rate: fn is checked at n equally spaced
 // points and, between two of them where its rate turns from negative to positive, at the
 // minimum (the rate's root). Exact while the rate changes sign at most once between points.
+// The k-th of the n + 1 equally spaced points of [ta, tb] (the last is tb exactly).
+double ProbeTime(double ta, double tb, int k, int n) {
+  return k >= n ? tb : ta + (tb - ta) * k / n;
+}
+
 template <class F, class D>
 std::pair<double, double> ProbeCheap(const F& fn, const D& rate, double ta, double tb, int n,
                                      double tol) {
   double tp = ta, rp = rate(ta);
   for (int k = 1;; ++k) {
-    const double tk = k >= n ? tb : ta + (tb - ta) * k / n;
+    const double tk = ProbeTime(ta, tb, k, n);
     const double rk = rate(tk);
     if (rp < 0.0 && rk > 0.0) {
       const auto br = BrentBracket(rate, tp, tk, rp, rk, tol);
@@ -221,13 +226,31 @@ class Simulator {
     double t = kInf;     // s, the located bracket's lower end (the event time)
     double t_hi = kInf;  // s, its upper end (just past the root)
   };
-  // The state at t inside the step that starts at (t0, y0), projected onto the mode.
+  // The state at t inside the step that starts at (t0, y0), projected onto the mode. The
+  // states at the probe points (ProbeTime), which every cheap event function checks, are
+  // evaluated once (Probe) and kept.
   struct StepDense {
     const Simulator& sim;
     const StepResult& st;
     double t0;
     Vec4 y0;
-    Vec4 operator()(double t) const { return sim.Project(t == t0 ? y0 : st.dense.At(t)); }
+    std::array<double, kInteriorChecks + 1> probe_t{};
+    std::array<Vec4, kInteriorChecks + 1> probe_y{};
+    int probes = 0;
+    Vec4 Evaluate(double t) const { return sim.Project(t == t0 ? y0 : st.dense.At(t)); }
+    void Probe(double t1) {
+      for (int k = 0; k <= kInteriorChecks; ++k) {
+        probe_t[k] = ProbeTime(t0, t1, k, kInteriorChecks);
+        probe_y[k] = Evaluate(probe_t[k]);
+      }
+      probes = kInteriorChecks + 1;
+    }
+    Vec4 operator()(double t) const {
+      for (int k = 0; k < probes; ++k) {
+        if (probe_t[k] == t) return probe_y[k];
+      }
+      return Evaluate(t);
+    }
   };
   StepResult AdvanceOneStep(bool rk4, const Vec4& f0, double* h_taken);
   // The first zero of fn in [t_pos, t_neg], given fn(t_pos) = f_pos >= 0 > fn(t_neg) = f_neg,
@@ -342,6 +365,10 @@ bool Simulator::StartMode(double t, const State& s, const char* kind, Mode befor
                           const std::string& note) {
   const ModeSelection sel =
       SelectMode(geo_, s, motion_.xg_mps2(t), motion_.yg_mps2(t), cfg_.equations);
+  if (sel.consistent && sel.mode == before) {
+    mode_ = sel.mode;  // no event to record
+    return true;
+  }
   Event ev;
   ev.t_s = t;
   ev.mode_before = before;
@@ -360,14 +387,12 @@ bool Simulator::StartMode(double t, const State& s, const char* kind, Mode befor
     done_ = true;
     return false;
   }
-  if (sel.mode != before) {
-    ev.kind = kind;
-    ev.mode_after = sel.mode;
-    ev.note = note;
-    if (std::string(kind) == "initiation") ++result_.summary.initiations;
-    if (std::string(kind) == "transition") ++result_.summary.transitions;
-    AddEvent(ev);
-  }
+  ev.kind = kind;
+  ev.mode_after = sel.mode;
+  ev.note = note;
+  if (std::string(kind) == "initiation") ++result_.summary.initiations;
+  if (std::string(kind) == "transition") ++result_.summary.transitions;
+  AddEvent(ev);
   mode_ = sel.mode;
   return true;
 }
@@ -700,7 +725,8 @@ void Simulator::RunMoving() {
     const StepResult st = AdvanceOneStep(rk4, f0, &h);
     const double t1 = t_ + h;
     const Vec4 y1 = Project(st.y1);
-    const StepDense at{*this, st, t_, y_};
+    StepDense at{*this, st, t_, y_};
+    if (!thesis_events) at.Probe(t1);
     const ContactMargins cm1 = Margins(t1, y1);
     const LocatedEvent ev = FindEvent(at, t1, cm1, thesis_events);
     const bool none = ev.which == StepEvent::kNone;
