@@ -16,6 +16,12 @@ BlockProps MakeBlockProps(double B, double H, double m) {
   return p;
 }
 
+namespace {
+SinCos SinCosOf(double angle_rad) {
+  return {std::sin(angle_rad), std::cos(angle_rad)};
+}
+}  // namespace
+
 Geometry MakeGeometry(double B1, double H1, double m1, double B2, double H2, double m2, double g) {
   Geometry geo;
   geo.g = g;
@@ -28,6 +34,7 @@ Geometry MakeGeometry(double B1, double H1, double m1, double B2, double H2, dou
     geo.R = p1.r;
     geo.theta_c = p1.theta_c;
     geo.I_O = p1.I_O;
+    geo.trig_c1 = geo.trig_c_stack = SinCosOf(p1.theta_c);
     return geo;
   }
   geo.block2 = MakeBlockProps(B2, H2, m2);
@@ -46,6 +53,13 @@ Geometry MakeGeometry(double B1, double H1, double m1, double B2, double H2, dou
   geo.I_O = p1.I_O + p2.I_G + p2.m * (p1.b * p1.b + y2 * y2);
   geo.d = std::hypot(y2, p1.b);
   geo.omega_d = std::atan2(y2, p1.b);
+  geo.trig_c1 = SinCosOf(p1.theta_c);
+  geo.trig_c2 = SinCosOf(p2.theta_c);
+  geo.trig_beta = SinCosOf(geo.beta);
+  geo.trig_beta_p = SinCosOf(geo.beta_p);
+  geo.trig_c_stack = SinCosOf(geo.theta_c);
+  geo.trig_gamma1 = SinCosOf(p2.theta_c - geo.beta);
+  geo.trig_gamma2 = SinCosOf(p2.theta_c + geo.beta_p);
   return geo;
 }
 

@@ -16,6 +16,11 @@ struct BlockProps {
   double I_O = 0.0;      ///< about a base corner, (4/3) m r^2, kg m^2
 };
 
+/// Sine and cosine of a constant angle.
+struct SinCos {
+  double sin = 0.0, cos = 1.0;
+};
+
 struct Geometry {
   bool two_blocks = true;
   double g = 9.81;  ///< gravity, m/s^2
@@ -30,6 +35,10 @@ struct Geometry {
   double M = 0.0, h_stack = 0.0, R = 0.0, theta_c = 0.0, I_O = 0.0;
   /// d = sqrt((2 h1 + h2)^2 + b1^2), omega = atan((2 h1 + h2) / b1) (transition criteria).
   double d = 0.0, omega_d = 0.0;
+  /// Sines and cosines of the constant angles of the equations of motion (modes.cc), taken
+  /// once: block 1's and block 2's slenderness, beta, beta', the stack's slenderness, and the
+  /// offsets of gamma1 (theta_c2 - beta) and gamma2 (theta_c2 + beta').
+  SinCos trig_c1, trig_c2, trig_beta, trig_beta_p, trig_c_stack, trig_gamma1, trig_gamma2;
 };
 
 /// The properties of one block from its full width B and height H (m) and mass m (kg).

@@ -42,30 +42,6 @@ Tilts TiltsOf(const State& s) {
   return {std::sin(s.theta1), std::cos(s.theta1), std::sin(s.theta2), std::cos(s.theta2)};
 }
 
-Contacts ContactsOf(Mode mode) {
-  switch (mode) {
-    case Mode::kRest:
-      return {Contact::kFace, Contact::kFace};
-    case Mode::k1a:
-      return {Contact::kRight, Contact::kRight};
-    case Mode::k1b:
-      return {Contact::kLeft, Contact::kLeft};
-    case Mode::k2a:
-      return {Contact::kRight, Contact::kLeft};
-    case Mode::k2b:
-      return {Contact::kLeft, Contact::kRight};
-    case Mode::k3a:
-      return {Contact::kRight, Contact::kFace};
-    case Mode::k3b:
-      return {Contact::kLeft, Contact::kFace};
-    case Mode::k4a:
-      return {Contact::kFace, Contact::kRight};
-    case Mode::k4b:
-      return {Contact::kFace, Contact::kLeft};
-  }
-  return {};
-}
-
 Mode ModeOf(Contacts c, bool two_blocks) {
   if (!two_blocks) c.interface = Contact::kFace;
   if (c.ground == Contact::kFace) {

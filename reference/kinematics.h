@@ -56,7 +56,31 @@ struct Contacts {
   Contact interface = Contact::kFace;  ///< block 2 on block 1
 };
 /// The contacts of a mode (1a: right/right, 2a: right/left, 3a: right/face, 4a: face/right...).
-Contacts ContactsOf(Mode mode);
+/// Inline: the integrator's event functions ask for it at every evaluation.
+inline Contacts ContactsOf(Mode mode) {
+  switch (mode) {
+    case Mode::kRest:
+      return {Contact::kFace, Contact::kFace};
+    case Mode::k1a:
+      return {Contact::kRight, Contact::kRight};
+    case Mode::k1b:
+      return {Contact::kLeft, Contact::kLeft};
+    case Mode::k2a:
+      return {Contact::kRight, Contact::kLeft};
+    case Mode::k2b:
+      return {Contact::kLeft, Contact::kRight};
+    case Mode::k3a:
+      return {Contact::kRight, Contact::kFace};
+    case Mode::k3b:
+      return {Contact::kLeft, Contact::kFace};
+    case Mode::k4a:
+      return {Contact::kFace, Contact::kRight};
+    case Mode::k4b:
+      return {Contact::kFace, Contact::kLeft};
+  }
+  return {};
+}
+
 /// The mode of a contact set (for one block the interface is ignored).
 Mode ModeOf(Contacts contacts, bool two_blocks);
 /// Number of degrees of freedom of a mode: 2 (modes 1, 2), 1 (3, 4), 0 (rest).

@@ -18,5 +18,10 @@ namespace rockbench::reference {
 std::array<double, 2> ModeAccelerations(const Geometry& geo, Mode mode, const State& s,
                                         double xg_mps2, double yg_mps2,
                                         Equations equations = Equations::kNonlinear);
+/// The same with the state's tilts already taken (TiltsOf(s)); the angle-difference formulas
+/// give sin(theta - a) and cos(theta - a) from them and the geometry's constant angles.
+std::array<double, 2> ModeAccelerations(const Geometry& geo, Mode mode, const State& s,
+                                        const Tilts& tilts, double xg_mps2, double yg_mps2,
+                                        Equations equations = Equations::kNonlinear);
 
 }  // namespace rockbench::reference

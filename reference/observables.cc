@@ -74,9 +74,10 @@ double RequiredFriction(double normal_n, double tangential_n) {
 
 ContactDemand ContactReactions(const Geometry& geo, Mode mode, const State& s, double xg_mps2,
                                double yg_mps2, Equations equations) {
-  const auto acc = ModeAccelerations(geo, mode, s, xg_mps2, yg_mps2, equations);
+  const Tilts tilts = TiltsOf(s);
+  const auto acc = ModeAccelerations(geo, mode, s, tilts, xg_mps2, yg_mps2, equations);
   ContactDemand d;
-  d.reactions = ComputeReactions(geo, mode, s, acc, xg_mps2, yg_mps2);
+  d.reactions = ComputeReactions(geo, mode, s, tilts, acc, xg_mps2, yg_mps2);
   d.mu_ground = RequiredFriction(d.reactions.N_ground, d.reactions.T_ground);
   if (geo.two_blocks) {
     d.mu_interface = RequiredFriction(d.reactions.N_interface, d.reactions.T_interface);

@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <sstream>
 #include <tuple>
 #include <utility>
@@ -69,30 +70,31 @@ double MotionTimeScale(const GroundMotion& motion) {
   return scale;
 }
 
-// The earliest point found in (ta, tb] where fn < 0, and fn there; (tb, fn(tb)) when none
-// (fn(tb) >= 0 then). For a cheap fn with a known rate: fn is checked at n equally spaced
-// points and, between two of them where its rate turns from negative to positive, at the
-// minimum (the rate's root). Exact while the rate changes sign at most once between points.
 // The k-th of the n + 1 equally spaced points of [ta, tb] (the last is tb exactly).
 double ProbeTime(double ta, double tb, int k, int n) {
   return k >= n ? tb : ta + (tb - ta) * k / n;
 }
 
-template <class F, class D>
-std::pair<double, double> ProbeCheap(const F& fn, const D& rate, double ta, double tb, int n,
-                                     double tol) {
-  double tp = ta, rp = rate(ta);
+// The earliest point found in (t[0], t[n]] where fn < 0, and fn there; (t[n], fn(t[n])) when
+// none (fn(t[n]) >= 0 then). For a cheap fn = fy(state) with a known rate ry(state): fn is
+// checked at the n + 1 points t[k] (states y[k]) and, between two of them where its rate turns
+// from negative to positive, at the minimum (the rate's root, on the states at(t)). Exact
+// while the rate changes sign at most once between points.
+template <class Fy, class Ry, class At>
+std::pair<double, double> ProbeCheap(const Fy& fy, const Ry& ry, const At& at, const double* t,
+                                     const Vec4* y, int n, double tol) {
+  double tp = t[0], rp = ry(y[0]);
   for (int k = 1;; ++k) {
-    const double tk = ProbeTime(ta, tb, k, n);
-    const double rk = rate(tk);
+    const double tk = t[k];
+    const double rk = ry(y[k]);
     if (rp < 0.0 && rk > 0.0) {
-      const auto br = BrentBracket(rate, tp, tk, rp, rk, tol);
+      const auto br = BrentBracket([&](double tt) { return ry(at(tt)); }, tp, tk, rp, rk, tol);
       for (const double tm : {br.first, br.second}) {
-        const double fm = fn(tm);
+        const double fm = fy(at(tm));
         if (fm < 0.0) return {tm, fm};
       }
     }
-    const double fk = fn(tk);
+    const double fk = fy(y[k]);
     if (fk < 0.0 || k >= n) return {tk, fk};
     tp = tk;
     rp = rk;
@@ -156,10 +158,36 @@ double Side(Contact c) {
   return c == Contact::kLeft ? -1.0 : 1.0;
 }
 
+// One component of the base motion, evaluated through the record's straight piece that held the
+// last time asked for (bit for bit MotionComponent::accel_mps2, without its search at every
+// call; an analytic component is evaluated directly).
+class MotionCursor {
+ public:
+  explicit MotionCursor(const std::optional<MotionComponent>& c) : c_(c ? &*c : nullptr) {}
+  double At(double t_s) const {
+    if (!c_) return 0.0;
+    if (piece_.Holds(t_s)) return piece_.At(t_s);
+    if (c_->kind() == MotionKind::kFile) {
+      piece_ = c_->piece_at(t_s);
+      if (piece_.Holds(t_s)) return piece_.At(t_s);
+    }
+    return c_->accel_mps2(t_s);
+  }
+
+ private:
+  const MotionComponent* c_;
+  mutable MotionComponent::LinearPiece piece_;
+};
+
 class Simulator {
  public:
   Simulator(const Scene& scene, const GroundMotion& motion)
-      : scene_(scene), cfg_(scene.model), motion_(motion), geo_(MakeGeometry(scene)) {
+      : scene_(scene),
+        cfg_(scene.model),
+        motion_(motion),
+        xg_(motion.horizontal()),
+        yg_(motion.vertical()),
+        geo_(MakeGeometry(scene)) {
     for (const auto* c : {&motion.horizontal(), &motion.vertical()}) {
       if (*c && (*c)->samples_mps2().empty()) analytic_motion_ = true;
     }
@@ -175,9 +203,11 @@ class Simulator {
   Result Run();
 
  private:
+  // Base accelerations (m/s^2) at t.
+  double Xg(double t) const { return xg_.At(t); }
+  double Yg(double t) const { return yg_.At(t); }
   Vec4 Rhs(double t, const Vec4& y) const {
-    const auto acc = ModeAccelerations(geo_, mode_, ToState(y), motion_.xg_mps2(t),
-                                       motion_.yg_mps2(t), cfg_.equations);
+    const auto acc = ModeAccelerations(geo_, mode_, ToState(y), Xg(t), Yg(t), cfg_.equations);
     ++rhs_count_;
     return {y[2], y[3], acc[0], acc[1]};
   }
@@ -210,8 +240,7 @@ class Simulator {
   double SwitchTime(double t, double t_max, Mode leaving, const StateAt& state_at) const {
     for (double dt = 0.0; t + dt <= t_max; dt = dt == 0.0 ? EventTol(t) : 2 * dt) {
       const double tt = t + dt;
-      const ModeSelection sel =
-          SelectMode(geo_, state_at(tt), motion_.xg_mps2(tt), motion_.yg_mps2(tt), cfg_.equations);
+      const ModeSelection sel = SelectMode(geo_, state_at(tt), Xg(tt), Yg(tt), cfg_.equations);
       if (sel.consistent && sel.mode != leaving) return tt;
     }
     return t;
@@ -236,21 +265,14 @@ class Simulator {
     Vec4 y0;
     std::array<double, kInteriorChecks + 1> probe_t{};
     std::array<Vec4, kInteriorChecks + 1> probe_y{};
-    int probes = 0;
     Vec4 Evaluate(double t) const { return sim.Project(t == t0 ? y0 : st.dense.At(t)); }
     void Probe(double t1) {
       for (int k = 0; k <= kInteriorChecks; ++k) {
         probe_t[k] = ProbeTime(t0, t1, k, kInteriorChecks);
         probe_y[k] = Evaluate(probe_t[k]);
       }
-      probes = kInteriorChecks + 1;
     }
-    Vec4 operator()(double t) const {
-      for (int k = 0; k < probes; ++k) {
-        if (probe_t[k] == t) return probe_y[k];
-      }
-      return Evaluate(t);
-    }
+    Vec4 operator()(double t) const { return Evaluate(t); }
   };
   StepResult AdvanceOneStep(bool rk4, const Vec4& f0, double* h_taken);
   // The first zero of fn in [t_pos, t_neg], given fn(t_pos) = f_pos >= 0 > fn(t_neg) = f_neg,
@@ -258,9 +280,10 @@ class Simulator {
   template <class Fn>
   void Locate(StepEvent kind, const Fn& fn, double t_pos, double f_pos, double t_neg, double f_neg,
               LocatedEvent* ev) const;
-  template <class Fn, class Rate>
-  void ConsiderCheap(StepEvent kind, const Fn& fn, const Rate& rate, double t1, bool thesis_events,
-                     LocatedEvent* ev) const;
+  // fy, ry: the event function and its rate as functions of the state.
+  template <class Fy, class Ry>
+  void ConsiderCheap(StepEvent kind, const Fy& fy, const Ry& ry, const StepDense& at, double t1,
+                     bool thesis_events, LocatedEvent* ev) const;
   LocatedEvent FindEvent(const StepDense& at, double t1, const ContactMargins& cm1,
                          bool thesis_events);
   void RecordStep(const StepDense& at, const DenseStep& dense, double t_seg_end, const Vec4& y_end,
@@ -276,8 +299,7 @@ class Simulator {
     return Side(c.interface) * rel;
   }
   ContactMargins Margins(double t, const Vec4& y) const {
-    return EvaluateContacts(geo_, mode_, ToState(y), motion_.xg_mps2(t), motion_.yg_mps2(t),
-                            cfg_.equations);
+    return EvaluateContacts(geo_, mode_, ToState(y), Xg(t), Yg(t), cfg_.equations);
   }
   // Width to which an event near t is located: kEventTolRel sqrt(R / g), and never below a
   // few ulps of t.
@@ -314,6 +336,7 @@ class Simulator {
   const Scene& scene_;
   const ModelConfig& cfg_;
   const GroundMotion& motion_;
+  MotionCursor xg_, yg_;
   const Geometry geo_;
   Result result_;
   Mode mode_ = Mode::kRest;
@@ -363,8 +386,7 @@ void Simulator::EmitSamplesUntil(double t_end, bool inclusive) {
 
 bool Simulator::StartMode(double t, const State& s, const char* kind, Mode before,
                           const std::string& note) {
-  const ModeSelection sel =
-      SelectMode(geo_, s, motion_.xg_mps2(t), motion_.yg_mps2(t), cfg_.equations);
+  const ModeSelection sel = SelectMode(geo_, s, Xg(t), Yg(t), cfg_.equations);
   if (sel.consistent && sel.mode == before) {
     mode_ = sel.mode;  // no event to record
     return true;
@@ -438,8 +460,8 @@ void Simulator::RunRest() {
     for (const auto& [tm, m] : memo) {
       if (tm == t) return m;
     }
-    const ContactMargins cm = EvaluateContacts(geo_, Mode::kRest, State{}, motion_.xg_mps2(t),
-                                               motion_.yg_mps2(t), cfg_.equations);
+    const ContactMargins cm =
+        EvaluateContacts(geo_, Mode::kRest, State{}, Xg(t), Yg(t), cfg_.equations);
     NoteNormalForces(cm.reactions);
     memo[next_memo] = {t, cm.face};
     next_memo = (next_memo + 1) % static_cast<int>(memo.size());
@@ -560,13 +582,15 @@ void Simulator::Locate(StepEvent kind, const Fn& fn, double t_pos, double f_pos,
   }
 }
 
-template <class Fn, class Rate>
-void Simulator::ConsiderCheap(StepEvent kind, const Fn& fn, const Rate& rate, double t1,
-                              bool thesis_events, LocatedEvent* ev) const {
+template <class Fy, class Ry>
+void Simulator::ConsiderCheap(StepEvent kind, const Fy& fy, const Ry& ry, const StepDense& at,
+                              double t1, bool thesis_events, LocatedEvent* ev) const {
+  auto fn = [&](double t) { return fy(at(t)); };
   const double fa = fn(t_);
   const auto [t_neg, f_neg] = thesis_events
                                   ? std::pair{t1, fn(t1)}
-                                  : ProbeCheap(fn, rate, t_, t1, kInteriorChecks, EventTol(t1));
+                                  : ProbeCheap(fy, ry, at, at.probe_t.data(), at.probe_y.data(),
+                                               kInteriorChecks, EventTol(t1));
   if (f_neg < 0.0) Locate(kind, fn, t_, fa, t_neg, f_neg, ev);
 }
 
@@ -585,29 +609,23 @@ Simulator::LocatedEvent Simulator::FindEvent(const StepDense& at, double t1,
   if (ground_moves) {
     const double side = Side(c.ground);
     ConsiderCheap(
-        StepEvent::kGroundImpact, [&](double t) { return GapGround(at(t)); },
-        [&](double t) { return side * at(t)[2]; }, t1, thesis_events, &ev);
+        StepEvent::kGroundImpact, [&](const Vec4& y) { return GapGround(y); },
+        [&](const Vec4& y) { return side * y[2]; }, at, t1, thesis_events, &ev);
   }
   if (interface_moves) {
     const double side = Side(c.interface);
     ConsiderCheap(
-        StepEvent::kInterfaceImpact, [&](double t) { return GapInterface(at(t)); },
-        [&](double t) {
-          const Vec4 y = at(t);
-          return side * (ground_moves ? y[3] - y[2] : y[3]);
-        },
-        t1, thesis_events, &ev);
+        StepEvent::kInterfaceImpact, [&](const Vec4& y) { return GapInterface(y); },
+        [&](const Vec4& y) { return side * (ground_moves ? y[3] - y[2] : y[3]); }, at, t1,
+        thesis_events, &ev);
   }
   // Overturning: each block's |theta| reaching overturn_angle.
   const double over = cfg_.overturn_rad;
   for (int k = 0; k < (geo_.two_blocks ? 2 : 1); ++k) {
     ConsiderCheap(
-        StepEvent::kOverturn, [&](double t) { return over - std::abs(at(t)[k]); },
-        [&](double t) {
-          const Vec4 y = at(t);
-          return y[k] < 0.0 ? y[2 + k] : -y[2 + k];
-        },
-        t1, thesis_events, &ev);
+        StepEvent::kOverturn, [&](const Vec4& y) { return over - std::abs(y[k]); },
+        [&](const Vec4& y) { return y[k] < 0.0 ? y[2 + k] : -y[2 + k]; }, at, t1, thesis_events,
+        &ev);
   }
   // The contact margins (face corners opening: a transition; a point contact pulling: a
   // violation) cost a contact-force evaluation: checked at the midpoint and at the minimum of
@@ -776,8 +794,7 @@ Result Simulator::Run() {
   mode_ = Mode::kRest;
   // The initial mode: a contact with a gap or a rate is open on that side; closed contacts
   // stay closed unless the forces open them.
-  const ModeSelection sel =
-      SelectMode(geo_, s, motion_.xg_mps2(0.0), motion_.yg_mps2(0.0), cfg_.equations);
+  const ModeSelection sel = SelectMode(geo_, s, Xg(0.0), Yg(0.0), cfg_.equations);
   y_ = ToVec(s);
   if (!sel.consistent) {
     result_.summary.status = "assumption_violated";

@@ -228,6 +228,25 @@ double MotionComponent::accel_mps2(double t_s) const {
   return 0.0;
 }
 
+MotionComponent::LinearPiece MotionComponent::piece_at(double t_s) const {
+  LinearPiece piece;
+  const size_t n = samples_.size();
+  if (kind_ != MotionKind::kFile || n < 2) return piece;
+  const auto sample_t = [&](size_t i) { return t0_ + static_cast<double>(i) * dt_; };
+  if (!(t_s >= t0_ && t_s <= sample_t(n - 1))) return piece;
+  // The index as accel_mps2 finds it, kept below the last sample.
+  size_t i =
+      static_cast<size_t>(std::min(std::floor((t_s - t0_) / dt_), static_cast<double>(n - 2)));
+  while (i + 2 < n && sample_t(i + 1) <= t_s) ++i;
+  while (i > 0 && sample_t(i) > t_s) --i;
+  piece.valid = true;
+  piece.t_lo = sample_t(i);
+  piece.t_hi = sample_t(i + 1);
+  piece.a_lo = samples_[i];
+  piece.a_hi = samples_[i + 1];
+  return piece;
+}
+
 double MotionComponent::next_breakpoint_after(double t_s) const {
   if (kind_ == MotionKind::kFile) {
     const size_t n = samples_.size();

@@ -65,6 +65,23 @@ class MotionComponent {
 
   /// Acceleration at t, m/s^2.
   double accel_mps2(double t_s) const;
+  /// A record's straight piece between two consecutive sample times t_lo < t_hi, where the
+  /// acceleration goes linearly from a_lo to a_hi (m/s^2). At(t) for t_lo <= t <= t_hi is
+  /// accel_mps2(t), bit for bit, without its search: for callers that ask for many times in
+  /// one interval (an integrator's step never crosses a sample time).
+  struct LinearPiece {
+    bool valid = false;
+    double t_lo = 0.0, t_hi = 0.0, a_lo = 0.0, a_hi = 0.0;
+    bool Holds(double t_s) const { return valid && t_s >= t_lo && t_s <= t_hi; }
+    double At(double t_s) const {
+      if (t_s == t_lo) return a_lo;
+      if (t_s == t_hi) return a_hi;
+      const double frac = (t_s - t_lo) / (t_hi - t_lo);
+      return a_lo + frac * (a_hi - a_lo);
+    }
+  };
+  /// The piece that holds t_s; not valid for analytic kinds and outside the samples.
+  LinearPiece piece_at(double t_s) const;
   /// The first kink or jump strictly after t_s (a sample time, pulse start or end); +inf if none.
   double next_breakpoint_after(double t_s) const;
   /// End of the motion (last sample, pulse end; +inf for a never-ending harmonic).
