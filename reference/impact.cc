@@ -5,6 +5,8 @@
 #include <string>
 #include <utility>
 
+#include "reference/observables.h"
+
 namespace rockbench::reference {
 namespace {
 
@@ -63,9 +65,12 @@ std::vector<Mode> ImpactCandidates(Mode before, ImpactKind kind, bool two_blocks
   return modes;
 }
 
-State PostImpactState(const Geometry& geo, Mode before, const State& pre, Mode after) {
-  const Tilts tilts = TiltsOf(pre);
-  const BodyVelocities v = Velocities(EvaluateChain(geo, before, pre, tilts));
+namespace {
+
+// The rates after the impact from the mass-centre and angular velocities v before it, with the
+// state's tilts (an impact changes rates, not angles).
+State PostImpactState(const Geometry& geo, const BodyVelocities& v, const State& pre,
+                      const Tilts& tilts, Mode after) {
   const Chain ch = EvaluateChain(geo, after, pre, tilts);
   const double m[2] = {geo.block1.m, geo.block2.m};
   const double IG[2] = {geo.block1.I_G, geo.block2.I_G};
@@ -89,12 +94,22 @@ State PostImpactState(const Geometry& geo, Mode before, const State& pre, Mode a
   return WithRates(pre, after, u0, u1);
 }
 
+}  // namespace
+
+State PostImpactState(const Geometry& geo, Mode before, const State& pre, Mode after) {
+  const Tilts tilts = TiltsOf(pre);
+  return PostImpactState(geo, Velocities(EvaluateChain(geo, before, pre, tilts)), pre, tilts,
+                         after);
+}
+
 namespace {
 
-ImpactOutcome Evaluate(const Geometry& geo, Mode before, const State& pre, Mode after) {
+// One candidate outcome, from the tilts of the impact state and the velocities vm before it.
+ImpactOutcome Evaluate(const Geometry& geo, const State& pre, const Tilts& tilts,
+                       const BodyVelocities& vm, Mode after) {
   ImpactOutcome out;
   out.mode = after;
-  out.state = PostImpactState(geo, before, pre, after);
+  out.state = PostImpactState(geo, vm, pre, tilts, after);
   const Contacts c = ContactsOf(after);
   // Velocity check: a contact that opens from a closed gap must open, not close.
   const double rate_scale = std::abs(pre.omega1) + std::abs(pre.omega2) + 1e-300;
@@ -110,10 +125,8 @@ ImpactOutcome Evaluate(const Geometry& geo, Mode before, const State& pre, Mode 
   }
   out.velocity_admissible = ok;
   // Impulse check: velocity jumps give the impulses; normal components must push.
-  // An impact changes rates, not angles: one set of tilts serves before and after.
-  const Tilts tilts = TiltsOf(pre);
-  const BodyVelocities vm = Velocities(EvaluateChain(geo, before, pre, tilts));
-  const BodyVelocities vp = Velocities(EvaluateChain(geo, after, out.state, tilts));
+  const Chain after_chain = EvaluateChain(geo, after, out.state, tilts);
+  const BodyVelocities vp = Velocities(after_chain);
   std::array<Vec2, 2> dv{vp.vG[0] - vm.vG[0], vp.vG[1] - vm.vG[1]};
   std::array<double, 2> dw{vp.w[0] - vm.w[0], vp.w[1] - vm.w[1]};
   const Reactions imp = ContactLoads(geo, after, tilts, dv, dw, Vec2{});
@@ -129,7 +142,7 @@ ImpactOutcome Evaluate(const Geometry& geo, Mode before, const State& pre, Mode 
   const double pscale = geo.block1.m * std::hypot(vm.vG[0].x, vm.vG[0].y) +
                         geo.block2.m * std::hypot(vm.vG[1].x, vm.vG[1].y) + 1e-300;
   out.impulse_admissible = min_imp >= -1e-9 * pscale;
-  out.energy_after_j = Energy(geo, after, out.state);
+  out.energy_after_j = StateEnergy(geo, after_chain).total_j;
   return out;
 }
 
@@ -158,10 +171,14 @@ double RestRate(const Geometry& geo, ImpactKind contact, double rest_rate_rel) {
 ImpactResult ResolveImpact(const Geometry& geo, Mode before, const State& pre, ImpactKind kind,
                            double rest_rate_rel) {
   ImpactResult res;
-  res.energy_before_j = Energy(geo, before, pre);
-  for (Mode m : ImpactCandidates(before, kind, geo.two_blocks)) {
-    res.candidates.push_back(Evaluate(geo, before, pre, m));
-  }
+  // An impact changes rates, not angles: one set of tilts serves every candidate.
+  const Tilts tilts = TiltsOf(pre);
+  const Chain before_chain = EvaluateChain(geo, before, pre, tilts);
+  const BodyVelocities vm = Velocities(before_chain);
+  res.energy_before_j = StateEnergy(geo, before_chain).total_j;
+  const std::vector<Mode> modes = ImpactCandidates(before, kind, geo.two_blocks);
+  res.candidates.reserve(modes.size() + 1);
+  for (Mode m : modes) res.candidates.push_back(Evaluate(geo, pre, tilts, vm, m));
   const ImpactOutcome* pick = nullptr;
   for (const auto& c : res.candidates) {
     if (c.velocity_admissible && c.impulse_admissible) {
@@ -199,7 +216,7 @@ ImpactResult ResolveImpact(const Geometry& geo, Mode before, const State& pre, I
   const Mode settled = Settle(geo, res.chosen.mode, pre, res.chosen.state, rest_rate_rel);
   if (settled != res.chosen.mode) {
     res.settled = true;
-    res.chosen = Evaluate(geo, before, pre, settled);
+    res.chosen = Evaluate(geo, pre, tilts, vm, settled);
     note += note.empty() ? "settled (rest rule)" : " settled (rest rule)";
   }
   res.note = std::move(note);

@@ -43,7 +43,10 @@ double BlockEnergy_j(const BlockProps& block, double g_mps2, const BodyMotion& b
 }
 
 MechanicalEnergy StateEnergy(const Geometry& geo, Mode mode, const State& s) {
-  const Chain ch = EvaluateChain(geo, mode, s);
+  return StateEnergy(geo, EvaluateChain(geo, mode, s));
+}
+
+MechanicalEnergy StateEnergy(const Geometry& geo, const Chain& ch) {
   const BodyVelocities v = Velocities(ch);
   MechanicalEnergy e;
   e.block1_j = BlockEnergy_j(geo.block1, geo.g, {ch.G[0], v.vG[0], v.w[0]});
@@ -76,6 +79,11 @@ ContactDemand ContactReactions(const Geometry& geo, Mode mode, const State& s, d
                                double yg_mps2, Equations equations) {
   const Tilts tilts = TiltsOf(s);
   const auto acc = ModeAccelerations(geo, mode, s, tilts, xg_mps2, yg_mps2, equations);
+  return ContactReactions(geo, mode, s, tilts, acc, xg_mps2, yg_mps2);
+}
+
+ContactDemand ContactReactions(const Geometry& geo, Mode mode, const State& s, const Tilts& tilts,
+                               const std::array<double, 2>& acc, double xg_mps2, double yg_mps2) {
   ContactDemand d;
   d.reactions = ComputeReactions(geo, mode, s, tilts, acc, xg_mps2, yg_mps2);
   d.mu_ground = RequiredFriction(d.reactions.N_ground, d.reactions.T_ground);

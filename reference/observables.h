@@ -76,6 +76,8 @@ struct MechanicalEnergy {
 /// Energy of a state moving in `mode` (the pivots the blocks turn about), from the pivot-chain
 /// kinematics (kinematics.h). total_j is the value of Energy() and of events.csv's energies.
 MechanicalEnergy StateEnergy(const Geometry& geo, Mode mode, const State& state);
+/// The same from the chain already evaluated at the state (kinematics.h EvaluateChain).
+MechanicalEnergy StateEnergy(const Geometry& geo, const Chain& chain);
 /// Energy of a state in the mode ModeOfState gives it (thresholds 0): the energy does not
 /// depend on that choice beyond the pivot side of each tilt, which the angles fix.
 MechanicalEnergy StateEnergy(const Geometry& geo, const State& state);
@@ -103,5 +105,10 @@ struct ContactDemand {
 };
 ContactDemand ContactReactions(const Geometry& geo, Mode mode, const State& state, double xg_mps2,
                                double yg_mps2, Equations equations = Equations::kNonlinear);
+/// The same for the mode's accelerations (theta1'', theta2'', rad/s^2) already computed at
+/// this state and base motion (an integrator's last stage), with the state's tilts.
+ContactDemand ContactReactions(const Geometry& geo, Mode mode, const State& state,
+                               const Tilts& tilts, const std::array<double, 2>& acc, double xg_mps2,
+                               double yg_mps2);
 
 }  // namespace rockbench::reference

@@ -745,7 +745,11 @@ void Simulator::RunMoving() {
     const Vec4 y1 = Project(st.y1);
     StepDense at{*this, st, t_, y_};
     if (!thesis_events) at.Probe(t1);
-    const ContactMargins cm1 = Margins(t1, y1);
+    // The last stage f(t1, y1) holds the mode's accelerations at the step end: the contact
+    // margins there reuse them (y1 is already on the mode's constraints, so Project keeps it).
+    const ContactMargins cm1 = y1 == st.y1 ? EvaluateContacts(geo_, mode_, ToState(y1),
+                                                              {st.f1[2], st.f1[3]}, Xg(t1), Yg(t1))
+                                           : Margins(t1, y1);
     const LocatedEvent ev = FindEvent(at, t1, cm1, thesis_events);
     const bool none = ev.which == StepEvent::kNone;
     const double t_seg_end = none ? t1 : ev.t;

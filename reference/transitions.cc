@@ -1,6 +1,7 @@
 #include "reference/transitions.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "reference/modes.h"
@@ -8,10 +9,10 @@
 
 namespace rockbench::reference {
 
-ContactMargins EvaluateContacts(const Geometry& geo, Mode mode, const State& s, double xg,
-                                double yg, Equations equations) {
+namespace {
+
+ContactMargins MarginsOf(const Geometry& geo, Mode mode, const ContactDemand& demand) {
   ContactMargins cm;
-  const ContactDemand demand = ContactReactions(geo, mode, s, xg, yg, equations);
   cm.reactions = demand.reactions;
   cm.mu_ground = demand.mu_ground;
   cm.mu_interface = demand.mu_interface;
@@ -33,6 +34,18 @@ ContactMargins EvaluateContacts(const Geometry& geo, Mode mode, const State& s, 
   return cm;
 }
 
+}  // namespace
+
+ContactMargins EvaluateContacts(const Geometry& geo, Mode mode, const State& s, double xg,
+                                double yg, Equations equations) {
+  return MarginsOf(geo, mode, ContactReactions(geo, mode, s, xg, yg, equations));
+}
+
+ContactMargins EvaluateContacts(const Geometry& geo, Mode mode, const State& s,
+                                const std::array<double, 2>& acc, double xg, double yg) {
+  return MarginsOf(geo, mode, ContactReactions(geo, mode, s, TiltsOf(s), acc, xg, yg));
+}
+
 ModeSelection SelectMode(const Geometry& geo, const State& s, double xg, double yg,
                          Equations equations) {
   const bool ground_closed = s.theta1 == 0.0 && s.omega1 == 0.0;
@@ -41,18 +54,20 @@ ModeSelection SelectMode(const Geometry& geo, const State& s, double xg, double 
     const double v = gap != 0.0 ? gap : rate;
     return v > 0 ? Contact::kRight : Contact::kLeft;
   };
-  std::vector<Contact> g_opts, i_opts;
-  if (ground_closed) {
-    g_opts = {Contact::kFace, Contact::kRight, Contact::kLeft};
-  } else {
-    g_opts = {side(s.theta1, s.omega1)};
+  // The options of each contact (at most three each, so no allocation).
+  constexpr std::array<Contact, 3> kAll = {Contact::kFace, Contact::kRight, Contact::kLeft};
+  std::array<Contact, 3> g_opts = kAll, i_opts = kAll;
+  int n_g = 3, n_i = 3;
+  if (!ground_closed) {
+    g_opts[0] = side(s.theta1, s.omega1);
+    n_g = 1;
   }
   if (!geo.two_blocks) {
-    i_opts = {Contact::kFace};
-  } else if (interface_closed) {
-    i_opts = {Contact::kFace, Contact::kRight, Contact::kLeft};
-  } else {
-    i_opts = {side(s.theta2 - s.theta1, s.omega2 - s.omega1)};
+    i_opts[0] = Contact::kFace;
+    n_i = 1;
+  } else if (!interface_closed) {
+    i_opts[0] = side(s.theta2 - s.theta1, s.omega2 - s.omega1);
+    n_i = 1;
   }
   // Candidates ordered by the number of contacts that open (the blocks do not start to move
   // unless they must); among equals, the ground opening first (the thesis checks 4.1 before 4.3).
@@ -60,19 +75,29 @@ ModeSelection SelectMode(const Geometry& geo, const State& s, double xg, double 
     Contact gc, ic;
     int opening;
   };
-  std::vector<Candidate> cands;
-  for (Contact gc : g_opts) {
-    for (Contact ic : i_opts) {
+  std::array<Candidate, 9> cands;
+  int n = 0;
+  for (int a = 0; a < n_g; ++a) {
+    for (int b = 0; b < n_i; ++b) {
+      const Contact gc = g_opts[a], ic = i_opts[b];
       const int opening = (ground_closed && gc != Contact::kFace) +
                           (geo.two_blocks && interface_closed && ic != Contact::kFace);
-      cands.push_back({gc, ic, opening});
+      cands[n++] = {gc, ic, opening};
     }
   }
-  std::stable_sort(cands.begin(), cands.end(), [](const Candidate& a, const Candidate& b) {
+  // Stable insertion sort (std::stable_sort would allocate a buffer at every call).
+  auto before = [](const Candidate& a, const Candidate& b) {
     if (a.opening != b.opening) return a.opening < b.opening;
     return (a.gc != Contact::kFace) > (b.gc != Contact::kFace);
-  });
-  for (const Candidate& cand : cands) {
+  };
+  for (int k = 1; k < n; ++k) {
+    const Candidate c = cands[k];
+    int j = k;
+    for (; j > 0 && before(c, cands[j - 1]); --j) cands[j] = cands[j - 1];
+    cands[j] = c;
+  }
+  for (int k = 0; k < n; ++k) {
+    const Candidate& cand = cands[k];
     const Mode mode = ModeOf({cand.gc, cand.ic}, geo.two_blocks);
     if (ModeConsistent(geo, mode, s, xg, yg, equations)) return {mode, true};
   }
@@ -93,7 +118,7 @@ bool ModeConsistent(const Geometry& geo, Mode mode, const State& s, double xg, d
     const double rel = acc[1] - acc[0];
     if (!((c.interface == Contact::kRight ? rel : -rel) > 0.0)) return false;
   }
-  const ContactMargins cm = EvaluateContacts(geo, mode, s, xg, yg, equations);
+  const ContactMargins cm = EvaluateContacts(geo, mode, s, acc, xg, yg);
   return cm.face >= 0.0 && cm.point >= 0.0;
 }
 
