@@ -140,6 +140,48 @@ TEST_F(GroundMotionTest, PiecewiseLinearAndZeroOutside) {
   EXPECT_DOUBLE_EQ(m.info().peak_t_s, 0.7);
 }
 
+// piece_at serves an integrator that asks for many times inside one sample interval: its
+// piece must give accel_mps2's value bit for bit wherever it holds t (the reference's outputs
+// rest on that), at sample times, between them, at both ends of the record and at times whose
+// index arithmetic rounds to the neighbouring interval (dt = 0.01 is not a binary fraction).
+TEST_F(GroundMotionTest, PieceAtGivesAccelBitForBit) {
+  std::vector<double> a;
+  for (int i = 0; i < 200; ++i) a.push_back(std::sin(0.37 * i) + 0.01 * i);
+  const double t0 = 0.3, dt = 0.01;
+  const MotionComponent m = MotionComponent::FromSamples(a, dt, t0, "test");
+  const double t_last = t0 + 199 * dt;
+  std::vector<double> times = {t0, t_last, std::nextafter(t_last, 0.0)};
+  for (int i = 0; i < 200; ++i) {
+    const double ti = t0 + i * dt;
+    times.insert(times.end(), {ti, std::nextafter(ti, 0.0), std::nextafter(ti, 1e9), ti + 0.37 * dt,
+                               ti + 0.5 * dt});
+  }
+  int held = 0;
+  for (const double t : times) {
+    const MotionComponent::LinearPiece piece = m.piece_at(t);
+    if (!(t >= t0 && t <= t_last)) {
+      EXPECT_FALSE(piece.valid) << t;
+      continue;
+    }
+    ASSERT_TRUE(piece.Holds(t)) << t;
+    EXPECT_EQ(piece.At(t), m.accel_mps2(t)) << t;
+    // Every other time the same piece holds gets the same value too.
+    for (const double u : {piece.t_lo, piece.t_hi, 0.5 * (piece.t_lo + piece.t_hi)}) {
+      EXPECT_EQ(piece.At(u), m.accel_mps2(u)) << u;
+    }
+    ++held;
+  }
+  EXPECT_GT(held, 900);
+  // Outside the samples, and for analytic kinds, there is no piece.
+  EXPECT_FALSE(m.piece_at(std::nextafter(t0, 0.0)).valid);
+  EXPECT_FALSE(m.piece_at(std::nextafter(t_last, 1e9)).valid);
+  MotionDef sine;
+  sine.kind = MotionKind::kSinePulse;
+  sine.amplitude_g = 0.3;
+  sine.frequency_hz = 2.0;
+  EXPECT_FALSE(MotionComponent::FromDef(sine).piece_at(0.1).valid);
+}
+
 TEST_F(GroundMotionTest, RecordAtEverySampleTimeIsTheSample) {
   MotionDef d = FileDef(kRinaldi228);
   d.start_s = 1.5;
