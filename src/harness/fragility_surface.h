@@ -6,9 +6,11 @@
 /// fitted by maximum likelihood (GSL's BFGS over m0, m1 and ln beta, as the one-parameter fit
 /// in fragility.h). Its contours in the (r, PGA) plane are straight lines in log-log axes:
 /// PGA_p(r) = exp(m0 + beta Phi^-1(p)) (r / r_ref)^m1.
+#include <cstdint>
 #include <limits>
 #include <span>
 #include <string>
+#include <vector>
 
 namespace rockbench::stats {
 
@@ -36,5 +38,28 @@ struct FragilitySurface {
 /// Throws std::invalid_argument for a PGA or ratio that is not positive and finite.
 FragilitySurface FitFragilitySurface(std::span<const SurfacePoint> points,
                                      double ratio_ref_s = 0.1);
+
+/// How an engine's surface compares with the reference's on the same members: the ratio of
+/// their median overturning PGAs, PGA_50,engine(r) / PGA_50,reference(r), at each asked ratio r,
+/// with a paired percentile bootstrap (members drawn with replacement, the same draw for both
+/// runs, both refitted). A ratio whose interval excludes 1 is a detected difference.
+struct SurfaceMedianRatio {
+  bool available = false;
+  std::string reason;                 ///< why not available
+  std::vector<double> ratio_s;        ///< the PGV/PGA ratios asked for (s)
+  std::vector<double> estimate;       ///< the ratio of medians of the two full fits
+  std::vector<double> lo, hi;         ///< the central `level` percentile interval
+  int resamples = 0, degenerate = 0;  ///< drawn, and left out (a side without a finite fit)
+};
+
+/// `reference` and `engine` are the same members in the same order (point i of each is member
+/// i's run). Throws std::invalid_argument for different lengths, a level outside (0, 1) or a
+/// ratio that is not positive and finite. Deterministic: the draw is a std::mt19937_64 seeded
+/// with `seed`, indices by UniformBelow (statistics.h).
+SurfaceMedianRatio PairedSurfaceRatio(std::span<const SurfacePoint> reference,
+                                      std::span<const SurfacePoint> engine,
+                                      std::span<const double> at_ratio_s, int bootstrap = 400,
+                                      std::uint64_t seed = 0x737572666163650a, double level = 0.95,
+                                      double ratio_ref_s = 0.1);
 
 }  // namespace rockbench::stats

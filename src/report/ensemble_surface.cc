@@ -18,10 +18,13 @@ void FragilitySurfaceSection(const EnsembleData& d, const std::filesystem::path&
       "Phi((ln PGA - m0 - m1 ln(r / 0.1 s)) / beta) with r = PGV/PGA, fitted by maximum "
       "likelihood to the same members as the curves above. Lines: the median contour (P = "
       "0.5) of each run, PGA_50(r) = exp(m0) (r / 0.1 s)^m1; points: the reference's members, "
-      "filled where they overturned.");
-  // Group label -> run -> points.
+      "filled where they overturned. Each engine's median over the reference's, at the "
+      "smallest, middle and largest PGV/PGA of the study, comes with a 95% paired bootstrap "
+      "interval (the same members drawn for both runs, both surfaces refitted).");
+  // Group label -> run -> points; and group label -> member -> run -> point (for pairing).
   const std::vector<int> motion = MotionAxisColumns(d);
   std::map<std::string, std::map<std::string, std::vector<stats::SurfacePoint>>> groups;
+  std::map<std::string, std::map<long long, std::map<std::string, stats::SurfacePoint>>> members;
   std::vector<std::string> order;
   double r_lo = INFINITY, r_hi = 0.0;
   for (const EnsembleRecord& r : d.records) {
@@ -33,6 +36,7 @@ void FragilitySurfaceSection(const EnsembleData& d, const std::filesystem::path&
     const double ratio = *r.pgv_mps / (*r.pga_g * 9.80665);
     r_lo = std::min(r_lo, ratio), r_hi = std::max(r_hi, ratio);
     groups[g][r.engine].push_back({*r.pga_g, ratio, r.overturned_block != 0});
+    members[g][r.member][r.engine] = groups[g][r.engine].back();
   }
   std::vector<std::vector<std::string>> table;
   int index = 0;
@@ -80,17 +84,43 @@ void FragilitySurfaceSection(const EnsembleData& d, const std::filesystem::path&
         "Median overturning contour over PGA and PGV/PGA" + (g.empty() ? std::string() : ": " + g));
     const auto ref = fits.find("reference");
     if (ref == fits.end() || !ref->second.available) continue;
+    const double at[] = {r_lo, std::sqrt(r_lo * r_hi), r_hi};
     for (const auto& [e, s] : fits) {
       if (e == "reference" || !s.available) continue;
-      std::string ratios;
-      for (double r : {r_lo, std::sqrt(r_lo * r_hi), r_hi}) {
-        ratios += (ratios.empty() ? "" : ", ") +
-                  Num(s.PgaAt(0.5, r) / ref->second.PgaAt(0.5, r), 3) + " at " + Num(r, 2) + " s";
+      // The members both runs have, paired, for the bootstrap of the ratio of medians.
+      std::vector<stats::SurfacePoint> a, b;
+      for (const auto& [m, runs] : members[g]) {
+        const auto q = runs.find("reference"), p = runs.find(e);
+        if (q == runs.end() || p == runs.end()) continue;
+        a.push_back(q->second);
+        b.push_back(p->second);
       }
-      findings.push_back(e + (g.empty() ? std::string() : " (" + g + ")") +
-                         ": its median overturning PGA over the reference's, across the "
-                         "study's PGV/PGA: " +
-                         ratios + ".");
+      const stats::SurfaceMedianRatio ratio = stats::PairedSurfaceRatio(a, b, at, 400);
+      std::string text = e + (g.empty() ? std::string() : " (" + g + ")") +
+                         ": its median overturning PGA over the reference's, on the " +
+                         std::to_string(a.size()) + " members both runs have, across the " +
+                         "study's PGV/PGA: ";
+      if (!ratio.available) {
+        text += "no paired fit (" + ratio.reason + ").";
+        findings.push_back(text);
+        continue;
+      }
+      bool differs = false;
+      for (size_t k = 0; k < 3; ++k) {
+        text += (k ? ", " : "") + Num(ratio.estimate[k], 3) + " [" + Num(ratio.lo[k], 3) + ", " +
+                Num(ratio.hi[k], 3) + "] at " + Num(at[k], 2) + " s";
+        differs = differs || ratio.lo[k] > 1.0 || ratio.hi[k] < 1.0;
+      }
+      std::string drawn =
+          " (95% paired bootstrap, " + std::to_string(ratio.resamples) + " resamples";
+      if (ratio.degenerate > 0) {
+        drawn += ", " + std::to_string(ratio.degenerate) + " without a fit on both sides left out";
+      }
+      text += drawn + (differs ? "): an interval excludes 1, the engine's surface differs from "
+                                 "the reference's there."
+                               : "): every interval contains 1, no difference is detected with "
+                                 "these members.");
+      findings.push_back(text);
     }
   }
   page.Table({"group", "run", "members", "overturned", "median PGA at PGV/PGA = 0.1 s",

@@ -124,14 +124,18 @@ TEST_F(EnsembleReportTest, FragilitySaysWhetherTheMediansDiffer) {
   };
   const auto differ =
       WriteEnsembleReport(WriteEnsemble("differ", s, interleave(0.8)), dir_ / "out");
-  EXPECT_NE(ReadFile(differ / "report.md").find("excludes zero"), std::string::npos);
+  const std::string differ_md = ReadFile(differ / "report.md");
+  EXPECT_NE(differ_md.find("excludes zero"), std::string::npos);
+  // A median twice the reference's is seen on the surface too, by its paired bootstrap.
+  EXPECT_NE(differ_md.find("an interval excludes 1"), std::string::npos) << differ_md;
   const auto same = WriteEnsembleReport(WriteEnsemble("same", s, interleave(0.4)), dir_ / "out");
   const std::string same_md = ReadFile(same / "report.md");
   EXPECT_NE(same_md.find("is zero: the two curves are the same"), std::string::npos);
-  // Identical members give identical surfaces: the median ratio is 1 across PGV/PGA.
-  EXPECT_NE(same_md.find("over the reference's, across the study's PGV/PGA: 1 at 0.05 s, 1 at "),
+  // Identical members give identical surfaces in every resample: the ratio is 1, exactly.
+  EXPECT_NE(same_md.find("across the study's PGV/PGA: 1 [1, 1] at 0.05 s, 1 [1, 1] at "),
             std::string::npos)
       << same_md;
+  EXPECT_NE(same_md.find("every interval contains 1"), std::string::npos);
   EXPECT_TRUE(std::filesystem::exists(same / "figures" / "fragility_surface_0.svg"));
   // The same fractions at every PGA from other members (the seeds' order reversed).
   const auto other =
