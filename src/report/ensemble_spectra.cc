@@ -84,12 +84,13 @@ std::string ReferenceModes(const std::vector<Cell>& cells, const std::string& gr
       }
     }
   }
-  std::string s = "Reference" + (group.empty() ? std::string() : " (" + group + ")") + ": " +
-                  std::to_string(without) + " members overturn without an impact and " +
-                  std::to_string(after) + " after one or more impacts; at " +
-                  std::to_string(safe_above) + " of " + std::to_string(columns.size()) +
-                  " frequencies a larger pulse leaves the block standing where a smaller one "
-                  "overturned it (the safe region between the two overturning modes).";
+  std::string s =
+      "Reference" + (group.empty() ? std::string() : " (" + group + ")") + ": " +
+      std::to_string(without) + (without == 1 ? " member overturns" : " members overturn") +
+      " without an impact and " + std::to_string(after) + " after one or more impacts; at " +
+      std::to_string(safe_above) + " of " + std::to_string(columns.size()) +
+      " frequencies a larger pulse leaves the block standing where a smaller one "
+      "overturned it (the safe region between the two overturning modes).";
   return s;
 }
 
