@@ -107,17 +107,23 @@ class RootScheduler : public LocalScheduler {
   int64_t outstanding_ = 0;  // runs handed to other ranks whose rows have not come back
 };
 
+// A rank keeps one request in flight: it asks for its next run as soon as it receives one, so
+// that rank 0's answer (rank 0 serves requests between its own runs, every 2 ms) arrives while
+// this run is being computed instead of after it. A rank that dies loses the run it holds in
+// reserve with the ones in flight.
 class RankScheduler : public StudyScheduler {
  public:
   std::optional<StudyTask> Next() override {
     if (stopped_) return std::nullopt;
-    MPI_Send(nullptr, 0, MPI_BYTE, 0, kTagRequest, MPI_COMM_WORLD);
+    if (!requested_) Request();
     int64_t task[2];
     MPI_Recv(task, 2, MPI_INT64_T, 0, kTagTask, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+    requested_ = false;
     if (task[0] < 0) {
       stopped_ = true;
       return std::nullopt;
     }
+    Request();
     return StudyTask{task[0], static_cast<int>(task[1])};
   }
 
@@ -127,7 +133,13 @@ class RankScheduler : public StudyScheduler {
   }
 
  private:
+  void Request() {
+    MPI_Send(nullptr, 0, MPI_BYTE, 0, kTagRequest, MPI_COMM_WORLD);
+    requested_ = true;
+  }
+
   bool stopped_ = false;
+  bool requested_ = false;  // a request sent whose answer has not been received
 };
 
 }  // namespace
