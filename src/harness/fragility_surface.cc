@@ -5,9 +5,7 @@
 #include <gsl/gsl_multimin.h>
 #include <gsl/gsl_sf_erf.h>
 
-#include <algorithm>
 #include <cmath>
-#include <random>
 #include <stdexcept>
 #include <vector>
 
@@ -151,28 +149,26 @@ SurfaceMedianRatio PairedSurfaceRatio(std::span<const SurfacePoint> reference,
     return out;
   }
   for (const double r : at_ratio_s) out.estimate.push_back(b.PgaAt(0.5, r) / a.PgaAt(0.5, r));
-  // Each resample's ratios, per asked r.
-  std::vector<std::vector<double>> draws(at_ratio_s.size());
-  std::mt19937_64 rng(seed);
+  // The same members drawn for both runs, both surfaces refitted.
   const size_t n = reference.size();
   std::vector<SurfacePoint> ra(n), rb(n);
-  for (int k = 0; k < bootstrap; ++k) {
-    for (size_t i = 0; i < n; ++i) {
-      const size_t j = UniformBelow(rng, n);
-      ra[i] = reference[j];
-      rb[i] = engine[j];
-    }
-    const FragilitySurface fa = FitFragilitySurface(ra, ratio_ref_s);
-    const FragilitySurface fb = FitFragilitySurface(rb, ratio_ref_s);
-    if (!fa.available || !fb.available) {
-      ++out.degenerate;
-      continue;
-    }
-    for (size_t q = 0; q < at_ratio_s.size(); ++q) {
-      draws[q].push_back(fb.PgaAt(0.5, at_ratio_s[q]) / fa.PgaAt(0.5, at_ratio_s[q]));
-    }
-  }
-  out.resamples = bootstrap;
+  const BootstrapDraws draws =
+      Bootstrap(n, bootstrap, seed, at_ratio_s.size(),
+                [&](std::span<const size_t> members, std::vector<double>& ratios) {
+                  for (size_t i = 0; i < n; ++i) {
+                    ra[i] = reference[members[i]];
+                    rb[i] = engine[members[i]];
+                  }
+                  const FragilitySurface fa = FitFragilitySurface(ra, ratio_ref_s);
+                  const FragilitySurface fb = FitFragilitySurface(rb, ratio_ref_s);
+                  if (!fa.available || !fb.available) return false;
+                  for (size_t q = 0; q < at_ratio_s.size(); ++q) {
+                    ratios[q] = fb.PgaAt(0.5, at_ratio_s[q]) / fa.PgaAt(0.5, at_ratio_s[q]);
+                  }
+                  return true;
+                });
+  out.resamples = draws.resamples;
+  out.degenerate = draws.degenerate;
   // Fewer than 20 usable resamples give no interval worth the name.
   if (bootstrap - out.degenerate < 20) {
     out.reason = "too few resamples with a fit on both sides (" +
@@ -181,13 +177,9 @@ SurfaceMedianRatio PairedSurfaceRatio(std::span<const SurfacePoint> reference,
     return out;
   }
   const double tail = 0.5 * (1.0 - level);
-  for (auto& v : draws) {
-    std::sort(v.begin(), v.end());
-    const auto at = [&](double q) {
-      return v[static_cast<size_t>(std::floor(q * (v.size() - 1)))];
-    };
-    out.lo.push_back(at(tail));
-    out.hi.push_back(at(1.0 - tail));
+  for (const std::vector<double>& v : draws.values) {
+    out.lo.push_back(LowerOrderPercentile(v, tail));
+    out.hi.push_back(LowerOrderPercentile(v, 1.0 - tail));
   }
   out.available = true;
   return out;

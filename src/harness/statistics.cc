@@ -297,6 +297,33 @@ double UniformUnit(std::mt19937_64& rng) {
   return static_cast<double>(rng() >> 11) * 0x1.0p-53;
 }
 
+BootstrapDraws Bootstrap(
+    std::size_t n, int resamples, std::uint64_t seed, std::size_t count,
+    const std::function<bool(std::span<const std::size_t>, std::vector<double>&)>& statistics) {
+  if (n == 0) throw std::invalid_argument("Bootstrap: no members to draw");
+  BootstrapDraws out;
+  out.values.resize(count);
+  out.resamples = resamples;
+  std::mt19937_64 rng(seed);
+  std::vector<std::size_t> members(n);
+  std::vector<double> values(count);
+  for (int k = 0; k < resamples; ++k) {
+    for (std::size_t& m : members) m = UniformBelow(rng, n);
+    if (!statistics(members, values)) {
+      ++out.degenerate;
+      continue;
+    }
+    for (std::size_t q = 0; q < count; ++q) out.values[q].push_back(values[q]);
+  }
+  for (auto& v : out.values) std::sort(v.begin(), v.end());
+  return out;
+}
+
+double LowerOrderPercentile(std::span<const double> sorted, double probability) {
+  if (sorted.empty()) throw std::invalid_argument("LowerOrderPercentile: no draws");
+  return sorted[static_cast<std::size_t>(std::floor(probability * (sorted.size() - 1)))];
+}
+
 // --- Kolmogorov-Smirnov ----------------------------------------------------------------------
 
 double KolmogorovSmirnovStatistic(std::span<const double> a, std::span<const double> b) {

@@ -20,7 +20,9 @@
 /// common in outcomes such as "time to overturning" of blocks that never overturned).
 ///
 /// Sample values must not be NaN (std::invalid_argument); infinities are ordinary values.
+#include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <random>
 #include <span>
@@ -93,6 +95,30 @@ std::uint64_t UniformBelow(std::mt19937_64& rng, std::uint64_t bound);
 
 /// A uniform double in [0, 1): the top 53 bits of one rng() output times 2^-53.
 double UniformUnit(std::mt19937_64& rng);
+
+// ---------------------------------------------------------------------------------------------
+// Percentile bootstrap over members (paired when the caller applies one draw to two samples).
+
+/// The draws of a bootstrap: per statistic, its values over the resamples that had them.
+struct BootstrapDraws {
+  std::vector<std::vector<double>> values;  ///< values[q]: statistic q, sorted ascending
+  int resamples = 0;                        ///< resamples drawn
+  int degenerate = 0;                       ///< resamples without values (left out)
+};
+
+/// `resamples` resamples of the members 0..n-1 with replacement: member i of a resample is
+/// UniformBelow(rng, n), drawn in order i = 0..n-1 from a std::mt19937_64 seeded with `seed`.
+/// `statistics(members, values)` writes the resample's `count` values into `values` (sized
+/// `count`) and returns true, or returns false when the resample has none (a fit that failed).
+/// Applying the same `members` to two runs' samples makes the bootstrap paired. Throws
+/// std::invalid_argument for n = 0.
+BootstrapDraws Bootstrap(
+    std::size_t n, int resamples, std::uint64_t seed, std::size_t count,
+    const std::function<bool(std::span<const std::size_t>, std::vector<double>&)>& statistics);
+
+/// The percentile interval's end from sorted draws, by the lower order statistic:
+/// x_floor(probability (m - 1)), no interpolation. `sorted` must not be empty.
+double LowerOrderPercentile(std::span<const double> sorted, double probability);
 
 // ---------------------------------------------------------------------------------------------
 // Two-sample Kolmogorov-Smirnov.

@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
-#include <random>
 
 #include "harness/fragility.h"
 #include "harness/statistics.h"
@@ -26,7 +25,7 @@ const std::vector<std::string>& MotionAxes() {
 
 // Members of one group: member -> (PGA, failed) per engine, usable runs only.
 struct GroupData {
-  std::map<long long, std::map<std::string, stats::FragilityPoint>> members;
+  PointsByMember<stats::FragilityPoint> members;
 };
 
 // The paired bootstrap of median(engine) - median(reference): members drawn with replacement,
@@ -44,31 +43,25 @@ MedianDifference PairedDifference(const std::vector<stats::FragilityPoint>& ref,
   const stats::LognormalFragility b = stats::FitLognormalFragility(eng, 0);
   if (!a.available || !b.available) return out;
   out.estimate = b.median - a.median;
-  std::mt19937_64 rng(0x656e73656d626c65);
-  std::vector<double> diffs;
   std::vector<stats::FragilityPoint> ra(ref.size()), rb(eng.size());
-  for (int k = 0; k < draws; ++k) {
-    for (size_t i = 0; i < ref.size(); ++i) {
-      const size_t j = stats::UniformBelow(rng, ref.size());
-      ra[i] = ref[j];
-      rb[i] = eng[j];
-    }
-    const stats::LognormalFragility fa = stats::FitLognormalFragility(ra, 0);
-    const stats::LognormalFragility fb = stats::FitLognormalFragility(rb, 0);
-    if (!fa.available || !fb.available) {
-      ++out.degenerate;
-      continue;
-    }
-    diffs.push_back(fb.median - fa.median);
-  }
-  out.resamples = draws;
-  if (diffs.size() < 20) return out;
-  std::sort(diffs.begin(), diffs.end());
-  const auto at = [&](double q) {
-    return diffs[static_cast<size_t>(std::floor(q * (diffs.size() - 1)))];
-  };
-  out.lo = at(0.025);
-  out.hi = at(0.975);
+  const stats::BootstrapDraws d =
+      stats::Bootstrap(ref.size(), draws, 0x656e73656d626c65, 1,
+                       [&](std::span<const size_t> members, std::vector<double>& diff) {
+                         for (size_t i = 0; i < ref.size(); ++i) {
+                           ra[i] = ref[members[i]];
+                           rb[i] = eng[members[i]];
+                         }
+                         const stats::LognormalFragility fa = stats::FitLognormalFragility(ra, 0);
+                         const stats::LognormalFragility fb = stats::FitLognormalFragility(rb, 0);
+                         if (!fa.available || !fb.available) return false;
+                         diff[0] = fb.median - fa.median;
+                         return true;
+                       });
+  out.resamples = d.resamples;
+  out.degenerate = d.degenerate;
+  if (d.values[0].size() < 20) return out;
+  out.lo = stats::LowerOrderPercentile(d.values[0], 0.025);
+  out.hi = stats::LowerOrderPercentile(d.values[0], 0.975);
   return out;
 }
 
@@ -181,15 +174,7 @@ void FragilitySection(const EnsembleData& d, const std::filesystem::path& fig_di
                        std::to_string(fit.failures), FitText(fit),
                        fit.available ? Num(fit.beta, 3) : "", diff});
       if (e != "reference" && !ref_points.empty()) {
-        // Pair the members both runs have.
-        std::vector<stats::FragilityPoint> a, b;
-        for (const auto& [m, runs] : groups[g].members) {
-          const auto r = runs.find("reference");
-          const auto q = runs.find(e);
-          if (r == runs.end() || q == runs.end()) continue;
-          a.push_back(r->second);
-          b.push_back(q->second);
-        }
+        const auto [a, b] = PairedWithReference(groups[g].members, e);
         const MedianDifference md = PairedDifference(a, b, 400);
         int same = 0;
         for (size_t i = 0; i < a.size(); ++i) same += a[i].failed == b[i].failed;

@@ -4,7 +4,9 @@
 /// motion-suite studies (ensemble_fragility.cc). Each adds its headings, tables and figures to
 /// the page and its findings, in plain words, to `findings`.
 #include <filesystem>
+#include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "report/ensemble_csv.h"
@@ -29,6 +31,25 @@ std::string ClassName(OverturnClass c);
 bool HasSpectrumAxes(const EnsembleData& d);
 void SpectraSection(const EnsembleData& d, const std::filesystem::path& fig_dir, Page& page,
                     std::vector<std::string>& findings);
+
+/// Member -> run -> that run's point (usable runs only), of one group of a study.
+template <class Point>
+using PointsByMember = std::map<long long, std::map<std::string, Point>>;
+
+/// The points of the members that both the reference and `engine` have, in member order:
+/// (the reference's, the engine's), point i of each the same member (for a paired bootstrap).
+template <class Point>
+std::pair<std::vector<Point>, std::vector<Point>> PairedWithReference(
+    const PointsByMember<Point>& members, const std::string& engine) {
+  std::pair<std::vector<Point>, std::vector<Point>> out;
+  for (const auto& [member, runs] : members) {
+    const auto ref = runs.find("reference"), eng = runs.find(engine);
+    if (ref == runs.end() || eng == runs.end()) continue;
+    out.first.push_back(ref->second);
+    out.second.push_back(eng->second);
+  }
+  return out;
+}
 
 /// Whether the study varies the motion over a suite (base.horizontal.file or
 /// base.horizontal.seed) so that a fragility curve over PGA is defined.

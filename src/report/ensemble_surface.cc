@@ -24,7 +24,7 @@ void FragilitySurfaceSection(const EnsembleData& d, const std::filesystem::path&
   // Group label -> run -> points; and group label -> member -> run -> point (for pairing).
   const std::vector<int> motion = MotionAxisColumns(d);
   std::map<std::string, std::map<std::string, std::vector<stats::SurfacePoint>>> groups;
-  std::map<std::string, std::map<long long, std::map<std::string, stats::SurfacePoint>>> members;
+  std::map<std::string, PointsByMember<stats::SurfacePoint>> members;
   std::vector<std::string> order;
   double r_lo = INFINITY, r_hi = 0.0;
   for (const EnsembleRecord& r : d.records) {
@@ -87,14 +87,7 @@ void FragilitySurfaceSection(const EnsembleData& d, const std::filesystem::path&
     const double at[] = {r_lo, std::sqrt(r_lo * r_hi), r_hi};
     for (const auto& [e, s] : fits) {
       if (e == "reference" || !s.available) continue;
-      // The members both runs have, paired, for the bootstrap of the ratio of medians.
-      std::vector<stats::SurfacePoint> a, b;
-      for (const auto& [m, runs] : members[g]) {
-        const auto q = runs.find("reference"), p = runs.find(e);
-        if (q == runs.end() || p == runs.end()) continue;
-        a.push_back(q->second);
-        b.push_back(p->second);
-      }
+      const auto [a, b] = PairedWithReference(members[g], e);
       const stats::SurfaceMedianRatio ratio = stats::PairedSurfaceRatio(a, b, at, 400);
       std::string text = e + (g.empty() ? std::string() : " (" + g + ")") +
                          ": its median overturning PGA over the reference's, on the " +

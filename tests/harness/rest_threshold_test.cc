@@ -47,7 +47,7 @@ double MaxAngleDifference(const reference::Result& a, const reference::Result& b
 // precision resolves (1e-13 to 5e-12 rad over the catalogue) and take different steps (b has
 // more impacts), so |a - b| is partly the difference of two round-off histories. That floor is
 // measured, not guessed: R_a is what moving gravity by one part in 2^52 does to run a. Measured
-// (2026-11-25, 56 cases): without R_a the worst case was 1.05 (U_a + U_b),, slenderness1/
+// (2026-11-25, 56 cases): without R_a the worst case was 1.05 (U_a + U_b), slenderness1/
 // h_over_b=0.5, |a - b| 6.7e-13 rad with R_a 1.6e-12; a change of rounding in the equations of
 // motion alone (commit 7324a9c) had moved that case from below the bound to above it. What the
 // threshold itself moves is the apex of the excursions it truncates, (2/3) rest_rate_rel^2 /
