@@ -171,6 +171,13 @@ int main(int argc, char** argv) {
        {"model.integrator=dopri5", "model.rtol=1e-10", "model.atol=1e-12", "model.events=located"}},
       {"dopri5_rtol1e-11",
        {"model.integrator=dopri5", "model.rtol=1e-11", "model.atol=1e-13", "model.events=located"}},
+      // Dormand-Prince 8(5,3) at the default tolerance and both pairs at the witness's.
+      {"dop853_rtol1e-12",
+       {"model.integrator=dop853", "model.rtol=1e-12", "model.atol=1e-14", "model.events=located"}},
+      {"dopri5_rtol1e-14",
+       {"model.integrator=dopri5", "model.rtol=1e-14", "model.atol=1e-16", "model.events=located"}},
+      {"dop853_rtol1e-14",
+       {"model.integrator=dop853", "model.rtol=1e-14", "model.atol=1e-16", "model.events=located"}},
       {"dopri5_rtol1e-12_reference",
        {"model.integrator=dopri5", "model.rtol=1e-12", "model.atol=1e-14", "model.events=located"},
        true},

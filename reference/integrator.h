@@ -1,12 +1,15 @@
 #pragma once
 /// Explicit Runge-Kutta steps with dense output for the 4-vector state
 /// y = (theta1, theta2, omega1, omega2): Dormand-Prince 5(4) with its 4th-order continuous
-/// extension (Hairer, Norsett & Wanner, "Solving ODEs I", II.6, as in dopri5.f), and the
-/// classical fixed-step RK4 of the thesis (eq. 6.2, 6.3) with cubic Hermite dense output.
+/// extension (Hairer, Norsett & Wanner, "Solving ODEs I", II.6, as in dopri5.f), Dormand-Prince
+/// 8(5,3) with its 7th-order continuous extension (the same book, II.10, as in dop853.f), and
+/// the classical fixed-step RK4 of the thesis (eq. 6.2, 6.3) with cubic Hermite dense output.
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <utility>
+
+#include "reference/dop853_tableau.h"
 
 namespace rockbench::reference {
 
@@ -14,10 +17,12 @@ using Vec4 = std::array<double, 4>;
 
 /// Continuous output of one step on [t0, t0 + h].
 struct DenseStep {
-  enum Kind { kConstant, kDopri, kHermite };
+  enum Kind { kConstant, kDopri, kHermite, kDop853 };
   Kind kind = kConstant;
   double t0 = 0.0, h = 0.0;
-  std::array<Vec4, 5> c{};  ///< kConstant: c[0]; kDopri: rcont1..5; kHermite: y0, y1, h f0, h f1
+  /// kConstant: c[0]; kDopri: rcont1..5; kHermite: y0, y1, h f0, h f1; kDop853: y0 and the
+  /// seven coefficients of dop853.f's contd8.
+  std::array<Vec4, 8> c{};
   /// State at t (0 <= (t - t0) / h <= 1).
   Vec4 At(double t) const {
     if (kind == kConstant || h == 0.0) return c[0];
@@ -26,6 +31,12 @@ struct DenseStep {
     if (kind == kDopri) {
       for (int i = 0; i < 4; ++i) {
         y[i] = c[0][i] + s * (c[1][i] + s1 * (c[2][i] + s * (c[3][i] + s1 * c[4][i])));
+      }
+    } else if (kind == kDop853) {
+      for (int i = 0; i < 4; ++i) {
+        const double inner = c[5][i] + s1 * (c[6][i] + s * c[7][i]);
+        y[i] =
+            c[0][i] + s * (c[1][i] + s1 * (c[2][i] + s * (c[3][i] + s1 * (c[4][i] + s * inner))));
       }
     } else {
       const double h00 = (1 + 2 * s) * s1 * s1, h10 = s * s1 * s1, h01 = s * s * (3 - 2 * s),
@@ -103,6 +114,68 @@ StepResult Dopri5Step(const Rhs& rhs, double t, const Vec4& y, const Vec4& f0, d
     r.dense.c[3][i] = ydiff - h * k7[i] - bspl;
     r.dense.c[4][i] =
         h * (d1 * k1[i] + d3 * k3[i] + d4 * k4[i] + d5 * k5[i] + d6 * k6[i] + d7 * k7[i]);
+  }
+  return r;
+}
+
+/// One Dormand-Prince 8(5,3) step (dop853.f). f0 = f(t, y). 15 evaluations of rhs: 11 stages,
+/// f(t + h, y1) and 3 for the 7th-order dense output. The error is dop853.f's: the 5th-order
+/// estimate damped by the 3rd-order one, err = |h| e5^2 / sqrt(4 (e5^2 + 0.01 e3^2)) with e5, e3
+/// the scaled norms (<= 1 accepts).
+template <class Rhs>
+StepResult Dop853Step(const Rhs& rhs, double t, const Vec4& y, const Vec4& f0, double h,
+                      double rtol, double atol) {
+  using namespace dop853;
+  std::array<Vec4, 16> k;
+  k[0] = f0;
+  Vec4 yt;
+  // The stages of the step (1-11), f(t + h, y1) (12) and the dense output's (13-15).
+  auto stage = [&](int s) {
+    for (int i = 0; i < 4; ++i) {
+      double sum = 0.0;
+      for (int j = 0; j < s; ++j) sum += kA[s][j] * k[j][i];
+      yt[i] = y[i] + h * sum;
+    }
+    k[s] = rhs(t + kC[s] * h, yt);
+  };
+  for (int s = 1; s < 12; ++s) stage(s);
+  StepResult r;
+  for (int i = 0; i < 4; ++i) {
+    double sum = 0.0;
+    for (int j = 0; j < 12; ++j) sum += kA[12][j] * k[j][i];
+    r.y1[i] = y[i] + h * sum;
+  }
+  double e5 = 0.0, e3 = 0.0;
+  for (int i = 0; i < 4; ++i) {
+    double s5 = 0.0, s3 = 0.0;
+    for (int j = 0; j < 12; ++j) {
+      s5 += kE5[j] * k[j][i];
+      s3 += kE3[j] * k[j][i];
+    }
+    const double sc = atol + rtol * std::max(std::abs(y[i]), std::abs(r.y1[i]));
+    e5 += (s5 / sc) * (s5 / sc);
+    e3 += (s3 / sc) * (s3 / sc);
+  }
+  const double deno = e5 + 0.01 * e3;
+  r.err = deno > 0.0 ? std::abs(h) * e5 / std::sqrt(4.0 * deno) : 0.0;
+  k[12] = rhs(t + h, r.y1);
+  r.f1 = k[12];
+  for (int s = 13; s < 16; ++s) stage(s);
+  r.dense.kind = DenseStep::kDop853;
+  r.dense.t0 = t;
+  r.dense.h = h;
+  for (int i = 0; i < 4; ++i) {
+    const double ydiff = r.y1[i] - y[i];
+    const double bspl = h * k[0][i] - ydiff;
+    r.dense.c[0][i] = y[i];
+    r.dense.c[1][i] = ydiff;
+    r.dense.c[2][i] = bspl;
+    r.dense.c[3][i] = ydiff - h * k[12][i] - bspl;
+    for (int row = 0; row < 4; ++row) {
+      double sum = 0.0;
+      for (int j = 0; j < 16; ++j) sum += kD[row][j] * k[j][i];
+      r.dense.c[4 + row][i] = h * sum;
+    }
   }
   return r;
 }

@@ -523,20 +523,26 @@ StepResult Simulator::AdvanceOneStep(bool rk4, const Vec4& f0, double* h_taken) 
   Summary& sum = result_.summary;
   const double t_break = motion_.next_breakpoint_after(t_);
   double h = rk4 ? cfg_.step_s : std::min(h_, max_step_);
+  const bool dop853 = cfg_.integrator == Integrator::kDop853;
   h = std::min({h, t_break - t_, t_end_ - t_});
   if (h <= 0.0) h = std::max(t_end_ - t_, 0.0);
   StepResult st;
   if (rk4) {
     st = Rk4Step([this](double t, const Vec4& y) { return Rhs(t, y); }, t_, y_, f0, h);
   } else {
+    // Step-size control as in dopri5.f and dop853.f: the error scales as h^(q + 1) with q the
+    // order of the estimate the controller trusts (4 and 7), within their bounds on the ratio.
+    const auto rhs = [this](double t, const Vec4& y) { return Rhs(t, y); };
+    const double expo = dop853 ? -1.0 / 8.0 : -0.2;
+    const double fac_min = dop853 ? 1.0 / 3.0 : 0.2, fac_max = dop853 ? 6.0 : 5.0;
     while (true) {
-      st = Dopri5Step([this](double t, const Vec4& y) { return Rhs(t, y); }, t_, y_, f0, h,
-                      cfg_.rtol, cfg_.atol);
+      st = dop853 ? Dop853Step(rhs, t_, y_, f0, h, cfg_.rtol, cfg_.atol)
+                  : Dopri5Step(rhs, t_, y_, f0, h, cfg_.rtol, cfg_.atol);
       if (st.err <= 1.0 || h < min_step_) break;
       ++sum.steps_rejected;
-      h *= std::max(0.2, 0.9 * std::pow(st.err, -0.2));
+      h *= std::max(fac_min, 0.9 * std::pow(st.err, expo));
     }
-    const double fac = st.err > 0 ? std::min(5.0, 0.9 * std::pow(st.err, -0.2)) : 5.0;
+    const double fac = st.err > 0 ? std::min(fac_max, 0.9 * std::pow(st.err, expo)) : fac_max;
     h_ = h * fac;
   }
   ++sum.steps_accepted;

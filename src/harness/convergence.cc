@@ -25,6 +25,7 @@ ModelConfig WitnessModel(const ModelConfig& model) {
   } else if (model.integrator == Integrator::kRk4) {
     w.step_s = model.step_s / 4.0;
   } else {
+    w.integrator = Integrator::kDopri5;
     w.rtol = model.rtol / 100.0;
     w.atol = model.atol / 100.0;
   }

@@ -14,7 +14,10 @@ namespace rockbench {
 
 /// The witness's settings: dopri5 at rtol / 100 and atol / 100 (the error of a 5th-order
 /// scheme falls about 100x); rk4 at a quarter of the step (4th order: 256x); the thesis's
-/// event scheme (first order in the step) at a tenth of the step.
+/// event scheme (first order in the step) at a tenth of the step. A dop853 run's witness is
+/// dopri5 at rtol / 100: dop853's steps are often capped by the record's samples and the
+/// longest step, so that its own run at rtol / 100 can be the same run, bit for bit (Rinaldi
+/// 228 at rtol 1e-12 and 1e-14: docs/performance-reference.md), a witness that cannot disagree.
 ModelConfig WitnessModel(const ModelConfig& model);
 
 /// Difference between a reference run and its witness.

@@ -3,13 +3,6 @@
 #include <cmath>
 
 namespace rockbench {
-namespace {
-
-const char* IntegratorName(Integrator i) {
-  return i == Integrator::kDopri5 ? "dopri5" : "rk4";
-}
-
-}  // namespace
 
 nlohmann::json ModelOptionsJson(const ModelConfig& m) {
   return {{"integrator", IntegratorName(m.integrator)},

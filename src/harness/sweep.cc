@@ -17,13 +17,6 @@
 #include "reference/simulate.h"
 
 namespace rockbench {
-namespace {
-
-const char* IntegratorName(Integrator i) {
-  return i == Integrator::kDopri5 ? "dopri5" : "rk4";
-}
-
-}  // namespace
 
 std::vector<SweepPoint> SweepGrid(bool quick, const std::vector<std::string>& engines) {
   std::vector<SweepPoint> grid;

@@ -180,17 +180,17 @@ void SceneSection(const RunData& run, const GroundMotion& motion, Figures& fig) 
   const ModelConfig& m = s.model;
   std::vector<std::vector<std::string>> settings;
   settings.push_back(
-      {"reference", std::string(m.integrator == Integrator::kDopri5
-                                    ? "dopri5, rtol " + Num(m.rtol) + ", atol " + Num(m.atol)
-                                    : "rk4, step " + Num(m.step_s) + " s") +
-                        "; events " + (m.events == EventScheme::kLocated ? "located" : "thesis") +
-                        "; equations " +
-                        (m.equations == Equations::kNonlinear ? "nonlinear" : "linearized") +
-                        "; transitions " + (m.check_transitions ? "checked" : "not checked") +
-                        "; rest rate " + Num(m.rest_rate_rel) + " sqrt(g/R)" +
-                        (OptString(run.summary, "convergence.used", run.summary_path) == "witness"
-                             ? " (not converged: the run used its witness, see Verdict)"
-                             : "")});
+      {"reference",
+       std::string(IntegratorName(m.integrator)) +
+           (m.integrator == Integrator::kRk4 ? ", step " + Num(m.step_s) + " s"
+                                             : ", rtol " + Num(m.rtol) + ", atol " + Num(m.atol)) +
+           "; events " + (m.events == EventScheme::kLocated ? "located" : "thesis") +
+           "; equations " + (m.equations == Equations::kNonlinear ? "nonlinear" : "linearized") +
+           "; transitions " + (m.check_transitions ? "checked" : "not checked") + "; rest rate " +
+           Num(m.rest_rate_rel) + " sqrt(g/R)" +
+           (OptString(run.summary, "convergence.used", run.summary_path) == "witness"
+                ? " (not converged: the run used its witness, see Verdict)"
+                : "")});
   // Each engine's settings as its summary.json states them (ours and the values they set).
   for (const EngineData& e : run.engines) {
     if (e.name == "reference") continue;

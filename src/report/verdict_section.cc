@@ -115,7 +115,7 @@ void RankingPart(const VerdictInput& in, Page& page) {
 std::string WitnessSettings(const json& w, const fs::path& file) {
   const std::string integrator = OptString(w, "integrator", file);
   std::string s = integrator.empty() ? "settings not recorded" : integrator;
-  if (integrator == "dopri5") {
+  if (integrator == "dopri5" || integrator == "dop853") {
     s += ", rtol " + Num(OptNumber(w, "rtol", file)) + ", atol " + Num(OptNumber(w, "atol", file));
   } else if (integrator == "rk4") {
     s += ", step " + Num(OptNumber(w, "step_s", file)) + " s";

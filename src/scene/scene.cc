@@ -538,10 +538,11 @@ class Reader {
   // [model]: the reference's integrator, events and rules.
   ModelConfig ReadModel(const toml::table& model) const {
     ModelConfig m;
-    m.integrator =
-        Enum(model, "model", "integrator",
-             Choices<Integrator>{{"dopri5", Integrator::kDopri5}, {"rk4", Integrator::kRk4}})
-            .value_or(m.integrator);
+    m.integrator = Enum(model, "model", "integrator",
+                        Choices<Integrator>{{"dopri5", Integrator::kDopri5},
+                                            {"dop853", Integrator::kDop853},
+                                            {"rk4", Integrator::kRk4}})
+                       .value_or(m.integrator);
     m.rtol = Number(model, "model", "rtol", Rule::kPositive, "").value_or(m.rtol);
     m.atol = Number(model, "model", "atol", Rule::kPositive, "rad, rad/s").value_or(m.atol);
     m.step_s = Number(model, "model", "step", Rule::kPositive, "s").value_or(m.step_s);
@@ -716,6 +717,18 @@ SyntheticMotionDef MotionDef::SyntheticProcess() const {
   SyntheticMotionDef d = synthetic;
   d.target_peak_mps2 = amplitude_g * kStandardGravity_mps2;
   return d;
+}
+
+const char* IntegratorName(Integrator integrator) {
+  switch (integrator) {
+    case Integrator::kDopri5:
+      return "dopri5";
+    case Integrator::kDop853:
+      return "dop853";
+    case Integrator::kRk4:
+      return "rk4";
+  }
+  return "rk4";
 }
 
 std::string_view MotionKindName(MotionKind kind) {

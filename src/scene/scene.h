@@ -76,16 +76,17 @@ struct RunConfig {
   double gravity_mps2 = 9.81;
 };
 
-enum class Integrator { kDopri5, kRk4 };
+enum class Integrator { kDopri5, kRk4, kDop853 };
 enum class EventScheme { kLocated, kThesis };
 enum class Equations { kNonlinear, kLinearized };
 
 /// Options of the reference model ([model] table).
 struct ModelConfig {
-  Integrator integrator = Integrator::kDopri5;  ///< "dopri5" (adaptive, dense) or "rk4" (fixed)
-  double rtol = 1e-12;                          ///< dopri5 relative tolerance
-  double atol = 1e-14;                          ///< dopri5 absolute tolerance, rad and rad/s
-  double step_s = 1e-3;                         ///< rk4 fixed step, s
+  /// "dopri5" (adaptive 5(4), dense), "dop853" (adaptive 8(5,3), dense) or "rk4" (fixed)
+  Integrator integrator = Integrator::kDopri5;
+  double rtol = 1e-12;   ///< dopri5 / dop853 relative tolerance
+  double atol = 1e-14;   ///< dopri5 / dop853 absolute tolerance, rad and rad/s
+  double step_s = 1e-3;  ///< rk4 fixed step, s
   EventScheme events = EventScheme::kLocated;   ///< "located" or "thesis" (O(h) detection)
   Equations equations = Equations::kNonlinear;  ///< "nonlinear" or "linearized" (4.3.3)
   double overturn_rad = 1.5707963267948966;     ///< |theta_i| at which a block overturns
@@ -167,6 +168,8 @@ std::string_view MotionKindName(MotionKind kind);
 std::string ShortestText(double v);
 /// "g", "m/s2", "cm/s2".
 std::string_view AccelUnitsName(AccelUnits units);
+/// "dopri5", "dop853", "rk4": the [model] integrator's name as a scene writes it.
+const char* IntegratorName(Integrator integrator);
 /// The unit g of records, `units = "g"` and `amplitude_g`: standard gravity, m/s^2 by
 /// definition (3rd CGPM, 1901), independent of the scene's [run] gravity.
 inline constexpr double kStandardGravity_mps2 = 9.80665;

@@ -30,6 +30,10 @@ TEST(WitnessModel, IsTighterByTheSchemesOrder) {
   const ModelConfig w = WitnessModel(m);
   EXPECT_DOUBLE_EQ(w.rtol, 1e-11);
   EXPECT_DOUBLE_EQ(w.atol, 1e-13);
+  // dop853's witness is the other pair: its own run at rtol / 100 can be the same run.
+  m.integrator = Integrator::kDop853;
+  EXPECT_EQ(WitnessModel(m).integrator, Integrator::kDopri5);
+  EXPECT_DOUBLE_EQ(WitnessModel(m).rtol, 1e-11);
   m.integrator = Integrator::kRk4;
   m.step_s = 1e-3;
   EXPECT_EQ(WitnessModel(m).step_s, 2.5e-4);

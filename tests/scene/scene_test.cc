@@ -426,7 +426,7 @@ TEST(Errors, Validation) {
       {"unknown integrator",
        b1 + "[model]\nintegrator = \"euler\"\n",
        ":6:",
-       {"model.integrator", "\"dopri5\" or \"rk4\"", "got \"euler\""}},
+       {"model.integrator", "\"dopri5\", \"dop853\" or \"rk4\"", "got \"euler\""}},
       {"unknown events", b1 + "[model]\nevents = \"exact\"\n", ":6:", {"model.events", "thesis"}},
       {"unknown equations",
        b1 + "[model]\nequations = \"linear\"\n",
