@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <utility>
 
 #include "reference/dop853_tableau.h"
@@ -23,6 +24,33 @@ struct DenseStep {
   /// kConstant: c[0]; kDopri: rcont1..5; kHermite: y0, y1, h f0, h f1; kDop853: y0 and the
   /// seven coefficients of dop853.f's contd8.
   std::array<Vec4, 8> c{};
+  /// An enclosure of the interpolant over the whole step: lo[i] <= At(t)[i] <= hi[i] for every
+  /// t in [t0, t0 + h], rounding of At included. Every interpolant here is the chord from y0 to
+  /// y1 plus s (1 - s) times a bounded remainder (s (1 - s) <= 1/4), so the enclosure is the
+  /// chord's range widened by a quarter of the remainder's coefficients' magnitudes.
+  void Bounds(Vec4* lo, Vec4* hi) const {
+    constexpr double kEps = std::numeric_limits<double>::epsilon();
+    for (int i = 0; i < 4; ++i) {
+      double y0 = c[0][i], y1 = c[0][i], rest = 0.0, size = std::abs(c[0][i]);
+      if (kind == kDopri || kind == kDop853) {
+        // y0 + s c1 + s (1 - s) (c2 + s (c3 + ...)): y1 = y0 + c1.
+        y1 = c[0][i] + c[1][i];
+        const int last = kind == kDopri ? 4 : 7;
+        for (int j = 2; j <= last; ++j) rest += std::abs(c[j][i]);
+        size += std::abs(c[1][i]) + rest;
+      } else if (kind == kHermite) {
+        // y0 + s D + s (1 - s) ((1 - s) (h f0 - D) + s (D - h f1)) with D = y1 - y0.
+        y1 = c[1][i];
+        const double chord = c[1][i] - c[0][i];
+        rest = std::abs(c[2][i] - chord) + std::abs(c[3][i] - chord);
+        size += std::abs(c[1][i]) + std::abs(c[2][i]) + std::abs(c[3][i]);
+      }
+      // A few roundings of terms no larger than `size`; 64 ulps of it is far more.
+      const double slack = 0.25 * rest + 64 * kEps * size;
+      (*lo)[i] = std::min(y0, y1) - slack;
+      (*hi)[i] = std::max(y0, y1) + slack;
+    }
+  }
   /// State at t (0 <= (t - t0) / h <= 1).
   Vec4 At(double t) const {
     if (kind == kConstant || h == 0.0) return c[0];

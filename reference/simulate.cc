@@ -255,23 +255,36 @@ class Simulator {
     double t = kInf;     // s, the located bracket's lower end (the event time)
     double t_hi = kInf;  // s, its upper end (just past the root)
   };
-  // The state at t inside the step that starts at (t0, y0), projected onto the mode. The
-  // states at the probe points (ProbeTime), which every cheap event function checks, are
-  // evaluated once (Probe) and kept.
+  // The state at t inside the step that starts at (t0, y0), projected onto the mode, and an
+  // enclosure [lo, hi] of it over the whole step (DenseStep::Bounds, projected: Project only
+  // copies and zeroes components). The states at the probe points (ProbeTime), which the cheap
+  // event functions check, are evaluated once, when first asked for (Probe), and kept.
   struct StepDense {
+    StepDense(const Simulator& s, const StepResult& r, double t_start, const Vec4& y_start)
+        : sim(s), st(r), t0(t_start), y0(y_start) {
+      r.dense.Bounds(&lo, &hi);
+      lo = s.Project(lo);
+      hi = s.Project(hi);
+    }
     const Simulator& sim;
     const StepResult& st;
     double t0;
     Vec4 y0;
-    std::array<double, kInteriorChecks + 1> probe_t{};
-    std::array<Vec4, kInteriorChecks + 1> probe_y{};
+    Vec4 lo{}, hi{};
+    mutable bool probed = false;
+    mutable std::array<double, kInteriorChecks + 1> probe_t{};
+    mutable std::array<Vec4, kInteriorChecks + 1> probe_y{};
     Vec4 Evaluate(double t) const { return sim.Project(t == t0 ? y0 : st.dense.At(t)); }
-    void Probe(double t1) {
+    void Probe(double t1) const {
+      if (probed) return;
       for (int k = 0; k <= kInteriorChecks; ++k) {
         probe_t[k] = ProbeTime(t0, t1, k, kInteriorChecks);
         probe_y[k] = Evaluate(probe_t[k]);
       }
+      probed = true;
     }
+    // The largest |y[i]| anywhere in the step.
+    double MaxAbs(int i) const { return std::max(std::abs(lo[i]), std::abs(hi[i])); }
     Vec4 operator()(double t) const { return Evaluate(t); }
   };
   StepResult AdvanceOneStep(bool rk4, const Vec4& f0, double* h_taken);
@@ -280,10 +293,12 @@ class Simulator {
   template <class Fn>
   void Locate(StepEvent kind, const Fn& fn, double t_pos, double f_pos, double t_neg, double f_neg,
               LocatedEvent* ev) const;
-  // fy, ry: the event function and its rate as functions of the state.
+  // fy, ry: the event function and its rate as functions of the state; lower: a lower bound of
+  // fy over the step from the enclosure (at.lo, at.hi). When it is positive the function
+  // cannot vanish in the step and the search is skipped: it would find nothing.
   template <class Fy, class Ry>
-  void ConsiderCheap(StepEvent kind, const Fy& fy, const Ry& ry, const StepDense& at, double t1,
-                     bool thesis_events, LocatedEvent* ev) const;
+  void ConsiderCheap(StepEvent kind, const Fy& fy, const Ry& ry, double lower, const StepDense& at,
+                     double t1, bool thesis_events, LocatedEvent* ev) const;
   LocatedEvent FindEvent(const StepDense& at, double t1, const ContactMargins& cm1,
                          bool thesis_events);
   void RecordStep(const StepDense& at, const DenseStep& dense, double t_seg_end, const Vec4& y_end,
@@ -589,8 +604,13 @@ void Simulator::Locate(StepEvent kind, const Fn& fn, double t_pos, double f_pos,
 }
 
 template <class Fy, class Ry>
-void Simulator::ConsiderCheap(StepEvent kind, const Fy& fy, const Ry& ry, const StepDense& at,
-                              double t1, bool thesis_events, LocatedEvent* ev) const {
+void Simulator::ConsiderCheap(StepEvent kind, const Fy& fy, const Ry& ry, double lower,
+                              const StepDense& at, double t1, bool thesis_events,
+                              LocatedEvent* ev) const {
+  if (!thesis_events) {
+    if (lower > 0.0) return;
+    at.Probe(t1);
+  }
   auto fn = [&](double t) { return fy(at(t)); };
   const double fa = fn(t_);
   const auto [t_neg, f_neg] = thesis_events
@@ -611,18 +631,23 @@ Simulator::LocatedEvent Simulator::FindEvent(const StepDense& at, double t1,
   const bool interface_moves = geo_.two_blocks && c.interface != Contact::kFace;
   LocatedEvent ev;
   // The angles' event functions cost one dense-output evaluation: checked at interior points
-  // and at the minima between them (roots of their rates).
+  // and at the minima between them (roots of their rates), unless the step's enclosure keeps
+  // them positive. Each lower bound is a difference that is positive exactly when the
+  // function's own floating-point value is positive wherever the enclosure holds.
   if (ground_moves) {
     const double side = Side(c.ground);
+    const double lower = side > 0.0 ? at.lo[0] : -at.hi[0];
     ConsiderCheap(
         StepEvent::kGroundImpact, [&](const Vec4& y) { return GapGround(y); },
-        [&](const Vec4& y) { return side * y[2]; }, at, t1, thesis_events, &ev);
+        [&](const Vec4& y) { return side * y[2]; }, lower, at, t1, thesis_events, &ev);
   }
   if (interface_moves) {
+    // theta2 - theta1 (with theta1 = 0 on a grounded face, where [lo, hi] is [0, 0]).
     const double side = Side(c.interface);
+    const double lower = side > 0.0 ? at.lo[1] - at.hi[0] : at.lo[0] - at.hi[1];
     ConsiderCheap(
         StepEvent::kInterfaceImpact, [&](const Vec4& y) { return GapInterface(y); },
-        [&](const Vec4& y) { return side * (ground_moves ? y[3] - y[2] : y[3]); }, at, t1,
+        [&](const Vec4& y) { return side * (ground_moves ? y[3] - y[2] : y[3]); }, lower, at, t1,
         thesis_events, &ev);
   }
   // Overturning: each block's |theta| reaching overturn_angle.
@@ -630,8 +655,8 @@ Simulator::LocatedEvent Simulator::FindEvent(const StepDense& at, double t1,
   for (int k = 0; k < (geo_.two_blocks ? 2 : 1); ++k) {
     ConsiderCheap(
         StepEvent::kOverturn, [&](const Vec4& y) { return over - std::abs(y[k]); },
-        [&](const Vec4& y) { return y[k] < 0.0 ? y[2 + k] : -y[2 + k]; }, at, t1, thesis_events,
-        &ev);
+        [&](const Vec4& y) { return y[k] < 0.0 ? y[2 + k] : -y[2 + k]; }, over - at.MaxAbs(k), at,
+        t1, thesis_events, &ev);
   }
   // The contact margins (face corners opening: a transition; a point contact pulling: a
   // violation) cost a contact-force evaluation: checked at the midpoint and at the minimum of
@@ -661,8 +686,12 @@ void Simulator::RecordStep(const StepDense& at, const DenseStep& dense, double t
   Trajectory::Segment seg{t_, t_seg_end, mode_, dense};
   result_.trajectory.Append(seg);
   EmitSamplesUntil(t_seg_end, false);
-  // Peaks: |theta| extremes sit where the rate vanishes inside the step, or at its ends.
-  for (int k = 0; k < (geo_.two_blocks ? 2 : 1); ++k) {
+  // Peaks: |theta| extremes sit where the rate vanishes inside the step, or at its ends. No
+  // state of the step can raise a peak when the step's enclosure stays within both.
+  const bool within_peaks = at.MaxAbs(0) <= sum.peak_theta1_rad &&
+                            (!geo_.two_blocks || at.MaxAbs(1) <= sum.peak_theta2_rad);
+  const int searched = within_peaks ? 0 : (geo_.two_blocks ? 2 : 1);
+  for (int k = 0; k < searched; ++k) {
     auto rate = [&](double t) { return at(t)[2 + k]; };
     const double ra = rate(t_), rb = rate(t_seg_end);
     if (ra * rb < 0.0) {
@@ -749,8 +778,7 @@ void Simulator::RunMoving() {
     const StepResult st = AdvanceOneStep(rk4, f0, &h);
     const double t1 = t_ + h;
     const Vec4 y1 = Project(st.y1);
-    StepDense at{*this, st, t_, y_};
-    if (!thesis_events) at.Probe(t1);
+    const StepDense at(*this, st, t_, y_);
     // The last stage f(t1, y1) holds the mode's accelerations at the step end: the contact
     // margins there reuse them (y1 is already on the mode's constraints, so Project keeps it).
     const ContactMargins cm1 = y1 == st.y1 ? EvaluateContacts(geo_, mode_, ToState(y1),
