@@ -25,7 +25,8 @@ ModelConfig WitnessModel(const ModelConfig& model) {
   } else if (model.integrator == Integrator::kRk4) {
     w.step_s = model.step_s / 4.0;
   } else {
-    w.integrator = Integrator::kDopri5;
+    w.integrator =
+        model.integrator == Integrator::kDop853 ? Integrator::kDopri5 : Integrator::kDop853;
     w.rtol = model.rtol / 100.0;
     w.atol = model.atol / 100.0;
   }

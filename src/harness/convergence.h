@@ -12,12 +12,13 @@
 
 namespace rockbench {
 
-/// The witness's settings: dopri5 at rtol / 100 and atol / 100 (the error of a 5th-order
-/// scheme falls about 100x); rk4 at a quarter of the step (4th order: 256x); the thesis's
-/// event scheme (first order in the step) at a tenth of the step. A dop853 run's witness is
-/// dopri5 at rtol / 100: dop853's steps are often capped by the record's samples and the
-/// longest step, so that its own run at rtol / 100 can be the same run, bit for bit (Rinaldi
-/// 228 at rtol 1e-12 and 1e-14: docs/performance-reference.md), a witness that cannot disagree.
+/// The witness's settings: an adaptive run's witness is the other Dormand-Prince pair (dopri5
+/// for dop853, dop853 for dopri5) at rtol / 100 and atol / 100: a different method as well as
+/// a tighter tolerance, because a pair's steps are often capped by the record's samples and
+/// the longest step, so that its own run at rtol / 100 can be the same run, bit for bit (dop853
+/// on Rinaldi 228 at rtol 1e-12 and 1e-14: docs/performance-reference.md), a witness that
+/// cannot disagree. rk4 at a quarter of the step (4th order: 256x); the thesis's event scheme
+/// (first order in the step) at a tenth of the step.
 ModelConfig WitnessModel(const ModelConfig& model);
 
 /// Difference between a reference run and its witness.

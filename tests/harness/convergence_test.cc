@@ -30,7 +30,9 @@ TEST(WitnessModel, IsTighterByTheSchemesOrder) {
   const ModelConfig w = WitnessModel(m);
   EXPECT_DOUBLE_EQ(w.rtol, 1e-11);
   EXPECT_DOUBLE_EQ(w.atol, 1e-13);
-  // dop853's witness is the other pair: its own run at rtol / 100 can be the same run.
+  // The witness is the other Dormand-Prince pair: a pair's own run at rtol / 100 can be the
+  // same run.
+  EXPECT_EQ(w.integrator, Integrator::kDop853);
   m.integrator = Integrator::kDop853;
   EXPECT_EQ(WitnessModel(m).integrator, Integrator::kDopri5);
   EXPECT_DOUBLE_EQ(WitnessModel(m).rtol, 1e-11);
