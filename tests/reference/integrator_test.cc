@@ -9,6 +9,7 @@
 #include <limits>
 #include <string>
 
+#include "common/thesis_scene.h"
 #include "reference/simulate.h"
 
 namespace rockbench::reference {
@@ -164,12 +165,7 @@ TEST(DenseStep, BoundsEncloseTheInterpolantTightly) {
 // That bound is 30 times the largest whole-run difference between dopri5 at rtol 1e-12 and
 // at 1e-13 on the benchmark scenes (3e-11 rad, docs/performance-reference.md).
 TEST(Dop853, ThesisStackAgreesWithTheDefaultPair) {
-  Scene sc;
-  sc.block1 = {1.25, 1.25, 1.0, 3906.25, 2500.0};
-  sc.block2 = BlockDef{1.0, 2.5, 1.0, 6250.0, 2500.0};
-  sc.initial = {0.15, 0.15, 0.0, 0.0};
-  sc.run.duration_s = 6.0;
-  sc.run.output_interval_s = 0.005;
+  Scene sc = testing_util::ThesisFreeRockingStack();
   const Result dopri5 = Simulate(sc, GroundMotion{});
   sc.model.integrator = Integrator::kDop853;
   const Result dop853 = Simulate(sc, GroundMotion{});

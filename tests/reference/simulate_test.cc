@@ -11,6 +11,7 @@
 #include <string>
 #include <utility>
 
+#include "common/thesis_scene.h"
 #include "reference/geometry.h"
 #include "reference/integrator.h"
 
@@ -31,13 +32,7 @@ Scene OneBlock(double B, double H, double theta0, double duration) {
 }
 
 Scene ThesisExample() {
-  Scene sc;
-  sc.block1 = {1.25, 1.25, 1.0, 3906.25, 2500.0};
-  sc.block2 = BlockDef{1.0, 2.5, 1.0, 6250.0, 2500.0};
-  sc.initial = {0.15, 0.15, 0.0, 0.0};
-  sc.run.duration_s = 6.0;
-  sc.run.output_interval_s = 0.005;
-  return sc;
+  return testing_util::ThesisFreeRockingStack();
 }
 
 std::vector<Event> Impacts(const History& h) {
