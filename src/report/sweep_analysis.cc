@@ -15,14 +15,14 @@ bool ReachesPeakAgreement(const SweepRecord& r, double peak_tolerance) {
 std::vector<std::pair<std::string, std::vector<size_t>>> SweepFamilies(
     const std::vector<SweepRecord>& rows) {
   // Families in the order they first appear among the engines' rows (each engine's own grid
-  // order), then reference dopri5 and RK4; within a family from the coarsest setting.
+  // order), then reference dopri5, dop853 and RK4; within a family from the coarsest setting.
   std::map<std::string, size_t> first;
   for (size_t i = 0; i < rows.size(); ++i) {
     if (rows[i].engine != "reference") first.emplace(SweepFamily(rows[i]), first.size());
   }
   auto rank = [&](const SweepRecord& r) -> size_t {
     if (r.engine != "reference") return first.at(SweepFamily(r));
-    return first.size() + (r.integrator == "dopri5" ? 0 : 1);
+    return first.size() + (r.integrator == "dopri5" ? 0 : r.integrator == "dop853" ? 1 : 2);
   };
   std::vector<size_t> order;
   for (size_t i = 0; i < rows.size(); ++i) {

@@ -144,13 +144,13 @@ void ReadRunSettings(const RowReader& rd, SweepRecord& r) {
     r.time_step_s = rd.Positive("time_step_s");
   } else {
     r.integrator = rd.Text("integrator");
-    if (r.integrator == "dopri5") {
+    if (r.integrator == "dopri5" || r.integrator == "dop853") {
       r.rtol = rd.Positive("rtol");
       r.atol = rd.Positive("atol");
     } else if (r.integrator == "rk4") {
       r.rk4_step_s = rd.Positive("rk4_step_s");
     } else {
-      rd.Fail("integrator", "expected dopri5 or rk4, got '" + r.integrator + "'");
+      rd.Fail("integrator", "expected dopri5, dop853 or rk4, got '" + r.integrator + "'");
     }
   }
 }
@@ -243,12 +243,12 @@ std::vector<SweepRecord> ParseSweepCsv(const std::string& text, const fs::path& 
 
 std::string SweepFamily(const SweepRecord& r) {
   if (r.engine != "reference") return r.family;
-  return r.integrator == "dopri5" ? "reference dopri5" : "reference RK4";
+  return r.integrator == "rk4" ? "reference RK4" : "reference " + r.integrator;
 }
 
 double SweepSettingValue(const SweepRecord& r) {
   if (r.engine != "reference") return r.time_step_s;
-  return r.integrator == "dopri5" ? r.rtol : r.rk4_step_s;
+  return r.integrator == "rk4" ? r.rk4_step_s : r.rtol;
 }
 
 std::string SweepSettingLabel(const SweepRecord& r) {
@@ -267,8 +267,8 @@ double MaxPeakRelError(const SweepRecord& r) {
 
 std::string SweepSettingDescription(const SweepRecord& r) {
   if (r.engine != "reference") return r.family + ", time step " + SweepSettingLabel(r) + " s";
-  if (r.integrator == "dopri5") return "reference dopri5, rtol " + SweepSettingLabel(r);
-  return "reference RK4, step " + SweepSettingLabel(r) + " s";
+  if (r.integrator == "rk4") return "reference RK4, step " + SweepSettingLabel(r) + " s";
+  return "reference " + r.integrator + ", rtol " + SweepSettingLabel(r);
 }
 
 }  // namespace rockbench::report

@@ -15,7 +15,7 @@ struct SweepRecord {
   std::string setting;   ///< engines: the point's label ("1e-3", "1/60")
   std::string settings;  ///< engines: the settings besides the step ("k=v;k=v")
   double time_step_s = 0.0;
-  std::string integrator;  ///< reference: "dopri5" | "rk4"
+  std::string integrator;  ///< reference: "dopri5" | "dop853" | "rk4"
   double rtol = 0.0, atol = 0.0;
   double rk4_step_s = 0.0;  ///< s
   std::string status;       ///< the run's status, "error" for a failed run

@@ -54,7 +54,7 @@ std::string WithoutWallTimes(const std::string& csv) {
 
 TEST(SweepTest, GridSpansTheRequestedRanges) {
   const std::vector<SweepPoint> full = SweepGrid(false, BuiltEngineNames());
-  std::set<double> rtols;
+  std::set<double> rtols, rtols_dop853;
   int rk4 = 0;
   size_t engine_points = 0;
   for (const std::string& name : BuiltEngineNames()) {
@@ -67,6 +67,9 @@ TEST(SweepTest, GridSpansTheRequestedRanges) {
     } else if (p.integrator == Integrator::kDopri5) {
       rtols.insert(p.rtol);
       EXPECT_DOUBLE_EQ(p.atol, p.rtol * 1e-2);
+    } else if (p.integrator == Integrator::kDop853) {
+      rtols_dop853.insert(p.rtol);
+      EXPECT_DOUBLE_EQ(p.atol, p.rtol * 1e-2);
     } else {
       ++rk4;
       EXPECT_GT(p.rk4_step_s, 0.0);
@@ -75,7 +78,9 @@ TEST(SweepTest, GridSpansTheRequestedRanges) {
   EXPECT_DOUBLE_EQ(*rtols.rbegin(), 1e-4);
   EXPECT_DOUBLE_EQ(*rtols.begin(), 1e-12);
   EXPECT_EQ(rk4, 3);
-  EXPECT_EQ(full.size(), engine_points + rtols.size() + 3);
+  // dop853 on the full grid only, from rtol 1e-6 to the default.
+  EXPECT_EQ(rtols_dop853, (std::set<double>{1e-6, 1e-8, 1e-10, 1e-12}));
+  EXPECT_EQ(full.size(), engine_points + rtols.size() + rtols_dop853.size() + 3);
   // Quick is a subset; without engines only reference rows remain.
   EXPECT_LT(SweepGrid(true, BuiltEngineNames()).size(), full.size());
   for (const SweepPoint& p : SweepGrid(true, {})) EXPECT_EQ(p.engine, "reference");
