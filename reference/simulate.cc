@@ -538,7 +538,6 @@ StepResult Simulator::AdvanceOneStep(bool rk4, const Vec4& f0, double* h_taken) 
   Summary& sum = result_.summary;
   const double t_break = motion_.next_breakpoint_after(t_);
   double h = rk4 ? cfg_.step_s : std::min(h_, max_step_);
-  const bool dop853 = cfg_.integrator == Integrator::kDop853;
   h = std::min({h, t_break - t_, t_end_ - t_});
   if (h <= 0.0) h = std::max(t_end_ - t_, 0.0);
   StepResult st;
@@ -548,6 +547,7 @@ StepResult Simulator::AdvanceOneStep(bool rk4, const Vec4& f0, double* h_taken) 
     // Step-size control as in dopri5.f and dop853.f: the error scales as h^(q + 1) with q the
     // order of the estimate the controller trusts (4 and 7), within their bounds on the ratio.
     const auto rhs = [this](double t, const Vec4& y) { return Rhs(t, y); };
+    const bool dop853 = cfg_.integrator == Integrator::kDop853;
     const double expo = dop853 ? -1.0 / 8.0 : -0.2;
     const double fac_min = dop853 ? 1.0 / 3.0 : 0.2, fac_max = dop853 ? 6.0 : 5.0;
     while (true) {

@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <exception>
 #include <fstream>
+#include <initializer_list>
 #include <mutex>
 #include <thread>
 
@@ -30,26 +31,23 @@ std::vector<SweepPoint> SweepGrid(bool quick, const std::vector<std::string>& en
       grid.push_back(std::move(s));
     }
   }
-  const std::vector<double> rtols = quick ? std::vector<double>{1e-4, 1e-6, 1e-8}
-                                          : std::vector<double>{1e-4, 1e-6, 1e-8, 1e-10, 1e-12};
-  for (double rtol : rtols) {
-    SweepPoint s;
-    s.engine = "reference";
-    s.integrator = Integrator::kDopri5;
-    s.rtol = rtol;
-    s.atol = rtol * 1e-2;
-    grid.push_back(s);
-  }
-  // The higher-order pair on the full grid, at the tolerances where it differs from dopri5.
-  if (!quick) {
-    for (double rtol : {1e-6, 1e-8, 1e-10, 1e-12}) {
+  // An adaptive pair at each rtol, with atol a hundredth of it.
+  auto add_adaptive = [&grid](Integrator integrator, std::initializer_list<double> rtols) {
+    for (double rtol : rtols) {
       SweepPoint s;
       s.engine = "reference";
-      s.integrator = Integrator::kDop853;
+      s.integrator = integrator;
       s.rtol = rtol;
       s.atol = rtol * 1e-2;
       grid.push_back(s);
     }
+  };
+  if (quick) {
+    add_adaptive(Integrator::kDopri5, {1e-4, 1e-6, 1e-8});
+  } else {
+    add_adaptive(Integrator::kDopri5, {1e-4, 1e-6, 1e-8, 1e-10, 1e-12});
+    // The higher-order pair on the full grid only, from rtol 1e-6 to the default.
+    add_adaptive(Integrator::kDop853, {1e-6, 1e-8, 1e-10, 1e-12});
   }
   const std::vector<double> rk4 =
       quick ? std::vector<double>{1e-3} : std::vector<double>{1e-2, 1e-3, 1e-4};
