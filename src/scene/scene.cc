@@ -97,6 +97,8 @@ const std::map<std::string, KeyList, std::less<>>& Schema() {
                                   {"ground_damping", false},
                                   {"filter_frequency_hz", false},
                                   {"filter_damping", false},
+                                  {"high_pass_hz", false},
+                                  {"zero_residuals", false},
                                   {"envelope", false},
                                   {"rise_s", false},
                                   {"strong_end_s", false},
@@ -402,6 +404,9 @@ class Reader {
     } else {
       Forbid(t, prefix, "filter_damping", "only with filter_frequency_hz > 0");
     }
+    d.high_pass_hz =
+        Number(t, prefix, "high_pass_hz", Rule::kNonNegative, "Hz").value_or(d.high_pass_hz);
+    d.zero_residuals = Bool(t, prefix, "zero_residuals").value_or(d.zero_residuals);
     d.envelope = Enum(t, prefix, "envelope", kEnvelopes).value_or(SyntheticEnvelope::kJennings);
     if (d.envelope == SyntheticEnvelope::kJennings) {
       d.rise_s = RequiredNumber(t, prefix, "rise_s", Rule::kPositive, "s");
@@ -452,7 +457,8 @@ class Reader {
       Forbid(t, prefix, "duration_s", why);
       for (const char* key :
            {"intensity", "ground_frequency_hz", "ground_damping", "filter_frequency_hz",
-            "filter_damping", "envelope", "rise_s", "strong_end_s", "decay_per_s", "seed"}) {
+            "filter_damping", "high_pass_hz", "zero_residuals", "envelope", "rise_s",
+            "strong_end_s", "decay_per_s", "seed"}) {
         Forbid(t, prefix, key, "only for kind = \"kanai_tajimi\", not for a record file");
       }
       const bool at2 = IsAt2File(m.file);
@@ -480,7 +486,8 @@ class Reader {
     const std::string only_synthetic = "only for kind = \"kanai_tajimi\"";
     for (const char* key :
          {"intensity", "ground_frequency_hz", "ground_damping", "filter_frequency_hz",
-          "filter_damping", "envelope", "rise_s", "strong_end_s", "decay_per_s", "seed"}) {
+          "filter_damping", "high_pass_hz", "zero_residuals", "envelope", "rise_s", "strong_end_s",
+          "decay_per_s", "seed"}) {
       Forbid(t, prefix, key, only_synthetic);
     }
     Forbid(t, prefix, "dt", "only for one-column record files and kind = \"kanai_tajimi\"");

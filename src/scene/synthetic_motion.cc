@@ -66,6 +66,56 @@ Biquad CloughPenzien(const SyntheticMotionDef& d) {
   return Bilinear(0.0, 0.0, 1.0, w * w, 2.0 * z * w, 1.0, d.dt_s);
 }
 
+// The high-pass after the envelope: s^2 / (s + w_c)^2, a critically damped oscillator's
+// relative acceleration.
+Biquad HighPass(const SyntheticMotionDef& d) {
+  const double w = 2.0 * kPi * d.high_pass_hz;
+  return Bilinear(0.0, 0.0, 1.0, w * w, 2.0 * w, 1.0, d.dt_s);
+}
+
+// The weights of the two linear functionals of a piecewise-linear record a_0 .. a_N that give
+// its end velocity, sum cv_n a_n (the trapezoidal rule), and end displacement,
+// sum cd_n a_n = integral of (T - t) a(t) dt: dt (T - t_n) inside, dt T / 2 - dt^2 / 6 and
+// dt^2 / 6 at the ends (the half hats).
+void ResidualWeights(std::size_t n_samples, double dt, std::vector<double>* cv,
+                     std::vector<double>* cd) {
+  const std::size_t last = n_samples - 1;
+  const double total = static_cast<double>(last) * dt;
+  cv->assign(n_samples, dt);
+  cd->resize(n_samples);
+  for (std::size_t i = 0; i < n_samples; ++i) {
+    (*cd)[i] = dt * (total - static_cast<double>(i) * dt);
+  }
+  (*cv)[0] = 0.5 * dt;
+  (*cv)[last] = 0.5 * dt;
+  (*cd)[0] = 0.5 * dt * total - dt * dt / 6.0;
+  (*cd)[last] = dt * dt / 6.0;
+}
+
+// Adds to a the correction w_n (l0 cv_n + l1 cd_n) (w_n = e_n^2) that zeroes both functionals:
+// the least sum of da_n^2 / w_n that does (Lagrange), a 2 x 2 system.
+void ZeroResiduals(const SyntheticMotionDef& d, std::vector<double>* a) {
+  const std::size_t n = a->size();
+  if (n < 2) return;
+  std::vector<double> cv, cd;
+  ResidualWeights(n, d.dt_s, &cv, &cd);
+  double m00 = 0.0, m01 = 0.0, m11 = 0.0, r0 = 0.0, r1 = 0.0;
+  std::vector<double> w(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const double e = SyntheticEnvelopeAt(d, static_cast<double>(i) * d.dt_s);
+    w[i] = e * e;
+    m00 += w[i] * cv[i] * cv[i];
+    m01 += w[i] * cv[i] * cd[i];
+    m11 += w[i] * cd[i] * cd[i];
+    r0 -= cv[i] * (*a)[i];
+    r1 -= cd[i] * (*a)[i];
+  }
+  const double det = m00 * m11 - m01 * m01;
+  if (!(det > 0.0)) return;  // an envelope nonzero at fewer than two samples
+  const double l0 = (r0 * m11 - m01 * r1) / det, l1 = (m00 * r1 - m01 * r0) / det;
+  for (std::size_t i = 0; i < n; ++i) (*a)[i] += w[i] * (l0 * cv[i] + l1 * cd[i]);
+}
+
 // Uniform on [0, 1) from the top 53 bits of one draw.
 double Uniform01(std::mt19937_64& rng) {
   return static_cast<double>(rng() >> 11) * 0x1.0p-53;
@@ -159,6 +209,11 @@ std::string SyntheticMotionProblem(const SyntheticMotionDef& d) {
   if (d.filter_frequency_hz > 0.0 && !positive(d.filter_damping)) {
     return "filter_damping must be > 0, got " + Num(d.filter_damping);
   }
+  if (d.high_pass_hz < 0.0 || !std::isfinite(d.high_pass_hz) || d.high_pass_hz >= nyquist_hz) {
+    return "high_pass_hz must be >= 0 (0: no high-pass after the envelope) and below the "
+           "Nyquist frequency " +
+           Num(nyquist_hz) + " Hz, got " + Num(d.high_pass_hz);
+  }
   if (d.envelope == SyntheticEnvelope::kJennings) {
     if (!positive(d.rise_s)) return "rise_s must be > 0 (s), got " + Num(d.rise_s);
     if (!(d.strong_end_s >= d.rise_s) || !std::isfinite(d.strong_end_s)) {
@@ -190,13 +245,18 @@ std::vector<double> GenerateSyntheticMotion(const SyntheticMotionDef& d) {
   const double sigma = std::sqrt(2.0 * kPi * intensity / d.dt_s);
   Normal normal(d.seed);
   std::vector<double> a(n + 1);
-  double peak = 0.0;
   for (std::size_t i = 0; i <= n; ++i) {
     double y = kt.Step(sigma * normal.Next());
     if (high_pass) y = cp.Step(y);
     a[i] = y * SyntheticEnvelopeAt(d, static_cast<double>(i) * d.dt_s);
-    peak = std::max(peak, std::abs(a[i]));
   }
+  if (d.high_pass_hz > 0.0) {
+    Biquad hp = HighPass(d);
+    for (double& v : a) v = hp.Step(v);
+  }
+  if (d.zero_residuals) ZeroResiduals(d, &a);
+  double peak = 0.0;
+  for (const double v : a) peak = std::max(peak, std::abs(v));
   if (d.target_peak_mps2 > 0.0 && peak > 0.0) {
     const double factor = d.target_peak_mps2 / peak;
     for (double& v : a) v *= factor;
@@ -208,6 +268,7 @@ double SyntheticPsd(const SyntheticMotionDef& d, double omega) {
   const std::complex<double> z = std::polar(1.0, omega * d.dt_s);
   std::complex<double> h = KanaiTajimi(d).At(z);
   if (d.filter_frequency_hz > 0.0) h *= CloughPenzien(d).At(z);
+  if (d.high_pass_hz > 0.0) h *= HighPass(d).At(z);
   return d.intensity_m2ps3 * std::norm(h);
 }
 
@@ -220,7 +281,22 @@ double ContinuousKanaiTajimiPsd(const SyntheticMotionDef& d, double omega) {
     const double wf = 2.0 * kPi * d.filter_frequency_hz, zf = d.filter_damping;
     h2 *= w2 * w2 / ((wf * wf - w2) * (wf * wf - w2) + 4.0 * zf * zf * wf * wf * w2);
   }
+  if (d.high_pass_hz > 0.0) {
+    // |s^2 / (s + w_c)^2|^2 at s = i omega.
+    const double wc2 = 4.0 * kPi * kPi * d.high_pass_hz * d.high_pass_hz;
+    h2 *= w2 * w2 / ((wc2 + w2) * (wc2 + w2));
+  }
   return d.intensity_m2ps3 * h2;
+}
+
+RecordResiduals ResidualsOf(const std::vector<double>& a, double dt) {
+  RecordResiduals r;
+  for (std::size_t i = 1; i < a.size(); ++i) {
+    // Exact over a linear piece: d += dt v + dt^2 (a0 / 3 + a1 / 6), v += dt (a0 + a1) / 2.
+    r.displacement_m += dt * (r.velocity_mps + dt * (a[i - 1] / 3.0 + a[i] / 6.0));
+    r.velocity_mps += 0.5 * dt * (a[i - 1] + a[i]);
+  }
+  return r;
 }
 
 }  // namespace rockbench
