@@ -4,18 +4,6 @@
 #include <sstream>
 
 namespace rockbench::reference {
-BlockProps MakeBlockProps(double B, double H, double m) {
-  BlockProps p;
-  p.b = 0.5 * B;
-  p.h = 0.5 * H;
-  p.m = m;
-  p.r = std::hypot(p.b, p.h);
-  p.theta_c = std::atan2(p.b, p.h);
-  p.I_G = m * (p.b * p.b + p.h * p.h) / 3.0;
-  p.I_O = p.I_G + m * p.r * p.r;
-  return p;
-}
-
 namespace {
 SinCos SinCosOf(double angle_rad) {
   return {std::sin(angle_rad), std::cos(angle_rad)};

@@ -1,20 +1,14 @@
 #pragma once
 /// Geometry and mass properties of two stacked rectangular blocks (Roussis 1999, 4.2 and
 /// docs/model-notes). Block 2 sits centred on block 1.
+#include "scene/rigid_block.h"
 #include "scene/scene.h"
 
 namespace rockbench::reference {
 
-/// Properties of one rectangular block. Lengths in m, masses in kg, inertias in kg m^2.
-struct BlockProps {
-  double b = 0.0;        ///< half width, m
-  double h = 0.0;        ///< half height, m
-  double m = 0.0;        ///< mass, kg
-  double r = 0.0;        ///< corner to mass centre, sqrt(b^2 + h^2), m
-  double theta_c = 0.0;  ///< slenderness angle atan(b / h), rad
-  double I_G = 0.0;      ///< central moment of inertia m (b^2 + h^2) / 3, kg m^2
-  double I_O = 0.0;      ///< about a base corner, (4/3) m r^2, kg m^2
-};
+// One block's mass properties are the scene's (scene/rigid_block.h).
+using ::rockbench::BlockProps;
+using ::rockbench::MakeBlockProps;
 
 /// Sine and cosine of a constant angle.
 struct SinCos {
@@ -40,9 +34,6 @@ struct Geometry {
   /// offsets of gamma1 (theta_c2 - beta) and gamma2 (theta_c2 + beta').
   SinCos trig_c1, trig_c2, trig_beta, trig_beta_p, trig_c_stack, trig_gamma1, trig_gamma2;
 };
-
-/// The properties of one block from its full width B and height H (m) and mass m (kg).
-BlockProps MakeBlockProps(double B, double H, double m);
 
 /// Builds the geometry of a scene. Throws SceneError when block 2 is wider than block 1 (its
 /// pivots would not be on block 1: outside the thesis's model).

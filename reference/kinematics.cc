@@ -42,19 +42,6 @@ Tilts TiltsOf(const State& s) {
   return {std::sin(s.theta1), std::cos(s.theta1), std::sin(s.theta2), std::cos(s.theta2)};
 }
 
-Mode ModeOf(Contacts c, bool two_blocks) {
-  if (!two_blocks) c.interface = Contact::kFace;
-  if (c.ground == Contact::kFace) {
-    if (c.interface == Contact::kFace) return Mode::kRest;
-    return c.interface == Contact::kRight ? Mode::k4a : Mode::k4b;
-  }
-  const bool right = c.ground == Contact::kRight;
-  if (c.interface == Contact::kFace) return right ? Mode::k3a : Mode::k3b;
-  const bool same = c.interface == c.ground;
-  if (right) return same ? Mode::k1a : Mode::k2a;
-  return same ? Mode::k1b : Mode::k2b;
-}
-
 int DofCount(Mode mode, bool two_blocks) {
   const Contacts c = ContactsOf(mode);
   if (!two_blocks) return c.ground == Contact::kFace ? 0 : 1;

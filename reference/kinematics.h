@@ -9,31 +9,20 @@
 
 #include "reference/geometry.h"
 #include "scene/mode.h"
+#include "scene/rigid_block.h"
 
 namespace rockbench::reference {
 
-struct Vec2 {
-  double x = 0.0, y = 0.0;
-};
-inline Vec2 operator+(Vec2 a, Vec2 b) {
-  return {a.x + b.x, a.y + b.y};
-}
-inline Vec2 operator-(Vec2 a, Vec2 b) {
-  return {a.x - b.x, a.y - b.y};
-}
-inline Vec2 operator*(double s, Vec2 a) {
-  return {s * a.x, s * a.y};
-}
-inline double Dot(Vec2 a, Vec2 b) {
-  return a.x * b.x + a.y * b.y;
-}
-inline double Cross(Vec2 a, Vec2 b) {
-  return a.x * b.y - a.y * b.x;
-}
-/// a rotated by +90 degrees (counter-clockwise).
-inline Vec2 Perp(Vec2 a) {
-  return {-a.y, a.x};
-}
+// The plane vector and the contact vocabulary are the scene's (scene/rigid_block.h,
+// scene/mode.h), shared with the engines' monitor.
+using ::rockbench::Contact;
+using ::rockbench::Contacts;
+using ::rockbench::ContactsOf;
+using ::rockbench::Cross;
+using ::rockbench::Dot;
+using ::rockbench::ModeOf;
+using ::rockbench::Perp;
+using ::rockbench::Vec2;
 
 /// State of the two blocks: angles (rad) and rates (rad/s), thesis sign convention.
 struct State {
@@ -49,40 +38,6 @@ struct Tilts {
 };
 Tilts TiltsOf(const State& s);
 
-/// How a contact is closed: a whole face, or a single corner on the right (+x) or left side.
-enum class Contact { kFace, kRight, kLeft };
-struct Contacts {
-  Contact ground = Contact::kFace;     ///< block 1 on the ground
-  Contact interface = Contact::kFace;  ///< block 2 on block 1
-};
-/// The contacts of a mode (1a: right/right, 2a: right/left, 3a: right/face, 4a: face/right...).
-/// Inline: the integrator's event functions ask for it at every evaluation.
-inline Contacts ContactsOf(Mode mode) {
-  switch (mode) {
-    case Mode::kRest:
-      return {Contact::kFace, Contact::kFace};
-    case Mode::k1a:
-      return {Contact::kRight, Contact::kRight};
-    case Mode::k1b:
-      return {Contact::kLeft, Contact::kLeft};
-    case Mode::k2a:
-      return {Contact::kRight, Contact::kLeft};
-    case Mode::k2b:
-      return {Contact::kLeft, Contact::kRight};
-    case Mode::k3a:
-      return {Contact::kRight, Contact::kFace};
-    case Mode::k3b:
-      return {Contact::kLeft, Contact::kFace};
-    case Mode::k4a:
-      return {Contact::kFace, Contact::kRight};
-    case Mode::k4b:
-      return {Contact::kFace, Contact::kLeft};
-  }
-  return {};
-}
-
-/// The mode of a contact set (for one block the interface is ignored).
-Mode ModeOf(Contacts contacts, bool two_blocks);
 /// Number of degrees of freedom of a mode: 2 (modes 1, 2), 1 (3, 4), 0 (rest).
 int DofCount(Mode mode, bool two_blocks);
 

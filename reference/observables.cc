@@ -15,31 +15,12 @@ State StateOf(const Sample& sample, bool two_blocks) {
   return st;
 }
 
-Contact TiltContact(Contact angle_side, double rate_radps, double rate_threshold_radps) {
-  if (angle_side != Contact::kFace) return angle_side;
-  if (!(std::abs(rate_radps) > rate_threshold_radps)) return Contact::kFace;
-  return rate_radps > 0.0 ? Contact::kRight : Contact::kLeft;
-}
-
-Contact TiltContact(double angle_rad, double rate_radps, TiltThresholds thresholds) {
-  Contact angle_side = Contact::kFace;
-  if (std::abs(angle_rad) > thresholds.angle_rad) {
-    angle_side = angle_rad > 0.0 ? Contact::kRight : Contact::kLeft;
-  }
-  return TiltContact(angle_side, rate_radps, thresholds.rate_radps);
-}
-
 Mode ModeOfState(const State& s, bool two_blocks, TiltThresholds thresholds) {
   Contacts c;
   c.ground = TiltContact(s.theta1, s.omega1, thresholds);
   c.interface = two_blocks ? TiltContact(s.theta2 - s.theta1, s.omega2 - s.omega1, thresholds)
                            : Contact::kFace;
   return ModeOf(c, two_blocks);
-}
-
-double BlockEnergy_j(const BlockProps& block, double g_mps2, const BodyMotion& body) {
-  return 0.5 * block.m * Dot(body.vG, body.vG) + 0.5 * block.I_G * body.w_radps * body.w_radps +
-         block.m * g_mps2 * body.G.y;
 }
 
 MechanicalEnergy StateEnergy(const Geometry& geo, Mode mode, const State& s) {

@@ -25,26 +25,12 @@ State StateOf(const Sample& sample, bool two_blocks);
 
 // ---- The mode of a state ----
 
-/// Below these a tilt gives no side. Zero (the default) is the rule for exact states, such as
-/// the reference's: its closed contacts have exactly zero angle and rate. A noisy state, such as
-/// an engine's readout, needs thresholds above its noise (the engines' monitor: MonitorConfig in
-/// engines/common/monitor.h, 1e-5 rad to tilt, 5e-6 rad to land, 1e-2 rad/s).
-struct TiltThresholds {
-  double angle_rad = 0.0;   ///< |angle| at or below this gives no side, rad
-  double rate_radps = 0.0;  ///< |rate| at or below this gives no side, rad/s
-};
-
-/// The contact of one tilt (block 1 on the ground: theta1, omega1; block 2 on block 1: theta2 -
-/// theta1, omega2 - omega1): the right corner when the angle is beyond the threshold to the
-/// right, the left corner to the left; a flat block turning faster than the rate threshold
-/// pivots on the corner on the side of its rate (it is passing through zero, or starting to
-/// rock); flat and still, it sits on its face (Contact::kFace).
-Contact TiltContact(double angle_rad, double rate_radps, TiltThresholds thresholds = {});
-
-/// The same rule when the angle's side is already decided (kRight, kLeft, or kFace for flat),
-/// for example by a hysteresis on the angle: a flat tilt takes the side of its rate when
-/// |rate| > rate_threshold_radps.
-Contact TiltContact(Contact angle_side, double rate_radps, double rate_threshold_radps);
+// The tilt's contact rule (scene/mode.h) and a block's energy (scene/rigid_block.h) are the
+// scene's, shared with the engines' monitor.
+using ::rockbench::BlockEnergy_j;
+using ::rockbench::BodyMotion;
+using ::rockbench::TiltContact;
+using ::rockbench::TiltThresholds;
 
 /// The rocking mode of a state (scene/mode.h): the mode of the contacts TiltContact gives block
 /// 1 on the ground and block 2 on block 1 (ModeOf). One block: kRest, k3a or k3b.
@@ -53,19 +39,6 @@ Contact TiltContact(Contact angle_side, double rate_radps, double rate_threshold
 Mode ModeOfState(const State& state, bool two_blocks, TiltThresholds thresholds = {});
 
 // ---- Mechanical energy ----
-
-/// The motion of one rigid block in the base frame: mass centre G (m), its velocity (m/s), and
-/// the counter-clockwise angular velocity (rad/s; -omega in the thesis's convention).
-struct BodyMotion {
-  Vec2 G;
-  Vec2 vG;
-  double w_radps = 0.0;
-};
-
-/// Kinetic energy in the base frame plus gravitational potential energy m g y_G of one block,
-/// J: (1/2) m |vG|^2 + (1/2) I_G w^2 + m g y_G, with I_G = m (b^2 + h^2) / 3. A block at rest on
-/// its face has m g h (h its half height).
-double BlockEnergy_j(const BlockProps& block, double g_mps2, const BodyMotion& body);
 
 /// Energy of a state, J: per block (block2_j is 0 for one block) and their sum.
 struct MechanicalEnergy {

@@ -4,8 +4,6 @@
 #include <cmath>
 #include <numbers>
 
-#include "reference/observables.h"
-
 namespace rockbench {
 
 void ReadBaseMotion(const EngineInput& in, std::int64_t n, StepReadout* s) {
@@ -77,12 +75,11 @@ bool UpdateSide(int* side, double prev, double angle, double t_prev, double t, d
 }
 
 // The hysteresis's side (+1 right, -1 left, 0 flat) as the contact it implies, and back.
-reference::Contact ContactOfSide(int side) {
-  return side > 0 ? reference::Contact::kRight
-                  : (side < 0 ? reference::Contact::kLeft : reference::Contact::kFace);
+Contact ContactOfSide(int side) {
+  return side > 0 ? Contact::kRight : (side < 0 ? Contact::kLeft : Contact::kFace);
 }
-int SideOfContact(reference::Contact c) {
-  return c == reference::Contact::kRight ? 1 : (c == reference::Contact::kLeft ? -1 : 0);
+int SideOfContact(Contact c) {
+  return c == Contact::kRight ? 1 : (c == Contact::kLeft ? -1 : 0);
 }
 
 }  // namespace
@@ -102,12 +99,12 @@ Monitor::Monitor(const EngineInput& input, MonitorConfig config) : cfg_(config) 
   b1_ = 0.5 * input.block1.width_m;
   h1_ = 0.5 * input.block1.height_m;
   m1_ = input.block1.mass_kg;
-  props1_ = reference::MakeBlockProps(input.block1.width_m, input.block1.height_m, m1_);
+  props1_ = MakeBlockProps(input.block1.width_m, input.block1.height_m, m1_);
   if (two_) {
     b2_ = 0.5 * input.block2->width_m;
     h2_ = 0.5 * input.block2->height_m;
     m2_ = input.block2->mass_kg;
-    props2_ = reference::MakeBlockProps(input.block2->width_m, input.block2->height_m, m2_);
+    props2_ = MakeBlockProps(input.block2->width_m, input.block2->height_m, m2_);
   }
   g_ = input.run.gravity_mps2;
   dt_ = input.time_step_s;
@@ -137,7 +134,7 @@ Monitor::Derived Monitor::Derive(const StepReadout& s) {
   const double yl_top = y1 - s1 * b1_ + c1 * h1_;
   const double yr_top = y1 + s1 * b1_ + c1 * h1_;
   d.gap_ground_m = std::min(std::min(yl, yr), std::min(yl_top, yr_top));
-  d.energy_j = reference::BlockEnergy_j(props1_, g_, {{x1, y1}, {vx1, vy1}, r1.w_radps});
+  d.energy_j = BlockEnergy_j(props1_, g_, {{x1, y1}, {vx1, vy1}, r1.w_radps});
   if (two_) {
     const BodyReadout& r2 = s.block2;
     phi2_ += std::remainder(std::atan2(r2.sin_phi, r2.cos_phi) - phi2_, 2.0 * std::numbers::pi);
@@ -145,7 +142,7 @@ Monitor::Derived Monitor::Derive(const StepReadout& s) {
     d.sample.omega2_radps = -r2.w_radps;
     const double x2 = r2.x_m - s.ground_x_m, y2 = r2.y_m - s.ground_y_m;
     const double vx2 = r2.vx_mps - s.ground_vx_mps, vy2 = r2.vy_mps - s.ground_vy_mps;
-    d.energy_j += reference::BlockEnergy_j(props2_, g_, {{x2, y2}, {vx2, vy2}, r2.w_radps});
+    d.energy_j += BlockEnergy_j(props2_, g_, {{x2, y2}, {vx2, vy2}, r2.w_radps});
     // Block 2's bottom corners in block 1's frame: gap above block 1's top face (y = h1).
     const double c2 = r2.cos_phi, s2 = r2.sin_phi;
     double gap = 1e300;
@@ -181,21 +178,21 @@ void Monitor::Pivots(const StepReadout& s, Derived* d, int* side1, int* side2) c
 }
 
 void Monitor::TiltSides(const Sample& s, int* side1, int* side2) const {
-  // The reference's rule (reference/observables.h TiltContact), with the angle's side from the
+  // The reference's rule (scene/mode.h TiltContact), with the angle's side from the
   // hysteresis and the flat band's rate threshold of MonitorConfig.
-  *side1 = SideOfContact(
-      reference::TiltContact(ContactOfSide(ground_.side), s.omega1_radps, cfg_.rate_tol_radps));
+  *side1 =
+      SideOfContact(TiltContact(ContactOfSide(ground_.side), s.omega1_radps, cfg_.rate_tol_radps));
   *side2 = 0;
   if (two_) {
-    *side2 = SideOfContact(reference::TiltContact(
-        ContactOfSide(interface_.side), s.omega2_radps - s.omega1_radps, cfg_.rate_tol_radps));
+    *side2 = SideOfContact(TiltContact(ContactOfSide(interface_.side),
+                                       s.omega2_radps - s.omega1_radps, cfg_.rate_tol_radps));
   }
 }
 
 Mode Monitor::InferMode(const Sample& s) const {
   int s1 = 0, s2 = 0;
   TiltSides(s, &s1, &s2);
-  return reference::ModeOf({ContactOfSide(s1), ContactOfSide(s2)}, two_);
+  return ModeOf({ContactOfSide(s1), ContactOfSide(s2)}, two_);
 }
 
 void Monitor::Record(const Sample& s) {

@@ -9,9 +9,10 @@
 #include <vector>
 
 #include "engines/common/engine_input.h"
-#include "reference/geometry.h"
 #include "scene/history.h"
+#include "scene/mode.h"
 #include "scene/outcome.h"
+#include "scene/rigid_block.h"
 
 namespace rockbench {
 
@@ -21,13 +22,13 @@ inline constexpr const char* kViolationFlags[] = {"sliding", "uplift", "penetrat
 
 /// Thresholds of the monitor. Angles in rad, rates in rad/s, lengths in m.
 struct MonitorConfig {
-  /// The mode of a state is the reference's rule (reference/observables.h TiltContact,
-  /// ModeOfState) with the thresholds below, above the engines' noise: the reference's exact
-  /// states need none, but two bodies of an engine tilted together differ by ~1e-13 rad, which
-  /// the exact rule would read as block 2 rocking on block 1.
-  /// A block (or block 2 on block 1) counts as tilted to a side once |angle| exceeds
-  /// angle_enter_rad, and as landed once its angle falls below angle_leave_rad (hysteresis, so
-  /// numerical noise at rest does not chatter).
+  /// The mode of a state is the reference's rule (scene/mode.h TiltContact and ModeOf, which
+  /// the reference's ModeOfState applies) with the thresholds below, above the engines' noise: the
+  /// reference's exact states need none, but two bodies of an engine tilted together differ by
+  /// ~1e-13 rad, which the exact rule would read as block 2 rocking on block 1. A block (or block 2
+  /// on block 1) counts as tilted to a side once |angle| exceeds angle_enter_rad, and as landed
+  /// once its angle falls below angle_leave_rad (hysteresis, so numerical noise at rest does not
+  /// chatter).
   double angle_enter_rad = 1e-5;
   double angle_leave_rad = 5e-6;
   /// A flat block (|angle| below angle_enter_rad) turning faster than this is passing through
@@ -139,7 +140,7 @@ class Monitor {
   // The side each tilt pivots on (+1 right, -1 left, 0 flat): the hysteresis's side, or for a
   // flat tilt the side of its rate above MonitorConfig::rate_tol_radps.
   void TiltSides(const Sample& s, int* side1, int* side2) const;
-  // The mode of those sides (reference::ModeOf).
+  // The mode of those sides (scene/mode.h ModeOf).
   Mode InferMode(const Sample& s) const;
   // Pivot points and sides of the state (for slip): block 1's on the ground, block 2's on
   // block 1 (in block 1's frame).
@@ -160,7 +161,7 @@ class Monitor {
   MonitorConfig cfg_;
   bool two_ = false;
   double b1_ = 0.0, h1_ = 0.0, b2_ = 0.0, h2_ = 0.0, m1_ = 0.0, m2_ = 0.0;
-  reference::BlockProps props1_, props2_;  // for the energy (reference/observables.h)
+  BlockProps props1_, props2_;  // for the energy (scene/rigid_block.h)
   double g_ = 9.81, dt_ = 0.0, out_dt_ = 0.0, tipping_energy_j_ = 0.0;
 
   History history_;
