@@ -77,6 +77,13 @@ std::string Describe(const toml::node& node) {
   return "a date/time";
 }
 
+// The keys only kind = "kanai_tajimi" reads (ReadSynthetic): a record file and every other kind
+// refuse them.
+constexpr std::array<const char*, 12> kSyntheticOnlyKeys = {
+    "intensity",      "ground_frequency_hz", "ground_damping", "filter_frequency_hz",
+    "filter_damping", "high_pass_hz",        "zero_residuals", "envelope",
+    "rise_s",         "strong_end_s",        "decay_per_s",    "seed"};
+
 // Allowed keys of every table; a key listed with `true` is a sub-table.
 using KeyList = std::vector<std::pair<std::string_view, bool>>;
 const std::map<std::string, KeyList, std::less<>>& Schema() {
@@ -455,10 +462,7 @@ class Reader {
       Forbid(t, prefix, "amplitude_g", why);
       Forbid(t, prefix, "frequency_hz", why);
       Forbid(t, prefix, "duration_s", why);
-      for (const char* key :
-           {"intensity", "ground_frequency_hz", "ground_damping", "filter_frequency_hz",
-            "filter_damping", "high_pass_hz", "zero_residuals", "envelope", "rise_s",
-            "strong_end_s", "decay_per_s", "seed"}) {
+      for (const char* key : kSyntheticOnlyKeys) {
         Forbid(t, prefix, key, "only for kind = \"kanai_tajimi\", not for a record file");
       }
       const bool at2 = IsAt2File(m.file);
@@ -484,10 +488,7 @@ class Reader {
       return m;
     }
     const std::string only_synthetic = "only for kind = \"kanai_tajimi\"";
-    for (const char* key :
-         {"intensity", "ground_frequency_hz", "ground_damping", "filter_frequency_hz",
-          "filter_damping", "high_pass_hz", "zero_residuals", "envelope", "rise_s", "strong_end_s",
-          "decay_per_s", "seed"}) {
+    for (const char* key : kSyntheticOnlyKeys) {
       Forbid(t, prefix, key, only_synthetic);
     }
     Forbid(t, prefix, "dt", "only for one-column record files and kind = \"kanai_tajimi\"");
