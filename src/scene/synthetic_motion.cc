@@ -92,18 +92,18 @@ void ResidualWeights(std::size_t n_samples, double dt, std::vector<double>* cv,
   (*cd)[last] = dt * dt / 6.0;
 }
 
-// Adds to a the correction w_n (l0 cv_n + l1 cd_n) (w_n = e_n^2) that zeroes both functionals:
-// the least sum of da_n^2 / w_n that does (Lagrange), a 2 x 2 system.
-void ZeroResiduals(const SyntheticMotionDef& d, std::vector<double>* a) {
+// Adds to a the correction w_n (l0 cv_n + l1 cd_n) (w_n = e_n^2, e_n the envelope at sample n)
+// that zeroes both functionals: the least sum of da_n^2 / w_n that does (Lagrange), a 2 x 2
+// system.
+void ZeroResiduals(const std::vector<double>& envelope, double dt, std::vector<double>* a) {
   const std::size_t n = a->size();
   if (n < 2) return;
   std::vector<double> cv, cd;
-  ResidualWeights(n, d.dt_s, &cv, &cd);
+  ResidualWeights(n, dt, &cv, &cd);
   double m00 = 0.0, m01 = 0.0, m11 = 0.0, r0 = 0.0, r1 = 0.0;
   std::vector<double> w(n);
   for (std::size_t i = 0; i < n; ++i) {
-    const double e = SyntheticEnvelopeAt(d, static_cast<double>(i) * d.dt_s);
-    w[i] = e * e;
+    w[i] = envelope[i] * envelope[i];
     m00 += w[i] * cv[i] * cv[i];
     m01 += w[i] * cv[i] * cd[i];
     m11 += w[i] * cd[i] * cd[i];
@@ -244,17 +244,18 @@ std::vector<double> GenerateSyntheticMotion(const SyntheticMotionDef& d) {
   const double intensity = d.target_peak_mps2 > 0.0 ? 1.0 : d.intensity_m2ps3;
   const double sigma = std::sqrt(2.0 * kPi * intensity / d.dt_s);
   Normal normal(d.seed);
-  std::vector<double> a(n + 1);
+  std::vector<double> a(n + 1), envelope(n + 1);
   for (std::size_t i = 0; i <= n; ++i) {
     double y = kt.Step(sigma * normal.Next());
     if (high_pass) y = cp.Step(y);
-    a[i] = y * SyntheticEnvelopeAt(d, static_cast<double>(i) * d.dt_s);
+    envelope[i] = SyntheticEnvelopeAt(d, static_cast<double>(i) * d.dt_s);
+    a[i] = y * envelope[i];
   }
   if (d.high_pass_hz > 0.0) {
     Biquad hp = HighPass(d);
     for (double& v : a) v = hp.Step(v);
   }
-  if (d.zero_residuals) ZeroResiduals(d, &a);
+  if (d.zero_residuals) ZeroResiduals(envelope, d.dt_s, &a);
   double peak = 0.0;
   for (const double v : a) peak = std::max(peak, std::abs(v));
   if (d.target_peak_mps2 > 0.0 && peak > 0.0) {
