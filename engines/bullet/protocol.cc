@@ -15,7 +15,7 @@ namespace {
 
 constexpr char kInputMagic[8] = {'R', 'B', 'B', 'I', 'N', 'P', 'U', 'T'};
 constexpr char kOutputMagic[8] = {'R', 'B', 'B', 'O', 'U', 'T', 'P', 'T'};
-constexpr std::uint32_t kVersion = 2;
+constexpr std::uint32_t kVersion = 3;  // 3: each flag with its onset time
 constexpr std::uint64_t kViolationFlagCount = std::size(kViolationFlags);
 
 class Writer {
@@ -256,7 +256,15 @@ std::string SerializeOutput(const EngineResult& out) {
   w.Put<std::int32_t>(o.impacts_ground);
   w.Put<std::int32_t>(o.impacts_interface);
   w.Put<std::uint64_t>(o.violations.size());
-  for (const std::string& v : o.violations) w.PutStr(v);
+  for (size_t i = 0; i < o.violations.size(); ++i) {
+    w.PutStr(o.violations[i]);
+    w.Put(i < o.violation_onsets_t_s.size() ? o.violation_onsets_t_s[i] : o.end_t_s);
+  }
+  w.Put<std::uint64_t>(o.significant_violations.size());
+  for (size_t i = 0; i < o.significant_violations.size(); ++i) {
+    w.PutStr(o.significant_violations[i]);
+    w.Put(o.significant_onsets_t_s[i]);
+  }
   w.PutStr(out.summary.dump());
   w.Put(out.wall_s);
   return w.Take();
@@ -307,7 +315,16 @@ EngineResult ParseOutput(const std::string& bytes) {
   o.impacts_interface = r.Get<std::int32_t>();
   const auto nv = r.Get<std::uint64_t>();
   if (nv > kViolationFlagCount) throw std::runtime_error("bullet helper protocol: bad flags");
-  for (std::uint64_t i = 0; i < nv; ++i) o.violations.push_back(r.GetStr());
+  for (std::uint64_t i = 0; i < nv; ++i) {
+    o.violations.push_back(r.GetStr());
+    o.violation_onsets_t_s.push_back(r.Get<double>());
+  }
+  const auto n_significant = r.Get<std::uint64_t>();
+  if (n_significant > kViolationFlagCount) throw std::runtime_error("bullet helper protocol: bad flags");
+  for (std::uint64_t i = 0; i < n_significant; ++i) {
+    o.significant_violations.push_back(r.GetStr());
+    o.significant_onsets_t_s.push_back(r.Get<double>());
+  }
   out.summary = nlohmann::json::parse(r.GetStr());
   out.wall_s = r.Get<double>();
   r.ExpectEnd();

@@ -1,6 +1,7 @@
 #include "engines/common/monitor.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 
@@ -111,6 +112,9 @@ Monitor::Monitor(const EngineInput& input, MonitorConfig config) : cfg_(config) 
   out_dt_ = input.run.output_interval_s;
   tipping_energy_j_ = m1_ * g_ * (std::hypot(b1_, h1_) - h1_);
   if (two_) tipping_energy_j_ += m2_ * g_ * (std::hypot(b2_, h2_) - h2_);
+  // alpha B per block: a corner moved by d tilts the block by d / B.
+  significant_m_[0] = cfg_.significant_critical_fraction * props1_.theta_c * 2.0 * b1_;
+  if (two_) significant_m_[1] = cfg_.significant_critical_fraction * props2_.theta_c * 2.0 * b2_;
   history_.two_blocks = two_;
 }
 
@@ -233,6 +237,8 @@ bool Monitor::Step(std::int64_t n, const StepReadout& s) {
   if (!Finite(s.block1) || (two_ && !Finite(s.block2))) {
     status_ = "blow_up";
     status_detail_ = "non-finite state after step " + std::to_string(n);
+    end_t_s_ = s.t_s;
+    NoteOnsets(s.t_s);
     return false;
   }
   Derived d = Derive(s);
@@ -257,7 +263,39 @@ bool Monitor::Step(std::int64_t n, const StepReadout& s) {
   end_t_s_ = t;
 
   RecordOutput(cur, t);
-  return !Stopped(d, t_prev, abs1_prev, abs2_prev);
+  const bool stopped = Stopped(d, t_prev, abs1_prev, abs2_prev);
+  NoteOnsets(t);
+  return !stopped;
+}
+
+std::array<bool, std::size(kViolationFlags)> Monitor::Raised() const {
+  const double slip_flag1 = cfg_.slip_flag_rel * 2.0 * b1_;
+  const double slip_flag2 = cfg_.slip_flag_rel * 2.0 * b2_;
+  return {slip_ground_m_ > slip_flag1 || (two_ && slip_interface_m_ > slip_flag2),
+          uplift_ground_episodes_ > 0 || (two_ && uplift_interface_episodes_ > 0),
+          penetration_ground_max_m_ > cfg_.penetration_flag_m ||
+              (two_ && penetration_interface_max_m_ > cfg_.penetration_flag_m),
+          energy_gain_max_j_ > cfg_.energy_growth_flag_rel * tipping_energy_j_,
+          status_ == "blow_up"};
+}
+
+std::array<bool, std::size(kViolationFlags)> Monitor::RaisedSignificantly() const {
+  auto over = [&](double ground_m, double interface_m) {
+    return ground_m > significant_m_[0] || (two_ && interface_m > significant_m_[1]);
+  };
+  const auto raised = Raised();
+  return {over(slip_ground_m_, slip_interface_m_),
+          over(uplift_ground_max_m_, uplift_interface_max_m_),
+          over(penetration_ground_max_m_, penetration_interface_max_m_), raised[3], raised[4]};
+}
+
+void Monitor::NoteOnsets(double t_s) {
+  const auto raised = Raised();
+  const auto significant = RaisedSignificantly();
+  for (size_t i = 0; i < raised.size(); ++i) {
+    if (raised[i] && std::isnan(onset_t_s_[i])) onset_t_s_[i] = t_s;
+    if (significant[i] && std::isnan(significant_t_s_[i])) significant_t_s_[i] = t_s;
+  }
 }
 
 Monitor::Landings Monitor::DetectLandings(const Sample& cur, double t_prev) {
@@ -559,16 +597,20 @@ RunOutcome Monitor::Outcome() const {
   if (two_) o.peak_theta2_rad = peak2_, o.peak_theta2_t_s = peak2_t_;
   o.impacts_ground = impacts_ground_;
   o.impacts_interface = impacts_interface_;
-  const double slip_flag1 = cfg_.slip_flag_rel * 2.0 * b1_;
-  const double slip_flag2 = cfg_.slip_flag_rel * 2.0 * b2_;
-  const bool raised[] = {slip_ground_m_ > slip_flag1 || (two_ && slip_interface_m_ > slip_flag2),
-                         uplift_ground_episodes_ > 0 || (two_ && uplift_interface_episodes_ > 0),
-                         penetration_ground_max_m_ > cfg_.penetration_flag_m ||
-                             (two_ && penetration_interface_max_m_ > cfg_.penetration_flag_m),
-                         energy_gain_max_j_ > cfg_.energy_growth_flag_rel * tipping_energy_j_,
-                         status_ == "blow_up"};
+  const auto raised = Raised();
   for (size_t i = 0; i < std::size(kViolationFlags); ++i) {
-    if (raised[i]) o.violations.push_back(kViolationFlags[i]);
+    if (!raised[i]) continue;
+    o.violations.push_back(kViolationFlags[i]);
+    // A flag first raised by Outcome's own evaluation (never, in a run that stepped) is dated
+    // at the run's end.
+    o.violation_onsets_t_s.push_back(std::isnan(onset_t_s_[i]) ? end_t_s_ : onset_t_s_[i]);
+  }
+  const auto significant = RaisedSignificantly();
+  for (size_t i = 0; i < std::size(kViolationFlags); ++i) {
+    if (!significant[i]) continue;
+    o.significant_violations.push_back(kViolationFlags[i]);
+    o.significant_onsets_t_s.push_back(std::isnan(significant_t_s_[i]) ? end_t_s_
+                                                                        : significant_t_s_[i]);
   }
   return o;
 }
@@ -628,10 +670,21 @@ nlohmann::json Monitor::Summary() const {
   v["out_of_plane_rad"] = out_of_plane_rad_;
   v["max_rate_radps"] = max_rate_radps_;
   const RunOutcome outcome = Outcome();
+  nlohmann::json onsets = nlohmann::json::object();
   for (const char* flag : kViolationFlags) {
-    v[flag] = std::find(outcome.violations.begin(), outcome.violations.end(), flag) !=
-              outcome.violations.end();
+    const auto it = std::find(outcome.violations.begin(), outcome.violations.end(), flag);
+    v[flag] = it != outcome.violations.end();
+    if (it != outcome.violations.end()) {
+      onsets[flag] = outcome.violation_onsets_t_s[it - outcome.violations.begin()];
+    }
   }
+  v["onset_t_s"] = onsets;
+  nlohmann::json significant = nlohmann::json::object();
+  for (size_t i = 0; i < outcome.significant_violations.size(); ++i) {
+    significant[outcome.significant_violations[i]] = outcome.significant_onsets_t_s[i];
+  }
+  v["significant_onset_t_s"] = significant;
+  v["significant_displacement_m"] = {significant_m_[0], significant_m_[1]};
   j["violations"] = v;
 
   json m;

@@ -3,7 +3,10 @@
 /// angles back from the bodies' poses, infers the mode, detects impacts and mode changes, and
 /// measures what the model forbids (slip at either contact, uplift, penetration, energy growth
 /// without input, blow-up, out-of-plane motion).
+#include <array>
 #include <cstdint>
+#include <iterator>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -44,6 +47,12 @@ struct MonitorConfig {
   double slip_flag_rel = 1e-3;
   double penetration_flag_m = 1e-4;
   double energy_growth_flag_rel = 0.01;
+  /// The verdict's scale of the contact flags (harness/verdict.h): slip, uplift or penetration of
+  /// a block counts against it once it exceeds this fraction of the block's critical angle
+  /// alpha times its width B: a corner moved by d tilts the block by d / B, so this is 10% of
+  /// the comparison's smallest tolerance (1% of alpha, harness/tolerance.h), the same 10% of
+  /// the scale the comparison applies to angles. Below it, the flag is reported only.
+  double significant_critical_fraction = 1e-3;
   /// Blow-up: a non-finite state, |rate| above blow_up_rate_radps, or energy gained without
   /// input above blow_up_energy_rel times the tipping energy. The run stops there.
   double blow_up_rate_radps = 1e3;
@@ -156,6 +165,12 @@ class Monitor {
   // blow-up); sets the status. |theta| of both blocks before the step: abs1_prev, abs2_prev.
   bool Stopped(const Derived& d, double t_prev, double abs1_prev, double abs2_prev);
   void PushEvent(Event e);
+  // Which flags of kViolationFlags the run has raised so far.
+  std::array<bool, std::size(kViolationFlags)> Raised() const;
+  // The same at the verdict's scale (MonitorConfig::significant_critical_fraction).
+  std::array<bool, std::size(kViolationFlags)> RaisedSignificantly() const;
+  // Dates the flags raised for the first time at t_s.
+  void NoteOnsets(double t_s);
 
   EngineInput in_meta_;  // geometry and settings (drive samples not kept)
   MonitorConfig cfg_;
@@ -202,6 +217,14 @@ class Monitor {
   bool free_ = false;
   double out_of_plane_m_ = 0.0, out_of_plane_rad_ = 0.0;
   double max_rate_radps_ = 0.0;
+  // When each flag of kViolationFlags was first raised at the verdict's scale (NaN: not yet).
+  std::array<double, std::size(kViolationFlags)> significant_t_s_ = {kNoOnset, kNoOnset, kNoOnset,
+                                                                     kNoOnset, kNoOnset};
+  double significant_m_[2] = {0.0, 0.0};  // per block, MonitorConfig::significant_critical_fraction
+  // When each flag of kViolationFlags was first raised (NaN: not yet).
+  std::array<double, std::size(kViolationFlags)> onset_t_s_ = {kNoOnset, kNoOnset, kNoOnset,
+                                                               kNoOnset, kNoOnset};
+  static constexpr double kNoOnset = std::numeric_limits<double>::quiet_NaN();
 
   std::string status_ = "completed";
   std::string status_detail_;

@@ -110,22 +110,26 @@ void Execute(const CompareCliOptions& opt) {
     for (int b = 1; b <= nb; ++b) {
       const AngleAgreement& g = b == 1 ? a.theta1 : *a.theta2;
       std::printf(
-          "  %s theta%d: max error %.3g rad (%.3g where the reference is predictable), RMS %.3g "
-          "rad, within %.3g rad until %.3f s, peak %+.2f%% (%+.4f s)\n",
+          "  %s theta%d: max error %.3g rad (%.3g where the reference is predictable: %.3g x the "
+          "local tolerance), RMS %.3g rad, within the local tolerance until %.3f s, peak "
+          "%+.2f%% (%+.4f s)\n",
           a.engine.c_str(), b, g.max_abs_error_rad, g.max_abs_error_predictable_rad,
-          g.rms_error_rad, g.tolerance_rad, g.horizon_s, 100.0 * g.peak_rel_error,
+          g.max_error_ratio_predictable, g.rms_error_rad, g.horizon_s, 100.0 * g.peak_rel_error,
           g.peak_time_error_s);
     }
-    std::printf("  %s impacts: %d of %d matched (engine %d), max time error %.3g ms%s%s\n",
-                a.engine.c_str(), a.impacts.matched, a.impacts.reference_impacts,
-                a.impacts.engine_impacts, a.impacts.max_abs_time_error_s * 1e3,
+    std::printf("  %s impacts faster than %g rad/s: %d of %d matched (engine %d; all impacts: "
+                "reference %d, engine %d), max time error %.3g ms%s%s\n",
+                a.engine.c_str(), run.comparison.value("impact_min_rate_radps", 0.0),
+                a.impacts.matched, a.impacts.reference_impacts, a.impacts.engine_impacts,
+                a.impacts.reference_impacts_all, a.impacts.engine_impacts_all,
+                a.impacts.max_abs_time_error_s * 1e3,
                 a.impacts.first_mismatch.empty() ? "" : "; first mismatch: ",
                 a.impacts.first_mismatch.c_str());
     std::printf("  %s overturning %s, final state %s\n", a.engine.c_str(),
                 a.overturn_agree ? "agrees" : "DIFFERS", a.final_agree ? "agrees" : "DIFFERS");
   }
   for (const EngineAgreement& a : agreements) {
-    std::printf("verdict %s: %s: %s\n", a.engine.c_str(), a.verdict_agrees ? "AGREES" : "DIFFERS",
+    std::printf("verdict %s: %s: %s\n", a.engine.c_str(), VerdictLabel(a.verdict_kind).c_str(),
                 a.verdict.c_str());
   }
   std::printf("outputs in %s (comparison.json, comparison.csv, summary.json, reference/",

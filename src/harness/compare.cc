@@ -4,6 +4,9 @@
 #include <cmath>
 #include <cstdio>
 
+#include "harness/tolerance.h"
+#include "util/format.h"
+
 namespace rockbench {
 namespace {
 
@@ -112,9 +115,15 @@ nlohmann::json AngleJson(const AngleAgreement& a) {
           {"rms_error_rad", a.rms_error_rad},
           {"peak_rel_error", a.peak_rel_error},
           {"peak_time_error_s", a.peak_time_error_s},
-          {"horizon_s", a.horizon_s},
+          {"horizon_s", RoundTime_s(a.horizon_s)},
           {"within_tolerance", a.within_tolerance},
           {"tolerance_rad", a.tolerance_rad},
+          {"tolerance_min_rad", a.tolerance_min_rad},
+          {"tolerance_at_horizon_rad",
+           a.within_tolerance ? nlohmann::json(nullptr) : nlohmann::json(a.tolerance_at_horizon_rad)},
+          {"max_error_ratio", a.max_error_ratio},
+          {"max_error_ratio_t_s", RoundTime_s(a.max_error_ratio_t_s)},
+          {"max_error_ratio_predictable", a.max_error_ratio_predictable},
           {"max_abs_error_horizon_rad", a.max_abs_error_horizon_rad},
           {"rms_error_horizon_rad", a.rms_error_horizon_rad},
           {"peak_reference_rad", a.peak_reference_rad},
@@ -137,7 +146,12 @@ double AngleTolerance_rad(const Scene& scene, int block, double reference_peak_r
   if (scene.compare.tolerance_rad) return *scene.compare.tolerance_rad;
   const BlockDef& b = block == 2 && scene.block2 ? *scene.block2 : scene.block1;
   const double critical_rad = std::atan(b.width_m / b.height_m);
-  return std::max(0.1 * reference_peak_rad, 0.01 * critical_rad);
+  // LocalTolerance's value where the envelope is the peak (harness/tolerance.h).
+  const ToleranceConfig c;
+  return std::clamp(c.envelope_fraction * std::min(reference_peak_rad,
+                                                   c.cap_critical_fraction * critical_rad),
+                    c.floor_critical_fraction * critical_rad,
+                    c.envelope_fraction * c.cap_critical_fraction * critical_rad);
 }
 
 int CountComparedImpacts(const History& history, double min_rate_radps) {
@@ -157,6 +171,15 @@ EngineAgreement CompareWithReference(const Scene& scene, const reference::Result
   }
   const bool two = scene.two_blocks();
   const reference::Summary& rs = ref.summary;
+  a.flags = run.outcome.violations;
+  a.flag_onsets_t_s = run.outcome.violation_onsets_t_s;
+  a.flag_onsets_t_s.resize(a.flags.size(), run.outcome.end_t_s);
+  a.significant_flags = run.outcome.significant_violations;
+  a.significant_onsets_t_s = run.outcome.significant_onsets_t_s;
+  a.significant_onsets_t_s.resize(a.significant_flags.size(), run.outcome.end_t_s);
+  a.reference_status = rs.status;
+  a.reference_status_detail = rs.status_detail;
+  a.reference_end_s = ref.trajectory.end_s();
 
   // Common grid: the engine's sample times, up to the end of the shorter meaningful run. A
   // reference that stopped at rest stays valid afterwards (At clamps to its end).
@@ -171,10 +194,15 @@ EngineAgreement CompareWithReference(const Scene& scene, const reference::Result
   const double peak_ref[2] = {rs.peak_theta1_rad, rs.peak_theta2_rad};
   const double peak_ref_t[2] = {rs.peak_theta1_t_s, rs.peak_theta2_t_s};
   AngleAgreement ang[2];
+  ToleranceProfile profile[2];
   for (int b = 0; b < 2; ++b) {
     ang[b].tolerance_rad = AngleTolerance_rad(scene, b + 1, peak_ref[b]);
     ang[b].horizon_s = until;
     ang[b].predictability_horizon_s = options.predictability_horizon_s[b];
+    if (b == 0 || two) {
+      profile[b] = LocalTolerance(scene, b + 1, ref.history);
+      ang[b].tolerance_min_rad = profile[b].Min();
+    }
   }
   double sum2[2] = {0, 0}, sum2_h[2] = {0, 0}, sum2_p[2] = {0, 0}, sum2_b[2] = {0, 0};
   int n_h[2] = {0, 0}, n_p[2] = {0, 0};
@@ -198,9 +226,20 @@ EngineAgreement CompareWithReference(const Scene& scene, const reference::Result
         sum2_b[b] += e * e;
         ++g.samples_beyond;
       }
-      if (g.within_tolerance && e > g.tolerance_rad) {
+      // The error on the scale of the motion at that time.
+      const double tol = profile[b].At(s.t_s);
+      const double ratio = e / tol;
+      if (ratio > g.max_error_ratio) {
+        g.max_error_ratio = ratio;
+        g.max_error_ratio_t_s = s.t_s;
+      }
+      if (s.t_s <= options.predictability_horizon_s[b]) {
+        g.max_error_ratio_predictable = std::max(g.max_error_ratio_predictable, ratio);
+      }
+      if (g.within_tolerance && e > tol) {
         g.within_tolerance = false;
         g.horizon_s = s.t_s;
+        g.tolerance_at_horizon_rad = tol;
       }
       if (g.within_tolerance) {
         g.max_abs_error_horizon_rad = std::max(g.max_abs_error_horizon_rad, e);
@@ -259,7 +298,7 @@ nlohmann::json AgreementJson(const EngineAgreement& a) {
   nlohmann::json j;
   j["wall_s"] = a.wall_s;
   j["status"] = a.status;
-  j["compared_until_s"] = a.compared_until_s;
+  j["compared_until_s"] = RoundTime_s(a.compared_until_s);
   j["samples_compared"] = a.samples_compared;
   j["theta1"] = AngleJson(a.theta1);
   if (a.theta2) j["theta2"] = AngleJson(*a.theta2);
@@ -291,6 +330,8 @@ nlohmann::json AgreementJson(const EngineAgreement& a) {
     j["verdict"] = a.verdict;
     j["verdict_kind"] = a.verdict_kind;
     j["agrees"] = a.verdict_agrees;
+    j["verdict_decided_by"] = a.verdict_decided_by;
+    if (!a.seeds.is_null()) j["verdict_seeds"] = a.seeds;
   }
   if (!a.statistics.is_null()) j["statistics"] = a.statistics;
   return j;
@@ -316,9 +357,7 @@ nlohmann::json ComparisonJson(const Scene& scene, const reference::Result& ref,
   j["tolerance"] =
       scene.compare.tolerance_rad
           ? nlohmann::json{{"rule", "scene"}, {"rad", *scene.compare.tolerance_rad}}
-          : nlohmann::json{{"rule",
-                            "10% of the reference's peak |theta|, at least 1% of the block's "
-                            "critical angle atan(B/H)"}};
+          : nlohmann::json{{"rule", ToleranceRuleText()}};
   j["tolerance"]["theta1_rad"] = AngleTolerance_rad(scene, 1, rs.peak_theta1_rad);
   if (scene.two_blocks()) {
     j["tolerance"]["theta2_rad"] = AngleTolerance_rad(scene, 2, rs.peak_theta2_rad);

@@ -17,11 +17,18 @@ namespace rockbench {
 
 /// Agreement of one block's angle (theta1 or theta2) with the reference.
 struct AngleAgreement {
-  double tolerance_rad = 0.0;              ///< horizon tolerance used
+  /// The tolerance at the reference's peak (AngleTolerance_rad): the scale of the run's
+  /// largest motion. The horizon uses the local tolerance (harness/tolerance.h).
+  double tolerance_rad = 0.0;
+  double tolerance_min_rad = 0.0;         ///< the local tolerance's smallest value
+  double tolerance_at_horizon_rad = 0.0;  ///< the local tolerance the error exceeded
+  /// max over the compared samples of |error| / local tolerance (> 1: outside the tolerance),
+  /// its time, and the same before the predictability horizon.
+  double max_error_ratio = 0.0, max_error_ratio_t_s = 0.0, max_error_ratio_predictable = 0.0;
   double max_abs_error_rad = 0.0;          ///< max |theta_engine - theta_ref| over the compared run
   double rms_error_rad = 0.0;              ///< RMS of the same over the compared run
-  double horizon_s = 0.0;                  ///< first time the error exceeds the tolerance (the
-                                           ///< end of the comparison if it never does)
+  double horizon_s = 0.0;                  ///< first time the error exceeds the local tolerance
+                                           ///< (the end of the comparison if it never does)
   bool within_tolerance = true;            ///< the error never exceeded the tolerance
   double max_abs_error_horizon_rad = 0.0;  ///< max error before the horizon
   double rms_error_horizon_rad = 0.0;      ///< RMS error before the horizon
@@ -57,9 +64,11 @@ struct ImpactAgreement {
   std::string first_mismatch;         ///< empty when every impact of both runs matched
 };
 
-/// Agreement-horizon tolerance of block `block` (1 or 2), rad: the scene's [compare] tolerance,
-/// else 10% of the reference's peak |theta| of that block, never below 1% of the block's
-/// critical angle atan(B/H) (so a block that never moves is not held to a tolerance of zero).
+/// The tolerance of block `block` (1 or 2) at the scale of the reference's peak, rad: the scene's
+/// [compare] tolerance, else 10% of the peak |theta| (capped at the block's critical angle
+/// atan(B/H)), never below 1% of the critical angle: harness/tolerance.h's local rule where the
+/// envelope is the peak. The convergence check, the ensembles' statistics and the final state
+/// use it; the agreement horizon uses the local tolerance.
 double AngleTolerance_rad(const Scene& scene, int block, double reference_peak_rad);
 
 /// Options of the comparison.
@@ -95,10 +104,22 @@ struct EngineAgreement {
   std::string final_mode_reference, final_mode_engine;
   double final_theta1_error_rad = 0.0, final_theta2_error_rad = 0.0;
   nlohmann::json violations;  ///< the engine's summary "violations" (null when it has none)
+  /// The engine's monitor flags (kViolationFlags) and when each was first raised, s.
+  std::vector<std::string> flags;
+  std::vector<double> flag_onsets_t_s;
+  /// The same at the verdict's scale (RunOutcome::significant_violations): these decide.
+  std::vector<std::string> significant_flags;
+  std::vector<double> significant_onsets_t_s;
+  /// The reference's status and where its solution ends (s): past an "assumption_violated"
+  /// end the model has nothing to say.
+  std::string reference_status, reference_status_detail;
+  double reference_end_s = 0.0;
   /// The verdict (harness/verdict.h), when one was made: its kind, whether the engine agrees,
   /// the plain-words text and the statistical comparison (engines.<name>.statistics).
   std::string verdict_kind, verdict;
   bool verdict_agrees = false;
+  std::string verdict_decided_by;  ///< the quantity that decided the verdict, with its value
+  nlohmann::json seeds;            ///< the seeds' decisions when the verdict was re-seeded
   nlohmann::json statistics;
 };
 

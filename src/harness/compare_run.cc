@@ -67,7 +67,7 @@ CompareRun RunCompare(const Scene& scene, const GroundMotion& motion,
                   scene.compare.initial_rel);
     line += buf + HorizonText(out.ensemble->horizon_s[0]);
     if (two) line += ", theta2 horizon " + HorizonText(out.ensemble->horizon_s[1]);
-    std::snprintf(buf, sizeof buf, " (%.2f s)", out.ensemble->wall_s);
+    std::snprintf(buf, sizeof buf, " (ensemble wall time %.2f s)", out.ensemble->wall_s);
     log(line + buf);
   }
   const bool horizon_within_run =
@@ -76,6 +76,8 @@ CompareRun RunCompare(const Scene& scene, const GroundMotion& motion,
   // 3. Each engine: its nominal run, and its ensemble when the reference's horizon falls inside
   //    the run (before it, one run is enough to judge) and the engine agrees up to it.
   const int engine_members = std::min(scene.compare.engine_members, scene.compare.members);
+  // Reference ensembles of the extra seeds, run once for every engine that needs them.
+  std::vector<std::optional<ReferenceEnsemble>> extra_ensembles(kVerdictSeeds - 1);
   for (const std::string& name : engines) {
     EngineRun run = RunEngine(name, scene, motion);
     log(run.one_line);
@@ -83,7 +85,9 @@ CompareRun RunCompare(const Scene& scene, const GroundMotion& motion,
     std::optional<StatisticalComparison> statistics;
     std::vector<MemberOutcome> outcomes;
     Verdict v = MakeVerdict(scene, a, horizons, std::nullopt);
-    if (horizon_within_run && v.kind != "differs_before_horizon") {
+    const bool beyond = horizon_within_run && v.kind != "differs_before_horizon" &&
+                        v.kind != "violates_model" && v.kind != "outside_model";
+    if (beyond) {
       if (engine_members > 0) {
         outcomes = RunEngineEnsemble(name, scene, motion, engine_members, options.jobs,
                                      base.min_impact_rate_radps);
@@ -92,9 +96,69 @@ CompareRun RunCompare(const Scene& scene, const GroundMotion& motion,
       }
       v = MakeVerdict(scene, a, horizons, statistics);
     }
+    // A statistical decision near the level is re-checked with two more seeds: one that
+    // changes with the seed is "marginal", not AGREES or DIFFERS at random.
+    if (statistics && statistics->available && InMarginalBand(SmallestFamilyP(*statistics))) {
+      nlohmann::json seeds = nlohmann::json::array();
+      seeds.push_back({{"seed", scene.compare.seed},
+                       {"verdict_kind", v.kind},
+                       {"smallest_p_holm", SmallestFamilyP(*statistics)}});
+      bool same = true;
+      for (int k = 1; k < kVerdictSeeds; ++k) {
+        Scene seeded = scene;
+        seeded.compare.seed = scene.compare.seed + static_cast<uint64_t>(k);
+        Scene seeded_reference = out.reference_scene;
+        seeded_reference.compare.seed = seeded.compare.seed;
+        std::optional<ReferenceEnsemble>& e = extra_ensembles[k - 1];
+        if (!e) {
+          e = RunReferenceEnsemble(seeded_reference, motion, ref, scene.compare.members,
+                                   out.tolerance_rad, options.jobs, base.min_impact_rate_radps);
+        }
+        Horizons h;
+        CompareOptions o = base;
+        for (int b = 0; b < nb; ++b) {
+          h.horizon_s[b] = e->horizon_s[b];
+          if (e->horizon_s[b]) o.predictability_horizon_s[b] = *e->horizon_s[b];
+        }
+        const EngineAgreement ak = CompareWithReference(seeded, ref, run, o);
+        const std::vector<MemberOutcome> ok = RunEngineEnsemble(
+            name, seeded, motion, engine_members, options.jobs, base.min_impact_rate_radps);
+        const StatisticalComparison sk = CompareEnsembles(e->outcomes, ok, two, out.tolerance_rad,
+                                                          scene.run.output_interval_s);
+        const Verdict vk = MakeVerdict(seeded, ak, h, sk);
+        same = same && vk.agrees == v.agrees;
+        seeds.push_back({{"seed", seeded.compare.seed},
+                         {"verdict_kind", vk.kind},
+                         {"smallest_p_holm", sk.available ? nlohmann::json(SmallestFamilyP(sk))
+                                                          : nlohmann::json(nullptr)}});
+      }
+      std::string ps;
+      for (const nlohmann::json& sd : seeds) {
+        ps += (ps.empty() ? "" : ", ") + std::string("seed ") +
+              std::to_string(sd["seed"].get<uint64_t>()) + ": " +
+              sd["verdict_kind"].get<std::string>();
+        if (sd["smallest_p_holm"].is_number()) {
+          std::snprintf(buf, sizeof buf, " (smallest Holm p %.2g)",
+                        sd["smallest_p_holm"].get<double>());
+          ps += buf;
+        }
+      }
+      if (same) {
+        v.text += "; the same with " + std::to_string(kVerdictSeeds) + " ensemble seeds (" + ps +
+                  ")";
+      } else {
+        v.kind = "marginal";
+        v.agrees = false;
+        v.text = "marginal: the statistical decision beyond the horizon changes with the "
+                 "ensemble's seed (" + ps + "); " + v.text;
+        v.decided_by = "the seeds disagree: " + ps;
+      }
+      a.seeds = std::move(seeds);
+    }
     a.verdict_kind = v.kind;
     a.verdict = v.text;
     a.verdict_agrees = v.agrees;
+    a.verdict_decided_by = v.decided_by;
     if (statistics) a.statistics = StatisticsJson(*statistics);
     out.agreements.push_back(std::move(a));
     out.engine_runs.push_back(std::move(run));

@@ -8,7 +8,9 @@
 #include "harness/compare.h"
 #include "harness/parallel.h"
 #include "harness/summary.h"
+#include "harness/tolerance.h"
 #include "harness/wall_clock.h"
+#include "util/format.h"
 #include "reference/geometry.h"
 #include "reference/transitions.h"
 
@@ -153,7 +155,29 @@ MemberOutcome OutcomeOf(const EngineRun& run, const Scene& scene, double min_imp
     o.peak_t_s[b] = o.overturn_t_s;
     o.residual_rad[b] = sign * scene.model.overturn_rad;
   }
+  // RMS angles: trapezoids on the history's samples (the engines' output grid, the
+  // reference's grid and event times), up to an overturn.
+  for (int b = 0; b < (two_blocks ? 2 : 1); ++b) {
+    const double t_end = o.overturned_block != 0 ? o.overturn_t_s : run.history.samples.empty()
+                                                                         ? 0.0
+                                                                         : run.history.samples.back().t_s;
+    double integral = 0.0;
+    for (size_t k = 1; k < run.history.samples.size(); ++k) {
+      const Sample& a = run.history.samples[k - 1];
+      const Sample& c = run.history.samples[k];
+      if (a.t_s >= t_end) break;
+      const double va = b == 0 ? a.theta1_rad : a.theta2_rad;
+      const double vc = b == 0 ? c.theta1_rad : c.theta2_rad;
+      integral += 0.5 * (va * va + vc * vc) * (std::min(c.t_s, t_end) - a.t_s);
+    }
+    o.rms_rad[b] = scene.run.duration_s > 0.0 ? std::sqrt(integral / scene.run.duration_s) : 0.0;
+  }
   o.impacts = CountComparedImpacts(run.history, min_impact_rate_radps);
+  for (const Event& ev : run.history.events) {
+    if (ev.kind == "ground_impact" || ev.kind == "interface_impact") {
+      o.impact_dissipation_j += ev.energy_before_j - ev.energy_after_j;
+    }
+  }
   return o;
 }
 
@@ -170,7 +194,7 @@ ReferenceEnsemble RunReferenceEnsemble(const Scene& nominal_scene, const GroundM
   const double dt = nominal_scene.run.output_interval_s;
   const auto n_grid = static_cast<size_t>(std::floor(nominal_scene.run.duration_s / dt + 1e-9)) + 1;
   e.t_s.resize(n_grid);
-  for (size_t k = 0; k < n_grid; ++k) e.t_s[k] = static_cast<double>(k) * dt;
+  for (size_t k = 0; k < n_grid; ++k) e.t_s[k] = RoundTime_s(static_cast<double>(k) * dt);
   // A run on the grid. Beyond the end of a run stopped by a violated assumption there is
   // nothing to compare (NaN); beyond an overturn, the overturned block stays at its overturn
   // angle (a lasting outcome that other members may not share) and the other block's angle is
@@ -221,6 +245,11 @@ ReferenceEnsemble RunReferenceEnsemble(const Scene& nominal_scene, const GroundM
       [&](int done, int total) { progress.Update(done, total); });
 
   for (int b = 0; b < (two ? 2 : 1); ++b) {
+    // The local tolerance, for the band file (the report draws it); the horizon is judged on
+    // the scale of the whole run (docs/verdicts.md, "The error scale").
+    const ToleranceProfile profile = LocalTolerance(nominal_scene, b + 1, nominal.history);
+    e.local_tolerance_rad[b].resize(n_grid);
+    for (size_t k = 0; k < n_grid; ++k) e.local_tolerance_rad[b][k] = profile.At(e.t_s[k]);
     e.lo_rad[b] = nominal_grid[b];
     e.hi_rad[b] = nominal_grid[b];
     e.spread_rad[b].assign(n_grid, 0.0);
@@ -297,14 +326,16 @@ nlohmann::json PredictabilityJson(const Scene& scene, const ReferenceEnsemble& e
 }
 
 std::string EnsembleBandCsv(const ReferenceEnsemble& e, bool two) {
-  std::string out = two ? "t,theta1_lo,theta1_hi,theta1_spread,theta2_lo,theta2_hi,theta2_spread\n"
-                        : "t,theta1_lo,theta1_hi,theta1_spread\n";
+  std::string out = two ? "t,theta1_lo,theta1_hi,theta1_spread,theta1_tol,theta2_lo,theta2_hi,"
+                          "theta2_spread,theta2_tol\n"
+                        : "t,theta1_lo,theta1_hi,theta1_spread,theta1_tol\n";
   for (size_t k = 0; k < e.t_s.size(); ++k) {
     // The band ends with the nominal run (a block's angle is undefined after it).
     if (std::isnan(e.lo_rad[0][k]) || (two && std::isnan(e.lo_rad[1][k]))) break;
     out += Num(e.t_s[k]);
     for (int b = 0; b < (two ? 2 : 1); ++b) {
-      for (double v : {e.lo_rad[b][k], e.hi_rad[b][k], e.spread_rad[b][k]}) {
+      for (double v :
+           {e.lo_rad[b][k], e.hi_rad[b][k], e.spread_rad[b][k], e.local_tolerance_rad[b][k]}) {
         out.append(",").append(Num(v));
       }
     }
@@ -318,7 +349,8 @@ std::string OutcomesCsv(const std::vector<MemberOutcome>& outcomes,
   std::string out =
       "member,horizontal_factor,vertical_factor,initial_factor_theta1,status,overturned_block,"
       "overturn_t_s,peak_theta1_rad,peak_theta1_t_s,residual_theta1_rad,";
-  out += two ? "peak_theta2_rad,peak_theta2_t_s,residual_theta2_rad,impacts\n" : "impacts\n";
+  out += two ? "peak_theta2_rad,peak_theta2_t_s,residual_theta2_rad,impacts,impact_dissipation_j\n"
+             : "impacts,impact_dissipation_j\n";
   for (const MemberOutcome& o : outcomes) {
     const MemberPerturbation p = o.member >= 0 && o.member < static_cast<int>(perturbations.size())
                                      ? perturbations[o.member]
@@ -337,7 +369,9 @@ std::string OutcomesCsv(const std::vector<MemberOutcome>& outcomes,
       out.append(",").append(Num(o.peak_t_s[b]));
       out.append(",").append(Num(o.residual_rad[b]));
     }
-    out.append(",").append(std::to_string(o.impacts)).append("\n");
+    for (int b = 0; b < (two ? 2 : 1); ++b) out.append(",").append(Num(o.rms_rad[b]));
+    out.append(",").append(std::to_string(o.impacts));
+    out.append(",").append(Num(o.impact_dissipation_j)).append("\n");
   }
   return out;
 }

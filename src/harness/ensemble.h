@@ -51,7 +51,14 @@ struct MemberOutcome {
   double peak_rad[2] = {0, 0};      ///< peak |theta1|, |theta2|
   double peak_t_s[2] = {0, 0};      ///< their times (the time of the largest excursion)
   int impacts = 0;                  ///< impacts at or above the comparison's minimum rate
+  /// Energy the impacts dissipated, J: the sum over every impact of its energy before minus
+  /// after (events.csv). Threshold-free: an impact too slow to count dissipates almost nothing.
+  double impact_dissipation_j = 0.0;
   double residual_rad[2] = {0, 0};  ///< theta1, theta2 at the end of the run
+  /// The root mean square of theta1, theta2 over the scene's duration (sqrt of the integral of
+  /// theta^2 to the run's end, or to an overturn, over run.duration): the intensity of the
+  /// whole response, which counts nothing and so has no counting threshold.
+  double rms_rad[2] = {0, 0};
   double wall_s = 0.0;
   /// A run that stopped because the model's assumptions failed has no outcome to compare.
   bool valid() const { return status != "assumption_violated"; }
@@ -72,6 +79,11 @@ struct ReferenceEnsemble {
   /// and the nominal run span, and the largest |member - nominal|.
   std::vector<double> t_s;
   std::vector<double> lo_rad[2], hi_rad[2], spread_rad[2];
+  /// The local tolerance of each block on the grid (harness/tolerance.h), which judges an
+  /// engine's error before the horizon.
+  std::vector<double> local_tolerance_rad[2];
+  /// The tolerance at the scale of the nominal run's peak (AngleTolerance_rad): the horizon is
+  /// the first t_k at which spread_rad exceeds it; the statistics' margins are 10% of it.
   double tolerance_rad[2] = {0, 0};
   std::optional<double> horizon_s[2];  ///< nullopt: within the tolerance for the whole run
   double max_spread_rad[2] = {0, 0};

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 
 #include "util/format.h"
 
@@ -107,10 +108,18 @@ StatisticalComparison CompareEnsembles(const std::vector<MemberOutcome>& referen
         [b](const MemberOutcome& o) { return o.peak_t_s[b]; },
         [b, tol](const MemberOutcome& o) { return o.peak_rad[b] > tol; });
   }
+  for (int b = 0; b < nb; ++b) {
+    const std::string th = b == 0 ? "theta1" : "theta2";
+    add(
+        "rms_" + th + "_rad", "RMS " + th, "rad", 0.1 * tolerance_rad[b],
+        [b](const MemberOutcome& o) { return o.rms_rad[b]; },
+        [](const MemberOutcome&) { return true; });
+  }
   add(
       "impacts", "impacts", "", 0.0,
       [](const MemberOutcome& o) { return static_cast<double>(o.impacts); },
       [](const MemberOutcome&) { return true; });
+  s.quantities.back().in_family = false;
   for (int b = 0; b < nb; ++b) {
     const std::string th = b == 0 ? "theta1" : "theta2";
     add(
@@ -140,12 +149,18 @@ StatisticalComparison CompareEnsembles(const std::vector<MemberOutcome>& referen
 
   // One family: every defined KS p-value and the overturning test.
   std::vector<double> p;
-  for (const QuantityComparison& q : s.quantities) p.push_back(q.ks.p_value);
+  for (const QuantityComparison& q : s.quantities) {
+    if (q.in_family) p.push_back(q.ks.p_value);
+  }
   p.push_back(s.overturn.p_value);
   const std::vector<double> holm = stats::HolmAdjust(p);
-  for (size_t k = 0; k < s.quantities.size(); ++k) {
-    QuantityComparison& q = s.quantities[k];
-    q.p_holm = holm[k];
+  size_t next = 0;
+  for (QuantityComparison& q : s.quantities) {
+    if (!q.in_family) {
+      q.p_holm = std::nan("");
+      continue;
+    }
+    q.p_holm = holm[next++];
     if (!std::isnan(q.p_holm) && q.p_holm <= alpha) s.rejected.push_back(q.key);
   }
   s.overturn_p_holm = holm.back();
@@ -155,6 +170,61 @@ StatisticalComparison CompareEnsembles(const std::vector<MemberOutcome>& referen
   return s;
 }
 
+namespace {
+
+const char* th(int b) {
+  return b == 0 ? "theta1" : "theta2";
+}
+
+// A flag in words: what the engine did.
+std::string FlagWords(const std::string& flag) {
+  if (flag == "sliding") return "slid";
+  if (flag == "uplift") return "lifted off its support";
+  if (flag == "penetration") return "penetrated its support";
+  if (flag == "energy_growth") return "gained energy without base input";
+  if (flag == "blow_up") return "blew up";
+  return flag;
+}
+
+// "slid from 1.23 s, lifted off its support from 1.50 s", for the flags whose onset is in
+// [from_s, to_s).
+// `significant`: the flags at the verdict's scale, else the monitor's.
+std::string FlagsText(const EngineAgreement& a, double from_s, double to_s,
+                      const std::vector<std::string>& only, bool significant) {
+  const std::vector<std::string>& flags = significant ? a.significant_flags : a.flags;
+  const std::vector<double>& onsets = significant ? a.significant_onsets_t_s : a.flag_onsets_t_s;
+  std::string out;
+  for (size_t k = 0; k < flags.size() && k < onsets.size(); ++k) {
+    if (!only.empty() && std::find(only.begin(), only.end(), flags[k]) == only.end()) continue;
+    const double t = onsets[k];
+    if (t < from_s || t >= to_s) continue;
+    out += (out.empty() ? "" : ", ") + FlagWords(flags[k]) + " (" + flags[k] + " flag) from " +
+           Format("%.2f", t) + " s";
+  }
+  return out;
+}
+
+// The largest error ratio before the horizons, in words.
+std::string RatioText(const AngleAgreement* ang[2], int nb, int* worst_block) {
+  int w = 0;
+  for (int b = 1; b < nb; ++b) {
+    if (ang[b]->max_error_ratio_predictable > ang[w]->max_error_ratio_predictable) w = b;
+  }
+  *worst_block = w;
+  return std::string(th(w)) + " error at most " +
+         Format("%.3g", ang[w]->max_error_ratio_predictable) +
+         " x the local tolerance where the reference is predictable";
+}
+
+}  // namespace
+
+std::string VerdictLabel(const std::string& kind) {
+  if (kind == "agrees" || kind == "agrees_to_horizon" || kind == "pointwise_only") return "AGREES";
+  if (kind == "outside_model") return "OUTSIDE MODEL";
+  if (kind == "marginal") return "MARGINAL";
+  return "DIFFERS";
+}
+
 Verdict MakeVerdict(const Scene& scene, const EngineAgreement& a,
                     const std::optional<Horizons>& predictability,
                     const std::optional<StatisticalComparison>& statistics) {
@@ -162,7 +232,34 @@ Verdict MakeVerdict(const Scene& scene, const EngineAgreement& a,
   const int nb = a.theta2 ? 2 : 1;
   const AngleAgreement* ang[2] = {&a.theta1, a.theta2 ? &*a.theta2 : nullptr};
   const double slack_s = scene.run.output_interval_s;
-  auto th = [](int b) { return std::string(b == 0 ? "theta1" : "theta2"); };
+  const double inf = std::numeric_limits<double>::infinity();
+  // Where the reference's model holds: to its end when it stopped on a violated assumption.
+  const bool model_ends = a.reference_status == "assumption_violated";
+  const double model_end_s = model_ends ? a.reference_end_s : inf;
+
+  // 0. The engine's own integrity: a blow-up or energy gained without input decides, whatever
+  //    the angles; sliding, uplift and penetration decide where the reference's model holds.
+  {
+    const std::string failure = FlagsText(a, -inf, inf, {"blow_up", "energy_growth"}, true);
+    const std::string forbidden =
+        FlagsText(a, -inf, model_end_s, {"sliding", "uplift", "penetration"}, true);
+    if (!failure.empty() || !forbidden.empty() || a.status == "blow_up") {
+      v.kind = "violates_model";
+      v.agrees = false;
+      std::string what = failure;
+      if (!forbidden.empty()) {
+        what += (what.empty() ? "" : "; ") + forbidden +
+                (model_ends ? ", before the reference's model ends at " +
+                                  Format("%.2f", model_end_s) + " s"
+                            : ", while the reference's model (no sliding, no uplift, rigid "
+                              "contact) holds throughout");
+      }
+      if (what.empty()) what = "the run ended in a blow-up";
+      v.text = "the engine does what the model forbids: " + what;
+      v.decided_by = what.substr(0, what.find(';'));
+      return v;
+    }
+  }
 
   if (!predictability) {
     bool all_within = true;
@@ -170,10 +267,16 @@ Verdict MakeVerdict(const Scene& scene, const EngineAgreement& a,
     for (int b = 0; b < nb; ++b) {
       if (ang[b]->within_tolerance) continue;
       all_within = false;
-      out += (out.empty() ? "" : "; ") + th(b) + " leaves the tolerance (" +
-             Format("%.3g", ang[b]->tolerance_rad) + " rad) at " +
+      out += (out.empty() ? "" : "; ") + std::string(th(b)) + " leaves the local tolerance (" +
+             Format("%.3g", ang[b]->tolerance_at_horizon_rad) + " rad there) at " +
              Format("%.3f", ang[b]->horizon_s) + " s";
     }
+    int w = 0;
+    for (int b = 1; b < nb; ++b) {
+      if (ang[b]->max_error_ratio > ang[w]->max_error_ratio) w = b;
+    }
+    v.decided_by = std::string(th(w)) + " error at most " + Format("%.3g", ang[w]->max_error_ratio) +
+                   " x the local tolerance";
     v.kind = all_within ? "pointwise_only" : "pointwise_differs";
     v.agrees = all_within;
     v.text = all_within ? "agrees pointwise over the whole comparison (" +
@@ -196,13 +299,15 @@ Verdict MakeVerdict(const Scene& scene, const EngineAgreement& a,
     const bool ok = g.within_tolerance || (hp && g.horizon_s >= *hp - slack_s);
     const std::string hp_text = hp ? Format("%.2f s", *hp) : "the end of the run";
     if (!ok) {
-      before += (before.empty() ? "" : "; ") + th(b) + " leaves the tolerance (" +
-                Format("%.3g", g.tolerance_rad) + " rad) at " + Format("%.2f", g.horizon_s) +
+      before += (before.empty() ? "" : "; ") + std::string(th(b)) +
+                " leaves the local tolerance (" + Format("%.3g", g.tolerance_at_horizon_rad) +
+                " rad there) at " + Format("%.2f", g.horizon_s) +
                 " s while the reference is predictable until " + hp_text + " (max error there " +
-                Format("%.3g", g.max_abs_error_predictable_rad) + " rad)";
+                Format("%.3g", g.max_abs_error_predictable_rad) + " rad, " +
+                Format("%.3g", g.max_error_ratio_predictable) + " x the local tolerance)";
     } else {
-      agree_part += (agree_part.empty() ? "" : "; ") + th(b) + " " +
-                    (g.within_tolerance ? "within the tolerance for the whole comparison"
+      agree_part += (agree_part.empty() ? "" : "; ") + std::string(th(b)) + " " +
+                    (g.within_tolerance ? "within the local tolerance for the whole comparison"
                                         : "until " + Format("%.2f", g.horizon_s) + " s") +
                     (hp ? " (the reference's own horizon is " + hp_text + ")"
                         : " (the reference is predictable throughout)");
@@ -212,16 +317,71 @@ Verdict MakeVerdict(const Scene& scene, const EngineAgreement& a,
     v.kind = "differs_before_horizon";
     v.agrees = false;
     v.text = "an engine error: " + before;
+    int w = 0;
+    v.decided_by = RatioText(ang, nb, &w);
     return v;
   }
+  // Overturning where the reference is predictable throughout is the engine's to reproduce.
+  if (whole_run && !a.overturn_agree && !model_ends) {
+    v.kind = "differs_before_horizon";
+    v.agrees = false;
+    auto block = [](const std::optional<int>& b) {
+      return b ? "block " + std::to_string(*b) + " overturns" : std::string("nothing overturns");
+    };
+    v.text = "an engine error: " + block(a.overturn_block_engine) + " in the engine's run, " +
+             block(a.overturn_block_reference) + " in the reference's, which is predictable "
+             "throughout";
+    v.decided_by = "overturning";
+    return v;
+  }
+
+  // 2. Where the reference stops because its assumptions end, it has nothing to say.
+  auto outside = [&](const std::string& why, double from_s) {
+    v.kind = "outside_model";
+    v.agrees = false;
+    std::string did =
+        FlagsText(a, from_s - slack_s, inf, {"sliding", "uplift", "penetration"}, false);
+    if (a.overturn_block_engine) {
+      did += (did.empty() ? "" : ", ") + std::string("overturned block ") +
+             std::to_string(*a.overturn_block_engine);
+    }
+    if (did.empty()) did = "stayed within the model's assumptions (no flag raised)";
+    v.text = "outside the model: " + why + "; the engine agrees with it until then (" +
+             agree_part + "); there the engine " + did;
+    v.decided_by = why;
+  };
+  if (model_ends) {
+    outside("the reference's model ends at " + Format("%.2f", model_end_s) + " s (" +
+                (a.reference_status_detail.empty() ? std::string("assumption violated")
+                                                   : a.reference_status_detail) +
+                ")",
+            model_end_s);
+    return v;
+  }
+
   if (whole_run) {
     v.kind = "agrees";
     v.agrees = true;
     v.text = "agrees pointwise: " + agree_part;
+    int w = 0;
+    v.decided_by = RatioText(ang, nb, &w);
     return v;
   }
   v.text = "agrees pointwise where the reference is predictable: " + agree_part;
-  // 2. Beyond the horizon: distributions.
+  // 3. Beyond the horizon: distributions.
+  if (statistics && !statistics->available && statistics->excluded > 0 &&
+      statistics->reference_members < kMinMembers) {
+    double first_h = inf;
+    for (int b = 0; b < nb; ++b) {
+      if (predictability->horizon_s[b]) first_h = std::min(first_h, *predictability->horizon_s[b]);
+    }
+    outside("beyond the horizon (" + Format("%.2f", first_h) + " s) " +
+                std::to_string(statistics->excluded) +
+                " reference members stop where the model's assumptions end, too few remain (" +
+                std::to_string(statistics->reference_members) + ")",
+            first_h);
+    return v;
+  }
   if (!statistics || !statistics->available) {
     v.kind = "agrees_to_horizon";
     v.agrees = true;
@@ -229,9 +389,19 @@ Verdict MakeVerdict(const Scene& scene, const EngineAgreement& a,
               (statistics ? statistics->unavailable_reason
                           : std::string("no engine ensemble: compare.engine_members = 0")) +
               ")";
+    int w = 0;
+    v.decided_by = RatioText(ang, nb, &w);
     return v;
   }
   const StatisticalComparison& s = *statistics;
+  // The family's smallest Holm-adjusted p-value decides.
+  const QuantityComparison* lowest = nullptr;
+  for (const QuantityComparison& q : s.quantities) {
+    if (q.in_family && !std::isnan(q.p_holm) && (!lowest || q.p_holm < lowest->p_holm)) lowest = &q;
+  }
+  const bool overturn_lowest = !lowest || s.overturn_p_holm < lowest->p_holm;
+  v.decided_by = overturn_lowest ? "overturning, Fisher Holm " + PText(s.overturn_p_holm)
+                                 : lowest->label + ", KS Holm " + PText(lowest->p_holm);
   if (s.consistent) {
     v.kind = "agrees";
     v.agrees = true;
@@ -247,7 +417,7 @@ Verdict MakeVerdict(const Scene& scene, const EngineAgreement& a,
         "; beyond it, the engine's ensemble (" + std::to_string(s.engine_members) +
         " members) is consistent with the reference's (" + std::to_string(s.reference_members) +
         "): " + (head ? head->label + " KS " + PText(head->ks.p_value) + ", " : std::string()) +
-        "no quantity differs at a family-wise 5% level";
+        "no quantity differs at a family-wise 5% level (smallest: " + v.decided_by + ")";
     return v;
   }
   v.kind = "differs_beyond_horizon";
@@ -271,6 +441,14 @@ Verdict MakeVerdict(const Scene& scene, const EngineAgreement& a,
   return v;
 }
 
+double SmallestFamilyP(const StatisticalComparison& s) {
+  double p = s.overturn_p_holm;
+  for (const QuantityComparison& q : s.quantities) {
+    if (q.in_family && !std::isnan(q.p_holm)) p = std::min(p, q.p_holm);
+  }
+  return p;
+}
+
 nlohmann::json StatisticsJson(const StatisticalComparison& s) {
   nlohmann::json j;
   j["available"] = s.available;
@@ -287,6 +465,7 @@ nlohmann::json StatisticsJson(const StatisticalComparison& s) {
   for (const QuantityComparison& q : s.quantities) {
     nlohmann::json t = TestJson(q.ks);
     t["p_holm"] = std::isnan(q.p_holm) ? nlohmann::json(nullptr) : nlohmann::json(q.p_holm);
+    t["in_family"] = q.in_family;
     t["margin"] = q.margin;
     t["unit"] = q.unit;
     t["reference"] = SpreadJson(q.reference);

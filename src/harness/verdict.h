@@ -32,6 +32,9 @@ struct QuantityComparison {
   stats::TestResult ks;                   ///< KS with the margin as slack: the verdict's test
   stats::TestResult ad;                   ///< Anderson-Darling (no slack), reported beside KS
   double p_holm = 1.0;                    ///< KS p-value, Holm-adjusted over the family
+  /// Whether the quantity is in the Holm family that decides the verdict; the impact count is
+  /// reported beside it only (its value depends on its rate threshold: docs/verdicts.md).
+  bool in_family = true;
 };
 
 /// The engine's ensemble against the reference's.
@@ -62,13 +65,35 @@ StatisticalComparison CompareEnsembles(const std::vector<MemberOutcome>& referen
 struct Verdict {
   /// "agrees" (pointwise over the whole run, or to the horizon and statistically beyond it),
   /// "agrees_to_horizon" (no statistical comparison was made beyond it),
-  /// "differs_before_horizon" (an engine error where the reference is predictable),
+  /// "differs_before_horizon" (an engine error where the reference is predictable, on the
+  /// local tolerance, or an overturn the reference does not make),
   /// "differs_beyond_horizon" (the engine's ensemble differs from the reference's),
+  /// "violates_model" (the engine blew up or gained energy, or slid, lifted or penetrated where
+  /// the reference's model holds),
+  /// "outside_model" (the reference stops where its assumptions end: nothing to compare),
+  /// "marginal" (the statistical decision changes with the ensemble's seed),
   /// "pointwise_only" / "pointwise_differs" (no reference ensemble was run).
   std::string kind;
   bool agrees = false;
-  std::string text;  ///< one paragraph in plain words
+  std::string text;        ///< one paragraph in plain words
+  std::string decided_by;  ///< the quantity that decided, with its value
 };
+
+/// The console's word for a verdict kind: AGREES, DIFFERS, MARGINAL or OUTSIDE MODEL.
+std::string VerdictLabel(const std::string& kind);
+
+/// The smallest Holm-adjusted p-value of the family (the overturning test included).
+double SmallestFamilyP(const StatisticalComparison& s);
+
+/// Seeds a statistical decision is checked with when its smallest p-value is in the marginal
+/// band (the scene's seed and the next ones).
+inline constexpr int kVerdictSeeds = 3;
+/// The marginal band of the smallest Holm-adjusted p-value, [alpha / 10, 4 alpha] at alpha =
+/// 0.05: measured seed-to-seed, a p-value moves by up to a factor of ~10 (docs/verdicts.md).
+inline constexpr double kMarginalLowP = 0.005, kMarginalHighP = 0.2;
+inline bool InMarginalBand(double p) {
+  return p >= kMarginalLowP && p <= kMarginalHighP;
+}
 
 /// Horizons per block: nullopt inside means "predictable for the whole run"; an absent
 /// `predictability` means no ensemble was run.

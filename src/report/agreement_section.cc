@@ -66,7 +66,16 @@ void MetricsTable(const RunData& run, Page& page) {
                                          Find(c, k + ".first_impact_mismatch")->is_string()
                                      ? Find(c, k + ".first_impact_mismatch")->get<std::string>()
                                      : "";
-    impacts.push_back({e.name, Num(matched) + " of " + Num(nref) + " (engine: " + Num(neng) + ")",
+    const double rate = OptNumber(c, "impact_min_rate_radps", file);
+    const double nref_all = OptNumber(c, k + ".impacts_reference_all", file);
+    const double neng_all = OptNumber(c, k + ".impacts_engine_all", file);
+    // The threshold on the same line as the counts it selects.
+    std::string matched_text = Num(matched) + " of " + Num(nref) + " (engine: " + Num(neng) + ")";
+    if (!std::isnan(rate)) matched_text += " faster than " + Num(rate) + " rad/s";
+    if (!std::isnan(nref_all) && !std::isnan(neng_all)) {
+      matched_text += "; all impacts: " + Num(nref_all) + " reference, " + Num(neng_all) + " engine";
+    }
+    impacts.push_back({e.name, matched_text,
                        Num(1e3 * OptNumber(c, k + ".max_abs_impact_time_error_s", file), 3) + " ms",
                        mismatch.empty() ? "none" : mismatch,
                        OptBool(c, k + ".overturn.agree", file) ? "agrees" : "DIFFERS",

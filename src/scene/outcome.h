@@ -20,6 +20,13 @@ struct RunOutcome {
   /// Engines: the flags their monitor raised ("sliding", "uplift", "penetration",
   /// "energy_growth", "blow_up"), in that order; empty for the reference.
   std::vector<std::string> violations;
+  /// When each flag of `violations` was first raised (s), in the same order.
+  std::vector<double> violation_onsets_t_s;
+  /// The flags raised at the scale the verdict resolves (slip, uplift or penetration above 1%
+  /// of the critical angle times the width of a block; energy growth and blow-up as flagged),
+  /// and when, s.
+  std::vector<std::string> significant_violations;
+  std::vector<double> significant_onsets_t_s;
 
   int impacts() const { return impacts_ground + impacts_interface; }
   bool overturned() const { return overturned_block != 0; }

@@ -144,6 +144,119 @@ TEST(MakeVerdict, BeyondTheHorizonTheStatisticsDecide) {
   EXPECT_EQ(MakeVerdict(s, a, std::nullopt, std::nullopt).kind, "pointwise_differs");
 }
 
+TEST(MakeVerdict, AnEngineThatDoesWhatTheModelForbidsDoesNotAgree) {
+  Scene s;
+  Horizons h;  // predictable throughout
+  EngineAgreement a = Agreement(30.0, 30.0, true, true);
+  a.reference_status = "completed";
+  ASSERT_EQ(MakeVerdict(s, a, h, std::nullopt).kind, "agrees");
+  // Sliding while the model holds decides, whatever the angle error (here none).
+  a.flags = {"sliding"};
+  a.flag_onsets_t_s = {1.25};
+  // Below the verdict's scale a flag is reported, not decisive.
+  EXPECT_EQ(MakeVerdict(s, a, h, std::nullopt).kind, "agrees");
+  a.significant_flags = a.flags;
+  a.significant_onsets_t_s = a.flag_onsets_t_s;
+  Verdict v = MakeVerdict(s, a, h, std::nullopt);
+  EXPECT_EQ(v.kind, "violates_model");
+  EXPECT_FALSE(v.agrees);
+  EXPECT_NE(v.decided_by.find("sliding flag"), std::string::npos) << v.decided_by;
+  EXPECT_NE(v.text.find("1.25 s"), std::string::npos) << v.text;
+  // Energy growth or a blow-up decide even after the model ends.
+  a.flags = a.significant_flags = {"energy_growth"};
+  a.flag_onsets_t_s = a.significant_onsets_t_s = {2.0};
+  a.reference_status = "assumption_violated";
+  a.reference_end_s = 1.0;
+  EXPECT_EQ(MakeVerdict(s, a, h, std::nullopt).kind, "violates_model");
+  a.significant_flags.clear();
+  a.significant_onsets_t_s.clear();
+  a.status = "blow_up";
+  EXPECT_EQ(MakeVerdict(s, a, h, std::nullopt).kind, "violates_model");
+  // No ensemble: the flags still decide.
+  EXPECT_EQ(MakeVerdict(s, a, std::nullopt, std::nullopt).kind, "violates_model");
+}
+
+TEST(MakeVerdict, WhereTheReferenceStopsTheVerdictIsOutsideTheModel) {
+  Scene s;
+  Horizons h;
+  h.horizon_s[1] = 3.5;
+  EngineAgreement a = Agreement(4.3, 4.3, true, true);
+  a.reference_status = "assumption_violated";
+  a.reference_status_detail = "block 2 lifts off";
+  a.reference_end_s = 4.3;
+  // The engine lifts and slides after the model ends: outside the model, and said so.
+  a.flags = {"sliding", "uplift"};
+  a.flag_onsets_t_s = {4.4, 4.31};
+  a.overturn_block_engine = 2;
+  const Verdict v = MakeVerdict(s, a, h, std::nullopt);
+  EXPECT_EQ(v.kind, "outside_model");
+  EXPECT_FALSE(v.agrees);
+  EXPECT_NE(v.text.find("4.30 s"), std::string::npos) << v.text;
+  EXPECT_NE(v.text.find("slid"), std::string::npos) << v.text;
+  EXPECT_NE(v.text.find("lifted off"), std::string::npos) << v.text;
+  EXPECT_NE(v.text.find("overturned block 2"), std::string::npos) << v.text;
+  // The same flags at the verdict's scale before the model ends are a violation of it.
+  a.significant_flags = {"sliding"};
+  a.significant_onsets_t_s = {2.0};
+  EXPECT_EQ(MakeVerdict(s, a, h, std::nullopt).kind, "violates_model");
+  // An engine error before the model ends is still the engine's.
+  a.flags.clear();
+  a.flag_onsets_t_s.clear();
+  a.significant_flags.clear();
+  a.significant_onsets_t_s.clear();
+  a.theta1.within_tolerance = false;
+  a.theta1.horizon_s = 1.0;
+  EXPECT_EQ(MakeVerdict(s, a, h, std::nullopt).kind, "differs_before_horizon");
+}
+
+TEST(MakeVerdict, NoValidReferenceMemberBeyondTheHorizonIsOutsideTheModel) {
+  Scene s;
+  Horizons h;
+  h.horizon_s[1] = 3.5;
+  EngineAgreement a = Agreement(20.0, 20.0, true, true);
+  a.reference_status = "completed";
+  std::vector<MemberOutcome> ref = Outcomes(32, 0.1, 0.2, 0);
+  for (MemberOutcome& o : ref) o.status = "assumption_violated";
+  const StatisticalComparison st =
+      CompareEnsembles(ref, Outcomes(16, 0.1, 0.2, 3), true, kTolerance, 0.01);
+  ASSERT_FALSE(st.available);
+  EXPECT_EQ(MakeVerdict(s, a, h, st).kind, "outside_model");
+}
+
+TEST(MakeVerdict, AnOverturnThePredictableReferenceDoesNotMakeIsTheEngines) {
+  Scene s;
+  EngineAgreement a = Agreement(30.0, 30.0, true, true);
+  a.reference_status = "completed";
+  a.overturn_agree = false;
+  a.overturn_block_engine = 2;
+  const Verdict v = MakeVerdict(s, a, Horizons{}, std::nullopt);
+  EXPECT_EQ(v.kind, "differs_before_horizon");
+  EXPECT_EQ(v.decided_by, "overturning");
+}
+
+TEST(CompareEnsembles, TheImpactCountIsReportedButDoesNotDecide) {
+  // Counts that differ by a shift (every engine member 5 impacts fewer): reported with its
+  // p-value, outside the Holm family, so the ensembles stay consistent.
+  const auto ref = Outcomes(32, 0.1, 0.2, 0);
+  auto eng = Outcomes(16, 0.1, 0.2, 3);
+  for (MemberOutcome& o : eng) o.impacts -= 5;
+  const StatisticalComparison s = CompareEnsembles(ref, eng, true, kTolerance, 0.01);
+  ASSERT_TRUE(s.available);
+  const QuantityComparison* impacts = nullptr;
+  for (const QuantityComparison& q : s.quantities) {
+    if (q.key == "impacts") impacts = &q;
+  }
+  ASSERT_NE(impacts, nullptr);
+  EXPECT_FALSE(impacts->in_family);
+  EXPECT_LT(impacts->ks.p_value, 1e-6);
+  EXPECT_TRUE(s.consistent);
+  // An RMS response 20% low is a difference (the RMS is in the family).
+  for (MemberOutcome& o : eng) o.rms_rad[1] = 0.8 * 0.05;
+  auto ref2 = ref;
+  for (MemberOutcome& o : ref2) o.rms_rad[1] = 0.05;
+  EXPECT_FALSE(CompareEnsembles(ref2, eng, true, kTolerance, 0.01).consistent);
+}
+
 TEST(VerdictPower, DetectsAFivePercentPeakBiasAtTheDefaultSizesAndRarelyFlagsAnUnbiasedEngine) {
   // The thesis's stack under Rinaldi 228 (the horizon falls inside the run; theta1's peak, at
   // 3.1 s, comes before it). Default sizes (32 reference, 16 engine members). Measured (40

@@ -1,0 +1,97 @@
+#include "harness/tolerance.h"
+
+#include <algorithm>
+#include <cmath>
+#include <deque>
+
+#include "util/format.h"
+
+namespace rockbench {
+
+double ToleranceProfile::At(double t_s) const {
+  if (fixed_rad) return *fixed_rad;
+  if (tol_rad.empty()) return floor_rad;
+  const double k = std::floor(t_s / grid_dt_s + 0.5);
+  if (!(k > 0.0)) return tol_rad.front();
+  const auto i = static_cast<size_t>(k);
+  return i < tol_rad.size() ? tol_rad[i] : tol_rad.back();
+}
+
+double ToleranceProfile::Min() const {
+  if (fixed_rad) return *fixed_rad;
+  return tol_rad.empty() ? floor_rad : *std::min_element(tol_rad.begin(), tol_rad.end());
+}
+
+double ToleranceProfile::Max() const {
+  if (fixed_rad) return *fixed_rad;
+  return tol_rad.empty() ? floor_rad : *std::max_element(tol_rad.begin(), tol_rad.end());
+}
+
+ToleranceProfile LocalTolerance(const Scene& scene, int block, const History& reference,
+                                const ToleranceConfig& config) {
+  ToleranceProfile p;
+  if (scene.compare.tolerance_rad) {
+    p.fixed_rad = *scene.compare.tolerance_rad;
+    p.floor_rad = p.cap_rad = *scene.compare.tolerance_rad;
+    return p;
+  }
+  const BlockDef& b = block == 2 && scene.block2 ? *scene.block2 : scene.block1;
+  const double alpha_rad = std::atan(b.width_m / b.height_m);
+  const double r_m = 0.5 * std::hypot(b.width_m, b.height_m);
+  const double p_radps = std::sqrt(3.0 * scene.run.gravity_mps2 / (4.0 * r_m));
+  p.grid_dt_s = scene.run.output_interval_s;
+  p.window_half_s = config.window_periods / p_radps;
+  p.floor_rad = config.floor_critical_fraction * alpha_rad;
+  p.cap_rad = config.envelope_fraction * config.cap_critical_fraction * alpha_rad;
+  const double env_cap_rad = config.cap_critical_fraction * alpha_rad;
+
+  // |theta| per grid cell (the largest sample in the cell), cells of width grid_dt_s centred
+  // on the grid times; a cell without a sample holds the last value (the reference at rest or
+  // stopped keeps its state).
+  const auto n = static_cast<size_t>(std::floor(scene.run.duration_s / p.grid_dt_s + 1e-9)) + 1;
+  std::vector<double> cell(n, -1.0);
+  double last = 0.0;
+  for (const Sample& s : reference.samples) {
+    const double v = std::abs(block == 2 ? s.theta2_rad : s.theta1_rad);
+    if (!std::isfinite(v)) continue;
+    const double k = std::floor(s.t_s / p.grid_dt_s + 0.5);
+    const size_t i = k <= 0.0 ? 0 : std::min(n - 1, static_cast<size_t>(k));
+    cell[i] = std::max(cell[i], std::min(v, env_cap_rad));
+  }
+  for (double& c : cell) {
+    if (c < 0.0) {
+      c = last;
+    } else {
+      last = c;
+    }
+  }
+  // Sliding maximum over +-w cells (monotonic deque of indices).
+  const auto w = static_cast<size_t>(std::ceil(p.window_half_s / p.grid_dt_s - 1e-9));
+  p.tol_rad.assign(n, 0.0);
+  std::deque<size_t> q;
+  size_t next = 0;  // next cell to enter the window
+  for (size_t k = 0; k < n; ++k) {
+    const size_t hi = std::min(n - 1, k + w);
+    for (; next <= hi; ++next) {
+      while (!q.empty() && cell[q.back()] <= cell[next]) q.pop_back();
+      q.push_back(next);
+    }
+    while (q.front() + w < k) q.pop_front();
+    const double env = cell[q.front()];
+    p.tol_rad[k] = std::clamp(config.envelope_fraction * env, p.floor_rad, p.cap_rad);
+  }
+  return p;
+}
+
+std::string ToleranceRuleText(const ToleranceConfig& c) {
+  return Format("%g", 100.0 * c.envelope_fraction) +
+         "% of the reference's local envelope (largest |theta| within +-" +
+         Format("%g", c.window_periods) +
+         " / p of the time, p = sqrt(3 g / 4 R) of the block; the envelope capped at " +
+         (c.cap_critical_fraction == 1.0 ? std::string("the")
+                                         : Format("%g", c.cap_critical_fraction) + " x the") +
+         " block's critical angle atan(B/H)), at least " +
+         Format("%g", 100.0 * c.floor_critical_fraction) + "% of the critical angle";
+}
+
+}  // namespace rockbench
