@@ -320,7 +320,8 @@ EngineResult ParseOutput(const std::string& bytes) {
     o.violation_onsets_t_s.push_back(r.Get<double>());
   }
   const auto n_significant = r.Get<std::uint64_t>();
-  if (n_significant > kViolationFlagCount) throw std::runtime_error("bullet helper protocol: bad flags");
+  if (n_significant > kViolationFlagCount)
+    throw std::runtime_error("bullet helper protocol: bad flags");
   for (std::uint64_t i = 0; i < n_significant; ++i) {
     o.significant_violations.push_back(r.GetStr());
     o.significant_onsets_t_s.push_back(r.Get<double>());

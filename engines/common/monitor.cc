@@ -611,7 +611,7 @@ RunOutcome Monitor::Outcome() const {
     if (!significant[i]) continue;
     o.significant_violations.push_back(kViolationFlags[i]);
     o.significant_onsets_t_s.push_back(std::isnan(significant_t_s_[i]) ? end_t_s_
-                                                                        : significant_t_s_[i]);
+                                                                       : significant_t_s_[i]);
   }
   return o;
 }

@@ -117,14 +117,14 @@ void Execute(const CompareCliOptions& opt) {
           g.max_error_ratio_predictable, g.rms_error_rad, g.horizon_s, 100.0 * g.peak_rel_error,
           g.peak_time_error_s);
     }
-    std::printf("  %s impacts faster than %g rad/s: %d of %d matched (engine %d; all impacts: "
-                "reference %d, engine %d), max time error %.3g ms%s%s\n",
-                a.engine.c_str(), run.comparison.value("impact_min_rate_radps", 0.0),
-                a.impacts.matched, a.impacts.reference_impacts, a.impacts.engine_impacts,
-                a.impacts.reference_impacts_all, a.impacts.engine_impacts_all,
-                a.impacts.max_abs_time_error_s * 1e3,
-                a.impacts.first_mismatch.empty() ? "" : "; first mismatch: ",
-                a.impacts.first_mismatch.c_str());
+    std::printf(
+        "  %s impacts faster than %g rad/s: %d of %d matched (engine %d; all impacts: "
+        "reference %d, engine %d), max time error %.3g ms%s%s\n",
+        a.engine.c_str(), run.comparison.value("impact_min_rate_radps", 0.0), a.impacts.matched,
+        a.impacts.reference_impacts, a.impacts.engine_impacts, a.impacts.reference_impacts_all,
+        a.impacts.engine_impacts_all, a.impacts.max_abs_time_error_s * 1e3,
+        a.impacts.first_mismatch.empty() ? "" : "; first mismatch: ",
+        a.impacts.first_mismatch.c_str());
     std::printf("  %s overturning %s, final state %s\n", a.engine.c_str(),
                 a.overturn_agree ? "agrees" : "DIFFERS", a.final_agree ? "agrees" : "DIFFERS");
   }

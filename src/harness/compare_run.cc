@@ -123,8 +123,8 @@ CompareRun RunCompare(const Scene& scene, const GroundMotion& motion,
         const EngineAgreement ak = CompareWithReference(seeded, ref, run, o);
         const std::vector<MemberOutcome> ok = RunEngineEnsemble(
             name, seeded, motion, engine_members, options.jobs, base.min_impact_rate_radps);
-        const StatisticalComparison sk = CompareEnsembles(e->outcomes, ok, two, out.tolerance_rad,
-                                                          scene.run.output_interval_s);
+        const StatisticalComparison sk =
+            CompareEnsembles(e->outcomes, ok, two, out.tolerance_rad, scene.run.output_interval_s);
         const Verdict vk = MakeVerdict(seeded, ak, h, sk);
         same = same && vk.agrees == v.agrees;
         seeds.push_back({{"seed", seeded.compare.seed},
@@ -144,13 +144,15 @@ CompareRun RunCompare(const Scene& scene, const GroundMotion& motion,
         }
       }
       if (same) {
-        v.text += "; the same with " + std::to_string(kVerdictSeeds) + " ensemble seeds (" + ps +
-                  ")";
+        v.text +=
+            "; the same with " + std::to_string(kVerdictSeeds) + " ensemble seeds (" + ps + ")";
       } else {
         v.kind = "marginal";
         v.agrees = false;
-        v.text = "marginal: the statistical decision beyond the horizon changes with the "
-                 "ensemble's seed (" + ps + "); " + v.text;
+        v.text =
+            "marginal: the statistical decision beyond the horizon changes with the "
+            "ensemble's seed (" +
+            ps + "); " + v.text;
         v.decided_by = "the seeds disagree: " + ps;
       }
       a.seeds = std::move(seeds);

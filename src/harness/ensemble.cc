@@ -10,9 +10,9 @@
 #include "harness/summary.h"
 #include "harness/tolerance.h"
 #include "harness/wall_clock.h"
-#include "util/format.h"
 #include "reference/geometry.h"
 #include "reference/transitions.h"
+#include "util/format.h"
 
 namespace rockbench {
 namespace {
@@ -158,9 +158,9 @@ MemberOutcome OutcomeOf(const EngineRun& run, const Scene& scene, double min_imp
   // RMS angles: trapezoids on the history's samples (the engines' output grid, the
   // reference's grid and event times), up to an overturn.
   for (int b = 0; b < (two_blocks ? 2 : 1); ++b) {
-    const double t_end = o.overturned_block != 0 ? o.overturn_t_s : run.history.samples.empty()
-                                                                         ? 0.0
-                                                                         : run.history.samples.back().t_s;
+    const double t_end = o.overturned_block != 0       ? o.overturn_t_s
+                         : run.history.samples.empty() ? 0.0
+                                                       : run.history.samples.back().t_s;
     double integral = 0.0;
     for (size_t k = 1; k < run.history.samples.size(); ++k) {
       const Sample& a = run.history.samples[k - 1];

@@ -275,8 +275,8 @@ Verdict MakeVerdict(const Scene& scene, const EngineAgreement& a,
     for (int b = 1; b < nb; ++b) {
       if (ang[b]->max_error_ratio > ang[w]->max_error_ratio) w = b;
     }
-    v.decided_by = std::string(th(w)) + " error at most " + Format("%.3g", ang[w]->max_error_ratio) +
-                   " x the local tolerance";
+    v.decided_by = std::string(th(w)) + " error at most " +
+                   Format("%.3g", ang[w]->max_error_ratio) + " x the local tolerance";
     v.kind = all_within ? "pointwise_only" : "pointwise_differs";
     v.agrees = all_within;
     v.text = all_within ? "agrees pointwise over the whole comparison (" +
@@ -329,7 +329,8 @@ Verdict MakeVerdict(const Scene& scene, const EngineAgreement& a,
       return b ? "block " + std::to_string(*b) + " overturns" : std::string("nothing overturns");
     };
     v.text = "an engine error: " + block(a.overturn_block_engine) + " in the engine's run, " +
-             block(a.overturn_block_reference) + " in the reference's, which is predictable "
+             block(a.overturn_block_reference) +
+             " in the reference's, which is predictable "
              "throughout";
     v.decided_by = "overturning";
     return v;
@@ -346,8 +347,8 @@ Verdict MakeVerdict(const Scene& scene, const EngineAgreement& a,
              std::to_string(*a.overturn_block_engine);
     }
     if (did.empty()) did = "stayed within the model's assumptions (no flag raised)";
-    v.text = "outside the model: " + why + "; the engine agrees with it until then (" +
-             agree_part + "); there the engine " + did;
+    v.text = "outside the model: " + why + "; the engine agrees with it until then (" + agree_part +
+             "); there the engine " + did;
     v.decided_by = why;
   };
   if (model_ends) {

@@ -73,7 +73,8 @@ void MetricsTable(const RunData& run, Page& page) {
     std::string matched_text = Num(matched) + " of " + Num(nref) + " (engine: " + Num(neng) + ")";
     if (!std::isnan(rate)) matched_text += " faster than " + Num(rate) + " rad/s";
     if (!std::isnan(nref_all) && !std::isnan(neng_all)) {
-      matched_text += "; all impacts: " + Num(nref_all) + " reference, " + Num(neng_all) + " engine";
+      matched_text +=
+          "; all impacts: " + Num(nref_all) + " reference, " + Num(neng_all) + " engine";
     }
     impacts.push_back({e.name, matched_text,
                        Num(1e3 * OptNumber(c, k + ".max_abs_impact_time_error_s", file), 3) + " ms",

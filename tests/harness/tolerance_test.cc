@@ -47,8 +47,9 @@ TEST(LocalTolerance, IsTenPercentOfASteadyAmplitude) {
   // 0.5 alpha at 2 Hz: the window (+-2/p, p = sqrt(3 g / 4 R) = 1.88 rad/s: +-1.06 s) holds
   // several crests, sampled every 0.01 s: the envelope is the amplitude to within the sampling
   // of a crest, 1 - cos(2 pi f dt / 2) = 2e-3 relative.
-  const ToleranceProfile p =
-      LocalTolerance(s, 1, Oscillation(s, [&](double) { return 0.5 * alpha; }, 2.0));
+  const ToleranceProfile p = LocalTolerance(s, 1,
+                                            Oscillation(
+                                                s, [&](double) { return 0.5 * alpha; }, 2.0));
   EXPECT_NEAR(p.window_half_s, 2.0 / std::sqrt(3.0 * 9.81 / (4.0 * std::sqrt(17.0) / 2.0)),
               1e3 * kEps);
   for (double t : {0.0, 2.5, 5.0, 9.99}) {
@@ -61,8 +62,9 @@ TEST(LocalTolerance, FollowsADecayAndStopsAtTheFloor) {
   const double alpha = std::atan(0.25);
   // Amplitude 0.5 alpha e^{-t}: at t the window's largest crest is the one nearest t - w.
   const ToleranceProfile p =
-      LocalTolerance(s, 1, Oscillation(s, [&](double t) { return 0.5 * alpha * std::exp(-t); },
-                                       5.0));
+      LocalTolerance(s, 1,
+                     Oscillation(
+                         s, [&](double t) { return 0.5 * alpha * std::exp(-t); }, 5.0));
   const double w = p.window_half_s;
   const double floor = 0.01 * alpha;
   for (double t : {1.5, 2.0, 3.0}) {
