@@ -255,16 +255,16 @@ std::string SerializeOutput(const EngineResult& out) {
   w.Put(o.peak_theta2_t_s);
   w.Put<std::int32_t>(o.impacts_ground);
   w.Put<std::int32_t>(o.impacts_interface);
-  w.Put<std::uint64_t>(o.violations.size());
-  for (size_t i = 0; i < o.violations.size(); ++i) {
-    w.PutStr(o.violations[i]);
-    w.Put(i < o.violation_onsets_t_s.size() ? o.violation_onsets_t_s[i] : o.end_t_s);
-  }
-  w.Put<std::uint64_t>(o.significant_violations.size());
-  for (size_t i = 0; i < o.significant_violations.size(); ++i) {
-    w.PutStr(o.significant_violations[i]);
-    w.Put(o.significant_onsets_t_s[i]);
-  }
+  // Each flag with its onset (the run's end for an onset the outcome does not carry).
+  auto put_flags = [&](const std::vector<std::string>& flags, const std::vector<double>& onsets) {
+    w.Put<std::uint64_t>(flags.size());
+    for (size_t i = 0; i < flags.size(); ++i) {
+      w.PutStr(flags[i]);
+      w.Put(i < onsets.size() ? onsets[i] : o.end_t_s);
+    }
+  };
+  put_flags(o.violations, o.violation_onsets_t_s);
+  put_flags(o.significant_violations, o.significant_onsets_t_s);
   w.PutStr(out.summary.dump());
   w.Put(out.wall_s);
   return w.Take();
@@ -313,19 +313,16 @@ EngineResult ParseOutput(const std::string& bytes) {
   o.peak_theta2_t_s = r.Get<double>();
   o.impacts_ground = r.Get<std::int32_t>();
   o.impacts_interface = r.Get<std::int32_t>();
-  const auto nv = r.Get<std::uint64_t>();
-  if (nv > kViolationFlagCount) throw std::runtime_error("bullet helper protocol: bad flags");
-  for (std::uint64_t i = 0; i < nv; ++i) {
-    o.violations.push_back(r.GetStr());
-    o.violation_onsets_t_s.push_back(r.Get<double>());
-  }
-  const auto n_significant = r.Get<std::uint64_t>();
-  if (n_significant > kViolationFlagCount)
-    throw std::runtime_error("bullet helper protocol: bad flags");
-  for (std::uint64_t i = 0; i < n_significant; ++i) {
-    o.significant_violations.push_back(r.GetStr());
-    o.significant_onsets_t_s.push_back(r.Get<double>());
-  }
+  auto get_flags = [&r](std::vector<std::string>* flags, std::vector<double>* onsets) {
+    const auto n = r.Get<std::uint64_t>();
+    if (n > kViolationFlagCount) throw std::runtime_error("bullet helper protocol: bad flags");
+    for (std::uint64_t i = 0; i < n; ++i) {
+      flags->push_back(r.GetStr());
+      onsets->push_back(r.Get<double>());
+    }
+  };
+  get_flags(&o.violations, &o.violation_onsets_t_s);
+  get_flags(&o.significant_violations, &o.significant_onsets_t_s);
   out.summary = nlohmann::json::parse(r.GetStr());
   out.wall_s = r.Get<double>();
   r.ExpectEnd();

@@ -598,21 +598,19 @@ RunOutcome Monitor::Outcome() const {
   if (two_) o.peak_theta2_rad = peak2_, o.peak_theta2_t_s = peak2_t_;
   o.impacts_ground = impacts_ground_;
   o.impacts_interface = impacts_interface_;
-  const auto raised = Raised();
-  for (size_t i = 0; i < std::size(kViolationFlags); ++i) {
-    if (!raised[i]) continue;
-    o.violations.push_back(kViolationFlags[i]);
-    // A flag first raised by Outcome's own evaluation (never, in a run that stepped) is dated
-    // at the run's end.
-    o.violation_onsets_t_s.push_back(std::isnan(onset_t_s_[i]) ? end_t_s_ : onset_t_s_[i]);
-  }
-  const auto significant = RaisedSignificantly();
-  for (size_t i = 0; i < std::size(kViolationFlags); ++i) {
-    if (!significant[i]) continue;
-    o.significant_violations.push_back(kViolationFlags[i]);
-    o.significant_onsets_t_s.push_back(std::isnan(significant_t_s_[i]) ? end_t_s_
-                                                                       : significant_t_s_[i]);
-  }
+  // The raised flags with their onsets; a flag first raised by this evaluation (never, in a run
+  // that stepped) is dated at the run's end.
+  auto list = [this](const auto& raised, const auto& onsets, std::vector<std::string>* names,
+                     std::vector<double>* times) {
+    for (size_t i = 0; i < std::size(kViolationFlags); ++i) {
+      if (!raised[i]) continue;
+      names->push_back(kViolationFlags[i]);
+      times->push_back(std::isnan(onsets[i]) ? end_t_s_ : onsets[i]);
+    }
+  };
+  list(Raised(), onset_t_s_, &o.violations, &o.violation_onsets_t_s);
+  list(RaisedSignificantly(), significant_t_s_, &o.significant_violations,
+       &o.significant_onsets_t_s);
   return o;
 }
 

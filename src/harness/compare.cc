@@ -111,47 +111,41 @@ ImpactAgreement MatchImpacts(const History& ref, const History& eng, double unti
 }
 
 nlohmann::json AngleJson(const AngleAgreement& a) {
-  return {{"max_abs_error_rad", a.max_abs_error_rad},
-          {"rms_error_rad", a.rms_error_rad},
-          {"peak_rel_error", a.peak_rel_error},
-          {"peak_time_error_s", a.peak_time_error_s},
-          {"horizon_s", RoundTime_s(a.horizon_s)},
-          {"within_tolerance", a.within_tolerance},
-          {"tolerance_rad", a.tolerance_rad},
-          {"tolerance_min_rad", a.tolerance_min_rad},
-          {"tolerance_at_horizon_rad",
-           a.within_tolerance ? nlohmann::json(nullptr) : nlohmann::json(a.tolerance_at_horizon_rad)},
-          {"max_error_ratio", a.max_error_ratio},
-          {"max_error_ratio_t_s", RoundTime_s(a.max_error_ratio_t_s)},
-          {"max_error_ratio_predictable", a.max_error_ratio_predictable},
-          {"max_abs_error_horizon_rad", a.max_abs_error_horizon_rad},
-          {"rms_error_horizon_rad", a.rms_error_horizon_rad},
-          {"peak_reference_rad", a.peak_reference_rad},
-          {"peak_reference_t_s", a.peak_reference_t_s},
-          {"peak_engine_rad", a.peak_engine_rad},
-          {"peak_engine_t_s", a.peak_engine_t_s},
-          {"max_abs_error_predictable_rad", a.max_abs_error_predictable_rad},
-          {"rms_error_predictable_rad", a.rms_error_predictable_rad},
-          {"max_abs_error_beyond_rad", a.max_abs_error_beyond_rad},
-          {"rms_error_beyond_rad", a.rms_error_beyond_rad},
-          {"samples_beyond", a.samples_beyond},
-          {"predictability_horizon_s", std::isfinite(a.predictability_horizon_s)
-                                           ? nlohmann::json(a.predictability_horizon_s)
-                                           : nlohmann::json(nullptr)}};
+  return {
+      {"max_abs_error_rad", a.max_abs_error_rad},
+      {"rms_error_rad", a.rms_error_rad},
+      {"peak_rel_error", a.peak_rel_error},
+      {"peak_time_error_s", a.peak_time_error_s},
+      {"horizon_s", RoundTime_s(a.horizon_s)},
+      {"within_tolerance", a.within_tolerance},
+      {"tolerance_rad", a.tolerance_rad},
+      {"tolerance_min_rad", a.tolerance_min_rad},
+      {"tolerance_at_horizon_rad",
+       a.within_tolerance ? nlohmann::json(nullptr) : nlohmann::json(a.tolerance_at_horizon_rad)},
+      {"max_error_ratio", a.max_error_ratio},
+      {"max_error_ratio_t_s", RoundTime_s(a.max_error_ratio_t_s)},
+      {"max_error_ratio_predictable", a.max_error_ratio_predictable},
+      {"max_abs_error_horizon_rad", a.max_abs_error_horizon_rad},
+      {"rms_error_horizon_rad", a.rms_error_horizon_rad},
+      {"peak_reference_rad", a.peak_reference_rad},
+      {"peak_reference_t_s", a.peak_reference_t_s},
+      {"peak_engine_rad", a.peak_engine_rad},
+      {"peak_engine_t_s", a.peak_engine_t_s},
+      {"max_abs_error_predictable_rad", a.max_abs_error_predictable_rad},
+      {"rms_error_predictable_rad", a.rms_error_predictable_rad},
+      {"max_abs_error_beyond_rad", a.max_abs_error_beyond_rad},
+      {"rms_error_beyond_rad", a.rms_error_beyond_rad},
+      {"samples_beyond", a.samples_beyond},
+      {"predictability_horizon_s", std::isfinite(a.predictability_horizon_s)
+                                       ? nlohmann::json(a.predictability_horizon_s)
+                                       : nlohmann::json(nullptr)}};
 }
 
 }  // namespace
 
 double AngleTolerance_rad(const Scene& scene, int block, double reference_peak_rad) {
-  if (scene.compare.tolerance_rad) return *scene.compare.tolerance_rad;
-  const BlockDef& b = block == 2 && scene.block2 ? *scene.block2 : scene.block1;
-  const double critical_rad = std::atan(b.width_m / b.height_m);
   // LocalTolerance's value where the envelope is the peak (harness/tolerance.h).
-  const ToleranceConfig c;
-  return std::clamp(c.envelope_fraction * std::min(reference_peak_rad,
-                                                   c.cap_critical_fraction * critical_rad),
-                    c.floor_critical_fraction * critical_rad,
-                    c.envelope_fraction * c.cap_critical_fraction * critical_rad);
+  return ToleranceAtEnvelope_rad(scene, block, reference_peak_rad);
 }
 
 int CountComparedImpacts(const History& history, double min_rate_radps) {
@@ -354,10 +348,9 @@ nlohmann::json ComparisonJson(const Scene& scene, const reference::Result& ref,
     j["reference"]["peak_theta2_rad"] = rs.peak_theta2_rad;
     j["reference"]["peak_theta2_t_s"] = rs.peak_theta2_t_s;
   }
-  j["tolerance"] =
-      scene.compare.tolerance_rad
-          ? nlohmann::json{{"rule", "scene"}, {"rad", *scene.compare.tolerance_rad}}
-          : nlohmann::json{{"rule", ToleranceRuleText()}};
+  j["tolerance"] = scene.compare.tolerance_rad
+                       ? nlohmann::json{{"rule", "scene"}, {"rad", *scene.compare.tolerance_rad}}
+                       : nlohmann::json{{"rule", ToleranceRuleText()}};
   j["tolerance"]["theta1_rad"] = AngleTolerance_rad(scene, 1, rs.peak_theta1_rad);
   if (scene.two_blocks()) {
     j["tolerance"]["theta2_rad"] = AngleTolerance_rad(scene, 2, rs.peak_theta2_rad);

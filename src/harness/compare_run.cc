@@ -15,6 +15,73 @@ std::string HorizonText(const std::optional<double>& h) {
   return buf;
 }
 
+// The ensemble's horizons, as the verdict reads them and as the comparison splits its errors.
+void TakeHorizons(const ReferenceEnsemble& e, int nb, Horizons* h, CompareOptions* o) {
+  for (int b = 0; b < nb; ++b) {
+    h->horizon_s[b] = e.horizon_s[b];
+    if (e.horizon_s[b]) o->predictability_horizon_s[b] = *e.horizon_s[b];
+  }
+}
+
+// The statistical decision with the next kVerdictSeeds - 1 seeds.
+struct SeedCheck {
+  nlohmann::json seeds = nlohmann::json::array();  ///< comparison.json verdict_seeds
+  std::string text;  ///< "seed 1: agrees (smallest Holm p 0.03), seed 2: ..."
+  bool same = true;  ///< every seed agrees (or differs) as the first
+};
+
+// Re-runs the reference ensemble (cached per seed in `extra_ensembles`, shared by the engines)
+// and engine `name`'s ensemble with seeds scene.compare.seed + 1, + 2, ..., and judges each
+// as the first seed's verdict `first` was judged.
+SeedCheck RecheckWithSeeds(const Scene& scene, const CompareRun& out, const GroundMotion& motion,
+                           const std::string& name, const EngineRun& run, int engine_members,
+                           int jobs, const Verdict& first, double first_p,
+                           std::vector<std::optional<ReferenceEnsemble>>* extra_ensembles) {
+  const reference::Result& ref = out.reference.used();
+  const CompareOptions base;
+  const bool two = scene.two_blocks();
+  SeedCheck c;
+  c.seeds.push_back(
+      {{"seed", scene.compare.seed}, {"verdict_kind", first.kind}, {"smallest_p_holm", first_p}});
+  for (int k = 1; k < kVerdictSeeds; ++k) {
+    Scene seeded = scene;
+    seeded.compare.seed = scene.compare.seed + static_cast<uint64_t>(k);
+    std::optional<ReferenceEnsemble>& e = (*extra_ensembles)[k - 1];
+    if (!e) {
+      Scene seeded_reference = out.reference_scene;
+      seeded_reference.compare.seed = seeded.compare.seed;
+      e = RunReferenceEnsemble(seeded_reference, motion, ref, scene.compare.members,
+                               out.tolerance_rad, jobs, base.min_impact_rate_radps);
+    }
+    Horizons h;
+    CompareOptions o = base;
+    TakeHorizons(*e, two ? 2 : 1, &h, &o);
+    const EngineAgreement ak = CompareWithReference(seeded, ref, run, o);
+    const std::vector<MemberOutcome> ok =
+        RunEngineEnsemble(name, seeded, motion, engine_members, jobs, base.min_impact_rate_radps);
+    const StatisticalComparison sk =
+        CompareEnsembles(e->outcomes, ok, two, out.tolerance_rad, scene.run.output_interval_s);
+    const Verdict vk = MakeVerdict(seeded, ak, h, sk);
+    c.same = c.same && vk.agrees == first.agrees;
+    c.seeds.push_back({{"seed", seeded.compare.seed},
+                       {"verdict_kind", vk.kind},
+                       {"smallest_p_holm", sk.available ? nlohmann::json(SmallestFamilyP(sk))
+                                                        : nlohmann::json(nullptr)}});
+  }
+  char buf[64];
+  for (const nlohmann::json& sd : c.seeds) {
+    c.text += (c.text.empty() ? "" : ", ") + std::string("seed ") +
+              std::to_string(sd["seed"].get<uint64_t>()) + ": " +
+              sd["verdict_kind"].get<std::string>();
+    if (sd["smallest_p_holm"].is_number()) {
+      std::snprintf(buf, sizeof buf, " (smallest Holm p %.2g)",
+                    sd["smallest_p_holm"].get<double>());
+      c.text += buf;
+    }
+  }
+  return c;
+}
+
 }  // namespace
 
 CompareRun RunCompare(const Scene& scene, const GroundMotion& motion,
@@ -53,12 +120,7 @@ CompareRun RunCompare(const Scene& scene, const GroundMotion& motion,
         RunReferenceEnsemble(out.reference_scene, motion, ref, scene.compare.members,
                              out.tolerance_rad, options.jobs, base.min_impact_rate_radps);
     horizons = Horizons{};
-    for (int b = 0; b < nb; ++b) {
-      horizons->horizon_s[b] = out.ensemble->horizon_s[b];
-      if (out.ensemble->horizon_s[b]) {
-        compare_options.predictability_horizon_s[b] = *out.ensemble->horizon_s[b];
-      }
-    }
+    TakeHorizons(*out.ensemble, nb, &*horizons, &compare_options);
     std::string line = "predictability (" + std::to_string(scene.compare.members) + " members";
     std::snprintf(buf, sizeof buf,
                   ", amplitude +-%g, samples +-%g of their printed precision, initial state "
@@ -99,63 +161,22 @@ CompareRun RunCompare(const Scene& scene, const GroundMotion& motion,
     // A statistical decision near the level is re-checked with two more seeds: one that
     // changes with the seed is "marginal", not AGREES or DIFFERS at random.
     if (statistics && statistics->available && InMarginalBand(SmallestFamilyP(*statistics))) {
-      nlohmann::json seeds = nlohmann::json::array();
-      seeds.push_back({{"seed", scene.compare.seed},
-                       {"verdict_kind", v.kind},
-                       {"smallest_p_holm", SmallestFamilyP(*statistics)}});
-      bool same = true;
-      for (int k = 1; k < kVerdictSeeds; ++k) {
-        Scene seeded = scene;
-        seeded.compare.seed = scene.compare.seed + static_cast<uint64_t>(k);
-        Scene seeded_reference = out.reference_scene;
-        seeded_reference.compare.seed = seeded.compare.seed;
-        std::optional<ReferenceEnsemble>& e = extra_ensembles[k - 1];
-        if (!e) {
-          e = RunReferenceEnsemble(seeded_reference, motion, ref, scene.compare.members,
-                                   out.tolerance_rad, options.jobs, base.min_impact_rate_radps);
-        }
-        Horizons h;
-        CompareOptions o = base;
-        for (int b = 0; b < nb; ++b) {
-          h.horizon_s[b] = e->horizon_s[b];
-          if (e->horizon_s[b]) o.predictability_horizon_s[b] = *e->horizon_s[b];
-        }
-        const EngineAgreement ak = CompareWithReference(seeded, ref, run, o);
-        const std::vector<MemberOutcome> ok = RunEngineEnsemble(
-            name, seeded, motion, engine_members, options.jobs, base.min_impact_rate_radps);
-        const StatisticalComparison sk =
-            CompareEnsembles(e->outcomes, ok, two, out.tolerance_rad, scene.run.output_interval_s);
-        const Verdict vk = MakeVerdict(seeded, ak, h, sk);
-        same = same && vk.agrees == v.agrees;
-        seeds.push_back({{"seed", seeded.compare.seed},
-                         {"verdict_kind", vk.kind},
-                         {"smallest_p_holm", sk.available ? nlohmann::json(SmallestFamilyP(sk))
-                                                          : nlohmann::json(nullptr)}});
-      }
-      std::string ps;
-      for (const nlohmann::json& sd : seeds) {
-        ps += (ps.empty() ? "" : ", ") + std::string("seed ") +
-              std::to_string(sd["seed"].get<uint64_t>()) + ": " +
-              sd["verdict_kind"].get<std::string>();
-        if (sd["smallest_p_holm"].is_number()) {
-          std::snprintf(buf, sizeof buf, " (smallest Holm p %.2g)",
-                        sd["smallest_p_holm"].get<double>());
-          ps += buf;
-        }
-      }
-      if (same) {
+      const SeedCheck c =
+          RecheckWithSeeds(scene, out, motion, name, run, engine_members, options.jobs, v,
+                           SmallestFamilyP(*statistics), &extra_ensembles);
+      if (c.same) {
         v.text +=
-            "; the same with " + std::to_string(kVerdictSeeds) + " ensemble seeds (" + ps + ")";
+            "; the same with " + std::to_string(kVerdictSeeds) + " ensemble seeds (" + c.text + ")";
       } else {
         v.kind = "marginal";
         v.agrees = false;
         v.text =
             "marginal: the statistical decision beyond the horizon changes with the "
             "ensemble's seed (" +
-            ps + "); " + v.text;
-        v.decided_by = "the seeds disagree: " + ps;
+            c.text + "); " + v.text;
+        v.decided_by = "the seeds disagree: " + c.text;
       }
-      a.seeds = std::move(seeds);
+      a.seeds = c.seeds;
     }
     a.verdict_kind = v.kind;
     a.verdict = v.text;

@@ -157,10 +157,10 @@ MemberOutcome OutcomeOf(const EngineRun& run, const Scene& scene, double min_imp
   }
   // RMS angles: trapezoids on the history's samples (the engines' output grid, the
   // reference's grid and event times), up to an overturn.
+  const double t_end = o.overturned_block != 0       ? o.overturn_t_s
+                       : run.history.samples.empty() ? 0.0
+                                                     : run.history.samples.back().t_s;
   for (int b = 0; b < (two_blocks ? 2 : 1); ++b) {
-    const double t_end = o.overturned_block != 0       ? o.overturn_t_s
-                         : run.history.samples.empty() ? 0.0
-                                                       : run.history.samples.back().t_s;
     double integral = 0.0;
     for (size_t k = 1; k < run.history.samples.size(); ++k) {
       const Sample& a = run.history.samples[k - 1];
@@ -173,11 +173,6 @@ MemberOutcome OutcomeOf(const EngineRun& run, const Scene& scene, double min_imp
     o.rms_rad[b] = scene.run.duration_s > 0.0 ? std::sqrt(integral / scene.run.duration_s) : 0.0;
   }
   o.impacts = CountComparedImpacts(run.history, min_impact_rate_radps);
-  for (const Event& ev : run.history.events) {
-    if (ev.kind == "ground_impact" || ev.kind == "interface_impact") {
-      o.impact_dissipation_j += ev.energy_before_j - ev.energy_after_j;
-    }
-  }
   return o;
 }
 
@@ -349,8 +344,9 @@ std::string OutcomesCsv(const std::vector<MemberOutcome>& outcomes,
   std::string out =
       "member,horizontal_factor,vertical_factor,initial_factor_theta1,status,overturned_block,"
       "overturn_t_s,peak_theta1_rad,peak_theta1_t_s,residual_theta1_rad,";
-  out += two ? "peak_theta2_rad,peak_theta2_t_s,residual_theta2_rad,impacts,impact_dissipation_j\n"
-             : "impacts,impact_dissipation_j\n";
+  out += two ? "peak_theta2_rad,peak_theta2_t_s,residual_theta2_rad,rms_theta1_rad,rms_theta2_rad,"
+               "impacts\n"
+             : "rms_theta1_rad,impacts\n";
   for (const MemberOutcome& o : outcomes) {
     const MemberPerturbation p = o.member >= 0 && o.member < static_cast<int>(perturbations.size())
                                      ? perturbations[o.member]
@@ -370,8 +366,7 @@ std::string OutcomesCsv(const std::vector<MemberOutcome>& outcomes,
       out.append(",").append(Num(o.residual_rad[b]));
     }
     for (int b = 0; b < (two ? 2 : 1); ++b) out.append(",").append(Num(o.rms_rad[b]));
-    out.append(",").append(std::to_string(o.impacts));
-    out.append(",").append(Num(o.impact_dissipation_j)).append("\n");
+    out.append(",").append(std::to_string(o.impacts)).append("\n");
   }
   return out;
 }

@@ -51,9 +51,6 @@ struct MemberOutcome {
   double peak_rad[2] = {0, 0};      ///< peak |theta1|, |theta2|
   double peak_t_s[2] = {0, 0};      ///< their times (the time of the largest excursion)
   int impacts = 0;                  ///< impacts at or above the comparison's minimum rate
-  /// Energy the impacts dissipated, J: the sum over every impact of its energy before minus
-  /// after (events.csv). Threshold-free: an impact too slow to count dissipates almost nothing.
-  double impact_dissipation_j = 0.0;
   double residual_rad[2] = {0, 0};  ///< theta1, theta2 at the end of the run
   /// The root mean square of theta1, theta2 over the scene's duration (sqrt of the integral of
   /// theta^2 to the run's end, or to an overturn, over run.duration): the intensity of the

@@ -27,6 +27,34 @@ double ToleranceProfile::Max() const {
   return tol_rad.empty() ? floor_rad : *std::max_element(tol_rad.begin(), tol_rad.end());
 }
 
+namespace {
+
+// The block's side of the rule: its critical angle and Housner's frequency parameter.
+struct BlockScale {
+  double alpha_rad = 0.0, p_radps = 0.0;
+};
+
+BlockScale ScaleOf(const Scene& scene, int block) {
+  const BlockDef& b = block == 2 && scene.block2 ? *scene.block2 : scene.block1;
+  const double r_m = 0.5 * std::hypot(b.width_m, b.height_m);
+  return {std::atan(b.width_m / b.height_m), std::sqrt(3.0 * scene.run.gravity_mps2 / (4.0 * r_m))};
+}
+
+double Clamped(double envelope_rad, double alpha_rad, const ToleranceConfig& c) {
+  return std::clamp(
+      c.envelope_fraction * std::min(envelope_rad, c.cap_critical_fraction * alpha_rad),
+      c.floor_critical_fraction * alpha_rad,
+      c.envelope_fraction * c.cap_critical_fraction * alpha_rad);
+}
+
+}  // namespace
+
+double ToleranceAtEnvelope_rad(const Scene& scene, int block, double envelope_rad,
+                               const ToleranceConfig& config) {
+  if (scene.compare.tolerance_rad) return *scene.compare.tolerance_rad;
+  return Clamped(envelope_rad, ScaleOf(scene, block).alpha_rad, config);
+}
+
 ToleranceProfile LocalTolerance(const Scene& scene, int block, const History& reference,
                                 const ToleranceConfig& config) {
   ToleranceProfile p;
@@ -35,15 +63,12 @@ ToleranceProfile LocalTolerance(const Scene& scene, int block, const History& re
     p.floor_rad = p.cap_rad = *scene.compare.tolerance_rad;
     return p;
   }
-  const BlockDef& b = block == 2 && scene.block2 ? *scene.block2 : scene.block1;
-  const double alpha_rad = std::atan(b.width_m / b.height_m);
-  const double r_m = 0.5 * std::hypot(b.width_m, b.height_m);
-  const double p_radps = std::sqrt(3.0 * scene.run.gravity_mps2 / (4.0 * r_m));
+  const BlockScale scale = ScaleOf(scene, block);
+  const double alpha_rad = scale.alpha_rad;
   p.grid_dt_s = scene.run.output_interval_s;
-  p.window_half_s = config.window_periods / p_radps;
+  p.window_half_s = config.window_periods / scale.p_radps;
   p.floor_rad = config.floor_critical_fraction * alpha_rad;
   p.cap_rad = config.envelope_fraction * config.cap_critical_fraction * alpha_rad;
-  const double env_cap_rad = config.cap_critical_fraction * alpha_rad;
 
   // |theta| per grid cell (the largest sample in the cell), cells of width grid_dt_s centred
   // on the grid times; a cell without a sample holds the last value (the reference at rest or
@@ -56,7 +81,7 @@ ToleranceProfile LocalTolerance(const Scene& scene, int block, const History& re
     if (!std::isfinite(v)) continue;
     const double k = std::floor(s.t_s / p.grid_dt_s + 0.5);
     const size_t i = k <= 0.0 ? 0 : std::min(n - 1, static_cast<size_t>(k));
-    cell[i] = std::max(cell[i], std::min(v, env_cap_rad));
+    cell[i] = std::max(cell[i], v);
   }
   for (double& c : cell) {
     if (c < 0.0) {
@@ -77,8 +102,7 @@ ToleranceProfile LocalTolerance(const Scene& scene, int block, const History& re
       q.push_back(next);
     }
     while (q.front() + w < k) q.pop_front();
-    const double env = cell[q.front()];
-    p.tol_rad[k] = std::clamp(config.envelope_fraction * env, p.floor_rad, p.cap_rad);
+    p.tol_rad[k] = Clamped(cell[q.front()], alpha_rad, config);
   }
   return p;
 }

@@ -56,6 +56,12 @@ struct ToleranceProfile {
 ToleranceProfile LocalTolerance(const Scene& scene, int block, const History& reference,
                                 const ToleranceConfig& config = {});
 
+/// The rule's value for an envelope of `envelope_rad` (block 1 or 2): clamp(envelope_fraction *
+/// min(envelope, alpha cap), floor, cap), or the scene's [compare] tolerance. LocalTolerance
+/// applies it at every time; at the reference's peak it is AngleTolerance_rad (compare.h).
+double ToleranceAtEnvelope_rad(const Scene& scene, int block, double envelope_rad,
+                               const ToleranceConfig& config = {});
+
 /// The rule in words, for comparison.json and the report.
 std::string ToleranceRuleText(const ToleranceConfig& config = {});
 

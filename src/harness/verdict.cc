@@ -204,16 +204,19 @@ std::string FlagsText(const EngineAgreement& a, double from_s, double to_s,
   return out;
 }
 
-// The largest error ratio before the horizons, in words.
-std::string RatioText(const AngleAgreement* ang[2], int nb, int* worst_block) {
+// The block with the largest error ratio, in words: before the horizons (`predictable`), or
+// over the whole comparison.
+std::string RatioText(const AngleAgreement* ang[2], int nb, bool predictable) {
+  auto ratio = [predictable](const AngleAgreement* g) {
+    return predictable ? g->max_error_ratio_predictable : g->max_error_ratio;
+  };
   int w = 0;
   for (int b = 1; b < nb; ++b) {
-    if (ang[b]->max_error_ratio_predictable > ang[w]->max_error_ratio_predictable) w = b;
+    if (ratio(ang[b]) > ratio(ang[w])) w = b;
   }
-  *worst_block = w;
-  return std::string(th(w)) + " error at most " +
-         Format("%.3g", ang[w]->max_error_ratio_predictable) +
-         " x the local tolerance where the reference is predictable";
+  return std::string(th(w)) + " error at most " + Format("%.3g", ratio(ang[w])) +
+         " x the local tolerance" +
+         (predictable ? " where the reference is predictable" : std::string());
 }
 
 }  // namespace
@@ -271,12 +274,7 @@ Verdict MakeVerdict(const Scene& scene, const EngineAgreement& a,
              Format("%.3g", ang[b]->tolerance_at_horizon_rad) + " rad there) at " +
              Format("%.3f", ang[b]->horizon_s) + " s";
     }
-    int w = 0;
-    for (int b = 1; b < nb; ++b) {
-      if (ang[b]->max_error_ratio > ang[w]->max_error_ratio) w = b;
-    }
-    v.decided_by = std::string(th(w)) + " error at most " +
-                   Format("%.3g", ang[w]->max_error_ratio) + " x the local tolerance";
+    v.decided_by = RatioText(ang, nb, false);
     v.kind = all_within ? "pointwise_only" : "pointwise_differs";
     v.agrees = all_within;
     v.text = all_within ? "agrees pointwise over the whole comparison (" +
@@ -317,8 +315,7 @@ Verdict MakeVerdict(const Scene& scene, const EngineAgreement& a,
     v.kind = "differs_before_horizon";
     v.agrees = false;
     v.text = "an engine error: " + before;
-    int w = 0;
-    v.decided_by = RatioText(ang, nb, &w);
+    v.decided_by = RatioText(ang, nb, true);
     return v;
   }
   // Overturning where the reference is predictable throughout is the engine's to reproduce.
@@ -364,8 +361,7 @@ Verdict MakeVerdict(const Scene& scene, const EngineAgreement& a,
     v.kind = "agrees";
     v.agrees = true;
     v.text = "agrees pointwise: " + agree_part;
-    int w = 0;
-    v.decided_by = RatioText(ang, nb, &w);
+    v.decided_by = RatioText(ang, nb, true);
     return v;
   }
   v.text = "agrees pointwise where the reference is predictable: " + agree_part;
@@ -390,8 +386,7 @@ Verdict MakeVerdict(const Scene& scene, const EngineAgreement& a,
               (statistics ? statistics->unavailable_reason
                           : std::string("no engine ensemble: compare.engine_members = 0")) +
               ")";
-    int w = 0;
-    v.decided_by = RatioText(ang, nb, &w);
+    v.decided_by = RatioText(ang, nb, true);
     return v;
   }
   const StatisticalComparison& s = *statistics;
