@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "harness/tolerance.h"
 #include "report/interpolation.h"
 #include "report/json_keys.h"
 #include "report/number_text.h"
@@ -99,8 +100,8 @@ void MetricsTable(const RunData& run, Page& page) {
 }
 
 // The error figure's panel of block `block`: errors of every engine, the reference ensemble's
-// spread, the comparison tolerance, the engines' agreement horizons and the predictability
-// horizon.
+// spread, the local tolerance the pointwise check applies, the whole-run tolerance the
+// predictability horizon uses, the engines' agreement horizons and the predictability horizon.
 std::string ErrorPanel(const RunData& run, int block) {
   std::string s =
       "set ylabel " +
@@ -130,9 +131,13 @@ std::string ErrorPanel(const RunData& run, int block) {
             " using 1:" + std::to_string(1 + block) + " with lines lw 1.2 lc rgb " +
             Quote(kHorizonColour) + " dt 3 title " + Quote("spread of the " + BandTitle(run));
   }
-  if (!std::isnan(tol)) {
-    plot += ", " + Num(tol, 9) + " with lines dt 2 lw 1.5 lc rgb '#b00000' title " +
-            Quote("comparison tolerance " + Num(tol, 3) + " rad");
+  // The local tolerance on the output grid.
+  plot += ", " + Quote("angle_error.tolerance.dat") + " using 1:" + std::to_string(1 + block) +
+          " with lines dt 2 lw 1.5 lc rgb '#b00000' title " + Quote("local tolerance");
+  // The whole run's scale: what the predictability horizon compares the members' spread with.
+  if (run.band && !std::isnan(tol)) {
+    plot += ", " + Num(tol, 9) + " with lines dt 3 lw 1 lc rgb '#b00000' title " +
+            Quote("whole-run tolerance " + Num(tol, 3) + " rad (predictability horizon)");
   }
   return s + plot + "\n";
 }
@@ -141,18 +146,22 @@ std::string ErrorCaption(const RunData& run, const RunReportOptions& options) {
   std::string caption =
       "Angle error |theta_engine - theta_reference| against time (rad, log scale), at the "
       "engine's sample times, the reference interpolated between its samples with its rates "
-      "(cubic Hermite, pre-impact rates before each impact). Dashed red: the comparison "
-      "tolerance; dashed vertical lines in an engine's colour: its agreement horizon (none when "
-      "it stays within the tolerance).";
+      "(cubic Hermite, pre-impact rates before each impact). Dashed red: the local tolerance, " +
+      ToleranceRuleText() +
+      " (the scene's [compare] tolerance, a constant, when it sets one); an error above it where "
+      "the reference is predictable decides DIFFERS. Dashed vertical lines in an engine's "
+      "colour: its agreement horizon, the first time its error exceeds the local tolerance (none "
+      "when it stays within).";
   if (run.band) {
     caption +=
         " Dotted blue: the reference ensemble's spread, the largest |member - nominal| at each "
-        "time (reference/ensemble_band.csv).";
+        "time (reference/ensemble_band.csv); dotted red: the whole run's tolerance (the rule at "
+        "the reference's peak), which the predictability horizon compares that spread with.";
   }
   if (AnyHorizonMark(run)) {
     caption +=
         " Dashed blue vertical line: the predictability horizon, where that spread first "
-        "exceeds the tolerance; beyond it two correct runs differ by more than the tolerance.";
+        "exceeds the whole-run tolerance; beyond it two correct runs differ by more than it.";
   } else if (run.predictability) {
     caption += " The reference is predictable for the whole run: no predictability horizon.";
   }
@@ -191,6 +200,29 @@ void ErrorFigure(const RunData& run, const RunReportOptions& options, Figures& f
                        {&b.spread_rad[0], &b.spread_rad[1]}, options.error_floor_rad)
              : BandDat(run, "# t_s theta1_spread_rad\n", {&b.spread_rad[0]},
                        options.error_floor_rad)});
+  }
+  // The local tolerance of each block from the reference's history, as compare computed it.
+  {
+    const ToleranceProfile p1 = LocalTolerance(run.scene, 1, ref.history);
+    const ToleranceProfile p2 = two ? LocalTolerance(run.scene, 2, ref.history) : p1;
+    std::string dat = two ? "# t_s tol_theta1_rad tol_theta2_rad\n" : "# t_s tol_theta1_rad\n";
+    // On the profile's grid; a constant ([compare] tolerance) at the two ends of the run.
+    std::vector<double> times = {0.0, run.t_end_s};
+    if (p1.tol_rad.size() >= 2) {
+      times.resize(p1.tol_rad.size());
+      for (size_t k = 0; k < times.size(); ++k) times[k] = static_cast<double>(k) * p1.grid_dt_s;
+    }
+    for (const double t : times) {
+      AppendDat(dat, t);
+      dat += ' ';
+      AppendDat(dat, p1.At(t));
+      if (two) {
+        dat += ' ';
+        AppendDat(dat, p2.At(t));
+      }
+      dat += '\n';
+    }
+    f.data_files.push_back({"angle_error.tolerance.dat", dat});
   }
   f.script = CommonAxes(run.t_end_s) +
              "set logscale y\nset format y '10^{%L}'\nset key bottom right box opaque\n";

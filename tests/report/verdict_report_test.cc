@@ -270,7 +270,18 @@ TEST_F(VerdictReportTest, TheBandAndTheHorizonsAreDrawnOnlyWhenTheFolderHasThem)
   EXPECT_EQ(CountNear(error_marks[2], h2), 1);
   EXPECT_NE(error.find("predictability horizon"), std::string::npos);
   EXPECT_NE(error.find("angle_error.ensemble_spread.dat"), std::string::npos);
-  EXPECT_NE(error.find("comparison tolerance"), std::string::npos);
+  EXPECT_NE(error.find("whole-run tolerance"), std::string::npos);
+  // The local tolerance drawn is the one compare judged with: ensemble_band.csv's theta1_tol and
+  // theta2_tol columns (written from the harness's profile), to the 9 digits of the figure data.
+  EXPECT_NE(error.find("local tolerance"), std::string::npos);
+  const auto tol = NumberRows(Slurp(figures / "angle_error.tolerance.dat"));
+  ASSERT_GE(tol.size(), csv.size() - 1);
+  for (size_t k = 0; k + 1 < csv.size(); ++k) {
+    ASSERT_EQ(tol[k].size(), 3u);
+    EXPECT_NEAR(tol[k][0], csv[k][0], 1e-9);
+    EXPECT_NEAR(tol[k][1], csv[k][4], 1e-8 * csv[k][4]) << "t = " << csv[k][0];
+    EXPECT_NEAR(tol[k][2], csv[k][8], 1e-8 * csv[k][8]) << "t = " << csv[k][0];
+  }
   EXPECT_NE(Slurp(figures / "angles.svg").find("reference ensemble"), std::string::npos);
 
   // Without ensemble_band.csv: no band, the horizons still marked.
@@ -286,8 +297,12 @@ TEST_F(VerdictReportTest, TheBandAndTheHorizonsAreDrawnOnlyWhenTheFolderHasThem)
   const std::string quick_angles = Slurp(q.page_dir / "figures" / "angles.gp");
   EXPECT_EQ(quick_angles.find("filledcurves"), std::string::npos);
   EXPECT_EQ(quick_angles.find("predictability horizon"), std::string::npos);
-  EXPECT_EQ(Slurp(q.page_dir / "figures" / "angle_error.gp").find("ensemble_spread"),
-            std::string::npos);
+  const std::string quick_error = Slurp(q.page_dir / "figures" / "angle_error.gp");
+  EXPECT_EQ(quick_error.find("ensemble_spread"), std::string::npos);
+  // The local tolerance is the pointwise check's, drawn with or without an ensemble; the
+  // whole-run scale only serves the horizon.
+  EXPECT_NE(quick_error.find("local tolerance"), std::string::npos);
+  EXPECT_EQ(quick_error.find("whole-run tolerance"), std::string::npos);
 }
 
 TEST_F(VerdictReportTest, AFolderWithoutAnEnsembleSaysSoPlainly) {
