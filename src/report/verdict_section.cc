@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "harness/verdict.h"
 #include "report/json_keys.h"
 #include "report/number_text.h"
 
@@ -47,7 +48,21 @@ std::string KindInWords(const std::string& kind, bool statistics) {
     return "agrees up to the horizon; its ensemble differs from the reference's beyond it";
   if (kind == "pointwise_only") return "agrees pointwise (no reference ensemble was run)";
   if (kind == "pointwise_differs") return "differs pointwise (no reference ensemble was run)";
+  if (kind == "violates_model")
+    return "does what the model forbids (a blow-up, energy growth, or sliding, uplift or "
+           "penetration at the verdict's scale) while the model holds";
+  if (kind == "outside_model")
+    return "the reference's model ends (a violated assumption) or too few reference members "
+           "remain: nothing to compare there";
+  if (kind == "marginal") return "the statistical decision changes with the ensemble's seed";
   return kind;
+}
+
+// The verdict's word: comparison.json's kind (AGREES, DIFFERS, MARGINAL, OUTSIDE MODEL), or
+// agrees / differs for a folder written before the kinds.
+std::string Label(const std::string& kind, bool agrees) {
+  if (kind.empty()) return agrees ? "AGREES" : "DIFFERS";
+  return VerdictLabel(kind);
 }
 
 void VerdictTable(const VerdictInput& in, Page& page) {
@@ -61,20 +76,21 @@ void VerdictTable(const VerdictInput& in, Page& page) {
     const std::string text = OptString(c, k + ".verdict", file);
     if (text.empty()) {
       old = true;
-      rows.push_back({name, "not recorded", "", ""});
+      rows.push_back({name, "not recorded", "", "", ""});
       continue;
     }
     const std::string kind = OptString(c, k + ".verdict_kind", file);
-    rows.push_back({name, OptBool(c, k + ".agrees", file) ? "AGREES" : "DIFFERS",
+    rows.push_back({name, Label(kind, OptBool(c, k + ".agrees", file)),
                     KindInWords(kind, Find(c, k + ".statistics") != nullptr &&
                                           !Find(c, k + ".statistics")->is_null()),
-                    text + "."});
+                    OptString(c, k + ".verdict_decided_by", file), text + "."});
   }
   if (rows.empty()) {
     page.Paragraph("comparison.json compares no engine with the reference: there is no verdict.");
     return;
   }
-  page.Table({"engine", "verdict", "what was found", "in words (comparison.json)"}, rows);
+  page.Table({"engine", "verdict", "what was found", "decided by", "in words (comparison.json)"},
+             rows);
   if (old) {
     page.Paragraph(
         "This comparison.json has no verdict (written by a rockbench before the verdicts): the "
@@ -91,7 +107,7 @@ void RankingPart(const VerdictInput& in, Page& page) {
   std::vector<std::vector<std::string>> rows;
   for (size_t i = 0; i < ranks.size(); ++i) {
     const EngineRank& r = ranks[i];
-    rows.push_back({std::to_string(i + 1), r.engine, r.agrees ? "AGREES" : "DIFFERS",
+    rows.push_back({std::to_string(i + 1), r.engine, Label(r.kind, r.agrees),
                     r.first_block.empty()
                         ? "whole comparison (" + Fixed(r.compared_until_s, 3) + " s)"
                         : Fixed(r.agreement_horizon_s, 3) + " s (" + r.first_block + ")",
@@ -442,6 +458,7 @@ std::vector<EngineRank> RankEngines(const json& comparison, const std::vector<st
     }
     r.agrees = Find(comparison, k + ".agrees") != nullptr ? OptBool(comparison, k + ".agrees", file)
                                                           : all_within;
+    r.kind = OptString(comparison, k + ".verdict_kind", file);
     ranks.push_back(std::move(r));
   }
   std::stable_sort(ranks.begin(), ranks.end(), [](const EngineRank& a, const EngineRank& b) {

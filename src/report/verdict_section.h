@@ -32,6 +32,7 @@ struct VerdictInput {
 struct EngineRank {
   std::string engine;
   bool agrees = false;  ///< the verdict (without one: every block within the tolerance)
+  std::string kind;     ///< comparison.json verdict_kind; empty in a folder without one
   /// The earliest time at which a block leaves the comparison tolerance of the reference
   /// (comparison.json theta_i.horizon_s); the end of the comparison when none does, s.
   double agreement_horizon_s = 0.0;

@@ -338,6 +338,33 @@ TEST_F(VerdictReportTest, AFolderWithoutAnEnsembleSaysSoPlainly) {
   EXPECT_EQ(Slurp(o.page_dir / "figures" / "angles.gp").find("filledcurves"), std::string::npos);
 }
 
+TEST_F(VerdictReportTest, TheVerdictsWordIsItsKindAndWhatDecidedIt) {
+  // Each kind that is not agreement has its own word in the verdict and ranking tables, and the
+  // decided-by column carries comparison.json's verdict_decided_by.
+  const struct {
+    const char* kind;
+    const char* label;
+  } cases[] = {{"outside_model", "| OUTSIDE MODEL |"},
+               {"marginal", "| MARGINAL |"},
+               {"violates_model", "| DIFFERS |"}};
+  for (const auto& k : cases) {
+    const fs::path dir = Copy("chaos", std::string("kind_") + k.kind);
+    json c = Comparison(dir);
+    json& bullet = c["engines"]["bullet"];
+    bullet["verdict_kind"] = k.kind;
+    bullet["agrees"] = false;
+    bullet["verdict_decided_by"] = std::string("decided by test ") + k.kind;
+    WriteFileAtomic(dir / "comparison.json", c.dump(2));
+    const RunReportResult r = Render(dir, std::string("out_kind_") + k.kind);
+    const std::string md = Slurp(r.page_dir / "report.md");
+    const std::vector<std::string> rows = TableRows(md, "engine | verdict");
+    ASSERT_EQ(rows.size(), 1u) << k.kind;
+    EXPECT_NE(rows[0].find(k.label), std::string::npos) << rows[0];
+    EXPECT_NE(rows[0].find(std::string("decided by test ") + k.kind), std::string::npos) << rows[0];
+    EXPECT_EQ(rows[0].find("| AGREES |"), std::string::npos) << rows[0];
+  }
+}
+
 TEST_F(VerdictReportTest, AMalformedBandIsAnInputErrorNamingTheFile) {
   const fs::path dir = Copy("chaos", "bad_band");
   const fs::path csv = dir / "reference" / "ensemble_band.csv";
