@@ -296,12 +296,16 @@ StudyDef LoadStudy(const std::filesystem::path& path) {
   if (!in) throw SceneError(path.string() + ": cannot open the study file");
   std::ostringstream text;
   text << in.rdbuf();
+  return ParseStudy(text.str(), path);
+}
+
+StudyDef ParseStudy(const std::string& text, const std::filesystem::path& path) {
   StudyDef s;
   s.path = path;
   s.engines = {"reference"};
   toml::table root;
   try {
-    root = toml::parse(text.str(), path.string());
+    root = toml::parse(text, path.string());
   } catch (const toml::parse_error& e) {
     throw SceneError(path.string() + ":" + std::to_string(e.source().begin.line) + ": " +
                      std::string(e.description()));

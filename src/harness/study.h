@@ -65,6 +65,9 @@ struct StudyDef {
 /// unknown keys, an engine not registered or not built, an empty axis, a scene key the scene
 /// schema refuses (the base scene is read with every axis's first value to check).
 StudyDef LoadStudy(const std::filesystem::path& path);
+/// LoadStudy on a study file's text already in memory; `path` names it and anchors the
+/// relative scene path.
+StudyDef ParseStudy(const std::string& text, const std::filesystem::path& path);
 
 /// Member i's scene: the base scene with the study's overrides and member i's axis values.
 /// Throws SceneError when that member's scene is invalid (the row says so).

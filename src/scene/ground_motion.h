@@ -163,6 +163,10 @@ RecordData ReadAt2(const std::filesystem::path& path);
 /// non-numeric header lines. Throws SceneError.
 RecordData ReadPlain(const std::filesystem::path& path, double dt_s);
 
+/// ReadAt2 and ReadPlain on a file's text already in memory; `path` names it in messages.
+RecordData ParseAt2(const std::string& text, const std::filesystem::path& path);
+RecordData ParsePlain(const std::string& text, const std::filesystem::path& path, double dt_s);
+
 /// The value of one unit in the last printed digit of a decimal number token: "-.1234567E-02"
 /// -> 1e-9, "0.039111" -> 1e-6, "12" -> 1, "1.5e3" -> 100 (the nearest double to 10^k). NaN
 /// when the token is not a decimal number ([+-] digits [. digits] [e|E [+-] digits]).

@@ -23,13 +23,17 @@ struct Line {
   std::string text;
 };
 
-std::vector<Line> ReadLines(const std::filesystem::path& path) {
+std::string ReadRecordText(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw SceneError(path.string() + ": cannot open the record file");
   std::ostringstream buf;
   buf << in.rdbuf();
   if (in.bad()) throw SceneError(path.string() + ": cannot read the record file");
-  const std::string text = buf.str();
+  return buf.str();
+}
+
+std::vector<Line> SplitLines(const std::filesystem::path& path, const std::string& text) {
+  (void)path;
   std::vector<Line> lines;
   int number = 1;
   size_t start = 0;
@@ -273,7 +277,11 @@ double PrintedResolution(std::string_view tok) {
 }
 
 RecordData ReadAt2(const std::filesystem::path& path) {
-  const std::vector<Line> lines = ReadLines(path);
+  return ParseAt2(ReadRecordText(path), path);
+}
+
+RecordData ParseAt2(const std::string& text, const std::filesystem::path& path) {
+  const std::vector<Line> lines = SplitLines(path, text);
   // The NPTS/DT line is among the first lines (3 header lines in PEER files, 6 in some).
   constexpr int kHeaderSearchLines = 12;
   size_t header = lines.size();
@@ -352,7 +360,11 @@ RecordData ReadAt2(const std::filesystem::path& path) {
 }
 
 RecordData ReadPlain(const std::filesystem::path& path, double dt_s) {
-  const std::vector<Line> lines = ReadLines(path);
+  return ParsePlain(ReadRecordText(path), path, dt_s);
+}
+
+RecordData ParsePlain(const std::string& text, const std::filesystem::path& path, double dt_s) {
+  const std::vector<Line> lines = SplitLines(path, text);
   RecordData rec;
   std::vector<double> times;
   std::vector<int> line_of;  // file line of each sample
