@@ -2,7 +2,9 @@
 /// Physical and resource limits of a run, checked before anything is allocated or simulated
 /// (docs/limits.md gives the reason for each figure). A value past a limit is bad input: a
 /// SceneError naming the file, key, value and the limit.
+#include <cstddef>
 #include <string>
+#include <string_view>
 
 namespace rockbench {
 namespace limits {
@@ -57,5 +59,10 @@ void CheckMemoryEstimate(double estimate_bytes, const ResourceBudget& budget,
 
 /// "1.5 GiB", "120 MiB", "3 KiB": a byte count for messages.
 std::string ByteText(double bytes);
+
+/// A short excerpt of text for a message: at most `max_chars` characters, control characters
+/// and bytes outside printable ASCII escaped (\r, \n, \t, \0, \xHH), followed by
+/// "... (N bytes)" when cut. Messages never echo a long value or a file's content in full.
+std::string Excerpt(std::string_view text, size_t max_chars = 60);
 
 }  // namespace rockbench
