@@ -1,7 +1,10 @@
 #include "scene/ground_motion.h"
 
+#include "scene/limits.h"
+
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <numbers>
 #include <stdexcept>
@@ -96,7 +99,19 @@ MotionComponent MotionComponent::FromSynthetic(const MotionDef& def) {
   } catch (const std::invalid_argument& e) {
     throw SceneError(def.key + ": " + e.what());
   }
-  for (double& v : a) v *= def.scale;
+  // The generated peak after scale, within the physical limit (an intensity too large for the
+  // limit names its key).
+  const double max_mps2 = limits::kMaxAccel_g * kStandardGravity_mps2;
+  for (double& v : a) {
+    v *= def.scale;
+    if (!(std::abs(v) <= max_mps2)) {
+      const std::string key = def.amplitude_g > 0.0 ? def.key + ".scale" : def.key + ".intensity";
+      throw SceneError(key + ": the generated record reaches " +
+                       ShortestText(std::abs(v) / kStandardGravity_mps2) +
+                       " g; expected an acceleration with magnitude at most " +
+                       ShortestText(limits::kMaxAccel_g) + " g (docs/limits.md)");
+    }
+  }
   MotionComponent c = FromSamples(std::move(a), d.dt_s, def.start_s,
                                   "kanai_tajimi (seed " + std::to_string(d.seed) + ")");
   c.info_.format = "synthetic";
@@ -134,6 +149,24 @@ MotionComponent MotionComponent::FromDef(const MotionDef& def) {
                        "\"cm/s2\"");
     }
     const double factor = AccelUnitsToMps2(units) * def.scale;
+    // Every sample within the physical limit, after units and scale (scene/limits.h).
+    const double max_mps2 = limits::kMaxAccel_g * kStandardGravity_mps2;
+    for (size_t i = 0; i < rec.values.size(); ++i) {
+      const double a = rec.values[i] * factor;
+      if (std::abs(a) <= max_mps2) continue;
+      const std::string line = i < rec.lines.size() ? ":" + std::to_string(rec.lines[i]) : "";
+      const std::string scaled =
+          def.scale != 1.0 ? " times " + def.key + ".scale = " + ShortestText(def.scale) : "";
+      char in_g[32];
+      std::snprintf(in_g, sizeof in_g, "%.6g", a / kStandardGravity_mps2);
+      const bool same = def.scale == 1.0 && units == AccelUnits::kG;
+      throw SceneError(def.file.string() + line + ": sample " + std::to_string(i + 1) + " = " +
+                       ShortestText(rec.values[i]) + " " + std::string(AccelUnitsName(units)) +
+                       scaled + (same ? "" : " is " + std::string(in_g) + " g") +
+                       "; expected an acceleration with magnitude at most " +
+                       ShortestText(limits::kMaxAccel_g) +
+                       " g (far above any recorded ground motion, about 4 g; docs/limits.md)");
+    }
     for (double& v : rec.values) v *= factor;
     for (double& r : rec.resolution) r *= std::abs(factor);
     const std::string source =

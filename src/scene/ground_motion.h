@@ -143,6 +143,7 @@ class GroundMotion {
 struct RecordData {
   std::vector<double> values;      ///< acceleration in the file's units
   std::vector<double> resolution;  ///< one unit of each value's last printed digit, file units
+  std::vector<int> lines;          ///< the file line of each value
   double dt_s = 0.0;
   double t0_s = 0.0;   ///< time of the first sample in the file (two-column files)
   std::string format;  ///< "AT2", "plain-2col", "plain-1col"

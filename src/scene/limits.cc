@@ -42,6 +42,48 @@ std::string Excerpt(std::string_view text, size_t max_chars) {
   return out;
 }
 
+namespace {
+ResourceBudget& Budget() {
+  static ResourceBudget budget;
+  return budget;
+}
+}  // namespace
+
+void SetProcessBudget(const ResourceBudget& budget) { Budget() = budget; }
+const ResourceBudget& ProcessBudget() { return Budget(); }
+
+std::string InputFileProblem(const std::filesystem::path& path, const std::string& what,
+                             double max_bytes) {
+  const std::string& raw = path.native();
+  const std::string shown = Excerpt(raw, 200);
+  if (raw.empty()) return "expected a " + what + " path, got \"\"";
+  if (raw.find('\0') != std::string::npos) {
+    return shown + ": the path holds a NUL character; expected a " + what + " path";
+  }
+  std::error_code ec;
+  const auto st = std::filesystem::status(path, ec);
+  if (ec && st.type() != std::filesystem::file_type::not_found) {
+    return shown + ": cannot open the " + what + ": " + ec.message();
+  }
+  switch (st.type()) {
+    case std::filesystem::file_type::not_found:
+      return shown + ": no such " + what;
+    case std::filesystem::file_type::regular:
+      break;
+    case std::filesystem::file_type::directory:
+      return shown + ": is a folder; expected a " + what;
+    default:
+      return shown + ": is not a regular file (a device, pipe or socket); expected a " + what;
+  }
+  const auto size = std::filesystem::file_size(path, ec);
+  if (ec) return shown + ": cannot read the " + what + ": " + ec.message();
+  if (static_cast<double>(size) > max_bytes) {
+    return shown + ": the " + what + " is " + ByteText(static_cast<double>(size)) +
+           ", more than the " + ByteText(max_bytes) + " an input file may be (docs/limits.md)";
+  }
+  return "";
+}
+
 void CheckMemoryEstimate(double estimate_bytes, const ResourceBudget& budget,
                          const std::string& where, const std::string& key,
                          const std::string& what) {

@@ -3,6 +3,7 @@
 /// (docs/limits.md gives the reason for each figure). A value past a limit is bad input: a
 /// SceneError naming the file, key, value and the limit.
 #include <cstddef>
+#include <filesystem>
 #include <string>
 #include <string_view>
 
@@ -39,6 +40,9 @@ inline constexpr double kMinRtol = 1e-15;
 inline constexpr double kMinAtol = 1e-20;
 /// Largest initial rate |omega|, rad/s (a block spinning ten turns a second).
 inline constexpr double kMaxRate_radps = 100.0;
+/// Largest input file (scene, study, record), bytes: the longest real records are a few MB
+/// (1e6 samples); 256 MiB holds about 1.6e7 samples of PEER's 16-character values.
+inline constexpr double kMaxInputFile_bytes = 256.0 * 1024 * 1024;
 /// Default memory budget of one command, bytes (raise it with --memory-budget GIB).
 inline constexpr double kDefaultMemoryBudget_bytes = 2.0 * 1024 * 1024 * 1024;
 
@@ -49,6 +53,19 @@ inline constexpr double kDefaultMemoryBudget_bytes = 2.0 * 1024 * 1024 * 1024;
 struct ResourceBudget {
   double memory_bytes = limits::kDefaultMemoryBudget_bytes;  ///< bytes
 };
+
+/// The memory budget of this process's command: set once by the CLI from --memory-budget
+/// before any scene is read (the readers check records and synthetic motions against it).
+void SetProcessBudget(const ResourceBudget& budget);
+const ResourceBudget& ProcessBudget();
+
+/// Why `path` cannot be read as an input file of the kind `what` ("scene file", "record
+/// file", ...), or "" when it can: it must exist, be a regular file (not a folder, device,
+/// pipe or socket), have a path without NUL characters and of a sane length, and be at most
+/// `max_bytes` long. The message starts with the path (cut to an excerpt) and says what was
+/// expected.
+std::string InputFileProblem(const std::filesystem::path& path, const std::string& what,
+                             double max_bytes = limits::kMaxInputFile_bytes);
 
 /// Throws SceneError "WHERE: KEY: needs an estimated X GiB (WHAT), more than the memory budget
 /// of Y GiB: shorten or coarsen it, or raise the budget with --memory-budget GIB" when

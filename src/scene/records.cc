@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "scene/ground_motion.h"
+#include "scene/limits.h"
 
 namespace rockbench {
 namespace {
@@ -24,6 +25,9 @@ struct Line {
 };
 
 std::string ReadRecordText(const std::filesystem::path& path) {
+  if (const std::string problem = InputFileProblem(path, "record file"); !problem.empty()) {
+    throw SceneError(problem);
+  }
   std::ifstream in(path, std::ios::binary);
   if (!in) throw SceneError(path.string() + ": cannot open the record file");
   std::ostringstream buf;
@@ -33,7 +37,19 @@ std::string ReadRecordText(const std::filesystem::path& path) {
 }
 
 std::vector<Line> SplitLines(const std::filesystem::path& path, const std::string& text) {
-  (void)path;
+  // A CR that ends a line without an LF (old Mac OS line endings) would make the whole file one
+  // line: refused, at the line it ends.
+  for (size_t at = text.find('\r'); at != std::string::npos; at = text.find('\r', at + 1)) {
+    size_t next = at + 1;
+    while (next < text.size() && text[next] == '\r') ++next;
+    if (next < text.size() && text[next] != '\n') {
+      const auto line = 1 + std::count(text.begin(), text.begin() + static_cast<long>(at), '\n');
+      throw SceneError(path.string() + ":" + std::to_string(line) +
+                       ": a line ends with a carriage return (CR) alone; expected LF or CR LF "
+                       "line endings (convert the file, e.g. with tr '\\r' '\\n')");
+    }
+    at = next - 1;
+  }
   std::vector<Line> lines;
   int number = 1;
   size_t start = 0;
@@ -84,11 +100,10 @@ std::string Where(const std::filesystem::path& path, int line) {
 double Value(const std::filesystem::path& path, int line, std::string_view tok) {
   double v = 0.0;
   if (!ParseNumber(tok, v)) {
-    throw SceneError(Where(path, line) + ": expected a number, got '" + std::string(tok) + "'");
+    throw SceneError(Where(path, line) + ": expected a number, got '" + Excerpt(tok) + "'");
   }
   if (!std::isfinite(v)) {
-    throw SceneError(Where(path, line) + ": expected a finite number, got '" + std::string(tok) +
-                     "'");
+    throw SceneError(Where(path, line) + ": expected a finite number, got '" + Excerpt(tok) + "'");
   }
   return v;
 }
@@ -98,7 +113,7 @@ double Resolution(const std::filesystem::path& path, int line, std::string_view 
   const double r = PrintedResolution(tok);
   if (!(r >= 0.0)) {
     throw SceneError(Where(path, line) + ": expected a decimal number (e.g. -.1234567E-02), got '" +
-                     std::string(tok) + "'");
+                     Excerpt(tok) + "'");
   }
   return r;
 }
@@ -184,7 +199,7 @@ void ReadUnitsLine(const std::filesystem::path& path, const Line& line, RecordDa
   static const std::regex kSeries(
       R"(\b(VELOCITY|DISPLACEMENT)\s+(TIME\s+(SERIES|HISTORY)|RECORD|TRACE)\b)", icase);
   const std::string& text = line.text;
-  const std::string quoted = "\"" + Trim(text) + "\"";
+  const std::string quoted = "\"" + Excerpt(Trim(text), 100) + "\"";
   std::smatch quantity_m, units_m;
   const bool has_quantity = std::regex_search(text, quantity_m, kQuantity);
   const std::string quantity = has_quantity ? Upper(quantity_m[1]) : "";
@@ -219,7 +234,7 @@ void ReadUnitsLine(const std::filesystem::path& path, const Line& line, RecordDa
       std::string(" (expected acceleration in ") + std::string(kKnownAccelUnits) + ")";
   if (spelling == nullptr) {
     throw SceneError(Where(path, line.number) + ": the header says " + quoted +
-                     ": unknown units \"" + written + "\"" + expected);
+                     ": unknown units \"" + Excerpt(written) + "\"" + expected);
   }
   if (spelling->dimension == Dimension::kVelocity) {
     throw SceneError(Where(path, line.number) + ": the header says " + quoted + ": \"" + written +
@@ -301,9 +316,9 @@ RecordData ParseAt2(const std::string& text, const std::filesystem::path& path) 
   }
   const Line& h = lines[header];
   const auto icase = std::regex::ECMAScript | std::regex::icase;
-  static const std::regex kNpts(R"(NPTS\s*=\s*([0-9]+))", icase);
+  static const std::regex kNpts(R"(NPTS\s*=\s*([-+0-9.Ee]+))", icase);
   static const std::regex kDt(R"(\bDT\s*=\s*([-+0-9.Ee]+))", icase);
-  static const std::regex kTrailer(R"(^\s*([0-9]+)\s+([-+0-9.Ee]+)\s+NPTS\s*,\s*DT)", icase);
+  static const std::regex kTrailer(R"(^\s*([-+0-9.Ee]+)\s+([-+0-9.Ee]+)\s+NPTS\s*,\s*DT)", icase);
   std::smatch npts_m, dt_m;
   std::string npts_text, dt_text;
   if (std::regex_search(h.text, npts_m, kNpts) && std::regex_search(h.text, dt_m, kDt)) {
@@ -313,8 +328,8 @@ RecordData ParseAt2(const std::string& text, const std::filesystem::path& path) 
     npts_text = npts_m[1];
     dt_text = npts_m[2];
   } else {
-    throw SceneError(Where(path, h.number) + ": cannot read NPTS and DT from '" + h.text +
-                     "' (expected 'NPTS= n, DT= dt SEC' or 'n dt NPTS, DT')");
+    throw SceneError(Where(path, h.number) + ": cannot read NPTS and DT from '" +
+                     Excerpt(h.text, 100) + "' (expected 'NPTS= n, DT= dt SEC' or 'n dt NPTS, DT')");
   }
   RecordData rec;
   rec.format = "AT2";
@@ -322,13 +337,22 @@ RecordData ParseAt2(const std::string& text, const std::filesystem::path& path) 
   {
     const char* end = npts_text.data() + npts_text.size();
     auto res = std::from_chars(npts_text.data(), end, npts);
-    if (res.ec != std::errc() || res.ptr != end || npts <= 0 || npts > 100'000'000) {
-      throw SceneError(Where(path, h.number) + ": expected a positive NPTS, got '" + npts_text +
-                       "'");
+    if (res.ec != std::errc() || res.ptr != end || npts <= 0) {
+      throw SceneError(Where(path, h.number) + ": expected NPTS as a positive whole number, got '" +
+                       Excerpt(npts_text) + "'");
+    }
+    // Every value takes at least two bytes (a digit and a separator): a larger NPTS cannot be
+    // in the file, and would only reserve memory.
+    const auto room = static_cast<long long>(text.size() / 2 + 1);
+    if (npts > room) {
+      throw SceneError(Where(path, h.number) + ": NPTS = " + std::to_string(npts) +
+                       " values cannot fit in the file's " + std::to_string(text.size()) +
+                       " bytes (expected the number of samples that follow)");
     }
   }
   if (!ParseNumber(dt_text, rec.dt_s) || !std::isfinite(rec.dt_s) || rec.dt_s <= 0.0) {
-    throw SceneError(Where(path, h.number) + ": expected a positive DT (s), got '" + dt_text + "'");
+    throw SceneError(Where(path, h.number) + ": expected a positive DT (s), got '" +
+                     Excerpt(dt_text) + "'");
   }
   // The first header line (up to the NPTS line) that declares the units.
   bool units_found = false;
@@ -338,15 +362,17 @@ RecordData ParseAt2(const std::string& text, const std::filesystem::path& path) 
   // Every numeric token after the header line, whatever the count per line.
   rec.values.reserve(static_cast<size_t>(npts));
   rec.resolution.reserve(static_cast<size_t>(npts));
+  rec.lines.reserve(static_cast<size_t>(npts));
   int last_line = h.number;
   for (size_t i = header + 1; i < lines.size(); ++i) {
     for (std::string_view tok : Tokens(lines[i].text, false)) {
       if (static_cast<long long>(rec.values.size()) == npts) {
         throw SceneError(Where(path, lines[i].number) + ": more values than NPTS = " +
                          std::to_string(npts) + " (header line " + std::to_string(h.number) +
-                         "): value " + std::to_string(npts + 1) + " is '" + std::string(tok) + "'");
+                         "): value " + std::to_string(npts + 1) + " is '" + Excerpt(tok) + "'");
       }
       rec.values.push_back(Value(path, lines[i].number, tok));
+      rec.lines.push_back(lines[i].number);
       rec.resolution.push_back(Resolution(path, lines[i].number, tok));
     }
     last_line = lines[i].number;
@@ -401,6 +427,7 @@ RecordData ParsePlain(const std::string& text, const std::filesystem::path& path
     rec.values.push_back(row.back());
     rec.resolution.push_back(Resolution(path, line.number, toks.back()));
     line_of.push_back(line.number);
+    rec.lines.push_back(line.number);
   }
   if (rec.values.empty()) throw SceneError(path.string() + ": no numeric data found");
   if (columns == 1) {

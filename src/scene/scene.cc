@@ -5,14 +5,81 @@
 #include <algorithm>
 #include <array>
 #include <charconv>
+#include <cstdio>
+#include <cstdlib>
 #include <cmath>
 #include <fstream>
 #include <map>
 #include <sstream>
 #include <utility>
 
+#include "scene/limits.h"
+
 namespace rockbench {
 namespace {
+
+// A physical limit of a key (scene/limits.h, docs/limits.md): the closed range [lo, hi] of the
+// value (of |value| when `magnitude`), and why.
+struct Limit {
+  double lo = -std::numeric_limits<double>::infinity();
+  double hi = std::numeric_limits<double>::infinity();
+  const char* why = "";
+  bool magnitude = false;
+};
+
+const Limit kLengthLimit{limits::kMinLength_m, limits::kMaxLength_m,
+                         "a 0.1 mm grain to a 10 km slab; docs/limits.md"};
+const Limit kMassLimit{limits::kMinMass_kg, limits::kMaxMass_kg, "docs/limits.md"};
+const Limit kDensityLimit{limits::kMinDensity_kgpm3, limits::kMaxDensity_kgpm3,
+                          "air is 1.2, osmium 22,590; docs/limits.md"};
+const Limit kAccelLimit{0.0, limits::kMaxAccel_g,
+                        "far above any recorded ground motion (about 4 g); docs/limits.md",
+                        true};
+const Limit kFrequencyLimit{0.0, limits::kMaxFrequency_hz,
+                            "ground motion of structural interest is below 50 Hz; "
+                            "docs/limits.md"};
+const Limit kDurationLimit{0.0, limits::kMaxDuration_s, "one day; docs/limits.md"};
+const Limit kGravityLimit{limits::kMinGravity_mps2, limits::kMaxGravity_mps2,
+                          "Ceres 0.28, the Sun 274; docs/limits.md"};
+const Limit kRtolLimit{limits::kMinRtol, 0.1,
+                       "below 1e-15 the error estimate is rounding noise; docs/limits.md"};
+const Limit kAtolLimit{limits::kMinAtol, 0.1, "docs/limits.md"};
+const Limit kRateLimit{0.0, limits::kMaxRate_radps, "ten turns a second; docs/limits.md", true};
+const Limit kOverturnLimit{0.0, 1.5707963267948966,
+                           "a block tilted pi/2 lies on its side; docs/limits.md"};
+const Limit kToleranceLimit{0.0, 1.5707963267948966, "docs/limits.md"};
+
+// An acceleration in g for messages, to six digits.
+std::string GText(double g) {
+  std::array<char, 64> buf{};
+  std::snprintf(buf.data(), buf.size(), "%.6g", g);
+  return buf.data();
+}
+
+bool Within(double v, const Limit& lim) {
+  const double x = lim.magnitude ? std::abs(v) : v;
+  return x >= lim.lo && x <= lim.hi;
+}
+
+// " from LO to HI (why)" or " with |value| at most HI (why)".
+std::string LimitText(const Limit& lim) {
+  // Six digits when they read back as the same number (0.0001, 86400), else every digit.
+  const auto num = [](double v) {
+    std::array<char, 64> buf{};
+    std::snprintf(buf.data(), buf.size(), "%.6g", v);
+    return std::strtod(buf.data(), nullptr) == v ? std::string(buf.data()) : ShortestText(v);
+  };
+  std::string out;
+  if (lim.magnitude) {
+    out = " with magnitude at most " + num(lim.hi);
+  } else if (lim.lo > 0.0) {
+    out = " from " + num(lim.lo) + " to " + num(lim.hi);
+  } else {
+    out = " at most " + num(lim.hi);
+  }
+  if (lim.why[0] != '\0') out += std::string(" (") + lim.why + ")";
+  return out;
+}
 
 // What a number must be; the message text names it and the unit.
 enum class Rule { kFinite, kPositive, kNonNegative, kFraction, kUnitInterval };
@@ -58,10 +125,8 @@ bool Satisfies(double v, Rule rule) {
 }
 
 std::string Quote(std::string_view text) {
-  std::string out;
-  out.reserve(text.size() + 2);
-  out += '"';
-  out += text;
+  std::string out = "\"";
+  out += Excerpt(text);
   out += '"';
   return out;
 }
@@ -197,7 +262,7 @@ class Reader {
 
   std::string Loc(const std::string& key, const toml::node* node) const {
     if (auto it = overrides_.find(key); it != overrides_.end()) {
-      return file_ + ": override \"" + it->second + "\"";
+      return file_ + ": override " + Quote(it->second);
     }
     if (node != nullptr && node->source().begin.line > 0) {
       return file_ + ":" + std::to_string(node->source().begin.line);
@@ -222,7 +287,7 @@ class Reader {
       for (const auto& [name, is_table] : allowed) {
         list += (list.empty() ? "" : ", ") + std::string(name);
       }
-      const std::string key = Join(prefix, k.str());
+      const std::string key = Excerpt(Join(prefix, k.str()));
       std::string loc = file_;
       if (k.source().begin.line > 0) loc += ":" + std::to_string(k.source().begin.line);
       throw SceneError(loc + ": " + key + ": unknown key (expected one of: " + list + ")");
@@ -242,7 +307,8 @@ class Reader {
   }
 
   std::optional<double> Number(const toml::table& t, const std::string& prefix,
-                               std::string_view name, Rule rule, std::string_view unit) const {
+                               std::string_view name, Rule rule, std::string_view unit,
+                               const Limit* limit = nullptr) const {
     const toml::node* node = t.get(name);
     if (node == nullptr) return std::nullopt;
     const std::string key = Join(prefix, name);
@@ -257,12 +323,16 @@ class Reader {
     if (!Satisfies(v, rule)) {
       Fail(key, node, "expected " + Expectation(rule, unit) + ", got " + ShortestText(v));
     }
+    if (limit != nullptr && !Within(v, *limit)) {
+      Fail(key, node,
+           "expected " + Expectation(rule, unit) + LimitText(*limit) + ", got " + ShortestText(v));
+    }
     return v;
   }
 
   double RequiredNumber(const toml::table& t, const std::string& prefix, std::string_view name,
-                        Rule rule, std::string_view unit) const {
-    auto v = Number(t, prefix, name, rule, unit);
+                        Rule rule, std::string_view unit, const Limit* limit = nullptr) const {
+    auto v = Number(t, prefix, name, rule, unit, limit);
     if (!v) Fail(Join(prefix, name), &t, "missing; expected " + Expectation(rule, unit));
     return *v;
   }
@@ -321,7 +391,7 @@ class Reader {
     for (const auto& [text, value] : choices) {
       if (text == *s) return value;
     }
-    Fail(Join(prefix, name), t.get(name), "expected " + expected + ", got \"" + *s + "\"");
+    Fail(Join(prefix, name), t.get(name), "expected " + expected + ", got " + Quote(*s));
   }
 
   // A key that must not be there (message says why).
@@ -362,11 +432,11 @@ class Reader {
 
   BlockDef ReadBlock(const toml::table& t, const std::string& prefix) const {
     BlockDef b;
-    b.width_m = RequiredNumber(t, prefix, "width", Rule::kPositive, "m");
-    b.height_m = RequiredNumber(t, prefix, "height", Rule::kPositive, "m");
-    b.depth_m = Number(t, prefix, "depth", Rule::kPositive, "m").value_or(1.0);
-    auto density = Number(t, prefix, "density", Rule::kPositive, "kg/m^3");
-    auto mass = Number(t, prefix, "mass", Rule::kPositive, "kg");
+    b.width_m = RequiredNumber(t, prefix, "width", Rule::kPositive, "m", &kLengthLimit);
+    b.height_m = RequiredNumber(t, prefix, "height", Rule::kPositive, "m", &kLengthLimit);
+    b.depth_m = Number(t, prefix, "depth", Rule::kPositive, "m", &kLengthLimit).value_or(1.0);
+    auto density = Number(t, prefix, "density", Rule::kPositive, "kg/m^3", &kDensityLimit);
+    auto mass = Number(t, prefix, "mass", Rule::kPositive, "kg", &kMassLimit);
     if (density && mass) {
       Fail(prefix + ".mass", t.get("mass"), "give either density or mass, not both");
     }
@@ -376,6 +446,11 @@ class Reader {
     if (density) {
       b.density_kgpm3 = *density;
       b.mass_kg = *density * b.width_m * b.height_m * b.depth_m;
+      if (!Within(b.mass_kg, kMassLimit)) {
+        Fail(prefix + ".density", t.get("density"),
+             "density * width * height * depth = " + ShortestText(b.mass_kg) +
+                 " kg; expected a mass" + LimitText(kMassLimit));
+      }
     } else {
       b.density_kgpm3 = 0.0;
       b.mass_kg = *mass;
@@ -387,7 +462,7 @@ class Reader {
   void ReadSynthetic(const toml::table& t, const std::string& prefix, MotionDef* m) const {
     SyntheticMotionDef& d = m->synthetic;
     const auto intensity = Number(t, prefix, "intensity", Rule::kPositive, "m^2/s^3");
-    const auto peak = Number(t, prefix, "amplitude_g", Rule::kPositive, "g");
+    const auto peak = Number(t, prefix, "amplitude_g", Rule::kPositive, "g", &kAccelLimit);
     if (intensity && peak) {
       Fail(prefix, &t,
            "give intensity (the white noise's PSD, m^2/s^3) or amplitude_g (the record's peak, "
@@ -425,7 +500,7 @@ class Reader {
       }
     }
     d.dt_s = Number(t, prefix, "dt", Rule::kPositive, "s").value_or(d.dt_s);
-    d.duration_s = RequiredNumber(t, prefix, "duration_s", Rule::kPositive, "s");
+    d.duration_s = RequiredNumber(t, prefix, "duration_s", Rule::kPositive, "s", &kDurationLimit);
     m->duration_s = d.duration_s;
     if (const auto seed = NonNegativeInteger(t, prefix, "seed", INT64_MAX)) {
       d.seed = static_cast<std::uint64_t>(*seed);
@@ -448,15 +523,15 @@ class Reader {
       Fail(prefix, &t, "missing file = \"...\" or kind = " + kinds);
     }
     m.scale = Number(t, prefix, "scale", Rule::kFinite, "").value_or(1.0);
-    m.start_s = Number(t, prefix, "start_s", Rule::kNonNegative, "s").value_or(0.0);
+    m.start_s = Number(t, prefix, "start_s", Rule::kNonNegative, "s", &kDurationLimit).value_or(0.0);
     if (file) {
       m.kind = MotionKind::kFile;
       if (file->empty()) Fail(prefix + ".file", t.get("file"), "expected a file path, got \"\"");
       m.file_as_written = *file;
       std::filesystem::path p(*file);
       m.file = p.is_absolute() ? p : (scene_path.parent_path() / p).lexically_normal();
-      if (!std::filesystem::is_regular_file(m.file)) {
-        Fail(prefix + ".file", t.get("file"), "file not found: " + m.file.string());
+      if (const std::string problem = InputFileProblem(m.file, "record file"); !problem.empty()) {
+        Fail(prefix + ".file", t.get("file"), problem);
       }
       const std::string why = "only for analytic kinds (kind = ...), not for a record file";
       Forbid(t, prefix, "amplitude_g", why);
@@ -492,14 +567,22 @@ class Reader {
       Forbid(t, prefix, key, only_synthetic);
     }
     Forbid(t, prefix, "dt", "only for one-column record files and kind = \"kanai_tajimi\"");
-    m.amplitude_g = RequiredNumber(t, prefix, "amplitude_g", Rule::kFinite, "g");
+    m.amplitude_g = RequiredNumber(t, prefix, "amplitude_g", Rule::kFinite, "g", &kAccelLimit);
+    if (!Within(m.amplitude_g * m.scale, kAccelLimit)) {
+      Fail(prefix + (t.get("scale") != nullptr ? ".scale" : ".amplitude_g"),
+           t.get(t.get("scale") != nullptr ? "scale" : "amplitude_g"),
+           "amplitude_g * scale = " + GText(m.amplitude_g * m.scale) +
+               " g; expected an acceleration (g)" + LimitText(kAccelLimit));
+    }
     if (m.kind == MotionKind::kRectangularPulse) {
       Forbid(t, prefix, "frequency_hz", "not used by kind = \"rectangular_pulse\"");
-      m.duration_s = RequiredNumber(t, prefix, "duration_s", Rule::kPositive, "s");
+      m.duration_s =
+          RequiredNumber(t, prefix, "duration_s", Rule::kPositive, "s", &kDurationLimit);
     } else {
-      m.frequency_hz = RequiredNumber(t, prefix, "frequency_hz", Rule::kPositive, "Hz");
+      m.frequency_hz =
+          RequiredNumber(t, prefix, "frequency_hz", Rule::kPositive, "Hz", &kFrequencyLimit);
       if (m.kind == MotionKind::kHarmonic) {
-        m.duration_s = Number(t, prefix, "duration_s", Rule::kPositive, "s")
+        m.duration_s = Number(t, prefix, "duration_s", Rule::kPositive, "s", &kDurationLimit)
                            .value_or(std::numeric_limits<double>::infinity());
       } else {
         Forbid(t, prefix, "duration_s",
@@ -512,24 +595,28 @@ class Reader {
   // [initial]: the angles and rates at t = 0 (theta2, omega2 only with a [block2]).
   void ReadInitial(const toml::table& in, Scene* s) const {
     s->initial.theta1_rad = Number(in, "initial", "theta1", Rule::kFinite, "rad").value_or(0.0);
-    s->initial.omega1_radps = Number(in, "initial", "omega1", Rule::kFinite, "rad/s").value_or(0.0);
+    s->initial.omega1_radps =
+        Number(in, "initial", "omega1", Rule::kFinite, "rad/s", &kRateLimit).value_or(0.0);
     if (!s->two_blocks()) {
       const std::string why = "not allowed in a single-block scene (there is no [block2])";
       Forbid(in, "initial", "theta2", why);
       Forbid(in, "initial", "omega2", why);
     }
     s->initial.theta2_rad = Number(in, "initial", "theta2", Rule::kFinite, "rad").value_or(0.0);
-    s->initial.omega2_radps = Number(in, "initial", "omega2", Rule::kFinite, "rad/s").value_or(0.0);
+    s->initial.omega2_radps =
+        Number(in, "initial", "omega2", Rule::kFinite, "rad/s", &kRateLimit).value_or(0.0);
   }
 
   // [run]: duration, output interval, gravity.
   RunConfig ReadRun(const toml::table& run) const {
     RunConfig r;
-    r.duration_s = Number(run, "run", "duration", Rule::kPositive, "s").value_or(r.duration_s);
+    r.duration_s =
+        Number(run, "run", "duration", Rule::kPositive, "s", &kDurationLimit).value_or(r.duration_s);
     r.output_interval_s =
         Number(run, "run", "output_interval", Rule::kPositive, "s").value_or(r.output_interval_s);
     r.gravity_mps2 =
-        Number(run, "run", "gravity", Rule::kPositive, "m/s^2").value_or(r.gravity_mps2);
+        Number(run, "run", "gravity", Rule::kPositive, "m/s^2", &kGravityLimit)
+            .value_or(r.gravity_mps2);
     if (r.output_interval_s > r.duration_s) {
       if (const toml::node* node = run.get("output_interval")) {
         Fail("run.output_interval", node,
@@ -551,8 +638,9 @@ class Reader {
                                             {"dop853", Integrator::kDop853},
                                             {"rk4", Integrator::kRk4}})
                        .value_or(m.integrator);
-    m.rtol = Number(model, "model", "rtol", Rule::kPositive, "").value_or(m.rtol);
-    m.atol = Number(model, "model", "atol", Rule::kPositive, "rad, rad/s").value_or(m.atol);
+    m.rtol = Number(model, "model", "rtol", Rule::kPositive, "", &kRtolLimit).value_or(m.rtol);
+    m.atol = Number(model, "model", "atol", Rule::kPositive, "rad, rad/s", &kAtolLimit)
+                 .value_or(m.atol);
     m.step_s = Number(model, "model", "step", Rule::kPositive, "s").value_or(m.step_s);
     m.events = Enum(model, "model", "events",
                     Choices<EventScheme>{{"located", EventScheme::kLocated},
@@ -563,7 +651,8 @@ class Reader {
                                           {"linearized", Equations::kLinearized}})
                       .value_or(m.equations);
     m.overturn_rad =
-        Number(model, "model", "overturn_angle", Rule::kPositive, "rad").value_or(m.overturn_rad);
+        Number(model, "model", "overturn_angle", Rule::kPositive, "rad", &kOverturnLimit)
+            .value_or(m.overturn_rad);
     Forbid(model, "model", "rest_rate",
            "removed: the rest rule is dimensionless now; use model.rest_rate_rel (the rate "
            "relative to sqrt(g / R), default " +
@@ -577,7 +666,7 @@ class Reader {
   // [compare]: the verdict's tolerance and ensembles.
   CompareConfig ReadCompare(const toml::table& cmp) const {
     CompareConfig c;
-    c.tolerance_rad = Number(cmp, "compare", "tolerance", Rule::kPositive, "rad");
+    c.tolerance_rad = Number(cmp, "compare", "tolerance", Rule::kPositive, "rad", &kToleranceLimit);
     c.members =
         static_cast<int>(NonNegativeInteger(cmp, "compare", "members", 100000).value_or(c.members));
     c.engine_members = static_cast<int>(
@@ -592,6 +681,31 @@ class Reader {
       c.seed = static_cast<uint64_t>(*seed);
     }
     return c;
+  }
+
+  // The rules that involve several keys, one for every engine and the reference: block 2 no
+  // wider than block 1, and every initial angle short of model.overturn_angle.
+  void CheckStackRules(const toml::table& root, const Scene& s) const {
+    const toml::node* b2 = root.get("block2");
+    if (s.block2 && s.block2->width_m > s.block1.width_m) {
+      const toml::node* w = b2 != nullptr && b2->is_table() ? b2->as_table()->get("width") : b2;
+      Fail("block2.width", w,
+           "expected at most block1.width (" + ShortestText(s.block1.width_m) +
+               " m: block 2 would pivot outside block 1's top face, which the model does not "
+               "describe), got " +
+               ShortestText(s.block2->width_m));
+    }
+    const toml::node* in = root.get("initial");
+    const toml::table* it = in != nullptr ? in->as_table() : nullptr;
+    const auto angle = [&](const char* name, double v) {
+      if (std::abs(v) < s.model.overturn_rad) return;
+      Fail(std::string("initial.") + name, it != nullptr ? it->get(name) : nullptr,
+           "expected |" + std::string(name) + "| below model.overturn_angle (" +
+               ShortestText(s.model.overturn_rad) + " rad; the block would have overturned), got " +
+               ShortestText(v));
+    };
+    angle("theta1", s.initial.theta1_rad);
+    angle("theta2", s.initial.theta2_rad);
   }
 
   Scene Read(const toml::table& root, const std::filesystem::path& path) const {
@@ -624,6 +738,7 @@ class Reader {
     if (const toml::table* run = Table(root, "", "run")) s.run = ReadRun(*run);
 
     if (const toml::table* model = Table(root, "", "model")) s.model = ReadModel(*model);
+    CheckStackRules(root, s);
 
     if (const toml::table* cmp = Table(root, "", "compare")) s.compare = ReadCompare(*cmp);
     return s;
@@ -641,7 +756,7 @@ std::map<std::string, std::string> ApplyOverrides(toml::table& root,
   std::map<std::string, std::string> applied;
   for (const std::string& text : overrides) {
     const auto fail = [&](const std::string& msg) {
-      throw SceneError(file + ": override \"" + text + "\": " + msg);
+      throw SceneError(file + ": override " + Quote(text) + ": " + msg);
     };
     const auto eq = text.find('=');
     if (eq == std::string::npos) fail("expected key=value");
@@ -672,7 +787,7 @@ std::map<std::string, std::string> ApplyOverrides(toml::table& root,
         engine_table = true;
         found = true, is_table = i == 0;
       }
-      if (!found) fail("unknown key " + here);
+      if (!found) fail("unknown key " + Excerpt(here));
       const bool last = i + 1 == parts.size();
       if (last && is_table)
         fail(here + " is a table; set its keys one by one (" + here + ".x=...)");
@@ -710,7 +825,7 @@ std::map<std::string, std::string> ApplyOverrides(toml::table& root,
 }
 
 std::string FileLabel(const std::filesystem::path& path) {
-  return path.empty() ? std::string("scene") : path.string();
+  return path.empty() ? std::string("scene") : Excerpt(path.string(), 200);
 }
 
 }  // namespace
@@ -809,6 +924,12 @@ std::string ShortestText(double v) {
 }
 
 Scene LoadScene(const std::filesystem::path& path, const std::vector<std::string>& overrides) {
+  // A scene is a few kB; 16 MiB leaves room for comments and keeps the TOML tree small.
+  constexpr double kMaxSceneFile_bytes = 16.0 * 1024 * 1024;
+  if (const std::string problem = InputFileProblem(path, "scene file", kMaxSceneFile_bytes);
+      !problem.empty()) {
+    throw SceneError(problem);
+  }
   std::ifstream in(path, std::ios::binary);
   if (!in) throw SceneError(path.string() + ": cannot open the scene file");
   std::ostringstream text;
@@ -828,19 +949,46 @@ void ValidateScene(const Scene& scene) {
   const auto fail = [&](const std::string& key, const std::string& msg) {
     throw SceneError(file + ": " + key + ": " + msg);
   };
+  const auto limit = [&](const std::string& key, double v, const Limit& lim, Rule rule,
+                         std::string_view unit) {
+    check(key, v, rule, unit);
+    if (!Within(v, lim)) {
+      throw SceneError(file + ": " + key + ": expected " + Expectation(rule, unit) +
+                       LimitText(lim) + ", got " + ShortestText(v));
+    }
+  };
   const auto block = [&](const BlockDef& b, const std::string& p) {
-    check(p + ".width", b.width_m, Rule::kPositive, "m");
-    check(p + ".height", b.height_m, Rule::kPositive, "m");
-    check(p + ".depth", b.depth_m, Rule::kPositive, "m");
-    check(p + ".mass", b.mass_kg, Rule::kPositive, "kg");
+    limit(p + ".width", b.width_m, kLengthLimit, Rule::kPositive, "m");
+    limit(p + ".height", b.height_m, kLengthLimit, Rule::kPositive, "m");
+    limit(p + ".depth", b.depth_m, kLengthLimit, Rule::kPositive, "m");
+    limit(p + ".mass", b.mass_kg, kMassLimit, Rule::kPositive, "kg");
     check(p + ".density", b.density_kgpm3, Rule::kNonNegative, "kg/m^3");
+    if (b.density_kgpm3 != 0.0) {
+      limit(p + ".density", b.density_kgpm3, kDensityLimit, Rule::kPositive, "kg/m^3");
+    }
   };
   block(scene.block1, "block1");
   if (scene.block2) block(*scene.block2, "block2");
+  if (scene.block2 && scene.block2->width_m > scene.block1.width_m) {
+    fail("block2.width", "expected at most block1.width (" + ShortestText(scene.block1.width_m) +
+                             " m: block 2 would pivot outside block 1's top face, which the "
+                             "model does not describe), got " +
+                             ShortestText(scene.block2->width_m));
+  }
   check("initial.theta1", scene.initial.theta1_rad, Rule::kFinite, "rad");
-  check("initial.omega1", scene.initial.omega1_radps, Rule::kFinite, "rad/s");
+  limit("initial.omega1", scene.initial.omega1_radps, kRateLimit, Rule::kFinite, "rad/s");
   check("initial.theta2", scene.initial.theta2_rad, Rule::kFinite, "rad");
-  check("initial.omega2", scene.initial.omega2_radps, Rule::kFinite, "rad/s");
+  limit("initial.omega2", scene.initial.omega2_radps, kRateLimit, Rule::kFinite, "rad/s");
+  limit("model.overturn_angle", scene.model.overturn_rad, kOverturnLimit, Rule::kPositive, "rad");
+  for (const auto& [name, v] : {std::pair{"theta1", scene.initial.theta1_rad},
+                                std::pair{"theta2", scene.initial.theta2_rad}}) {
+    if (!(std::abs(v) < scene.model.overturn_rad)) {
+      fail(std::string("initial.") + name,
+           "expected |" + std::string(name) + "| below model.overturn_angle (" +
+               ShortestText(scene.model.overturn_rad) +
+               " rad; the block would have overturned), got " + ShortestText(v));
+    }
+  }
   if (!scene.two_blocks() &&
       (scene.initial.theta2_rad != 0.0 || scene.initial.omega2_radps != 0.0)) {
     fail("initial.theta2", "must be 0 with omega2 in a single-block scene (there is no block2)");
@@ -850,11 +998,11 @@ void ValidateScene(const Scene& scene) {
     const MotionDef& d = **m;
     const std::string p = d.key.empty() ? std::string("base") : d.key;
     check(p + ".scale", d.scale, Rule::kFinite, "");
-    check(p + ".start_s", d.start_s, Rule::kNonNegative, "s");
+    limit(p + ".start_s", d.start_s, kDurationLimit, Rule::kNonNegative, "s");
     if (d.kind == MotionKind::kFile) {
       if (d.file.empty()) fail(p + ".file", "expected a file path");
-      if (!std::filesystem::is_regular_file(d.file)) {
-        fail(p + ".file", "file not found: " + d.file.string());
+      if (const std::string problem = InputFileProblem(d.file, "record file"); !problem.empty()) {
+        fail(p + ".file", problem);
       }
       const bool at2 = IsAt2File(d.file);
       if (!at2 && !d.units_given) {
@@ -866,39 +1014,45 @@ void ValidateScene(const Scene& scene) {
       continue;
     }
     if (d.kind == MotionKind::kKanaiTajimi) {
-      check(p + ".amplitude_g", d.amplitude_g, Rule::kNonNegative, "g");
+      limit(p + ".amplitude_g", d.amplitude_g, kAccelLimit, Rule::kNonNegative, "g");
+      limit(p + ".duration_s", d.synthetic.duration_s, kDurationLimit, Rule::kPositive, "s");
       const std::string problem = SyntheticMotionProblem(d.SyntheticProcess());
       if (!problem.empty()) fail(p, problem);
       continue;
     }
-    check(p + ".amplitude_g", d.amplitude_g, Rule::kFinite, "g");
+    limit(p + ".amplitude_g", d.amplitude_g, kAccelLimit, Rule::kFinite, "g");
+    if (!Within(d.amplitude_g * d.scale, kAccelLimit)) {
+      fail(p + ".scale", "amplitude_g * scale = " + GText(d.amplitude_g * d.scale) +
+                             " g; expected an acceleration (g)" + LimitText(kAccelLimit));
+    }
     if (d.kind != MotionKind::kRectangularPulse) {
-      check(p + ".frequency_hz", d.frequency_hz, Rule::kPositive, "Hz");
+      limit(p + ".frequency_hz", d.frequency_hz, kFrequencyLimit, Rule::kPositive, "Hz");
     }
     if (d.kind == MotionKind::kRectangularPulse) {
-      check(p + ".duration_s", d.duration_s, Rule::kPositive, "s");
+      limit(p + ".duration_s", d.duration_s, kDurationLimit, Rule::kPositive, "s");
     } else if (d.kind == MotionKind::kHarmonic &&
                d.duration_s != std::numeric_limits<double>::infinity()) {
       // A harmonic lasts duration_s, or forever (+inf, the default).
-      check(p + ".duration_s", d.duration_s, Rule::kPositive, "s");
+      limit(p + ".duration_s", d.duration_s, kDurationLimit, Rule::kPositive, "s");
     }
   }
-  check("run.duration", scene.run.duration_s, Rule::kPositive, "s");
+  limit("run.duration", scene.run.duration_s, kDurationLimit, Rule::kPositive, "s");
   check("run.output_interval", scene.run.output_interval_s, Rule::kPositive, "s");
-  check("run.gravity", scene.run.gravity_mps2, Rule::kPositive, "m/s^2");
+  limit("run.gravity", scene.run.gravity_mps2, kGravityLimit, Rule::kPositive, "m/s^2");
   if (scene.run.output_interval_s > scene.run.duration_s) {
     fail("run.output_interval", "must not exceed run.duration (" +
                                     ShortestText(scene.run.duration_s) + " s), got " +
                                     ShortestText(scene.run.output_interval_s));
   }
   const ModelConfig& m = scene.model;
-  check("model.rtol", m.rtol, Rule::kPositive, "");
-  check("model.atol", m.atol, Rule::kPositive, "rad, rad/s");
+  limit("model.rtol", m.rtol, kRtolLimit, Rule::kPositive, "");
+  limit("model.atol", m.atol, kAtolLimit, Rule::kPositive, "rad, rad/s");
   check("model.step", m.step_s, Rule::kPositive, "s");
-  check("model.overturn_angle", m.overturn_rad, Rule::kPositive, "rad");
   check("model.rest_rate_rel", m.rest_rate_rel, Rule::kNonNegative, "");
   const CompareConfig& c = scene.compare;
-  if (c.tolerance_rad) check("compare.tolerance", *c.tolerance_rad, Rule::kPositive, "rad");
+  if (c.tolerance_rad) {
+    limit("compare.tolerance", *c.tolerance_rad, kToleranceLimit, Rule::kPositive, "rad");
+  }
   if (c.members < 0) fail("compare.members", "expected a non-negative integer");
   if (c.engine_members < 0) fail("compare.engine_members", "expected a non-negative integer");
   check("compare.amplitude_rel", c.amplitude_rel, Rule::kUnitInterval, "");

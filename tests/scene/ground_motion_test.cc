@@ -471,9 +471,16 @@ TEST_F(GroundMotionTest, At2HeaderUnitsDecideTheConversion) {
                        "use units = " + units});
     }
   }
-  // A header in g: read as g; a scene saying otherwise is refused (as before).
+  // A header in g: read as g; a scene saying otherwise is refused (as before). -200 g is past
+  // the physical limit (100 g, scene/limits.h): refused naming the line and the sample; scaled
+  // by 0.25 it is -50 g and read.
   MotionDef g = FileDef(at2("g.AT2", "ACCELERATION TIME SERIES IN UNITS OF G"));
-  EXPECT_DOUBLE_EQ(MotionComponent::FromDef(g).samples_mps2()[1], -200.0 * kStandardGravity_mps2);
+  expect_error(g, {"g.AT2:5: sample 2 = -200 g;", "at most 100 g"});
+  g.scale = 0.25;
+  EXPECT_DOUBLE_EQ(MotionComponent::FromDef(g).samples_mps2()[1], -50.0 * kStandardGravity_mps2);
+  g.scale = 0.6;
+  expect_error(g, {"g.AT2:5: sample 2 = -200 g times base.horizontal.scale = 0.6 is -120 g;"});
+  g.scale = 1.0;
   g.units_given = true;
   g.units = AccelUnits::kCmps2;
   expect_error(g, {":3:", "\"ACCELERATION TIME SERIES IN UNITS OF G\"", "omit units or use \"g\""});
@@ -484,7 +491,9 @@ TEST_F(GroundMotionTest, At2HeaderUnitsDecideTheConversion) {
   expect_error(v, {":3:", "\"VELOCITY TIME SERIES IN UNITS OF CM/S\"", "reads acceleration"});
   // No units line: g unless the scene says otherwise (the header cannot contradict it).
   MotionDef none = FileDef(at2("none.AT2", "free text"));
-  EXPECT_DOUBLE_EQ(MotionComponent::FromDef(none).samples_mps2()[0], 100.0 * kStandardGravity_mps2);
+  none.scale = 0.25;
+  EXPECT_DOUBLE_EQ(MotionComponent::FromDef(none).samples_mps2()[0], 25.0 * kStandardGravity_mps2);
+  none.scale = 1.0;
   none.units_given = true;
   none.units = AccelUnits::kCmps2;
   EXPECT_DOUBLE_EQ(MotionComponent::FromDef(none).samples_mps2()[0], 1.0);

@@ -456,7 +456,7 @@ TEST(Errors, Validation) {
       {"missing record file",
        b1 + "[base.horizontal]\nfile = \"nowhere.AT2\"\n",
        ":6:",
-       {"base.horizontal.file", "file not found", "nowhere.AT2"}},
+       {"base.horizontal.file", "no such record file", "nowhere.AT2"}},
       {"negative start",
        b1 + "[base.horizontal]\nfile = " + at2 + "\nstart_s = -1\n",
        ":7:",
