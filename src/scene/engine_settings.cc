@@ -194,8 +194,9 @@ const std::string& EngineSettings::Choice(std::string_view key) const {
 
 nlohmann::json EngineSettings::ToJson() const {
   nlohmann::json j = nlohmann::json::object();
-  for (const auto& [k, v] : values) {
-    std::visit([&](const auto& x) { j[k] = x; }, v);
+  for (const auto& entry : values) {
+    // Not a structured binding: clang 14 (the fuzz build, scripts/fuzz.sh) cannot capture one.
+    std::visit([&](const auto& x) { j[entry.first] = x; }, entry.second);
   }
   return j;
 }
