@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <limits>
+#include <thread>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -13,12 +14,14 @@
 #include <vector>
 
 #include "cli/commands.h"
+#include "cli/limit_options.h"
 #include "harness/compare.h"
 #include "harness/compare_run.h"
 #include "harness/convergence.h"
 #include "harness/engine_registry.h"
 #include "harness/engines.h"
 #include "harness/ensemble.h"
+#include "harness/resource_estimate.h"
 #include "harness/summary.h"
 #include "harness/verdict.h"
 #include "reference/simulate.h"
@@ -38,6 +41,7 @@ struct CompareCliOptions {
   int engine_members = -1;  // -1: the scene's compare.engine_members
   bool quick = false;       // no ensembles: pointwise comparison only
   int jobs = 0;             // 0: all hardware threads
+  LimitOptions limits;
 };
 
 // The engines of --engines, without "reference" (always run: the others are compared with it).
@@ -62,10 +66,16 @@ void Execute(const CompareCliOptions& opt) {
   if (opt.engine_members >= 0) {
     overrides.push_back("compare.engine_members=" + std::to_string(opt.engine_members));
   }
+  const ResourceBudget budget = StartLimits(opt.limits, opt.out, "compare");
   const Scene scene = LoadScene(opt.scene, overrides);
   CheckEngineTables(scene);
-  const GroundMotion motion = GroundMotion::FromScene(scene);
   const std::vector<std::string> engines = CheckedEngines(opt.engines);
+  const int threads =
+      opt.jobs > 0 ? opt.jobs : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  CheckRunEstimate(EstimateRun(scene, engines, scene.compare.members, scene.compare.engine_members,
+                               threads),
+                   budget, opt.scene);
+  const GroundMotion motion = GroundMotion::FromScene(scene);
   const std::filesystem::path out(opt.out);
   std::filesystem::create_directories(out);
   const bool two = scene.two_blocks();
@@ -162,6 +172,7 @@ void RegisterCompare(CLI::App& app) {
   cmd->add_option("--jobs,-j", opt->jobs, "Threads for the ensembles (default: all cores)")
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--set", opt->overrides, "Override a scene value: key=value (repeatable)");
+  AddLimitOptions(cmd, &opt->limits);
   cmd->callback([opt] { Execute(*opt); });
 }
 

@@ -6,8 +6,10 @@
 #include <vector>
 
 #include "cli/commands.h"
+#include "cli/limit_options.h"
 #include "harness/engine_registry.h"
 #include "harness/engines.h"
+#include "harness/resource_estimate.h"
 #include "scene/ground_motion.h"
 #include "scene/history.h"
 #include "scene/scene.h"
@@ -20,11 +22,20 @@ struct RunOptions {
   std::string out = "out";
   std::vector<std::string> engines = {"reference"};
   std::vector<std::string> overrides;
+  LimitOptions limits;
 };
 
 void Execute(const RunOptions& opt) {
+  const ResourceBudget budget = StartLimits(opt.limits, opt.out, "run");
   const Scene scene = LoadScene(opt.scene, opt.overrides);
   CheckEngineTables(scene);
+  {
+    std::vector<std::string> engines;
+    for (const std::string& name : opt.engines) {
+      if (name != "reference") engines.push_back(name);
+    }
+    CheckRunEstimate(EstimateRun(scene, engines, 0, 0, 1), budget, opt.scene);
+  }
   const GroundMotion motion = GroundMotion::FromScene(scene);
   for (const char* comp : {"horizontal", "vertical"}) {
     const auto& c = std::string(comp) == "horizontal" ? motion.horizontal() : motion.vertical();
@@ -69,6 +80,7 @@ void RegisterRun(CLI::App& app) {
                   "Engine(s): reference or an engine of `rockbench engines`")
       ->capture_default_str();
   cmd->add_option("--set", opt->overrides, "Override a scene value: key=value (repeatable)");
+  AddLimitOptions(cmd, &opt->limits);
   cmd->callback([opt] { Execute(*opt); });
 }
 

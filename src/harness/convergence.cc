@@ -1,5 +1,7 @@
 #include "harness/convergence.h"
 
+#include "scene/limits.h"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -27,8 +29,10 @@ ModelConfig WitnessModel(const ModelConfig& model) {
   } else {
     w.integrator =
         model.integrator == Integrator::kDop853 ? Integrator::kDopri5 : Integrator::kDop853;
-    w.rtol = model.rtol / 100.0;
-    w.atol = model.atol / 100.0;
+    // A hundred times tighter, never below the floors the scene reader holds tolerances to
+    // (scene/limits.h): at the floor the witness still differs by its integrator.
+    w.rtol = std::max(model.rtol / 100.0, limits::kMinRtol);
+    w.atol = std::max(model.atol / 100.0, limits::kMinAtol);
   }
   return w;
 }

@@ -1,7 +1,5 @@
 #include "scene/ground_motion.h"
 
-#include "scene/limits.h"
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -10,6 +8,8 @@
 #include <stdexcept>
 #include <string>
 #include <utility>
+
+#include "scene/limits.h"
 
 namespace rockbench {
 namespace {

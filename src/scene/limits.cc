@@ -49,8 +49,12 @@ ResourceBudget& Budget() {
 }
 }  // namespace
 
-void SetProcessBudget(const ResourceBudget& budget) { Budget() = budget; }
-const ResourceBudget& ProcessBudget() { return Budget(); }
+void SetProcessBudget(const ResourceBudget& budget) {
+  Budget() = budget;
+}
+const ResourceBudget& ProcessBudget() {
+  return Budget();
+}
 
 std::string InputFileProblem(const std::filesystem::path& path, const std::string& what,
                              double max_bytes) {
@@ -88,9 +92,8 @@ void CheckMemoryEstimate(double estimate_bytes, const ResourceBudget& budget,
                          const std::string& where, const std::string& key,
                          const std::string& what) {
   if (estimate_bytes <= budget.memory_bytes) return;
-  throw SceneError(where + ": " + key + ": needs an estimated " + ByteText(estimate_bytes) +
-                   " (" + what + "), more than the memory budget of " +
-                   ByteText(budget.memory_bytes) +
+  throw SceneError(where + ": " + key + ": needs an estimated " + ByteText(estimate_bytes) + " (" +
+                   what + "), more than the memory budget of " + ByteText(budget.memory_bytes) +
                    ": shorten or coarsen it, or raise the budget with --memory-budget GIB");
 }
 

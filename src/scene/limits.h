@@ -43,6 +43,8 @@ inline constexpr double kMaxRate_radps = 100.0;
 /// Largest input file (scene, study, record), bytes: the longest real records are a few MB
 /// (1e6 samples); 256 MiB holds about 1.6e7 samples of PEER's 16-character values.
 inline constexpr double kMaxInputFile_bytes = 256.0 * 1024 * 1024;
+/// Default estimated wall time of one command, s (six hours); --wall-limit sets it.
+inline constexpr double kDefaultTimeBudget_s = 6.0 * 3600.0;
 /// Default memory budget of one command, bytes (raise it with --memory-budget GIB).
 inline constexpr double kDefaultMemoryBudget_bytes = 2.0 * 1024 * 1024 * 1024;
 
@@ -52,6 +54,9 @@ inline constexpr double kDefaultMemoryBudget_bytes = 2.0 * 1024 * 1024 * 1024;
 /// is checked against it before allocating.
 struct ResourceBudget {
   double memory_bytes = limits::kDefaultMemoryBudget_bytes;  ///< bytes
+  /// Estimated wall time a command may take up front, s: --wall-limit when given, else
+  /// limits::kDefaultTimeBudget_s. (The wall-clock limit itself stops a run that takes longer.)
+  double wall_s = limits::kDefaultTimeBudget_s;
 };
 
 /// The memory budget of this process's command: set once by the CLI from --memory-budget
@@ -71,8 +76,7 @@ std::string InputFileProblem(const std::filesystem::path& path, const std::strin
 /// of Y GiB: shorten or coarsen it, or raise the budget with --memory-budget GIB" when
 /// `estimate_bytes` exceeds the budget (or is not finite).
 void CheckMemoryEstimate(double estimate_bytes, const ResourceBudget& budget,
-                         const std::string& where, const std::string& key,
-                         const std::string& what);
+                         const std::string& where, const std::string& key, const std::string& what);
 
 /// "1.5 GiB", "120 MiB", "3 KiB": a byte count for messages.
 std::string ByteText(double bytes);

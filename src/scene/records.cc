@@ -329,7 +329,8 @@ RecordData ParseAt2(const std::string& text, const std::filesystem::path& path) 
     dt_text = npts_m[2];
   } else {
     throw SceneError(Where(path, h.number) + ": cannot read NPTS and DT from '" +
-                     Excerpt(h.text, 100) + "' (expected 'NPTS= n, DT= dt SEC' or 'n dt NPTS, DT')");
+                     Excerpt(h.text, 100) +
+                     "' (expected 'NPTS= n, DT= dt SEC' or 'n dt NPTS, DT')");
   }
   RecordData rec;
   rec.format = "AT2";

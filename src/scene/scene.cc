@@ -5,9 +5,9 @@
 #include <algorithm>
 #include <array>
 #include <charconv>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <cmath>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -33,8 +33,7 @@ const Limit kMassLimit{limits::kMinMass_kg, limits::kMaxMass_kg, "docs/limits.md
 const Limit kDensityLimit{limits::kMinDensity_kgpm3, limits::kMaxDensity_kgpm3,
                           "air is 1.2, osmium 22,590; docs/limits.md"};
 const Limit kAccelLimit{0.0, limits::kMaxAccel_g,
-                        "far above any recorded ground motion (about 4 g); docs/limits.md",
-                        true};
+                        "far above any recorded ground motion (about 4 g); docs/limits.md", true};
 const Limit kFrequencyLimit{0.0, limits::kMaxFrequency_hz,
                             "ground motion of structural interest is below 50 Hz; "
                             "docs/limits.md"};
@@ -523,7 +522,8 @@ class Reader {
       Fail(prefix, &t, "missing file = \"...\" or kind = " + kinds);
     }
     m.scale = Number(t, prefix, "scale", Rule::kFinite, "").value_or(1.0);
-    m.start_s = Number(t, prefix, "start_s", Rule::kNonNegative, "s", &kDurationLimit).value_or(0.0);
+    m.start_s =
+        Number(t, prefix, "start_s", Rule::kNonNegative, "s", &kDurationLimit).value_or(0.0);
     if (file) {
       m.kind = MotionKind::kFile;
       if (file->empty()) Fail(prefix + ".file", t.get("file"), "expected a file path, got \"\"");
@@ -576,8 +576,7 @@ class Reader {
     }
     if (m.kind == MotionKind::kRectangularPulse) {
       Forbid(t, prefix, "frequency_hz", "not used by kind = \"rectangular_pulse\"");
-      m.duration_s =
-          RequiredNumber(t, prefix, "duration_s", Rule::kPositive, "s", &kDurationLimit);
+      m.duration_s = RequiredNumber(t, prefix, "duration_s", Rule::kPositive, "s", &kDurationLimit);
     } else {
       m.frequency_hz =
           RequiredNumber(t, prefix, "frequency_hz", Rule::kPositive, "Hz", &kFrequencyLimit);
@@ -610,13 +609,12 @@ class Reader {
   // [run]: duration, output interval, gravity.
   RunConfig ReadRun(const toml::table& run) const {
     RunConfig r;
-    r.duration_s =
-        Number(run, "run", "duration", Rule::kPositive, "s", &kDurationLimit).value_or(r.duration_s);
+    r.duration_s = Number(run, "run", "duration", Rule::kPositive, "s", &kDurationLimit)
+                       .value_or(r.duration_s);
     r.output_interval_s =
         Number(run, "run", "output_interval", Rule::kPositive, "s").value_or(r.output_interval_s);
-    r.gravity_mps2 =
-        Number(run, "run", "gravity", Rule::kPositive, "m/s^2", &kGravityLimit)
-            .value_or(r.gravity_mps2);
+    r.gravity_mps2 = Number(run, "run", "gravity", Rule::kPositive, "m/s^2", &kGravityLimit)
+                         .value_or(r.gravity_mps2);
     if (r.output_interval_s > r.duration_s) {
       if (const toml::node* node = run.get("output_interval")) {
         Fail("run.output_interval", node,
@@ -639,8 +637,8 @@ class Reader {
                                             {"rk4", Integrator::kRk4}})
                        .value_or(m.integrator);
     m.rtol = Number(model, "model", "rtol", Rule::kPositive, "", &kRtolLimit).value_or(m.rtol);
-    m.atol = Number(model, "model", "atol", Rule::kPositive, "rad, rad/s", &kAtolLimit)
-                 .value_or(m.atol);
+    m.atol =
+        Number(model, "model", "atol", Rule::kPositive, "rad, rad/s", &kAtolLimit).value_or(m.atol);
     m.step_s = Number(model, "model", "step", Rule::kPositive, "s").value_or(m.step_s);
     m.events = Enum(model, "model", "events",
                     Choices<EventScheme>{{"located", EventScheme::kLocated},

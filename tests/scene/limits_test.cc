@@ -55,14 +55,18 @@ TEST(SceneLimits, EveryLimitedKeyNamesItsLimit) {
       {"run.gravity=1e300", "run.gravity: expected a positive number (m/s^2) from 0.01 to 1000"},
       {"model.rtol=1e-300", "model.rtol: expected a positive number from 1e-15 to 0.1"},
       {"model.atol=1e-300", "model.atol: expected a positive number (rad, rad/s) from 1e-20"},
-      {"model.overturn_angle=2", "model.overturn_angle: expected a positive number (rad) at most "
-                                 "1.5707963267948966"},
-      {"initial.omega1=1e6", "initial.omega1: expected a finite number (rad/s) with magnitude at "
-                             "most 100"},
-      {"base.horizontal.frequency_hz=1e12", "base.horizontal.frequency_hz: expected a positive "
-                                            "number (Hz) at most 1000"},
-      {"base.horizontal.amplitude_g=1e308", "base.horizontal.amplitude_g: expected a finite number "
-                                            "(g) with magnitude at most 100"},
+      {"model.overturn_angle=2",
+       "model.overturn_angle: expected a positive number (rad) at most "
+       "1.5707963267948966"},
+      {"initial.omega1=1e6",
+       "initial.omega1: expected a finite number (rad/s) with magnitude at "
+       "most 100"},
+      {"base.horizontal.frequency_hz=1e12",
+       "base.horizontal.frequency_hz: expected a positive "
+       "number (Hz) at most 1000"},
+      {"base.horizontal.amplitude_g=1e308",
+       "base.horizontal.amplitude_g: expected a finite number "
+       "(g) with magnitude at most 100"},
       {"base.horizontal.duration_s=1e12", "base.horizontal.duration_s: expected"},
       {"base.horizontal.start_s=1e12", "base.horizontal.start_s: expected"},
   };
@@ -78,8 +82,8 @@ TEST(SceneLimits, EveryLimitedKeyNamesItsLimit) {
 
 // A value in the file is named with its line.
 TEST(SceneLimits, AFileValueIsNamedWithItsLine) {
-  const std::string e = ErrorOf(
-      "[block1]\nwidth = 1.25\nheight = 5e-324\ndensity = 2500.0\n" + kHarmonic);
+  const std::string e =
+      ErrorOf("[block1]\nwidth = 1.25\nheight = 5e-324\ndensity = 2500.0\n" + kHarmonic);
   EXPECT_CONTAINS(e, "scenes/x.toml:3: block1.height:");
   EXPECT_CONTAINS(e, "got 5e-324");
 }
@@ -104,8 +108,9 @@ TEST(SceneLimits, TheStackRulesAreTheReaders) {
   const std::string single =
       "[block1]\nwidth = 0.2\nheight = 1.0\ndensity = 2000.0\n[initial]\ntheta1 = 2.0\n";
   const std::string e = ErrorOf(single);
-  EXPECT_CONTAINS(e, "scenes/x.toml:6: initial.theta1: expected |theta1| below "
-                     "model.overturn_angle (1.5707963267948966 rad");
+  EXPECT_CONTAINS(e,
+                  "scenes/x.toml:6: initial.theta1: expected |theta1| below "
+                  "model.overturn_angle (1.5707963267948966 rad");
   EXPECT_CONTAINS(e, "got 2");
   // With a smaller overturn angle the same rule follows it.
   EXPECT_CONTAINS(ErrorOf(kBlocks + "[initial]\ntheta2 = 0.5\n[model]\noverturn_angle = 0.4\n"),
@@ -147,9 +152,10 @@ TEST(SceneLimits, LongValuesAreCutToAnExcerpt) {
 class InputFiles : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("rockbench_limits_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
-            "_" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    dir_ =
+        fs::temp_directory_path() /
+        ("rockbench_limits_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
+         "_" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
     fs::create_directories(dir_);
   }
   void TearDown() override { fs::remove_all(dir_); }
@@ -172,11 +178,13 @@ std::string LoadError(const fs::path& p) {
 
 TEST_F(InputFiles, AFolderADeviceAMissingFileAndANulAreNamed) {
   EXPECT_CONTAINS(LoadError(dir_), "is a folder; expected a scene file");
-  EXPECT_CONTAINS(LoadError("/dev/zero"), "/dev/zero: is not a regular file (a device, pipe or "
-                                          "socket); expected a scene file");
+  EXPECT_CONTAINS(LoadError("/dev/zero"),
+                  "/dev/zero: is not a regular file (a device, pipe or "
+                  "socket); expected a scene file");
   EXPECT_CONTAINS(LoadError(dir_ / "none.toml"), "none.toml: no such scene file");
-  EXPECT_CONTAINS(LoadError(fs::path(std::string("a\0b.toml", 8))), "a\\0b.toml: the path holds "
-                                                                     "a NUL character");
+  EXPECT_CONTAINS(LoadError(fs::path(std::string("a\0b.toml", 8))),
+                  "a\\0b.toml: the path holds "
+                  "a NUL character");
   const std::string long_name(100000, 'a');
   const std::string e = LoadError(dir_ / long_name);
   EXPECT_LT(e.size(), 400u);
@@ -185,8 +193,9 @@ TEST_F(InputFiles, AFolderADeviceAMissingFileAndANulAreNamed) {
   const fs::path scene = Write("s.toml", kBlocks +
                                              "[base.horizontal]\nfile = \"/dev/null\"\n"
                                              "units = \"g\"\ndt = 0.01\n");
-  EXPECT_CONTAINS(LoadError(scene), "s.toml:10: base.horizontal.file: /dev/null: is not a regular "
-                                    "file");
+  EXPECT_CONTAINS(LoadError(scene),
+                  "s.toml:10: base.horizontal.file: /dev/null: is not a regular "
+                  "file");
 }
 
 std::string RecordError(const fs::path& p) {
@@ -240,8 +249,9 @@ TEST_F(InputFiles, AnAbsurdSampleIsRefusedWithItsLine) {
     MotionComponent::FromDef(d);
     ADD_FAILURE() << "no error";
   } catch (const SceneError& e) {
-    EXPECT_CONTAINS(e.what(), "abs.AT2:6: sample 3 = 1e+20 g; expected an acceleration with "
-                              "magnitude at most 100 g");
+    EXPECT_CONTAINS(e.what(),
+                    "abs.AT2:6: sample 3 = 1e+20 g; expected an acceleration with "
+                    "magnitude at most 100 g");
   }
   // A plain file in cm/s2 scaled past the limit names the scale.
   d.file = Write("abs.txt", "0.1\n0.2\n100\n");
@@ -253,8 +263,9 @@ TEST_F(InputFiles, AnAbsurdSampleIsRefusedWithItsLine) {
     MotionComponent::FromDef(d);
     ADD_FAILURE() << "no error";
   } catch (const SceneError& e) {
-    EXPECT_CONTAINS(e.what(), "abs.txt:3: sample 3 = 100 cm/s2 times base.horizontal.scale = "
-                              "2000 is 203.943 g");
+    EXPECT_CONTAINS(e.what(),
+                    "abs.txt:3: sample 3 = 100 cm/s2 times base.horizontal.scale = "
+                    "2000 is 203.943 g");
   }
 }
 

@@ -1,0 +1,216 @@
+#include "harness/resource_estimate.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <system_error>
+
+#include "harness/engine_registry.h"
+#include "scene/engine_settings.h"
+
+namespace rockbench {
+namespace {
+
+// Measured on the release build (docs/limits.md, "Estimates"): peak bytes per unit of each
+// term, rounded up.
+// A history row of any run: its Sample (48 B), its CSV text (about 110 B) and the comparison's
+// copies: 220 B measured with 2e6 rows.
+constexpr double kRowBytes = 256.0;
+// One reference step: a Trajectory segment (about 300 B) and its vector's growth: 400 B
+// measured with 2e6 rk4 steps.
+constexpr double kReferenceStepBytes = 600.0;
+// One engine step: the drive's samples (two doubles) and slack: 17 to 19 B measured.
+constexpr double kEngineStepBytes = 32.0;
+// A record file: its text, its lines and its samples: 8 B per byte of file.
+constexpr double kRecordBytesPerFileByte = 8.0;
+// A synthetic motion: the generator's work arrays (38 B per sample measured) and copies.
+constexpr double kSyntheticSampleBytes = 128.0;
+// CPU time per step: the reference's (2.3 us measured for rk4 with dense output, more for
+// dopri5 with event location) and an engine's (25 us measured for Bullet with two blocks).
+constexpr double kReferenceStepCpu_s = 5e-6;
+constexpr double kEngineStepCpu_s = 30e-6;
+// The reference's largest step (reference/simulate.cc: kMaxStepRel, kMaxStepMotion): 0.05
+// sqrt(R / g) and 1/16 of the motion's period. R of block 1 alone is at most the stack's, so
+// the step count is an upper bound.
+constexpr double kMaxStepRel = 0.05;
+constexpr double kMaxStepMotion = 1.0 / 16.0;
+
+std::string Count(double n) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3g", n);
+  return buf;
+}
+
+std::string Duration(double s) {
+  char buf[48];
+  if (!std::isfinite(s)) return "an unbounded time";
+  if (s >= 3600.0) {
+    std::snprintf(buf, sizeof buf, "%.3g h", s / 3600.0);
+  } else if (s >= 60.0) {
+    std::snprintf(buf, sizeof buf, "%.3g min", s / 60.0);
+  } else {
+    std::snprintf(buf, sizeof buf, "%.3g s", s);
+  }
+  return buf;
+}
+
+// Samples of a base-motion component, and the key that sets their number.
+struct MotionSize {
+  double samples = 0.0, bytes = 0.0;
+  std::string key, what;
+};
+
+MotionSize SizeOf(const MotionDef& m) {
+  MotionSize size;
+  if (m.kind == MotionKind::kFile) {
+    std::error_code ec;
+    const auto bytes = std::filesystem::file_size(m.file, ec);
+    const double b = ec ? 0.0 : static_cast<double>(bytes);
+    size.bytes = b * kRecordBytesPerFileByte;
+    // Every value takes at least two bytes.
+    size.samples = b / 2.0;
+    size.key = m.key + ".file";
+    size.what = "a record file of " + ByteText(b);
+  } else if (m.kind == MotionKind::kKanaiTajimi) {
+    size.samples = std::ceil(m.synthetic.duration_s / m.synthetic.dt_s) + 1.0;
+    size.bytes = size.samples * kSyntheticSampleBytes;
+    size.key = m.key + ".dt";
+    size.what = Count(size.samples) + " synthetic samples (duration_s / dt)";
+  }
+  return size;
+}
+
+// The shortest period of the analytic components (s), +inf for none.
+double ShortestPeriod(const Scene& scene) {
+  double period = std::numeric_limits<double>::infinity();
+  for (const auto* m : {&scene.horizontal, &scene.vertical}) {
+    if (!*m) continue;
+    const MotionKind k = (*m)->kind;
+    if (k == MotionKind::kHarmonic || k == MotionKind::kSinePulse ||
+        k == MotionKind::kCosinePulse || k == MotionKind::kRicker) {
+      period = std::min(period, 1.0 / (*m)->frequency_hz);
+    }
+  }
+  return period;
+}
+
+}  // namespace
+
+const EstimateTerm* RunEstimate::largest_bytes() const {
+  const EstimateTerm* best = nullptr;
+  for (const EstimateTerm& t : terms) {
+    if (best == nullptr || t.bytes > best->bytes) best = &t;
+  }
+  return best;
+}
+
+const EstimateTerm* RunEstimate::largest_cpu() const {
+  const EstimateTerm* best = nullptr;
+  for (const EstimateTerm& t : terms) {
+    if (best == nullptr || t.cpu_s > best->cpu_s) best = &t;
+  }
+  return best;
+}
+
+RunEstimate EstimateRun(const Scene& scene, const std::vector<std::string>& engines, int members,
+                        int engine_members, int jobs) {
+  RunEstimate e;
+  const double duration = scene.run.duration_s;
+  const int threads = std::max(1, jobs);
+  // Members run `threads` at a time; each holds one run.
+  const double concurrent_ref = std::min<double>(std::max(members, 0), threads);
+  const double concurrent_eng = std::min<double>(std::max(engine_members, 0), threads);
+
+  // The base motion, read once (members perturb copies: one per concurrent member).
+  double record_breakpoints = 0.0;
+  for (const auto* m : {&scene.horizontal, &scene.vertical}) {
+    if (!*m) continue;
+    const MotionSize size = SizeOf(**m);
+    if (size.bytes <= 0.0) continue;
+    e.terms.push_back({size.key, size.what, size.bytes * (1.0 + concurrent_ref), 0.0});
+    // Every sample inside the run is a step boundary of the reference.
+    record_breakpoints = std::max(record_breakpoints, size.samples);
+  }
+
+  // History rows at the output interval, of every run held at once (nominal runs, the
+  // reference's convergence witness, concurrent members).
+  const double rows = std::ceil(duration / scene.run.output_interval_s) + 1.0;
+  const double runs_held = 2.0 + static_cast<double>(engines.size()) + concurrent_ref +
+                           concurrent_eng * static_cast<double>(engines.size());
+  e.terms.push_back({"run.output_interval",
+                     Count(rows) + " history rows of " + ByteText(kRowBytes) + " in " +
+                         Count(runs_held) + " runs held at once",
+                     rows * kRowBytes * runs_held, 0.0});
+
+  // The reference's steps: rk4's fixed step, or at least one per largest step and per record
+  // sample inside the run.
+  double ref_steps = 0.0;
+  // The convergence witness (harness/convergence.h, WitnessModel) takes 10 times the steps of
+  // the thesis's event scheme, 4 times rk4's, and about as many as dopri5's or dop853's.
+  double witness = 1.0;
+  std::string ref_key, ref_what;
+  if (scene.model.events == EventScheme::kThesis) witness = 10.0;
+  if (scene.model.integrator == Integrator::kRk4) {
+    if (scene.model.events != EventScheme::kThesis) witness = 4.0;
+    ref_steps = std::ceil(duration / scene.model.step_s);
+    ref_key = "model.step";
+    ref_what = Count(ref_steps) + " rk4 steps (run.duration / model.step)";
+  } else {
+    const double r1 = 0.5 * std::hypot(scene.block1.width_m, scene.block1.height_m);
+    const double max_step = std::min(kMaxStepRel * std::sqrt(r1 / scene.run.gravity_mps2),
+                                     kMaxStepMotion * ShortestPeriod(scene));
+    ref_steps = std::ceil(duration / max_step) + record_breakpoints;
+    ref_key = "run.duration";
+    ref_what = Count(ref_steps) + " reference steps";
+  }
+  // The nominal run and its convergence witness, and the members (concurrent for memory).
+  e.terms.push_back({ref_key,
+                     ref_what + " in the nominal run, its convergence witness (" + Count(witness) +
+                         " x) and " + Count(std::max(members, 0)) + " members",
+                     ref_steps * kReferenceStepBytes * (1.0 + witness + concurrent_ref),
+                     ref_steps * kReferenceStepCpu_s * (1.0 + witness + std::max(members, 0))});
+
+  // Each engine's fixed steps.
+  for (const std::string& name : engines) {
+    const Engine* engine = FindEngine(name);
+    if (engine == nullptr) continue;
+    double dt = 0.0;
+    try {
+      const EngineSettings settings = ResolveEngineSettings(scene, engine->settings_schema());
+      dt = settings.Number("time_step");
+    } catch (const std::exception&) {
+      continue;  // the engine's own check names the problem
+    }
+    if (!(dt > 0.0)) continue;
+    const double steps = std::ceil(duration / dt);
+    const double runs = 1.0 + std::max(engine_members, 0);
+    e.terms.push_back({name + ".time_step",
+                       Count(steps) + " " + name + " steps (run.duration / " + name +
+                           ".time_step) in " + Count(runs) + " runs",
+                       steps * kEngineStepBytes * (1.0 + concurrent_eng),
+                       steps * kEngineStepCpu_s * runs});
+  }
+  for (const EstimateTerm& t : e.terms) {
+    e.bytes += t.bytes;
+    e.cpu_s += t.cpu_s;
+  }
+  // The nominal runs are serial; the members share the threads.
+  e.wall_s = e.cpu_s / std::min<double>(threads, 1.0 + std::max(members, engine_members));
+  return e;
+}
+
+void CheckRunEstimate(const RunEstimate& estimate, const ResourceBudget& budget,
+                      const std::string& where) {
+  if (const EstimateTerm* t = estimate.largest_bytes(); t != nullptr) {
+    CheckMemoryEstimate(estimate.bytes, budget, where, t->key, t->what);
+  }
+  if (const EstimateTerm* t = estimate.largest_cpu();
+      t != nullptr && !(estimate.wall_s <= budget.wall_s)) {
+    throw SceneError(where + ": " + t->key + ": needs an estimated " + Duration(estimate.wall_s) +
+                     " (" + t->what + "), more than the time budget of " + Duration(budget.wall_s) +
+                     ": shorten or coarsen it, or give a longer --wall-limit SECONDS");
+  }
+}
+
+}  // namespace rockbench

@@ -1,0 +1,45 @@
+#pragma once
+/// What a run will need, estimated from its scene before anything is allocated or simulated,
+/// and checked against the command's budget (docs/limits.md gives the measured figures behind
+/// each term). The estimate is an upper bound of the usual case, not a promise: the wall-clock
+/// limit (--wall-limit) stops what it misjudges.
+#include <string>
+#include <vector>
+
+#include "scene/limits.h"
+#include "scene/scene.h"
+
+namespace rockbench {
+
+/// One term of an estimate: the scene key that sets it and what it counts.
+struct EstimateTerm {
+  std::string key;   ///< "run.output_interval", "model.step", "bullet.time_step", ...
+  std::string what;  ///< "2e+09 history rows of 256 B", ...
+  double bytes = 0.0;
+  double cpu_s = 0.0;
+};
+
+/// The estimate of a command on one scene.
+struct RunEstimate {
+  std::vector<EstimateTerm> terms;
+  double bytes = 0.0;   ///< peak memory, bytes
+  double cpu_s = 0.0;   ///< CPU time, s
+  double wall_s = 0.0;  ///< cpu_s spread over the worker threads, s
+  /// The term with the most bytes and the one with the most CPU time.
+  const EstimateTerm* largest_bytes() const;
+  const EstimateTerm* largest_cpu() const;
+};
+
+/// What a run of the reference and `engines` (built engine names) with `members` reference and
+/// `engine_members` engine ensemble members on `jobs` threads needs. The engines' steps come
+/// from their tables' time_step (resolved against their schemas; a scene whose table does not
+/// resolve is left to the engine's own error). Throws nothing for a valid scene.
+RunEstimate EstimateRun(const Scene& scene, const std::vector<std::string>& engines, int members,
+                        int engine_members, int jobs);
+
+/// Throws SceneError naming the scene file, the largest term's key and the estimate when the
+/// estimate exceeds the budget (memory; wall time against budget.wall_s).
+void CheckRunEstimate(const RunEstimate& estimate, const ResourceBudget& budget,
+                      const std::string& where);
+
+}  // namespace rockbench
