@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "cli/commands.h"
+#include "cli/limit_options.h"
 #include "harness/parallel.h"
 #include "harness/stress.h"
 #include "scene/history.h"
@@ -28,7 +29,7 @@ struct StressCliOptions {
   std::vector<std::string> cases;
   int jobs = 0;
   std::string run_case;
-  std::string engine = "reference";
+  std::string engine = "reference";  LimitOptions limits;
 };
 
 // The child: one case, one engine, one JSON line on stdout.
@@ -70,6 +71,7 @@ void Execute(const StressCliOptions& opt) {
     return;
   }
   if (opt.out.empty()) throw SceneError("--out: expected an output folder (or --list)");
+  StartLimits(opt.limits, opt.out, "stress");
   const std::vector<StressCase> cases = SelectStressCases(catalogue, opt.cases, opt.quick);
   const std::filesystem::path out(opt.out);
   std::filesystem::create_directories(out);
@@ -125,6 +127,7 @@ void RegisterStress(CLI::App& app) {
   // The child's options (re-executed by the command itself).
   cmd->add_option("--run-case", opt->run_case, "Run one case in this process")->group("");
   cmd->add_option("--engine", opt->engine, "Engine of --run-case")->group("");
+  AddLimitOptions(cmd, &opt->limits);
   cmd->callback([opt] { Execute(*opt); });
 }
 

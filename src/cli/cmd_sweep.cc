@@ -10,8 +10,10 @@
 #include <vector>
 
 #include "cli/commands.h"
+#include "cli/limit_options.h"
 #include "harness/engine_registry.h"
 #include "harness/parallel.h"
+#include "harness/resource_estimate.h"
 #include "harness/sweep.h"
 #include "scene/ground_motion.h"
 #include "scene/history.h"
@@ -27,12 +29,15 @@ struct SweepCliOptions {
   int repeat = 1;
   int threads = 0;
   std::vector<std::string> overrides;
-  std::string engines = "all";
+  std::string engines = "all";  LimitOptions limits;
 };
 
 void Execute(const SweepCliOptions& opt) {
+  const ResourceBudget budget = StartLimits(opt.limits, opt.out, "sweep");
   const Scene scene = LoadScene(opt.scene, opt.overrides);
   CheckEngineTables(scene);
+  // The scene's own settings; the grid's finer steps are held by the wall-clock limit.
+  CheckRunEstimate(EstimateRun(scene, ParseEngineList(opt.engines), 0, 0, 1), budget, opt.scene);
   const GroundMotion motion = GroundMotion::FromScene(scene);
   SweepOptions so;
   so.quick = opt.quick;
@@ -76,6 +81,7 @@ void RegisterSweep(CLI::App& app) {
       ->check(CLI::Range(0, 4096))
       ->capture_default_str();
   cmd->add_option("--set", opt->overrides, "Override a scene value: key=value (repeatable)");
+  AddLimitOptions(cmd, &opt->limits);
   cmd->callback([opt] { Execute(*opt); });
 }
 
