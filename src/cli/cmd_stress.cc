@@ -29,7 +29,8 @@ struct StressCliOptions {
   std::vector<std::string> cases;
   int jobs = 0;
   std::string run_case;
-  std::string engine = "reference";  LimitOptions limits;
+  std::string engine = "reference";
+  LimitOptions limits;
 };
 
 // The child: one case, one engine, one JSON line on stdout.

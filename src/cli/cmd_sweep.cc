@@ -29,7 +29,8 @@ struct SweepCliOptions {
   int repeat = 1;
   int threads = 0;
   std::vector<std::string> overrides;
-  std::string engines = "all";  LimitOptions limits;
+  std::string engines = "all";
+  LimitOptions limits;
 };
 
 void Execute(const SweepCliOptions& opt) {
