@@ -106,8 +106,9 @@ MotionComponent MotionComponent::FromSynthetic(const MotionDef& def) {
     v *= def.scale;
     if (!(std::abs(v) <= max_mps2)) {
       const std::string key = def.amplitude_g > 0.0 ? def.key + ".scale" : def.key + ".intensity";
-      throw SceneError(key + ": the generated record reaches " +
-                       ShortestText(std::abs(v) / kStandardGravity_mps2) +
+      char peak[32];
+      std::snprintf(peak, sizeof peak, "%.6g", std::abs(v) / kStandardGravity_mps2);
+      throw SceneError(key + ": the generated record reaches " + std::string(peak) +
                        " g; expected an acceleration with magnitude at most " +
                        ShortestText(limits::kMaxAccel_g) + " g (docs/limits.md)");
     }
@@ -154,7 +155,8 @@ MotionComponent MotionComponent::FromDef(const MotionDef& def) {
     for (size_t i = 0; i < rec.values.size(); ++i) {
       const double a = rec.values[i] * factor;
       if (std::abs(a) <= max_mps2) continue;
-      const std::string line = i < rec.lines.size() ? ":" + std::to_string(rec.lines[i]) : "";
+      std::string line;
+      if (i < rec.lines.size()) line.append(":").append(std::to_string(rec.lines[i]));
       const std::string scaled =
           def.scale != 1.0 ? " times " + def.key + ".scale = " + ShortestText(def.scale) : "";
       char in_g[32];
@@ -361,8 +363,22 @@ MotionComponent MotionComponent::WithSamples(std::vector<double> accel_mps2) con
 
 GroundMotion GroundMotion::FromScene(const Scene& scene) {
   GroundMotion g;
-  if (scene.horizontal) g.horizontal_ = MotionComponent::FromDef(*scene.horizontal);
-  if (scene.vertical) g.vertical_ = MotionComponent::FromDef(*scene.vertical);
+  // A synthetic motion's errors start with its key: the scene file goes before it.
+  const auto build = [&](const MotionDef& def) {
+    try {
+      return MotionComponent::FromDef(def);
+    } catch (const SceneError& e) {
+      const std::string msg = e.what();
+      if (!scene.path.empty() && msg.rfind(def.key, 0) == 0) {
+        std::string where = Excerpt(scene.path.string(), 200);
+        where.append(": ").append(msg);
+        throw SceneError(where);
+      }
+      throw;
+    }
+  };
+  if (scene.horizontal) g.horizontal_ = build(*scene.horizontal);
+  if (scene.vertical) g.vertical_ = build(*scene.vertical);
   // Two records of different lengths: the shorter gets zeros at its end.
   if (g.horizontal_ && g.vertical_ && !g.horizontal_->samples_mps2().empty() &&
       !g.vertical_->samples_mps2().empty()) {
