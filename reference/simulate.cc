@@ -5,9 +5,11 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <optional>
 #include <sstream>
+#include <string>
 #include <tuple>
 #include <utility>
 
@@ -46,6 +48,10 @@ constexpr double kRestScanMotion = 1.0 / 64.0;
 // Interior points at which the cheap event functions (angles, on the dense output) are
 // checked in every step, between which their minima are found from the rates.
 constexpr int kInteriorChecks = 4;
+// Above this rate (rad/s) the energy at each step's end is checked to be finite: below it the
+// kinetic energy, about I omega^2 / 2, stays finite for any moment of inertia under 1e100 kg m^2
+// (the scene's limits allow about 1e23), and the check costs nothing on a valid run.
+constexpr double kEnergyCheckRate_radps = 1e100;
 
 // The time scale of the analytic components of a motion (s): the period 1/f of a harmonic,
 // sine or cosine pulse or Ricker wavelet; +inf for records (their steps end at every sample)
@@ -145,6 +151,18 @@ std::pair<double, double> ProbeExpensive(const F& fn, double t0, double f0, doub
     ++n;
   }
   return {t1, f1};
+}
+
+// A value that is not finite, in words: "NaN", "+inf" or "-inf".
+const char* NonFiniteText(double v) {
+  return std::isnan(v) ? "NaN" : (v > 0.0 ? "+inf" : "-inf");
+}
+
+// A time for a message, s, to 9 significant digits.
+std::string TimeText(double t_s) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.9g", t_s);
+  return buf;
 }
 
 State ToState(const Vec4& y) {
@@ -307,6 +325,35 @@ class Simulator {
   bool EventCascade(double t_ev);
   void HandleEvent(const LocatedEvent& ev, const StepDense& at, double t1, State s);
   void RunMoving();
+  // A quantity of the run that is not finite: its name and value (an empty name: none).
+  struct NonFinite {
+    std::string quantity;
+    double value = 0.0;
+    bool found() const { return !quantity.empty(); }
+  };
+  // The first of a state's angles and rates that is not finite (block 1's only for one block,
+  // whose block-2 components mirror them).
+  [[gnu::cold]] NonFinite NonFiniteState(const Vec4& y) const;
+  // The same for a step: its end state y1, the enclosure of its dense output (every state the
+  // step's samples and events are taken from), the contact margins at its end and, above
+  // kEnergyCheckRate_radps, the energy there.
+  // Cold: on a valid run only its first line, StepFinite, runs.
+  [[gnu::cold]] NonFinite NonFiniteStep(const StepDense& at, const Vec4& y1,
+                                        const ContactMargins& cm1) const;
+  // Whether NonFiniteStep finds nothing, cheaply: a sum is finite when every term is (a finite
+  // sum that overflows is sorted out by NonFiniteStep).
+  static bool StepFinite(const StepDense& at, const Vec4& y1, const ContactMargins& cm1) {
+    double sum = cm1.face + cm1.point;
+    for (int i = 0; i < 4; ++i) sum += y1[i] + at.lo[i] + at.hi[i];
+    return std::isfinite(sum) &&
+           std::max(std::abs(y1[2]), std::abs(y1[3])) <= kEnergyCheckRate_radps;
+  }
+  // Ends the run at its last finite state `last`, at t_: status non_finite with `nf`, found at
+  // t_bad (s), named in status_detail and in a "non_finite" event (Finish; the caller ends the
+  // trajectory with EndTrajectory).
+  [[gnu::cold]] void StopNonFinite(const NonFinite& nf, double t_bad, const State& last);
+  // After a stop at t_: the trajectory ends at t_ in y_, and the samples up to t_ are emitted.
+  void EndTrajectory();
   double GapGround(const Vec4& y) const { return Side(ContactsOf(mode_).ground) * y[0]; }
   double GapInterface(const Vec4& y) const {
     const Contacts c = ContactsOf(mode_);
@@ -437,6 +484,17 @@ bool Simulator::StartMode(double t, const State& s, const char* kind, Mode befor
 void Simulator::DoImpact(double t, const State& pre, ImpactKind kind) {
   const Mode before = mode_;
   const ImpactResult ir = ResolveImpact(geo_, before, pre, kind, cfg_.rest_rate_rel);
+  // A post-impact state or energy that is not finite ends the run before the impact.
+  NonFinite nf = NonFiniteState(ToVec(ir.chosen.state));
+  if (!nf.found() && !std::isfinite(ir.chosen.energy_after_j))
+    nf = {"energy", ir.chosen.energy_after_j};
+  if (!nf.found() && !std::isfinite(ir.energy_before_j)) nf = {"energy", ir.energy_before_j};
+  if (nf.found()) {
+    nf.quantity +=
+        kind == ImpactKind::kGround ? " after a ground impact" : " after an interface impact";
+    StopNonFinite(nf, t, pre);
+    return;
+  }
   Summary& sum = result_.summary;
   Event ev;
   ev.t_s = t;
@@ -471,13 +529,23 @@ void Simulator::RunRest() {
   std::array<std::pair<double, double>, 4> memo;
   memo.fill({-kInf, 0.0});
   int next_memo = 0;
+  // The first time a corner force at rest was not finite (an absurd base acceleration), and
+  // its value; -1: none.
+  double bad_t = -1.0, bad_value = 0.0;
   auto margin = [&](double t) {
     for (const auto& [tm, m] : memo) {
       if (tm == t) return m;
     }
     const ContactMargins cm =
         EvaluateContacts(geo_, Mode::kRest, State{}, Xg(t), Yg(t), cfg_.equations);
-    NoteNormalForces(cm.reactions);
+    if (!std::isfinite(cm.face)) {
+      if (bad_t < 0.0) {
+        bad_t = t;
+        bad_value = cm.face;
+      }
+    } else {
+      NoteNormalForces(cm.reactions);
+    }
     memo[next_memo] = {t, cm.face};
     next_memo = (next_memo + 1) % static_cast<int>(memo.size());
     return cm.face;
@@ -515,6 +583,12 @@ void Simulator::RunRest() {
       }
       t_start = SwitchTime(t_start, t_neg, Mode::kRest, [](double) { return State{}; });
       t1 = t_start;
+    }
+    if (bad_t >= 0.0) {
+      // The blocks are at rest at t0, the last finite state.
+      StopNonFinite({"normal force at rest", bad_value}, bad_t, State{});
+      EndTrajectory();
+      return;
     }
     Trajectory::Segment seg{t0, t1, Mode::kRest, DenseStep{}};
     result_.trajectory.Append(seg);
@@ -757,15 +831,49 @@ void Simulator::HandleEvent(const LocatedEvent& ev, const StepDense& at, double 
     case StepEvent::kNone:
       break;
   }
-  if (done_) {
-    // The run stops at the event: the trajectory ends there.
-    Trajectory::Segment last{t_, t_, mode_, DenseStep{}};
-    last.dense.c[0] = y_;
-    result_.trajectory.Append(last);
-    const double stop = t_;
-    t_end_ = stop;
-    EmitSamplesUntil(stop, true);
+  if (done_) EndTrajectory();
+}
+
+void Simulator::EndTrajectory() {
+  // The run stops at t_: the trajectory ends there.
+  Trajectory::Segment last{t_, t_, mode_, DenseStep{}};
+  last.dense.c[0] = y_;
+  result_.trajectory.Append(last);
+  const double stop = t_;
+  t_end_ = stop;
+  EmitSamplesUntil(stop, true);
+}
+
+Simulator::NonFinite Simulator::NonFiniteState(const Vec4& y) const {
+  static constexpr const char* kNames[4] = {"theta1", "theta2", "omega1", "omega2"};
+  for (int i = 0; i < 4; ++i) {
+    if (!geo_.two_blocks && (i == 1 || i == 3)) continue;
+    if (!std::isfinite(y[i])) return {kNames[i], y[i]};
   }
+  return {};
+}
+
+Simulator::NonFinite Simulator::NonFiniteStep(const StepDense& at, const Vec4& y1,
+                                              const ContactMargins& cm1) const {
+  for (const Vec4* y : {&y1, &at.lo, &at.hi}) {
+    if (NonFinite nf = NonFiniteState(*y); nf.found()) return nf;
+  }
+  if (const double e = Energy(geo_, mode_, ToState(y1)); !std::isfinite(e)) return {"energy", e};
+  for (const double m : {cm1.face, cm1.point}) {
+    if (!std::isfinite(m)) return {"contact force", m};
+  }
+  return {};
+}
+
+void Simulator::StopNonFinite(const NonFinite& nf, double t_bad, const State& last) {
+  Summary& sum = result_.summary;
+  sum.non_finite_quantity = nf.quantity;
+  sum.non_finite_value = NonFiniteText(nf.value);
+  sum.non_finite_t_s = t_bad;
+  sum.non_finite_last_t_s = t_;
+  sum.status_detail = nf.quantity + " is " + sum.non_finite_value + " at t = " + TimeText(t_bad) +
+                      " s; the run stops at its last finite state, t = " + TimeText(t_) + " s";
+  StopWith("non_finite", last, sum.status_detail, "non_finite");
 }
 
 void Simulator::RunMoving() {
@@ -784,7 +892,21 @@ void Simulator::RunMoving() {
     const ContactMargins cm1 = y1 == st.y1 ? EvaluateContacts(geo_, mode_, ToState(y1),
                                                               {st.f1[2], st.f1[3]}, Xg(t1), Yg(t1))
                                            : Margins(t1, y1);
+    // A step that reaches a value that is not finite is not recorded: the run ends at its
+    // start, the last finite state.
+    if (!StepFinite(at, y1, cm1)) {
+      if (const NonFinite nf = NonFiniteStep(at, y1, cm1); nf.found()) {
+        StopNonFinite(nf, t1, ToState(y_));
+        EndTrajectory();
+        return;
+      }
+    }
     const LocatedEvent ev = FindEvent(at, t1, cm1, thesis_events);
+    if (ev.which != StepEvent::kNone && !std::isfinite(ev.t)) {
+      StopNonFinite({"event time", ev.t}, t1, ToState(y_));
+      EndTrajectory();
+      return;
+    }
     const bool none = ev.which == StepEvent::kNone;
     const double t_seg_end = none ? t1 : ev.t;
     const Vec4 y_end = none ? y1 : at(ev.t);
@@ -832,20 +954,39 @@ Result Simulator::Run() {
   mode_ = Mode::kRest;
   // The initial mode: a contact with a gap or a rate is open on that side; closed contacts
   // stay closed unless the forces open them.
-  const ModeSelection sel = SelectMode(geo_, s, Xg(0.0), Yg(0.0), cfg_.equations);
+  const double xg0 = Xg(0.0), yg0 = Yg(0.0);
+  const ModeSelection sel = SelectMode(geo_, s, xg0, yg0, cfg_.equations);
   y_ = ToVec(s);
   if (!sel.consistent) {
-    result_.summary.status = "assumption_violated";
-    result_.summary.status_detail = "the initial state satisfies no mode's contact conditions";
-    Trajectory::Segment seg{0.0, 0.0, Mode::kRest, DenseStep{}};
-    seg.dense.c[0] = y_;
-    result_.trajectory.Append(seg);
-    t_end_ = 0.0;
-    EmitSamplesUntil(0.0, true);
-    return result_;
+    // No mode is consistent: an uplift, unless some mode's contact forces are not finite (an
+    // absurd base acceleration at t = 0, for which no comparison of forces holds).
+    NonFinite bad;
+    for (const Contact g : {Contact::kFace, Contact::kRight, Contact::kLeft}) {
+      for (const Contact i : {Contact::kFace, Contact::kRight, Contact::kLeft}) {
+        if (bad.found() || (!geo_.two_blocks && i != Contact::kFace)) continue;
+        const ContactMargins cm =
+            EvaluateContacts(geo_, ModeOf({g, i}, geo_.two_blocks), s, xg0, yg0, cfg_.equations);
+        for (const double m : {cm.face, cm.point}) {
+          if (!std::isfinite(m)) bad = {"contact force", m};
+        }
+      }
+    }
+    if (!bad.found()) {
+      result_.summary.status = "assumption_violated";
+      result_.summary.status_detail = "the initial state satisfies no mode's contact conditions";
+      Trajectory::Segment seg{0.0, 0.0, Mode::kRest, DenseStep{}};
+      seg.dense.c[0] = y_;
+      result_.trajectory.Append(seg);
+      t_end_ = 0.0;
+      EmitSamplesUntil(0.0, true);
+      return result_;
+    }
+    StopNonFinite(bad, 0.0, s);
+    EndTrajectory();
+  } else {
+    mode_ = sel.mode;
   }
-  mode_ = sel.mode;
-  if (mode_ != Mode::kRest && s.theta1 == 0.0 && s.theta2 == 0.0 && s.omega1 == 0.0 &&
+  if (!done_ && mode_ != Mode::kRest && s.theta1 == 0.0 && s.theta2 == 0.0 && s.omega1 == 0.0 &&
       s.omega2 == 0.0) {
     // Motion starts at t = 0 from rest.
     Event ev;

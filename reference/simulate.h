@@ -36,8 +36,15 @@ class Trajectory {
 
 /// Summary figures of a reference run.
 struct Summary {
-  std::string status = "completed";   ///< completed | overturned | at_rest | assumption_violated
-  std::string status_detail;          ///< why, for assumption_violated
+  /// completed | overturned | at_rest | assumption_violated | non_finite
+  std::string status = "completed";
+  std::string status_detail;  ///< why, for assumption_violated and non_finite
+  /// For status non_finite: the first quantity found not finite ("theta2", "omega1", "energy",
+  /// "event time", "normal force at rest"), its value ("NaN", "+inf", "-inf") and the time it
+  /// was computed for, s. The run (history, trajectory, peaks, counts) ends at its last finite
+  /// state, non_finite_last_t_s (s): nothing after it was computed.
+  std::string non_finite_quantity, non_finite_value;
+  double non_finite_t_s = 0.0, non_finite_last_t_s = 0.0;
   std::optional<int> overturn_block;  ///< 1 or 2
   double overturn_t_s = 0.0;
   double peak_theta1_rad = 0.0, peak_theta1_t_s = 0.0;  ///< peak |theta1| and its time
@@ -64,7 +71,10 @@ struct Result {
 };
 
 /// Runs the reference model on a scene. Never throws for physics outcomes (overturning,
-/// assumption violations are statuses); throws SceneError for impossible settings.
+/// assumption violations are statuses); throws SceneError for impossible settings. A state,
+/// energy, event time or contact force that is not finite (an absurd base motion built in code)
+/// ends the run with status "non_finite" at its last finite state: no NaN or infinity reaches
+/// the history, the events or the summary.
 Result Simulate(const Scene& scene, const GroundMotion& motion);
 
 }  // namespace rockbench::reference

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 
 namespace rockbench {
@@ -37,10 +38,51 @@ int Sign(double v) {
   return v > 0.0 ? 1 : (v < 0.0 ? -1 : 0);
 }
 
-bool Finite(const BodyReadout& b) {
-  return std::isfinite(b.x_m) && std::isfinite(b.y_m) && std::isfinite(b.cos_phi) &&
-         std::isfinite(b.sin_phi) && std::isfinite(b.vx_mps) && std::isfinite(b.vy_mps) &&
-         std::isfinite(b.w_radps);
+// A quantity read from the engine that is not finite: its name and value (empty name: none).
+struct NonFiniteField {
+  std::string name;
+  double value = 0.0;
+};
+
+// The first field of a readout that is not finite, named as the thesis's quantities: block 1's
+// rate is omega1 (its CCW angular velocity with the sign turned), its pose and velocity by what
+// they are; then block 2's; then the ground's (kinematic drive).
+NonFiniteField FirstNonFinite(const StepReadout& s, bool two_blocks) {
+  auto body = [](const BodyReadout& b, int k) -> NonFiniteField {
+    const std::string block = "block " + std::to_string(k);
+    const std::pair<const char*, double> fields[] = {
+        {"position", b.x_m},        {"position", b.y_m},    {"orientation", b.cos_phi},
+        {"orientation", b.sin_phi}, {"velocity", b.vx_mps}, {"velocity", b.vy_mps}};
+    for (const auto& [what, v] : fields) {
+      if (!std::isfinite(v)) return {block + " " + what, v};
+    }
+    if (!std::isfinite(b.w_radps)) return {"omega" + std::to_string(k), -b.w_radps};
+    return {};
+  };
+  if (NonFiniteField f = body(s.block1, 1); !f.name.empty()) return f;
+  if (two_blocks) {
+    if (NonFiniteField f = body(s.block2, 2); !f.name.empty()) return f;
+  }
+  const std::pair<const char*, double> ground[] = {{"ground position", s.ground_x_m},
+                                                   {"ground position", s.ground_y_m},
+                                                   {"ground velocity", s.ground_vx_mps},
+                                                   {"ground velocity", s.ground_vy_mps}};
+  for (const auto& [what, v] : ground) {
+    if (!std::isfinite(v)) return {what, v};
+  }
+  return {};
+}
+
+// A value that is not finite, in words: "NaN", "+inf" or "-inf".
+const char* NonFiniteText(double v) {
+  return std::isnan(v) ? "NaN" : (v > 0.0 ? "+inf" : "-inf");
+}
+
+// A time for a message, s, to 9 significant digits.
+std::string TimeText(double t_s) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.9g", t_s);
+  return buf;
 }
 
 // Linear interpolation of the zero crossing of a quantity (an angle, or the overturn margin
@@ -208,6 +250,13 @@ void Monitor::PushEvent(Event e) {
 }
 
 void Monitor::Start(const StepReadout& s) {
+  if (const NonFiniteField f = FirstNonFinite(s, two_); !f.name.empty()) {
+    // Not even the initial state is finite: no sample, and no step will be read.
+    last_.t_s = end_t_s_ = s.t_s;
+    last_recorded_ = true;
+    StopNonFinite(f.name, NonFiniteText(f.value), s.t_s, 0);
+    return;
+  }
   const double a1 = std::atan2(s.block1.sin_phi, s.block1.cos_phi);
   phi1_ = a1;
   if (two_) phi2_ = std::atan2(s.block2.sin_phi, s.block2.cos_phi);
@@ -233,15 +282,21 @@ void Monitor::Start(const StepReadout& s) {
 }
 
 bool Monitor::Step(std::int64_t n, const StepReadout& s) {
+  if (status_ == "non_finite") return false;
   steps_done_ = n;
-  if (!Finite(s.block1) || (two_ && !Finite(s.block2))) {
-    status_ = "blow_up";
-    status_detail_ = "non-finite state after step " + std::to_string(n);
-    end_t_s_ = s.t_s;
-    NoteOnsets(s.t_s);
+  if (!s.engine_fault.empty()) {
+    StopNonFinite("the engine's next state", "not finite", s.t_s, n, s.engine_fault);
+    return false;
+  }
+  if (const NonFiniteField f = FirstNonFinite(s, two_); !f.name.empty()) {
+    StopNonFinite(f.name, NonFiniteText(f.value), s.t_s, n);
     return false;
   }
   Derived d = Derive(s);
+  if (!std::isfinite(d.energy_j)) {
+    StopNonFinite("energy", NonFiniteText(d.energy_j), s.t_s, n);
+    return false;
+  }
   Sample& cur = d.sample;
   const double t_prev = prev_.sample.t_s, t = cur.t_s;
   // |theta| of both blocks before this step (prev_ is overwritten before the overturn check).
@@ -268,6 +323,34 @@ bool Monitor::Step(std::int64_t n, const StepReadout& s) {
   return !stopped;
 }
 
+void Monitor::StopNonFinite(const std::string& quantity, const std::string& value, double t_s,
+                            std::int64_t n, const std::string& why) {
+  status_ = "non_finite";
+  non_finite_quantity_ = quantity;
+  non_finite_value_ = value;
+  non_finite_t_s_ = t_s;
+  const bool any_finite = !history_.samples.empty();
+  status_detail_ =
+      quantity + " is " + value + " at t = " + TimeText(t_s) + " s (step " + std::to_string(n) +
+      (why.empty() ? std::string() : ": " + why) + ")" +
+      (any_finite ? "; the run stops at its last finite state, t = " + TimeText(last_.t_s) + " s"
+                  : "; no state of the run is finite");
+  // The run, its history and its outcome end at the last finite state.
+  end_t_s_ = last_.t_s;
+  if (any_finite) {
+    Event e;
+    e.t_s = last_.t_s;
+    e.kind = "non_finite";
+    e.mode_before = e.mode_after = last_.mode;
+    e.omega1_before = e.omega1_after = last_.omega1_radps;
+    e.omega2_before = e.omega2_after = last_.omega2_radps;
+    e.energy_before_j = e.energy_after_j = prev_.energy_j;
+    e.note = status_detail_;
+    PushEvent(std::move(e));
+  }
+  NoteOnsets(t_s);
+}
+
 std::array<bool, std::size(kViolationFlags)> Monitor::Raised() const {
   const double slip_flag1 = cfg_.slip_flag_rel * 2.0 * b1_;
   const double slip_flag2 = cfg_.slip_flag_rel * 2.0 * b2_;
@@ -276,7 +359,7 @@ std::array<bool, std::size(kViolationFlags)> Monitor::Raised() const {
           penetration_ground_max_m_ > cfg_.penetration_flag_m ||
               (two_ && penetration_interface_max_m_ > cfg_.penetration_flag_m),
           energy_gain_max_j_ > cfg_.energy_growth_flag_rel * tipping_energy_j_,
-          status_ == "blow_up"};
+          status_ == "blow_up" || status_ == "non_finite"};
 }
 
 std::array<bool, std::size(kViolationFlags)> Monitor::RaisedSignificantly() const {
@@ -619,6 +702,12 @@ nlohmann::json Monitor::Summary() const {
   json j;
   j["status"] = status_;
   if (!status_detail_.empty()) j["status_detail"] = status_detail_;
+  if (status_ == "non_finite") {
+    j["non_finite"] = {{"quantity", non_finite_quantity_},
+                       {"value", non_finite_value_},
+                       {"t_s", non_finite_t_s_},
+                       {"last_finite_t_s", end_t_s_}};
+  }
   j["end_t_s"] = end_t_s_;
   j["steps"] = steps_done_;
   // Same shape as the reference's part of summary.json (harness/summary.cc).

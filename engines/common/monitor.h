@@ -54,8 +54,10 @@ struct MonitorConfig {
   /// the scale the comparison applies to angles. Below it, the flag is reported only. Sliding
   /// counts as flagged (slip_flag_rel).
   double significant_critical_fraction = 1e-3;
-  /// Blow-up: a non-finite state, |rate| above blow_up_rate_radps, or energy gained without
-  /// input above blow_up_energy_rel times the tipping energy. The run stops there.
+  /// Blow-up: |rate| above blow_up_rate_radps, or energy gained without input above
+  /// blow_up_energy_rel times the tipping energy. The run stops there. (A pose, velocity or
+  /// energy that is not finite stops it too, with status "non_finite"; the blow_up flag is
+  /// raised with it.)
   double blow_up_rate_radps = 1e3;
   double blow_up_energy_rel = 1.0;
   /// With EngineInput::stop_at_rest_after_s: the run stops once every block has been at rest
@@ -85,6 +87,10 @@ struct StepReadout {
   double out_of_plane_m = 0.0, out_of_plane_rad = 0.0;
   /// Whether the base accelerated during the step that ended here.
   bool base_accelerating = false;
+  /// The engine's own report that an internal check failed in the step on a value that is not
+  /// finite (ODE's assertion on a quaternion it cannot normalise), in its words; empty: none.
+  /// The monitor ends the run there with status non_finite, as for a pose that is not finite.
+  std::string engine_fault;
 };
 
 /// Fills the base's part of the state after step n from the run input: the ground's position and
@@ -100,8 +106,11 @@ class Monitor {
   /// The state at t = 0 (first sample).
   void Start(const StepReadout& s);
   /// The state after step n (1-based). Returns false when the run must stop (overturn,
-  /// blow-up). The overturn time is the interpolated crossing of model.overturn_angle inside the
-  /// step; the last sample is the state at the step's end.
+  /// blow-up, a state that is not finite). The overturn time is the interpolated crossing of
+  /// model.overturn_angle inside the step; the last sample is the state at the step's end. A
+  /// pose, velocity (of a block or of the ground) or energy that is not finite ends the run with
+  /// status "non_finite" at the last finite state: the step is not recorded, a "non_finite"
+  /// event is, and status_detail names the quantity, its value and the time.
   bool Step(std::int64_t n, const StepReadout& s);
   /// Ends the run: records the last state as a sample if it was not one.
   void Finish();
@@ -172,6 +181,10 @@ class Monitor {
   std::array<bool, std::size(kViolationFlags)> RaisedSignificantly() const;
   // Dates the flags raised for the first time at t_s.
   void NoteOnsets(double t_s);
+  // Ends the run at the last finite state (last_): `quantity` is `value` ("NaN", "+inf",
+  // "-inf", "not finite") at t_s, in step n; `why`, when not empty, is added to the detail.
+  void StopNonFinite(const std::string& quantity, const std::string& value, double t_s,
+                     std::int64_t n, const std::string& why = "");
 
   EngineInput in_meta_;  // geometry and settings (drive samples not kept)
   MonitorConfig cfg_;
@@ -229,6 +242,9 @@ class Monitor {
 
   std::string status_ = "completed";
   std::string status_detail_;
+  // Status non_finite: the quantity, its value in words and the time it was read, s.
+  std::string non_finite_quantity_, non_finite_value_;
+  double non_finite_t_s_ = 0.0;
   int overturn_block_ = 0;
   double overturn_t_s_ = 0.0, end_t_s_ = 0.0;
   std::int64_t steps_done_ = 0;

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <mutex>
 #include <stdexcept>
 #include <string>
@@ -18,6 +19,17 @@ namespace rockbench::ode {
 namespace {
 
 static_assert(sizeof(dReal) == sizeof(double), "ODE must be double precision");
+
+// ODE adds 0.5 dt (omega x q) to each body's orientation quaternion q and normalises it: once
+// |omega| dt passes about 1e154 the squared norm overflows, and ODE aborts the process on the
+// quaternion it cannot normalise (assertion in dxNormalize4). A step whose bound on |omega| dt
+// (StepRotationBound_rad) exceeds this is not taken; 1e100 rad leaves 54 orders of magnitude
+// for how loosely the bound holds, and 96 above any real step (|omega| dt < 1e4).
+constexpr double kMaxStepRotation_rad = 1e100;
+
+double Norm2(const dReal* v) {
+  return std::hypot(v[0], v[1], v[2]);
+}
 
 // Process-wide ODE library state. dInitODE2 / dCloseODE use an unguarded static counter in
 // ODE 0.16, and ODE's documentation allows dInitODE2 only once until dCloseODE: the first live
@@ -266,7 +278,36 @@ int OdeWorld::Collide(dxGeom* a, dxGeom* b, dxBody* body_a, dxBody* body_b) {
   return n;
 }
 
+double OdeWorld::StepRotationBound_rad() const {
+  dVector3 g;
+  dWorldGetGravity(world_, g);
+  double speed = Norm2(g) * dt_;  // m/s gained in the step
+  if (kinematic_) speed += Norm2(dBodyGetLinearVel(ground_body_));
+  double fastest = 0.0, smallest = std::min(in_.block1.width_m, in_.block1.height_m);
+  auto body = [&](dBodyID b, double width_m, double height_m) {
+    const double half_diagonal = 0.5 * std::hypot(width_m, height_m);
+    fastest = std::max(fastest,
+                       Norm2(dBodyGetLinearVel(b)) + Norm2(dBodyGetAngularVel(b)) * half_diagonal);
+  };
+  body(body1_, in_.block1.width_m, in_.block1.height_m);
+  if (body2_) {
+    body(body2_, in_.block2->width_m, in_.block2->height_m);
+    smallest = std::min({smallest, in_.block2->width_m, in_.block2->height_m});
+  }
+  return (fastest + speed) / (0.5 * smallest) * dt_;
+}
+
 void OdeWorld::Step() {
+  if (!fault_.empty()) return;  // the run has ended (see the header)
+  if (const double bound = StepRotationBound_rad(); !(bound <= kMaxStepRotation_rad)) {
+    char buf[200];
+    std::snprintf(buf, sizeof buf,
+                  "ODE's orientation update would overflow (|omega| dt up to %.3g rad, on "
+                  "which ODE aborts): the step was not taken",
+                  bound);
+    fault_ = buf;
+    return;
+  }
   if (std::this_thread::get_id() != thread_) {
     AllocateForThisThread();
     thread_ = std::this_thread::get_id();
@@ -311,6 +352,7 @@ StepReadout OdeWorld::Read(std::int64_t n) const {
   s.out_of_plane_m = oop_m;
   s.out_of_plane_rad = oop_rad;
   ReadBaseMotion(in_, n, &s);
+  s.engine_fault = fault_;
   return s;
 }
 

@@ -3,6 +3,7 @@
 /// RockingWorld (engines/bullet/rocking_world.h), so that the Monitor reads both alike.
 #include <cstdint>
 #include <nlohmann/json.hpp>
+#include <string>
 #include <thread>
 
 #include "engines/common/engine_input.h"
@@ -52,7 +53,10 @@ class OdeWorld {
   /// (u_{n+1} - u_n) / dt during the step.
   void ApplyDrive(std::int64_t n);
   /// One fixed step: contact joints from dCollide at the current poses, dWorldStep (or
-  /// dWorldQuickStep), then the contact joints are dropped.
+  /// dWorldQuickStep), then the contact joints are dropped. A step whose rotation could
+  /// overflow ODE's orientation update (StepRotationBound_rad above kMaxStepRotation_rad: ODE
+  /// would abort) is not taken: it is read as StepReadout::engine_fault, and the monitor ends
+  /// the run there (status non_finite).
   void Step();
   /// The state after n steps, read from the bodies (ODE's body position is the mass centre).
   StepReadout Read(std::int64_t n) const;
@@ -67,6 +71,11 @@ class OdeWorld {
 
  private:
   int Collide(dxGeom* a, dxGeom* b, dxBody* body_a, dxBody* body_b);
+  // A bound on |omega| dt any block can reach in the next step, rad: the fastest point of a
+  // block (|v| + |omega| times its half-diagonal) plus the effective gravity (and, kinematic, the
+  // ground's speed) times dt, over the smallest half-size of a block, times dt. Contact impulses
+  // turn a block at most that fast about a point of its outline.
+  double StepRotationBound_rad() const;
 
   const EngineInput& in_;
   OdeSettings s_;
@@ -86,7 +95,9 @@ class OdeWorld {
   dxJoint* plane2_ = nullptr;
   int contacts_ground_ = 0, contacts_interface_ = 0, contacts_block2_ground_ = 0;
   unsigned long rand_seed_ = 0;  // this world's state of ODE's generator (QuickStep's order)
-  std::thread::id thread_;       // last thread that allocated ODE's per-thread data for this world
+  // Why the last step was not taken (see Step); empty: every step was.
+  std::string fault_;
+  std::thread::id thread_;  // last thread that allocated ODE's per-thread data for this world
 };
 
 }  // namespace rockbench::ode

@@ -146,6 +146,14 @@ void Execute(const CompareCliOptions& opt) {
               out.string().c_str());
   for (const std::string& name : engines) std::printf(", %s/", name.c_str());
   std::printf(")\n");
+  // A comparison resting on a run that ended non_finite failed.
+  if (!run.failures.empty()) {
+    std::fflush(stdout);
+    for (const std::string& f : run.failures) {
+      std::fprintf(stderr, "rockbench: compare failed: %s\n", f.c_str());
+    }
+    throw CLI::RuntimeError(kExitRunFailed);
+  }
 }
 
 }  // namespace

@@ -53,8 +53,10 @@ void Execute(const RunOptions& opt) {
                       {"overrides", opt.overrides},
                       {"two_blocks", scene.two_blocks()}};
   summary["base"] = BaseMotionJson(motion);
+  std::vector<std::string> failed;  // runs that ended non_finite
   for (const std::string& name : opt.engines) {
     const EngineRun run = RunEngine(name, scene, motion);
+    if (const std::string f = NonFiniteText(run); !f.empty()) failed.push_back(f);
     WriteEngineFiles(run, out);
     if (name == "reference") {
       for (auto it = run.summary.begin(); it != run.summary.end(); ++it) summary[it.key()] = *it;
@@ -67,6 +69,14 @@ void Execute(const RunOptions& opt) {
   std::printf("outputs in %s (summary.json", out.string().c_str());
   for (const std::string& name : opt.engines) std::printf(", %s/history.csv", name.c_str());
   std::printf(")\n");
+  // The outputs say how far each run got; a run that ended non_finite failed.
+  if (!failed.empty()) {
+    std::fflush(stdout);
+    for (const std::string& f : failed) {
+      std::fprintf(stderr, "rockbench: run failed: %s\n", f.c_str());
+    }
+    throw CLI::RuntimeError(kExitRunFailed);
+  }
 }
 
 }  // namespace

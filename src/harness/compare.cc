@@ -163,6 +163,14 @@ EngineAgreement CompareWithReference(const Scene& scene, const reference::Result
   if (run.summary.is_object() && run.summary.contains("violations")) {
     a.violations = run.summary["violations"];
   }
+  if (run.summary.is_object()) {
+    a.status_detail = run.summary.value("status_detail", std::string());
+    if (const auto nf = run.summary.find("non_finite"); nf != run.summary.end()) {
+      a.non_finite_what = nf->value("quantity", std::string("a quantity")) + " is " +
+                          nf->value("value", std::string("not finite"));
+      a.non_finite_t_s = nf->value("t_s", 0.0);
+    }
+  }
   const bool two = scene.two_blocks();
   const reference::Summary& rs = ref.summary;
   a.flags = run.outcome.violations;
@@ -174,12 +182,17 @@ EngineAgreement CompareWithReference(const Scene& scene, const reference::Result
   a.reference_status = rs.status;
   a.reference_status_detail = rs.status_detail;
   a.reference_end_s = ref.trajectory.end_s();
+  if (IsNonFinite(rs.status)) {
+    a.reference_non_finite_what = rs.non_finite_quantity + " is " + rs.non_finite_value;
+    a.reference_non_finite_t_s = rs.non_finite_t_s;
+  }
 
   // Common grid: the engine's sample times, up to the end of the shorter meaningful run. A
-  // reference that stopped at rest stays valid afterwards (At clamps to its end).
+  // reference that stopped at rest stays valid afterwards (At clamps to its end); one that
+  // ended non_finite has nothing after its last finite state.
   const double eng_end = run.history.samples.empty() ? 0.0 : run.history.samples.back().t_s;
   double until = eng_end;
-  if (rs.status == "overturned" || rs.status == "assumption_violated") {
+  if (rs.status == "overturned" || rs.status == "assumption_violated" || IsNonFinite(rs.status)) {
     until = std::min(until, ref.trajectory.end_s());
   }
   a.compared_until_s = until;
@@ -292,6 +305,7 @@ nlohmann::json AgreementJson(const EngineAgreement& a) {
   nlohmann::json j;
   j["wall_s"] = a.wall_s;
   j["status"] = a.status;
+  if (IsNonFinite(a.status)) j["status_detail"] = a.status_detail;
   j["compared_until_s"] = RoundTime_s(a.compared_until_s);
   j["samples_compared"] = a.samples_compared;
   j["theta1"] = AngleJson(a.theta1);

@@ -88,7 +88,12 @@ struct CompareOptions {
 struct EngineAgreement {
   std::string engine;
   double wall_s = 0.0;
-  std::string status;             ///< the engine's status (summary "status")
+  std::string status;         ///< the engine's status (summary "status")
+  std::string status_detail;  ///< and its detail (summary "status_detail")
+  /// Status non_finite (harness/engines.h): what stopped being finite ("energy is +inf") and
+  /// when, s (summary "non_finite"); the comparison ends at the run's last finite state.
+  std::string non_finite_what;
+  double non_finite_t_s = 0.0;
   double compared_until_s = 0.0;  ///< end of the common grid
   int samples_compared = 0;
   AngleAgreement theta1;
@@ -111,9 +116,12 @@ struct EngineAgreement {
   std::vector<std::string> significant_flags;
   std::vector<double> significant_onsets_t_s;
   /// The reference's status and where its solution ends (s): past an "assumption_violated"
-  /// end the model has nothing to say.
+  /// end the model has nothing to say; past a "non_finite" end nothing was computed.
   std::string reference_status, reference_status_detail;
   double reference_end_s = 0.0;
+  /// Reference status non_finite: what stopped being finite and when, s.
+  std::string reference_non_finite_what;
+  double reference_non_finite_t_s = 0.0;
   /// The verdict (harness/verdict.h), when one was made: its kind, whether the engine agrees,
   /// the plain-words text and the statistical comparison (engines.<name>.statistics).
   std::string verdict_kind, verdict;

@@ -21,6 +21,11 @@ void TakeHorizons(const ReferenceEnsemble& e, int nb, Horizons* h, CompareOption
     h->horizon_s[b] = e.horizon_s[b];
     if (e.horizon_s[b]) o->predictability_horizon_s[b] = *e.horizon_s[b];
   }
+  for (const MemberOutcome& m : e.outcomes) {
+    if (IsNonFinite(m.status) && h->non_finite_members++ == 0) {
+      h->non_finite_detail = "member " + std::to_string(m.member) + ": " + m.detail;
+    }
+  }
 }
 
 // The statistical decision with the next kVerdictSeeds - 1 seeds.
@@ -115,7 +120,11 @@ CompareRun RunCompare(const Scene& scene, const GroundMotion& motion,
   out.tolerance_rad[1] = two ? AngleTolerance_rad(scene, 2, ref.summary.peak_theta2_rad) : 0.0;
   std::optional<Horizons> horizons;
   CompareOptions compare_options = base;
-  if (scene.compare.members > 0) {
+  // A reference that failed (non_finite) leaves nothing to compare with: no ensemble, and every
+  // verdict is reference_failed.
+  const bool reference_failed = IsNonFinite(ref.summary.status);
+  if (reference_failed) log("  FAILED: " + NonFiniteText(out.reference_run));
+  if (scene.compare.members > 0 && !reference_failed) {
     out.ensemble =
         RunReferenceEnsemble(out.reference_scene, motion, ref, scene.compare.members,
                              out.tolerance_rad, options.jobs, base.min_impact_rate_radps);
@@ -148,7 +157,8 @@ CompareRun RunCompare(const Scene& scene, const GroundMotion& motion,
     std::vector<MemberOutcome> outcomes;
     Verdict v = MakeVerdict(scene, a, horizons, std::nullopt);
     const bool beyond = horizon_within_run && v.kind != "differs_before_horizon" &&
-                        v.kind != "violates_model" && v.kind != "outside_model";
+                        v.kind != "violates_model" && v.kind != "outside_model" &&
+                        v.kind != "reference_failed";
     if (beyond) {
       if (engine_members > 0) {
         outcomes = RunEngineEnsemble(name, scene, motion, engine_members, options.jobs,
@@ -186,6 +196,26 @@ CompareRun RunCompare(const Scene& scene, const GroundMotion& motion,
     out.agreements.push_back(std::move(a));
     out.engine_runs.push_back(std::move(run));
     out.engine_outcomes.push_back(std::move(outcomes));
+  }
+
+  // Every run that ended non_finite.
+  auto members = [&](const std::string& who, const std::vector<MemberOutcome>& outcomes) {
+    for (const MemberOutcome& o : outcomes) {
+      if (IsNonFinite(o.status)) {
+        out.failures.push_back(who + " ensemble member " + std::to_string(o.member) + ": " +
+                               o.detail);
+      }
+    }
+  };
+  if (const std::string t = NonFiniteText(out.reference_run); !t.empty()) {
+    out.failures.push_back(t);
+  }
+  if (out.ensemble) members("reference", out.ensemble->outcomes);
+  for (size_t k = 0; k < out.engine_runs.size(); ++k) {
+    if (const std::string t = NonFiniteText(out.engine_runs[k]); !t.empty()) {
+      out.failures.push_back(t);
+    }
+    members(out.engine_runs[k].engine, out.engine_outcomes[k]);
   }
 
   out.comparison = ComparisonJson(scene, ref, out.reference.nominal_wall_s, out.agreements, base);

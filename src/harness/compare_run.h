@@ -36,6 +36,11 @@ struct CompareRun {
   /// The reference's run as written to DIR/reference (history of the solution used; summary
   /// with "convergence").
   EngineRun reference_run;
+  /// Every run of the comparison that ended non_finite (harness/engines.h), one line each
+  /// ("reference: theta2 is NaN at t = ...", "bullet ensemble member 3: ..."): the reference
+  /// (the solution used), the engines, and the members of the ensembles. Not empty: the
+  /// comparison failed (`rockbench compare` exits with kExitRunFailed).
+  std::vector<std::string> failures;
 };
 
 /// Runs the comparison of `engines` (names from AvailableEngines, "reference" excluded) on a

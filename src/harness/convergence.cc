@@ -1,7 +1,5 @@
 #include "harness/convergence.h"
 
-#include "scene/limits.h"
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -10,12 +8,15 @@
 
 #include "harness/summary.h"
 #include "harness/wall_clock.h"
+#include "scene/limits.h"
 
 namespace rockbench {
 namespace {
 
+// A run with no solution after its end: stopped on a violated assumption, or at its last finite
+// state.
 bool EndsEarly(const reference::Result& r) {
-  return r.summary.status == "assumption_violated";
+  return r.summary.status == "assumption_violated" || IsNonFinite(r.summary.status);
 }
 
 }  // namespace
@@ -70,6 +71,8 @@ ConvergenceCheck CompareWithWitness(const Scene& scene, const reference::Result&
   c.same_status = nominal.summary.status == witness.summary.status &&
                   nominal.summary.overturn_block == witness.summary.overturn_block;
   c.converged = !c.diverges_at_s && c.same_status;
+  c.nominal_non_finite = IsNonFinite(nominal.summary.status);
+  c.witness_non_finite = IsNonFinite(witness.summary.status);
   return c;
 }
 
@@ -103,13 +106,23 @@ nlohmann::json ConvergenceJson(const Scene& scene, const ConvergenceCheck& c) {
   j["converged"] = c.converged;
   j["diverges_at_s"] = c.diverges_at_s ? nlohmann::json(*c.diverges_at_s) : nullptr;
   j["same_status"] = c.same_status;
-  j["used"] = c.converged ? "nominal" : "witness";
+  j["used"] = c.use_witness() ? "witness" : "nominal";
   j["witness_wall_s"] = c.witness_wall_s;
   return j;
 }
 
 std::string ConvergenceWarning(const ConvergenceCheck& c) {
   if (c.converged) return "";
+  if (c.nominal_non_finite || c.witness_non_finite) {
+    // The run's status says what failed; say which of the two runs it was.
+    return c.nominal_non_finite && c.witness_non_finite
+               ? "both the reference and its witness (a tighter tolerance) ended non_finite"
+           : c.nominal_non_finite
+               ? "the reference ended non_finite, its witness (a tighter tolerance) did not; "
+                 "the run reports the failure"
+               : "the reference's witness (a tighter tolerance) ended non_finite; the run reports "
+                 "the witness's failure";
+  }
   char buf[512];
   if (c.diverges_at_s) {
     std::snprintf(buf, sizeof buf,

@@ -30,8 +30,18 @@ struct ConvergenceCheck {
   std::optional<double> diverges_at_s;
   bool same_status = true;  ///< both runs end the same way (status and overturned block)
   bool converged = true;    ///< never diverges and ends the same way
+  /// Which of the two ended non_finite (harness/engines.h IsNonFinite): such a run failed, and
+  /// the solution used is the failed one, so that the failure is reported, never hidden behind
+  /// the other run.
+  bool nominal_non_finite = false, witness_non_finite = false;
   double witness_wall_s = 0.0;
   double max_abs_diff() const { return std::max(max_abs_diff_rad[0], max_abs_diff_rad[1]); }
+  /// Whether comparisons use the witness: the nominal run when it failed, else the witness when
+  /// it failed or the nominal run is not converged.
+  bool use_witness() const {
+    if (nominal_non_finite) return false;
+    return witness_non_finite || !converged;
+  }
 };
 
 /// Compares two runs of the same scene (nominal and witness) on the union of their sample
@@ -45,9 +55,10 @@ struct CheckedReference {
   double nominal_wall_s = 0.0;
   std::optional<reference::Result> witness;  ///< absent when the check was not asked for
   std::optional<ConvergenceCheck> check;
-  /// The solution comparisons use: the witness when the nominal run is not converged.
+  /// The solution comparisons use: the witness when the nominal run is not converged, and
+  /// whichever of the two ended non_finite (ConvergenceCheck::use_witness).
   const reference::Result& used() const {
-    return check && !check->converged && witness ? *witness : nominal;
+    return check && check->use_witness() && witness ? *witness : nominal;
   }
 };
 
@@ -57,7 +68,7 @@ CheckedReference RunCheckedReference(const Scene& scene, const GroundMotion& mot
 
 /// summary.json "convergence": {"witness": {...settings}, "max_abs_diff_rad": x,
 /// "max_abs_diff_rad_per_block": {...}, "tolerance_rad": {...}, "converged": bool,
-/// "diverges_at_s": null | t, "same_status": bool, "used": "nominal" | "witness",
+/// "diverges_at_s": null | t, "same_status": bool, "used": "nominal" | "witness" (use_witness),
 /// "witness_wall_s": s}.
 nlohmann::json ConvergenceJson(const Scene& scene, const ConvergenceCheck& check);
 

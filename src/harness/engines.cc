@@ -32,6 +32,7 @@ EngineRun RunEngine(const std::string& name, const Scene& scene, const GroundMot
     if (checked.check && !checked.check->converged) {
       run.one_line += "\n  WARNING: " + ConvergenceWarning(*checked.check);
     }
+    if (IsNonFinite(s.status)) run.one_line += "\n  FAILED: " + s.status_detail;
     return run;
   }
   const Engine* engine = FindEngine(name);
@@ -58,7 +59,15 @@ EngineRun RunEngine(const std::string& name, const Scene& scene, const GroundMot
                 o.peak_theta1_t_s, o.impacts(), flags.empty() ? "none" : flags.c_str(),
                 run.wall_s * 1e3);
   run.one_line = line;
+  if (IsNonFinite(o.status)) {
+    run.one_line += "\n  FAILED: " + run.summary.value("status_detail", std::string());
+  }
   return run;
+}
+
+std::string NonFiniteText(const EngineRun& run) {
+  if (!IsNonFinite(run.outcome.status)) return "";
+  return run.engine + ": " + run.summary.value("status_detail", std::string("not finite"));
 }
 
 void WriteEngineFiles(const EngineRun& run, const std::filesystem::path& out_dir) {

@@ -24,6 +24,15 @@ struct EngineRun {
   std::string one_line;    ///< one-line human summary
 };
 
+/// The status of a run (the reference's or an engine's) whose state, energy, an event time or a
+/// contact force stopped being finite: the run failed. Its history, events and summary end at
+/// its last finite state (summary.json "non_finite": quantity, value, t_s, last_finite_t_s); it
+/// is never an agreement (harness/verdict.h) and `run` and `compare` exit with a failure.
+inline constexpr const char* kStatusNonFinite = "non_finite";
+inline bool IsNonFinite(const std::string& status) {
+  return status == kStatusNonFinite;
+}
+
 /// "reference" and the engines this build has (harness/engine_registry.h), in that order.
 std::vector<std::string> AvailableEngines();
 
@@ -41,6 +50,10 @@ struct RunEngineOptions {
 /// Runs engine `name`. Throws SceneError for an unknown engine or impossible settings.
 EngineRun RunEngine(const std::string& name, const Scene& scene, const GroundMotion& motion,
                     const RunEngineOptions& options = {});
+
+/// "NAME: DETAIL" (the status detail: quantity, value and time) when the run ended non_finite,
+/// else "".
+std::string NonFiniteText(const EngineRun& run);
 
 /// Writes DIR/<engine>/history.csv and DIR/<engine>/events.csv atomically.
 void WriteEngineFiles(const EngineRun& run, const std::filesystem::path& out_dir);

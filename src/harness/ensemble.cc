@@ -135,6 +135,7 @@ MemberOutcome OutcomeOf(const EngineRun& run, const Scene& scene, double min_imp
   MemberOutcome o;
   const RunOutcome& s = run.outcome;
   o.status = s.status;
+  if (run.summary.is_object()) o.detail = run.summary.value("status_detail", std::string());
   o.wall_s = run.wall_s;
   if (s.overturned()) {
     o.overturned_block = s.overturned_block;
@@ -190,12 +191,12 @@ ReferenceEnsemble RunReferenceEnsemble(const Scene& nominal_scene, const GroundM
   const auto n_grid = static_cast<size_t>(std::floor(nominal_scene.run.duration_s / dt + 1e-9)) + 1;
   e.t_s.resize(n_grid);
   for (size_t k = 0; k < n_grid; ++k) e.t_s[k] = RoundTime_s(static_cast<double>(k) * dt);
-  // A run on the grid. Beyond the end of a run stopped by a violated assumption there is
-  // nothing to compare (NaN); beyond an overturn, the overturned block stays at its overturn
-  // angle (a lasting outcome that other members may not share) and the other block's angle is
-  // undefined (NaN: the model ends there).
+  // A run on the grid. Beyond the end of a run stopped by a violated assumption, or ended at
+  // its last finite state, there is nothing to compare (NaN); beyond an overturn, the
+  // overturned block stays at its overturn angle (a lasting outcome that other members may not
+  // share) and the other block's angle is undefined (NaN: the model ends there).
   auto on_grid = [&](const reference::Result& r, std::vector<double>* th) {
-    const bool stopped = r.summary.status == "assumption_violated";
+    const bool stopped = r.summary.status == "assumption_violated" || IsNonFinite(r.summary.status);
     const int overturned = r.summary.overturn_block.value_or(0);
     const double end = r.trajectory.end_s();
     th[0].assign(n_grid, std::nan(""));

@@ -46,6 +46,7 @@ MemberInput PerturbedInput(const Scene& scene, const GroundMotion& motion, int m
 struct MemberOutcome {
   int member = -1;
   std::string status;               ///< as in summary.json
+  std::string detail;               ///< summary.json's status_detail (why it ended so)
   int overturned_block = 0;         ///< 0: none, 1 or 2
   double overturn_t_s = 0.0;        ///< when overturned_block != 0
   double peak_rad[2] = {0, 0};      ///< peak |theta1|, |theta2|
@@ -57,8 +58,9 @@ struct MemberOutcome {
   /// whole response, which counts nothing and so has no counting threshold.
   double rms_rad[2] = {0, 0};
   double wall_s = 0.0;
-  /// A run that stopped because the model's assumptions failed has no outcome to compare.
-  bool valid() const { return status != "assumption_violated"; }
+  /// A run that stopped because the model's assumptions failed, or that ended non_finite
+  /// (harness/engines.h), has no outcome to compare.
+  bool valid() const { return status != "assumption_violated" && !IsNonFinite(status); }
 };
 
 /// The outcome of a run (reference or engine) of `scene`: summary "status", "peaks",

@@ -73,13 +73,16 @@ struct StressRow {
   std::string case_name;
   std::string engine;
   /// The run reached its end time or a physics ending (overturned, at rest, assumption
-  /// violated); false for blow_up, crash, wall_limit and error.
+  /// violated); false for blow_up, non_finite, crash, wall_limit and error.
   bool finished = false;
   /// completed | overturned | at_rest | assumption_violated (reference) | blow_up (engines) |
-  /// "crash (signal N)" | wall_limit | "error (exit N)".
+  /// non_finite (either: the run stopped at its last finite state) | "crash (signal N)" |
+  /// wall_limit | "error (exit N)".
   std::string status;
   std::string detail;  ///< why (status detail, error message), no commas
-  bool nan = false;    ///< a non-finite value in the history, events or summary
+  /// A non-finite value in the history, events or summary, or status non_finite (a run that
+  /// stopped where a value stopped being finite).
+  bool nan = false;
   /// Largest (E_after - E_before) / KE_before over the impacts (see docs/stress.md); 0 when
   /// no impact qualifies. Negative: every impact dissipated.
   double max_energy_gain_rel = 0.0;

@@ -1,6 +1,7 @@
 // A stress row as the child prints it (one line of JSON) and as stress.csv holds it.
 #include <limits>
 
+#include "harness/engines.h"
 #include "harness/stress.h"
 #include "util/format.h"
 
@@ -92,7 +93,9 @@ std::string StressCsv(const std::vector<StressRow>& rows) {
       "theta2_peak_rel_error,impacts_matched,reference_impacts,detail\n";
   auto g = [](double v) { return Format("%.6g", v); };
   for (const StressRow& r : rows) {
-    const bool ran = r.finished || r.status == "blow_up" || r.status == "error";
+    // Peaks of a run that stopped early are those of its computed part.
+    const bool ran =
+        r.finished || r.status == "blow_up" || IsNonFinite(r.status) || r.status == "error";
     out += Clean(r.case_name) + "," + r.engine + "," + (r.finished ? "1" : "0") + "," +
            Clean(r.status) + "," + (r.nan ? "1" : "0") + ",";
     out += (r.energy_impacts > 0 ? Format("%.3e", r.max_energy_gain_rel) : "") + "," +

@@ -117,11 +117,12 @@ StressRow RunReference(const StressCase& c, StressRow row) {
   const reference::Summary& s = r.summary;
   row.status = s.status;
   row.detail = s.status_detail;
-  row.finished = true;
+  // A run that ended non_finite failed (its figures are those of its finite part).
+  row.finished = !IsNonFinite(s.status);
   row.peak_theta1_rad = s.peak_theta1_rad;
   row.peak_theta2_rad = s.peak_theta2_rad;
-  row.nan =
-      HistoryHasNonFinite(r.history) || !Finite(s.peak_theta1_rad) || !Finite(s.peak_theta2_rad);
+  row.nan = IsNonFinite(s.status) || HistoryHasNonFinite(r.history) || !Finite(s.peak_theta1_rad) ||
+            !Finite(s.peak_theta2_rad);
   CountEvents(r.history, &row);
   // Energy across each impact: the configuration does not jump, so E_after - E_before is the
   // change of kinetic energy, computed directly at the impact's angles (the post-event state of
@@ -160,7 +161,7 @@ StressRow RunEngineCase(const StressCase& c, const std::string& engine, StressRo
                  row.status == "at_rest" || row.status == "assumption_violated";
   row.peak_theta1_rad = o.peak_theta1_rad;
   row.peak_theta2_rad = o.peak_theta2_rad;
-  row.nan = HistoryHasNonFinite(run.history) || row.detail.find("non-finite") != std::string::npos;
+  row.nan = IsNonFinite(o.status) || HistoryHasNonFinite(run.history);
   CountEvents(run.history, &row);
   std::string flags;
   for (const std::string& f : o.violations) flags += (flags.empty() ? "" : ";") + f;

@@ -42,6 +42,14 @@ nlohmann::json ReferenceSummaryJson(const Scene& scene, const reference::Result&
   nlohmann::json j;
   j["status"] = s.status;
   if (!s.status_detail.empty()) j["status_detail"] = s.status_detail;
+  if (s.status == "non_finite") {
+    // What stopped being finite, and where the computed part (the history, the peaks, the
+    // counts below) ends.
+    j["non_finite"] = {{"quantity", s.non_finite_quantity},
+                       {"value", s.non_finite_value},
+                       {"t_s", s.non_finite_t_s},
+                       {"last_finite_t_s", s.non_finite_last_t_s}};
+  }
   j["wall_s"] = wall_s;
   j["peaks"]["theta1"] = {{"abs_rad", s.peak_theta1_rad}, {"t_s", s.peak_theta1_t_s}};
   if (scene.two_blocks()) {

@@ -55,12 +55,19 @@ StatisticalComparison CompareEnsembles(const std::vector<MemberOutcome>& referen
       ref.push_back(&o);
     } else {
       ++s.excluded;
+      if (IsNonFinite(o.status)) ++s.excluded_non_finite;
+    }
+  }
+  for (const MemberOutcome& o : engine) {
+    // A failed engine member is the engine's failure, whatever the reference did there.
+    if (IsNonFinite(o.status) && s.engine_non_finite++ == 0) {
+      s.engine_non_finite_detail = "member " + std::to_string(o.member) + ": " + o.detail;
     }
   }
   for (const MemberOutcome& o : engine) {
     const bool ref_valid = o.member >= 0 && o.member < static_cast<int>(reference.size()) &&
                            reference[o.member].valid();
-    if (ref_valid) eng.push_back(&o);
+    if (ref_valid && !IsNonFinite(o.status)) eng.push_back(&o);
   }
   s.reference_members = static_cast<int>(ref.size());
   s.engine_members = static_cast<int>(eng.size());
@@ -224,6 +231,7 @@ std::string RatioText(const AngleAgreement* ang[2], int nb, bool predictable) {
 std::string VerdictLabel(const std::string& kind) {
   if (kind == "agrees" || kind == "agrees_to_horizon" || kind == "pointwise_only") return "AGREES";
   if (kind == "outside_model") return "OUTSIDE MODEL";
+  if (kind == "reference_failed") return "NO VERDICT";
   if (kind == "marginal") return "MARGINAL";
   return "DIFFERS";
 }
@@ -239,6 +247,51 @@ Verdict MakeVerdict(const Scene& scene, const EngineAgreement& a,
   // Where the reference's model holds: to its end when it stopped on a violated assumption.
   const bool model_ends = a.reference_status == "assumption_violated";
   const double model_end_s = model_ends ? a.reference_end_s : inf;
+
+  // A run that is not finite failed: never an agreement. The engine's failure is its own,
+  // whatever the reference did; a reference that failed leaves nothing to compare with.
+  if (IsNonFinite(a.status)) {
+    v.kind = "violates_model";
+    v.agrees = false;
+    v.decided_by = "non_finite at t = " + Format("%.6g", a.non_finite_t_s) + " s" +
+                   (a.non_finite_what.empty() ? std::string() : " (" + a.non_finite_what + ")");
+    v.text =
+        "the engine's run failed: " + (a.status_detail.empty() ? v.decided_by : a.status_detail) +
+        "; a run that is not finite is never an agreement";
+    return v;
+  }
+  if (IsNonFinite(a.reference_status)) {
+    v.kind = "reference_failed";
+    v.agrees = false;
+    v.decided_by = "reference non_finite at t = " + Format("%.6g", a.reference_non_finite_t_s) +
+                   " s" +
+                   (a.reference_non_finite_what.empty() ? std::string()
+                                                        : " (" + a.reference_non_finite_what + ")");
+    v.text = "no verdict: the reference's solution failed (" +
+             (a.reference_status_detail.empty() ? v.decided_by : a.reference_status_detail) +
+             "), so there is nothing to compare the engine with";
+    return v;
+  }
+  if (predictability && predictability->non_finite_members > 0) {
+    v.kind = "reference_failed";
+    v.agrees = false;
+    v.decided_by = "reference ensemble: " + std::to_string(predictability->non_finite_members) +
+                   " members non_finite";
+    v.text = "no verdict: " + std::to_string(predictability->non_finite_members) +
+             " of the reference ensemble's members failed (" + predictability->non_finite_detail +
+             "), so the reference's predictability is unknown";
+    return v;
+  }
+  if (statistics && statistics->engine_non_finite > 0) {
+    v.kind = "violates_model";
+    v.agrees = false;
+    v.decided_by = "non_finite in " + std::to_string(statistics->engine_non_finite) +
+                   " of its ensemble's members";
+    v.text = "the engine's run failed on " + std::to_string(statistics->engine_non_finite) +
+             " of its ensemble's members (" + statistics->engine_non_finite_detail +
+             "); a run that is not finite is never an agreement";
+    return v;
+  }
 
   // 0. The engine's own integrity: a blow-up or energy gained without input decides, whatever
   //    the angles; sliding, uplift and penetration decide where the reference's model holds.
@@ -372,9 +425,15 @@ Verdict MakeVerdict(const Scene& scene, const EngineAgreement& a,
     for (int b = 0; b < nb; ++b) {
       if (predictability->horizon_s[b]) first_h = std::min(first_h, *predictability->horizon_s[b]);
     }
-    outside("beyond the horizon (" + Format("%.2f", first_h) + " s) " +
-                std::to_string(statistics->excluded) +
-                " reference members stop where the model's assumptions end, too few remain (" +
+    const int violated = statistics->excluded - statistics->excluded_non_finite;
+    std::string why =
+        std::to_string(violated) + " reference members stop where the model's assumptions end";
+    if (statistics->excluded_non_finite > 0) {
+      why = std::to_string(statistics->excluded) + " reference members stop (" +
+            std::to_string(violated) + " where the model's assumptions end, " +
+            std::to_string(statistics->excluded_non_finite) + " non_finite)";
+    }
+    outside("beyond the horizon (" + Format("%.2f", first_h) + " s) " + why + ", too few remain (" +
                 std::to_string(statistics->reference_members) + ")",
             first_h);
     return v;
@@ -448,6 +507,10 @@ double SmallestFamilyP(const StatisticalComparison& s) {
 nlohmann::json StatisticsJson(const StatisticalComparison& s) {
   nlohmann::json j;
   j["available"] = s.available;
+  if (s.engine_non_finite > 0) {
+    j["engine_non_finite"] = s.engine_non_finite;
+    j["engine_non_finite_detail"] = s.engine_non_finite_detail;
+  }
   if (!s.available) {
     j["reason"] = s.unavailable_reason;
     return j;
@@ -455,6 +518,7 @@ nlohmann::json StatisticsJson(const StatisticalComparison& s) {
   j["reference_members"] = s.reference_members;
   j["engine_members"] = s.engine_members;
   j["excluded"] = s.excluded;
+  if (s.excluded_non_finite > 0) j["excluded_non_finite"] = s.excluded_non_finite;
   j["alpha"] = s.alpha;
   j["family"] = "Holm-Bonferroni over every test below (KS p-values and the overturning test)";
   nlohmann::json tests = nlohmann::json::object();

@@ -42,7 +42,13 @@ struct StatisticalComparison {
   bool available = false;
   std::string unavailable_reason;  ///< when not available
   int reference_members = 0, engine_members = 0;
-  int excluded = 0;  ///< members whose reference run violated the model's assumptions
+  /// Members whose reference run violated the model's assumptions or ended non_finite (no
+  /// reference outcome); of them, non_finite.
+  int excluded = 0, excluded_non_finite = 0;
+  /// Engine members that ended non_finite: the engine failed on them (the verdict is
+  /// violates_model); the first one's member index and detail.
+  int engine_non_finite = 0;
+  std::string engine_non_finite_detail;
   double alpha = 0.05;
   std::vector<QuantityComparison> quantities;
   /// Overturning: counts of none / block 1 / block 2 in each ensemble, Fisher-Freeman-Halton.
@@ -68,8 +74,11 @@ struct Verdict {
   /// "differs_before_horizon" (an engine error where the reference is predictable, on the
   /// local tolerance, or an overturn the reference does not make),
   /// "differs_beyond_horizon" (the engine's ensemble differs from the reference's),
-  /// "violates_model" (the engine blew up or gained energy, or slid, lifted or penetrated where
-  /// the reference's model holds),
+  /// "violates_model" (the engine's run ended non_finite, decided by "non_finite at t = ...";
+  /// or it blew up or gained energy, or slid, lifted or penetrated where the reference's model
+  /// holds; or a member of its ensemble ended non_finite),
+  /// "reference_failed" (the reference's solution, or a member of its ensemble, ended
+  /// non_finite: there is nothing to compare with, and the comparison failed),
   /// "outside_model" (the reference stops where its assumptions end: nothing to compare),
   /// "marginal" (the statistical decision changes with the ensemble's seed),
   /// "pointwise_only" / "pointwise_differs" (no reference ensemble was run).
@@ -79,7 +88,8 @@ struct Verdict {
   std::string decided_by;  ///< the quantity that decided, with its value
 };
 
-/// The console's word for a verdict kind: AGREES, DIFFERS, MARGINAL or OUTSIDE MODEL.
+/// The console's word for a verdict kind: AGREES, DIFFERS, MARGINAL, OUTSIDE MODEL or NO VERDICT
+/// (reference_failed).
 std::string VerdictLabel(const std::string& kind);
 
 /// The smallest Holm-adjusted p-value of the family (the overturning test included).
@@ -99,6 +109,11 @@ inline bool InMarginalBand(double p) {
 /// `predictability` means no ensemble was run.
 struct Horizons {
   std::optional<double> horizon_s[2];
+  /// Reference members that ended non_finite (harness/engines.h), and the first one's
+  /// "member i: detail": the horizon measured without them is not the reference's, and the
+  /// verdict is reference_failed.
+  int non_finite_members = 0;
+  std::string non_finite_detail;
 };
 
 Verdict MakeVerdict(const Scene& scene, const EngineAgreement& agreement,

@@ -21,8 +21,11 @@ struct EnsembleRecord {
   double peak_theta1_rad = 0.0, peak_theta2_rad = 0.0, wall_s = 0.0;
   int impacts = 0;
   bool has_result = false;  ///< the run gave an outcome (not crash, wall_limit, error)
-  /// The run's outcome can be used: it has a result and the model's assumptions held.
-  bool usable() const { return has_result && status != "assumption_violated"; }
+  /// The run's outcome can be used: it has a result, the model's assumptions held and its state
+  /// stayed finite (status non_finite: the run failed).
+  bool usable() const {
+    return has_result && status != "assumption_violated" && status != "non_finite";
+  }
 };
 
 struct EnsembleData {

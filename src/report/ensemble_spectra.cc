@@ -97,7 +97,9 @@ std::string ReferenceModes(const std::vector<Cell>& cells, const std::string& gr
 }  // namespace
 
 OverturnClass ClassOf(const EnsembleRecord& r) {
-  if (!r.has_result || r.status == "blow_up") return OverturnClass::kFailed;
+  if (!r.has_result || r.status == "blow_up" || r.status == "non_finite") {
+    return OverturnClass::kFailed;
+  }
   if (r.status == "assumption_violated") return OverturnClass::kStopped;
   if (r.overturned_block == 1) return OverturnClass::kBlock1;
   if (r.overturned_block == 2) return OverturnClass::kBlock2;

@@ -55,7 +55,11 @@ std::string EngineWarnings(const EngineData& e, std::vector<std::string>& out) {
                   " % of the energy needed to tip the stack) at t = " +
                   Num(num("energy_gain_t_s"), 4) + " s.");
   }
-  if (flag("blow_up")) {
+  if (status == "non_finite") {
+    out.push_back(who + " FAILED: its state stopped being finite (" +
+                  e.summary.value("status_detail", std::string("non_finite")) +
+                  "). Its results end at its last finite state.");
+  } else if (flag("blow_up")) {
     out.push_back(who +
                   " blew up (non-finite state, runaway rate or energy) and stopped early; "
                   "its results after that are meaningless.");
@@ -78,6 +82,12 @@ std::string ReferenceOutcome(const RunData& run, std::vector<std::string>& warni
   } else if (status == "at_rest") {
     outcome = "The reference model: the blocks came to rest (run to " +
               Fixed(ref.history.samples.back().t_s, 3) + " s).";
+  } else if (status == "non_finite") {
+    outcome = "The reference model FAILED: its solution stopped being finite.";
+    warnings.push_back("The reference model's solution is not finite: " +
+                       OptString(run.summary, "status_detail", run.summary_path) +
+                       ". Its history, peaks and counts are those of the part before that; "
+                       "nothing after it was computed, and no verdict rests on it.");
   } else if (status == "assumption_violated") {
     outcome = "The reference model stopped: an assumption was violated.";
     std::string when;

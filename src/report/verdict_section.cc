@@ -49,8 +49,11 @@ std::string KindInWords(const std::string& kind, bool statistics) {
   if (kind == "pointwise_only") return "agrees pointwise (no reference ensemble was run)";
   if (kind == "pointwise_differs") return "differs pointwise (no reference ensemble was run)";
   if (kind == "violates_model")
-    return "does what the model forbids (a blow-up, energy growth, or sliding, uplift or "
-           "penetration at the verdict's scale) while the model holds";
+    return "does what the model forbids (a run that is not finite, a blow-up, energy growth, "
+           "or sliding, uplift or penetration at the verdict's scale) while the model holds";
+  if (kind == "reference_failed")
+    return "no verdict: the reference's solution (or a member of its ensemble) is not finite, "
+           "so there is nothing to compare with";
   if (kind == "outside_model")
     return "the reference's model ends (a violated assumption) or too few reference members "
            "remain: nothing to compare there";

@@ -239,12 +239,58 @@ TEST(MonitorTest, NonFiniteStateStopsTheRunWithoutThrowing) {
   const EngineInput in = Input(true);
   Monitor m(in);
   m.Start(At(in, 0.0, 0.01, 0.0, 0.01, 0.0));
-  StepReadout r = At(in, 1e-3, 0.01, 0.0, 0.01, 0.0);
+  EXPECT_TRUE(m.Step(1, At(in, 1e-3, 0.01, 0.0, 0.01, 0.0)));
+  StepReadout r = At(in, 2e-3, 0.01, 0.0, 0.01, 0.0);
   r.block2.w_radps = std::numeric_limits<double>::quiet_NaN();
-  EXPECT_FALSE(m.Step(1, r));
+  EXPECT_FALSE(m.Step(2, r));
+  EXPECT_FALSE(m.Step(3, At(in, 3e-3, 0.01, 0.0, 0.01, 0.0)));  // stopped: no more steps
   m.Finish();
-  EXPECT_EQ(m.status(), "blow_up");
-  EXPECT_EQ(m.history().samples.size(), 1u);  // the NaN state is not a sample
+  EXPECT_EQ(m.status(), "non_finite");
+  // The NaN state is not a sample: the history ends at the last finite state, with an event.
+  ASSERT_EQ(m.history().samples.size(), 2u);
+  EXPECT_EQ(m.history().samples.back().t_s, 1e-3);
+  ASSERT_FALSE(m.history().events.empty());
+  EXPECT_EQ(m.history().events.back().kind, "non_finite");
+  EXPECT_EQ(m.history().events.back().t_s, 1e-3);
+  const nlohmann::json s = m.Summary();
+  EXPECT_EQ(s["non_finite"]["quantity"], "omega2");
+  EXPECT_EQ(s["non_finite"]["value"], "NaN");
+  EXPECT_EQ(s["non_finite"]["t_s"].get<double>(), 2e-3);
+  EXPECT_EQ(s["non_finite"]["last_finite_t_s"].get<double>(), 1e-3);
+  EXPECT_EQ(s["end_t_s"].get<double>(), 1e-3);
+  EXPECT_EQ(s["status_detail"].get<std::string>().rfind("omega2 is NaN at t = 0.002 s (step 2)", 0),
+            0u)
+      << s["status_detail"];
+  EXPECT_TRUE(s["violations"]["blow_up"].get<bool>());
+  EXPECT_EQ(m.Outcome().status, "non_finite");
+}
+
+// Finite poses and velocities whose energy overflows (a speed of 1e160 m/s) are not a result
+// either; nor is a step the engine itself reports it could not take (ODE, see ode_world.h).
+TEST(MonitorTest, AnEnergyThatOverflowsOrAnEngineFaultStopsTheRun) {
+  const EngineInput in = Input(false);
+  {
+    Monitor m(in);
+    m.Start(At(in, 0.0, 0.01, 0.0));
+    StepReadout r = At(in, 1e-3, 0.01, 0.0);
+    r.block1.vx_mps = 1e160;
+    EXPECT_FALSE(m.Step(1, r));
+    m.Finish();
+    EXPECT_EQ(m.status(), "non_finite");
+    EXPECT_EQ(m.Summary()["non_finite"]["quantity"], "energy");
+    EXPECT_EQ(m.Summary()["non_finite"]["value"], "+inf");
+    EXPECT_EQ(m.history().samples.size(), 1u);
+  }
+  {
+    Monitor m(in);
+    m.Start(At(in, 0.0, 0.01, 0.0));
+    StepReadout r = At(in, 1e-3, 0.01, 0.0);
+    r.engine_fault = "the step was not taken";
+    EXPECT_FALSE(m.Step(1, r));
+    EXPECT_EQ(m.status(), "non_finite");
+    const std::string detail = m.Summary()["status_detail"].get<std::string>();
+    EXPECT_NE(detail.find("the step was not taken"), std::string::npos) << detail;
+  }
 }
 
 // Overturning is the reference's definition: |theta| reaches model.overturn_angle (no slack), at

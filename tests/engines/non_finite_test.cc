@@ -1,0 +1,134 @@
+// Never a NaN result (issue 21), for every engine of the build: a base motion absurd enough to
+// drive an engine's bodies past the range of a double ends its run with status "non_finite",
+// naming the quantity and the time, at the last finite state; the history, the events and the
+// summary hold only finite numbers; the verdict on such a run is the engine's own failure
+// (violates_model, decided by "non_finite at t = ..."). The motion is built in code
+// (MotionComponent::FromSamples): the scene reader refuses such records up front.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "common/thesis_scene.h"
+#include "harness/compare.h"
+#include "harness/engine_registry.h"
+#include "harness/engines.h"
+#include "harness/verdict.h"
+#include "reference/simulate.h"
+#include "scene/ground_motion.h"
+#include "scene/history.h"
+
+namespace rockbench {
+namespace {
+
+constexpr double kG = 9.80665;  // m/s^2, standard gravity
+constexpr double kDt = 0.01;    // s, the record's sample interval
+
+std::vector<std::string> Engines() {
+  std::vector<std::string> names = BuiltEngineNames();
+  // The suite must not pass by having nothing to run: Bullet is a required dependency.
+  if (names.empty()) names.push_back("no engine built");
+  return names;
+}
+
+// A 2 s record, zero but for one sample of `peak_g` (in g) at t = index * kDt: the acceleration
+// ramps up from (index - 1) kDt.
+GroundMotion Spike(double peak_g, int index) {
+  std::vector<double> a(200, 0.0);
+  a[index] = peak_g * kG;
+  GroundMotion m;
+  m.set_horizontal(MotionComponent::FromSamples(std::move(a), kDt, 0.0, "spike"));
+  return m;
+}
+
+// Every number in a JSON document is finite (nlohmann keeps a NaN as a number in memory and
+// writes it as null: either way it would be a result that is not one).
+bool AllFinite(const nlohmann::json& j) {
+  if (j.is_number_float()) return std::isfinite(j.get<double>());
+  if (j.is_structured()) {
+    for (const auto& v : j) {
+      if (!AllFinite(v)) return false;
+    }
+  }
+  return true;
+}
+
+bool Finite(const Sample& s) {
+  return std::isfinite(s.t_s) && std::isfinite(s.theta1_rad) && std::isfinite(s.theta2_rad) &&
+         std::isfinite(s.omega1_radps) && std::isfinite(s.omega2_radps);
+}
+
+bool Finite(const Event& e) {
+  return std::isfinite(e.t_s) && std::isfinite(e.omega1_before) && std::isfinite(e.omega2_before) &&
+         std::isfinite(e.omega1_after) && std::isfinite(e.omega2_after) &&
+         std::isfinite(e.energy_before_j) && std::isfinite(e.energy_after_j);
+}
+
+class EngineNonFinite : public ::testing::TestWithParam<std::string> {};
+
+// The thesis's stack at rest under a 1e200 g sample at 0.50 s (ramp from 0.49 s): the first
+// engine step inside the ramp accelerates the blocks by at least 1e-2 of it (the step is at most
+// a hundredth of the sample interval), so the kinetic energy (or the pose) overflows in that
+// step; before 0.49 s the record is zero and nothing can.
+TEST_P(EngineNonFinite, AnAbsurdSpikeEndsTheRunAtItsLastFiniteState) {
+  ASSERT_NE(FindEngine(GetParam()), nullptr) << GetParam() << " is not built";
+  Scene scene = testing_util::ThesisFreeRockingStack(2.0, 0.01);
+  scene.initial = {};
+  const GroundMotion motion = Spike(1e200, 50);
+  const EngineRun run = RunEngine(GetParam(), scene, motion);
+  const nlohmann::json& j = run.summary;
+
+  ASSERT_EQ(run.outcome.status, "non_finite") << j.value("status_detail", "");
+  ASSERT_TRUE(j.contains("non_finite"));
+  const nlohmann::json& nf = j["non_finite"];
+  const std::string quantity = nf["quantity"].get<std::string>();
+  const std::string value = nf["value"].get<std::string>();
+  const double t_s = nf["t_s"].get<double>(), last_s = nf["last_finite_t_s"].get<double>();
+  EXPECT_NE(j["status_detail"].get<std::string>().find(quantity + " is " + value + " at t = "),
+            std::string::npos)
+      << j["status_detail"];
+  // Within the ramp, to an engine step (the engine's steps need not land on 0.49 s).
+  EXPECT_GT(t_s, 0.49 - 1e-9);
+  EXPECT_LE(t_s, 0.50 + 1e-9);
+  EXPECT_LT(last_s, t_s);
+  EXPECT_GE(last_s, 0.48);
+
+  // The history ends at the last finite state; everything in it, the events and the summary
+  // is finite.
+  ASSERT_FALSE(run.history.samples.empty());
+  EXPECT_EQ(run.history.samples.back().t_s, last_s);
+  EXPECT_EQ(run.outcome.end_t_s, last_s);
+  for (const Sample& s : run.history.samples) EXPECT_TRUE(Finite(s)) << "t = " << s.t_s;
+  bool has_event = false;
+  for (const Event& e : run.history.events) {
+    EXPECT_TRUE(Finite(e)) << e.kind << " at " << e.t_s;
+    EXPECT_LE(e.t_s, last_s) << e.kind;
+    if (e.kind == "non_finite") {
+      has_event = true;
+      EXPECT_EQ(e.t_s, last_s);
+    }
+  }
+  EXPECT_TRUE(has_event);
+  EXPECT_TRUE(AllFinite(j)) << j.dump(2);
+  EXPECT_TRUE(std::isfinite(run.outcome.peak_theta1_rad));
+  EXPECT_TRUE(std::isfinite(run.outcome.peak_theta2_rad));
+  EXPECT_LE(run.outcome.peak_theta1_t_s, last_s);
+  EXPECT_TRUE(j["violations"]["blow_up"].get<bool>());
+
+  // The verdict: the engine's own failure, whatever the reference did on the same input.
+  const reference::Result ref = reference::Simulate(scene, motion);
+  const EngineAgreement a = CompareWithReference(scene, ref, run);
+  const Verdict v = MakeVerdict(scene, a, std::nullopt, std::nullopt);
+  EXPECT_EQ(v.kind, "violates_model") << v.text;
+  EXPECT_FALSE(v.agrees);
+  EXPECT_EQ(v.decided_by.rfind("non_finite at t = ", 0), 0u) << v.decided_by;
+  EXPECT_NE(v.decided_by.find(quantity), std::string::npos) << v.decided_by;
+}
+
+INSTANTIATE_TEST_SUITE_P(BuiltEngines, EngineNonFinite, ::testing::ValuesIn(Engines()),
+                         [](const auto& info) { return info.param; });
+
+}  // namespace
+}  // namespace rockbench
