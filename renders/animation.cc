@@ -2,12 +2,13 @@
 
 #include <fcntl.h>
 #include <signal.h>
-#include <spawn.h>
+#include <sys/prctl.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <chrono>
 #include <cmath>
@@ -16,6 +17,8 @@
 #include <cstring>
 #include <stdexcept>
 #include <thread>
+
+#include "renders/limits.h"
 
 extern char** environ;
 
@@ -87,7 +90,9 @@ struct FfmpegPipe::Impl {
 
 FfmpegPipe::FfmpegPipe(const fs::path& ffmpeg, std::vector<std::string> args)
     : impl_(std::make_unique<Impl>()) {
-  int in_pipe[2], err_pipe[2];
+  // stdin: frames; stderr: messages; exec_pipe: the child's errno when it cannot start ffmpeg
+  // (closed by a successful exec).
+  int in_pipe[2], err_pipe[2], exec_pipe[2];
   if (::pipe2(in_pipe, O_CLOEXEC) != 0)
     throw std::runtime_error("pipe: " + std::string(std::strerror(errno)));
   if (::pipe2(err_pipe, O_CLOEXEC) != 0) {
@@ -95,26 +100,60 @@ FfmpegPipe::FfmpegPipe(const fs::path& ffmpeg, std::vector<std::string> args)
     ::close(in_pipe[1]);
     throw std::runtime_error("pipe: " + std::string(std::strerror(errno)));
   }
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_adddup2(&actions, in_pipe[0], 0);
-  posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
-  posix_spawn_file_actions_adddup2(&actions, err_pipe[1], 2);
+  if (::pipe2(exec_pipe, O_CLOEXEC) != 0) {
+    for (int fd : {in_pipe[0], in_pipe[1], err_pipe[0], err_pipe[1]}) ::close(fd);
+    throw std::runtime_error("pipe: " + std::string(std::strerror(errno)));
+  }
   std::vector<std::string> argv_s;
   argv_s.push_back(ffmpeg.string());
   for (auto& a : args) argv_s.push_back(std::move(a));
   std::vector<char*> argv;
   for (auto& a : argv_s) argv.push_back(a.data());
   argv.push_back(nullptr);
-  pid_t pid = -1;
-  const int rc = ::posix_spawn(&pid, ffmpeg.c_str(), &actions, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
+  const pid_t parent = ::getpid();
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    // The child: only async-signal-safe calls until exec. ffmpeg dies with this process (a
+    // wall-clock limit or a kill must not leave it writing a temporary file).
+    ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+    if (::getppid() != parent) ::_exit(127);
+    sigset_t none;
+    sigemptyset(&none);
+    ::sigprocmask(SIG_SETMASK, &none, nullptr);
+    const int devnull = ::open("/dev/null", O_WRONLY);
+    if (::dup2(in_pipe[0], 0) < 0 || devnull < 0 || ::dup2(devnull, 1) < 0 ||
+        ::dup2(err_pipe[1], 2) < 0) {
+      const int err = errno;
+      (void)!::write(exec_pipe[1], &err, sizeof err);
+      ::_exit(127);
+    }
+    ::execve(argv[0], argv.data(), environ);
+    const int err = errno;
+    (void)!::write(exec_pipe[1], &err, sizeof err);
+    ::_exit(127);
+  }
+  const int fork_errno = errno;
   ::close(in_pipe[0]);
   ::close(err_pipe[1]);
-  if (rc != 0) {
+  ::close(exec_pipe[1]);
+  int exec_errno = 0;
+  if (pid > 0) {
+    ssize_t n;
+    while ((n = ::read(exec_pipe[0], &exec_errno, sizeof exec_errno)) < 0 && errno == EINTR) {
+    }
+    if (n != static_cast<ssize_t>(sizeof exec_errno)) exec_errno = 0;
+  }
+  ::close(exec_pipe[0]);
+  if (pid < 0 || exec_errno != 0) {
     ::close(in_pipe[1]);
     ::close(err_pipe[0]);
-    throw std::runtime_error("cannot start " + ffmpeg.string() + ": " + std::strerror(rc));
+    if (pid > 0) {
+      int status = 0;
+      while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+      }
+    }
+    throw std::runtime_error("cannot start " + ffmpeg.string() + ": " +
+                             std::strerror(pid < 0 ? fork_errno : exec_errno));
   }
   impl_->pid = pid;
   impl_->stdin_fd = in_pipe[1];
@@ -183,7 +222,12 @@ std::string Number(double v) {
   return buf;
 }
 
-std::vector<std::string> RawInput(const Image& like, double fps) {
+// The size of the raw frames ffmpeg reads.
+struct FrameSize {
+  int width_px = 0, height_px = 0;
+};
+
+std::vector<std::string> RawInput(const FrameSize& like, double fps) {
   return {"-hide_banner", "-loglevel",
           "error",        "-nostats",
           "-f",           "rawvideo",
@@ -209,6 +253,10 @@ namespace {
 void CheckRequest(const AnimationConfig& config, const RenderConfig& rc) {
   if (!config.frames && !config.mp4 && !config.gif) {
     throw std::invalid_argument("nothing to make: ask for frames, an MP4 or a GIF");
+  }
+  if (!(config.fps > 0.0) || !(config.fps <= kMaxFps)) {
+    throw std::invalid_argument("frame rate " + Number(config.fps) + ": must be > 0 and at most " +
+                                Number(kMaxFps) + " frames per second");
   }
   if (config.mp4 && (rc.width_px % 2 != 0 || rc.height_px % 2 != 0)) {
     throw std::invalid_argument("MP4 (H.264, yuv420p) needs an even width and height; " +
@@ -243,17 +291,86 @@ Outputs ResolveOutputs(const AnimationConfig& config, std::vector<std::string>* 
   return out;
 }
 
-// Creates frames_dir and removes the frames of an earlier, longer export, which would be
-// mistaken for this one's.
-void PrepareFramesDir(const fs::path& frames_dir) {
-  fs::create_directories(frames_dir);
-  for (const auto& entry : fs::directory_iterator(frames_dir)) {
-    const std::string f = entry.path().filename().string();
-    if (f.starts_with("frame_") && f.ends_with(".png")) fs::remove(entry.path());
+// Removes a folder and everything in it on scope exit unless released (the frames of a failed
+// export).
+struct TempDir {
+  fs::path path;
+  ~TempDir() {
+    std::error_code ec;
+    if (!path.empty()) fs::remove_all(path, ec);
+  }
+};
+
+// The temporary files of an earlier export into `dir` whose process is gone (a kill leaves
+// them): the hidden names this file makes, ".<name>.tmp<pid>...", are removed when no process
+// <pid> exists.
+void RemoveStaleTemps(const fs::path& dir) {
+  std::error_code ec;
+  std::vector<fs::path> stale;
+  for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string f = it->path().filename().string();
+    const size_t at = f.find(".tmp");
+    if (f.empty() || f[0] != '.' || at == std::string::npos) continue;
+    size_t digits = at + 4;
+    while (digits < f.size() && std::isdigit(static_cast<unsigned char>(f[digits]))) ++digits;
+    if (digits == at + 4 || digits - at - 4 > 9) continue;
+    const pid_t pid = static_cast<pid_t>(std::stol(f.substr(at + 4, digits - at - 4)));
+    if (pid != ::getpid() && ::kill(pid, 0) != 0 && errno == ESRCH) stale.push_back(it->path());
+  }
+  for (const auto& p : stale) fs::remove_all(p, ec);
+}
+
+// Writes a frame into the export's temporary folder: plainly (the folder, renamed when the last
+// frame is written, is what makes the sequence appear whole), without creating the folder again
+// when it has been removed (by the wall-clock watchdog) and without a sync per frame.
+void WriteFrame(const fs::path& path, const std::string& bytes) {
+  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (fd < 0) throw std::runtime_error(path.string() + ": cannot create: " + std::strerror(errno));
+  size_t done = 0;
+  while (done < bytes.size()) {
+    const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) {
+      const int err = errno;
+      ::close(fd);
+      throw std::runtime_error(path.string() + ": cannot write: " + std::strerror(err));
+    }
+    done += static_cast<size_t>(n);
+  }
+  if (::close(fd) != 0) {
+    throw std::runtime_error(path.string() + ": cannot write: " + std::strerror(errno));
   }
 }
 
-std::vector<std::string> Mp4Args(const Image& like, const AnimationConfig& config,
+// Throws DeadlineReached past the config's deadline.
+void CheckDeadline(const AnimationConfig& config) {
+  if (config.deadline && std::chrono::steady_clock::now() >= *config.deadline) {
+    throw DeadlineReached("the export's deadline passed");
+  }
+}
+
+// Puts the complete frames of `tmp_dir` in place as frames_dir. The frame_*.png files of an
+// earlier export are removed first (a shorter export would otherwise be mistaken for a longer
+// one); other files in frames_dir stay.
+void InstallFrames(const fs::path& tmp_dir, const fs::path& frames_dir) {
+  if (fs::is_directory(frames_dir)) {
+    for (const auto& entry : fs::directory_iterator(frames_dir)) {
+      const std::string f = entry.path().filename().string();
+      if (f.starts_with("frame_") && f.ends_with(".png")) fs::remove(entry.path());
+    }
+    if (fs::is_empty(frames_dir)) fs::remove(frames_dir);
+  }
+  if (!fs::exists(frames_dir)) {
+    fs::rename(tmp_dir, frames_dir);
+    return;
+  }
+  for (const auto& entry : fs::directory_iterator(tmp_dir)) {
+    fs::rename(entry.path(), frames_dir / entry.path().filename());
+  }
+  fs::remove(tmp_dir);
+}
+
+std::vector<std::string> Mp4Args(const FrameSize& like, const AnimationConfig& config,
                                  const fs::path& out) {
   auto args = RawInput(like, config.fps);
   for (const char* a : {"-an", "-c:v", "libx264", "-preset"}) args.push_back(a);
@@ -267,7 +384,7 @@ std::vector<std::string> Mp4Args(const Image& like, const AnimationConfig& confi
   return args;
 }
 
-std::vector<std::string> PaletteArgs(const Image& like, double fps, const fs::path& out) {
+std::vector<std::string> PaletteArgs(const FrameSize& like, double fps, const fs::path& out) {
   auto args = RawInput(like, fps);
   for (const char* a : {"-vf", "palettegen=stats_mode=full", "-f", "image2", "-y"}) {
     args.push_back(a);
@@ -276,7 +393,7 @@ std::vector<std::string> PaletteArgs(const Image& like, double fps, const fs::pa
   return args;
 }
 
-std::vector<std::string> GifArgs(const Image& like, double fps, const fs::path& palette,
+std::vector<std::string> GifArgs(const FrameSize& like, double fps, const fs::path& palette,
                                  const fs::path& out) {
   auto args = RawInput(like, fps);
   args.push_back("-i");
@@ -311,19 +428,29 @@ AnimationResult ExportAnimation(FrameRenderer& renderer, const AnimationConfig& 
   const Outputs out = ResolveOutputs(config, &result.problems);
 
   fs::create_directories(config.out_dir);
+  RemoveStaleTemps(config.out_dir);
   const fs::path frames_dir = config.out_dir / "frames";
   int digits = 5;
   for (size_t n = times.size(); n >= 100000; n /= 10) ++digits;
-  if (out.frames) PrepareFramesDir(frames_dir);
+  // Every file is made under a temporary name holding ".tmp<pid>" (util/wall_limit.h removes
+  // them when the command's wall-clock limit ends it) and renamed when complete: the frames in
+  // a hidden folder that becomes frames/ once the last one is written, so that a killed export
+  // never leaves part of a sequence.
+  const std::string tmp_suffix = ".tmp" + std::to_string(::getpid());
   const fs::path mp4_path = config.out_dir / (config.name + ".mp4");
   const fs::path gif_path = config.out_dir / (config.name + ".gif");
-  const std::string tmp_suffix = ".tmp" + std::to_string(::getpid());
   const fs::path mp4_tmp = config.out_dir / ("." + config.name + ".mp4" + tmp_suffix);
   const fs::path gif_tmp = config.out_dir / ("." + config.name + ".gif" + tmp_suffix);
   const fs::path palette_tmp =
       config.out_dir / ("." + config.name + ".palette" + tmp_suffix + ".png");
   TempFiles temps;
   temps.paths = {mp4_tmp, gif_tmp, palette_tmp};
+  TempDir frames_tmp;
+  if (out.frames) {
+    frames_tmp.path = config.out_dir / (".frames" + tmp_suffix);
+    fs::remove_all(frames_tmp.path);
+    fs::create_directories(frames_tmp.path);
+  }
 
   Image frame;
   double render_s = 0.0, png_s = 0.0;
@@ -333,7 +460,7 @@ AnimationResult ExportAnimation(FrameRenderer& renderer, const AnimationConfig& 
     render_s += std::chrono::duration<double>(Clock::now() - a).count();
   };
   // Sizes of the raw input for ffmpeg.
-  const Image like(rc.width_px, rc.height_px);
+  const FrameSize like{rc.width_px, rc.height_px};
 
   // Pass 1: PNG frames, MP4, and the GIF's palette, from one rendering of each frame.
   {
@@ -346,12 +473,13 @@ AnimationResult ExportAnimation(FrameRenderer& renderer, const AnimationConfig& 
           std::make_unique<FfmpegPipe>(*out.ffmpeg, PaletteArgs(like, config.fps, palette_tmp));
     }
     for (size_t k = 0; k < times.size(); ++k) {
+      CheckDeadline(config);
       render(times[k]);
       if (mp4_pipe) mp4_pipe->Write(frame);
       if (palette_pipe) palette_pipe->Write(frame);
       if (out.frames) {
         const auto a = Clock::now();
-        WritePng(frame, frames_dir / FrameName(k, digits), config.png);
+        WriteFrame(frames_tmp.path / FrameName(k, digits), EncodePng(frame, config.png));
         png_s += std::chrono::duration<double>(Clock::now() - a).count();
       }
       if (config.progress) config.progress(static_cast<int>(k) + 1, result.frame_count);
@@ -359,7 +487,12 @@ AnimationResult ExportAnimation(FrameRenderer& renderer, const AnimationConfig& 
     if (mp4_pipe) mp4_pipe->Close();
     if (palette_pipe) palette_pipe->Close();
   }
-  if (out.frames) result.written.push_back(frames_dir);
+  CheckDeadline(config);
+  if (out.frames) {
+    InstallFrames(frames_tmp.path, frames_dir);
+    frames_tmp.path.clear();
+    result.written.push_back(frames_dir);
+  }
   if (out.mp4) {
     fs::rename(mp4_tmp, mp4_path);
     result.written.push_back(mp4_path);
@@ -369,10 +502,12 @@ AnimationResult ExportAnimation(FrameRenderer& renderer, const AnimationConfig& 
   if (out.gif) {
     FfmpegPipe gif_pipe(*out.ffmpeg, GifArgs(like, config.fps, palette_tmp, gif_tmp));
     for (double t : times) {
+      CheckDeadline(config);
       render(t);
       gif_pipe.Write(frame);
     }
     gif_pipe.Close();
+    CheckDeadline(config);
     fs::rename(gif_tmp, gif_path);
     result.written.push_back(gif_path);
   }

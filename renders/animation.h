@@ -1,9 +1,11 @@
 #pragma once
 /// Animations: PNG frame sequences, and MP4 (H.264) / GIF made by piping raw RGB frames to
 /// ffmpeg. Every file is written under a temporary name and renamed when complete.
+#include <chrono>
 #include <filesystem>
 #include <functional>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -53,6 +55,15 @@ struct AnimationConfig {
   std::filesystem::path ffmpeg;
   /// Called after each frame of the first pass with (frames done, frames in all).
   std::function<void(int, int)> progress;
+  /// When set, the export stops before drawing a frame or putting an output in place after
+  /// this time: it throws DeadlineReached, its temporary files removed (the command's
+  /// --wall-limit).
+  std::optional<std::chrono::steady_clock::time_point> deadline;
+};
+
+/// The export passed AnimationConfig::deadline; nothing unfinished was left behind.
+struct DeadlineReached : std::runtime_error {
+  using std::runtime_error::runtime_error;
 };
 
 /// What an export made.
@@ -67,6 +78,11 @@ struct AnimationResult {
 };
 
 /// Renders frames at FrameTimes(layout window, fps, speed) and writes what `config` asks for.
+/// Every file is made under a temporary name holding ".tmp<pid>" and renamed when complete; the
+/// PNG frames go to the hidden folder OUT/.frames.tmp<pid>, renamed to OUT/frames when the last
+/// one is written (the frame_*.png files of an earlier export in OUT/frames are removed then),
+/// so that an export stopped at any point leaves no part of a sequence. Temporary files of an
+/// earlier export whose process is gone (killed) are removed first.
 /// When ffmpeg is missing and a video was asked for, it says so in `problems` and writes the PNG
 /// frames instead. Throws std::invalid_argument (odd size for MP4, bad fps/speed, nothing asked)
 /// and std::runtime_error (ffmpeg failed, files).

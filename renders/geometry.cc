@@ -4,6 +4,9 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <string>
+
+#include "renders/limits.h"
 
 namespace rockbench::renders {
 namespace {
@@ -134,20 +137,31 @@ std::vector<double> DoubleIntegrate(const std::vector<double>& a_mps2, double dt
   return x;
 }
 
-}  // namespace
-
-BaseDisplacement IntegrateBaseDisplacement(const GroundMotion& motion, double t_end_s,
-                                           const BaseIntegrationConfig& config) {
-  if (motion.empty() || !(t_end_s > 0.0)) return {};
-  // Records are integrated on their own sample grid (they are linear between samples).
+// The sample interval of the integration: the finest record's, else config.dt_s.
+double IntegrationStep_s(const GroundMotion& motion, const BaseIntegrationConfig& config) {
   double dt_s = std::numeric_limits<double>::infinity();
   for (const auto* c : {&motion.horizontal(), &motion.vertical()}) {
     if (*c && !(*c)->samples_mps2().empty() && (*c)->dt_s() > 0.0) {
       dt_s = std::min(dt_s, (*c)->dt_s());
     }
   }
-  if (!std::isfinite(dt_s)) dt_s = config.dt_s;
-  const size_t n = static_cast<size_t>(std::ceil(t_end_s / dt_s)) + 1;
+  return std::isfinite(dt_s) ? dt_s : config.dt_s;
+}
+
+}  // namespace
+
+double BaseDisplacementSamples(const GroundMotion& motion, double t_end_s,
+                               const BaseIntegrationConfig& config) {
+  if (motion.empty() || !(t_end_s > 0.0)) return 0.0;
+  return std::ceil(t_end_s / IntegrationStep_s(motion, config)) + 1.0;
+}
+
+BaseDisplacement IntegrateBaseDisplacement(const GroundMotion& motion, double t_end_s,
+                                           const BaseIntegrationConfig& config) {
+  if (motion.empty() || !(t_end_s > 0.0)) return {};
+  // Records are integrated on their own sample grid (they are linear between samples).
+  const double dt_s = IntegrationStep_s(motion, config);
+  const size_t n = static_cast<size_t>(BaseDisplacementSamples(motion, t_end_s, config));
   std::vector<double> ax(n), ay(n);
   for (size_t i = 0; i < n; ++i) {
     const double t = static_cast<double>(i) * dt_s;
@@ -243,8 +257,13 @@ std::vector<double> FrameTimes(double t_from_s, double t_to_s, double fps, doubl
   if (!(fps > 0.0)) throw std::invalid_argument("frame rate must be > 0");
   if (!(speed > 0.0)) throw std::invalid_argument("speed factor must be > 0");
   if (!(t_to_s >= t_from_s)) throw std::invalid_argument("the time window ends before it starts");
+  const double count = FrameCount(t_from_s, t_to_s, fps, speed);
+  if (!(count <= static_cast<double>(kMaxFrames))) {
+    throw std::invalid_argument("the animation would have " + ShortestText(count) +
+                                " frames, more than the limit of " + std::to_string(kMaxFrames));
+  }
   const double step_s = speed / fps;
-  const long n = std::max(1L, std::lround((t_to_s - t_from_s) / step_s));
+  const long n = static_cast<long>(count);
   std::vector<double> times(static_cast<size_t>(n));
   for (long k = 0; k < n; ++k)
     times[static_cast<size_t>(k)] = t_from_s + static_cast<double>(k) * step_s;

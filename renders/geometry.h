@@ -76,6 +76,10 @@ struct BaseIntegrationConfig {
 /// gives an empty displacement.
 BaseDisplacement IntegrateBaseDisplacement(const GroundMotion& motion, double t_end_s,
                                            const BaseIntegrationConfig& config = {});
+/// Samples IntegrateBaseDisplacement takes (and holds, per component) for this motion up to
+/// t_end_s: t_end_s / dt + 1 (0 for no motion), as a double for the memory estimate.
+double BaseDisplacementSamples(const GroundMotion& motion, double t_end_s,
+                               const BaseIntegrationConfig& config = {});
 
 /// An axis-aligned box in world coordinates, m.
 struct Box {
@@ -113,7 +117,7 @@ Camera FitCamera(const Box& box, double vp_x_px, double vp_y_px, double vp_w_px,
 /// and `speed` (simulated seconds per video second; 0.5 is half-speed slow motion):
 /// t_k = t_from_s + k speed / fps, k = 0 .. n-1, n = max(1, round((t_to - t_from) fps / speed)),
 /// so the video lasts (t_to - t_from) / speed seconds. Throws std::invalid_argument for fps or
-/// speed <= 0 or t_to < t_from.
+/// speed <= 0, t_to < t_from, or more than kMaxFrames frames (renders/limits.h).
 std::vector<double> FrameTimes(double t_from_s, double t_to_s, double fps, double speed);
 
 }  // namespace rockbench::renders

@@ -4,7 +4,9 @@
 #include <cstdio>
 #include <cstring>
 #include <stdexcept>
+#include <string>
 
+#include "renders/limits.h"
 #include "renders/renderer.h"
 
 namespace rockbench::renders {
@@ -29,11 +31,24 @@ std::optional<Layout> ParseLayout(std::string_view name) {
 
 FrameLayout ComputeLayout(const Scene& scene, const std::vector<Track>& tracks,
                           const BaseDisplacement& base, const RenderConfig& config) {
-  if (config.width_px < 64 || config.height_px < 48) {
-    throw std::invalid_argument("image size must be at least 64x48 pixels");
+  const std::string size = std::to_string(config.width_px) + "x" + std::to_string(config.height_px);
+  if (config.width_px < kMinWidth_px || config.height_px < kMinHeight_px) {
+    throw std::invalid_argument("image size " + size + ": must be at least " +
+                                std::to_string(kMinWidth_px) + "x" + std::to_string(kMinHeight_px) +
+                                " pixels");
   }
-  if (config.supersample < 1 || config.supersample > 4) {
-    throw std::invalid_argument("supersampling factor must be 1..4");
+  if (config.width_px > kMaxSide_px || config.height_px > kMaxSide_px) {
+    throw std::invalid_argument("image size " + size + ": more than the limit of " +
+                                std::to_string(kMaxSide_px) + " pixels per side");
+  }
+  if (config.supersample < 1 || config.supersample > kMaxSupersample) {
+    throw std::invalid_argument("supersampling factor " + std::to_string(config.supersample) +
+                                ": must be 1.." + std::to_string(kMaxSupersample));
+  }
+  if (std::max(config.width_px, config.height_px) * config.supersample > kMaxDrawnSide_px) {
+    throw std::invalid_argument(
+        "image size " + size + " at supersample " + std::to_string(config.supersample) +
+        ": drawn at more than OSMesa's " + std::to_string(kMaxDrawnSide_px) + " pixels per side");
   }
   if (tracks.empty()) throw std::invalid_argument("nothing to draw: no history given");
   std::vector<const History*> histories;

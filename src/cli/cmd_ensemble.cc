@@ -3,7 +3,9 @@
 // (`rockbench ensemble STUDY --worker`, hidden), rows to DIR/members.csv as they finish, the
 // file in member order at the end, and DIR/study.json (src/harness/study_runner.h,
 // docs/ensemble.md).
+#include <sys/prctl.h>
 #include <sys/resource.h>
+#include <unistd.h>
 
 #include <chrono>
 #include <csignal>
@@ -15,10 +17,12 @@
 #include <thread>
 
 #include "cli/commands.h"
+#include "cli/limit_options.h"
 #include "harness/parallel.h"
 #include "harness/study.h"
 #include "harness/study_mpi.h"
 #include "harness/study_runner.h"
+#include "scene/limits.h"
 #include "scene/scene.h"
 
 namespace rockbench::cli {
@@ -32,6 +36,8 @@ struct EnsembleCliOptions {
   bool keep_histories = false;
   bool list = false;
   bool worker = false;
+  LimitOptions limits;  // --memory-budget (every run, workers included), --wall-limit (the study)
+  long long worker_parent = -1;  // the pool's pid: the worker ends when that process ends
   // Tests of the isolation: the worker crashes (SIGSEGV) or hangs on this member.
   long long crash_member = -1, hang_member = -1;
 };
@@ -103,7 +109,8 @@ void WriteStudyJson(const StudyDef& study, const std::filesystem::path& dir, int
     j["axes"].push_back({{"key", a.key}, {"values", values}, {"derived", a.derived}});
   }
   const std::filesystem::path path = dir / "study.json";
-  const std::filesystem::path tmp = path.string() + ".tmp";
+  // A temporary name holding ".tmp.<pid>": the wall-clock limit removes it (util/wall_limit.h).
+  const std::filesystem::path tmp = path.string() + ".tmp." + std::to_string(::getpid());
   {
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
     out << j.dump(2) << "\n";
@@ -113,11 +120,23 @@ void WriteStudyJson(const StudyDef& study, const std::filesystem::path& dir, int
 }
 
 void RunStudy(const EnsembleCliOptions& opt, double start_s) {
-  const StudyDef study = LoadStudy(opt.study);
+  // The memory budget holds for every run (a worker is given it); the wall-clock limit for the
+  // whole study (its members have the study's wall_limit_s).
+  ResourceBudget budget;
+  budget.memory_bytes = opt.limits.memory_budget_gib * 1024.0 * 1024 * 1024;
+  SetProcessBudget(budget);
   if (opt.worker) {
-    RunWorker(study, opt);
+    // A worker does not outlive its pool (killed, or stopped by --wall-limit): the kernel kills
+    // it when the parent ends; a parent already gone ends it now.
+    if (opt.worker_parent > 0) {
+      ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+      if (::getppid() != static_cast<pid_t>(opt.worker_parent)) return;
+    }
+    // Its parent checked every value of the study: the worker reads it and builds member 0.
+    RunWorker(LoadStudy(opt.study, StudyCheck::kFirstMember), opt);
     return;
   }
+  const StudyDef study = LoadStudy(opt.study);
   if (opt.list) {
     List(study);
     return;
@@ -125,6 +144,7 @@ void RunStudy(const EnsembleCliOptions& opt, double start_s) {
   if (opt.out.empty()) throw SceneError("--out: required (the study's folder)");
   if (opt.jobs < 0) throw SceneError("--jobs: expected 1 or more (0: every core)");
   const std::filesystem::path dir(opt.out);
+  StartLimits(opt.limits, dir, "ensemble");
   const int ranks = LaunchedRanks();
   std::unique_ptr<MpiSession> session;
   if (ranks > 1) session = std::make_unique<MpiSession>();
@@ -137,6 +157,7 @@ void RunStudy(const EnsembleCliOptions& opt, double start_s) {
   pool.out_dir = dir;
   pool.keep_histories = opt.keep_histories;
   pool.worker_log = dir / "workers.log";
+  pool.memory_budget_gib = opt.limits.memory_budget_gib;
   if (opt.crash_member >= 0) {
     pool.extra_worker_args = {"--selftest-crash-member", std::to_string(opt.crash_member)};
   }
@@ -198,14 +219,27 @@ void RegisterEnsemble(CLI::App& app) {
                 "Write each run's history.csv and events.csv under DIR/members/ID/ENGINE/");
   cmd->add_flag("--list", opt->list, "Print the study's members and axes, run nothing");
   cmd->add_flag("--worker", opt->worker)->group("");
+  cmd->add_option("--worker-parent", opt->worker_parent)->group("");
   cmd->add_option("--selftest-crash-member", opt->crash_member)->group("");
   cmd->add_option("--selftest-hang-member", opt->hang_member)->group("");
+  AddLimitOptions(cmd, &opt->limits);
   cmd->callback([opt] {
     const double start_s = Now_s();
     try {
       RunStudy(*opt, start_s);
+    } catch (const std::bad_alloc&) {
+      std::fprintf(stderr,
+                   "rockbench ensemble: out of memory (std::bad_alloc) reading or scheduling "
+                   "the study %s\n",
+                   Excerpt(opt->study, 200).c_str());
+      throw CLI::RuntimeError(kExitBadInput);
     } catch (const std::exception& e) {
-      std::fprintf(stderr, "rockbench ensemble: %s\n", e.what());
+      // Messages name their values in excerpts; this keeps any other one to a few lines.
+      constexpr size_t kMaxMessageChars = 2000;
+      const std::string what = e.what();
+      std::fprintf(
+          stderr, "rockbench ensemble: %s\n",
+          what.size() > kMaxMessageChars ? Excerpt(what, kMaxMessageChars).c_str() : what.c_str());
       throw CLI::RuntimeError(kExitBadInput);
     }
   });

@@ -9,17 +9,72 @@
 #include <charconv>
 #include <cmath>
 #include <fstream>
+#include <limits>
 #include <sstream>
 
 #include "harness/engine_registry.h"
+#include "harness/resource_estimate.h"
 #include "scene/ground_motion.h"
 #include "scene/intensity.h"
+#include "scene/limits.h"
 
 namespace rockbench {
 namespace {
 
+// Longest path and file name the system opens (Linux's PATH_MAX and NAME_MAX).
+constexpr size_t kMaxPathBytes = 4095;
+constexpr size_t kMaxNameBytes = 255;
+// A study file is a few kB; a million values take about 10 MB.
+constexpr double kMaxStudyFile_bytes = 64.0 * 1024 * 1024;
+
+// A path for messages: as it is when short and printable, else an excerpt.
+std::string Shown(const std::string& text) {
+  const bool plain = text.size() <= 200 && std::none_of(text.begin(), text.end(), [](char c) {
+                       return static_cast<unsigned char>(c) < 0x20 || c == 0x7f;
+                     });
+  return plain ? text : Excerpt(text, 200);
+}
+
+std::string Where(const std::filesystem::path& file, int line) {
+  return Shown(file.string()) + ":" + std::to_string(line);
+}
+
 std::string Where(const std::filesystem::path& file, const toml::node& node) {
-  return file.string() + ":" + std::to_string(node.source().begin.line);
+  return Where(file, static_cast<int>(node.source().begin.line));
+}
+
+// A string of the study that names a key, an engine, a value or a file: printable (a NUL
+// would cut every message that quotes it, and no key or file name holds a control character).
+void CheckText(const std::string& text, const std::string& where, const std::string& key) {
+  for (size_t i = 0; i < text.size(); ++i) {
+    const auto c = static_cast<unsigned char>(text[i]);
+    if (c < 0x20 || c == 0x7f) {
+      throw SceneError(where + ": " + key + ": \"" + Excerpt(text) + "\" holds a control " +
+                       "character (byte " + std::to_string(i) + "); expected printable text");
+    }
+  }
+}
+
+// A file name of the study (the scene, a record, a glob): printable, and a path the system can
+// open (at most 4095 bytes, each name at most 255).
+void CheckPathText(const std::string& text, const std::string& where, const std::string& key) {
+  CheckText(text, where, key);
+  if (text.empty()) throw SceneError(where + ": " + key + ": expected a file name, got \"\"");
+  if (text.size() > kMaxPathBytes) {
+    throw SceneError(where + ": " + key + ": \"" + Excerpt(text) + "\" is a path of " +
+                     std::to_string(text.size()) + " bytes, more than the " +
+                     std::to_string(kMaxPathBytes) + " a path may have");
+  }
+  size_t start = 0;
+  while (start <= text.size()) {
+    const size_t end = std::min(text.find('/', start), text.size());
+    if (end - start > kMaxNameBytes) {
+      throw SceneError(where + ": " + key + ": \"" + Excerpt(text) + "\" holds a name of " +
+                       std::to_string(end - start) + " bytes, more than the " +
+                       std::to_string(kMaxNameBytes) + " a file name may have");
+    }
+    start = end + 1;
+  }
 }
 
 const std::vector<std::string>& DerivedKeys() {
@@ -71,9 +126,14 @@ AxisValue ValueOf(const toml::node& v, const std::string& key, const std::filesy
     a.number = static_cast<double>(*i);
     a.is_number = true;
   } else if (auto s = v.value_exact<std::string>()) {
+    const bool is_file = EndsWith(key, ".file");
+    if (is_file) {
+      CheckPathText(*s, Where(file, v), "axis " + key);
+    } else {
+      CheckText(*s, Where(file, v), "axis " + key);
+    }
     a.text = *s;
     // A record file is relative to the study file, as the scene's is to the scene.
-    const bool is_file = EndsWith(key, ".file");
     a.toml = Quoted(is_file ? std::filesystem::absolute(dir / *s).lexically_normal().string() : *s);
     return a;
   } else if (auto b = v.value_exact<bool>()) {
@@ -96,18 +156,22 @@ StudyAxis ReadAxis(const toml::table& t, const std::filesystem::path& file,
   for (const auto& [k, v] : t) {
     const std::string name(k.str());
     if (name != "key" && name != "values" && name != "glob") {
-      throw SceneError(Where(file, v) + ": [[axis]] " + name +
+      throw SceneError(Where(file, v) + ": [[axis]] " + Excerpt(name) +
                        ": unknown key (expected one of: key, values, glob)");
     }
   }
   StudyAxis axis;
+  axis.line = static_cast<int>(t.source().begin.line);
   const auto key = t["key"].value<std::string>();
-  if (!key || key->empty()) {
+  constexpr size_t kMaxKeyChars = 200;
+  if (!key || key->empty() || key->size() > kMaxKeyChars) {
     throw SceneError(where +
                      ": [[axis]] key: expected a scene key (as --set takes it) or one of: "
                      "size_factor, pulse.frequency_ratio, pulse.amplitude_ratio, "
-                     "base.horizontal.pga_g, base.horizontal.pgv_mps");
+                     "base.horizontal.pga_g, base.horizontal.pgv_mps" +
+                     (key && !key->empty() ? ", got \"" + Excerpt(*key) + "\"" : std::string()));
   }
+  CheckText(*key, where, "[[axis]] key");
   axis.key = *key;
   axis.derived = IsDerived(axis.key);
   const toml::array* values = t["values"].as_array();
@@ -115,26 +179,36 @@ StudyAxis ReadAxis(const toml::table& t, const std::filesystem::path& file,
   if ((values != nullptr) == glob.has_value()) {
     throw SceneError(where + ": axis " + axis.key + ": expected values = [...] or glob = \"...\"");
   }
+  const auto too_many = [&](size_t n) {
+    return SceneError(where + ": axis " + axis.key + ": " + std::to_string(n) +
+                      " values, more than a study's " + std::to_string(kMaxStudyMembers) +
+                      " members (docs/ensemble.md, \"Limits\")");
+  };
   if (glob) {
     if (!EndsWith(axis.key, ".file")) {
       throw SceneError(where + ": axis " + axis.key +
                        ": glob is for a record file key (base.horizontal.file)");
     }
-    for (const std::string& f : ExpandGlob(dir, *glob)) {
+    CheckPathText(*glob, where, "axis " + axis.key + ": glob");
+    const std::vector<std::string> files = ExpandGlob(dir, *glob);
+    if (files.size() > static_cast<size_t>(kMaxStudyMembers)) throw too_many(files.size());
+    for (const std::string& f : files) {
       axis.values.push_back(ValueOf(toml::value<std::string>(f), axis.key, file, dir));
     }
     if (axis.values.empty()) {
-      throw SceneError(where + ": axis " + axis.key + ": glob \"" + *glob +
+      throw SceneError(where + ": axis " + axis.key + ": glob \"" + Excerpt(*glob) +
                        "\" matches no file in " +
-                       (dir / std::filesystem::path(*glob).parent_path()).string());
+                       Shown((dir / std::filesystem::path(*glob).parent_path()).string()));
     }
     return axis;
   }
+  if (values->size() > static_cast<size_t>(kMaxStudyMembers)) throw too_many(values->size());
   for (const toml::node& v : *values) axis.values.push_back(ValueOf(v, axis.key, file, dir));
   if (axis.values.empty()) throw SceneError(where + ": axis " + axis.key + ": values is empty");
   for (const AxisValue& v : axis.values) {
     if (axis.derived && (!v.is_number || !(v.number > 0.0))) {
-      throw SceneError(where + ": axis " + axis.key + ": values: expected positive numbers");
+      throw SceneError(where + ": axis " + axis.key + ": values: expected positive numbers, got " +
+                       Excerpt(v.text));
     }
   }
   return axis;
@@ -154,6 +228,7 @@ std::vector<std::string> ReadStringList(const toml::node& node, const std::strin
   if (a == nullptr || out.size() != a->size()) {
     throw SceneError(Where(file, node) + ": " + key + ": expected a list of strings");
   }
+  for (const std::string& entry : out) CheckText(entry, Where(file, node), key);
   return out;
 }
 
@@ -166,14 +241,29 @@ double ReadPositive(const toml::node& node, const std::string& key,
   return *v;
 }
 
+// wall_limit_s: the range --wall-limit takes (a millisecond to 16 weeks).
+double ReadWallLimit(const toml::node& node, const std::filesystem::path& file) {
+  constexpr double kMin_s = 1e-3, kMax_s = 1e7;
+  const double v = ReadPositive(node, "wall_limit_s", file);
+  if (v < kMin_s || v > kMax_s) {
+    throw SceneError(Where(file, node) + ": wall_limit_s: expected " + ShortestText(kMin_s) +
+                     " to " + ShortestText(kMax_s) + " s, got " + ShortestText(v));
+  }
+  return v;
+}
+
 void CheckEngines(const StudyDef& s, const toml::node& node) {
   std::vector<std::string> seen;
   for (const std::string& e : s.engines) {
     if (std::find(seen.begin(), seen.end(), e) != seen.end()) {
-      throw SceneError(Where(s.path, node) + ": engines: \"" + e + "\" listed twice");
+      throw SceneError(Where(s.path, node) + ": engines: \"" + Excerpt(e) + "\" listed twice");
     }
     seen.push_back(e);
     if (e == "reference") continue;
+    if (e.size() > 64) {
+      throw SceneError(Where(s.path, node) + ": engines: \"" + Excerpt(e) +
+                       "\" is not an engine name");
+    }
     try {
       ParseEngineList(e);
     } catch (const SceneError& err) {
@@ -194,12 +284,15 @@ void ReadTop(const toml::table& root, StudyDef* s) {
     } else if (name == "scene") {
       const auto p = v.value<std::string>();
       if (!p) throw SceneError(Where(s->path, v) + ": scene: expected a file name");
+      CheckPathText(*p, Where(s->path, v), "scene");
       s->scene_path = (dir / *p).lexically_normal();
+      s->scene_line = static_cast<int>(v.source().begin.line);
     } else if (name == "engines") {
       s->engines = ReadStringList(v, "engines", s->path);
       CheckEngines(*s, v);
     } else if (name == "set") {
       s->overrides = ReadStringList(v, "set", s->path);
+      s->set_line = static_cast<int>(v.source().begin.line);
     } else if (name == "combine") {
       const std::string c = v.value<std::string>().value_or("");
       if (c != "product" && c != "zip") {
@@ -207,7 +300,7 @@ void ReadTop(const toml::table& root, StudyDef* s) {
       }
       s->combine = c == "zip" ? StudyCombine::kZip : StudyCombine::kProduct;
     } else if (name == "wall_limit_s") {
-      s->wall_limit_s = ReadPositive(v, name, s->path);
+      s->wall_limit_s = ReadWallLimit(v, s->path);
     } else if (name == "min_impact_rate") {
       s->min_impact_rate_radps = ReadPositive(v, name, s->path);
     } else if (name == "axis") {
@@ -218,7 +311,7 @@ void ReadTop(const toml::table& root, StudyDef* s) {
         s->axes.push_back(ReadAxis(*a.as_table(), s->path, dir));
       }
     } else {
-      throw SceneError(Where(s->path, v) + ": " + name +
+      throw SceneError(Where(s->path, v) + ": " + Excerpt(name) +
                        ": unknown key (expected one of: title, scene, engines, set, combine, "
                        "wall_limit_s, min_impact_rate, axis)");
     }
@@ -291,31 +384,129 @@ std::vector<int> StudyDef::ValueIndices(int64_t member) const {
   return idx;
 }
 
-StudyDef LoadStudy(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw SceneError(path.string() + ": cannot open the study file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return ParseStudy(text.str(), path);
+namespace {
+
+// The scene of a member with the first `set_entries` of the study's `set` and its first
+// `axis_count` axes applied (MemberScene: all of them).
+Scene BuildScene(const StudyDef& study, const std::vector<int>& idx, size_t set_entries,
+                 size_t axis_count) {
+  std::vector<std::string> overrides(study.overrides.begin(),
+                                     study.overrides.begin() + static_cast<long>(set_entries));
+  for (size_t k = 0; k < axis_count; ++k) {
+    const StudyAxis& a = study.axes[k];
+    if (!a.derived) overrides.push_back(a.key + "=" + a.values[idx[k]].toml);
+  }
+  Scene scene = LoadScene(study.scene_path, overrides);
+  // Derived axes in their fixed order: geometry first, then what depends on it.
+  for (const std::string& key : DerivedKeys()) {
+    for (size_t k = 0; k < axis_count; ++k) {
+      if (study.axes[k].key == key) ApplyDerived(key, study.axes[k].values[idx[k]].number, &scene);
+    }
+  }
+  ValidateScene(scene);
+  CheckEngineTables(scene);
+  // The memory of each of the member's runs (the reference, or the reference and an engine),
+  // estimated before anything runs, against this process's budget (--memory-budget). Its time
+  // is bounded by the study's wall_limit_s, not by an estimate.
+  ResourceBudget budget = ProcessBudget();
+  budget.wall_s = std::numeric_limits<double>::infinity();
+  for (const std::string& engine : study.engines) {
+    const std::vector<std::string> engines =
+        engine == "reference" ? std::vector<std::string>{} : std::vector<std::string>{engine};
+    CheckRunEstimate(EstimateRun(scene, engines, 0, 0, 1), budget, Shown(scene.path.string()));
+  }
+  return scene;
 }
 
-StudyDef ParseStudy(const std::string& text, const std::filesystem::path& path) {
+// The message of an exception from building a scene: a SceneError's text, a file system
+// error's path cut to an excerpt, any other's what().
+std::string SceneMessage(const std::exception& e) {
+  if (const auto* fe = dynamic_cast<const std::filesystem::filesystem_error*>(&e)) {
+    return Excerpt(fe->path1().string()) + ": " + fe->code().message();
+  }
+  return e.what();
+}
+
+// Whether building the scene with these parts throws; its message in *why.
+bool Fails(const StudyDef& study, const std::vector<int>& idx, size_t set_entries,
+           size_t axis_count, std::string* why) {
+  try {
+    BuildScene(study, idx, set_entries, axis_count);
+    return false;
+  } catch (const std::bad_alloc&) {
+    throw;
+  } catch (const std::exception& e) {
+    *why = SceneMessage(e);
+    return true;
+  }
+}
+
+// The error of member `member`'s scene (message `why`), blamed on what made it: the base scene
+// itself, the first `set` entry, or the first axis, whose addition makes the scene fail.
+std::string Blame(const StudyDef& study, int64_t member, const std::vector<int>& idx,
+                  const std::string& why) {
+  std::string message;
+  if (Fails(study, idx, 0, 0, &message)) {
+    return Where(study.path, study.scene_line) + ": scene \"" + Shown(study.scene_path.string()) +
+           "\": " + message;
+  }
+  for (size_t j = 1; j <= study.overrides.size(); ++j) {
+    if (Fails(study, idx, j, 0, &message)) {
+      return Where(study.path, study.set_line) + ": set \"" + Excerpt(study.overrides[j - 1]) +
+             "\": " + message;
+    }
+  }
+  for (size_t k = 1; k <= study.axes.size(); ++k) {
+    if (Fails(study, idx, study.overrides.size(), k, &message)) {
+      const StudyAxis& a = study.axes[k - 1];
+      return Where(study.path, a.line) + ": axis " + a.key + " = " +
+             Excerpt(a.values[idx[k - 1]].text) + " (" + MemberText(study, member) +
+             "): " + message;
+    }
+  }
+  return Shown(study.path.string()) + ": " + MemberText(study, member) + ": " + why;
+}
+
+}  // namespace
+
+std::string MemberText(const StudyDef& study, int64_t member) {
+  const std::vector<int> idx = study.ValueIndices(member);
+  std::string text = "member " + std::to_string(member);
+  for (size_t k = 0; k < study.axes.size(); ++k) {
+    text += (k == 0 ? ": " : ", ") + study.axes[k].key + " = " +
+            Excerpt(study.axes[k].values[idx[k]].text);
+  }
+  return text;
+}
+
+StudyDef LoadStudy(const std::filesystem::path& path, StudyCheck check) {
+  const std::string problem = InputFileProblem(path, "study file", kMaxStudyFile_bytes);
+  if (!problem.empty()) throw SceneError(problem);
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw SceneError(Shown(path.string()) + ": cannot open the study file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return ParseStudy(text.str(), path, check);
+}
+
+StudyDef ParseStudy(const std::string& text, const std::filesystem::path& path, StudyCheck check) {
   StudyDef s;
   s.path = path;
   s.engines = {"reference"};
+  const std::string name = Shown(path.string());
   toml::table root;
   try {
     root = toml::parse(text, path.string());
   } catch (const toml::parse_error& e) {
-    throw SceneError(path.string() + ":" + std::to_string(e.source().begin.line) + ": " +
-                     std::string(e.description()));
+    throw SceneError(name + ":" + std::to_string(e.source().begin.line) + ": " +
+                     Excerpt(e.description(), 200));
   }
   ReadTop(root, &s);
-  if (s.scene_path.empty()) throw SceneError(path.string() + ": scene: required (the base scene)");
+  if (s.scene_path.empty()) throw SceneError(name + ": scene: required (the base scene)");
   if (s.combine == StudyCombine::kZip) {
     for (const StudyAxis& a : s.axes) {
       if (a.values.size() != s.axes.front().values.size()) {
-        throw SceneError(path.string() + ": combine = \"zip\": axis " + a.key + " has " +
+        throw SceneError(name + ": combine = \"zip\": axis " + a.key + " has " +
                          std::to_string(a.values.size()) + " values, axis " + s.axes.front().key +
                          " " + std::to_string(s.axes.front().values.size()) + " (expected equal)");
       }
@@ -324,32 +515,59 @@ StudyDef ParseStudy(const std::string& text, const std::filesystem::path& path) 
   for (size_t i = 0; i < s.axes.size(); ++i) {
     for (size_t j = 0; j < i; ++j) {
       if (s.axes[i].key == s.axes[j].key) {
-        throw SceneError(path.string() + ": axis " + s.axes[i].key + " given twice");
+        throw SceneError(Where(path, s.axes[i].line) + ": axis " + s.axes[i].key + " given twice");
       }
     }
   }
-  // Every axis key is checked by reading member 0's scene.
+  // The study's size, before member_count() multiplies the axes' lengths (in doubles: no
+  // overflow).
+  double members = 1.0;
+  std::string sizes;
+  for (const StudyAxis& a : s.axes) {
+    if (s.combine == StudyCombine::kProduct || &a == &s.axes.front()) {
+      members *= static_cast<double>(a.values.size());
+    }
+    sizes += (sizes.empty()                     ? ""
+              : s.combine == StudyCombine::kZip ? ", "
+                                                : " x ") +
+             a.key + " (" + std::to_string(a.values.size()) + ")";
+  }
+  const double runs = members * static_cast<double>(s.engines.size());
+  if (runs > static_cast<double>(kMaxStudyRuns)) {
+    throw SceneError(name + ": " + ShortestText(members) + " members x " +
+                     std::to_string(s.engines.size()) + " runs = " + ShortestText(runs) +
+                     " runs (axes: " + Excerpt(sizes, 300) + "), more than the limit of " +
+                     std::to_string(kMaxStudyRuns) +
+                     " runs a study may have (docs/ensemble.md, \"Limits\"): split it into "
+                     "several studies along an axis");
+  }
+  // Every axis key, and with kEveryValue every value, is checked by building the members that
+  // hold them: member 0, and the members that differ from it on one axis (zip: every member).
   MemberScene(s, 0);
+  if (check == StudyCheck::kEveryValue) {
+    if (s.combine == StudyCombine::kZip) {
+      for (int64_t m = 1; m < s.member_count(); ++m) MemberScene(s, m);
+    } else {
+      int64_t stride = 1;
+      for (size_t k = s.axes.size(); k-- > 0;) {
+        const auto n = static_cast<int64_t>(s.axes[k].values.size());
+        for (int64_t j = 1; j < n; ++j) MemberScene(s, j * stride);
+        stride *= n;
+      }
+    }
+  }
   return s;
 }
 
 Scene MemberScene(const StudyDef& study, int64_t member) {
   const std::vector<int> idx = study.ValueIndices(member);
-  std::vector<std::string> overrides = study.overrides;
-  for (size_t k = 0; k < study.axes.size(); ++k) {
-    const StudyAxis& a = study.axes[k];
-    if (!a.derived) overrides.push_back(a.key + "=" + a.values[idx[k]].toml);
+  try {
+    return BuildScene(study, idx, study.overrides.size(), study.axes.size());
+  } catch (const std::bad_alloc&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw SceneError(Blame(study, member, idx, SceneMessage(e)));
   }
-  Scene scene = LoadScene(study.scene_path, overrides);
-  // Derived axes in their fixed order: geometry first, then what depends on it.
-  for (const std::string& key : DerivedKeys()) {
-    for (size_t k = 0; k < study.axes.size(); ++k) {
-      if (study.axes[k].key == key) ApplyDerived(key, study.axes[k].values[idx[k]].number, &scene);
-    }
-  }
-  ValidateScene(scene);
-  CheckEngineTables(scene);
-  return scene;
 }
 
 }  // namespace rockbench

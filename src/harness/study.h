@@ -36,7 +36,17 @@ struct StudyAxis {
   std::string key;
   std::vector<AxisValue> values;
   bool derived = false;
+  int line = 0;  ///< the line of its [[axis]] table in the study file (messages)
 };
+
+/// Most runs (members x engines) a study may have. A run takes a worker between a few
+/// milliseconds and minutes; members.csv holds about 500 bytes a row, and its last rewrite
+/// (MembersJournal::Finish) holds the file about three times in memory: a million runs make a
+/// 0.5 GB file and about 1.5 GB at the end, within the default memory budget of 2 GiB
+/// (docs/ensemble.md, "Limits").
+inline constexpr int64_t kMaxStudyRuns = 1000000;
+/// Most members of a study (each has at least one run).
+inline constexpr int64_t kMaxStudyMembers = kMaxStudyRuns;
 
 /// How the axes make members.
 enum class StudyCombine {
@@ -53,6 +63,8 @@ struct StudyDef {
   std::vector<StudyAxis> axes;
   StudyCombine combine = StudyCombine::kProduct;
   double wall_limit_s = 600.0;  ///< one run (member, engine) is killed after this wall time
+  int scene_line = 0;           ///< the line of `scene` (messages)
+  int set_line = 0;             ///< the line of `set` (messages)
   /// Impacts slower than this are not counted (CompareOptions::min_impact_rate_radps).
   double min_impact_rate_radps = 0.02;
 
@@ -61,16 +73,35 @@ struct StudyDef {
   std::vector<int> ValueIndices(int64_t member) const;
 };
 
+/// Which members' scenes LoadStudy builds to check the study.
+enum class StudyCheck {
+  /// Every value of every axis: with `combine = "product"` the members that differ from member
+  /// 0 on one axis (each value meets the others' first values), with "zip" every member. A
+  /// value the scene refuses is an error of the study, before anything runs.
+  kEveryValue,
+  /// Member 0 only (a worker: its parent checked the rest).
+  kFirstMember,
+};
+
 /// Reads a study file. Errors (SceneError) name the file, line and key and what was expected:
-/// unknown keys, an engine not registered or not built, an empty axis, a scene key the scene
-/// schema refuses (the base scene is read with every axis's first value to check).
-StudyDef LoadStudy(const std::filesystem::path& path);
+/// unknown keys, an engine not registered or not built, an empty axis, a scene key or value
+/// the scene refuses (naming the axis and value, or the `set` entry, that gave it), a study of
+/// more than kMaxStudyRuns runs, control characters or an impossible path in a file name.
+StudyDef LoadStudy(const std::filesystem::path& path, StudyCheck check = StudyCheck::kEveryValue);
 /// LoadStudy on a study file's text already in memory; `path` names it and anchors the
 /// relative scene path.
-StudyDef ParseStudy(const std::string& text, const std::filesystem::path& path);
+StudyDef ParseStudy(const std::string& text, const std::filesystem::path& path,
+                    StudyCheck check = StudyCheck::kEveryValue);
 
 /// Member i's scene: the base scene with the study's overrides and member i's axis values.
-/// Throws SceneError when that member's scene is invalid (the row says so).
+/// Throws SceneError when that member's scene is invalid: "STUDY:LINE: axis KEY = VALUE
+/// (member i: every axis's value): the scene's message", or "STUDY:LINE: set \"ENTRY\": ..."
+/// or "STUDY:LINE: scene ...: ..." when the `set` entry or the base scene itself is at fault
+/// (the culprit is found by building the scene again with the overrides added one at a time).
 Scene MemberScene(const StudyDef& study, int64_t member);
+
+/// "member 3: key1 = v1, key2 = v2": a member and its axis values (each cut to an excerpt),
+/// for messages and rows.
+std::string MemberText(const StudyDef& study, int64_t member);
 
 }  // namespace rockbench

@@ -61,9 +61,8 @@ void SetOutcome(const MemberOutcome& o, MemberRow* row) {
   row->has_result = true;
 }
 
-void RunHere(const StudyDef& study, const std::string& engine,
+void RunHere(const StudyDef& study, const std::string& engine, const Scene& scene,
              const std::optional<std::filesystem::path>& keep_dir, MemberRow* row) {
-  const Scene scene = MemberScene(study, row->member);
   SetGeometry(scene, row);
   const GroundMotion motion = GroundMotion::FromScene(scene);
   SetIntensity(scene, motion, row);
@@ -122,10 +121,30 @@ MemberRow RunMemberHere(const StudyDef& study, int64_t member, const std::string
   MemberRow row;
   row.member = member;
   row.engine = engine;
+  // The member's scene: its errors name the study, the axis and value (or set entry) at fault
+  // and the member's values (MemberScene).
+  std::optional<Scene> scene;
   try {
-    RunHere(study, engine, keep_dir, &row);
+    scene = MemberScene(study, member);
+  } catch (const std::bad_alloc&) {
+    return FailedRow(
+        member, engine, "error",
+        "out of memory (std::bad_alloc) building the scene of " + MemberText(study, member));
   } catch (const std::exception& e) {
     return FailedRow(member, engine, "error", e.what());
+  }
+  // The run: an error names the member and its values before the message.
+  try {
+    RunHere(study, engine, *scene, keep_dir, &row);
+  } catch (const std::bad_alloc&) {
+    return FailedRow(member, engine, "error",
+                     "out of memory (std::bad_alloc) in the " + engine + " run of " +
+                         MemberText(study, member) +
+                         ": it needed more memory than the machine gave, beyond its estimate "
+                         "(docs/limits.md); the study's other runs go on");
+  } catch (const std::exception& e) {
+    return FailedRow(member, engine, "error",
+                     "the " + engine + " run of " + MemberText(study, member) + ": " + e.what());
   }
   return row;
 }

@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <chrono>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <sstream>
@@ -107,9 +108,17 @@ class Pool {
   Pool(const StudyDef& study, StudyScheduler& scheduler, const WorkerPoolOptions& o)
       : study_(study), scheduler_(scheduler), options_(o), workers_(std::max(1, o.jobs)) {
     const std::filesystem::path exe = o.executable.empty() ? SelfExecutable() : o.executable;
-    argv_ = {exe.string(), "ensemble", std::filesystem::absolute(study.path).string(), "--worker"};
+    // The worker ends itself when this process ends (a kill, the wall-clock limit): it is told
+    // its parent's pid (cmd_ensemble.cc, PR_SET_PDEATHSIG).
+    argv_ = {exe.string(), "ensemble",        std::filesystem::absolute(study.path).string(),
+             "--worker",   "--worker-parent", std::to_string(::getpid())};
     if (o.keep_histories) {
       argv_.insert(argv_.end(), {"--out", o.out_dir.string(), "--keep-histories"});
+    }
+    if (o.memory_budget_gib > 0.0) {
+      char budget[64];
+      std::snprintf(budget, sizeof budget, "%.17g", o.memory_budget_gib);
+      argv_.insert(argv_.end(), {"--memory-budget", budget});
     }
     argv_.insert(argv_.end(), o.extra_worker_args.begin(), o.extra_worker_args.end());
     wall_limit_s_ = o.wall_limit_s > 0.0 ? o.wall_limit_s : study.wall_limit_s;
@@ -366,7 +375,8 @@ void MembersJournal::Finish() {
     throw SceneError(path_.string() + ": " + std::to_string(rows.size()) + " rows of " +
                      std::to_string(total) + " runs");
   }
-  const std::filesystem::path tmp = path_.string() + ".tmp";
+  // A temporary name holding ".tmp.<pid>": the wall-clock limit removes it (util/wall_limit.h).
+  const std::filesystem::path tmp = path_.string() + ".tmp." + std::to_string(::getpid());
   {
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
     out << header;

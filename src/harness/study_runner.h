@@ -50,6 +50,8 @@ struct WorkerPoolOptions {
   std::filesystem::path out_dir;  ///< with keep_histories: histories under out_dir/members/ID
   bool keep_histories = false;
   std::filesystem::path worker_log;  ///< the workers' standard error is appended here
+  /// The memory budget given to each worker (--memory-budget GIB); 0: the worker's default.
+  double memory_budget_gib = 0.0;
   /// Added to a worker's arguments (tests: a hidden crash or hang).
   std::vector<std::string> extra_worker_args;
 };

@@ -182,7 +182,7 @@ TEST_F(EnsembleCliTest, KilledAndResumedEndsWithTheUninterruptedFile) {
 TEST_F(EnsembleCliTest, BadInputExitsTwoNamingIt) {
   const CliRun missing = Rockbench("ensemble " + Out("nosuch.toml") + " --out " + Out("x"));
   EXPECT_EQ(missing.exit_code, 2);
-  EXPECT_NE(missing.output.find("nosuch.toml: cannot open the study file"), std::string::npos)
+  EXPECT_NE(missing.output.find("nosuch.toml: no such study file"), std::string::npos)
       << missing.output;
   const std::string bad = Write("bad.toml", "scene = \"block.toml\"\nengine = [\"bullet\"]\n");
   const CliRun r = Rockbench("ensemble " + bad + " --out " + Out("x"));
