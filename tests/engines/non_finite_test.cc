@@ -13,8 +13,11 @@
 
 #include "common/thesis_scene.h"
 #include "harness/compare.h"
+#include "harness/convergence.h"
 #include "harness/engine_registry.h"
 #include "harness/engines.h"
+#include "harness/ensemble.h"
+#include "harness/summary.h"
 #include "harness/verdict.h"
 #include "reference/simulate.h"
 #include "scene/ground_motion.h"
@@ -125,6 +128,99 @@ TEST_P(EngineNonFinite, AnAbsurdSpikeEndsTheRunAtItsLastFiniteState) {
   EXPECT_FALSE(v.agrees);
   EXPECT_EQ(v.decided_by.rfind("non_finite at t = ", 0), 0u) << v.decided_by;
   EXPECT_NE(v.decided_by.find(quantity), std::string::npos) << v.decided_by;
+}
+
+// The harness's side, engine-independent: what a failed reference means for the verdict, the
+// convergence check and summary.json.
+
+// The thesis's stack at rest, 2 s.
+Scene StackAtRest() {
+  Scene scene = testing_util::ThesisFreeRockingStack(2.0, 0.01);
+  scene.initial = {};
+  return scene;
+}
+
+// The reference as an engine run (its summary as summary.json has it), on `motion`.
+EngineRun ReferenceAsEngine(const Scene& scene, const GroundMotion& motion) {
+  return ReferenceRunOf(scene, RunCheckedReference(scene, motion, false));
+}
+
+// An engine that agrees, compared with a reference that failed: no verdict (reference_failed,
+// the console's NO VERDICT), decided by the reference's failure and its time.
+TEST(NonFiniteHarness, AFailedReferenceGivesNoVerdict) {
+  const Scene scene = StackAtRest();
+  const reference::Result failed = reference::Simulate(scene, Spike(1e200, 50));
+  ASSERT_EQ(failed.summary.status, "non_finite");
+  const EngineRun fine = ReferenceAsEngine(scene, Spike(0.0, 50));
+  ASSERT_EQ(fine.outcome.status, "at_rest");
+  const EngineAgreement a = CompareWithReference(scene, failed, fine);
+  for (const std::optional<Horizons>& h : {std::optional<Horizons>(), std::optional(Horizons{})}) {
+    const Verdict v = MakeVerdict(scene, a, h, std::nullopt);
+    EXPECT_EQ(v.kind, "reference_failed") << v.text;
+    EXPECT_FALSE(v.agrees);
+    EXPECT_EQ(VerdictLabel(v.kind), "NO VERDICT");
+    EXPECT_EQ(v.decided_by.rfind("reference non_finite at t = ", 0), 0u) << v.decided_by;
+  }
+  // Nothing after the reference's last finite state is compared.
+  EXPECT_LE(a.compared_until_s, failed.summary.non_finite_last_t_s);
+}
+
+// The finding, end to end: one 1e20 g sample under the stack at rest. The default
+// reference (dopri5) stops on an uplift, its witness (dop853 at rtol 1e-14) goes non-finite:
+// the run reports the witness's failure, never the other run with a warning, and summary.json
+// has the non_finite object and no number that is not finite.
+TEST(NonFiniteHarness, TheWitnessNeverHidesAFailure) {
+  const Scene scene = StackAtRest();
+  const CheckedReference checked = RunCheckedReference(scene, Spike(1e20, 10), true);
+  ASSERT_TRUE(checked.check.has_value());
+  ASSERT_NE(checked.nominal.summary.status, "non_finite") << checked.nominal.summary.status;
+  ASSERT_EQ(checked.witness->summary.status, "non_finite");
+  EXPECT_TRUE(checked.check->witness_non_finite);
+  EXPECT_EQ(checked.used().summary.status, "non_finite");
+  const EngineRun run = ReferenceRunOf(scene, checked);
+  EXPECT_EQ(run.summary["status"], "non_finite");
+  EXPECT_EQ(run.summary["convergence"]["used"], "witness");
+  EXPECT_TRUE(run.summary.contains("non_finite"));
+  EXPECT_TRUE(AllFinite(run.summary)) << run.summary.dump(2);
+  EXPECT_EQ(NonFiniteText(run).rfind("reference: ", 0), 0u);
+  for (const Sample& smp : run.history.samples) EXPECT_TRUE(Finite(smp)) << smp.t_s;
+}
+
+// Members that ended non_finite: a failed reference member leaves the predictability unknown
+// (reference_failed); a failed engine member is the engine's failure (violates_model). Neither
+// enters the statistics.
+TEST(NonFiniteHarness, FailedEnsembleMembersAreNeverAnAgreement) {
+  const Scene scene = StackAtRest();
+  const EngineRun ok = ReferenceAsEngine(scene, Spike(0.0, 50));
+  const reference::Result ref = reference::Simulate(scene, Spike(0.0, 50));
+  const EngineAgreement a = CompareWithReference(scene, ref, ok);
+  std::vector<MemberOutcome> members(12);
+  for (int i = 0; i < 12; ++i) {
+    members[i] = OutcomeOf(ok, scene, 0.02);
+    members[i].member = i;
+  }
+  std::vector<MemberOutcome> engine = members;
+  engine[3].status = "non_finite";
+  engine[3].detail = "energy is +inf at t = 0.4901 s";
+  const double tol[2] = {0.01, 0.01};
+  const StatisticalComparison st = CompareEnsembles(members, engine, true, tol, 0.01);
+  EXPECT_EQ(st.engine_non_finite, 1);
+  EXPECT_EQ(st.engine_members, 11);
+  Horizons h;
+  h.horizon_s[0] = 0.5;
+  Verdict v = MakeVerdict(scene, a, h, st);
+  EXPECT_EQ(v.kind, "violates_model") << v.text;
+  EXPECT_EQ(v.decided_by, "non_finite in 1 of its ensemble's members");
+  EXPECT_NE(v.text.find("member 3: energy is +inf"), std::string::npos) << v.text;
+  EXPECT_EQ(StatisticsJson(st)["engine_non_finite"], 1);
+
+  members[5].status = "non_finite";
+  EXPECT_FALSE(members[5].valid());
+  h.non_finite_members = 1;
+  h.non_finite_detail = "member 5: theta1 is NaN at t = 0 s";
+  v = MakeVerdict(scene, a, h, std::nullopt);
+  EXPECT_EQ(v.kind, "reference_failed") << v.text;
+  EXPECT_EQ(v.decided_by, "reference ensemble: 1 members non_finite");
 }
 
 INSTANTIATE_TEST_SUITE_P(BuiltEngines, EngineNonFinite, ::testing::ValuesIn(Engines()),
