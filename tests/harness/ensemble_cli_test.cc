@@ -8,6 +8,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -189,6 +190,112 @@ TEST_F(EnsembleCliTest, BadInputExitsTwoNamingIt) {
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.output.find("bad.toml:2: engine: unknown key"), std::string::npos) << r.output;
   EXPECT_FALSE(std::filesystem::exists(dir_ / "x"));
+}
+
+// Issue 21: an axis value out of range blamed the base scene; a NUL in `scene` printed only
+// "rockbench ensemble: ". Both exit 2 before anything is made, naming the study file, line and
+// key (and the axis value).
+TEST_F(EnsembleCliTest, AStudysBadValueExitsTwoNamingTheStudyAndAxis) {
+  const std::string range =
+      Write("range.toml",
+            "scene = \"block.toml\"\n[[axis]]\nkey = \"block1.width\"\nvalues = [0.2, -1]\n");
+  const CliRun r = Rockbench("ensemble " + range + " --out " + Out("r"));
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("range.toml:2: axis block1.width = -1 (member 1: block1.width = -1): "),
+            std::string::npos)
+      << r.output;
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "r"));
+  const std::string nul = Write("nul.toml", "scene = \"blo\\u0000ck.toml\"\n");
+  const CliRun n = Rockbench("ensemble " + nul + " --out " + Out("n"));
+  EXPECT_EQ(n.exit_code, 2) << n.output;
+  EXPECT_NE(n.output.find("nul.toml:1: scene: \"blo\\0ck.toml\" holds a control character"),
+            std::string::npos)
+      << n.output;
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "n"));
+}
+
+// --memory-budget holds for every run, in the workers too: with 0.15 GiB the member of 4e5
+// history rows (run.duration 200 s, output every 0.5 ms) is an error row naming the axis, the
+// member's values and the estimate; the members the study's load checked pass. A smaller
+// budget refuses the study when it is read.
+TEST_F(EnsembleCliTest, TheMemoryBudgetReachesTheWorkers) {
+  const std::string budget =
+      Write("budget.toml",
+            "scene = \"block.toml\"\n[[axis]]\nkey = \"run.duration\"\nvalues = [100, 200]\n"
+            "[[axis]]\nkey = \"run.output_interval\"\nvalues = [1e-3, 5e-4]\n");
+  const CliRun r =
+      Rockbench("ensemble " + budget + " --out " + Out("b") + " --jobs 2 --memory-budget 0.15");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const std::string rows = ReadFile(dir_ / "b" / "members.csv");
+  EXPECT_EQ(Rows(rows), 4);
+  // Members 0 to 2 ran; member 3's row is an error.
+  EXPECT_NE(rows.find("\n2,200,0.001,"), std::string::npos) << rows;
+  const size_t at3 = rows.find("\n3,200,5e-04,");
+  ASSERT_NE(at3, std::string::npos) << rows;
+  const std::string line3 = rows.substr(at3 + 1, rows.find('\n', at3 + 1) - at3 - 1);
+  EXPECT_NE(line3.find(",reference,error,"), std::string::npos) << line3;
+  EXPECT_EQ(rows.find(",reference,error,"), at3 + (line3.find(",reference,error,") + 1)) << rows;
+  EXPECT_NE(rows.find("budget.toml:5: axis run.output_interval = 5e-04 (member 3: run.duration = "
+                      "200; run.output_interval = 5e-04): "),
+            std::string::npos)
+      << rows;
+  EXPECT_NE(rows.find("run.output_interval: needs an estimated"), std::string::npos) << rows;
+  const CliRun small =
+      Rockbench("ensemble " + budget + " --out " + Out("s") + " --memory-budget 0.1");
+  EXPECT_EQ(small.exit_code, 2) << small.output;
+  EXPECT_NE(small.output.find("more than the memory budget of 102 MiB"), std::string::npos)
+      << small.output;
+}
+
+// The pids of this user's processes whose command line holds `needle`.
+std::vector<int> ProcessesWith(const std::string& needle) {
+  std::vector<int> pids;
+  for (const auto& entry : std::filesystem::directory_iterator("/proc")) {
+    const std::string name = entry.path().filename().string();
+    if (name.find_first_not_of("0123456789") != std::string::npos) continue;
+    std::string cmdline = ReadFile(entry.path() / "cmdline");
+    std::replace(cmdline.begin(), cmdline.end(), '\0', ' ');
+    if (cmdline.find(needle) != std::string::npos) pids.push_back(std::stoi(name));
+  }
+  return pids;
+}
+
+// --wall-limit stops the whole study (exit 3) with a run still hanging: its worker dies with
+// the pool, members.csv keeps the rows done (a journal, resumable) and no temporary file is
+// left; the study's own wall_limit_s still ends a hung run as a row (the test above).
+TEST_F(EnsembleCliTest, WallLimitStopsTheStudyAndItsWorkers) {
+  const std::string hang = Write("hang.toml",
+                                 "scene = \"block.toml\"\nwall_limit_s = 600\n"
+                                 "[[axis]]\nkey = \"pulse.amplitude_ratio\"\n"
+                                 "values = [0.5, 1.5, 3]\n")
+                               .string();
+  const auto start = std::chrono::steady_clock::now();
+  const CliRun r = Rockbench("ensemble " + hang + " --out " + Out("w") +
+                             " --jobs 1 --selftest-hang-member 1 --wall-limit 2");
+  const double took_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  EXPECT_EQ(r.exit_code, 3) << r.output;
+  EXPECT_NE(r.output.find("rockbench ensemble: error: wall-clock limit of 2 s reached "
+                          "(--wall-limit)"),
+            std::string::npos)
+      << r.output;
+  EXPECT_LT(took_s, 30.0);
+  // The hung worker ended with its pool (PR_SET_PDEATHSIG), at once or within a moment.
+  std::vector<int> left;
+  for (int i = 0; i < 50; ++i) {
+    left = ProcessesWith(hang + " --worker");
+    if (left.empty()) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  EXPECT_TRUE(left.empty()) << left.size() << " workers outlived the study";
+  const std::string journal = ReadFile(dir_ / "w" / "members.csv");
+  EXPECT_EQ(Rows(journal), 1) << journal;  // member 0's row; member 1 hung
+  for (const auto& entry : std::filesystem::directory_iterator(dir_ / "w")) {
+    EXPECT_EQ(entry.path().filename().string().find(".tmp"), std::string::npos) << entry.path();
+  }
+  const CliRun resumed = Rockbench("ensemble " + hang + " --out " + Out("w") + " --resume");
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.output;
+  EXPECT_EQ(Rows(ReadFile(dir_ / "w" / "members.csv")), 3);
 }
 
 TEST_F(EnsembleCliTest, KeepHistoriesWritesEachRunsHistory) {

@@ -15,6 +15,7 @@
 #include "harness/study_runner.h"
 #include "scene/ground_motion.h"
 #include "scene/intensity.h"
+#include "scene/limits.h"
 
 namespace rockbench {
 namespace {
@@ -137,6 +138,188 @@ TEST_F(StudyTest, ErrorsNameTheFileLineAndKey) {
             std::string::npos);
   EXPECT_NE(Error("scene = \"block.toml\"\n[[axis]]\nkey = \"size_factor\"\nvalues = [0]\n")
                 .find("expected positive numbers"),
+            std::string::npos);
+}
+
+// A value the scene refuses is blamed on the study: its file and line, the axis and value (or
+// the `set` entry) that gave it, and the member's values, then the scene's own message; every
+// value of every axis is checked when the study is read (issue 21: the base scene was blamed).
+TEST_F(StudyTest, AValueOutOfRangeBlamesTheStudysAxisAndValue) {
+  const std::string axis =
+      Error("scene = \"block.toml\"\n[[axis]]\nkey = \"block1.width\"\nvalues = [0.2, -1]\n");
+  EXPECT_EQ(axis.find(dir_.string() + "/study.toml:2: axis block1.width = -1 (member 1: "
+                                      "block1.width = -1): "),
+            0u)
+      << axis;
+  EXPECT_NE(axis.find("block1.width: expected a positive number"), std::string::npos) << axis;
+  EXPECT_NE(axis.find("got -1"), std::string::npos) << axis;
+
+  const std::string set = Error(
+      "scene = \"block.toml\"\nset = [\"run.duration=2\", "
+      "\"block1.height=-3\"]\n");
+  EXPECT_EQ(set.find(dir_.string() + "/study.toml:2: set \"block1.height=-3\": "), 0u) << set;
+  EXPECT_NE(set.find("got -3"), std::string::npos) << set;
+
+  // A derived axis: size_factor 1e-300 makes a width of 4e-301 m.
+  const std::string derived = Error(
+      "scene = \"block.toml\"\n[[axis]]\nkey = \"run.duration\"\nvalues = [1, 2]\n"
+      "[[axis]]\nkey = \"size_factor\"\nvalues = [1, 1e-300]\n");
+  EXPECT_EQ(derived.find(dir_.string() + "/study.toml:5: axis size_factor = 1e-300 (member 1: "
+                                         "run.duration = 1, size_factor = 1e-300): "),
+            0u)
+      << derived;
+  EXPECT_NE(derived.find("block1.width"), std::string::npos) << derived;
+
+  // A broken base scene is the `scene` key's.
+  Write("bad_base.toml", "[block1]\nwidth = -0.4\nheight = 1.2\ndensity = 2000.0\n");
+  const std::string base = Error("scene = \"bad_base.toml\"\n");
+  EXPECT_EQ(base.find(dir_.string() + "/study.toml:1: scene \""), 0u) << base;
+  EXPECT_NE(base.find("block1.width"), std::string::npos) << base;
+}
+
+// A combination the scene refuses that no single value shows (block 2 wider than block 1 only
+// for the second value of both axes) is found when that member runs: its row is an error that
+// names the axis whose value made it fail and every value of the member.
+TEST_F(StudyTest, AMembersErrorRowNamesTheAxisValueAndTheMember) {
+  Write("stack.toml",
+        "[block1]\nwidth = 0.4\nheight = 1.2\ndensity = 2000.0\n"
+        "[block2]\nwidth = 0.3\nheight = 0.9\ndensity = 2000.0\n"
+        "[base.horizontal]\nkind = \"sine_pulse\"\namplitude_g = 0.3\nfrequency_hz = 2.0\n"
+        "[run]\nduration = 1.0\n");
+  const StudyDef s = LoadStudy(Write("study.toml",
+                                     "scene = \"stack.toml\"\n"
+                                     "[[axis]]\nkey = \"block1.width\"\nvalues = [0.4, 0.35]\n"
+                                     "[[axis]]\nkey = \"block2.width\"\nvalues = [0.3, 0.38]\n"));
+  ASSERT_EQ(s.member_count(), 4);
+  EXPECT_TRUE(RunMemberHere(s, 2, "reference").has_result);
+  const MemberRow r = RunMemberHere(s, 3, "reference");
+  EXPECT_EQ(r.status, "error");
+  EXPECT_EQ(r.detail.find(dir_.string() + "/study.toml:5: axis block2.width = 0.38 (member 3: "
+                                          "block1.width = 0.35, block2.width = 0.38): "),
+            0u)
+      << r.detail;
+  EXPECT_NE(r.detail.find("block2.width: expected at most block1.width"), std::string::npos)
+      << r.detail;
+  EXPECT_EQ(MemberText(s, 3), "member 3: block1.width = 0.35, block2.width = 0.38");
+}
+
+// A NUL in a file name printed "rockbench ensemble: " and nothing more; an over-long path a bare
+// file system error of the whole path. Both now name the file, line and key, and show an
+// excerpt.
+TEST_F(StudyTest, ControlCharactersAndImpossiblePathsAreNamedInShort) {
+  const std::string nul = Error("scene = \"blo\\u0000ck.toml\"\n");
+  EXPECT_EQ(nul, dir_.string() +
+                     "/study.toml:1: scene: \"blo\\0ck.toml\" holds a control "
+                     "character (byte 3); expected printable text");
+  const std::string long_path = Error("scene = \"" + std::string(5000, 'a') + ".toml\"\n");
+  EXPECT_NE(long_path.find("study.toml:1: scene: \"aaaa"), std::string::npos) << long_path;
+  EXPECT_NE(long_path.find("... (5005 bytes)\" is a path of 5005 bytes, more than the 4095"),
+            std::string::npos)
+      << long_path;
+  EXPECT_LT(long_path.size(), 400u);
+  const std::string long_name = Error("scene = \"d/" + std::string(300, 'b') + ".toml\"\n");
+  EXPECT_NE(long_name.find("holds a name of 305 bytes, more than the 255"), std::string::npos)
+      << long_name;
+  const std::string record =
+      Error("scene = \"block.toml\"\n[[axis]]\nkey = \"base.horizontal.file\"\nvalues = [\"" +
+            std::string(3000, 'r') + "/" + std::string(3000, 'r') + ".AT2\"]\n");
+  EXPECT_NE(record.find("study.toml:4: axis base.horizontal.file: \"rrrr"), std::string::npos)
+      << record;
+  EXPECT_LT(record.size(), 400u);
+  const std::string glob = Error(
+      "scene = \"block.toml\"\n[[axis]]\nkey = \"base.horizontal.file\"\n"
+      "glob = \"" +
+      std::string(5000, 'g') + "*.AT2\"\n");
+  EXPECT_NE(glob.find("axis base.horizontal.file: glob: \"gggg"), std::string::npos) << glob;
+  EXPECT_LT(glob.size(), 400u);
+  const std::string key = Error(
+      "scene = \"block.toml\"\n[[axis]]\nkey = \"run.\\u0000duration\"\n"
+      "values = [1]\n");
+  EXPECT_NE(key.find("study.toml:2: [[axis]] key: \"run.\\0duration\" holds a control"),
+            std::string::npos)
+      << key;
+  const std::string set = Error("scene = \"block.toml\"\nset = [\"run.duration=\\u00012\"]\n");
+  EXPECT_NE(set.find("study.toml:2: set: \"run.duration=\\x012\" holds a control"),
+            std::string::npos)
+      << set;
+  const std::string value = Error(
+      "scene = \"block.toml\"\n[[axis]]\n"
+      "key = \"base.horizontal.kind\"\nvalues = [\"ricker\\n\"]\n");
+  EXPECT_NE(value.find("axis base.horizontal.kind: \"ricker\\n\" holds a control"),
+            std::string::npos)
+      << value;
+  // An unknown key of a megabyte is cut to an excerpt.
+  const std::string unknown =
+      Error("scene = \"block.toml\"\n" + std::string(1 << 20, 'k') + " = 1\n");
+  EXPECT_NE(unknown.find("study.toml:2: kkkk"), std::string::npos);
+  EXPECT_LT(unknown.size(), 400u);
+}
+
+// At most kMaxStudyRuns runs (members x engines), checked before any member is built and
+// without overflow (ten axes of 100 values are 1e20 members).
+TEST_F(StudyTest, TheStudysSizeIsLimited) {
+  const auto values = [](int n) {
+    std::string v = "[";
+    for (int i = 0; i < n; ++i) v += (i ? ", " : "") + std::to_string(1.0 + 0.001 * i);
+    return v + "]";
+  };
+  const std::string big = Error(
+      "scene = \"block.toml\"\nengines = [\"reference\", \"bullet\"]\n"
+      "[[axis]]\nkey = \"run.duration\"\nvalues = " +
+      values(1000) + "\n[[axis]]\nkey = \"block1.height\"\nvalues = " + values(501) + "\n");
+  EXPECT_NE(big.find("study.toml: 501000 members x 2 runs = 1002000 runs (axes: run.duration "
+                     "(1000) x block1.height (501)), more than the limit of 1000000 runs"),
+            std::string::npos)
+      << big;
+  std::string huge = "scene = \"block.toml\"\n";
+  const char* keys[] = {"run.duration",
+                        "block1.height",
+                        "block1.width",
+                        "block1.density",
+                        "run.gravity",
+                        "base.horizontal.amplitude_g",
+                        "base.horizontal.frequency_hz",
+                        "initial.theta1",
+                        "model.rtol",
+                        "run.output_interval"};
+  for (const char* k : keys) {
+    huge += "[[axis]]\nkey = \"" + std::string(k) + "\"\nvalues = " + values(100) + "\n";
+  }
+  const std::string e = Error(huge);
+  EXPECT_NE(e.find("1e+20 members x 1 runs = 1e+20 runs"), std::string::npos) << e;
+  // Exactly at the limit is fine as far as the size goes (the axis's 1000 values are checked).
+  EXPECT_EQ(
+      Error("scene = \"block.toml\"\n[[axis]]\nkey = \"run.duration\"\nvalues = " + values(1000) +
+            "\n[[axis]]\nkey = \"block1.height\"\nvalues = " + values(1000) + "\n"),
+      "no error");
+}
+
+// A member whose run would need more than the memory budget is refused when the study is read,
+// naming the axis and value and the scene key of the estimate; a larger budget lets it load.
+TEST_F(StudyTest, AMemberPastTheMemoryBudgetIsRefusedNamingItsAxis) {
+  const std::string text =
+      "scene = \"block.toml\"\n[[axis]]\nkey = \"run.output_interval\"\n"
+      "values = [0.01, 1e-9]\n";
+  const std::string e = Error(text);
+  EXPECT_EQ(e.find(dir_.string() + "/study.toml:2: axis run.output_interval = 1e-09 (member 1: "
+                                   "run.output_interval = 1e-09): "),
+            0u)
+      << e;
+  EXPECT_NE(e.find("run.output_interval: needs an estimated"), std::string::npos) << e;
+  EXPECT_NE(e.find("more than the memory budget of 2 GiB"), std::string::npos) << e;
+  const ResourceBudget before = ProcessBudget();
+  ResourceBudget large;
+  large.memory_bytes = 1e13;
+  SetProcessBudget(large);
+  EXPECT_EQ(Error(text), "no error");
+  SetProcessBudget(before);
+}
+
+TEST_F(StudyTest, WallLimitIsInTheRangeOfWallLimit) {
+  EXPECT_NE(Error("scene = \"block.toml\"\nwall_limit_s = 1e300\n")
+                .find("study.toml:2: wall_limit_s: expected 0.001 to 1e+07 s, got 1e+300"),
+            std::string::npos);
+  EXPECT_NE(Error("scene = \"block.toml\"\nwall_limit_s = 5e-324\n").find("wall_limit_s"),
             std::string::npos);
 }
 
