@@ -48,6 +48,15 @@ struct NonFiniteField {
 // rate is omega1 (its CCW angular velocity with the sign turned), its pose and velocity by what
 // they are; then block 2's; then the ground's (kinematic drive).
 NonFiniteField FirstNonFinite(const StepReadout& s, bool two_blocks) {
+  // The common case first, without a string: a sum is finite when every term is (a finite sum
+  // that overflows is sorted out below).
+  auto sum = [](const BodyReadout& b) {
+    return b.x_m + b.y_m + b.cos_phi + b.sin_phi + b.vx_mps + b.vy_mps + b.w_radps;
+  };
+  if (std::isfinite(sum(s.block1) + (two_blocks ? sum(s.block2) : 0.0) + s.ground_x_m +
+                    s.ground_y_m + s.ground_vx_mps + s.ground_vy_mps)) {
+    return {};
+  }
   auto body = [](const BodyReadout& b, int k) -> NonFiniteField {
     const std::string block = "block " + std::to_string(k);
     const std::pair<const char*, double> fields[] = {

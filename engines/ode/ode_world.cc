@@ -27,8 +27,9 @@ static_assert(sizeof(dReal) == sizeof(double), "ODE must be double precision");
 // for how loosely the bound holds, and 96 above any real step (|omega| dt < 1e4).
 constexpr double kMaxStepRotation_rad = 1e100;
 
+// |v| of a 3-vector (+inf past the range of a double: then the bound is exceeded anyway).
 double Norm2(const dReal* v) {
-  return std::hypot(v[0], v[1], v[2]);
+  return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
 }
 
 // Process-wide ODE library state. dInitODE2 / dCloseODE use an unguarded static counter in
