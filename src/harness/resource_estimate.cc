@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <system_error>
+#include <variant>
 
 #include "harness/engine_registry.h"
 #include "scene/engine_settings.h"
@@ -176,20 +177,35 @@ RunEstimate EstimateRun(const Scene& scene, const std::vector<std::string>& engi
     const Engine* engine = FindEngine(name);
     if (engine == nullptr) continue;
     double dt = 0.0;
+    // A solver's iterations past its default cost in proportion (an upper bound: some stop
+    // early when they converge); the key that raised them is the one named.
+    double iterations = 1.0;
+    std::string key = name + ".time_step";
     try {
-      const EngineSettings settings = ResolveEngineSettings(scene, engine->settings_schema());
+      const EngineSettingsSchema& schema = engine->settings_schema();
+      const EngineSettings settings = ResolveEngineSettings(scene, schema);
       dt = settings.Number("time_step");
+      for (const SettingDef& def : schema.settings) {
+        const auto* fallback = std::get_if<std::int64_t>(&def.default_value);
+        if (fallback == nullptr || def.key.find("iterations") == std::string::npos) continue;
+        const double ratio =
+            static_cast<double>(settings.Integer(def.key)) / std::max<double>(1.0, *fallback);
+        if (ratio > iterations) {
+          iterations = ratio;
+          key = name + "." + def.key;
+        }
+      }
     } catch (const std::exception&) {
       continue;  // the engine's own check names the problem
     }
     if (!(dt > 0.0)) continue;
     const double steps = std::ceil(duration / dt);
     const double runs = 1.0 + std::max(engine_members, 0);
-    e.terms.push_back({name + ".time_step",
-                       Count(steps) + " " + name + " steps (run.duration / " + name +
-                           ".time_step) in " + Count(runs) + " runs",
-                       steps * kEngineStepBytes * (1.0 + concurrent_eng),
-                       steps * kEngineStepCpu_s * runs});
+    std::string what = Count(steps) + " " + name + " steps (run.duration / " + name +
+                       ".time_step) in " + Count(runs) + " runs";
+    if (iterations > 1.0) what += ", " + Count(iterations) + " times the default iterations";
+    e.terms.push_back({key, what, steps * kEngineStepBytes * (1.0 + concurrent_eng),
+                       steps * kEngineStepCpu_s * runs * iterations});
   }
   for (const EstimateTerm& t : e.terms) {
     e.bytes += t.bytes;
