@@ -30,9 +30,10 @@ ExportEstimate EstimateExport(const ExportRequest& r) {
   // Measured: a one-frame render at 1280x720 peaks at 134 MiB, most of it the program, Mesa's
   // llvmpipe (LLVM) and the font.
   e.program_bytes = 130.0 * kMiB;
-  // Our RGBA buffer, and Mesa's own colour buffer of the same size that it copies into ours
-  // (measured: 4096x4096 at supersample 2 peaks 600 MB above the 720p run, 2.3x the buffer).
-  e.gl_bytes = 2.0 * 4.0 * drawn;
+  // Our RGBA buffer, and Mesa's own colour buffer of the same size that it copies into ours,
+  // with an eighth more for Mesa's tiles and our rows (measured: 4096x2048 at supersample 4
+  // peaks at 1.11 GiB, 2.1 times the 512 MiB buffer above the program and the frame).
+  e.gl_bytes = 2.25 * 4.0 * drawn;
   // The RGB frame and the PNG encoding of one frame (at most the raw bytes plus headers).
   e.frame_bytes = 2.0 * 3.0 * pixels + 64.0 * 1024.0;
   e.times_bytes = 8.0 * r.frames;

@@ -45,7 +45,7 @@ struct ExportRequest {
 /// sizes, from measurements (docs/renders.md, "Limits").
 struct ExportEstimate {
   double program_bytes = 0.0;  ///< the program, its libraries and Mesa (measured: 130 MiB)
-  double gl_bytes = 0.0;       ///< the supersampled RGBA buffer, ours and Mesa's copy
+  double gl_bytes = 0.0;       ///< the supersampled RGBA buffer, ours and Mesa's (2.25x)
   double frame_bytes = 0.0;    ///< the final RGB frame and its PNG encoding
   double times_bytes = 0.0;    ///< the frame times
   double history_bytes = 0.0;  ///< the histories drawn

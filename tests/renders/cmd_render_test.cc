@@ -1,16 +1,26 @@
 // `rockbench render` run as a program: from a scene file (simulated first), from a run folder
 // (drawn from its histories, not simulated again), and its errors.
+#include <fcntl.h>
 #include <gtest/gtest.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <thread>
+#include <vector>
 
+#include "renders/limits.h"
 #include "renders/renderer.h"
 #include "scene/history.h"
 #include "scene/scene.h"
+
+extern char** environ;
 
 namespace rockbench::renders {
 namespace {
@@ -110,6 +120,220 @@ TEST(CmdRender, SaysThisBuildHasNoOsmesa) {
   // Said before any work: the reference model did not run.
   EXPECT_EQ(r.output.find("reference:"), std::string::npos) << r.output;
   fs::remove_all(out);
+}
+
+#endif
+
+#if ROCKBENCH_HAVE_OSMESA
+
+// Every entry of `dir` (recursively) whose name holds ".tmp": temporary files left behind.
+std::vector<std::string> Temporaries(const fs::path& dir) {
+  std::vector<std::string> found;
+  std::error_code ec;
+  for (fs::recursive_directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+    if (it->path().filename().string().find(".tmp") != std::string::npos) {
+      found.push_back(it->path().string());
+    }
+  }
+  return found;
+}
+
+// Runs `rockbench render ARGS` as a child; its exit status and peak resident memory (kB).
+struct Measured {
+  int status = -1;
+  long max_rss_kb = 0;
+};
+
+Measured RunMeasured(const std::vector<std::string>& args) {
+  std::vector<std::string> argv = {ROCKBENCH_CLI, "render"};
+  argv.insert(argv.end(), args.begin(), args.end());
+  std::vector<char*> cargs;
+  for (std::string& a : argv) cargs.push_back(a.data());
+  cargs.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
+  pid_t pid = -1;
+  Measured m;
+  const int rc = ::posix_spawn(&pid, cargs[0], &actions, nullptr, cargs.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  if (rc != 0) return m;
+  int st = 0;
+  rusage usage{};
+  ::wait4(pid, &st, 0, &usage);
+  m.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+  m.max_rss_kb = usage.ru_maxrss;
+  return m;
+}
+
+// The whole drawing is estimated before it starts: a 2048x2048 frame at supersample 2 peaks
+// below its estimate, and the estimate is not far above it (the estimate is what the memory
+// budget is checked against).
+TEST(CmdRender, TheMemoryEstimateBoundsTheRun) {
+  const fs::path out = Folder("measured");
+  const Measured m =
+      RunMeasured({(kSource / "scenes/thesis_free_rocking.toml").string(), "--out", out.string(),
+                   "--frames", "--size", "2048x2048", "--to", "0.1", "--fps", "10"});
+  ASSERT_EQ(m.status, 0);
+  ExportRequest request;
+  request.width_px = request.height_px = 2048;
+  request.supersample = 2;
+  request.frames = 1;
+  request.png_frames = true;
+  const double estimate = EstimateExport(request).memory_bytes();
+  const double peak = 1024.0 * static_cast<double>(m.max_rss_kb);
+  EXPECT_LE(peak, estimate) << "peak " << peak << " B, estimate " << estimate << " B";
+  EXPECT_LE(estimate, 1.6 * peak) << "peak " << peak << " B, estimate " << estimate << " B";
+  fs::remove_all(out);
+}
+
+// --wall-limit stops a long export between two frames: exit 3, the watchdog's message, and no
+// frames/, no video and no temporary file in the output folder (a video's ffmpeg ends too).
+TEST(CmdRender, WallLimitStopsTheExportWithoutPartialOutput) {
+  const fs::path out = Folder("wall");
+  const auto start = std::chrono::steady_clock::now();
+  const Result r =
+      RunCli((kSource / "scenes/thesis_rinaldi228.toml").string() + " --out " + out.string() +
+             " --frames --mp4 --gif --size 640x480 --fps 60 --speed 0.05 "
+             "--wall-limit 2");
+  const double took_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  EXPECT_EQ(r.status, 3) << r.output;
+  EXPECT_NE(r.output.find("rockbench render: error: wall-clock limit of 2 s reached "
+                          "(--wall-limit); no output written for what was unfinished"),
+            std::string::npos)
+      << r.output;
+  EXPECT_LT(took_s, 10.0);
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));  // a straggling ffmpeg
+  EXPECT_FALSE(fs::exists(out / "frames"));
+  EXPECT_FALSE(fs::exists(out / "animation.mp4"));
+  EXPECT_FALSE(fs::exists(out / "animation.gif"));
+  EXPECT_EQ(Temporaries(out), std::vector<std::string>{});
+  fs::remove_all(out);
+}
+
+// A render killed with SIGKILL (no chance to tidy up) leaves no frames/ (the frames are made in
+// a hidden .frames.tmp<pid> folder renamed whole); the next render into the folder removes that
+// folder and writes the whole sequence, replacing an earlier longer one.
+TEST(CmdRender, AKilledRenderLeavesNoPartialOutput) {
+  const fs::path out = Folder("killed");
+  fs::create_directories(out / "frames");
+  std::ofstream(out / "frames" / "frame_99999.png") << "an older, longer export";
+  std::vector<std::string> argv = {
+      ROCKBENCH_CLI, "render",     (kSource / "scenes/thesis_rinaldi228.toml").string(),
+      "--out",       out.string(), "--frames",
+      "--size",      "320x240",    "--fps",
+      "60",          "--speed",    "0.02"};
+  std::vector<char*> cargs;
+  for (std::string& a : argv) cargs.push_back(a.data());
+  cargs.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
+  pid_t pid = -1;
+  ASSERT_EQ(::posix_spawn(&pid, cargs[0], &actions, nullptr, cargs.data(), environ), 0);
+  posix_spawn_file_actions_destroy(&actions);
+  const fs::path tmp = out / (".frames.tmp" + std::to_string(pid));
+  const auto start = std::chrono::steady_clock::now();
+  auto frames_in = [](const fs::path& d) {
+    std::error_code ec;
+    int n = 0;
+    for (fs::directory_iterator it(d, ec), end; !ec && it != end; it.increment(ec)) ++n;
+    return n;
+  };
+  while (frames_in(tmp) < 10 &&
+         std::chrono::steady_clock::now() - start < std::chrono::seconds(60)) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  ::kill(pid, SIGKILL);
+  int st = 0;
+  ::waitpid(pid, &st, 0);
+  ASSERT_TRUE(WIFSIGNALED(st)) << "the render ended before it was killed";
+  EXPECT_GE(frames_in(tmp), 10);
+  // The older export is untouched, and none of the killed one's frames is in frames/.
+  EXPECT_EQ(CountFiles(out / "frames"), 1);
+  // The next render removes the dead process's folder and replaces the older frames.
+  const Result r = RunCli((kSource / "scenes/thesis_free_rocking.toml").string() + " --out " +
+                          out.string() + " --frames --size 160x120 --to 0.5 --fps 10");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_FALSE(fs::exists(tmp));
+  EXPECT_EQ(CountFiles(out / "frames"), 5);
+  EXPECT_FALSE(fs::exists(out / "frames" / "frame_99999.png"));
+  EXPECT_EQ(Temporaries(out), std::vector<std::string>{});
+  fs::remove_all(out);
+}
+
+#endif
+
+// Sizes, frame rates and frame counts are checked before anything is simulated, loaded or
+// made: each error names the option, its value and the limit, and exits 2 (issue 21:
+// `--fps 1e9` wrote 2e8 PNGs until killed; `--to 1e9` and `--size 100000x100000` exhausted the
+// memory).
+TEST(CmdRender, LimitsAreCheckedBeforeAnyWork) {
+  const std::string scene = (kSource / "scenes/thesis_free_rocking.toml").string();
+  const fs::path out = Folder("limits");
+  struct Case {
+    std::string args, expected;
+  };
+  const Case cases[] = {
+      {"--fps 1e9", "--fps 1e+09: expected more than 0 and at most 240 frames per second"},
+      {"--fps nan", "--fps nan: expected more than 0 and at most 240"},
+      {"--to 1e9", "--to 1e+09: expected 0 to 86400 s"},
+      {"--from -1", "--from -1: expected 0 to 86400 s"},
+      {"--from 2 --to 1", "--to 1: must be later than --from 2"},
+      {"--size 100000x100000", "--size 100000x100000: more than the limit of 8192 pixels per side"},
+      {"--size 99999999999999999999999x720",
+       "--size 99999999999999999999999x720: more than the limit of 8192 pixels per side"},
+      {"--size 32x32", "--size 32x32: at least 64x48 pixels"},
+      {"--size 8192x4096 --supersample 4",
+       "--size 8192x4096 --supersample 4: drawn at 32768x16384 pixels, more than OSMesa's 16384 "
+       "per side"},
+      {"--supersample 9", "--supersample 9: expected 1..4"},
+      {"--to 5000",
+       "--to 5000: the animation would have 150000 frames ((5000 - 0) s x --fps 30 / "
+       "--speed 1), more than the limit of 100000 frames"},
+      {"--to 1 --speed 1e-300", "the animation would have 3e+301 frames"},
+      {"--speed 0", "--speed 0: expected a number > 0"},
+      {"--name ../elsewhere", "--name ../elsewhere: expected a base name"},
+      {"--size " + std::string(100000, '1') + "x720", "--size 1111111111"},
+      {"--wall-limit -1", "--wall-limit"},
+      {"--memory-budget 0", "--memory-budget"},
+  };
+  for (const Case& c : cases) {
+    const Result r = RunCli(scene + " --out " + out.string() + " --frames " + c.args);
+    EXPECT_EQ(r.status, 2) << c.args << "\n" << r.output;
+    EXPECT_NE(r.output.find(c.expected), std::string::npos) << c.args << "\n" << r.output;
+    EXPECT_EQ(r.output.find("reference:"), std::string::npos) << "simulated: " << c.args;
+    EXPECT_LT(r.output.size(), 1000u) << c.args;
+  }
+  EXPECT_FALSE(fs::exists(out));
+}
+
+#if ROCKBENCH_HAVE_OSMESA
+
+// What is known only from the motion is checked once it is, before any frame is drawn: the
+// window's frame count up to the run's end, and the memory estimate against --memory-budget.
+TEST(CmdRender, TheRunsWindowAndTheMemoryAreCheckedBeforeDrawing) {
+  const std::string scene = (kSource / "scenes/thesis_free_rocking.toml").string();
+  const fs::path out = Folder("budget");
+  Result r = RunCli(scene + " --out " + out.string() + " --frames --fps 240 --speed 0.001");
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_NE(r.output.find("the run's end (6 s, no --to given): the animation would have 1.44e+06 "
+                          "frames"),
+            std::string::npos)
+      << r.output;
+  r = RunCli(scene + " --out " + out.string() + " --frames --size 8192x8192");
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_NE(r.output.find("thesis_free_rocking.toml: --size 8192x8192 --supersample 2: needs an "
+                          "estimated"),
+            std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("more than the memory budget of 2 GiB"), std::string::npos) << r.output;
+  r = RunCli(scene + " --out " + out.string() + " --frames --memory-budget 0.05");
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_NE(r.output.find("more than the memory budget of 51.2 MiB"), std::string::npos)
+      << r.output;
+  EXPECT_FALSE(fs::exists(out));
 }
 
 #endif
