@@ -336,8 +336,8 @@ class Simulator {
   [[gnu::cold]] NonFinite NonFiniteState(const Vec4& y) const;
   // The same for a step: its end state y1, the enclosure of its dense output (every state the
   // step's samples and events are taken from), the contact margins at its end and, above
-  // kEnergyCheckRate_radps, the energy there.
-  // Cold: on a valid run only its first line, StepFinite, runs.
+  // kEnergyCheckRate_radps, the energy there. Called only when StepFinite says a value is not
+  // finite (never on a valid run).
   [[gnu::cold]] NonFinite NonFiniteStep(const StepDense& at, const Vec4& y1,
                                         const ContactMargins& cm1) const;
   // Whether NonFiniteStep finds nothing, cheaply: a sum is finite when every term is (a finite
@@ -486,9 +486,9 @@ void Simulator::DoImpact(double t, const State& pre, ImpactKind kind) {
   const ImpactResult ir = ResolveImpact(geo_, before, pre, kind, cfg_.rest_rate_rel);
   // A post-impact state or energy that is not finite ends the run before the impact.
   NonFinite nf = NonFiniteState(ToVec(ir.chosen.state));
-  if (!nf.found() && !std::isfinite(ir.chosen.energy_after_j))
-    nf = {"energy", ir.chosen.energy_after_j};
-  if (!nf.found() && !std::isfinite(ir.energy_before_j)) nf = {"energy", ir.energy_before_j};
+  for (const double e : {ir.energy_before_j, ir.chosen.energy_after_j}) {
+    if (!nf.found() && !std::isfinite(e)) nf = {"energy", e};
+  }
   if (nf.found()) {
     nf.quantity +=
         kind == ImpactKind::kGround ? " after a ground impact" : " after an interface impact";
