@@ -5,12 +5,16 @@
 #include "harness/study.h"
 
 #include <gtest/gtest.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <fstream>
 #include <sstream>
 
 #include "common/scratch_dir_test.h"
+#include "common/shell_test.h"
 #include "harness/study_member.h"
 #include "harness/study_runner.h"
 #include "scene/ground_motion.h"
@@ -313,6 +317,57 @@ TEST_F(StudyTest, AMemberPastTheMemoryBudgetIsRefusedNamingItsAxis) {
   SetProcessBudget(large);
   EXPECT_EQ(Error(text), "no error");
   SetProcessBudget(before);
+}
+
+// A run that runs out of memory all the same (here: an address-space limit far below the
+// memory budget its estimate was checked against) is a row that says so and names the engine
+// and the member's values, not a bare "std::bad_alloc". Run in a child process: the limit is
+// its own.
+TEST_F(StudyTest, ARunOutOfMemoryIsARowThatSaysSo) {
+#if defined(__SANITIZE_ADDRESS__)
+  GTEST_SKIP() << "an address-space limit and AddressSanitizer's shadow memory do not mix";
+#endif
+  const StudyDef s = LoadStudy(Write("study.toml",
+                                     "scene = \"block.toml\"\n"
+                                     "[[axis]]\nkey = \"run.duration\"\nvalues = [2, 100]\n"
+                                     "[[axis]]\nkey = \"run.output_interval\"\n"
+                                     "values = [0.01]\n"));
+  int fds[2];
+  ASSERT_EQ(::pipe(fds), 0);
+  const pid_t pid = ::fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    ::close(fds[0]);
+    ResourceBudget large;
+    large.memory_bytes = 1e13;
+    SetProcessBudget(large);
+    // Member 1: 100 s at an output interval of 1 us would hold 1e8 history rows (GBs); the
+    // address space is capped 256 MiB above what the process holds now.
+    StudyDef t = s;
+    t.axes[1].values[0].toml = t.axes[1].values[0].text = "1e-06";
+    const std::string status = testing_util::ReadFile("/proc/self/status");
+    const size_t at = status.find("VmSize:");
+    const long vm_kb = at == std::string::npos ? 0 : std::stol(status.substr(at + 7));
+    const rlimit cap{static_cast<rlim_t>(vm_kb + 256 * 1024) * 1024,
+                     static_cast<rlim_t>(vm_kb + 256 * 1024) * 1024};
+    ::setrlimit(RLIMIT_AS, &cap);
+    const MemberRow r = RunMemberHere(t, 1, "reference");
+    const std::string out = r.status + "\n" + r.detail;
+    (void)!::write(fds[1], out.data(), out.size());
+    ::_exit(0);
+  }
+  ::close(fds[1]);
+  std::string out;
+  char buf[4096];
+  for (ssize_t n; (n = ::read(fds[0], buf, sizeof buf)) > 0;) out.append(buf, n);
+  ::close(fds[0]);
+  int st = 0;
+  ::waitpid(pid, &st, 0);
+  ASSERT_TRUE(WIFEXITED(st)) << out;
+  EXPECT_EQ(out.find("error\nout of memory (std::bad_alloc) in the reference run of member 1: "
+                     "run.duration = 100, run.output_interval = 1e-06: "),
+            0u)
+      << out;
 }
 
 TEST_F(StudyTest, WallLimitIsInTheRangeOfWallLimit) {
