@@ -3,7 +3,9 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <limits>
 
+#include "scene/limits.h"
 #include "scene/scene.h"
 
 namespace rockbench {
@@ -36,9 +38,16 @@ std::string RangeText(SettingRange range) {
   return "a number";
 }
 
+// Every engine number: at most 1e6 in magnitude and not subnormal (docs/limits.md). No engine
+// setting means anything past it (MuJoCo's impratio = 1e300 made every step non-finite), and a
+// subnormal value only makes arithmetic slow.
+constexpr double kMaxSettingMagnitude = 1e6;
+
 bool InRange(double v, SettingRange range) {
-  if (range == SettingRange::kNonNegativeOrInfinite) return v >= 0.0;  // false for NaN
+  if (range == SettingRange::kNonNegativeOrInfinite && v == HUGE_VAL) return true;
   if (!std::isfinite(v)) return false;
+  if (std::abs(v) > kMaxSettingMagnitude) return false;
+  if (v != 0.0 && std::abs(v) < std::numeric_limits<double>::min()) return false;
   switch (range) {
     case SettingRange::kFinite:
       return true;
@@ -61,7 +70,8 @@ std::string Expected(const SettingDef& d) {
       [&](const auto& def) -> std::string {
         using T = std::decay_t<decltype(def)>;
         if constexpr (std::is_same_v<T, double>) {
-          return RangeText(d.range) + (d.unit.empty() ? "" : " (" + d.unit + ")");
+          return RangeText(d.range) + (d.unit.empty() ? "" : " (" + d.unit + ")") +
+                 ", with magnitude at most 1e6 and not subnormal (docs/limits.md)";
         } else if constexpr (std::is_same_v<T, std::int64_t>) {
           return "an integer from " + std::to_string(d.min_integer) + " to " +
                  std::to_string(d.max_integer);
@@ -83,7 +93,7 @@ std::string Expected(const SettingDef& d) {
 SettingValue Checked(const SettingDef& d, const RawSetting& raw, const std::string& engine) {
   const auto fail = [&]() {
     throw SceneError(raw.where + ": " + engine + "." + d.key + ": expected " + Expected(d) +
-                     ", got " + SettingText(raw.value));
+                     ", got " + Excerpt(SettingText(raw.value)));
   };
   return std::visit(
       [&](const auto& def) -> SettingValue {

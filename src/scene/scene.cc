@@ -46,6 +46,9 @@ const Limit kAtolLimit{limits::kMinAtol, 0.1, "docs/limits.md"};
 const Limit kRateLimit{0.0, limits::kMaxRate_radps, "ten turns a second; docs/limits.md", true};
 const Limit kOverturnLimit{0.0, 1.5707963267948966,
                            "a block tilted pi/2 lies on its side; docs/limits.md"};
+const Limit kSamplePrecisionLimit{0.0, 100.0,
+                                  "a record's samples are known to their printed digits; "
+                                  "docs/limits.md"};
 const Limit kToleranceLimit{0.0, 1.5707963267948966, "docs/limits.md"};
 
 // An acceleration in g for messages, to six digits.
@@ -671,8 +674,9 @@ class Reader {
         NonNegativeInteger(cmp, "compare", "engine_members", 100000).value_or(c.engine_members));
     c.amplitude_rel =
         Number(cmp, "compare", "amplitude_rel", Rule::kUnitInterval, "").value_or(c.amplitude_rel);
-    c.sample_precision = Number(cmp, "compare", "sample_precision", Rule::kNonNegative, "")
-                             .value_or(c.sample_precision);
+    c.sample_precision =
+        Number(cmp, "compare", "sample_precision", Rule::kNonNegative, "", &kSamplePrecisionLimit)
+            .value_or(c.sample_precision);
     c.initial_rel =
         Number(cmp, "compare", "initial_rel", Rule::kUnitInterval, "").value_or(c.initial_rel);
     if (const auto seed = NonNegativeInteger(cmp, "compare", "seed", INT64_MAX)) {
@@ -1054,7 +1058,8 @@ void ValidateScene(const Scene& scene) {
   if (c.members < 0) fail("compare.members", "expected a non-negative integer");
   if (c.engine_members < 0) fail("compare.engine_members", "expected a non-negative integer");
   check("compare.amplitude_rel", c.amplitude_rel, Rule::kUnitInterval, "");
-  check("compare.sample_precision", c.sample_precision, Rule::kNonNegative, "");
+  limit("compare.sample_precision", c.sample_precision, kSamplePrecisionLimit, Rule::kNonNegative,
+        "");
   check("compare.initial_rel", c.initial_rel, Rule::kUnitInterval, "");
 }
 

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "scene/engine_settings.h"
 #include "scene/ground_motion.h"
 #include "scene/scene.h"
 
@@ -267,6 +268,32 @@ TEST_F(InputFiles, AnAbsurdSampleIsRefusedWithItsLine) {
                     "abs.txt:3: sample 3 = 100 cm/s2 times base.horizontal.scale = "
                     "2000 is 203.943 g");
   }
+}
+
+// Every engine number is at most 1e6 in magnitude and not subnormal (MuJoCo's impratio =
+// 1e300 made every step non-finite); inf stays allowed where the schema allows it.
+TEST(SceneLimits, EngineNumbersAreBounded) {
+  EngineSettingsSchema schema;
+  schema.engine = "fake";
+  schema.Number("impratio", 1.0, SettingRange::kPositive, "", "1", "ratio")
+      .Number("friction", 0.5, SettingRange::kNonNegativeOrInfinite, "", "-", "mu");
+  const auto error = [&](const std::string& table) {
+    try {
+      ResolveEngineSettings(ParseScene(kBlocks + "[fake]\n" + table, "scenes/x.toml"), schema);
+    } catch (const SceneError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_CONTAINS(error("impratio = 1e300\n"),
+                  "scenes/x.toml:10: fake.impratio: expected a positive number, with magnitude at "
+                  "most 1e6 and not subnormal (docs/limits.md), got 1e+300");
+  EXPECT_CONTAINS(error("impratio = 5e-324\n"), "not subnormal");
+  EXPECT_EQ(error("impratio = 1e6\nfriction = inf\n"), "");
+  EXPECT_CONTAINS(error("friction = 1e7\n"), "fake.friction: expected a number >= 0, or inf");
+  // compare.sample_precision: at most 100 half-digits (1e300 made every member non-finite).
+  EXPECT_CONTAINS(ErrorOf(kBlocks, {"compare.sample_precision=1e300"}),
+                  "compare.sample_precision: expected a number >= 0 at most 100");
 }
 
 TEST(ResourceBudget, AnEstimatePastTheBudgetNamesKeyAndFigures) {
