@@ -114,7 +114,7 @@ void WriteStudyJson(const StudyDef& study, const std::filesystem::path& dir, int
   {
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
     out << j.dump(2) << "\n";
-    if (!out) throw SceneError(tmp.string() + ": cannot write");
+    if (!out) throw SceneError(Excerpt(tmp.string(), 200) + ": cannot write");
   }
   std::filesystem::rename(tmp, path);
 }

@@ -142,6 +142,25 @@ renders::RenderConfig ConfigFromOptions(const RenderOptions& opt) {
   if (!opt.frames && !opt.mp4 && !opt.gif) {
     Fail(kExitBadInput, "nothing to make: give --frames, --mp4 and/or --gif");
   }
+  // The output folder: a path the system can make (at most 4095 bytes, each name at most 255),
+  // printable.
+  {
+    bool ok = !opt.out.empty() && opt.out.size() <= 4095;
+    size_t start = 0;
+    while (ok && start <= opt.out.size()) {
+      const size_t end = std::min(opt.out.find('/', start), opt.out.size());
+      ok = end - start <= 255;
+      start = end + 1;
+    }
+    ok = ok && std::none_of(opt.out.begin(), opt.out.end(), [](char c) {
+           return static_cast<unsigned char>(c) < 0x20 || c == 0x7f;
+         });
+    if (!ok) {
+      Fail(kExitBadInput, "--out " + Excerpt(opt.out) + " (" + std::to_string(opt.out.size()) +
+                              " bytes): expected a printable folder path of at most 4095 "
+                              "bytes, each name at most 255");
+    }
+  }
   const std::string size = "--size " + Excerpt(opt.size);
   std::smatch m;
   static const std::regex kSize(R"(^\s*(\d+)\s*[xX]\s*(\d+)\s*$)");
@@ -410,7 +429,8 @@ void Draw(const RenderOptions& opt, const renders::RenderConfig& config, Motion 
   } catch (const CLI::RuntimeError&) {
     throw;
   } catch (const std::runtime_error& e) {
-    Fail(kExitCannotRender, e.what());
+    const std::string what = e.what();
+    Fail(kExitCannotRender, what.size() > 1000 ? Excerpt(what, 1000) : what);
   }
 }
 

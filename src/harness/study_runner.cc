@@ -17,6 +17,7 @@
 #include <sstream>
 
 #include "harness/engines.h"
+#include "scene/limits.h"
 #include "util/subprocess.h"
 
 extern char** environ;
@@ -296,17 +297,19 @@ MembersJournal::MembersJournal(const StudyDef& study, const std::filesystem::pat
   const std::string header = MembersCsvHeader(study);
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
-  if (ec) throw SceneError(dir.string() + ": cannot create the folder: " + ec.message());
+  if (ec)
+    throw SceneError(Excerpt(dir.string(), 200) + ": cannot create the folder: " + ec.message());
   const bool exists = std::filesystem::exists(path_);
   if (exists && !resume) {
-    throw SceneError(path_.string() +
+    throw SceneError(Excerpt(path_.string(), 200) +
                      ": exists (use --resume to go on with it, or another --out folder)");
   }
   size_t keep = 0;
   if (exists) {
     const std::string text = ReadAll(path_);
     if (text.compare(0, header.size(), header) != 0) {
-      throw SceneError(path_.string() + ":1: not this study's members.csv (expected the header " +
+      throw SceneError(Excerpt(path_.string(), 200) +
+                       ":1: not this study's members.csv (expected the header " +
                        header.substr(0, header.size() - 1) + ")");
     }
     keep = header.size();
@@ -326,10 +329,11 @@ MembersJournal::MembersJournal(const StudyDef& study, const std::filesystem::pat
     std::filesystem::resize_file(path_, keep);
   }
   fd_ = ::open(path_.c_str(), O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0644);
-  if (fd_ < 0) throw SceneError(path_.string() + ": cannot write: " + std::strerror(errno));
+  if (fd_ < 0)
+    throw SceneError(Excerpt(path_.string(), 200) + ": cannot write: " + std::strerror(errno));
   if (!exists) {
     if (::write(fd_, header.data(), header.size()) != static_cast<ssize_t>(header.size())) {
-      throw SceneError(path_.string() + ": cannot write: " + std::strerror(errno));
+      throw SceneError(Excerpt(path_.string(), 200) + ": cannot write: " + std::strerror(errno));
     }
   }
 }
@@ -345,7 +349,7 @@ bool MembersJournal::Has(const StudyTask& t) const {
 void MembersJournal::Append(const MemberRow& row) {
   const std::string line = MembersCsvLine(study_, row);
   if (::write(fd_, line.data(), line.size()) != static_cast<ssize_t>(line.size())) {
-    throw SceneError(path_.string() + ": cannot write: " + std::strerror(errno));
+    throw SceneError(Excerpt(path_.string(), 200) + ": cannot write: " + std::strerror(errno));
   }
   const int e = static_cast<int>(
       std::find(study_.engines.begin(), study_.engines.end(), row.engine) - study_.engines.begin());
@@ -361,7 +365,8 @@ void MembersJournal::Finish() {
     const size_t nl = text.find('\n', pos);
     const std::string line = text.substr(pos, nl + 1 - pos);
     const std::optional<RowKey> key = MembersCsvKey(study_, line);
-    if (!key) throw SceneError(path_.string() + ": an unreadable row: " + line);
+    if (!key)
+      throw SceneError(Excerpt(path_.string(), 200) + ": an unreadable row: " + Excerpt(line, 200));
     const int e =
         static_cast<int>(std::find(study_.engines.begin(), study_.engines.end(), key->engine) -
                          study_.engines.begin());
@@ -372,8 +377,8 @@ void MembersJournal::Finish() {
                    [](const auto& a, const auto& b) { return a.first < b.first; });
   const auto total = static_cast<size_t>(study_.member_count()) * study_.engines.size();
   if (rows.size() != total) {
-    throw SceneError(path_.string() + ": " + std::to_string(rows.size()) + " rows of " +
-                     std::to_string(total) + " runs");
+    throw SceneError(Excerpt(path_.string(), 200) + ": " + std::to_string(rows.size()) +
+                     " rows of " + std::to_string(total) + " runs");
   }
   // A temporary name holding ".tmp.<pid>": the wall-clock limit removes it (util/wall_limit.h).
   const std::filesystem::path tmp = path_.string() + ".tmp." + std::to_string(::getpid());
@@ -381,7 +386,7 @@ void MembersJournal::Finish() {
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
     out << header;
     for (const auto& r : rows) out << r.second;
-    if (!out) throw SceneError(tmp.string() + ": cannot write");
+    if (!out) throw SceneError(Excerpt(tmp.string(), 200) + ": cannot write");
   }
   std::filesystem::rename(tmp, path_);
 }

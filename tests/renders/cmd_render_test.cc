@@ -298,6 +298,7 @@ TEST(CmdRender, LimitsAreCheckedBeforeAnyWork) {
       {"--size " + std::string(100000, '1') + "x720", "--size 1111111111"},
       {"--wall-limit -1", "--wall-limit"},
       {"--memory-budget 0", "--memory-budget"},
+      {"--size 640x480 --name a --wall-limit 0.5 --fps 300", "--fps 300"},
   };
   for (const Case& c : cases) {
     const Result r = RunCli(scene + " --out " + out.string() + " --frames " + c.args);
@@ -307,6 +308,14 @@ TEST(CmdRender, LimitsAreCheckedBeforeAnyWork) {
     EXPECT_LT(r.output.size(), 1000u) << c.args;
   }
   EXPECT_FALSE(fs::exists(out));
+  const Result long_out =
+      RunCli(scene + " --out " + out.string() + "/" + std::string(300, 'o') + " --frames");
+  EXPECT_EQ(long_out.status, 2) << long_out.output;
+  EXPECT_NE(long_out.output.find("expected a printable folder path of at most 4095 bytes, each "
+                                 "name at most 255"),
+            std::string::npos)
+      << long_out.output;
+  EXPECT_LT(long_out.output.size(), 400u);
 }
 
 #if ROCKBENCH_HAVE_OSMESA
