@@ -1028,6 +1028,8 @@ Result Simulator::Run() {
 }  // namespace
 
 Result Simulate(const Scene& scene, const GroundMotion& motion) {
+  // The scene's rules first (the same for every engine): its messages name the key and limit.
+  ValidateScene(scene);
   Simulator sim(scene, motion);
   return sim.Run();
 }
