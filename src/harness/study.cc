@@ -442,28 +442,32 @@ bool Fails(const StudyDef& study, const std::vector<int>& idx, size_t set_entrie
 }
 
 // The error of member `member`'s scene (message `why`), blamed on what made it: the base scene
-// itself, the first `set` entry, or the first axis, whose addition makes the scene fail.
+// itself, a `set` entry or an axis. The scene is built again with the base alone, then the
+// `set` entries, then the axes added one at a time; the first of these builds that fails with
+// the member's own message names the culprit (a build failing otherwise - a base scene whose
+// placeholder record every member replaces - is not it).
 std::string Blame(const StudyDef& study, int64_t member, const std::vector<int>& idx,
                   const std::string& why) {
   std::string message;
-  if (Fails(study, idx, 0, 0, &message)) {
+  if (Fails(study, idx, 0, 0, &message) && message == why) {
     return Where(study.path, study.scene_line) + ": scene \"" + Shown(study.scene_path.string()) +
-           "\": " + message;
+           "\": " + why;
   }
   for (size_t j = 1; j <= study.overrides.size(); ++j) {
-    if (Fails(study, idx, j, 0, &message)) {
+    if (Fails(study, idx, j, 0, &message) && message == why) {
       return Where(study.path, study.set_line) + ": set \"" + Excerpt(study.overrides[j - 1]) +
-             "\": " + message;
+             "\": " + why;
     }
   }
   for (size_t k = 1; k <= study.axes.size(); ++k) {
-    if (Fails(study, idx, study.overrides.size(), k, &message)) {
+    if (k == study.axes.size() ||
+        (Fails(study, idx, study.overrides.size(), k, &message) && message == why)) {
       const StudyAxis& a = study.axes[k - 1];
       return Where(study.path, a.line) + ": axis " + a.key + " = " +
-             Excerpt(a.values[idx[k - 1]].text) + " (" + MemberText(study, member) +
-             "): " + message;
+             Excerpt(a.values[idx[k - 1]].text) + " (" + MemberText(study, member) + "): " + why;
     }
   }
+  // No axis: the set entries and the base scene together.
   return Shown(study.path.string()) + ": " + MemberText(study, member) + ": " + why;
 }
 

@@ -174,6 +174,20 @@ TEST_F(StudyTest, AValueOutOfRangeBlamesTheStudysAxisAndValue) {
       << derived;
   EXPECT_NE(derived.find("block1.width"), std::string::npos) << derived;
 
+  // A base scene whose record every member replaces may name a file that does not exist: the
+  // member's missing record is the axis's, not the base scene's.
+  Write("placeholder.toml",
+        "[block1]\nwidth = 0.4\nheight = 1.2\ndensity = 2000.0\n"
+        "[base.horizontal]\nfile = \"placeholder.AT2\"\n[run]\nduration = 2.0\n");
+  const std::string record = Error(
+      "scene = \"placeholder.toml\"\n[[axis]]\n"
+      "key = \"base.horizontal.file\"\nvalues = [\"nosuch.AT2\"]\n");
+  EXPECT_EQ(record.find(dir_.string() + "/study.toml:2: axis base.horizontal.file = nosuch.AT2 "
+                                        "(member 0: base.horizontal.file = nosuch.AT2): "),
+            0u)
+      << record;
+  EXPECT_NE(record.find("nosuch.AT2: no such record file"), std::string::npos) << record;
+
   // A broken base scene is the `scene` key's.
   Write("bad_base.toml", "[block1]\nwidth = -0.4\nheight = 1.2\ndensity = 2000.0\n");
   const std::string base = Error("scene = \"bad_base.toml\"\n");
