@@ -309,7 +309,13 @@ void RemoveStaleTemps(const fs::path& dir) {
   std::vector<fs::path> stale;
   for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
     const std::string f = it->path().filename().string();
-    const size_t at = f.find(".tmp");
+    // Only the names ExportAnimation makes: .frames.tmp<pid>, .<name>.mp4.tmp<pid>,
+    // .<name>.gif.tmp<pid>, .<name>.palette.tmp<pid>.png.
+    size_t at = std::string::npos;
+    for (const char* kind : {".frames.tmp", ".mp4.tmp", ".gif.tmp", ".palette.tmp"}) {
+      const size_t k = f.find(kind);
+      if (k != std::string::npos) at = k + std::strlen(kind) - 4;
+    }
     if (f.empty() || f[0] != '.' || at == std::string::npos) continue;
     size_t digits = at + 4;
     while (digits < f.size() && std::isdigit(static_cast<unsigned char>(f[digits]))) ++digits;
