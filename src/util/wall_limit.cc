@@ -21,18 +21,23 @@ void StartWallLimit(double seconds, const std::filesystem::path& out_dir,
     // (the renders' animations).
     const std::string pid = std::to_string(::getpid());
     std::error_code ec;
-    std::vector<std::filesystem::path> temps;
-    if (!out_dir.empty() && std::filesystem::is_directory(out_dir, ec)) {
-      std::filesystem::recursive_directory_iterator it(out_dir, ec), end;
-      for (; !ec && it != end; it.increment(ec)) {
-        const std::string name = it->path().filename().string();
-        if (name.find(".tmp." + pid) != std::string::npos ||
-            name.find(".tmp" + pid) != std::string::npos) {
-          temps.push_back(it->path());
+    // Other threads may still be writing: remove, wait for a write in flight to land, and
+    // remove again (three passes, 50 ms apart), then end the process at once.
+    for (int pass = 0; pass < 3; ++pass) {
+      if (pass > 0) std::this_thread::sleep_for(std::chrono::milliseconds(50));
+      std::vector<std::filesystem::path> temps;
+      if (!out_dir.empty() && std::filesystem::is_directory(out_dir, ec)) {
+        std::filesystem::recursive_directory_iterator it(out_dir, ec), end;
+        for (; !ec && it != end; it.increment(ec)) {
+          const std::string name = it->path().filename().string();
+          if (name.find(".tmp." + pid) != std::string::npos ||
+              name.find(".tmp" + pid) != std::string::npos) {
+            temps.push_back(it->path());
+          }
         }
       }
+      for (const auto& p : temps) std::filesystem::remove_all(p, ec);
     }
-    for (const auto& p : temps) std::filesystem::remove_all(p, ec);
     char limit[32];
     std::snprintf(limit, sizeof limit, "%g", seconds);
     const std::string msg = "rockbench " + command + ": error: wall-clock limit of " + limit +
