@@ -95,7 +95,15 @@ fi
 # Per target: longest input (bytes) and the time (s) past which one input is a hang. A scene run
 # is a simulation (scene_run_fuzz.cc bounds what it runs); 60 s under ASan is about 20 s of a
 # release build for at most 30 simulated seconds.
-max_len_of() { case "$1" in record_*) echo 8192 ;; *) echo 4096 ;; esac; }
+# Campaigns allow longer inputs (libFuzzer grows lengths as coverage asks): a header line of
+# tens of kB is what overflowed std::regex's stack in the AT2 reader (docs/fuzzing.md).
+max_len_of() {
+  if [ "$mode" = campaign ]; then
+    case "$1" in record_*) echo 131072 ;; *) echo 16384 ;; esac
+  else
+    case "$1" in record_*) echo 8192 ;; *) echo 4096 ;; esac
+  fi
+}
 timeout_of() { case "$1" in scene_run) echo 60 ;; *) echo 10 ;; esac; }
 rss_limit_mb=2048
 
@@ -117,7 +125,14 @@ configure_and_build() {
   local exes=()
   for t in "$@"; do exes+=("fuzz_$t"); done
   nice -n 10 cmake --build "$dir" -j"$jobs" --target "${exes[@]}" >"$dir/fuzz-build.log" 2>&1 ||
-    { echo "fuzz.sh: building $dir failed (see $dir/fuzz-build.log)" >&2; grep -m20 -E "error|Error" "$dir/fuzz-build.log" >&2; exit 2; }
+    {
+      echo "fuzz.sh: building $dir failed (see $dir/fuzz-build.log)" >&2
+      grep -m20 -E "error|Error|undefined reference" "$dir/fuzz-build.log" >&2
+      grep -q "fuzz_study_reader.*undefined reference\|undefined reference" "$dir/fuzz-build.log" &&
+        echo "fuzz.sh: an undefined reference in fuzz_study_reader: add the harness source that" \
+             "defines it to ROCKBENCH_FUZZ_STUDY_SOURCES in tests/fuzz/CMakeLists.txt" >&2
+      exit 2
+    }
 }
 
 # seed_dirs T: the folders libFuzzer reads T's seeds from: the committed corpus, the fixed
@@ -219,8 +234,9 @@ if [ -n "$mode" ]; then
 fi
 
 if [ "$coverage" = 1 ]; then
-  # Source-based coverage: the same targets without sanitizers, instrumented for llvm-cov, run
-  # once over each target's corpus (the working corpus of the last run and the seeds).
+  # libFuzzer's edges and features: the fuzz build run once over each target's corpus (the
+  # working corpus of the last runs, and the seeds). Source-based line and branch coverage: the
+  # same targets without sanitizers, instrumented for llvm-cov, over the same inputs.
   cov_dir=$build_dir-cov
   mkdir -p "$cov_dir"
   configure_and_build "$cov_dir" "-fprofile-instr-generate -fcoverage-mapping" "${chosen[@]}"
@@ -230,13 +246,18 @@ if [ "$coverage" = 1 ]; then
     read -r -a seeds <<<"$(seed_dirs "$t")"
     dirs=()
     for d in "$build_dir/corpus/$t" "$build_dir/ci-corpus/$t"; do [ -d "$d" ] && dirs+=("$d"); done
+    opts=(-runs=0 -timeout="$(timeout_of "$t")" -rss_limit_mb=$rss_limit_mb -max_len="$(max_len_of "$t")")
+    n_inputs=$(find "${dirs[@]}" "${seeds[@]}" -maxdepth 1 \( -type f -o -type l \) ! -name .gitkeep | wc -l)
+    edges="?"
+    if [ -x "$build_dir/tests/fuzz/fuzz_$t" ]; then
+      "$build_dir/tests/fuzz/fuzz_$t" "${opts[@]}" "${dirs[@]}" "${seeds[@]}" >"$cov_dir/$t.edges.log" 2>&1 || true
+      edges=$(grep -oE 'INITED cov: [0-9]+ ft: [0-9]+' "$cov_dir/$t.edges.log" | head -1 | sed 's/INITED //')
+    fi
+    echo "coverage $t: $n_inputs inputs; libFuzzer (ASan build): ${edges:-?}"
     exe=$cov_dir/tests/fuzz/fuzz_$t
     rm -f "$cov_dir/$t".profraw
-    LLVM_PROFILE_FILE="$cov_dir/$t.profraw" "$exe" -runs=0 -timeout="$(timeout_of "$t")" \
-      -rss_limit_mb=$rss_limit_mb -max_len="$(max_len_of "$t")" "${dirs[@]}" "${seeds[@]}" \
+    LLVM_PROFILE_FILE="$cov_dir/$t.profraw" "$exe" "${opts[@]}" "${dirs[@]}" "${seeds[@]}" \
       >"$cov_dir/$t.log" 2>&1 || true
-    inputs=$(grep -oE 'INITED.*' "$cov_dir/$t.log" | head -1)
-    echo "coverage $t: corpus of ${#dirs[@]} working + ${#seeds[@]} seed folders; libFuzzer: ${inputs:-?}"
     if [ -z "$profdata" ] || [ -z "$llvmcov" ]; then
       echo "  line coverage left out: llvm-profdata/llvm-cov not found (Debian: llvm-14)"
       continue
@@ -245,11 +266,14 @@ if [ "$coverage" = 1 ]; then
     # The project's sources only (not toml++, the standard library or the target itself).
     "$llvmcov" report "$exe" -instr-profile="$cov_dir/$t.profdata" \
       -ignore-filename-regex='(/usr/|tests/fuzz/)' >"$cov_dir/$t.cov.txt"
-    awk -v t="$t" '
-      /^Filename/ { for (i = 1; i <= NF; i++) if ($i == "Lines") li = i }
-      $1 == "TOTAL" { printf "  lines of the sources it links: %s of %s covered (%s)\n", $(NF-3)-$(NF-2), $(NF-3), $(NF-1) }
-      $1 ~ /(scene|records|ground_motion|study|simulate|intensity|engine_settings|synthetic_motion)\.cc$/ {
-        printf "  %-36s lines %5d of %5d (%s)\n", $1, $(NF-3)-$(NF-2), $(NF-3), $(NF-1) }
+    # Columns: file, regions (3), functions (3), lines: total, missed, cover, branches: the same.
+    awk '
+      function row(name) {
+        printf "  %-32s lines %5d of %5d (%s), branches %4d of %4d (%s)\n", name, $8 - $9, $8, $10,
+               $11 - $12, $11, $13
+      }
+      $1 == "TOTAL" { row("all sources it links") }
+      $1 ~ /(scene|records|ground_motion|study|simulate|intensity|synthetic_motion)\.cc$/ { row($1) }
     ' "$cov_dir/$t.cov.txt"
   done
 fi
