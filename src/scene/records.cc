@@ -96,6 +96,14 @@ std::string Where(const std::filesystem::path& path, int line) {
   return path.string() + ":" + std::to_string(line);
 }
 
+// Why `dt_s` cannot be a record's sample interval, or "": records are sampled at 1 Hz to 1 MHz
+// (strong-motion records at 50 to 1000 Hz).
+std::string SampleIntervalProblem(double dt_s) {
+  if (dt_s >= 1e-6 && dt_s <= 1.0) return "";
+  return "expected a sample interval from 1e-06 to 1 s (records are sampled at 50 to 1000 Hz; "
+         "docs/limits.md)";
+}
+
 // Reads one value token, with an error naming file and line.
 double Value(const std::filesystem::path& path, int line, std::string_view tok) {
   double v = 0.0;
@@ -314,6 +322,17 @@ RecordData ParseAt2(const std::string& text, const std::filesystem::path& path) 
                      " lines (expected e.g. 'NPTS=  4000, DT= .01000 SEC' or "
                      "'3930 0.00500 NPTS, DT')");
   }
+  // Header lines are matched with std::regex, whose executor recurses once per character:
+  // a header line of tens of kB overflowed the stack. PEER's are under 100 characters.
+  constexpr size_t kMaxHeaderLine = 1024;
+  for (size_t i = 0; i <= header; ++i) {
+    if (lines[i].text.size() > kMaxHeaderLine) {
+      throw SceneError(Where(path, lines[i].number) + ": header line of " +
+                       std::to_string(lines[i].text.size()) + " characters ('" +
+                       Excerpt(lines[i].text) + "'); expected at most " +
+                       std::to_string(kMaxHeaderLine) + " (PEER's are under 100)");
+    }
+  }
   const Line& h = lines[header];
   const auto icase = std::regex::ECMAScript | std::regex::icase;
   static const std::regex kNpts(R"(NPTS\s*=\s*([-+0-9.Ee]+))", icase);
@@ -354,6 +373,14 @@ RecordData ParseAt2(const std::string& text, const std::filesystem::path& path) 
   if (!ParseNumber(dt_text, rec.dt_s) || !std::isfinite(rec.dt_s) || rec.dt_s <= 0.0) {
     throw SceneError(Where(path, h.number) + ": expected a positive DT (s), got '" +
                      Excerpt(dt_text) + "'");
+  }
+  if (const std::string problem = SampleIntervalProblem(rec.dt_s); !problem.empty()) {
+    throw SceneError(Where(path, h.number) + ": DT = " + Excerpt(dt_text) + " s: " + problem);
+  }
+  if (static_cast<double>(npts - 1) * rec.dt_s > limits::kMaxDuration_s) {
+    throw SceneError(Where(path, h.number) + ": NPTS = " + std::to_string(npts) +
+                     " at DT = " + Excerpt(dt_text) + " s lasts more than a day (" +
+                     ShortestText(limits::kMaxDuration_s) + " s; docs/limits.md)");
   }
   // The first header line (up to the NPTS line) that declares the units.
   bool units_found = false;
@@ -437,6 +464,14 @@ RecordData ParsePlain(const std::string& text, const std::filesystem::path& path
                        ": a one-column file needs the sample interval: set dt = ... (s) in the "
                        "scene's [base.*] table");
     }
+    if (const std::string problem = SampleIntervalProblem(dt_s); !problem.empty()) {
+      throw SceneError(path.string() + ": dt = " + ShortestText(dt_s) + " s: " + problem);
+    }
+    if (static_cast<double>(rec.values.size() - 1) * dt_s > limits::kMaxDuration_s) {
+      throw SceneError(path.string() + ": " + std::to_string(rec.values.size()) +
+                       " samples at dt = " + ShortestText(dt_s) + " s last more than a day (" +
+                       ShortestText(limits::kMaxDuration_s) + " s; docs/limits.md)");
+    }
     rec.format = "plain-1col";
     rec.dt_s = dt_s;
     return rec;
@@ -450,6 +485,14 @@ RecordData ParsePlain(const std::string& text, const std::filesystem::path& path
   if (n < 2) {
     throw SceneError(Where(path, line_of[0]) +
                      ": a two-column file needs at least 2 rows to define the time step");
+  }
+  // Every time within a day of zero, and the step a sample interval a record can have.
+  for (size_t i = 0; i < n; ++i) {
+    if (std::abs(times[i]) > limits::kMaxDuration_s) {
+      throw SceneError(Where(path, line_of[i]) + ": time " + ShortestText(times[i]) +
+                       " s; expected a time with magnitude at most " +
+                       ShortestText(limits::kMaxDuration_s) + " s (a day; docs/limits.md)");
+    }
   }
   rec.t0_s = times.front();
   // Uniform spacing: every step within 0.1% of the first step, and every time within 0.1% of dt
@@ -475,6 +518,10 @@ RecordData ParsePlain(const std::string& text, const std::filesystem::path& path
           << " s, but the first step (line " << line_of[1] << ") is " << first_step << " s";
       throw SceneError(msg.str());
     }
+  }
+  if (const std::string problem = SampleIntervalProblem(times[1] - times[0]); !problem.empty()) {
+    throw SceneError(Where(path, line_of[1]) + ": the time step " +
+                     ShortestText(times[1] - times[0]) + " s: " + problem);
   }
   rec.dt_s = (times.back() - times.front()) / static_cast<double>(n - 1);
   for (size_t i = 1; i < n; ++i) {

@@ -49,6 +49,7 @@ const Limit kOverturnLimit{0.0, 1.5707963267948966,
 const Limit kSamplePrecisionLimit{0.0, 100.0,
                                   "a record's samples are known to their printed digits; "
                                   "docs/limits.md"};
+const Limit kSampleIntervalLimit{1e-6, 1.0, "records are sampled at 50 to 1000 Hz; docs/limits.md"};
 const Limit kToleranceLimit{0.0, 1.5707963267948966, "docs/limits.md"};
 
 // An acceleration in g for messages, to six digits.
@@ -501,7 +502,7 @@ class Reader {
         Forbid(t, prefix, key, "only for envelope = \"jennings\"");
       }
     }
-    d.dt_s = Number(t, prefix, "dt", Rule::kPositive, "s").value_or(d.dt_s);
+    d.dt_s = Number(t, prefix, "dt", Rule::kPositive, "s", &kSampleIntervalLimit).value_or(d.dt_s);
     d.duration_s = RequiredNumber(t, prefix, "duration_s", Rule::kPositive, "s", &kDurationLimit);
     m->duration_s = d.duration_s;
     if (const auto seed = NonNegativeInteger(t, prefix, "seed", INT64_MAX)) {
@@ -554,7 +555,7 @@ class Reader {
       if (at2) {
         Forbid(t, prefix, "dt", "not allowed for an AT2 file (DT is read from its header)");
       } else {
-        m.dt_s = Number(t, prefix, "dt", Rule::kPositive, "s").value_or(0.0);
+        m.dt_s = Number(t, prefix, "dt", Rule::kPositive, "s", &kSampleIntervalLimit).value_or(0.0);
       }
       return m;
     }

@@ -240,6 +240,32 @@ TEST_F(InputFiles, RecordsRefuseCrOnlyLinesAndImpossibleNpts) {
   EXPECT_CONTAINS(RecordError("/dev/zero"), "/dev/zero: is not a regular file");
 }
 
+// Fuzz findings (tests/fuzz/regressions): a header line of tens of kB overflowed std::regex's
+// recursion (a segmentation fault, no message); a time column spanning 1e308 s gave an infinite
+// PGV. Both are refused naming the line.
+TEST_F(InputFiles, LongHeaderLinesAndAbsurdTimesAreRefused) {
+  const std::string units = "ACCELERATION " + std::string(100000, 'x');
+  const std::string e = RecordError(
+      Write("long.AT2", "PEER\nSomewhere\n" + units + "\nNPTS= 3, DT= .01 SEC\n.1 .2 .3\n"));
+  EXPECT_CONTAINS(e, "long.AT2:3: header line of 100013 characters");
+  EXPECT_CONTAINS(e, "expected at most 1024");
+  EXPECT_LT(e.size(), 400u);
+  const auto two_columns = [&](const std::string& name, const std::string& text) {
+    try {
+      ReadPlain(Write(name, text), 0.0);
+    } catch (const SceneError& err) {
+      return std::string(err.what());
+    }
+    return std::string();
+  };
+  EXPECT_CONTAINS(two_columns("t.txt", "-1e308 0.1\n0 0.2\n"),
+                  "t.txt:1: time -1e+308 s; expected a time with magnitude at most 86400 s");
+  EXPECT_CONTAINS(RecordError(Write("dt.AT2", kAt2Head + "NPTS= 3, DT= 100 SEC\n.1 .2 .3\n")),
+                  "dt.AT2:4: DT = 100 s: expected a sample interval from 1e-06 to 1 s");
+  EXPECT_CONTAINS(two_columns("slow.txt", "0 0.1\n50 0.2\n"),
+                  "slow.txt:2: the time step 50 s: expected a sample interval");
+}
+
 // A finite but absurd sample (1e20 g) is refused with its line, never run.
 TEST_F(InputFiles, AnAbsurdSampleIsRefusedWithItsLine) {
   MotionDef d;
