@@ -54,9 +54,15 @@ if [ -z "$mode" ] && [ "$coverage" = 0 ] && [ "$update_corpus" = 0 ]; then
 fi
 case "$build_dir" in /*) ;; *) build_dir=$root/$build_dir ;; esac
 
-# The clang of Debian 12 and its libFuzzer (clang-14, libclang-rt-14-dev).
-clangxx=$(command -v clang++-14 || command -v clang++ || true)
-clangc=$(command -v clang-14 || command -v clang || true)
+# The clang of Debian 12 and its libFuzzer (clang-14, libclang-rt-14-dev); ROCKBENCH_FUZZ_CLANG
+# (a clang, with its clang++ beside it) chooses another.
+if [ -n "${ROCKBENCH_FUZZ_CLANG:-}" ]; then
+  clangc=$(command -v "$ROCKBENCH_FUZZ_CLANG" || true)
+  clangxx=$(command -v "${ROCKBENCH_FUZZ_CLANG/clang/clang++}" || true)
+else
+  clangxx=$(command -v clang++-14 || command -v clang++ || true)
+  clangc=$(command -v clang-14 || command -v clang || true)
+fi
 if [ -z "$clangxx" ] || [ -z "$clangc" ]; then
   echo "fuzz.sh: LEFT OUT: clang++ not found; install the Debian packages clang-14 and" \
        "libclang-rt-14-dev (scripts/install-deps.sh). No fuzzing was done." >&2
