@@ -2,9 +2,6 @@
 
 #include <fcntl.h>
 #include <signal.h>
-#include <sys/prctl.h>
-#include <sys/stat.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -13,191 +10,69 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <cstring>
 #include <stdexcept>
-#include <thread>
 
 #include "renders/limits.h"
-
-extern char** environ;
+#include "util/subprocess.h"
 
 namespace rockbench::renders {
 namespace fs = std::filesystem;
 
 std::optional<fs::path> FindExecutable(const std::string& name) {
-  auto executable = [](const fs::path& p) {
-    struct stat st;
-    return ::stat(p.c_str(), &st) == 0 && S_ISREG(st.st_mode) && ::access(p.c_str(), X_OK) == 0;
-  };
-  if (name.find('/') != std::string::npos) {
-    if (executable(name)) return fs::path(name);
-    return std::nullopt;
-  }
-  const char* path_env = std::getenv("PATH");
-  std::string path = path_env ? path_env : "/usr/local/bin:/usr/bin:/bin";
-  size_t start = 0;
-  while (start <= path.size()) {
-    const size_t end = std::min(path.find(':', start), path.size());
-    const std::string dir = path.substr(start, end - start);
-    if (!dir.empty() && executable(fs::path(dir) / name)) return fs::path(dir) / name;
-    start = end + 1;
-  }
-  return std::nullopt;
+  return FindProgram(name);
 }
 
 struct FfmpegPipe::Impl {
-  pid_t pid = -1;
-  int stdin_fd = -1;
-  int stderr_fd = -1;
-  std::thread drain;
-  std::string messages;  // ffmpeg's standard error (the last 16 kB)
+  Subprocess ffmpeg;
   bool closed = false;
-
-  void StartDrain() {
-    drain = std::thread([this] {
-      char buf[4096];
-      for (;;) {
-        const ssize_t n = ::read(stderr_fd, buf, sizeof buf);
-        if (n < 0 && errno == EINTR) continue;
-        if (n <= 0) break;
-        messages.append(buf, static_cast<size_t>(n));
-        if (messages.size() > 16384) messages.erase(0, messages.size() - 16384);
-      }
-    });
-  }
 
   // Waits for ffmpeg; an error message when it did not exit with status 0.
   std::string Wait() {
-    int status = 0;
-    while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
-    }
-    if (drain.joinable()) drain.join();
-    ::close(stderr_fd);
-    stderr_fd = -1;
-    pid = -1;
+    const ExitStatus status = ffmpeg.Wait();
     std::string why;
-    if (WIFEXITED(status) && WEXITSTATUS(status) == 0) return why;
-    why = WIFEXITED(status) ? "ffmpeg exited with status " + std::to_string(WEXITSTATUS(status))
-                            : "ffmpeg was stopped by signal " + std::to_string(WTERMSIG(status));
+    if (status.ok()) return why;
+    why = status.signal == 0 ? "ffmpeg exited with status " + std::to_string(status.exit_code)
+                             : "ffmpeg was stopped by signal " + std::to_string(status.signal);
+    std::string messages = ffmpeg.captured_err();
     while (!messages.empty() && (messages.back() == '\n' || messages.back() == '\r')) {
       messages.pop_back();
     }
-    if (!messages.empty()) why += ": " + messages;
+    if (!messages.empty()) why.append(": ").append(messages);
     return why;
   }
 };
 
 FfmpegPipe::FfmpegPipe(const fs::path& ffmpeg, std::vector<std::string> args)
     : impl_(std::make_unique<Impl>()) {
-  // stdin: frames; stderr: messages; exec_pipe: the child's errno when it cannot start ffmpeg
-  // (closed by a successful exec).
-  int in_pipe[2], err_pipe[2], exec_pipe[2];
-  if (::pipe2(in_pipe, O_CLOEXEC) != 0)
-    throw std::runtime_error("pipe: " + std::string(std::strerror(errno)));
-  if (::pipe2(err_pipe, O_CLOEXEC) != 0) {
-    ::close(in_pipe[0]);
-    ::close(in_pipe[1]);
-    throw std::runtime_error("pipe: " + std::string(std::strerror(errno)));
+  std::vector<std::string> argv;
+  argv.push_back(ffmpeg.string());
+  for (auto& a : args) argv.push_back(std::move(a));
+  // stdin: frames; stdout: nothing we read; stderr: ffmpeg's messages (the last 16 kB). ffmpeg
+  // dies with this process: a wall-clock limit or a kill must not leave it writing a temporary
+  // file.
+  SpawnOptions options;
+  options.in = Stdio::kPipe;
+  options.out = Stdio::kNull;
+  options.err = Stdio::kCapture;
+  options.capture_limit_bytes = 16384;
+  options.die_with_parent = true;
+  impl_->ffmpeg = Subprocess(argv, options);
+  if (!impl_->ffmpeg.started()) {
+    throw std::runtime_error(std::string("cannot start ").append(impl_->ffmpeg.start_error()));
   }
-  if (::pipe2(exec_pipe, O_CLOEXEC) != 0) {
-    for (int fd : {in_pipe[0], in_pipe[1], err_pipe[0], err_pipe[1]}) ::close(fd);
-    throw std::runtime_error("pipe: " + std::string(std::strerror(errno)));
-  }
-  std::vector<std::string> argv_s;
-  argv_s.push_back(ffmpeg.string());
-  for (auto& a : args) argv_s.push_back(std::move(a));
-  std::vector<char*> argv;
-  for (auto& a : argv_s) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  const pid_t parent = ::getpid();
-  const pid_t pid = ::fork();
-  if (pid == 0) {
-    // The child: only async-signal-safe calls until exec. ffmpeg dies with this process (a
-    // wall-clock limit or a kill must not leave it writing a temporary file).
-    ::prctl(PR_SET_PDEATHSIG, SIGKILL);
-    if (::getppid() != parent) ::_exit(127);
-    sigset_t none;
-    sigemptyset(&none);
-    ::sigprocmask(SIG_SETMASK, &none, nullptr);
-    const int devnull = ::open("/dev/null", O_WRONLY);
-    if (::dup2(in_pipe[0], 0) < 0 || devnull < 0 || ::dup2(devnull, 1) < 0 ||
-        ::dup2(err_pipe[1], 2) < 0) {
-      const int err = errno;
-      (void)!::write(exec_pipe[1], &err, sizeof err);
-      ::_exit(127);
-    }
-    ::execve(argv[0], argv.data(), environ);
-    const int err = errno;
-    (void)!::write(exec_pipe[1], &err, sizeof err);
-    ::_exit(127);
-  }
-  const int fork_errno = errno;
-  ::close(in_pipe[0]);
-  ::close(err_pipe[1]);
-  ::close(exec_pipe[1]);
-  int exec_errno = 0;
-  if (pid > 0) {
-    ssize_t n;
-    while ((n = ::read(exec_pipe[0], &exec_errno, sizeof exec_errno)) < 0 && errno == EINTR) {
-    }
-    if (n != static_cast<ssize_t>(sizeof exec_errno)) exec_errno = 0;
-  }
-  ::close(exec_pipe[0]);
-  if (pid < 0 || exec_errno != 0) {
-    ::close(in_pipe[1]);
-    ::close(err_pipe[0]);
-    if (pid > 0) {
-      int status = 0;
-      while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
-      }
-    }
-    throw std::runtime_error("cannot start " + ffmpeg.string() + ": " +
-                             std::strerror(pid < 0 ? fork_errno : exec_errno));
-  }
-  impl_->pid = pid;
-  impl_->stdin_fd = in_pipe[1];
-  impl_->stderr_fd = err_pipe[0];
-  impl_->StartDrain();
 }
 
 FfmpegPipe::~FfmpegPipe() {
-  if (impl_->closed || impl_->pid < 0) return;
-  if (impl_->stdin_fd >= 0) ::close(impl_->stdin_fd);
-  ::kill(impl_->pid, SIGKILL);
+  if (impl_->closed || !impl_->ffmpeg.running()) return;
+  impl_->ffmpeg.Kill(SIGKILL);
   impl_->Wait();
 }
 
 void FfmpegPipe::Write(const Image& frame) {
   if (impl_->closed) throw std::runtime_error("ffmpeg: writing a frame after the input was closed");
-  // SIGPIPE blocked while writing: a dead ffmpeg gives EPIPE here instead of ending us.
-  sigset_t pipe_set, old_set;
-  sigemptyset(&pipe_set);
-  sigaddset(&pipe_set, SIGPIPE);
-  pthread_sigmask(SIG_BLOCK, &pipe_set, &old_set);
-  const uint8_t* p = frame.rgb.data();
-  size_t left = frame.rgb.size();
-  int err = 0;
-  while (left > 0) {
-    const ssize_t n = ::write(impl_->stdin_fd, p, left);
-    if (n < 0) {
-      if (errno == EINTR) continue;
-      err = errno;
-      break;
-    }
-    p += n;
-    left -= static_cast<size_t>(n);
-  }
-  if (err == EPIPE) {
-    // Consume the pending SIGPIPE before unblocking it.
-    const timespec zero{0, 0};
-    while (sigtimedwait(&pipe_set, nullptr, &zero) == SIGPIPE) {
-    }
-  }
-  pthread_sigmask(SIG_SETMASK, &old_set, nullptr);
+  const int err = impl_->ffmpeg.WriteStdin(frame.rgb.data(), frame.rgb.size());
   if (err != 0) {
-    ::close(impl_->stdin_fd);
-    impl_->stdin_fd = -1;
     impl_->closed = true;
     std::string why = impl_->Wait();
     if (why.empty()) why = "ffmpeg stopped reading frames";
@@ -208,8 +83,6 @@ void FfmpegPipe::Write(const Image& frame) {
 void FfmpegPipe::Close() {
   if (impl_->closed) return;
   impl_->closed = true;
-  ::close(impl_->stdin_fd);
-  impl_->stdin_fd = -1;
   const std::string why = impl_->Wait();
   if (!why.empty()) throw std::runtime_error(why);
 }

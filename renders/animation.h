@@ -14,10 +14,12 @@
 
 namespace rockbench::renders {
 
-/// The program `name` on PATH (or `name` itself when it contains a '/' and is executable).
+/// The program `name` on PATH (or `name` itself when it contains a '/' and is executable):
+/// FindProgram (util/subprocess.h), under the name the renders' callers know.
 std::optional<std::filesystem::path> FindExecutable(const std::string& name);
 
-/// A running ffmpeg reading raw rgb24 frames on its standard input.
+/// A running ffmpeg reading raw rgb24 frames on its standard input (a Subprocess of
+/// util/subprocess.h that dies with the thread that started it).
 class FfmpegPipe {
  public:
   /// Starts `ffmpeg` with `args` (without the program name). Throws std::runtime_error.

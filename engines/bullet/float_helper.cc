@@ -1,10 +1,7 @@
 #include "engines/bullet/float_helper.h"
 
-#include <spawn.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
-#include <atomic>
 #include <cerrno>
 #include <cstdlib>
 #include <cstring>
@@ -14,8 +11,7 @@
 #include <vector>
 
 #include "engines/bullet/protocol.h"
-
-extern char** environ;
+#include "util/subprocess.h"
 
 namespace rockbench::bullet {
 namespace {
@@ -55,9 +51,7 @@ std::filesystem::path FindFloatHelper() {
     throw std::runtime_error(std::string("ROCKBENCH_BULLET_FLOAT_HELPER=") + env +
                              ": no such program");
   }
-  const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", ec);
-  if (!ec) {
-    const std::filesystem::path p = self.parent_path() / "rockbench-bullet-float";
+  if (const std::filesystem::path p = BesideSelf("rockbench-bullet-float"); !p.empty()) {
     if (std::filesystem::is_regular_file(p, ec)) return p;
     tried.push_back(p);
   }
@@ -85,28 +79,18 @@ EngineResult RunFloatHelper(const BulletInput& input) {
   files.out = MakeTempFile();
   WriteBinaryFile(files.in, SerializeInput(input));
 
-  const std::string helper_s = helper.string(), in_s = files.in.string(),
-                    out_s = files.out.string();
-  std::vector<char*> argv = {const_cast<char*>(helper_s.c_str()), const_cast<char*>("--input"),
-                             const_cast<char*>(in_s.c_str()),     const_cast<char*>("--output"),
-                             const_cast<char*>(out_s.c_str()),    nullptr};
-  pid_t pid = 0;
-  const int rc = posix_spawn(&pid, helper_s.c_str(), nullptr, nullptr, argv.data(), environ);
-  if (rc != 0) {
-    throw std::runtime_error("bullet float helper: cannot start " + helper_s + ": " +
-                             std::strerror(rc));
+  // The helper's standard streams are ours: its error message, if any, is printed above ours.
+  // A name without a '/' is a file of the working folder, not a program on PATH.
+  const std::string helper_s = helper.string();
+  const std::string program = helper.has_parent_path() ? helper_s : "./" + helper_s;
+  Subprocess child({program, "--input", files.in.string(), "--output", files.out.string()},
+                   SpawnOptions{});
+  if (!child.started()) {
+    throw std::runtime_error("bullet float helper: cannot start " + child.start_error());
   }
-  int status = 0;
-  while (waitpid(pid, &status, 0) < 0) {
-    if (errno != EINTR) {
-      throw std::runtime_error(std::string("bullet float helper: waitpid: ") +
-                               std::strerror(errno));
-    }
-  }
-  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
-    const std::string how = WIFEXITED(status) ? "exit status " + std::to_string(WEXITSTATUS(status))
-                                              : "signal " + std::to_string(WTERMSIG(status));
-    throw std::runtime_error("bullet float helper " + helper_s + " failed (" + how +
+  const ExitStatus status = child.Wait();
+  if (!status.ok()) {
+    throw std::runtime_error("bullet float helper " + helper_s + " failed (" + status.Text() +
                              "); its message is above");
   }
   return ParseOutput(ReadBinaryFile(files.out));
