@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <string>
 
-#include "harness/engines.h"
+#include "run/engine_run.h"
 #include "renders/animation.h"
 #include "renders/geometry.h"
 #include "renders/renderer.h"

@@ -4,7 +4,7 @@
 // one is flagged. Results are recorded in docs/verdicts.md.
 //
 //   build/bench/verdict_power [--trials T] [--bias B] [SCENE ...]
-#include "harness/verdict_power.h"
+#include "compare/verdict_power.h"
 
 #include <cstdio>
 #include <cstdlib>

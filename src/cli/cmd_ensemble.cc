@@ -18,10 +18,10 @@
 
 #include "cli/commands.h"
 #include "cli/limit_options.h"
-#include "harness/parallel.h"
-#include "harness/study.h"
-#include "harness/study_mpi.h"
-#include "harness/study_runner.h"
+#include "run/parallel.h"
+#include "study/study.h"
+#include "study/study_mpi.h"
+#include "study/study_runner.h"
 #include "scene/limits.h"
 #include "scene/scene.h"
 

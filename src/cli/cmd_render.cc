@@ -18,8 +18,8 @@
 
 #include "cli/commands.h"
 #include "cli/limit_options.h"
-#include "harness/engines.h"
-#include "harness/resource_estimate.h"
+#include "run/engine_run.h"
+#include "run/resource_estimate.h"
 #include "renders/animation.h"
 #include "renders/geometry.h"
 #include "renders/gl_context.h"

@@ -11,10 +11,10 @@
 #include <vector>
 
 #include "cli/commands.h"
-#include "report/ensemble_csv.h"
-#include "report/ensemble_report.h"
-#include "report/run_report.h"
-#include "report/work_precision.h"
+#include "report/study/study_csv.h"
+#include "report/study/study_report.h"
+#include "report/run/run_report.h"
+#include "report/sweep/work_precision.h"
 #include "scene/scene.h"
 
 namespace rockbench::cli {

@@ -7,9 +7,9 @@
 
 #include "cli/commands.h"
 #include "cli/limit_options.h"
-#include "harness/engine_registry.h"
-#include "harness/engines.h"
-#include "harness/resource_estimate.h"
+#include "run/engine_registry.h"
+#include "run/engine_run.h"
+#include "run/resource_estimate.h"
 #include "scene/ground_motion.h"
 #include "scene/history.h"
 #include "scene/scene.h"

@@ -14,8 +14,8 @@
 
 #include "cli/commands.h"
 #include "cli/limit_options.h"
-#include "harness/parallel.h"
-#include "harness/stress.h"
+#include "run/parallel.h"
+#include "stress/stress.h"
 #include "scene/history.h"
 #include "scene/scene.h"
 

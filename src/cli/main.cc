@@ -3,8 +3,8 @@
 #include <exception>
 
 #include "cli/commands.h"
-#include "harness/engine_registry.h"
-#include "harness/study_mpi.h"
+#include "run/engine_registry.h"
+#include "study/study_mpi.h"
 
 namespace rockbench::cli {
 

@@ -1,10 +1,10 @@
-#include "harness/compare.h"
+#include "compare/agreement.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 
-#include "harness/tolerance.h"
+#include "run/tolerance.h"
 #include "util/format.h"
 
 namespace rockbench {
@@ -142,11 +142,6 @@ nlohmann::json AngleJson(const AngleAgreement& a) {
 }
 
 }  // namespace
-
-double AngleTolerance_rad(const Scene& scene, int block, double reference_peak_rad) {
-  // LocalTolerance's value where the envelope is the peak (harness/tolerance.h).
-  return ToleranceAtEnvelope_rad(scene, block, reference_peak_rad);
-}
 
 int CountComparedImpacts(const History& history, double min_rate_radps) {
   int all = 0;

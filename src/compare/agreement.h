@@ -9,8 +9,9 @@
 #include <string>
 #include <vector>
 
-#include "harness/engines.h"
+#include "run/engine_run.h"
 #include "reference/simulate.h"
+#include "run/tolerance.h"
 #include "scene/scene.h"
 
 namespace rockbench {
@@ -64,12 +65,6 @@ struct ImpactAgreement {
   std::string first_mismatch;         ///< empty when every impact of both runs matched
 };
 
-/// The tolerance of block `block` (1 or 2) at the scale of the reference's peak, rad: the scene's
-/// [compare] tolerance, else 10% of the peak |theta| (capped at the block's critical angle
-/// atan(B/H)), never below 1% of the critical angle: harness/tolerance.h's local rule where the
-/// envelope is the peak. The convergence check, the ensembles' statistics and the final state
-/// use it; the agreement horizon uses the local tolerance.
-double AngleTolerance_rad(const Scene& scene, int block, double reference_peak_rad);
 
 /// Options of the comparison.
 struct CompareOptions {

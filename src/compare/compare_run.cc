@@ -1,9 +1,9 @@
-#include "harness/compare_run.h"
+#include "compare/compare_run.h"
 
 #include <algorithm>
 #include <cstdio>
 
-#include "harness/summary.h"
+#include "run/summary.h"
 
 namespace rockbench {
 namespace {

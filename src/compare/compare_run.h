@@ -9,11 +9,11 @@
 #include <string>
 #include <vector>
 
-#include "harness/compare.h"
-#include "harness/convergence.h"
-#include "harness/engines.h"
-#include "harness/ensemble.h"
-#include "harness/verdict.h"
+#include "compare/agreement.h"
+#include "run/reference_witness.h"
+#include "run/engine_run.h"
+#include "compare/perturbation_members.h"
+#include "compare/verdict.h"
 
 namespace rockbench {
 

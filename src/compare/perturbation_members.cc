@@ -1,15 +1,15 @@
-#include "harness/ensemble.h"
+#include "compare/perturbation_members.h"
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 
-#include "harness/compare.h"
-#include "harness/parallel.h"
-#include "harness/summary.h"
-#include "harness/tolerance.h"
-#include "harness/wall_clock.h"
+#include "compare/agreement.h"
+#include "run/parallel.h"
+#include "run/summary.h"
+#include "run/tolerance.h"
+#include "run/wall_clock.h"
 #include "reference/geometry.h"
 #include "reference/transitions.h"
 #include "util/format.h"

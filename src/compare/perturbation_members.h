@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "harness/engines.h"
+#include "run/engine_run.h"
 #include "reference/simulate.h"
 #include "scene/ground_motion.h"
 #include "scene/scene.h"

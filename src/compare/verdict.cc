@@ -1,4 +1,4 @@
-#include "harness/verdict.h"
+#include "compare/verdict.h"
 
 #include <algorithm>
 #include <cmath>

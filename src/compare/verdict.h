@@ -14,9 +14,9 @@
 #include <string>
 #include <vector>
 
-#include "harness/compare.h"
-#include "harness/ensemble.h"
-#include "harness/statistics.h"
+#include "compare/agreement.h"
+#include "compare/perturbation_members.h"
+#include "statistics/statistics.h"
 
 namespace rockbench {
 

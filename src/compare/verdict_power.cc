@@ -1,13 +1,13 @@
-#include "harness/verdict_power.h"
+#include "compare/verdict_power.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
-#include "harness/compare.h"
-#include "harness/ensemble.h"
-#include "harness/parallel.h"
-#include "harness/summary.h"
+#include "compare/agreement.h"
+#include "compare/perturbation_members.h"
+#include "run/parallel.h"
+#include "run/summary.h"
 #include "reference/simulate.h"
 
 namespace rockbench {

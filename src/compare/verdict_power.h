@@ -3,7 +3,7 @@
 /// synthetic engine: the reference model itself, with a known relative bias added to its peaks.
 #include <vector>
 
-#include "harness/verdict.h"
+#include "compare/verdict.h"
 #include "scene/ground_motion.h"
 #include "scene/scene.h"
 

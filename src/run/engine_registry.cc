@@ -1,4 +1,4 @@
-#include "harness/engine_registry.h"
+#include "run/engine_registry.h"
 
 #include <algorithm>
 #include <memory>

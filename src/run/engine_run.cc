@@ -1,11 +1,11 @@
-#include "harness/engines.h"
+#include "run/engine_run.h"
 
 #include <chrono>
 #include <cstdio>
 
-#include "harness/convergence.h"
-#include "harness/engine_registry.h"
-#include "harness/summary.h"
+#include "run/reference_witness.h"
+#include "run/engine_registry.h"
+#include "run/summary.h"
 #include "reference/simulate.h"
 
 namespace rockbench {

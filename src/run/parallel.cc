@@ -1,4 +1,4 @@
-#include "harness/parallel.h"
+#include "run/parallel.h"
 
 #include <unistd.h>
 

@@ -1,4 +1,4 @@
-#include "harness/convergence.h"
+#include "run/reference_witness.h"
 
 #include <algorithm>
 #include <chrono>
@@ -6,8 +6,8 @@
 #include <cstdio>
 #include <vector>
 
-#include "harness/summary.h"
-#include "harness/wall_clock.h"
+#include "run/summary.h"
+#include "run/wall_clock.h"
 #include "scene/limits.h"
 
 namespace rockbench {

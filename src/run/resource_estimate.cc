@@ -1,4 +1,4 @@
-#include "harness/resource_estimate.h"
+#include "run/resource_estimate.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,7 +7,7 @@
 #include <system_error>
 #include <variant>
 
-#include "harness/engine_registry.h"
+#include "run/engine_registry.h"
 #include "scene/engine_settings.h"
 
 namespace rockbench {

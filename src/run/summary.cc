@@ -1,4 +1,4 @@
-#include "harness/summary.h"
+#include "run/summary.h"
 
 #include <cmath>
 

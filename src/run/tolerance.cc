@@ -1,4 +1,4 @@
-#include "harness/tolerance.h"
+#include "run/tolerance.h"
 
 #include <algorithm>
 #include <cmath>
@@ -116,6 +116,11 @@ std::string ToleranceRuleText(const ToleranceConfig& c) {
                                          : Format("%g", c.cap_critical_fraction) + " x the") +
          " block's critical angle atan(B/H)), at least " +
          Format("%g", 100.0 * c.floor_critical_fraction) + "% of the critical angle";
+}
+
+double AngleTolerance_rad(const Scene& scene, int block, double reference_peak_rad) {
+  // LocalTolerance's value where the envelope is the peak.
+  return ToleranceAtEnvelope_rad(scene, block, reference_peak_rad);
 }
 
 }  // namespace rockbench

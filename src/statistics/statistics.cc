@@ -1,4 +1,4 @@
-#include "harness/statistics.h"
+#include "statistics/statistics.h"
 
 #include <algorithm>
 #include <cmath>

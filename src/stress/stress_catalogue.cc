@@ -5,8 +5,8 @@
 #include <cmath>
 #include <numbers>
 
-#include "harness/engine_registry.h"
-#include "harness/stress.h"
+#include "run/engine_registry.h"
+#include "stress/stress.h"
 #include "reference/geometry.h"
 #include "reference/kinematics.h"
 #include "reference/transitions.h"

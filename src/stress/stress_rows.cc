@@ -1,8 +1,8 @@
 // A stress row as the child prints it (one line of JSON) and as stress.csv holds it.
 #include <limits>
 
-#include "harness/engines.h"
-#include "harness/stress.h"
+#include "run/engine_run.h"
+#include "stress/stress.h"
 #include "util/format.h"
 
 namespace rockbench {

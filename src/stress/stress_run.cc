@@ -13,11 +13,11 @@
 #include <thread>
 
 #include "engines/common/monitor.h"
-#include "harness/compare.h"
-#include "harness/engine_registry.h"
-#include "harness/engines.h"
-#include "harness/stress.h"
-#include "harness/wall_clock.h"
+#include "compare/agreement.h"
+#include "run/engine_registry.h"
+#include "run/engine_run.h"
+#include "stress/stress.h"
+#include "run/wall_clock.h"
 #include "reference/geometry.h"
 #include "reference/kinematics.h"
 #include "reference/simulate.h"

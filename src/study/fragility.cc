@@ -1,4 +1,4 @@
-#include "harness/fragility.h"
+#include "study/fragility.h"
 
 #include <gsl/gsl_blas.h>
 #include <gsl/gsl_cdf.h>
@@ -13,7 +13,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "harness/statistics.h"
+#include "statistics/statistics.h"
 #include "util/format.h"
 
 namespace rockbench::stats {

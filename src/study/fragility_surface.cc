@@ -1,4 +1,4 @@
-#include "harness/fragility_surface.h"
+#include "study/fragility_surface.h"
 
 #include <gsl/gsl_blas.h>
 #include <gsl/gsl_cdf.h>
@@ -9,7 +9,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "harness/statistics.h"
+#include "statistics/statistics.h"
 
 namespace rockbench::stats {
 namespace {

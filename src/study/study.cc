@@ -1,5 +1,5 @@
 // Reading a study file and building its members' scenes.
-#include "harness/study.h"
+#include "study/study.h"
 
 #include <fnmatch.h>
 #include <toml++/toml.h>
@@ -12,8 +12,8 @@
 #include <limits>
 #include <sstream>
 
-#include "harness/engine_registry.h"
-#include "harness/resource_estimate.h"
+#include "run/engine_registry.h"
+#include "run/resource_estimate.h"
 #include "scene/ground_motion.h"
 #include "scene/intensity.h"
 #include "scene/limits.h"

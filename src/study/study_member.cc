@@ -1,14 +1,14 @@
 // One run of a study member and its row of members.csv.
-#include "harness/study_member.h"
+#include "study/study_member.h"
 
 #include <array>
 #include <charconv>
 #include <cmath>
 
-#include "harness/compare.h"
-#include "harness/convergence.h"
-#include "harness/engines.h"
-#include "harness/ensemble.h"
+#include "compare/agreement.h"
+#include "run/reference_witness.h"
+#include "run/engine_run.h"
+#include "compare/perturbation_members.h"
 #include "scene/ground_motion.h"
 #include "scene/intensity.h"
 

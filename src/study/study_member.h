@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "harness/study.h"
+#include "study/study.h"
 
 namespace rockbench {
 

@@ -1,5 +1,5 @@
 // A study on several MPI ranks: rank 0 hands out runs and writes the rows (study_mpi.h).
-#include "harness/study_mpi.h"
+#include "study/study_mpi.h"
 
 #include <cstdint>
 #include <cstdlib>

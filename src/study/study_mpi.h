@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "harness/study_runner.h"
+#include "study/study_runner.h"
 
 namespace rockbench {
 

@@ -1,5 +1,5 @@
 // The pool of worker processes, the worker's loop and the journal of a study.
-#include "harness/study_runner.h"
+#include "study/study_runner.h"
 
 #include <fcntl.h>
 #include <poll.h>
@@ -16,7 +16,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "harness/engines.h"
+#include "run/engine_run.h"
 #include "scene/limits.h"
 #include "util/subprocess.h"
 

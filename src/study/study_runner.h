@@ -12,8 +12,8 @@
 #include <string>
 #include <vector>
 
-#include "harness/study.h"
-#include "harness/study_member.h"
+#include "study/study.h"
+#include "study/study_member.h"
 
 namespace rockbench {
 

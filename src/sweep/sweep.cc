@@ -1,4 +1,4 @@
-#include "harness/sweep.h"
+#include "sweep/sweep.h"
 
 #include <sys/utsname.h>
 
@@ -12,9 +12,9 @@
 #include <mutex>
 #include <thread>
 
-#include "harness/engine_registry.h"
-#include "harness/engines.h"
-#include "harness/wall_clock.h"
+#include "run/engine_registry.h"
+#include "run/engine_run.h"
+#include "run/wall_clock.h"
 #include "reference/simulate.h"
 
 namespace rockbench {

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "engines/common/engine.h"
-#include "harness/compare.h"
+#include "compare/agreement.h"
 #include "scene/ground_motion.h"
 #include "scene/scene.h"
 

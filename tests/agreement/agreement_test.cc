@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "harness/engines.h"
+#include "run/engine_run.h"
 #include "tolerances.h"
 
 namespace rockbench::agreement {

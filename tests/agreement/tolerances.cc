@@ -10,10 +10,10 @@
 #include <set>
 #include <sstream>
 
-#include "harness/compare.h"
-#include "harness/compare_run.h"
-#include "harness/engine_registry.h"
-#include "harness/engines.h"
+#include "compare/agreement.h"
+#include "compare/compare_run.h"
+#include "run/engine_registry.h"
+#include "run/engine_run.h"
 #include "reference/simulate.h"
 #include "scene/ground_motion.h"
 #include "scene/scene.h"

@@ -21,8 +21,8 @@
 #include <vector>
 
 #include "common/housner_closed_forms.h"
-#include "harness/compare.h"
-#include "harness/engines.h"
+#include "compare/agreement.h"
+#include "run/engine_run.h"
 #include "reference/simulate.h"
 #include "scene/ground_motion.h"
 #include "scene/scene.h"

@@ -12,7 +12,7 @@
 #include <string>
 
 #include "engines/bullet/bullet_engine.h"
-#include "harness/engines.h"
+#include "run/engine_run.h"
 #include "tests/common/housner_scene.h"
 
 namespace rockbench::bullet {

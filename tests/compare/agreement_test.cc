@@ -1,7 +1,7 @@
 // The comparison with the reference: errors on the engine's grid with the reference's dense
 // output, horizon, RMS, peaks, impact sequence matching, overturning, final state, and the
 // comparison.json / comparison.csv formats.
-#include "harness/compare.h"
+#include "compare/agreement.h"
 
 #include <gtest/gtest.h>
 

@@ -1,16 +1,16 @@
 // Ensembles on perturbed inputs: what a member's inputs are, that they depend only on (seed,
 // member), that the spread of the members grows linearly with the perturbation where the
 // response is smooth, and the predictability horizon.
-#include "harness/ensemble.h"
+#include "compare/perturbation_members.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <string>
 
-#include "harness/compare.h"
-#include "harness/engines.h"
-#include "harness/stress.h"
+#include "compare/agreement.h"
+#include "run/engine_run.h"
+#include "stress/stress.h"
 #include "scene/ground_motion.h"
 #include "tests/common/housner_scene.h"
 
@@ -243,7 +243,6 @@ TEST(SettledAfter, ARecordOpensUntilTheSampleAfterItsLastOpeningSample) {
   EXPECT_EQ(SettledAfter_s(s, GroundMotion{}), 0.0);
 }
 
-#ifdef ROCKBENCH_HAVE_BULLET
 // An engine member at rest after SettledAfter_s stops there with its outcome unchanged: the
 // steps up to the stop are the same, and nothing can start rocking afterwards. Rinaldi 228
 // member 4 does not overturn in Bullet (measured: it rocks until about 9 s and rests to 20 s).
@@ -273,7 +272,6 @@ TEST(EngineEnsemble, AMemberAtRestStopsOnceTheBaseCannotStartItAgain) {
   }
   EXPECT_EQ(a.impacts, b.impacts);
 }
-#endif
 
 }  // namespace
 }  // namespace rockbench

@@ -2,14 +2,14 @@
 // slack), the verdict's logic (an engine error before the horizon, agreement, a difference
 // beyond it), and its power and false-alarm rate on a synthetic engine (the reference model with
 // a known peak bias), at the default ensemble sizes.
-#include "harness/verdict.h"
+#include "compare/verdict.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <string>
 
-#include "harness/verdict_power.h"
+#include "compare/verdict_power.h"
 #include "scene/ground_motion.h"
 
 namespace rockbench {

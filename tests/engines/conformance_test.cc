@@ -20,7 +20,7 @@
 #include "common/error_of.h"
 #include "common/housner_closed_forms.h"
 #include "common/scratch_dir_test.h"
-#include "harness/engine_registry.h"
+#include "run/engine_registry.h"
 #include "reference/simulate.h"
 #include "scene/ground_motion.h"
 #include "scene/scene.h"

@@ -1,9 +1,9 @@
-// Fuzz target study_reader: the study file reader, rockbench::ParseStudy (src/harness/study.h),
+// Fuzz target study_reader: the study file reader, rockbench::ParseStudy (src/study/study.h),
 // then the first and last member's scene (rockbench::MemberScene), as `rockbench ensemble`
 // builds them. Input: a study file's text; it is given a path in scenes/studies/, so that the
 // shipped studies' relative scene and record paths resolve. Any answer but a study (and member
 // scenes) or a SceneError is a finding.
-#include "harness/study.h"
+#include "study/study.h"
 #include "tests/fuzz/fuzz_target.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {

@@ -1,7 +1,6 @@
-// Dependencies point one way (README, Layout): the reference model, the engines and the renders
-// know the scene vocabulary (src/scene/) and not each other; the harness, the reports and the
-// CLI know them all. Checked on the sources: every #include of the three folders, and the
-// libraries their CMakeLists.txt link.
+// Dependencies point one way (README, Layout), checked on the sources: every project #include of
+// every code folder against the folder's rule, and the libraries the engines' and the renders'
+// CMakeLists.txt link.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -51,21 +50,68 @@ std::vector<std::pair<std::string, std::string>> IncludedFolders(const std::stri
   return out;
 }
 
-void ExpectOnly(const std::string& folder, const std::set<std::string>& allowed) {
-  const auto includes = IncludedFolders(folder);
-  EXPECT_FALSE(includes.empty()) << folder << ": no project include found (wrong root?)";
-  for (const auto& [included, where] : includes) {
-    EXPECT_TRUE(allowed.count(included)) << where << " includes " << included << "/: " << folder
-                                         << "/ may include only its own folder and scene/";
+// Every code folder and the folders it may include, bottom to top (README, Layout). util/ is
+// the base layer every folder may use; scene/ is the vocabulary; the reference, the engines and
+// the renders know the vocabulary and not each other; the harness's folders each know those
+// below them; the reports and the CLI know them all.
+struct FolderRule {
+  const char* folder;  // path from the root
+  std::set<std::string> may_include;
+};
+const std::vector<FolderRule> kRules = {
+    {"src/util", {"util"}},
+    {"src/scene", {"scene", "util"}},
+    {"reference", {"reference", "scene", "util"}},
+    {"engines", {"engines", "scene", "util"}},
+    {"renders", {"renders", "scene", "util"}},
+    {"src/run", {"run", "reference", "engines", "scene", "util"}},
+    {"src/statistics", {"statistics"}},
+    {"src/compare", {"compare", "run", "statistics", "reference", "engines", "scene", "util"}},
+    {"src/stress", {"stress", "compare", "run", "reference", "engines", "scene", "util"}},
+    {"src/sweep", {"sweep", "compare", "run", "reference", "engines", "scene", "util"}},
+    {"src/study", {"study", "compare", "run", "statistics", "reference", "engines", "scene", "util"}},
+    {"src/report",
+     {"report", "study", "compare", "run", "statistics", "reference", "renders", "scene", "util"}},
+    {"src/cli",
+     {"cli", "report", "study", "sweep", "stress", "compare", "run", "statistics", "reference",
+      "engines", "renders", "scene", "util"}},
+};
+
+TEST(Layout, EveryFolderIncludesOnlyWhatItsRuleAllows) {
+  for (const FolderRule& rule : kRules) {
+    const auto includes = IncludedFolders(rule.folder);
+    EXPECT_FALSE(includes.empty()) << rule.folder << ": no project include found (wrong root?)";
+    for (const auto& [included, where] : includes) {
+      EXPECT_TRUE(rule.may_include.count(included))
+          << where << " includes " << included << "/: " << rule.folder << "/ may not";
+    }
   }
 }
 
-TEST(Layout, ReferenceEnginesAndRendersKnowOnlyTheScene) {
-  ExpectOnly("reference", {"reference", "scene"});
-  ExpectOnly("engines", {"engines", "scene"});
-  ExpectOnly("renders", {"renders", "scene"});
+// A new code folder states its rule here before it holds code: every folder of src/ and every
+// top-level folder with C++ sources is in kRules.
+TEST(Layout, EveryCodeFolderHasARule) {
+  std::set<std::string> ruled;
+  for (const FolderRule& rule : kRules) ruled.insert(rule.folder);
+  std::vector<fs::path> folders;
+  for (const auto& e : fs::directory_iterator(kRoot / "src")) {
+    if (e.is_directory()) folders.push_back(e.path());
+  }
+  for (const char* top : {"reference", "engines", "renders"}) folders.push_back(kRoot / top);
+  for (const fs::path& f : folders) {
+    bool has_code = false;
+    for (const auto& e : fs::recursive_directory_iterator(f)) {
+      const std::string ext = e.path().extension().string();
+      has_code = has_code || ext == ".cc" || ext == ".h";
+    }
+    if (!has_code) continue;
+    const std::string rel = fs::relative(f, kRoot).string();
+    EXPECT_TRUE(ruled.count(rel)) << rel << "/ has code and no rule in kRules";
+  }
 }
 
+// The rules hold in the libraries too: the engines and the renders never link the reference;
+// the reference never links an engine or the renders.
 TEST(Layout, EnginesAndRendersDoNotLinkTheReference) {
   for (const std::string folder : {"engines", "renders"}) {
     for (const auto& e : fs::recursive_directory_iterator(kRoot / folder)) {

@@ -3,7 +3,7 @@
 // member says so and marks that member; a fragility study whose engine overturns at twice the
 // reference's PGA says the difference excludes zero, and one whose engine agrees says it
 // contains zero; a malformed members.csv is an error naming its line.
-#include "report/ensemble_report.h"
+#include "report/study/study_report.h"
 
 #include <gtest/gtest.h>
 
@@ -12,8 +12,8 @@
 #include <sstream>
 
 #include "common/scratch_dir_test.h"
-#include "harness/study_member.h"
-#include "report/run_report.h"
+#include "study/study_member.h"
+#include "report/run/run_report.h"
 
 namespace rockbench::report {
 namespace {

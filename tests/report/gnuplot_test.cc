@@ -1,6 +1,6 @@
 // RenderGnuplot: figures come out as SVG with the kept script and data, failures say why and
 // leave no figure behind.
-#include "report/gnuplot.h"
+#include "report/common/gnuplot.h"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // Page: the HTML is self-contained (figures embedded, warnings first) and the Markdown twin
 // refers to the same files.
-#include "report/page.h"
+#include "report/common/page.h"
 
 #include <gtest/gtest.h>
 

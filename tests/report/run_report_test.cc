@@ -4,7 +4,7 @@
 // observables' closed forms are tested in tests/reference/observables_test.cc), the error figure
 // reproduces comparison.json, the same folder gives the same bytes, and bad folders are errors
 // naming the file.
-#include "report/run_report.h"
+#include "report/run/run_report.h"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -23,9 +23,9 @@
 
 #include "reference/geometry.h"
 #include "reference/observables.h"
-#include "report/gnuplot.h"
-#include "report/interpolation.h"
-#include "report/page.h"
+#include "report/common/gnuplot.h"
+#include "report/common/interpolation.h"
+#include "report/common/page.h"
 #include "report/run_folder.h"
 #include "scene/history.h"
 #include "util/subprocess.h"

@@ -17,10 +17,10 @@
 #include <string>
 #include <vector>
 
-#include "report/page.h"
+#include "report/common/page.h"
 #include "report/run_folder.h"
-#include "report/run_report.h"
-#include "report/verdict_section.h"
+#include "report/run/run_report.h"
+#include "report/compare/verdict_section.h"
 #include "scene/history.h"
 
 namespace rockbench::report {

@@ -1,7 +1,7 @@
 // The work-precision report of a sweep folder: reading sweep.csv (and its errors), the families
 // and labels, the cheapest-setting statement on a synthetic sweep with known numbers, and a real
 // quick sweep of Housner's block reported end to end, with the convergence orders it shows.
-#include "report/work_precision.h"
+#include "report/sweep/work_precision.h"
 
 #include <gtest/gtest.h>
 
@@ -13,8 +13,8 @@
 #include <vector>
 
 #include "common/scratch_dir_test.h"
-#include "harness/sweep.h"
-#include "report/gnuplot.h"
+#include "sweep/sweep.h"
+#include "report/common/gnuplot.h"
 #include "scene/history.h"
 
 namespace rockbench::report {

@@ -1,6 +1,6 @@
 // The engine registry: the list engines/CMakeLists.txt generates, --engines lists, and the check
 // of a scene's non-scene tables against the engines of the build.
-#include "harness/engine_registry.h"
+#include "run/engine_registry.h"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // ParallelFor runs each index once whatever the thread count and rethrows a job's exception;
 // ProgressLine draws only on a terminal.
-#include "harness/parallel.h"
+#include "run/parallel.h"
 
 #include <gtest/gtest.h>
 

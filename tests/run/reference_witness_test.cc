@@ -1,12 +1,12 @@
 // The reference's convergence check: the witness's settings, the difference between a run and
 // its witness, the verdict "converged", and what a run does when it is not (the witness is used).
-#include "harness/convergence.h"
+#include "run/reference_witness.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "harness/engines.h"
+#include "run/engine_run.h"
 #include "scene/ground_motion.h"
 #include "tests/common/housner_scene.h"
 

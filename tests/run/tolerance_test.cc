@@ -1,6 +1,6 @@
 // The local tolerance (harness/tolerance.h): closed forms of the rule on histories whose
 // envelope is known, and the single-number tolerance at the peak.
-#include "harness/tolerance.h"
+#include "run/tolerance.h"
 
 #include <gtest/gtest.h>
 
@@ -8,7 +8,7 @@
 #include <cmath>
 #include <limits>
 
-#include "harness/compare.h"
+#include "compare/agreement.h"
 
 namespace rockbench {
 namespace {

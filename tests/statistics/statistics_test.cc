@@ -1,6 +1,6 @@
 // Ensemble statistics against closed forms, published values and brute-force enumeration (never
 // against numbers copied from the code under test).
-#include "harness/statistics.h"
+#include "statistics/statistics.h"
 
 #include <gtest/gtest.h>
 

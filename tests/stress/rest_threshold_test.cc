@@ -9,7 +9,7 @@
 #include <cstdio>
 #include <string>
 
-#include "harness/stress.h"
+#include "stress/stress.h"
 #include "reference/simulate.h"
 #include "scene/ground_motion.h"
 

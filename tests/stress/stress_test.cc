@@ -3,7 +3,7 @@
 // the physics each family must show (uplift below/above, Housner's cascade and scale effect,
 // release at the overturning angle, vertical acceleration past -g, restart from rest), and the
 // row's JSON/CSV forms. The isolation (child processes) is tested in stress_cli_test.cc.
-#include "harness/stress.h"
+#include "stress/stress.h"
 
 #include <gtest/gtest.h>
 
@@ -116,13 +116,11 @@ TEST(StressTest, CatalogueSpansTheIssue) {
         "vertical/at_rest/yg=-1.01g", "selftest/crash", "selftest/hang"}) {
     EXPECT_TRUE(names.count(n)) << n;
   }
-#ifdef ROCKBENCH_HAVE_BULLET
   EXPECT_EQ(precisions.size(), 2u);
   EXPECT_NEAR(*steps.rbegin(), 1.0 / 60.0, 1e-15);
   EXPECT_EQ(*steps.begin(), 1e-5);
   EXPECT_EQ(*iterations.begin(), 1);
   EXPECT_EQ(*iterations.rbegin(), 200);
-#endif
   // Deterministic: the same catalogue twice.
   const std::vector<StressCase> again = StressCatalogue();
   ASSERT_EQ(again.size(), cat.size());
@@ -241,7 +239,6 @@ TEST(StressTest, UpliftOnePercentBelowAndAbove) {
       EXPECT_EQ(above.summary.peak_theta1_rad, 0.0);
     }
     EXPECT_GT(std::max(above.summary.peak_theta1_rad, above.summary.peak_theta2_rad), 1e-3);
-#ifdef ROCKBENCH_HAVE_BULLET
     // Bullet: below, nothing tilts beyond its monitor's resolution (1e-5 rad); above, it rocks
     // to within 10% of the reference's peak (measured: 0.6% stack, 0.3% top).
     const StressRow bb = RunStressCaseHere(Find(cat, base + "below_1pct"), "bullet");
@@ -250,7 +247,6 @@ TEST(StressTest, UpliftOnePercentBelowAndAbove) {
     const double ref_peak = std::max(above.summary.peak_theta1_rad, above.summary.peak_theta2_rad);
     EXPECT_NEAR(std::max(ba.peak_theta1_rad, ba.peak_theta2_rad), ref_peak, 0.1 * ref_peak)
         << which;
-#endif
   }
 }
 
@@ -286,13 +282,11 @@ TEST(StressTest, LargerBlocksAreMoreStable) {
     EXPECT_LT(peak, last_peak) << name;
     last_peak = peak;
   }
-#ifdef ROCKBENCH_HAVE_BULLET
   // Bullet agrees on both ends.
   EXPECT_EQ(RunStressCaseHere(Find(cat, "size/single/b=0.1m"), "bullet").status, "overturned");
   const StressRow bb = RunStressCaseHere(big_case, "bullet");
   EXPECT_EQ(bb.status, "completed");
   EXPECT_NEAR(bb.peak_theta1_rad, big.summary.peak_theta1_rad, 0.1 * big.summary.peak_theta1_rad);
-#endif
 }
 
 TEST(StressTest, ReleaseJustInsideFallsBackJustOutsideOverturns) {
@@ -314,12 +308,10 @@ TEST(StressTest, ReleaseJustInsideFallsBackJustOutsideOverturns) {
       << out2.summary.status;
   EXPECT_EQ(out2.summary.impacts_ground + out2.summary.impacts_interface, 0);
   EXPECT_GT(out2.summary.peak_theta1_rad, 2.0 * reference::MakeGeometry(out_case.scene).theta_c);
-#ifdef ROCKBENCH_HAVE_BULLET
   EXPECT_NE(RunStressCaseHere(Find(cat, "release/single/inside_1pct"), "bullet").status,
             "overturned");
   EXPECT_EQ(RunStressCaseHere(Find(cat, "release/single/outside_1pct"), "bullet").status,
             "overturned");
-#endif
 }
 
 TEST(StressTest, VerticalAccelerationPastMinusG) {
@@ -334,13 +326,11 @@ TEST(StressTest, VerticalAccelerationPastMinusG) {
   ASSERT_FALSE(past.history.events.empty());
   EXPECT_EQ(past.history.events.back().kind, "assumption_violated");
   EXPECT_NEAR(past.history.events.back().t_s, 0.2, 1e-9);
-#ifdef ROCKBENCH_HAVE_BULLET
   // Bullet: free flight (uplift flagged) past -g, none before.
   EXPECT_EQ(RunStressCaseHere(Find(cat, "vertical/at_rest/yg=-0.99g"), "bullet").violations,
             "none");
   const StressRow b = RunStressCaseHere(Find(cat, "vertical/at_rest/yg=-1.01g"), "bullet");
   EXPECT_NE(b.violations.find("uplift"), std::string::npos) << b.violations;
-#endif
 }
 
 TEST(StressTest, APulseRestartsTheStackAtRest) {

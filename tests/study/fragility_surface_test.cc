@@ -2,7 +2,7 @@
 // maximum-likelihood fit passes through the three observed fractions exactly (a closed form);
 // a large sample from a known surface recovered within about four standard errors; contours
 // that are the surface's own quantiles; degenerate data said so.
-#include "harness/fragility_surface.h"
+#include "study/fragility_surface.h"
 
 #include <gtest/gtest.h>
 

@@ -2,7 +2,7 @@
 // through both observed fractions exactly; a large sample from a known curve recovered within
 // four standard errors of the Fisher information; degenerate data said so; a bootstrap interval
 // that covers the truth; the same bytes from the same input.
-#include "harness/fragility.h"
+#include "study/fragility.h"
 
 #include <gtest/gtest.h>
 

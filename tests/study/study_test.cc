@@ -2,7 +2,7 @@
 // journal (study_runner.h), in process: members in product and zip order, derived axes against
 // their definitions, error messages naming the file, line and key, rows that survive JSON, and
 // a journal that resumes after a line cut short.
-#include "harness/study.h"
+#include "study/study.h"
 
 #include <gtest/gtest.h>
 #include <sys/resource.h>
@@ -15,8 +15,8 @@
 
 #include "common/scratch_dir_test.h"
 #include "common/shell_test.h"
-#include "harness/study_member.h"
-#include "harness/study_runner.h"
+#include "study/study_member.h"
+#include "study/study_runner.h"
 #include "scene/ground_motion.h"
 #include "scene/intensity.h"
 #include "scene/limits.h"

@@ -12,8 +12,8 @@
 #include <vector>
 
 #include "cli/commands.h"
-#include "harness/engine_registry.h"
-#include "harness/sweep.h"
+#include "run/engine_registry.h"
+#include "sweep/sweep.h"
 
 namespace rockbench::cli {
 namespace {

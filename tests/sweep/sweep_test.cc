@@ -1,6 +1,6 @@
 // The sweep: its grid, one row per run in a fixed order, results independent of the number of
 // threads, and the CSV format.
-#include "harness/sweep.h"
+#include "sweep/sweep.h"
 
 #include <gtest/gtest.h>
 
@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "harness/engine_registry.h"
-#include "harness/engines.h"
+#include "run/engine_registry.h"
+#include "run/engine_run.h"
 #include "tests/common/housner_scene.h"
 
 namespace rockbench {
@@ -86,7 +86,6 @@ TEST(SweepTest, GridSpansTheRequestedRanges) {
   for (const SweepPoint& p : SweepGrid(true, {})) EXPECT_EQ(p.engine, "reference");
 }
 
-#ifdef ROCKBENCH_HAVE_BULLET
 TEST(SweepTest, BulletGridSpansItsStepsIterationsAndPrecisions) {
   std::set<double> steps;
   std::set<std::int64_t> iterations;
@@ -104,7 +103,6 @@ TEST(SweepTest, BulletGridSpansItsStepsIterationsAndPrecisions) {
   EXPECT_EQ(*iterations.rbegin(), 200);
   EXPECT_EQ(precisions.size(), 2u);
 }
-#endif
 
 TEST(SweepTest, PointSettingsGoIntoTheScene) {
   SweepPoint p;

@@ -1,4 +1,4 @@
-#include "report/gnuplot.h"
+#include "report/common/gnuplot.h"
 
 #include <cstdlib>
 #include <stdexcept>

@@ -1,4 +1,4 @@
-#include "report/interpolation.h"
+#include "report/common/interpolation.h"
 
 #include <algorithm>
 #include <map>

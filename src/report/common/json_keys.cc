@@ -1,4 +1,4 @@
-#include "report/json_keys.h"
+#include "report/common/json_keys.h"
 
 #include <cmath>
 #include <limits>

@@ -1,4 +1,4 @@
-#include "report/number_text.h"
+#include "report/common/number_text.h"
 
 #include <cmath>
 #include <cstdio>

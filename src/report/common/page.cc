@@ -1,4 +1,4 @@
-#include "report/page.h"
+#include "report/common/page.h"
 
 #include <stdexcept>
 

@@ -1,12 +1,12 @@
-#include "report/agreement_section.h"
+#include "report/compare/agreement_section.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "harness/tolerance.h"
-#include "report/interpolation.h"
-#include "report/json_keys.h"
-#include "report/number_text.h"
+#include "run/tolerance.h"
+#include "report/common/interpolation.h"
+#include "report/common/json_keys.h"
+#include "report/common/number_text.h"
 
 namespace rockbench::report {
 namespace {

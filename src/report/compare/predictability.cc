@@ -1,4 +1,4 @@
-#include "report/predictability.h"
+#include "report/compare/predictability.h"
 
 #include <cerrno>
 #include <cmath>
@@ -6,7 +6,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "report/json_keys.h"
+#include "report/common/json_keys.h"
 #include "scene/history.h"
 
 namespace rockbench::report {

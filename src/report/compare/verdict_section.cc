@@ -1,12 +1,12 @@
-#include "report/verdict_section.h"
+#include "report/compare/verdict_section.h"
 
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
-#include "harness/verdict.h"
-#include "report/json_keys.h"
-#include "report/number_text.h"
+#include "compare/verdict.h"
+#include "report/common/json_keys.h"
+#include "report/common/number_text.h"
 
 namespace rockbench::report {
 namespace {

@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "report/page.h"
-#include "report/predictability.h"
+#include "report/common/page.h"
+#include "report/compare/predictability.h"
 
 namespace rockbench::report {
 

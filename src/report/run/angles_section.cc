@@ -1,6 +1,6 @@
-#include "report/angles_section.h"
+#include "report/run/angles_section.h"
 
-#include "report/number_text.h"
+#include "report/common/number_text.h"
 
 namespace rockbench::report {
 namespace {

@@ -1,7 +1,7 @@
 #pragma once
 /// The page's Angles figure: theta1 and theta2 of the reference and every engine on shared
 /// axes, the reference ensemble's band behind, overturning and predictability marks.
-#include "report/run_figures.h"
+#include "report/run/run_figures.h"
 
 namespace rockbench::report {
 

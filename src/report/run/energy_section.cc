@@ -1,9 +1,9 @@
-#include "report/energy_section.h"
+#include "report/run/energy_section.h"
 
 #include <algorithm>
 
 #include "reference/observables.h"
-#include "report/number_text.h"
+#include "report/common/number_text.h"
 
 namespace rockbench::report {
 

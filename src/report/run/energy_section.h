@@ -3,7 +3,7 @@
 /// angles and rates with the reference's observables (reference/observables.h), and its
 /// initial, final and largest values.
 #include "reference/geometry.h"
-#include "report/run_figures.h"
+#include "report/run/run_figures.h"
 
 namespace rockbench::report {
 

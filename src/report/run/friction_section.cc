@@ -1,11 +1,11 @@
-#include "report/friction_section.h"
+#include "report/run/friction_section.h"
 
 #include <algorithm>
 #include <cmath>
 
 #include "reference/observables.h"
-#include "report/json_keys.h"
-#include "report/number_text.h"
+#include "report/common/json_keys.h"
+#include "report/common/number_text.h"
 
 namespace rockbench::report {
 

@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "reference/geometry.h"
-#include "report/run_figures.h"
-#include "report/run_report.h"
+#include "report/run/run_figures.h"
+#include "report/run/run_report.h"
 #include "scene/ground_motion.h"
 
 namespace rockbench::report {

@@ -1,8 +1,8 @@
-#include "report/impacts_section.h"
+#include "report/run/impacts_section.h"
 
 #include <set>
 
-#include "report/number_text.h"
+#include "report/common/number_text.h"
 
 namespace rockbench::report {
 namespace {

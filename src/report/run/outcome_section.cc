@@ -1,12 +1,12 @@
-#include "report/outcome_section.h"
+#include "report/run/outcome_section.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "report/json_keys.h"
-#include "report/number_text.h"
-#include "report/run_figures.h"
-#include "report/verdict_section.h"
+#include "report/common/json_keys.h"
+#include "report/common/number_text.h"
+#include "report/run/run_figures.h"
+#include "report/compare/verdict_section.h"
 
 namespace rockbench::report {
 namespace {

@@ -5,9 +5,9 @@
 #include <string>
 #include <vector>
 
-#include "report/page.h"
-#include "report/run_readers.h"
-#include "report/run_report.h"
+#include "report/common/page.h"
+#include "report/run/run_readers.h"
+#include "report/run/run_report.h"
 
 namespace rockbench::report {
 

@@ -1,4 +1,4 @@
-#include "report/pictures_section.h"
+#include "report/run/pictures_section.h"
 
 #include <algorithm>
 #include <cmath>
@@ -8,8 +8,8 @@
 #include "renders/geometry.h"
 #include "renders/gl_context.h"
 #include "renders/renderer.h"
-#include "report/json_keys.h"
-#include "report/number_text.h"
+#include "report/common/json_keys.h"
+#include "report/common/number_text.h"
 
 namespace rockbench::report {
 namespace {

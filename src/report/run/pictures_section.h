@@ -1,8 +1,8 @@
 #pragma once
 /// The page's Keyframes and Animation: frames drawn from the histories (renders/) at the peaks,
 /// overturning and the reference's first impacts, and the animation of the whole run.
-#include "report/run_figures.h"
-#include "report/run_report.h"
+#include "report/run/run_figures.h"
+#include "report/run/run_report.h"
 #include "scene/ground_motion.h"
 
 namespace rockbench::report {

@@ -1,10 +1,10 @@
-#include "report/run_figures.h"
+#include "report/run/run_figures.h"
 
 #include <cmath>
 #include <cstdio>
 
-#include "report/json_keys.h"
-#include "report/number_text.h"
+#include "report/common/json_keys.h"
+#include "report/common/number_text.h"
 
 namespace rockbench::report {
 

@@ -9,9 +9,9 @@
 #include <string>
 #include <vector>
 
-#include "report/gnuplot.h"
-#include "report/page.h"
-#include "report/run_readers.h"
+#include "report/common/gnuplot.h"
+#include "report/common/page.h"
+#include "report/run/run_readers.h"
 
 namespace rockbench::report {
 

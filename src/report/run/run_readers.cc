@@ -1,9 +1,9 @@
-#include "report/run_readers.h"
+#include "report/run/run_readers.h"
 
 #include <algorithm>
 #include <stdexcept>
 
-#include "report/json_keys.h"
+#include "report/common/json_keys.h"
 
 namespace rockbench::report {
 namespace {

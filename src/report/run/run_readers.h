@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "report/predictability.h"
+#include "report/compare/predictability.h"
 #include "scene/history.h"
 #include "scene/scene.h"
 

@@ -1,19 +1,19 @@
-#include "report/run_report.h"
+#include "report/run/run_report.h"
 
 #include <stdexcept>
 
 #include "reference/geometry.h"
-#include "report/agreement_section.h"
-#include "report/angles_section.h"
-#include "report/energy_section.h"
-#include "report/friction_section.h"
-#include "report/impacts_section.h"
-#include "report/outcome_section.h"
-#include "report/page.h"
-#include "report/pictures_section.h"
-#include "report/run_figures.h"
-#include "report/run_readers.h"
-#include "report/scene_section.h"
+#include "report/compare/agreement_section.h"
+#include "report/run/angles_section.h"
+#include "report/run/energy_section.h"
+#include "report/run/friction_section.h"
+#include "report/run/impacts_section.h"
+#include "report/run/outcome_section.h"
+#include "report/common/page.h"
+#include "report/run/pictures_section.h"
+#include "report/run/run_figures.h"
+#include "report/run/run_readers.h"
+#include "report/run/scene_section.h"
 #include "scene/ground_motion.h"
 
 namespace rockbench::report {

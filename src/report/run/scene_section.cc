@@ -1,12 +1,12 @@
-#include "report/scene_section.h"
+#include "report/run/scene_section.h"
 
 #include <algorithm>
 #include <cmath>
 #include <set>
 
 #include "reference/geometry.h"
-#include "report/json_keys.h"
-#include "report/number_text.h"
+#include "report/common/json_keys.h"
+#include "report/common/number_text.h"
 
 namespace rockbench::report {
 namespace {

@@ -1,11 +1,11 @@
 // members.csv and study.json read back for the ensemble report.
-#include "report/ensemble_csv.h"
+#include "report/study/study_csv.h"
 
 #include <charconv>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "report/run_report.h"
+#include "report/run/run_report.h"
 #include "scene/history.h"
 
 namespace rockbench::report {

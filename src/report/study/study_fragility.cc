@@ -5,11 +5,11 @@
 #include <cmath>
 #include <map>
 
-#include "harness/fragility.h"
-#include "harness/statistics.h"
-#include "report/ensemble_sections.h"
-#include "report/gnuplot.h"
-#include "report/number_text.h"
+#include "study/fragility.h"
+#include "statistics/statistics.h"
+#include "report/study/study_sections.h"
+#include "report/common/gnuplot.h"
+#include "report/common/number_text.h"
 
 namespace rockbench::report {
 namespace {

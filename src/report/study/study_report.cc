@@ -1,12 +1,12 @@
 // The ensemble report: assembles the study's sections (ensemble_sections.h) into one page.
-#include "report/ensemble_report.h"
+#include "report/study/study_report.h"
 
 #include <map>
 
-#include "report/ensemble_csv.h"
-#include "report/ensemble_sections.h"
-#include "report/number_text.h"
-#include "report/page.h"
+#include "report/study/study_csv.h"
+#include "report/study/study_sections.h"
+#include "report/common/number_text.h"
+#include "report/common/page.h"
 #include "scene/history.h"
 
 namespace rockbench::report {

@@ -9,8 +9,8 @@
 #include <utility>
 #include <vector>
 
-#include "report/ensemble_csv.h"
-#include "report/page.h"
+#include "report/study/study_csv.h"
+#include "report/common/page.h"
 
 namespace rockbench::report {
 

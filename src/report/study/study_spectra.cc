@@ -4,9 +4,9 @@
 #include <map>
 #include <set>
 
-#include "report/ensemble_sections.h"
-#include "report/gnuplot.h"
-#include "report/number_text.h"
+#include "report/study/study_sections.h"
+#include "report/common/gnuplot.h"
+#include "report/common/number_text.h"
 
 namespace rockbench::report {
 namespace {

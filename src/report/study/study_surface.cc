@@ -3,10 +3,10 @@
 #include <cmath>
 #include <map>
 
-#include "harness/fragility_surface.h"
-#include "report/ensemble_sections.h"
-#include "report/gnuplot.h"
-#include "report/number_text.h"
+#include "study/fragility_surface.h"
+#include "report/study/study_sections.h"
+#include "report/common/gnuplot.h"
+#include "report/common/number_text.h"
 
 namespace rockbench::report {
 

@@ -1,4 +1,4 @@
-#include "report/sweep_analysis.h"
+#include "report/sweep/sweep_analysis.h"
 
 #include <algorithm>
 #include <cmath>

@@ -7,7 +7,7 @@
 #include <utility>
 #include <vector>
 
-#include "report/sweep_csv.h"
+#include "report/sweep/sweep_csv.h"
 
 namespace rockbench::report {
 

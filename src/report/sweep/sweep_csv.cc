@@ -1,4 +1,4 @@
-#include "report/sweep_csv.h"
+#include "report/sweep/sweep_csv.h"
 
 #include <cmath>
 #include <cstdlib>

@@ -1,4 +1,4 @@
-#include "report/work_precision.h"
+#include "report/sweep/work_precision.h"
 
 #include <algorithm>
 #include <cmath>
@@ -9,8 +9,8 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "report/gnuplot.h"
-#include "report/page.h"
+#include "report/common/gnuplot.h"
+#include "report/common/page.h"
 #include "scene/history.h"
 #include "util/format.h"
 

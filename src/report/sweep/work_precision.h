@@ -4,8 +4,8 @@
 #include <filesystem>
 #include <string>
 
-#include "report/sweep_analysis.h"
-#include "report/sweep_csv.h"
+#include "report/sweep/sweep_analysis.h"
+#include "report/sweep/sweep_csv.h"
 
 namespace rockbench::report {
 
