@@ -2,53 +2,35 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 #include <string>
+#include <string_view>
+#include <utility>
+#include <variant>
 
 #include "renders/limits.h"
+#include "scene/ground_displacement.h"
 
 namespace rockbench::renders {
-namespace {
 
-// Clockwise rotation by theta (thesis sign) of p about pivot.
-Vec2 RotateClockwise(Vec2 p, Vec2 pivot, double theta_rad) {
-  const double c = std::cos(theta_rad), s = std::sin(theta_rad);
-  const double dx = p.x_m - pivot.x_m, dy = p.y_m - pivot.y_m;
-  return {pivot.x_m + c * dx + s * dy, pivot.y_m - s * dx + c * dy};
+InitialState StackState(const Sample& s, bool two_blocks) {
+  return {s.theta1_rad, two_blocks ? s.theta2_rad : s.theta1_rad, s.omega1_radps,
+          two_blocks ? s.omega2_radps : s.omega1_radps};
 }
 
-Quad RestQuad(double half_width_m, double y0_m, double height_m) {
-  return {Vec2{-half_width_m, y0_m}, Vec2{half_width_m, y0_m}, Vec2{half_width_m, y0_m + height_m},
-          Vec2{-half_width_m, y0_m + height_m}};
-}
-
-}  // namespace
-
-StackPose PoseFor(const Scene& scene, double theta1_rad, double theta2_rad, Vec2 base) {
-  StackPose pose;
-  const double b1 = 0.5 * scene.block1.width_m, h1 = scene.block1.height_m;
-  // Block 1 about its right (theta1 > 0) or left (theta1 < 0) base corner.
-  const Vec2 pivot1{theta1_rad >= 0.0 ? b1 : -b1, 0.0};
-  const Quad rest1 = RestQuad(b1, 0.0, h1);
-  for (int i = 0; i < 4; ++i) pose.block1[i] = RotateClockwise(rest1[i], pivot1, theta1_rad);
-  if (scene.block2) {
-    pose.has_block2 = true;
-    const double b2 = 0.5 * scene.block2->width_m;
-    // In block 1's rest frame: relative rotation about the contact corner on its top face.
-    const double rel_rad = theta2_rad - theta1_rad;
-    const double corner = std::min(b1, b2);
-    const Vec2 pivot2{rel_rad >= 0.0 ? corner : -corner, h1};
-    const Quad rest2 = RestQuad(b2, h1, scene.block2->height_m);
-    for (int i = 0; i < 4; ++i) {
-      pose.block2[i] =
-          RotateClockwise(RotateClockwise(rest2[i], pivot2, rel_rad), pivot1, theta1_rad);
-    }
-  }
+StackCorners PoseFor(const Scene& scene, const InitialState& state, Vec2 base) {
+  StackCorners pose = StackCornersAt(scene, state);
   // Everything moves with the base.
-  for (auto& p : pose.block1) p = {p.x_m + base.x_m, p.y_m + base.y_m};
-  for (auto& p : pose.block2) p = {p.x_m + base.x_m, p.y_m + base.y_m};
+  for (auto& p : pose.block1) p = p + base;
+  for (auto& p : pose.block2) p = p + base;
   return pose;
+}
+
+StackCorners PoseFor(const Scene& scene, double theta1_rad, double theta2_rad, Vec2 base) {
+  return PoseFor(scene, InitialState{theta1_rad, theta2_rad, 0.0, 0.0}, base);
 }
 
 Sample StateAt(const History& history, double t_s) {
@@ -110,72 +92,83 @@ Vec2 BaseDisplacement::At(double t_s) const {
 
 namespace {
 
-// Acceleration samples -> baseline-corrected displacement (see IntegrateBaseDisplacement).
-std::vector<double> DoubleIntegrate(const std::vector<double>& a_mps2, double dt_s) {
-  const size_t n = a_mps2.size();
-  std::vector<double> v(n, 0.0), x(n, 0.0);
-  for (size_t i = 1; i < n; ++i) v[i] = v[i - 1] + 0.5 * dt_s * (a_mps2[i - 1] + a_mps2[i]);
-  // Least-squares line v ~ c0 + c1 t through the velocity, removed. Trapezoidal weights (half
-  // at the ends) make it the continuous L2 fit over [0, t_end], not biased by the end samples.
-  if (n >= 2) {
-    double sw = 0, st = 0, sv = 0, stt = 0, stv = 0;
-    for (size_t i = 0; i < n; ++i) {
-      const double t = static_cast<double>(i) * dt_s;
-      const double w = (i == 0 || i + 1 == n) ? 0.5 : 1.0;
-      sw += w;
-      st += w * t;
-      sv += w * v[i];
-      stt += w * t * t;
-      stv += w * t * v[i];
-    }
-    const double det = sw * stt - st * st;
-    const double c1 = det != 0.0 ? (sw * stv - st * sv) / det : 0.0;
-    const double c0 = (sv - c1 * st) / sw;
-    for (size_t i = 0; i < n; ++i) v[i] -= c0 + c1 * static_cast<double>(i) * dt_s;
-  }
-  for (size_t i = 1; i < n; ++i) x[i] = x[i - 1] + 0.5 * dt_s * (v[i - 1] + v[i]);
-  return x;
+// The window the path is integrated over: [0, t_end], and with a high-pass (a zero-phase
+// filter looks ahead) at least the run, as the engines integrate it.
+double IntegrationWindow_s(double t_end_s, const BaseIntegrationConfig& config) {
+  return config.highpass_hz > 0.0 ? std::max(t_end_s, config.run_duration_s) : t_end_s;
 }
 
-// The sample interval of the integration: the finest record's, else config.dt_s.
-double IntegrationStep_s(const GroundMotion& motion, const BaseIntegrationConfig& config) {
-  double dt_s = std::numeric_limits<double>::infinity();
-  for (const auto* c : {&motion.horizontal(), &motion.vertical()}) {
-    if (*c && !(*c)->samples_mps2().empty() && (*c)->dt_s() > 0.0) {
-      dt_s = std::min(dt_s, (*c)->dt_s());
-    }
+// One of the filter's pads, samples (as IntegrateGroundPath makes them).
+double FilterPad(const BaseIntegrationConfig& config) {
+  if (!(config.highpass_hz > 0.0)) return 0.0;
+  return std::min(std::ceil(1.2 / (config.highpass_hz * config.dt_s)), 5e7);
+}
+
+// A number of an engine's table, as written (a TOML integer is a number too).
+std::optional<double> TableNumber(const RawEngineTable& table, std::string_view key) {
+  const auto it = table.values.find(key);
+  if (it == table.values.end()) return std::nullopt;
+  if (const auto* d = std::get_if<double>(&it->second.value)) return *d;
+  if (const auto* i = std::get_if<std::int64_t>(&it->second.value)) {
+    return static_cast<double>(*i);
   }
-  return std::isfinite(dt_s) ? dt_s : config.dt_s;
+  return std::nullopt;
 }
 
 }  // namespace
 
+BaseIntegrationConfig BaseIntegrationFor(const Scene& scene) {
+  BaseIntegrationConfig config;
+  config.run_duration_s = scene.run.duration_s;
+  for (const auto& [engine, table] : scene.engine_tables) {
+    const auto drive = table.values.find("drive");
+    if (drive == table.values.end()) continue;
+    const auto* kind = std::get_if<std::string>(&drive->second.value);
+    if (kind == nullptr || *kind != "kinematic") continue;
+    // The engine checks its own table; here only sensible values are taken.
+    if (const auto dt = TableNumber(table, "time_step"); dt && std::isfinite(*dt) && *dt > 0.0) {
+      config.dt_s = *dt;
+    }
+    if (const auto fc = TableNumber(table, "kinematic_highpass_hz");
+        fc && std::isfinite(*fc) && *fc >= 0.0) {
+      config.highpass_hz = *fc;
+    }
+    break;
+  }
+  return config;
+}
+
 double BaseDisplacementSamples(const GroundMotion& motion, double t_end_s,
                                const BaseIntegrationConfig& config) {
   if (motion.empty() || !(t_end_s > 0.0)) return 0.0;
-  return std::ceil(t_end_s / IntegrationStep_s(motion, config)) + 1.0;
+  const double window_s = IntegrationWindow_s(t_end_s, config);
+  return static_cast<double>(StepCount(window_s, config.dt_s)) + 1.0 + 2.0 * FilterPad(config);
 }
 
 BaseDisplacement IntegrateBaseDisplacement(const GroundMotion& motion, double t_end_s,
                                            const BaseIntegrationConfig& config) {
   if (motion.empty() || !(t_end_s > 0.0)) return {};
-  // Records are integrated on their own sample grid (they are linear between samples).
-  const double dt_s = IntegrationStep_s(motion, config);
-  const size_t n = static_cast<size_t>(BaseDisplacementSamples(motion, t_end_s, config));
-  std::vector<double> ax(n), ay(n);
-  for (size_t i = 0; i < n; ++i) {
-    const double t = static_cast<double>(i) * dt_s;
-    ax[i] = motion.xg_mps2(t);
-    ay[i] = motion.yg_mps2(t);
+  if (!(config.dt_s > 0.0) || !std::isfinite(config.dt_s)) {
+    throw std::invalid_argument("IntegrateBaseDisplacement: dt_s must be a positive time step");
   }
-  std::vector<double> x = DoubleIntegrate(ax, dt_s);
-  std::vector<double> y = motion.has_vertical() ? DoubleIntegrate(ay, dt_s) : std::vector<double>{};
+  // The kinematic drive's grid and path (engines/common/engine_input.cc MakeEngineInput does
+  // the same): at the engine's step and high-pass, the same numbers the engine moved its
+  // ground by.
+  const double dt_s = config.dt_s;
+  const auto steps = static_cast<size_t>(StepCount(IntegrationWindow_s(t_end_s, config), dt_s));
+  std::vector<double> ax, ay;
+  SampleGroundAcceleration(motion, dt_s, steps, &ax, &ay);
+  std::vector<double> x = IntegrateGroundPath(ax, dt_s, config.highpass_hz).u_m;
+  ax = std::vector<double>();  // memory: at most 5 doubles a sample at a time (EstimateExport)
+  std::vector<double> y = motion.has_vertical()
+                              ? IntegrateGroundPath(ay, dt_s, config.highpass_hz).u_m
+                              : std::vector<double>{};
   return BaseDisplacement::FromSamples(0.0, dt_s, std::move(x), std::move(y));
 }
 
 Vec2 Camera::ToPixel(Vec2 w) const {
   const double s = px_per_m();
-  return {vp_x_px + (w.x_m - world.x_min_m) * s, vp_y_px + (world.y_max_m - w.y_m) * s};
+  return {vp_x_px + (w.x - world.x_min_m) * s, vp_y_px + (world.y_max_m - w.y) * s};
 }
 
 Box MotionBox(const Scene& scene, const std::vector<const History*>& histories,
@@ -183,31 +176,28 @@ Box MotionBox(const Scene& scene, const std::vector<const History*>& histories,
   const double inf = std::numeric_limits<double>::infinity();
   Box box{inf, -inf, inf, -inf};
   auto add = [&](Vec2 p) {
-    box.x_min_m = std::min(box.x_min_m, p.x_m);
-    box.x_max_m = std::max(box.x_max_m, p.x_m);
-    box.y_min_m = std::min(box.y_min_m, p.y_m);
-    box.y_max_m = std::max(box.y_max_m, p.y_m);
+    box.x_min_m = std::min(box.x_min_m, p.x);
+    box.x_max_m = std::max(box.x_max_m, p.x);
+    box.y_min_m = std::min(box.y_min_m, p.y);
+    box.y_max_m = std::max(box.y_max_m, p.y);
   };
-  auto add_pose = [&](double th1, double th2, double t) {
+  auto add_pose = [&](const InitialState& state, double t) {
     const Vec2 b = base.At(t);
-    const StackPose pose = PoseFor(scene, th1, th2, b);
+    const StackCorners pose = PoseFor(scene, state, b);
     for (const auto& p : pose.block1) add(p);
     if (pose.has_block2) {
       for (const auto& p : pose.block2) add(p);
     }
-    add({b.x_m, b.y_m});
+    add(b);
   };
   // The rest pose and the poses at the window's ends are always in view.
-  add_pose(0.0, 0.0, t_from_s);
+  add_pose({}, t_from_s);
   for (const History* h : histories) {
     if (!h || h->samples.empty()) continue;
-    for (double t : {t_from_s, t_to_s}) {
-      const Sample s = StateAt(*h, t);
-      add_pose(s.theta1_rad, h->two_blocks ? s.theta2_rad : s.theta1_rad, t);
-    }
+    for (double t : {t_from_s, t_to_s}) add_pose(StackState(StateAt(*h, t), h->two_blocks), t);
     for (const Sample& s : h->samples) {
       if (s.t_s < t_from_s || s.t_s > t_to_s) continue;
-      add_pose(s.theta1_rad, h->two_blocks ? s.theta2_rad : s.theta1_rad, s.t_s);
+      add_pose(StackState(s, h->two_blocks), s.t_s);
     }
   }
   // The base displacement over the whole window (between history samples too).
@@ -216,7 +206,7 @@ Box MotionBox(const Scene& scene, const std::vector<const History*>& histories,
     for (int i = 0; i <= n; ++i) {
       const double t = t_from_s + (t_to_s - t_from_s) * i / n;
       const Vec2 b = base.At(t);
-      add_pose(0.0, 0.0, t);
+      add_pose({}, t);
       add(b);
     }
   }

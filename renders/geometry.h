@@ -1,6 +1,8 @@
 #pragma once
 /// Pure geometry of the drawing (no GL): block corners from a state, state at a time of a
-/// history, the base displacement and the camera that frames a whole motion.
+/// history, the base displacement and the camera that frames a whole motion. The corners come
+/// from the scene's pivot chain (scene/stack_pose.h) and the base displacement from the
+/// kinematic drive's ground path (scene/ground_displacement.h), the same the engines use.
 #include <array>
 #include <functional>
 #include <string>
@@ -9,33 +11,26 @@
 #include "scene/ground_motion.h"
 #include "scene/history.h"
 #include "scene/scene.h"
+#include "scene/stack_pose.h"
+#include "scene/vec2.h"
 
 namespace rockbench::renders {
 
-/// A point or vector in the plane of motion, m (x right, y up).
-struct Vec2 {
-  double x_m = 0.0;
-  double y_m = 0.0;
-};
+/// The stack's state of a sample of a history: its angles and rates; a single-block history
+/// drawn on a two-block scene keeps block 2 locked on block 1 (theta2 = theta1, omega2 =
+/// omega1).
+InitialState StackState(const Sample& sample, bool two_blocks);
 
-/// Corners of a block, counter-clockwise from the bottom-left: bottom-left, bottom-right,
-/// top-right, top-left (in the block's own frame), in world coordinates, m.
-using Quad = std::array<Vec2, 4>;
-
-/// Where the blocks of a scene are for one state.
-struct StackPose {
-  Quad block1;
-  bool has_block2 = false;
-  Quad block2;  ///< valid when has_block2
-};
-
-/// Block corners for a state, thesis convention: theta > 0 tilts right (clockwise).
-/// Block 1 rotates by theta1 about its right base corner when theta1 > 0, its left one when
-/// theta1 < 0. Block 2 is centred on block 1 at rest and rotates by (theta2 - theta1) relative to
-/// block 1, on block 1's top face, about its own right base corner when theta2 > theta1 and its
-/// left one when theta2 < theta1 (a block 2 wider than block 1 pivots on block 1's corner).
-/// `base` shifts everything (ground displacement x_g, y_g). Angles in rad.
-StackPose PoseFor(const Scene& scene, double theta1_rad, double theta2_rad, Vec2 base = {});
+/// Block corners for a state (scene/stack_pose.h StackCornersAt: the engines' pivot chain),
+/// thesis convention: theta > 0 tilts right (clockwise). Block 1 turns by theta1 about its right
+/// base corner when theta1 > 0, its left one when theta1 < 0. Block 2 is centred on block 1 at
+/// rest and turns by (theta2 - theta1) relative to block 1, on block 1's top face, about its own
+/// right base corner when theta2 > theta1 and its left one when theta2 < theta1. A zero angle
+/// takes the side of its rate (PivotSide), which moves no corner. `base` shifts everything
+/// (ground displacement x_g, y_g, m). Angles in rad, rates in rad/s.
+StackCorners PoseFor(const Scene& scene, const InitialState& state, Vec2 base = {});
+/// The same at rest rates (omega1 = omega2 = 0).
+StackCorners PoseFor(const Scene& scene, double theta1_rad, double theta2_rad, Vec2 base = {});
 
 /// The state of a history at t_s: thetas interpolated linearly between the samples around t_s,
 /// the mode of the sample at or before t_s; held constant before the first and after the last
@@ -63,21 +58,37 @@ class BaseDisplacement {
   std::vector<double> x_m_, y_m_;
 };
 
-/// Settings of the double integration of ground acceleration into displacement.
+/// The kinematic drive's settings the base displacement is integrated with
+/// (scene/ground_displacement.h IntegrateGroundPath).
 struct BaseIntegrationConfig {
-  /// Sample interval, s, when no component is a record (records use their own dt).
-  double dt_s = 1e-3;
+  /// The step grid, s: the kinematic drive's time step (default 1e-4 s, every engine's default
+  /// time_step).
+  double dt_s = 1e-4;
+  /// The baseline correction's corner, Hz: the kinematic drive's kinematic_highpass_hz (default
+  /// 0, its default: no correction).
+  double highpass_hz = 0.0;
+  /// The run's duration, s: with a high-pass (whose zero-phase filter looks ahead) the path is
+  /// integrated over at least [0, run_duration_s], as the engines integrate it, so that a
+  /// shorter window shows the same path. 0: the window only.
+  double run_duration_s = 0.0;
 };
 
-/// Base displacement from a scene's ground motion on [0, t_end_s]: trapezoidal integration of
-/// the acceleration to velocity, a simple baseline correction (the least-squares straight line
-/// through the velocity is removed, so a record that ends with a residual velocity does not
-/// drift away), then trapezoidal integration to displacement (x_g(0) = y_g(0) = 0). Empty motion
-/// gives an empty displacement.
+/// The settings of the scene's kinematic drive: of the first engine table (in name order) with
+/// drive = "kinematic", its time_step and kinematic_highpass_hz where given; the defaults of
+/// BaseIntegrationConfig otherwise (and for a scene with no kinematic-drive engine). The
+/// scene's run duration in every case.
+BaseIntegrationConfig BaseIntegrationFor(const Scene& scene);
+
+/// Base displacement from a scene's ground motion on [0, t_end_s]: the ground path of a
+/// kinematic-drive engine with these settings (IntegrateGroundPath: the acceleration sampled on
+/// the grid t_n = n dt, leapfrog double integration from rest, then the zero-phase Butterworth
+/// high-pass when highpass_hz > 0), x_g(0) = y_g(0) = 0, linear between the grid's points. No
+/// vertical component gives no vertical displacement; empty motion an empty displacement.
 BaseDisplacement IntegrateBaseDisplacement(const GroundMotion& motion, double t_end_s,
                                            const BaseIntegrationConfig& config = {});
-/// Samples IntegrateBaseDisplacement takes (and holds, per component) for this motion up to
-/// t_end_s: t_end_s / dt + 1 (0 for no motion), as a double for the memory estimate.
+/// Samples IntegrateBaseDisplacement holds per component for this motion up to t_end_s, as a
+/// double for the memory estimate: the grid's points (ceil(window / dt) + 1), and with a
+/// high-pass the filter's two pads (1.2 / (highpass_hz dt) each); 0 for no motion.
 double BaseDisplacementSamples(const GroundMotion& motion, double t_end_s,
                                const BaseIntegrationConfig& config = {});
 
@@ -96,7 +107,7 @@ struct Camera {
   double vp_y_px = 0.0;  ///< viewport top edge, px
   double vp_w_px = 0.0;  ///< viewport width, px
   double vp_h_px = 0.0;  ///< viewport height, px
-  /// Pixel coordinates (continuous) of a world point.
+  /// Pixel coordinates (continuous, px) of a world point (m).
   Vec2 ToPixel(Vec2 world_m) const;
   /// Pixels per metre (the same on both axes).
   double px_per_m() const { return vp_w_px / world.width_m(); }

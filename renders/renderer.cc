@@ -25,7 +25,7 @@ void Colour(Rgb c, double alpha = 1.0) {
 // A quad in pixel coordinates (final-image px; the projection scales to the supersampled buffer).
 using PixelQuad = std::array<Vec2, 4>;
 
-PixelQuad ToPixels(const Camera& cam, const Quad& q) {
+PixelQuad ToPixels(const Camera& cam, const BlockCorners& q) {
   PixelQuad p;
   for (int i = 0; i < 4; ++i) p[i] = cam.ToPixel(q[i]);
   return p;
@@ -39,19 +39,19 @@ PixelQuad Inset(const PixelQuad& q, double d_px) {
     const Vec2& next = q[(i + 1) % 4];
     const Vec2& prev = q[(i + 3) % 4];
     auto unit = [](Vec2 a, Vec2 b) {
-      const double dx = b.x_m - a.x_m, dy = b.y_m - a.y_m;
+      const double dx = b.x - a.x, dy = b.y - a.y;
       const double len = std::hypot(dx, dy);
       return len > 0 ? Vec2{dx / len, dy / len} : Vec2{};
     };
     const Vec2 u = unit(c, next), v = unit(c, prev);
-    out[i] = {c.x_m + d_px * (u.x_m + v.x_m), c.y_m + d_px * (u.y_m + v.y_m)};
+    out[i] = {c.x + d_px * (u.x + v.x), c.y + d_px * (u.y + v.y)};
   }
   return out;
 }
 
 void FillQuad(const PixelQuad& q) {
   glBegin(GL_QUADS);
-  for (const Vec2& p : q) glVertex2d(p.x_m, p.y_m);
+  for (const Vec2& p : q) glVertex2d(p.x, p.y);
   glEnd();
 }
 
@@ -59,8 +59,8 @@ void FillQuad(const PixelQuad& q) {
 void Ring(const PixelQuad& outer, const PixelQuad& inner) {
   glBegin(GL_TRIANGLE_STRIP);
   for (int i = 0; i <= 4; ++i) {
-    glVertex2d(outer[i % 4].x_m, outer[i % 4].y_m);
-    glVertex2d(inner[i % 4].x_m, inner[i % 4].y_m);
+    glVertex2d(outer[i % 4].x, outer[i % 4].y);
+    glVertex2d(inner[i % 4].x, inner[i % 4].y);
   }
   glEnd();
 }
@@ -126,43 +126,41 @@ struct FrameRenderer::Impl {
     const Vec2 b = BaseAt(t);
     const Box& w = cam.world;
     const double big = 2.0 * (w.width_m() + w.height_m());
-    const Vec2 top_left = cam.ToPixel({w.x_min_m - big, b.y_m});
+    const Vec2 top_left = cam.ToPixel({w.x_min_m - big, b.y});
     const Vec2 bottom_right = cam.ToPixel({w.x_max_m + big, w.y_min_m - big});
     Colour(palette.ground);
-    FillRect({top_left.x_m, top_left.y_m, bottom_right.x_m - top_left.x_m,
-              bottom_right.y_m - top_left.y_m});
+    FillRect({top_left.x, top_left.y, bottom_right.x - top_left.x, bottom_right.y - top_left.y});
     // Ticks fixed to the ground (they move with x_g), every round number of metres.
     const double step_m = NiceStep(w.width_m() / 12.0);
-    const double ground_px = cam.vp_y_px + cam.vp_h_px - top_left.y_m;
+    const double ground_px = cam.vp_y_px + cam.vp_h_px - top_left.y;
     const double tick_px = std::min(0.5 * ground_px, 0.03 * config.height_px);
     Colour(palette.ground_line);
-    const long k0 = static_cast<long>(std::floor((w.x_min_m - b.x_m) / step_m));
-    const long k1 = static_cast<long>(std::ceil((w.x_max_m - b.x_m) / step_m));
+    const long k0 = static_cast<long>(std::floor((w.x_min_m - b.x) / step_m));
+    const long k1 = static_cast<long>(std::ceil((w.x_max_m - b.x) / step_m));
     for (long k = k0; k <= k1; ++k) {
-      const Vec2 p = cam.ToPixel({b.x_m + k * step_m, b.y_m});
-      VLine(p.x_m, p.y_m, p.y_m + tick_px, line_w());
+      const Vec2 p = cam.ToPixel({b.x + k * step_m, b.y});
+      VLine(p.x, p.y, p.y + tick_px, line_w());
     }
-    HLine(top_left.x_m, bottom_right.x_m, top_left.y_m, 1.5 * line_w());
+    HLine(top_left.x, bottom_right.x, top_left.y, 1.5 * line_w());
     // A fixed marker under the ground's rest position (x = 0): the ticks move past it.
     const Vec2 o = cam.ToPixel({0.0, w.y_min_m});
     const double mh = std::min(0.6 * ground_px, 0.03 * config.height_px);
     Colour(palette.background);
     glBegin(GL_TRIANGLES);
-    glVertex2d(o.x_m, o.y_m - mh);
-    glVertex2d(o.x_m - 0.6 * mh, o.y_m);
-    glVertex2d(o.x_m + 0.6 * mh, o.y_m);
+    glVertex2d(o.x, o.y - mh);
+    glVertex2d(o.x - 0.6 * mh, o.y);
+    glVertex2d(o.x + 0.6 * mh, o.y);
     glEnd();
   }
 
-  StackPose PoseOf(const Track& track, double t) const {
-    const Sample s = StateAt(track.history, t);
-    const double th2 = track.history.two_blocks ? s.theta2_rad : s.theta1_rad;
-    return PoseFor(scene, s.theta1_rad, th2, BaseAt(t));
+  StackCorners PoseOf(const Track& track, double t) const {
+    return PoseFor(scene, StackState(StateAt(track.history, t), track.history.two_blocks),
+                   BaseAt(t));
   }
 
   // Solid blocks: an outline band and the block colour inside.
-  void DrawSolid(const Camera& cam, const StackPose& pose) const {
-    auto one = [&](const Quad& q, Rgb fill) {
+  void DrawSolid(const Camera& cam, const StackCorners& pose) const {
+    auto one = [&](const BlockCorners& q, Rgb fill) {
       const PixelQuad outer = ToPixels(cam, q);
       Colour(palette.outline);
       FillQuad(outer);
@@ -174,8 +172,8 @@ struct FrameRenderer::Impl {
   }
 
   // Outlined, translucent blocks (other engines in the overlay layout).
-  void DrawOutlined(const Camera& cam, const StackPose& pose, Rgb outline) const {
-    auto one = [&](const Quad& q, Rgb fill) {
+  void DrawOutlined(const Camera& cam, const StackCorners& pose, Rgb outline) const {
+    auto one = [&](const BlockCorners& q, Rgb fill) {
       const PixelQuad outer = ToPixels(cam, q);
       const PixelQuad inner = Inset(outer, 2.0 * line_w());
       glEnable(GL_BLEND);
@@ -205,7 +203,7 @@ struct FrameRenderer::Impl {
     Colour(palette.chart_frame);
     HLine(r.x_px, r.x_px + r.w_px, r.y_px + 0.5 * r.h_px, line_w());
     const double t_clamped = std::clamp(t, layout.t_from_s, layout.t_to_s);
-    VLine(px(t_clamped, 0).x_m, r.y_px, r.y_px + r.h_px, line_w());
+    VLine(px(t_clamped, 0).x, r.y_px, r.y_px + r.h_px, line_w());
     // Curves up to t: the first engine solid, the others dashed.
     const int s = config.supersample;
     glEnable(GL_SCISSOR_TEST);
@@ -224,16 +222,16 @@ struct FrameRenderer::Impl {
         glBegin(GL_LINE_STRIP);
         const Sample first = StateAt(h, layout.t_from_s);
         const Vec2 p0 = px(layout.t_from_s, which == 0 ? first.theta1_rad : first.theta2_rad);
-        glVertex2d(p0.x_m, p0.y_m);
+        glVertex2d(p0.x, p0.y);
         for (const Sample& smp : h.samples) {
           if (smp.t_s <= layout.t_from_s) continue;
           if (smp.t_s > t_clamped) break;
           const Vec2 p = px(smp.t_s, which == 0 ? smp.theta1_rad : smp.theta2_rad);
-          glVertex2d(p.x_m, p.y_m);
+          glVertex2d(p.x, p.y);
         }
         const Sample now = StateAt(h, t_clamped);
         const Vec2 p = px(t_clamped, which == 0 ? now.theta1_rad : now.theta2_rad);
-        glVertex2d(p.x_m, p.y_m);
+        glVertex2d(p.x, p.y);
         glEnd();
       }
       glDisable(GL_LINE_STIPPLE);
@@ -298,8 +296,8 @@ struct FrameRenderer::Impl {
       std::string stamp = "t = " + Format("%.3f", t) + " s";
       if (config.show_base_motion && !base.empty()) {
         const Vec2 b = base.At(t);
-        stamp += "    base x = " + Format("%+.3f", b.x_m) + " m";
-        if (b.y_m != 0.0) stamp += ", y = " + Format("%+.3f", b.y_m) + " m";
+        stamp += "    base x = " + Format("%+.3f", b.x) + " m";
+        if (b.y != 0.0) stamp += ", y = " + Format("%+.3f", b.y) + " m";
       }
       const int stamp_w = font->Draw(img, x0, baseline(layout.header, 0), stamp, palette.text);
       if (!config.title.empty()) {

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "engines/common/placement.h"
+#include "scene/stack_pose.h"
 
 namespace rockbench::bullet {
 namespace {

@@ -7,9 +7,11 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "scene/engine_settings.h"
+#include "scene/ground_displacement.h"
 #include "scene/ground_motion.h"
 #include "scene/history.h"
 #include "scene/scene.h"
@@ -22,8 +24,8 @@ struct DriveSamples {
   /// evaluated at t_n (the leapfrog force time of Bullet's symplectic Euler step). Empty when
   /// the scene has no base motion (all zero).
   std::vector<double> ax_mps2, ay_mps2;
-  /// Kinematic drive: ground displacement at t_n (n = 0..steps), m, after baseline correction.
-  /// Empty for the inertial drive.
+  /// Kinematic drive: ground displacement at t_n (n = 0..steps), m, after baseline correction
+  /// (IntegrateGroundPath, scene/ground_displacement.h). Empty for the inertial drive.
   std::vector<double> ux_m, uy_m;
   /// Kinematic drive: ground velocity before step 0 (so that the blocks start at rest relative
   /// to the ground), m/s.
@@ -76,12 +78,19 @@ EngineInput MakeEngineInput(const Scene& scene, const GroundMotion& motion,
                             double kinematic_highpass_hz);
 
 /// The input of a run from an engine's resolved table (`settings`, of the engine `engine`): its
-/// time_step, its drive ("inertial" or "kinematic"; inertial when the table has no drive key) and
-/// kinematic_highpass_hz when the table has it (0 otherwise), stopping at rest after
-/// stop_at_rest_after_s.
+/// time_step (the one place an engine reads that key: every engine steps by
+/// EngineInput::time_step_s and keeps no copy of it), its drive ("inertial" or "kinematic";
+/// inertial when the table has no drive key) and kinematic_highpass_hz when the table has it (0
+/// otherwise), stopping at rest after stop_at_rest_after_s.
 EngineInput MakeEngineInput(const Scene& scene, const GroundMotion& motion,
                             const std::string& engine, const EngineSettings& settings,
                             double stop_at_rest_after_s);
+
+/// The key `time_step` of every engine's table, which MakeEngineInput reads: the fixed step, s,
+/// a positive number, ours 1e-4 s (kDefaultTimeStep_s); `engine_default` is the engine's own
+/// default as text ("1/60 s"), `doc` one line on it.
+inline constexpr double kDefaultTimeStep_s = 1e-4;
+void AddTimeStepSetting(EngineSettingsSchema& schema, std::string engine_default, std::string doc);
 
 /// The two keys of an engine's table that MakeEngineInput reads, defined once for every engine
 /// with both drives: `drive` ("inertial", the default, or "kinematic") and
@@ -93,15 +102,17 @@ void AddKinematicHighpassSetting(EngineSettingsSchema& schema);
 /// displacements before and after it.
 nlohmann::json KinematicDriveJson(const EngineInput& input);
 
-/// Kinematic drive: ground displacement from the acceleration samples a_n (m/s^2) on the grid
-/// of step dt (s). Integrates twice with the leapfrog rule (u_{n+1} - 2 u_n + u_{n-1} = dt^2 a_n,
-/// u_0 = 0, at rest before t = 0), then removes the baseline B = zero-phase low-pass of u
-/// (2nd-order Butterworth run forward and backward, corner highpass_hz; the ends are padded:
-/// zeros before t = 0, odd reflection after the last sample). Because |H_LP|^2 + |H_HP|^2 = 1
-/// for a Butterworth pair, u - B is the zero-phase 4th-order high-pass of u. highpass_hz = 0
-/// disables the correction. Returns u at n = 0..a.size() and fills the velocity before step 0.
-std::vector<double> KinematicDisplacement(const std::vector<double>& accel_mps2, double dt_s,
-                                          double highpass_hz, double* velocity_before_mps,
-                                          double* raw_peak_m);
+/// Kinematic drive: the ground path of one component (scene/ground_displacement.h
+/// IntegrateGroundPath), in the form of earlier versions: returns u at n = 0..a.size() and fills
+/// the velocity before step 0 and the peak |u| before the correction. Kept for the tests in
+/// tests/bullet/engine_input_test.cc; new code calls IntegrateGroundPath.
+inline std::vector<double> KinematicDisplacement(const std::vector<double>& accel_mps2, double dt_s,
+                                                 double highpass_hz, double* velocity_before_mps,
+                                                 double* raw_peak_m) {
+  GroundPath path = IntegrateGroundPath(accel_mps2, dt_s, highpass_hz);
+  if (raw_peak_m) *raw_peak_m = path.raw_peak_m;
+  if (velocity_before_mps) *velocity_before_mps = path.velocity_before_mps;
+  return std::move(path.u_m);
+}
 
 }  // namespace rockbench

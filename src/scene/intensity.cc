@@ -6,6 +6,8 @@
 #include <stdexcept>
 #include <vector>
 
+#include "scene/ground_displacement.h"
+
 namespace rockbench {
 namespace {
 
@@ -27,30 +29,6 @@ std::vector<double> SampleAnalytic(const MotionComponent& c, double t_end_s, dou
     a[i] = c.accel_mps2(t);
   }
   return a;
-}
-
-// Peak |d| over one segment of length h that starts at (v, d) with acceleration a0 + s tau: at
-// its end, and where v(tau) = v + a0 tau + s tau^2 / 2 vanishes inside.
-double SegmentPeakDisplacement(double v, double d, double a0, double s, double h) {
-  auto disp = [&](double tau) {
-    return d + v * tau + a0 * tau * tau / 2 + s * tau * tau * tau / 6;
-  };
-  double peak = std::abs(disp(h));
-  std::vector<double> roots;
-  if (s == 0.0) {
-    if (a0 != 0.0) roots.push_back(-v / a0);
-  } else {
-    const double disc = a0 * a0 - 2.0 * s * v;
-    if (disc >= 0.0) {
-      const double q = std::sqrt(disc);
-      roots.push_back((-a0 + q) / s);
-      roots.push_back((-a0 - q) / s);
-    }
-  }
-  for (double tau : roots) {
-    if (tau > 0.0 && tau < h) peak = std::max(peak, std::abs(disp(tau)));
-  }
-  return peak;
 }
 
 }  // namespace
@@ -88,9 +66,14 @@ IntensityMeasures MeasureIntensity(const MotionComponent& c, double t_end_s) {
     }
   }
   if (a.empty()) return im;
-  // Exact integrals of the piecewise-linear acceleration, zero outside the samples.
+  // PGV and PGD: the exact integrals of the piecewise-linear acceleration, zero outside the
+  // samples (scene/ground_displacement.h); after the last sample a = 0 until t_end.
   const double t0 = c.t0_s();
-  double v = 0.0, d = 0.0, arias = 0.0;
+  const double t_last = t0 + static_cast<double>(a.size() - 1) * dt;
+  const GroundPeaks peaks = ExactGroundPeaks(a, dt, t_end_s - t_last);
+  im.pgv_mps = peaks.velocity_mps;
+  im.pgd_m = peaks.displacement_m;
+  double arias = 0.0;
   std::vector<double> cumulative(a.size(), 0.0);  // integral of a^2 up to sample i
   for (size_t i = 0; i < a.size(); ++i) {
     if (std::abs(a[i]) > im.pga_mps2) {
@@ -98,22 +81,10 @@ IntensityMeasures MeasureIntensity(const MotionComponent& c, double t_end_s) {
       im.pga_t_s = t0 + static_cast<double>(i) * dt;
     }
     if (i + 1 == a.size()) break;
-    const double a0 = a[i], a1 = a[i + 1], s = (a1 - a0) / dt;
-    // v's extreme inside the segment, where a crosses zero.
-    if (a0 * a1 < 0.0) {
-      const double tau = -a0 / s;
-      im.pgv_mps = std::max(im.pgv_mps, std::abs(v + a0 * tau + s * tau * tau / 2));
-    }
-    im.pgd_m = std::max(im.pgd_m, SegmentPeakDisplacement(v, d, a0, s, dt));
-    d += v * dt + dt * dt * (2.0 * a0 + a1) / 6.0;
-    v += dt * (a0 + a1) / 2.0;
-    im.pgv_mps = std::max(im.pgv_mps, std::abs(v));
+    const double a0 = a[i], a1 = a[i + 1];
     arias += dt * (a0 * a0 + a0 * a1 + a1 * a1) / 3.0;
     cumulative[i + 1] = arias;
   }
-  // After the last sample: a = 0, v constant, d linear until t_end.
-  const double t_last = t0 + static_cast<double>(a.size() - 1) * dt;
-  if (t_end_s > t_last) im.pgd_m = std::max(im.pgd_m, std::abs(d + v * (t_end_s - t_last)));
   im.arias_mps = std::numbers::pi / (2.0 * kStandardGravity_mps2) * arias;
   // D5-95 on the samples' cumulative integral, linear between samples.
   if (arias > 0.0) {

@@ -5,31 +5,9 @@
 /// Lengths in m, masses in kg, inertias in kg m^2; the base frame (translating with the
 /// ground), x right, y up.
 
-namespace rockbench {
+#include "scene/vec2.h"
 
-/// A vector of the plane (m, m/s or N, by use).
-struct Vec2 {
-  double x = 0.0, y = 0.0;
-};
-inline Vec2 operator+(Vec2 a, Vec2 b) {
-  return {a.x + b.x, a.y + b.y};
-}
-inline Vec2 operator-(Vec2 a, Vec2 b) {
-  return {a.x - b.x, a.y - b.y};
-}
-inline Vec2 operator*(double s, Vec2 a) {
-  return {s * a.x, s * a.y};
-}
-inline double Dot(Vec2 a, Vec2 b) {
-  return a.x * b.x + a.y * b.y;
-}
-inline double Cross(Vec2 a, Vec2 b) {
-  return a.x * b.y - a.y * b.x;
-}
-/// a rotated by +90 degrees (counter-clockwise).
-inline Vec2 Perp(Vec2 a) {
-  return {-a.y, a.x};
-}
+namespace rockbench {
 
 /// Properties of one rectangular block.
 struct BlockProps {

@@ -39,7 +39,7 @@ double Luma(Rgb c) {
 }
 
 Rgb At(const Image& img, Vec2 px) {
-  return img.at(static_cast<int>(std::floor(px.x_m)), static_cast<int>(std::floor(px.y_m)));
+  return img.at(static_cast<int>(std::floor(px.x)), static_cast<int>(std::floor(px.y)));
 }
 
 class TiltedFrame : public ::testing::Test {
@@ -74,22 +74,21 @@ TEST_F(TiltedFrame, BlocksGroundAndSkyHaveTheirColoursWhereTheGeometryPutsThem) 
   const Image& img = *image_;
   const Palette& pal = renderer_->palette();
   const Camera& cam = renderer_->layout().views.at(0);
-  const StackPose pose = PoseFor(Stack(), 0.0, 0.2);
-  auto centre = [](const Quad& q) {
-    return Vec2{0.25 * (q[0].x_m + q[1].x_m + q[2].x_m + q[3].x_m),
-                0.25 * (q[0].y_m + q[1].y_m + q[2].y_m + q[3].y_m)};
+  const StackCorners pose = PoseFor(Stack(), 0.0, 0.2);
+  auto centre = [](const BlockCorners& q) {
+    return Vec2{0.25 * (q[0].x + q[1].x + q[2].x + q[3].x),
+                0.25 * (q[0].y + q[1].y + q[2].y + q[3].y)};
   };
   // Interior points are flat colour (edges are 1-2 px away from them).
   EXPECT_EQ(At(img, cam.ToPixel(centre(pose.block1))), pal.block1);
   EXPECT_EQ(At(img, cam.ToPixel(centre(pose.block2))), pal.block2);
   // Block 2's top-left corner region, 5 cm inside both edges.
-  const Quad& b2 = pose.block2;
-  const Vec2 inside{
-      b2[3].x_m + 0.05 * (b2[2].x_m - b2[3].x_m) / 0.5 + 0.05 * (b2[0].x_m - b2[3].x_m) / 1.5,
-      b2[3].y_m + 0.05 * (b2[2].y_m - b2[3].y_m) / 0.5 + 0.05 * (b2[0].y_m - b2[3].y_m) / 1.5};
+  const BlockCorners& b2 = pose.block2;
+  const Vec2 inside{b2[3].x + 0.05 * (b2[2].x - b2[3].x) / 0.5 + 0.05 * (b2[0].x - b2[3].x) / 1.5,
+                    b2[3].y + 0.05 * (b2[2].y - b2[3].y) / 0.5 + 0.05 * (b2[0].y - b2[3].y) / 1.5};
   EXPECT_EQ(At(img, cam.ToPixel(inside)), pal.block2);
   // Just outside block 2's left edge, above block 1: sky.
-  const Vec2 left_of_b2{b2[0].x_m - 0.1, b2[0].y_m + 0.3};
+  const Vec2 left_of_b2{b2[0].x - 0.1, b2[0].y + 0.3};
   EXPECT_EQ(At(img, cam.ToPixel(left_of_b2)), pal.background);
   // Ground: a quarter of the way across, three quarters of the way down the visible ground
   // (below the tick marks, which reach at most half way).
@@ -133,12 +132,12 @@ TEST_F(TiltedFrame, Block2TiltRecoveredFromItsPixels) {
   EXPECT_NEAR(tilt_deg, 0.2 * 180.0 / std::numbers::pi, 0.5);
   // And the pixels sit where the geometry says: pivoting about the right corner (not the left,
   // which would move the centroid ~0.1 m = ~7 px) and centred on block 1 at rest.
-  const StackPose pose = PoseFor(Stack(), 0.0, 0.2);
+  const StackCorners pose = PoseFor(Stack(), 0.0, 0.2);
   Vec2 c{};
-  for (const Vec2& p : pose.block2) c = {c.x_m + 0.25 * p.x_m, c.y_m + 0.25 * p.y_m};
+  for (const Vec2& p : pose.block2) c = {c.x + 0.25 * p.x, c.y + 0.25 * p.y};
   const Vec2 cpx = cam.ToPixel(c);
-  EXPECT_NEAR(mx, cpx.x_m, 1.5);
-  EXPECT_NEAR(my, cpx.y_m, 1.5);
+  EXPECT_NEAR(mx, cpx.x, 1.5);
+  EXPECT_NEAR(my, cpx.y, 1.5);
 }
 
 TEST_F(TiltedFrame, ColoursStayApartInGreyscale) {
@@ -147,12 +146,12 @@ TEST_F(TiltedFrame, ColoursStayApartInGreyscale) {
   // apart.
   const Image& img = *image_;
   const Camera& cam = renderer_->layout().views.at(0);
-  const StackPose pose = PoseFor(Stack(), 0.0, 0.2);
+  const StackCorners pose = PoseFor(Stack(), 0.0, 0.2);
   const Box& w = cam.world;
   const double l_bg = Luma(img.at(0, 0));
   const double l_b1 = Luma(At(img, cam.ToPixel({0.0, 0.6})));
-  const double l_b2 = Luma(At(img, cam.ToPixel({0.5 * (pose.block2[0].x_m + pose.block2[2].x_m),
-                                                0.5 * (pose.block2[0].y_m + pose.block2[2].y_m)})));
+  const double l_b2 = Luma(At(img, cam.ToPixel({0.5 * (pose.block2[0].x + pose.block2[2].x),
+                                                0.5 * (pose.block2[0].y + pose.block2[2].y)})));
   const double l_ground =
       Luma(At(img, cam.ToPixel({w.x_min_m + 0.25 * w.width_m(), 0.75 * w.y_min_m})));
   const double l[] = {l_bg, l_b2, l_ground, l_b1};
@@ -224,9 +223,9 @@ TEST(FrameRenderer, SingleBlockScene) {
   FrameRenderer r(s, {{"reference", h}}, {}, cfg);
   const Image img = r.Render(0.0);
   const Camera& cam = r.layout().views.at(0);
-  const StackPose pose = PoseFor(s, -0.15, 0.0);
-  EXPECT_EQ(At(img, cam.ToPixel({0.5 * (pose.block1[0].x_m + pose.block1[2].x_m),
-                                 0.5 * (pose.block1[0].y_m + pose.block1[2].y_m)})),
+  const StackCorners pose = PoseFor(s, -0.15, 0.0);
+  EXPECT_EQ(At(img, cam.ToPixel({0.5 * (pose.block1[0].x + pose.block1[2].x),
+                                 0.5 * (pose.block1[0].y + pose.block1[2].y)})),
             r.palette().block1);
   // Nothing of block 2's colour anywhere in the view.
   for (int y = static_cast<int>(cam.vp_y_px); y < static_cast<int>(cam.vp_y_px + cam.vp_h_px);
