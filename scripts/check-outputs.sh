@@ -6,8 +6,9 @@
 #   scripts/check-outputs.sh check DIR      run everything again and compare with DIR
 # Options (environment): ROCKBENCH_BIN (default build/src/cli/rockbench), ONLY=scenes|studies,
 # JOBS (study workers, default 2). Wall-clock figures are replaced by "W" before comparing: JSON
-# values whose key contains "wall", CSV columns whose header contains "wall". Everything else,
-# stdout included, must be identical.
+# values whose key contains "wall" or "real_time", CSV columns whose header does, wall times
+# printed on stdout. Everything else must be identical. The check normalises the recorded copy
+# again, so a figure the normaliser learns later is blanked on both sides.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 mode=${1:?"usage: scripts/check-outputs.sh record|check DIR"}
@@ -30,13 +31,13 @@ import csv, io, re, sys
 path = sys.argv[1]
 text = open(path, encoding="utf-8", errors="surrogateescape").read()
 if path.endswith(".json"):
-    text = re.sub(r'("[A-Za-z0-9_]*wall[A-Za-z0-9_]*"\s*:\s*)(-?[0-9.eE+-]+|null)', r'\1"W"', text)
+    text = re.sub(r'("[A-Za-z0-9_]*(?:wall|real_time)[A-Za-z0-9_]*"\s*:\s*)(-?[0-9.eE+-]+|null)', r'\1"W"', text)
 elif path.endswith(".csv"):
     lines = text.split("\n")
     header = next((i for i, l in enumerate(lines) if l and not l.startswith("#")), None)
     if header is not None:
         cols = lines[header].split(",")
-        wall = [i for i, c in enumerate(cols) if "wall" in c]
+        wall = [i for i, c in enumerate(cols) if "wall" in c or "real_time" in c]
         if wall:
             for i in range(header + 1, len(lines)):
                 if not lines[i] or lines[i].startswith("#"):
@@ -50,8 +51,11 @@ elif path.endswith(".csv"):
                 lines[i] = buf.getvalue()
     text = "\n".join(lines)
 elif path.endswith(".stdout"):
-    # Printed wall times: "(1.07 s)"-like figures after "wall" or "took".
+    # Printed wall times: a run's ", 4.48 ms" at the end of its line (or before ";"), "wall time
+    # 0.21 s", and figures after "took"; the temporary output folder's name.
     text = re.sub(r'((?:wall|took|in)[^0-9\n]{0,12})[0-9]+(\.[0-9]+)?( ?(?:s|ms|min)\b)', r'\1W\3', text)
+    text = re.sub(r', [0-9.]+(e[+-][0-9]+)? ms(;|\n|$)', r', W ms\2', text)
+    text = re.sub(r'/[^ \n]*/out/', 'OUT/', text)
 open(path, "w", encoding="utf-8", errors="surrogateescape").write(text)
 EOF
 }
@@ -94,7 +98,9 @@ if [ "$mode" = record ]; then
   (cd "$dir" && find . -type f | sort | xargs sha256sum) >"$dir.sha256"
   echo "check-outputs: recorded $(wc -l <"$dir.sha256") files in $dir"
 else
-  if diff -r "$dir" "$out" >"$work/diff.txt"; then
+  cp -r "$dir" "$work/recorded"
+  while IFS= read -r -d '' f; do normalise "$f"; done < <(find "$work/recorded" -type f \( -name '*.json' -o -name '*.csv' -o -name '*.stdout' \) -print0)
+  if diff -r "$work/recorded" "$out" >"$work/diff.txt"; then
     echo "check-outputs: identical ($(find "$out" -type f | wc -l) files)"
   else
     echo "check-outputs: DIFFERENT:"

@@ -51,7 +51,7 @@ std::vector<std::string> CheckedEngines(const std::string& requested) {
     const size_t comma = requested.find(',', start);
     const std::string name =
         requested.substr(start, comma == std::string::npos ? comma : comma - start);
-    if (name != "reference") list += (list.empty() ? "" : ",") + name;
+    if (!IsReference(name)) list += (list.empty() ? "" : ",") + name;
     if (comma == std::string::npos) break;
     start = comma + 1;
   }

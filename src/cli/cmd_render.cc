@@ -18,6 +18,7 @@
 
 #include "cli/commands.h"
 #include "cli/limit_options.h"
+#include "run/engine_registry.h"
 #include "run/engine_run.h"
 #include "run/resource_estimate.h"
 #include "renders/animation.h"
@@ -130,7 +131,7 @@ std::vector<std::string> RunFolderEngines(const fs::path& dir) {
     }
   }
   std::sort(names.begin(), names.end(), [](const std::string& a, const std::string& b) {
-    if ((a == "reference") != (b == "reference")) return a == "reference";
+    if ((IsReference(a)) != (IsReference(b))) return IsReference(a);
     return a < b;
   });
   return names;
@@ -282,7 +283,7 @@ Motion MotionOfScene(const RenderOptions& opt, const fs::path& input,
   // The runs' memory and time, estimated from the scene before anything is simulated.
   std::vector<std::string> engines;
   for (const std::string& name : names) {
-    if (name != "reference") engines.push_back(name);
+    if (!IsReference(name)) engines.push_back(name);
   }
   CheckRunEstimate(EstimateRun(m.scene, engines, 0, 0, 1), budget, Excerpt(opt.input, 80));
   m.ground_motion = GroundMotion::FromScene(m.scene);

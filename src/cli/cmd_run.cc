@@ -32,7 +32,7 @@ void Execute(const RunOptions& opt) {
   {
     std::vector<std::string> engines;
     for (const std::string& name : opt.engines) {
-      if (name != "reference") engines.push_back(name);
+      if (!IsReference(name)) engines.push_back(name);
     }
     CheckRunEstimate(EstimateRun(scene, engines, 0, 0, 1), budget, opt.scene);
   }
@@ -58,7 +58,7 @@ void Execute(const RunOptions& opt) {
     const EngineRun run = RunEngine(name, scene, motion);
     if (const std::string f = NonFiniteText(run); !f.empty()) failed.push_back(f);
     WriteEngineFiles(run, out);
-    if (name == "reference") {
+    if (IsReference(name)) {
       for (auto it = run.summary.begin(); it != run.summary.end(); ++it) summary[it.key()] = *it;
     } else {
       summary["engines"][name] = run.summary;

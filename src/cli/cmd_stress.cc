@@ -14,6 +14,7 @@
 
 #include "cli/commands.h"
 #include "cli/limit_options.h"
+#include "run/engine_registry.h"
 #include "run/parallel.h"
 #include "stress/stress.h"
 #include "scene/history.h"
@@ -89,7 +90,7 @@ void Execute(const StressCliOptions& opt) {
   std::map<std::string, std::map<std::string, int>> statuses;
   for (const StressRow& r : rows) {
     ++statuses[r.engine][r.status];
-    if (r.engine == "reference" &&
+    if (IsReference(r.engine) &&
         (!r.finished || r.nan || (r.energy_impacts > 0 && !(r.max_energy_gain_rel <= 1e-9)))) {
       ++ref_bad;
       std::fprintf(stderr, "warning: reference %s: %s%s%s\n", r.case_name.c_str(), r.status.c_str(),

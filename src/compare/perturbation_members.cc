@@ -276,8 +276,8 @@ std::vector<MemberOutcome> RunEngineEnsemble(const std::string& name, const Scen
       members, threads,
       [&](int i) {
         const MemberInput in = PerturbedInput(scene, motion, i);
-        RunEngineOptions options;
-        options.reference_witness = false;
+        SimulateOptions options;
+        options.check_convergence = false;
         options.stop_at_rest_after_s = SettledAfter_s(in.scene, in.motion);
         const EngineRun run = RunEngine(name, in.scene, in.motion, options);
         out[i] = OutcomeOf(run, in.scene, min_impact_rate_radps);

@@ -104,7 +104,7 @@ ReferenceEnsemble RunReferenceEnsemble(const Scene& nominal_scene, const GroundM
 /// the accelerations, so their sample times decide (a face open at one sample may be open
 /// until the next: that is the bound); analytic motions are scanned every 1e-3 s. 0: never;
 /// infinity for an endless motion. An engine member at rest after this time
-/// has its outcome decided and can stop (RunEngineOptions::stop_at_rest_after_s).
+/// has its outcome decided and can stop (SimulateOptions::stop_at_rest_after_s).
 double SettledAfter_s(const Scene& scene, const GroundMotion& motion, double safety = 1.25);
 
 /// Runs engine `name` on members 0 .. members-1 (the first reference members' inputs); each

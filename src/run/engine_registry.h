@@ -2,13 +2,23 @@
 /// The engines of this build: every engine listed in engines/CMakeLists.txt, built or left out
 /// (with the reason). The harness reaches engines only through this list.
 #include <string>
+#include <string_view>
 #include <vector>
 
-#include "engines/common/engine.h"
+#include "scene/engine.h"
 
 namespace rockbench {
 
 /// One registered engine.
+/// The reference's name: the engine every other is compared with (run/reference_engine.h).
+inline constexpr std::string_view kReferenceEngine = "reference";
+
+/// Whether `engine` is the reference: the one place the harness tells the reference's role (the
+/// baseline of every comparison) from the engines'; both run through the same interface.
+inline bool IsReference(std::string_view engine) {
+  return engine == kReferenceEngine;
+}
+
 struct RegisteredEngine {
   std::string name;            ///< "bullet"
   const Engine* engine;        ///< null when the build left it out
@@ -18,7 +28,8 @@ struct RegisteredEngine {
 /// Every registered engine, in registration order (built or not).
 const std::vector<RegisteredEngine>& EngineRegistry();
 
-/// The built engine `name`, or nullptr (not registered, or left out of this build).
+/// The engine `name`: "reference" (run/reference_engine.h) or a built physics engine; nullptr
+/// when it is not registered or was left out of this build.
 const Engine* FindEngine(const std::string& name);
 
 /// Names of the built engines, in registration order.

@@ -2,11 +2,13 @@
 /// Runs an engine on a scene and writes its files: the one place the harness knows every engine.
 #include <filesystem>
 #include <limits>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "scene/engine.h"
 #include "scene/ground_motion.h"
 #include "scene/history.h"
 #include "scene/outcome.h"
@@ -22,6 +24,8 @@ struct EngineRun {
   nlohmann::json summary;  ///< the engine's part of summary.json (everything it measured)
   double wall_s = 0.0;     ///< wall-clock time of the simulation alone, s
   std::string one_line;    ///< one-line human summary
+  /// The engine's richer result (the reference's: run/reference_engine.h ReferenceResultOf).
+  std::shared_ptr<const EngineResultExtension> extension;
 };
 
 /// The status of a run (the reference's or an engine's) whose state, energy, an event time or a
@@ -36,20 +40,10 @@ inline bool IsNonFinite(const std::string& status) {
 /// "reference" and the engines this build has (harness/engine_registry.h), in that order.
 std::vector<std::string> AvailableEngines();
 
-/// Options of RunEngine.
-struct RunEngineOptions {
-  /// The reference also runs its witness (a tighter tolerance) and reports summary.json
-  /// "convergence"; its history is the witness's when the nominal run is not converged.
-  bool reference_witness = true;
-  /// Engines: after this time (s) a run that is at rest stops with status "at_rest" (see
-  /// SettledAfter_s in harness/ensemble.h); infinity: never. For ensemble members only: their
-  /// outcomes are kept, their histories are not compared.
-  double stop_at_rest_after_s = std::numeric_limits<double>::infinity();
-};
-
-/// Runs engine `name`. Throws SceneError for an unknown engine or impossible settings.
+/// Runs engine `name` ("reference" or a physics engine: the same interface, scene/engine.h).
+/// Throws SceneError for an unknown engine or impossible settings.
 EngineRun RunEngine(const std::string& name, const Scene& scene, const GroundMotion& motion,
-                    const RunEngineOptions& options = {});
+                    const SimulateOptions& options = {});
 
 /// "NAME: DETAIL" (the status detail: quantity, value and time) when the run ended non_finite,
 /// else "".

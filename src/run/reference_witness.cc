@@ -139,16 +139,4 @@ std::string ConvergenceWarning(const ConvergenceCheck& c) {
   return buf;
 }
 
-EngineRun ReferenceRunOf(const Scene& scene, const CheckedReference& checked) {
-  EngineRun run;
-  run.engine = "reference";
-  run.wall_s = checked.nominal_wall_s;
-  const reference::Result& used = checked.used();
-  run.summary = ReferenceSummaryJson(scene, used, run.wall_s);
-  if (checked.check) run.summary["convergence"] = ConvergenceJson(scene, *checked.check);
-  run.history = used.history;
-  run.outcome = ReferenceOutcome(used);
-  return run;
-}
-
 }  // namespace rockbench

@@ -76,8 +76,4 @@ nlohmann::json ConvergenceJson(const Scene& scene, const ConvergenceCheck& check
 /// One plain-words sentence for the console and the report; empty when converged.
 std::string ConvergenceWarning(const ConvergenceCheck& check);
 
-/// The reference as an engine run: engine "reference", the nominal run's wall time, the summary
-/// of the solution used with "convergence" when it was checked, and that solution's history.
-EngineRun ReferenceRunOf(const Scene& scene, const CheckedReference& checked);
-
 }  // namespace rockbench

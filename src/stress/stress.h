@@ -16,7 +16,7 @@
 #include <string>
 #include <vector>
 
-#include "engines/common/engine.h"
+#include "scene/engine.h"
 #include "scene/scene.h"
 
 namespace rockbench {

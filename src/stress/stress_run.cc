@@ -233,7 +233,7 @@ StressRow RunStressCaseHere(const StressCase& c, const std::string& engine) {
     while (true) std::this_thread::sleep_for(std::chrono::seconds(1));
   }
   try {
-    if (engine == "reference") return RunReference(c, row);
+    if (IsReference(engine)) return RunReference(c, row);
     return RunEngineCase(c, engine, row);
   } catch (const std::exception& e) {
     row.finished = false;

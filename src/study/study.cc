@@ -259,7 +259,7 @@ void CheckEngines(const StudyDef& s, const toml::node& node) {
       throw SceneError(Where(s.path, node) + ": engines: \"" + Excerpt(e) + "\" listed twice");
     }
     seen.push_back(e);
-    if (e == "reference") continue;
+    if (IsReference(e)) continue;
     if (e.size() > 64) {
       throw SceneError(Where(s.path, node) + ": engines: \"" + Excerpt(e) +
                        "\" is not an engine name");
@@ -412,7 +412,7 @@ Scene BuildScene(const StudyDef& study, const std::vector<int>& idx, size_t set_
   budget.wall_s = std::numeric_limits<double>::infinity();
   for (const std::string& engine : study.engines) {
     const std::vector<std::string> engines =
-        engine == "reference" ? std::vector<std::string>{} : std::vector<std::string>{engine};
+        IsReference(engine) ? std::vector<std::string>{} : std::vector<std::string>{engine};
     CheckRunEstimate(EstimateRun(scene, engines, 0, 0, 1), budget, Shown(scene.path.string()));
   }
   return scene;

@@ -6,7 +6,8 @@
 #include <cmath>
 
 #include "compare/agreement.h"
-#include "run/reference_witness.h"
+#include "run/engine_registry.h"
+#include "run/reference_engine.h"
 #include "run/engine_run.h"
 #include "compare/perturbation_members.h"
 #include "scene/ground_motion.h"
@@ -66,10 +67,10 @@ void RunHere(const StudyDef& study, const std::string& engine, const Scene& scen
   SetGeometry(scene, row);
   const GroundMotion motion = GroundMotion::FromScene(scene);
   SetIntensity(scene, motion, row);
-  const CheckedReference ref = RunCheckedReference(scene, motion, /*with_witness=*/true);
-  const EngineRun ref_run = ReferenceRunOf(scene, ref);
+  const EngineRun ref_run = RunEngine(std::string(kReferenceEngine), scene, motion);
+  const CheckedReference& ref = *ReferenceResultOf(ref_run.extension.get());
   const MemberOutcome ref_outcome = OutcomeOf(ref_run, scene, study.min_impact_rate_radps);
-  if (engine == "reference") {
+  if (IsReference(engine)) {
     if (keep_dir) WriteEngineFiles(ref_run, *keep_dir);
     SetOutcome(ref_outcome, row);
     row->wall_s = ref.nominal_wall_s;
@@ -77,7 +78,7 @@ void RunHere(const StudyDef& study, const std::string& engine, const Scene& scen
     return;
   }
   // An engine member at rest after the motion can no longer start it rocking is decided.
-  RunEngineOptions options;
+  SimulateOptions options;
   options.stop_at_rest_after_s = SettledAfter_s(scene, motion);
   const EngineRun run = RunEngine(engine, scene, motion, options);
   if (keep_dir) WriteEngineFiles(run, *keep_dir);

@@ -63,7 +63,7 @@ std::vector<SweepPoint> SweepGrid(bool quick, const std::vector<std::string>& en
 
 Scene SceneForPoint(const Scene& base, const SweepPoint& p) {
   Scene s = base;
-  if (p.engine != "reference") {
+  if (!IsReference(p.engine)) {
     for (const auto& [key, value] : p.setting.settings) SetEngineSetting(s, p.engine, key, value);
   } else {
     s.model.integrator = p.integrator;
@@ -159,7 +159,7 @@ std::string SweepCsv(const std::vector<SweepRow>& rows) {
   char buf[1024];
   for (const SweepRow& r : rows) {
     const SweepPoint& p = r.point;
-    if (p.engine != "reference") {
+    if (!IsReference(p.engine)) {
       std::string settings;
       for (const auto& [key, value] : p.setting.settings) {
         if (key == "time_step") continue;

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "engines/common/engine.h"
+#include "scene/engine.h"
 #include "compare/agreement.h"
 #include "scene/ground_motion.h"
 #include "scene/scene.h"

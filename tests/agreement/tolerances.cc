@@ -403,7 +403,7 @@ nlohmann::json RunComparison(const BoundGroup& group) {
     return run.comparison["engines"][group.engine];
   }
   const reference::Result reference = reference::Simulate(ref_scene, motion);
-  const EngineRun run = RunEngine(group.engine, scene, motion, {.reference_witness = false});
+  const EngineRun run = RunEngine(group.engine, scene, motion, {.check_convergence = false});
   return AgreementJson(CompareWithReference(scene, reference, run));
 }
 

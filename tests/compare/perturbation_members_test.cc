@@ -250,11 +250,11 @@ TEST(EngineEnsemble, AMemberAtRestStopsOnceTheBaseCannotStartItAgain) {
   const Scene scene = Rinaldi();
   const GroundMotion motion = GroundMotion::FromScene(scene);
   const MemberInput in = PerturbedInput(scene, motion, 4);
-  RunEngineOptions full_options;
-  full_options.reference_witness = false;
+  SimulateOptions full_options;
+  full_options.check_convergence = false;
   const EngineRun full = RunEngine("bullet", in.scene, in.motion, full_options);
   ASSERT_EQ(full.summary["status"], "completed");
-  RunEngineOptions stop_options = full_options;
+  SimulateOptions stop_options = full_options;
   stop_options.stop_at_rest_after_s = SettledAfter_s(in.scene, in.motion);
   EXPECT_LT(stop_options.stop_at_rest_after_s, 15.0);
   const EngineRun stopped = RunEngine("bullet", in.scene, in.motion, stop_options);

@@ -13,7 +13,7 @@
 
 #include "common/thesis_scene.h"
 #include "compare/agreement.h"
-#include "run/reference_witness.h"
+#include "run/reference_engine.h"
 #include "run/engine_registry.h"
 #include "run/engine_run.h"
 #include "compare/perturbation_members.h"
@@ -142,7 +142,7 @@ Scene StackAtRest() {
 
 // The reference as an engine run (its summary as summary.json has it), on `motion`.
 EngineRun ReferenceAsEngine(const Scene& scene, const GroundMotion& motion) {
-  return ReferenceRunOf(scene, RunCheckedReference(scene, motion, false));
+  return RunEngine("reference", scene, motion, {.check_convergence = false});
 }
 
 // An engine that agrees, compared with a reference that failed: no verdict (reference_failed,
@@ -171,13 +171,14 @@ TEST(NonFiniteHarness, AFailedReferenceGivesNoVerdict) {
 // has the non_finite object and no number that is not finite.
 TEST(NonFiniteHarness, TheWitnessNeverHidesAFailure) {
   const Scene scene = StackAtRest();
-  const CheckedReference checked = RunCheckedReference(scene, Spike(1e20, 10), true);
+  const EngineRun run = RunEngine("reference", scene, Spike(1e20, 10));
+  ASSERT_NE(ReferenceResultOf(run.extension.get()), nullptr);
+  const CheckedReference& checked = *ReferenceResultOf(run.extension.get());
   ASSERT_TRUE(checked.check.has_value());
   ASSERT_NE(checked.nominal.summary.status, "non_finite") << checked.nominal.summary.status;
   ASSERT_EQ(checked.witness->summary.status, "non_finite");
   EXPECT_TRUE(checked.check->witness_non_finite);
   EXPECT_EQ(checked.used().summary.status, "non_finite");
-  const EngineRun run = ReferenceRunOf(scene, checked);
   EXPECT_EQ(run.summary["status"], "non_finite");
   EXPECT_EQ(run.summary["convergence"]["used"], "witness");
   EXPECT_TRUE(run.summary.contains("non_finite"));

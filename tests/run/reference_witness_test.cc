@@ -88,7 +88,7 @@ TEST(Convergence, RunsWithoutTheWitnessWhenNotAsked) {
   const CheckedReference r = RunCheckedReference(s, GroundMotion(), false);
   EXPECT_FALSE(r.check.has_value());
   EXPECT_FALSE(r.witness.has_value());
-  const EngineRun run = RunEngine("reference", s, GroundMotion(), {.reference_witness = false});
+  const EngineRun run = RunEngine("reference", s, GroundMotion(), {.check_convergence = false});
   EXPECT_FALSE(run.summary.contains("convergence"));
 }
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "run/engine_registry.h"
 #include "run/tolerance.h"
 #include "report/common/interpolation.h"
 #include "report/common/json_keys.h"
@@ -45,7 +46,7 @@ void MetricsTable(const RunData& run, Page& page) {
   std::vector<std::vector<std::string>> rows;
   std::vector<std::vector<std::string>> impacts;
   for (const EngineData& e : run.engines) {
-    if (e.name == "reference") continue;
+    if (IsReference(e.name)) continue;
     const std::string k = "engines." + e.name;
     if (Find(c, k) == nullptr) continue;
     for (int b = 1; b <= (run.scene.two_blocks() ? 2 : 1); ++b) {

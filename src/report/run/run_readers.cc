@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "report/common/json_keys.h"
+#include "run/engine_registry.h"
 
 namespace rockbench::report {
 namespace {
@@ -92,7 +93,7 @@ void ReadEngines(const fs::path& run_dir, RunData& run) {
       throw std::runtime_error(run.summary_path.string() + ": key 'engines' must be an object");
     }
     for (auto it = e->begin(); it != e->end(); ++it) {
-      if (it.key() != "reference") names.push_back(it.key());
+      if (!IsReference(it.key())) names.push_back(it.key());
     }
   }
   int colour = 0;
@@ -110,7 +111,7 @@ void ReadEngines(const fs::path& run_dir, RunData& run) {
                                " but the scene " + scene_path + " has " +
                                (run.scene.two_blocks() ? "two" : "one"));
     }
-    if (name == "reference") {
+    if (IsReference(name)) {
       d.summary = run.summary;
       d.colour = "#000000";
       d.label = "reference model";

@@ -7,6 +7,7 @@
 #include "reference/geometry.h"
 #include "report/common/json_keys.h"
 #include "report/common/number_text.h"
+#include "run/engine_registry.h"
 
 namespace rockbench::report {
 namespace {
@@ -193,7 +194,7 @@ void SceneSection(const RunData& run, const GroundMotion& motion, Figures& fig) 
                 : "")});
   // Each engine's settings as its summary.json states them (ours and the values they set).
   for (const EngineData& e : run.engines) {
-    if (e.name == "reference") continue;
+    if (IsReference(e.name)) continue;
     const json* set = Find(e.summary, "settings");
     if (set == nullptr || !set->is_object()) continue;
     std::string text;

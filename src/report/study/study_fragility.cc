@@ -6,6 +6,7 @@
 #include <map>
 
 #include "study/fragility.h"
+#include "run/engine_registry.h"
 #include "statistics/statistics.h"
 #include "report/study/study_sections.h"
 #include "report/common/gnuplot.h"
@@ -167,13 +168,13 @@ void FragilitySection(const EnsembleData& d, const std::filesystem::path& fig_di
       }
       ++colour;
       std::string diff = "";
-      if (e == "reference") {
+      if (IsReference(e)) {
         ref_points = it->second;
       }
       table.push_back({g.empty() ? "all" : g, e, std::to_string(fit.n),
                        std::to_string(fit.failures), FitText(fit),
                        fit.available ? Num(fit.beta, 3) : "", diff});
-      if (e != "reference" && !ref_points.empty()) {
+      if (!IsReference(e) && !ref_points.empty()) {
         const auto [a, b] = PairedWithReference(groups[g].members, e);
         const MedianDifference md = PairedDifference(a, b, 400);
         int same = 0;

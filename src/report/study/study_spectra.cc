@@ -7,6 +7,7 @@
 #include "report/study/study_sections.h"
 #include "report/common/gnuplot.h"
 #include "report/common/number_text.h"
+#include "run/engine_registry.h"
 
 namespace rockbench::report {
 namespace {
@@ -190,7 +191,7 @@ void SpectraSection(const EnsembleData& d, const std::filesystem::path& fig_dir,
         data += Num(c.x, 10) + " " + Num(c.y, 10) + " " + std::to_string(ClassColour(it->second)) +
                 "\n";
         const auto ref = c.by_engine.find("reference");
-        if (e == "reference" || ref == c.by_engine.end()) continue;
+        if (IsReference(e) || ref == c.by_engine.end()) continue;
         if (ref->second == OverturnClass::kStopped || ref->second == OverturnClass::kFailed) {
           ++stopped;
           continue;
@@ -211,7 +212,7 @@ void SpectraSection(const EnsembleData& d, const std::filesystem::path& fig_dir,
                 " using 1:2:3 with points pt 5 ps 1.0 lc rgb variable, " +
                 GnuplotQuote(cross_file) + " using 1:2 with points pt 2 ps 1.3 lw 2 lc rgb " +
                 "\"#d62728\"\n";
-      if (e != "reference") {
+      if (!IsReference(e)) {
         table.push_back({g.empty() ? "all" : g, e, std::to_string(agree), std::to_string(disagree),
                          std::to_string(stopped)});
         findings.push_back(e + (g.empty() ? std::string() : " (" + g + ")") + ": the same " +

@@ -7,6 +7,7 @@
 #include "report/study/study_sections.h"
 #include "report/common/gnuplot.h"
 #include "report/common/number_text.h"
+#include "run/engine_registry.h"
 
 namespace rockbench::report {
 
@@ -86,7 +87,7 @@ void FragilitySurfaceSection(const EnsembleData& d, const std::filesystem::path&
     if (ref == fits.end() || !ref->second.available) continue;
     const double at[] = {r_lo, std::sqrt(r_lo * r_hi), r_hi};
     for (const auto& [e, s] : fits) {
-      if (e == "reference" || !s.available) continue;
+      if (IsReference(e) || !s.available) continue;
       const auto [a, b] = PairedWithReference(members[g], e);
       const stats::SurfaceMedianRatio ratio = stats::PairedSurfaceRatio(a, b, at, 400);
       std::string text = e + (g.empty() ? std::string() : " (" + g + ")") +

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <map>
 
+#include "run/engine_registry.h"
 #include "util/format.h"
 
 namespace rockbench::report {
@@ -18,10 +19,10 @@ std::vector<std::pair<std::string, std::vector<size_t>>> SweepFamilies(
   // order), then reference dopri5, dop853 and RK4; within a family from the coarsest setting.
   std::map<std::string, size_t> first;
   for (size_t i = 0; i < rows.size(); ++i) {
-    if (rows[i].engine != "reference") first.emplace(SweepFamily(rows[i]), first.size());
+    if (!IsReference(rows[i].engine)) first.emplace(SweepFamily(rows[i]), first.size());
   }
   auto rank = [&](const SweepRecord& r) -> size_t {
-    if (r.engine != "reference") return first.at(SweepFamily(r));
+    if (!IsReference(r.engine)) return first.at(SweepFamily(r));
     return first.size() + (r.integrator == "dopri5" ? 0 : r.integrator == "dop853" ? 1 : 2);
   };
   std::vector<size_t> order;
@@ -89,7 +90,7 @@ CheapestSetting FindCheapestSetting(const std::vector<SweepRecord>& rows, double
 std::vector<std::string> SweepEngines(const std::vector<SweepRecord>& rows) {
   std::vector<std::string> out;
   for (const SweepRecord& r : rows) {
-    if (r.engine != "reference" && std::find(out.begin(), out.end(), r.engine) == out.end()) {
+    if (!IsReference(r.engine) && std::find(out.begin(), out.end(), r.engine) == out.end()) {
       out.push_back(r.engine);
     }
   }
@@ -133,7 +134,7 @@ CheapestSetting FindCheapestSetting(const std::vector<SweepRecord>& rows,
   const double bullet_error = MaxAngleError(b);
   for (size_t i = 0; i < rows.size(); ++i) {
     const SweepRecord& r = rows[i];
-    if (r.engine != "reference" || !reaches(r) || MaxAngleError(r) > bullet_error) continue;
+    if (!IsReference(r.engine) || !reaches(r) || MaxAngleError(r) > bullet_error) continue;
     if (!out.reference || r.wall_s < rows[*out.reference].wall_s) out.reference = i;
   }
   out.statement = "The cheapest " + engine + " setting reaching " + criterion.name + " (" +
@@ -191,7 +192,7 @@ std::vector<EngineAtLevels> RankAtEqualAccuracy(const std::vector<SweepRecord>& 
   std::vector<EngineAtLevels> out;
   const auto families = SweepFamilies(rows);
   for (const std::string& engine : SweepEngines(rows)) {
-    if (engine == "reference") continue;
+    if (IsReference(engine)) continue;
     EngineAtLevels e;
     e.engine = engine;
     for (const AgreementCriterion& level : levels) {

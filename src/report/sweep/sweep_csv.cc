@@ -1,4 +1,5 @@
 #include "report/sweep/sweep_csv.h"
+#include "run/engine_registry.h"
 
 #include <cmath>
 #include <cstdlib>
@@ -137,7 +138,7 @@ void ReadRunSettings(const RowReader& rd, SweepRecord& r) {
   if (r.engine.empty()) rd.Fail("engine", "expected an engine name or reference, got ''");
   r.setting = rd.Text("setting");
   if (r.setting.empty()) rd.Fail("setting", "expected the point's label, got ''");
-  if (r.engine != "reference") {
+  if (!IsReference(r.engine)) {
     r.family = rd.Text("family");
     r.settings = rd.Text("settings");
     if (r.family.empty()) rd.Fail("family", "expected the engine's settings family, got ''");
@@ -242,12 +243,12 @@ std::vector<SweepRecord> ParseSweepCsv(const std::string& text, const fs::path& 
 }
 
 std::string SweepFamily(const SweepRecord& r) {
-  if (r.engine != "reference") return r.family;
+  if (!IsReference(r.engine)) return r.family;
   return r.integrator == "rk4" ? "reference RK4" : "reference " + r.integrator;
 }
 
 double SweepSettingValue(const SweepRecord& r) {
-  if (r.engine != "reference") return r.time_step_s;
+  if (!IsReference(r.engine)) return r.time_step_s;
   return r.integrator == "rk4" ? r.rk4_step_s : r.rtol;
 }
 
@@ -266,7 +267,7 @@ double MaxPeakRelError(const SweepRecord& r) {
 }
 
 std::string SweepSettingDescription(const SweepRecord& r) {
-  if (r.engine != "reference") return r.family + ", time step " + SweepSettingLabel(r) + " s";
+  if (!IsReference(r.engine)) return r.family + ", time step " + SweepSettingLabel(r) + " s";
   if (r.integrator == "rk4") return "reference RK4, step " + SweepSettingLabel(r) + " s";
   return "reference " + r.integrator + ", rtol " + SweepSettingLabel(r);
 }

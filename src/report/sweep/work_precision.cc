@@ -11,6 +11,7 @@
 
 #include "report/common/gnuplot.h"
 #include "report/common/page.h"
+#include "run/engine_registry.h"
 #include "scene/history.h"
 #include "util/format.h"
 
@@ -29,7 +30,7 @@ struct Style {
 
 Style FamilyStyle(const SweepRecord& r, size_t family_index, size_t engine_index) {
   Style s;
-  if (r.engine == "reference") {
+  if (IsReference(r.engine)) {
     // dopri5 black squares, dop853 black diamonds, RK4 grey triangles.
     s.colour = r.integrator == "rk4" ? "#8c8c8c" : "#000000";
     s.point_type = r.integrator == "dopri5" ? 5 : r.integrator == "dop853" ? 13 : 9;

@@ -1,6 +1,6 @@
 #pragma once
-/// The engine interface: what every physics engine adapter (engines/<name>/) implements, and all
-/// the harness knows of an engine. An engine declares its settings (the scene's [<name>] table),
+/// The engine interface: what the reference (src/run/reference_engine.h) and every physics
+/// engine adapter (engines/<name>/) implement, and all the harness knows of an engine. An engine declares its settings (the scene's [<name>] table),
 /// the settings grid it offers to the work-precision sweep, and simulates a scene. The list of
 /// engines is engines/CMakeLists.txt (one line each); an engine whose library is missing at
 /// build time is left out and named by `rockbench engines`.
@@ -65,9 +65,18 @@ struct TwoFamilyGrid {
 
 /// Options of one run.
 struct SimulateOptions {
+  /// The reference: check its convergence against a witness at a tighter tolerance (and use the
+  /// witness when they differ). Engines have no witness and ignore it.
+  bool check_convergence = true;
   /// After this time (s) a run at rest stops with status "at_rest" (harness SettledAfter_s);
   /// infinity: never. Ensemble members only: their histories are not compared.
   double stop_at_rest_after_s = std::numeric_limits<double>::infinity();
+};
+
+/// What an engine's run may carry beyond the common result, for the parts of the harness that
+/// know that engine (the reference: both of its solutions and their convergence check).
+struct EngineResultExtension {
+  virtual ~EngineResultExtension() = default;
 };
 
 /// What one run returns.
@@ -77,6 +86,8 @@ struct EngineResult {
   nlohmann::json summary;     ///< the engine's part of summary.json (outcome, settings, monitor)
   double wall_s = 0.0;        ///< wall-clock time of the simulation alone, s
   std::string settings_line;  ///< the settings that matter, one line ("double, dt 1e-4 s")
+  /// The engine's richer result, when it has one (null for the physics engines).
+  std::shared_ptr<const EngineResultExtension> extension;
 };
 
 class Engine {
@@ -97,6 +108,9 @@ class Engine {
   /// throws SceneError for settings the engine cannot run (naming the key).
   virtual EngineResult Simulate(const Scene& scene, const GroundMotion& motion,
                                 const SimulateOptions& options) const = 0;
+  /// The run in one line for the terminal: "bullet (double, dt 1e-4 s): completed, peak
+  /// |theta1| 0.15 rad at 0.000 s, 54 impacts, flags: none, 2.31e+03 ms".
+  virtual std::string SummaryLine(const EngineResult& result) const;
 };
 
 }  // namespace rockbench
