@@ -10,7 +10,7 @@
 #include <numbers>
 #include <string>
 
-#include "engines/common/placement.h"
+#include "scene/stack_pose.h"
 
 namespace rockbench {
 namespace {
