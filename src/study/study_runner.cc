@@ -4,8 +4,6 @@
 #include <fcntl.h>
 #include <poll.h>
 #include <signal.h>
-#include <spawn.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -20,8 +18,6 @@
 #include "scene/limits.h"
 #include "util/subprocess.h"
 
-extern char** environ;
-
 namespace rockbench {
 namespace {
 
@@ -29,75 +25,48 @@ double Now_s() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 
-// One worker process: its pid, the pipe we write runs to and the pipe its rows come back on.
-struct Worker {
-  pid_t pid = -1;
-  int to = -1, from = -1;
-  std::string buffer;  // what it printed past the last complete line
-  std::optional<StudyTask> task;
-  double started_s = 0.0;
-};
-
 void CloseFd(int& fd) {
   if (fd >= 0) ::close(fd);
   fd = -1;
 }
 
-// Starts a worker; throws SceneError when it cannot.
-Worker StartWorker(const std::vector<std::string>& argv, int log_fd) {
-  int in[2], out[2];
-  if (::pipe2(in, O_CLOEXEC) != 0) throw SceneError(std::string("pipe: ") + std::strerror(errno));
-  if (::pipe2(out, O_CLOEXEC) != 0) {
-    ::close(in[0]);
-    ::close(in[1]);
-    throw SceneError(std::string("pipe: ") + std::strerror(errno));
-  }
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_adddup2(&actions, in[0], 0);
-  posix_spawn_file_actions_adddup2(&actions, out[1], 1);
-  if (log_fd >= 0) posix_spawn_file_actions_adddup2(&actions, log_fd, 2);
-  std::vector<char*> args;
-  for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
-  args.push_back(nullptr);
+// One worker process: the child (its standard input takes runs, its standard output gives
+// rows back) and the run it is on.
+struct Worker {
+  Subprocess process;
+  std::string buffer;  // what it printed past the last complete line
+  std::optional<StudyTask> task;
+  double started_s = 0.0;
+};
+
+// Starts a worker, its standard error appended to `log` when given; throws SceneError when it
+// cannot.
+Worker StartWorker(const std::vector<std::string>& argv, const std::filesystem::path& log) {
+  SpawnOptions options;
+  options.in = Stdio::kPipe;
+  options.out = Stdio::kPipe;
+  options.err_log = log;
   Worker w;
-  const int rc = ::posix_spawn(&w.pid, args[0], &actions, nullptr, args.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  ::close(in[0]);
-  ::close(out[1]);
-  if (rc != 0) {
-    ::close(in[1]);
-    ::close(out[0]);
-    throw SceneError("cannot start the worker " + argv[0] + ": " + std::strerror(rc));
+  w.process = Subprocess(argv, options);
+  if (!w.process.started()) {
+    throw SceneError("cannot start the worker " + argv[0] + ": " + w.process.start_error());
   }
-  w.to = in[1];
-  w.from = out[0];
   return w;
 }
 
 // Ends a worker: closes its pipes (it exits at end of input) or kills it; returns the signal
 // that ended it (0 for a normal exit).
 int StopWorker(Worker& w, bool kill) {
-  if (kill) ::kill(w.pid, SIGKILL);
-  CloseFd(w.to);
-  CloseFd(w.from);
-  int status = 0;
-  while (::waitpid(w.pid, &status, 0) < 0 && errno == EINTR) {
-  }
-  w.pid = -1;
+  if (kill) w.process.Kill(SIGKILL);
+  const ExitStatus status = w.process.Wait();
+  w.process = Subprocess();
   w.buffer.clear();
-  return WIFSIGNALED(status) ? WTERMSIG(status) : 0;
+  return status.signal;
 }
 
 bool SendTask(Worker& w, const StudyTask& t) {
   const std::string line = std::to_string(t.member) + " " + std::to_string(t.engine) + "\n";
-  size_t written = 0;
-  while (written < line.size()) {
-    const ssize_t n = ::write(w.to, line.data() + written, line.size() - written);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) return false;
-    written += static_cast<size_t>(n);
-  }
+  if (w.process.WriteStdin(line) != 0) return false;
   w.task = t;
   w.started_s = Now_s();
   return true;
@@ -123,15 +92,11 @@ class Pool {
     }
     argv_.insert(argv_.end(), o.extra_worker_args.begin(), o.extra_worker_args.end());
     wall_limit_s_ = o.wall_limit_s > 0.0 ? o.wall_limit_s : study.wall_limit_s;
-    if (!o.worker_log.empty()) {
-      log_fd_ = ::open(o.worker_log.c_str(), O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0644);
-    }
   }
   ~Pool() {
     for (Worker& w : workers_) {
-      if (w.pid > 0) StopWorker(w, w.task.has_value());
+      if (w.process.running()) StopWorker(w, w.task.has_value());
     }
-    CloseFd(log_fd_);
   }
 
   void Run() {
@@ -157,7 +122,7 @@ class Pool {
  private:
   void Dispatch(Worker& w, const StudyTask& t) {
     for (int attempt = 0; attempt < 2; ++attempt) {
-      if (w.pid < 0) w = StartWorker(argv_, log_fd_);
+      if (!w.process.running()) w = StartWorker(argv_, options_.worker_log);
       if (SendTask(w, t)) return;
       StopWorker(w, true);  // it died between runs: start another
     }
@@ -177,7 +142,7 @@ class Pool {
     double next_deadline = Now_s() + scheduler_.service_interval_s();
     for (Worker& w : workers_) {
       if (!w.task) continue;
-      fds.push_back({w.from, POLLIN, 0});
+      fds.push_back({w.process.stdout_fd(), POLLIN, 0});
       owners.push_back(&w);
       next_deadline = std::min(next_deadline, w.started_s + wall_limit_s_);
     }
@@ -200,7 +165,7 @@ class Pool {
 
   void Read(Worker& w) {
     char buf[65536];
-    const ssize_t n = ::read(w.from, buf, sizeof buf);
+    const ssize_t n = ::read(w.process.stdout_fd(), buf, sizeof buf);
     if (n < 0 && (errno == EINTR || errno == EAGAIN)) return;
     if (n <= 0) {
       Died(w);
@@ -251,7 +216,6 @@ class Pool {
   std::vector<Worker> workers_;
   std::vector<std::string> argv_;
   double wall_limit_s_ = 0.0;
-  int log_fd_ = -1;
 };
 
 std::string ReadAll(const std::filesystem::path& path) {
