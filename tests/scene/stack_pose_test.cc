@@ -1,0 +1,163 @@
+// The stack's pivot chain (scene/stack_pose.h), against closed forms: a block turned clockwise by
+// theta about its right (theta > 0) or left (theta < 0) base corner, block 2 on block 1's top
+// face about its own corner, the rate's tie-break at theta = 0, velocities along the chain, and
+// the corners.
+#include "scene/stack_pose.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace rockbench {
+namespace {
+
+// Every position is a few products of metre-sized numbers with sines and cosines: exact to a
+// few 1e-16 m; 1e-14 leaves room for a different order of operations in the closed forms.
+constexpr double kTol = 1e-14;
+
+// p turned clockwise by theta (thesis sign) about the origin.
+Vec2 Clockwise(double theta, Vec2 p) {
+  return {p.x * std::cos(theta) + p.y * std::sin(theta),
+          -p.x * std::sin(theta) + p.y * std::cos(theta)};
+}
+
+void ExpectNear(Vec2 a, Vec2 b, const char* what) {
+  EXPECT_NEAR(a.x, b.x, kTol) << what;
+  EXPECT_NEAR(a.y, b.y, kTol) << what;
+}
+
+Vec2 Centre(const PlanarPose& p) {
+  return {p.x_m, p.y_m};
+}
+Vec2 Velocity(const PlanarPose& p) {
+  return {p.vx_mps, p.vy_mps};
+}
+
+constexpr double b1 = 0.6, h1 = 0.9, b2 = 0.4, h2 = 1.3;  // half widths and heights, m
+
+TEST(PivotSide, TheAngleFirstThenTheRate) {
+  EXPECT_EQ(PivotSide(0.1, -5.0), 1);
+  EXPECT_EQ(PivotSide(-0.1, 5.0), -1);
+  EXPECT_EQ(PivotSide(0.0, 2.0), 1);
+  EXPECT_EQ(PivotSide(0.0, -2.0), -1);
+  EXPECT_EQ(PivotSide(0.0, 0.0), 0);
+}
+
+TEST(PlaceStack, PositiveTiltTurnsBlock1AboutItsRightCorner) {
+  const double th = 0.3, om = 1.7;
+  const StackPlacement p = PlaceStack(b1, h1, 0.0, 0.0, false, {th, 0.0, om, 0.0});
+  EXPECT_EQ(p.ground_side, 1);
+  // G1 = P1 + R_cw(theta) (G1 - P1 at rest), P1 = (b1, 0).
+  const Vec2 r = Clockwise(th, {-b1, h1});
+  ExpectNear(Centre(p.block1), {b1 + r.x, r.y}, "G1");
+  EXPECT_EQ(p.block1.phi_rad, -th);
+  // v = w x r with the counter-clockwise rate w = -omega.
+  ExpectNear(Velocity(p.block1), {om * r.y, -om * r.x}, "vG1");
+  EXPECT_EQ(p.block1.w_radps, -om);
+  // The right base corner stays on the ground, the left one lifts by 2 b1 sin(theta).
+  const BlockCorners c = Corners(p.block1, b1, h1);
+  ExpectNear(c[1], {b1, 0.0}, "right base corner");
+  EXPECT_NEAR(c[0].y, 2.0 * b1 * std::sin(th), kTol);
+}
+
+TEST(PlaceStack, NegativeTiltTurnsBlock1AboutItsLeftCorner) {
+  const double th = -0.2, om = 0.4;
+  const StackPlacement p = PlaceStack(b1, h1, 0.0, 0.0, false, {th, 0.0, om, 0.0});
+  EXPECT_EQ(p.ground_side, -1);
+  const Vec2 r = Clockwise(th, {b1, h1});
+  ExpectNear(Centre(p.block1), {-b1 + r.x, r.y}, "G1");
+  ExpectNear(Velocity(p.block1), {om * r.y, -om * r.x}, "vG1");
+  const BlockCorners c = Corners(p.block1, b1, h1);
+  ExpectNear(c[0], {-b1, 0.0}, "left base corner");
+  EXPECT_NEAR(c[1].y, -2.0 * b1 * std::sin(th), kTol);
+}
+
+TEST(PlaceStack, AtZeroAngleTheRateChoosesThePivot) {
+  // A block upright and starting to rock: its centre is at (0, h1) whichever the side, but the
+  // velocity is that of a turn about the corner the rate leans to: (omega h1, +-omega b1).
+  for (const double om : {2.0, -2.0}) {
+    const StackPlacement p = PlaceStack(b1, h1, 0.0, 0.0, false, {0.0, 0.0, om, 0.0});
+    EXPECT_EQ(p.ground_side, om > 0.0 ? 1 : -1);
+    ExpectNear(Centre(p.block1), {0.0, h1}, "G1");
+    ExpectNear(Velocity(p.block1), {om * h1, std::abs(om) * b1}, "vG1");
+  }
+  // At rest: flat on its face, no pivot.
+  const StackPlacement rest = PlaceStack(b1, h1, 0.0, 0.0, false, {});
+  EXPECT_EQ(rest.ground_side, 0);
+  ExpectNear(Centre(rest.block1), {0.0, h1}, "G1 at rest");
+  ExpectNear(Velocity(rest.block1), {0.0, 0.0}, "vG1 at rest");
+}
+
+TEST(PlaceStack, Block2TurnsAboutItsOwnCornerOnBlock1sTopFace) {
+  // theta2 > theta1: block 2 about its right base corner Q2 = (b2, 2 h1) of block 1's rest
+  // frame, carried by block 1's turn; theta2 < theta1: about its left one.
+  for (const auto& [th1, th2] :
+       {std::pair{0.1, 0.35}, std::pair{0.1, -0.2}, std::pair{-0.15, -0.1}}) {
+    const StackPlacement p = PlaceStack(b1, h1, b2, h2, true, {th1, th2, 0.0, 0.0});
+    const int s1 = th1 > 0.0 ? 1 : -1, s2 = th2 > th1 ? 1 : -1;
+    EXPECT_EQ(p.ground_side, s1);
+    EXPECT_EQ(p.interface_side, s2);
+    const Vec2 p1{s1 * b1, 0.0};
+    const Vec2 q2 = p1 + Clockwise(th1, Vec2{s2 * b2, 2.0 * h1} - p1);
+    const Vec2 g2 = q2 + Clockwise(th2, Vec2{-s2 * b2, h2});
+    ExpectNear(Centre(p.block2), g2, "G2");
+    EXPECT_EQ(p.block2.phi_rad, -th2);
+    // Q2 is block 2's pivot corner: bottom-right for s2 = +1, bottom-left for -1.
+    const BlockCorners c2 = Corners(p.block2, b2, h2);
+    ExpectNear(c2[s2 > 0 ? 1 : 0], q2, "Q2");
+  }
+}
+
+TEST(PlaceStack, LockedBlock2RidesBlock1AndItsRelativeRateChoosesItsPivot) {
+  const double th = 0.12, om1 = 0.8;
+  for (const double om2 : {1.5, 0.2}) {
+    const StackPlacement p = PlaceStack(b1, h1, b2, h2, true, {th, th, om1, om2});
+    const int s2 = om2 > om1 ? 1 : -1;
+    EXPECT_EQ(p.interface_side, s2);
+    // Centred on block 1's top face: G2 = P1 + R_cw(theta) ((0, 2 h1 + h2) - P1).
+    const Vec2 p1{b1, 0.0};
+    ExpectNear(Centre(p.block2), p1 + Clockwise(th, Vec2{0.0, 2.0 * h1 + h2} - p1), "G2");
+    // v_G2 = w1 x (Q2 - P1) + w2 x (G2 - Q2), w = -omega.
+    const Vec2 q2 = p1 + Clockwise(th, Vec2{s2 * b2, 2.0 * h1} - p1);
+    const Vec2 r1 = q2 - p1, r2 = Clockwise(th, {-s2 * b2, h2});
+    ExpectNear(Velocity(p.block2), {om1 * r1.y + om2 * r2.y, -om1 * r1.x - om2 * r2.x}, "vG2");
+  }
+}
+
+TEST(PlaceStack, VelocitiesAreTheTimeDerivativesOfThePositions) {
+  // Along theta_i(t) = theta_i + omega_i t the centres move with the velocities PlaceStack
+  // gives (pivots fixed: no angle crosses zero). Central differences at dt = 1e-5 s are exact to
+  // (dt^2 / 6) |x'''| ~ 1e-10 m/s here (rates ~1 rad/s on metre arms); 1e-8 m/s bounds that and
+  // the rounding (1e-16 m / 1e-5 s).
+  const InitialState s{0.2, 0.45, -0.7, 1.1};
+  const double dt = 1e-5;
+  auto at = [&](double t) {
+    return PlaceStack(b1, h1, b2, h2, true,
+                      {s.theta1_rad + s.omega1_radps * t, s.theta2_rad + s.omega2_radps * t,
+                       s.omega1_radps, s.omega2_radps});
+  };
+  const StackPlacement p = at(0.0), a = at(-dt), b = at(dt);
+  for (const auto& [now, before, after] :
+       {std::tuple{p.block1, a.block1, b.block1}, std::tuple{p.block2, a.block2, b.block2}}) {
+    EXPECT_NEAR(now.vx_mps, (after.x_m - before.x_m) / (2.0 * dt), 1e-8);
+    EXPECT_NEAR(now.vy_mps, (after.y_m - before.y_m) / (2.0 * dt), 1e-8);
+    EXPECT_NEAR(now.w_radps, (after.phi_rad - before.phi_rad) / (2.0 * dt), 1e-8);
+  }
+}
+
+TEST(StackCornersAt, AtRestBlock2IsCentredOnBlock1) {
+  Scene scene;
+  scene.block1 = {.width_m = 2.0 * b1, .height_m = 2.0 * h1, .mass_kg = 100.0};
+  scene.block2 = BlockDef{.width_m = 2.0 * b2, .height_m = 2.0 * h2, .mass_kg = 30.0};
+  const StackCorners c = StackCornersAt(scene, {});
+  ASSERT_TRUE(c.has_block2);
+  ExpectNear(c.block1[0], {-b1, 0.0}, "block 1 bottom-left");
+  ExpectNear(c.block1[2], {b1, 2.0 * h1}, "block 1 top-right");
+  ExpectNear(c.block2[0], {-b2, 2.0 * h1}, "block 2 bottom-left");
+  ExpectNear(c.block2[2], {b2, 2.0 * (h1 + h2)}, "block 2 top-right");
+  scene.block2.reset();
+  EXPECT_FALSE(StackCornersAt(scene, {0.1, 0.0, 0.0, 0.0}).has_block2);
+}
+
+}  // namespace
+}  // namespace rockbench
