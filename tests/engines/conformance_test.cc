@@ -18,9 +18,9 @@
 #include <vector>
 
 #include "common/error_of.h"
-#include "common/housner_closed_forms.h"
 #include "common/scratch_dir_test.h"
 #include "run/engine_registry.h"
+#include "reference/benchmarks/closed_forms.h"
 #include "reference/simulate.h"
 #include "scene/ground_motion.h"
 #include "scene/scene.h"
@@ -29,7 +29,12 @@ namespace rockbench {
 namespace {
 
 namespace fs = std::filesystem;
-using testing_util::Housner;
+namespace bm = reference::benchmarks;
+
+// Housner's block of scenes/housner_free_rocking.toml: B = 1 m, H = 4 m, 10 t, g = 9.81 m/s^2.
+bm::RockingBody HousnerBlock() {
+  return bm::RectangularBlock(1.0, 4.0, 10000.0, 9.81);
+}
 
 const fs::path kScenes = fs::path(ROCKBENCH_SOURCE_DIR) / "scenes";
 constexpr double kStep_s = 1e-4;
@@ -166,26 +171,27 @@ std::vector<Event> GroundImpacts(const History& h) {
 }
 
 TEST_P(EngineConformance, HousnerFreeRockingMatchesTheClosedForms) {
-  const Housner hz;
-  const double theta0 = hz.alpha / 2;
+  const bm::RockingBody hz = HousnerBlock();
+  const double theta0 = hz.alpha_rad() / 2, p2 = hz.p_radps() * hz.p_radps();
+  const double e = bm::CornerImpactRestitution(hz);
   // The closed-form impact times, and the same when every impact loses one step's worth of
   // restoring acceleration, p^2 sin(alpha) dt, of rate: a fixed-step engine resolves an impact
   // up to one step late. The difference bounds how far that lateness moves the k-th impact (the
   // next half cycle lengthens with the smaller amplitude): 0, 0.53, 1.31, 2.27 ms at dt 1e-4 s.
   auto impact_times = [&](double rate_loss, std::vector<double>* amplitudes) {
     std::vector<double> times;
-    double t = hz.QuarterTime(theta0), a = theta0;
+    double t = bm::FirstImpactTime_s(hz, theta0), a = theta0;
     for (int k = 0; k < 4; ++k) {
       times.push_back(t);
-      a = hz.Amplitude(hz.e * hz.RateAtZero(a) - rate_loss);
+      a = bm::FreeRockingAmplitude_rad(hz, e * bm::FreeRockingImpactRate_radps(hz, a) - rate_loss);
       if (amplitudes) amplitudes->push_back(a);
-      t += 2.0 * hz.QuarterTime(a);
+      t += 2.0 * bm::FirstImpactTime_s(hz, a);
     }
     return times;
   };
   std::vector<double> amp_closed;
   const std::vector<double> t_closed = impact_times(0.0, &amp_closed);
-  const std::vector<double> t_late = impact_times(hz.p2 * std::sin(hz.alpha) * kStep_s, nullptr);
+  const std::vector<double> t_late = impact_times(p2 * std::sin(hz.alpha_rad()) * kStep_s, nullptr);
   const Scene s = LoadScene(kScenes / "housner_free_rocking.toml", {"run.output_interval=0.001"});
   ASSERT_NEAR(s.initial.theta1_rad, theta0, 1e-15);
   const EngineResult out = Run(s, GroundMotion());
@@ -200,8 +206,9 @@ TEST_P(EngineConformance, HousnerFreeRockingMatchesTheClosedForms) {
   }
   // The first impact: the rate before it from energy, the rate ratio Housner's e. Bound 0.1%:
   // five times the first-order impact error p^2 sin(alpha) dt / omega = 2e-4 at dt = 1e-4 s.
-  EXPECT_NEAR(std::abs(imp[0].omega1_before), hz.RateAtZero(theta0), 1e-3 * hz.RateAtZero(theta0));
-  EXPECT_NEAR(imp[0].omega1_after / imp[0].omega1_before, hz.e, 1e-3);
+  const double w1 = bm::FreeRockingImpactRate_radps(hz, theta0);
+  EXPECT_NEAR(std::abs(imp[0].omega1_before), w1, 1e-3 * w1);
+  EXPECT_NEAR(imp[0].omega1_after / imp[0].omega1_before, e, 1e-3);
   EXPECT_EQ(imp[0].mode_before, Mode::k3a);
   EXPECT_EQ(imp[0].mode_after, Mode::k3b);
   // The amplitude after the first impact within 1% of the closed form.
@@ -223,12 +230,12 @@ TEST_P(EngineConformance, UpliftStartsAtTheStaticThreshold) {
   // Housner's block under a base acceleration ramped slowly from 0 to 2 g tan(theta_c) over
   // 10 s stays put until the inertial load reaches g tan(theta_c) = g b / h, then rocks on its
   // left corner (the ground pushes right, the block tilts left).
-  const Housner hz;
+  const bm::RockingBody hz = HousnerBlock();
   Scene s;
-  s.block1 = {testing_util::kB, testing_util::kH, 1.0, 10000.0, 0.0};
+  s.block1 = {1.0, 4.0, 1.0, 10000.0, 0.0};
   s.run.duration_s = 6.0;
   s.run.output_interval_s = 0.01;
-  const double a_c = testing_util::kG * std::tan(hz.alpha);
+  const double a_c = hz.g_mps2 * std::tan(hz.alpha_rad());
   GroundMotion m;
   m.set_horizontal(MotionComponent::FromSamples({0.0, 2.0 * a_c}, 10.0, 0.0, "ramp"));
   const EngineResult out = Run(s, m);

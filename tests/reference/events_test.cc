@@ -10,6 +10,7 @@
 #include <cmath>
 #include <string>
 
+#include "reference/benchmarks/closed_forms.h"
 #include "reference/geometry.h"
 #include "reference/integrator.h"
 #include "reference/simulate.h"
@@ -77,10 +78,8 @@ TEST(EventsTest, GrazingOverturnInsideOneStepIsFound) {
   sc.model.rtol = 1e-12;
   sc.model.atol = 1e-14;
   const Geometry geo = MakeGeometry(sc);
-  const BlockProps& p = geo.block1;
-  const double k = 2 * p.m * geo.g * p.r / p.I_O;
-  const double w0 = sc.initial.omega1_radps;
-  const double apex = p.theta_c - std::acos(std::cos(p.theta_c) + w0 * w0 / k);
+  const double apex = benchmarks::FreeRockingAmplitude_rad(
+      benchmarks::RectangularBlock(geo.block1, geo.g), sc.initial.omega1_radps);
   const Result free = Simulate(sc, GroundMotion{});
   EXPECT_NEAR(free.summary.peak_theta1_rad, apex, 1e-11);
   sc.model.overturn_rad = apex - 5e-6;

@@ -1,6 +1,7 @@
 // Impact laws (thesis chapter 5): conservation of the angular momenta each law claims, no
-// energy gain over a sweep of geometries, the single-degree-of-freedom closed forms 5.31, 5.36
-// and Housner's coefficient, and the squat-block case.
+// energy gain over a sweep of geometries, the squat-block case, the thesis's first choice and
+// the rest rule. Housner's coefficient (eqs. 3.8, 3.9) and the closed forms 5.29, 5.31, 5.34
+// and 5.36 of the stack's impacts (reference/benchmarks) are checked in closed_forms_test.cc.
 #include "reference/impact.h"
 
 #include <gtest/gtest.h>
@@ -9,6 +10,7 @@
 #include <limits>
 #include <random>
 
+#include "reference/benchmarks/closed_forms.h"
 #include "reference/kinematics.h"
 
 namespace rockbench::reference {
@@ -134,40 +136,6 @@ TEST(ImpactTest, NoImpactAddsEnergy) {
   }
 }
 
-// Mode 3 -> 3 (eq. 5.31) and 4 -> 4 (eq. 5.36) closed forms.
-TEST(ImpactTest, ThesisClosedForms531And536) {
-  std::mt19937_64 rng(3);
-  for (int trial = 0; trial < 200; ++trial) {
-    const Geometry geo = RandomGeometry(rng);
-    const double w = 0.7;
-    const State pre3{0.0, 0.0, -w, -w};
-    const State post3 = PostImpactState(geo, Mode::k3a, pre3, Mode::k3b);
-    const double e31 = (geo.I_O - 2 * geo.M * geo.block1.b * geo.block1.b) / geo.I_O;
-    EXPECT_NEAR(post3.omega1, e31 * -w, 64 * kEps * w);
-    EXPECT_EQ(post3.omega1, post3.omega2);
-    const State pre4{0.0, 0.0, 0.0, -w};
-    const State post4 = PostImpactState(geo, Mode::k4a, pre4, Mode::k4b);
-    const BlockProps& p2 = geo.block2;
-    const double e36 = (p2.I_O - 2 * p2.m * p2.b * p2.b) / p2.I_O;
-    EXPECT_NEAR(post4.omega2, e36 * -w, 64 * kEps * w);
-    EXPECT_EQ(post4.omega1, 0.0);
-  }
-}
-
-// One block: Housner's e = 1 - 1.5 sin^2(theta_c) (eqs. 3.8, 3.9).
-TEST(ImpactTest, HousnerCoefficient) {
-  for (double slender : {0.8, 1.0, 2.0, 4.0, 10.0}) {
-    const double B = 1.0, H = B * slender;
-    const Geometry geo = MakeGeometry(B, H, 2500.0 * B * H, 0.0, 0.0, 0.0);
-    const double e = 1.0 - 1.5 * std::pow(std::sin(geo.block1.theta_c), 2);
-    const State pre{0.0, 0.0, -0.3, -0.3};
-    const ImpactResult res = ResolveImpact(geo, Mode::k3a, pre, ImpactKind::kGround, 0.0);
-    EXPECT_EQ(res.chosen.mode, Mode::k3b);
-    EXPECT_TRUE(res.admissible);
-    EXPECT_NEAR(res.chosen.state.omega1 / pre.omega1, e, 16 * kEps);
-  }
-}
-
 // A squat block (H/B < 1/sqrt(2)) has a negative Housner coefficient: rocking on about the
 // other corner would need the block to keep rotating into the ground. The model stops it: the
 // face lands flat, with compressive impulses at both corners, and all its kinetic energy lost.
@@ -175,7 +143,7 @@ TEST(ImpactTest, SquatBlockComesToRest) {
   for (double slender : {0.3, 0.5, 0.7}) {
     const double B = 1.0, H = B * slender;
     const Geometry geo = MakeGeometry(B, H, 2500.0 * B * H, 0.0, 0.0, 0.0);
-    ASSERT_LT(1.0 - 1.5 * std::pow(std::sin(geo.block1.theta_c), 2), 0.0);
+    ASSERT_LT(benchmarks::HousnerRestitution(geo.block1.theta_c), 0.0);
     const State pre{0.0, 0.0, -0.3, -0.3};
     const ImpactResult res = ResolveImpact(geo, Mode::k3a, pre, ImpactKind::kGround, 0.0);
     EXPECT_FALSE(res.candidates[0].velocity_admissible);  // 3b would move into the ground
@@ -214,7 +182,7 @@ TEST(ImpactTest, RestRuleSettlesImpactsBelowTheRelativeRate) {
   const double rel = 1e-4;
   const double thr = rel * std::sqrt(geo.g / geo.block1.r);
   EXPECT_DOUBLE_EQ(RestRate(geo, ImpactKind::kGround, rel), thr);
-  const double e = 1.0 - 1.5 * std::pow(std::sin(geo.block1.theta_c), 2);
+  const double e = benchmarks::HousnerRestitution(geo.block1.theta_c);
   for (const double f : {1.01, 0.99}) {
     const double w = -f * thr / e;  // post-impact rate f * thr
     const ImpactResult r =

@@ -1,12 +1,7 @@
-// Overturning by a pulse, against Housner's (1963) closed form. A block rocking about its corner
-// under a constant base acceleration A for t1 obeys, linearised as the model's
-// equations = "linearized" does (sin(theta - a) ~ theta cos a - sin a, the lever arm cos a),
-//   phi'' = p^2 cos(a) (phi - tan a + A / g),   phi = |theta|, a = atan(B / H), p^2 = M R g / I_O.
-// From rest, phi = (A/g - tan a)(cosh(q t) - 1), q = p sqrt(cos a); after the pulse the block
-// is free, phi'' = q^2 (phi - tan a), and goes over the top (phi = tan a, where the linearised
-// restoring moment vanishes) when phi' >= q (tan a - phi) at t1. Hence the smallest amplitude
-// that overturns it without an impact:
-//   A_min / g = tan(a) / (1 - exp(-q t1)).
+// Overturning by a pulse, against Housner's (1963) closed form for a rectangular pulse in the
+// model's own linearisation (equations = "linearized"), reference/benchmarks
+// RectangularPulseOverturningAcceleration_mps2 (derived there):
+//   A_min / g = tan(a) / (1 - exp(-q t1)),   q = p sqrt(cos a), a = atan(B / H).
 // And for one cycle of a sine pulse, the closed-form boundary of overturning without an impact
 // (mode 2 of Zhang & Makris 2001) in the same linearisation: derived below, SineGrowth.
 #include <gtest/gtest.h>
@@ -14,6 +9,7 @@
 #include <cmath>
 #include <string>
 
+#include "reference/benchmarks/closed_forms.h"
 #include "reference/geometry.h"
 #include "reference/simulate.h"
 #include "scene/ground_motion.h"
@@ -86,12 +82,13 @@ double Threshold(const Scene& s, double t1_s, Equations equations, double guess)
 
 TEST(PulseOverturning, LinearizedModelHasHousnersRectangularPulseThreshold) {
   const Scene s = Slender();
-  const double a = std::atan(0.1);
   const Geometry geo = MakeGeometry(s);
-  const double q = std::sqrt(geo.M * geo.R * geo.g / geo.I_O * std::cos(a));
+  const benchmarks::RockingBody body = benchmarks::RectangularBlock(geo.block1, geo.g);
+  const double q = body.p_radps() * std::sqrt(std::cos(body.alpha_rad()));
   for (const double qt1 : {0.5, 1.0, 2.0, 4.0}) {
     const double t1 = qt1 / q;
-    const double expected = std::tan(a) / (1.0 - std::exp(-qt1));
+    const double expected =
+        benchmarks::RectangularPulseOverturningAcceleration_mps2(body, t1) / body.g_mps2;
     const double linear = Threshold(s, t1, Equations::kLinearized, expected);
     // Near the threshold the block lingers at the top for (1/q) ln(1/eps): the 15 s run resolves
     // eps ~ exp(-q (15 s - t1)) < 1e-10, so the located threshold is the closed form to the

@@ -1,17 +1,18 @@
-// The reference model end to end: Housner's closed forms for one block, the linearized period
-// (3.44), integrator convergence orders, event location, output-interval independence, the
-// thesis's example, the rest rule, overturning and the validity monitor.
+// The reference model end to end: Housner's closed forms for one block (reference/benchmarks;
+// the linearized period 3.44 is checked in closed_forms_test.cc), integrator convergence
+// orders, event location, output-interval independence, the thesis's example, the rest rule,
+// overturning and the validity monitor.
 #include "reference/simulate.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <functional>
 #include <limits>
 #include <string>
 #include <utility>
 
 #include "common/thesis_scene.h"
+#include "reference/benchmarks/closed_forms.h"
 #include "reference/geometry.h"
 #include "reference/integrator.h"
 
@@ -43,61 +44,16 @@ std::vector<Event> Impacts(const History& h) {
   return out;
 }
 
-// Composite Gauss-Legendre quadrature (16 nodes per panel, 64 panels) of a smooth integrand:
-// converges far below 1e-12 relative for the analytic integrands used here (checked against 32
-// panels in HousnerFreeRockingMatchesClosedForms).
-double Quadrature(const std::function<double(double)>& f, double a, double b, int panels = 64) {
-  constexpr int kN = 16;
-  static double x[kN], w[kN];
-  static bool init = false;
-  if (!init) {
-    for (int i = 0; i < kN; ++i) {
-      double z = std::cos(M_PI * (i + 0.75) / (kN + 0.5)), dp = 0.0;
-      for (int it = 0; it < 100; ++it) {
-        double p0 = 1.0, p1 = 0.0;
-        for (int j = 0; j < kN; ++j) {
-          const double p2 = p1;
-          p1 = p0;
-          p0 = ((2.0 * j + 1.0) * z * p1 - j * p2) / (j + 1);
-        }
-        dp = kN * (z * p0 - p1) / (z * z - 1.0);
-        const double dz = p0 / dp;
-        z -= dz;
-        if (std::abs(dz) < 1e-16) break;
-      }
-      x[i] = z;
-      w[i] = 2.0 / ((1.0 - z * z) * dp * dp);
-    }
-    init = true;
-  }
-  double sum = 0.0;
-  const double hp = (b - a) / panels;
-  for (int p = 0; p < panels; ++p) {
-    const double c = a + (p + 0.5) * hp;
-    for (int i = 0; i < kN; ++i) sum += 0.5 * hp * w[i] * f(c + 0.5 * hp * x[i]);
-  }
-  return sum;
-}
+namespace bm = benchmarks;
 
-// Exact nonlinear time from theta0 (at rest) to theta = 0 for one block, by energy
-// conservation: (1/2) I_O theta'^2 = m g r [cos(theta_c - theta0) - cos(theta_c - theta)].
-// With theta = theta0 - w^2 the integrand is smooth.
-double TimeToFirstImpact(const Geometry& geo, double theta0) {
-  const BlockProps& p = geo.block1;
-  const double k = 2 * p.m * geo.g * p.r / p.I_O;
-  // cos(theta_c - theta0) - cos(theta_c - theta) = 2 sin(theta_c - theta0 + w^2/2) sin(w^2/2),
-  // written without cancellation.
-  auto f = [&](double w) {
-    if (w == 0.0) return 2.0 / std::sqrt(k * std::sin(p.theta_c - theta0));
-    const double e = 2 * std::sin(p.theta_c - theta0 + 0.5 * w * w) * std::sin(0.5 * w * w);
-    return 2 * w / std::sqrt(k * e);
-  };
-  return Quadrature(f, 0.0, std::sqrt(theta0));
+// Block 1 of a geometry as the closed forms take it.
+bm::RockingBody Body(const Geometry& geo) {
+  return bm::RectangularBlock(geo.block1, geo.g);
 }
 
 // Housner free rocking: first impact at the quadrature time, each impact multiplies the rate
 // by e = 1 - 1.5 sin^2(theta_c), and the time between impacts follows from energy conservation
-// again (the block rises from 0 with rate e w- and falls back).
+// again (the block rises from 0 with rate e w- and falls back): reference/benchmarks.
 // Both adaptive pairs (dopri5, dop853) at rtol 1e-12.
 TEST(SimulateTest, HousnerFreeRockingMatchesClosedForms) {
   for (const auto& [slender, integrator] :
@@ -108,14 +64,15 @@ TEST(SimulateTest, HousnerFreeRockingMatchesClosedForms) {
     Scene sc = OneBlock(1.0, slender, 0.0, 6.0);
     sc.model.integrator = integrator;
     const Geometry geo = MakeGeometry(sc);
+    const bm::RockingBody body = Body(geo);
     sc.initial.theta1_rad = 0.5 * geo.block1.theta_c;
     const Result res = Simulate(sc, GroundMotion{});
     const auto impacts = Impacts(res.history);
     ASSERT_GE(impacts.size(), 4u);
-    const double t1 = TimeToFirstImpact(geo, sc.initial.theta1_rad);
+    const double t1 = bm::FirstImpactTime_s(body, sc.initial.theta1_rad);
     // rtol 1e-12: the located event time is good to ~1e-11 s relative; 1e-9 asked.
     EXPECT_NEAR(impacts[0].t_s, t1, 1e-9 * t1);
-    const double e = 1.0 - 1.5 * std::pow(std::sin(geo.block1.theta_c), 2);
+    const double e = bm::HousnerRestitution(geo.block1.theta_c);
     for (size_t i = 0; i < 4; ++i) {
       EXPECT_NEAR(impacts[i].omega1_after / impacts[i].omega1_before, e, 1e-9);
     }
@@ -125,45 +82,10 @@ TEST(SimulateTest, HousnerFreeRockingMatchesClosedForms) {
       EXPECT_NEAR(std::abs(impacts[i].omega1_before), std::abs(impacts[i - 1].omega1_after),
                   1e-9 * std::abs(impacts[i - 1].omega1_after));
     }
-    // The time between impacts 1 and 2: rising from 0 with rate w to the apex and back,
-    // 2 * integral of dtheta / theta'(theta) from 0 to the apex.
-    const BlockProps& p = geo.block1;
-    const double w = std::abs(impacts[0].omega1_after);
-    const double k = 2 * p.m * geo.g * p.r / p.I_O;
-    // Apex: cos(theta_c - apex) = cos(theta_c) + w^2 / k.
-    const double apex = p.theta_c - std::acos(std::cos(p.theta_c) + w * w / k);
-    auto f = [&](double v) {
-      if (v == 0.0) return 2.0 / std::sqrt(k * std::sin(p.theta_c - apex));
-      const double e2 = 2 * std::sin(p.theta_c - apex + 0.5 * v * v) * std::sin(0.5 * v * v);
-      return 2 * v / std::sqrt(k * e2);
-    };
-    const double half = 2 * Quadrature(f, 0.0, std::sqrt(apex));
-    EXPECT_NEAR(half, 2 * Quadrature(f, 0.0, std::sqrt(apex), 32), 1e-13 * half);
+    // The time between impacts 1 and 2: rising from 0 with rate w to the apex and back.
+    const double half = bm::FreeRockingHalfCycle_s(body, std::abs(impacts[0].omega1_after));
     EXPECT_NEAR(impacts[1].t_s - impacts[0].t_s, half, 1e-9 * half);
   }
-}
-
-// The linearized option for one block is eq. 3.39 exactly: first impact at tau1 of eq. 3.43
-// (a quarter of the period 3.44) and, after an impact with rate V (in tau units), the next
-// impact a time (2 / beta) atanh(V / (beta gamma)) later.
-TEST(SimulateTest, LinearizedSingleBlockPeriod344) {
-  Scene sc = OneBlock(1.0, 4.0, 0.0, 3.0);
-  sc.model.equations = Equations::kLinearized;
-  const Geometry geo = MakeGeometry(sc);
-  const BlockProps& p = geo.block1;
-  sc.initial.theta1_rad = 0.5 * p.theta_c;
-  const Result res = Simulate(sc, GroundMotion{});
-  const auto impacts = Impacts(res.history);
-  ASSERT_GE(impacts.size(), 3u);
-  const double alpha = std::sqrt(p.m * geo.g * p.r / p.I_O);  // eq. 3.33
-  const double beta = std::sqrt(std::cos(p.theta_c));         // eq. 3.37
-  const double gamma = std::tan(p.theta_c) / p.theta_c;       // eq. 3.38
-  const double Theta0 = sc.initial.theta1_rad / p.theta_c;
-  const double T = 4 / beta * std::acosh(gamma / (gamma - Theta0)) / alpha;  // eq. 3.44
-  EXPECT_NEAR(impacts[0].t_s, T / 4, 1e-9 * T);
-  const double V = std::abs(impacts[0].omega1_after) / (alpha * p.theta_c);
-  const double dt = 2 / beta * std::atanh(V / (beta * gamma)) / alpha;
-  EXPECT_NEAR(impacts[1].t_s - impacts[0].t_s, dt, 1e-9 * T);
 }
 
 // Fixed-step RK4 is 4th order: halving the step divides the error at a fixed time (before the
@@ -210,7 +132,7 @@ TEST(SimulateTest, EventTimesConverge) {
   Scene sc = OneBlock(1.0, 4.0, 0.0, 1.0);
   const Geometry geo = MakeGeometry(sc);
   sc.initial.theta1_rad = 0.5 * geo.block1.theta_c;
-  const double exact = TimeToFirstImpact(geo, sc.initial.theta1_rad);
+  const double exact = bm::FirstImpactTime_s(Body(geo), sc.initial.theta1_rad);
   auto first_impact = [&](EventScheme events, double h) {
     Scene s = sc;
     s.model.integrator = Integrator::kRk4;
@@ -312,11 +234,9 @@ TEST(SimulateTest, RestRuleEndsCascadesAndMotionRestarts) {
   // ceil(42.1) = 43, the settling impact included.
   {
     const Geometry geo = MakeGeometry(sc);
-    const BlockProps& p = geo.block1;
-    const double w1 = std::sqrt(2 * p.m * geo.g * p.r *
-                                (std::cos(p.theta_c - 0.2) - std::cos(p.theta_c)) / p.I_O);
-    const double e = 1.0 - 1.5 * std::pow(std::sin(p.theta_c), 2);
-    const double rest = sc.model.rest_rate_rel * std::sqrt(geo.g / p.r);
+    const double w1 = bm::FreeRockingImpactRate_radps(Body(geo), 0.2);
+    const double e = bm::HousnerRestitution(geo.block1.theta_c);
+    const double rest = sc.model.rest_rate_rel * std::sqrt(geo.g / geo.block1.r);
     const double n = std::log(w1 / rest) / std::log(1.0 / e);
     ASSERT_GT(n - std::floor(n), 0.01);  // not at an integer, where rounding would decide
     EXPECT_EQ(res.summary.impacts_ground, static_cast<int>(std::ceil(n)));
