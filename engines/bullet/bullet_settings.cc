@@ -12,8 +12,9 @@ const EngineSettingsSchema& BulletSettingsSchema() {
     EngineSettingsSchema s;
     s.engine = "bullet";
     const BulletConfig d;
-    s.Number("time_step", 1e-4, R::kPositive, "s", "1/60 s",
-             "fixed step; Bullet's 1/60 s misses every impact of the stack (docs/stress.md)");
+    AddTimeStepSetting(
+        s, "1/60 s",
+        "fixed step; Bullet's 1/60 s misses every impact of the stack (docs/stress.md)");
     s.Integer("solver_iterations", d.solver_iterations, 1, 100000, "10",
               "sequential-impulse iterations; 10 leaves the stack's contacts unconverged");
     s.Choice("precision", "double", {"double", "float"}, "float (libbullet-dev)",

@@ -10,7 +10,7 @@ const EngineSettingsSchema& DartSettingsSchema() {
     EngineSettingsSchema s;
     s.engine = "dart";
     const DartSettings d;
-    s.Number("time_step", d.time_step_s, R::kPositive, "s", "1e-3 s", "fixed step");
+    AddTimeStepSetting(s, "1e-3 s", "fixed step");
     AddDriveSetting(s);
     s.Choice("collision", DartCollisionName(d.collision), {"dart", "fcl"}, "fcl",
              "collision detector; DART's own box-box gives the corner-edge and face contacts");
@@ -29,7 +29,8 @@ const EngineSettingsSchema& DartSettingsSchema() {
              "penetration tolerated without correction (process-wide)");
     s.Number("max_erv", d.max_erv_mps, R::kNonNegative, "m/s", "1e-3 m/s",
              "cap on the correction velocity (process-wide)");
-    s.Number("cfm", d.cfm, R::kNonNegative, "", "1e-5", "relative constraint force mixing");
+    s.Number("cfm", d.cfm, R::kNonNegative, "", "1e-5",
+             "relative constraint force mixing; DART's floor is 1e-9", {.min = 1e-9});
     s.Integer("max_contacts", d.max_contacts, 1, 1000000, "1000", "contacts per collision query");
     s.Number("ground_depth", d.ground_depth_m, R::kPositive, "m", "-", "ground box thickness");
     AddKinematicHighpassSetting(s);
@@ -43,7 +44,6 @@ DartRun MakeDartRun(const Scene& scene, const GroundMotion& motion, double stop_
   DartRun run;
   run.input = MakeEngineInput(scene, motion, "dart", set, stop_at_rest_after_s);
   DartSettings& s = run.settings;
-  s.time_step_s = set.Number("time_step");
   s.collision = set.Choice("collision") == "fcl" ? DartCollision::kFcl : DartCollision::kDart;
   s.lcp_solver = set.Choice("lcp_solver") == "pgs" ? DartLcpSolver::kPgs : DartLcpSolver::kDantzig;
   s.pgs_fallback = set.Flag("pgs_fallback");

@@ -36,13 +36,11 @@ enum class DartLcpSolver {
 const char* DartCollisionName(DartCollision c);
 const char* DartLcpSolverName(DartLcpSolver s);
 
+/// The [dart] settings besides the time step, which is EngineInput::time_step_s (DART's default
+/// 1e-3 s, World::setTimeStep; ours is the project's 1e-4 s: DART is first order in dt here, a
+/// landing corner being seen once it penetrates and the semi-implicit Euler step leading the
+/// angle by half a step, and at 1e-4 s the angle error is about 1e-4 rad on both probe scenes).
 struct DartSettings {
-  /// Fixed step, s. DART's default 1e-3 s (World::setTimeStep). Ours is the project's Bullet
-  /// step: DART is first order in dt here (a landing corner is seen once it penetrates, and the
-  /// semi-implicit Euler step leads the angle by half a step), and at 1e-4 s the angle error
-  /// is about 1e-4 rad on both probe scenes. Must equal EngineInput::time_step_s.
-  double time_step_s = 1e-4;
-
   /// Collision detector. DART's default: FCL. Ours: DART's own, whose box-box gives exactly the
   /// corner-edge and face contacts rocking needs; FCL (primitive boxes) measured as accurate
   /// (no better, no worse beyond step-to-step scatter).
@@ -89,8 +87,9 @@ struct DartSettings {
   /// flies up to 9e-5 m after every impact.
   double max_erv_mps = 1e-3;
   /// Constraint force mixing, relative: DART multiplies each diagonal entry of the LCP matrix by
-  /// (1 + cfm) (ContactConstraint::setConstraintForceMixing, process-wide; DART clamps it at
-  /// 1e-9). DART's default 1e-5. Ours: the same (1e-9 measured the same).
+  /// (1 + cfm) (ContactConstraint::setConstraintForceMixing, process-wide; DART refuses less
+  /// than 1e-9, so the schema does). DART's default 1e-5. Ours: the same (1e-9 measured the
+  /// same).
   double cfm = 1e-5;
   /// Largest number of contacts the collision query returns per step, over all pairs
   /// (CollisionOption::maxNumContacts; DART 6.12 has no per-pair limit). DART's default 1000.

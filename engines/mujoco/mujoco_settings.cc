@@ -11,8 +11,9 @@ const EngineSettingsSchema& MujocoSettingsSchema() {
     EngineSettingsSchema s;
     s.engine = "mujoco";
     const MujocoSettings d;
-    s.Number("time_step", d.time_step_s, R::kPositive, "s", "0.002 s",
-             "fixed step; with the stiff contact it also sets the contact's time constant (2 dt)");
+    AddTimeStepSetting(
+        s, "0.002 s",
+        "fixed step; with the stiff contact it also sets the contact's time constant (2 dt)");
     s.Choice("drive", "inertial", {"inertial"}, "-",
              "base motion as tilted gravity; the kinematic drive is refused (mocap bodies have no "
              "velocity in the contact equations)");
@@ -22,7 +23,9 @@ const EngineSettingsSchema& MujocoSettingsSchema() {
              "as dt falls; mujoco_default: MuJoCo's soft contact, 2e-3 rad off whatever the step");
     s.Number("stiff_timeconst_steps", d.stiff_timeconst_steps, R::kPositive, "",
              "- (0.02 s whatever dt)",
-             "stiff: solref time constant in steps; 2 is MuJoCo's stiffest");
+             "stiff: solref time constant in steps; 2 is MuJoCo's stiffest (it raises smaller "
+             "time constants to 2 dt)",
+             {.min = 2.0});
     s.Number("stiff_dampratio", d.stiff_dampratio, R::kPositive, "", "1",
              "stiff: solref damping ratio; at 1 a landing rebounds up to 25%");
     s.Choice("solver", std::string(SolverName(d.solver)), {"newton", "cg", "pgs"}, "newton",
@@ -35,7 +38,9 @@ const EngineSettingsSchema& MujocoSettingsSchema() {
              "friction cone; a pyramidal cone with large friction softens the normal contact");
     s.Number("impratio", d.impratio, R::kPositive, "", "1", "friction to normal impedance ratio");
     s.Number("friction", d.friction, R::kNonNegative, "", "1",
-             "Coulomb coefficient of every geom; the stack needs 1.28 at the interface");
+             "Coulomb coefficient of every geom (at least MuJoCo's mjMINMU, 1e-5); the stack "
+             "needs 1.28 at the interface",
+             {.min = 1e-5});
     s.Integer("noslip_iterations", d.noslip_iterations, 0, 100000, "0", "noslip post-iterations");
     s.Number("noslip_tolerance", d.noslip_tolerance, R::kNonNegative, "", "1e-6",
              "noslip tolerance");
@@ -50,7 +55,6 @@ MujocoRun MakeMujocoRun(const Scene& scene, const GroundMotion& motion,
   MujocoRun run;
   run.input = MakeEngineInput(scene, motion, "mujoco", set, stop_at_rest_after_s);
   MujocoSettings& s = run.settings;
-  s.time_step_s = set.Number("time_step");
   s.contact = *ParseContactModel(set.Choice("contact"));
   s.stiff_timeconst_steps = set.Number("stiff_timeconst_steps");
   s.stiff_dampratio = set.Number("stiff_dampratio");

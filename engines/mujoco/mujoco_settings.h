@@ -42,12 +42,10 @@ enum class Integrator { kEuler, kRK4, kImplicit };
 /// MuJoCo's friction cone (mjtCone).
 enum class Cone { kPyramidal, kElliptic };
 
+/// The [mujoco] settings besides the time step, which is EngineInput::time_step_s (MuJoCo's
+/// default 0.002 s; ours 1e-4 s, as Bullet's: with the stiff contact the step sets both the
+/// integration error and the contact's compliance, time constant 2 dt).
 struct MujocoSettings {
-  /// Fixed step, s. MuJoCo default 0.002 s. Ours 1e-4 s, as Bullet's: with the stiff contact
-  /// the step sets both the integration error and the contact's compliance (time constant
-  /// 2 dt). Must equal EngineInput::time_step_s (the drive is sampled on that grid).
-  double time_step_s = 1e-4;
-
   /// Contact regularisation. MuJoCo default: kMujocoDefault's values. Ours kStiff, the only one
   /// that converges to the rigid-block model as dt falls.
   ContactModel contact = ContactModel::kStiff;

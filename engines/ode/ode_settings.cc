@@ -11,8 +11,7 @@ const EngineSettingsSchema& OdeSettingsSchema() {
     EngineSettingsSchema s;
     s.engine = "ode";
     const OdeSettings d;
-    s.Number("time_step", d.time_step_s, R::kPositive, "s", "none (the caller's)",
-             "fixed step of dWorldStep");
+    AddTimeStepSetting(s, "none (the caller's)", "fixed step of dWorldStep");
     AddDriveSetting(s);
     s.Choice("stepper", OdeStepperName(d.stepper), {"world_step", "quick_step"},
              "- (demos use quick_step)",
@@ -20,7 +19,7 @@ const EngineSettingsSchema& OdeSettingsSchema() {
     s.Integer("quick_step_iterations", d.quick_step_iterations, 1, 100000, "20",
               "quick_step only: SOR iterations per step");
     s.Number("quick_step_w", d.quick_step_w, R::kPositive, "", "1.3",
-             "quick_step only: SOR over-relaxation, in (0, 2)");
+             "quick_step only: SOR over-relaxation, in (0, 2)", {.max = 2.0, .max_open = true});
     s.Number("erp", d.erp, R::kUnitInterval, "", "0.2",
              "world ERP: corrects the Plane2D joints' drift (contacts use contact_erp)");
     s.Number("cfm", d.cfm, R::kNonNegative, "m/(N s)", "1e-10", "world CFM (Plane2D rows)");
@@ -56,14 +55,9 @@ OdeRun MakeOdeRun(const Scene& scene, const GroundMotion& motion, double stop_at
   OdeRun run;
   run.input = MakeEngineInput(scene, motion, "ode", set, stop_at_rest_after_s);
   OdeSettings& s = run.settings;
-  s.time_step_s = set.Number("time_step");
   s.stepper = *ParseOdeStepper(set.Choice("stepper"));
   s.quick_step_iterations = static_cast<int>(set.Integer("quick_step_iterations"));
   s.quick_step_w = set.Number("quick_step_w");
-  if (!(s.quick_step_w < 2.0)) {
-    throw SceneError(scene.path.string() + ": ode.quick_step_w: expected a number in (0, 2), got " +
-                     SettingText(s.quick_step_w));
-  }
   s.erp = set.Number("erp");
   s.cfm = set.Number("cfm");
   s.contact_erp = set.Number("contact_erp");
@@ -72,6 +66,8 @@ OdeRun MakeOdeRun(const Scene& scene, const GroundMotion& motion, double stop_at
   s.contact_surface_layer_m = set.Number("contact_surface_layer");
   s.friction = set.Number("friction");
   s.friction_pyramid = set.Flag("friction_pyramid");
+  // Two keys together, which the schema (one key at a time) cannot say: the pyramid needs a
+  // finite friction.
   if (s.friction_pyramid && !std::isfinite(s.friction)) {
     throw SceneError(scene.path.string() +
                      ": ode.friction_pyramid = true needs a finite ode.friction (ODE multiplies "

@@ -29,11 +29,9 @@ const char* OdeStepperName(OdeStepper stepper);
 /// Inverse of OdeStepperName; nullopt for an unknown name.
 std::optional<OdeStepper> ParseOdeStepper(std::string_view name);
 
+/// The [ode] settings besides the time step, which is EngineInput::time_step_s (ODE has no
+/// default: the caller passes it to every dWorldStep).
 struct OdeSettings {
-  /// Fixed step, s (ODE has no default: the caller passes it to every dWorldStep). This is what
-  /// the caller gives MakeEngineInput; OdeWorld steps by EngineInput::time_step_s, the grid the
-  /// drive was sampled on, and reports that one.
-  double time_step_s = 1e-4;
   /// Stepper (ODE offers both; its demos mostly use QuickStep for speed). Ours: dWorldStep, the
   /// exact LCP solve: two boxes give at most ~40 rows, so it is also the faster one here.
   /// Measured at dt = 1e-4 s (max |theta error|: single block / stack theta1 / theta2, rad):
@@ -43,7 +41,7 @@ struct OdeSettings {
   OdeStepper stepper = OdeStepper::kWorldStep;
   /// QuickStep only: SOR iterations per step (ODE default 20). Ours: 100; unused by dWorldStep.
   int quick_step_iterations = 100;
-  /// QuickStep only: SOR over-relaxation w (ODE default 1.3). Unused by dWorldStep.
+  /// QuickStep only: SOR over-relaxation w, in (0, 2) (ODE default 1.3). Unused by dWorldStep.
   double quick_step_w = 1.3;
 
   /// World ERP, dimensionless (ODE default 0.2): the fraction of a joint error removed in one

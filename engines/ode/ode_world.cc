@@ -81,38 +81,13 @@ double OutOfPlaneRotation(dBodyID body) {
   return std::max({std::abs(r[8]), std::abs(r[9]), std::abs(r[2]), std::abs(r[6])});
 }
 
-void CheckSettings(const EngineInput& in, const OdeSettings& s) {
-  auto fail = [](const std::string& what) { throw std::invalid_argument("ode: " + what); };
-  if (!(std::isfinite(in.time_step_s) && in.time_step_s > 0.0)) {
-    fail("time step must be positive and finite");
-  }
-  if (s.quick_step_iterations < 1) fail("quick_step_iterations must be at least 1");
-  if (!(s.quick_step_w > 0.0 && s.quick_step_w < 2.0)) fail("quick_step_w must be in (0, 2)");
-  if (!(s.erp >= 0.0 && s.erp <= 1.0)) fail("erp must be in [0, 1]");
-  if (!(s.contact_erp >= 0.0 && s.contact_erp <= 1.0)) fail("contact_erp must be in [0, 1]");
-  if (!(s.cfm >= 0.0) || !std::isfinite(s.cfm)) fail("cfm must be finite and >= 0");
-  if (!(s.contact_cfm >= 0.0) || !std::isfinite(s.contact_cfm)) {
-    fail("contact_cfm must be finite and >= 0");
-  }
-  if (!(s.contact_max_correcting_vel_mps >= 0.0)) {
-    fail("contact_max_correcting_vel_mps must be >= 0");
-  }
-  if (!(s.contact_surface_layer_m >= 0.0) || !std::isfinite(s.contact_surface_layer_m)) {
-    fail("contact_surface_layer_m must be finite and >= 0");
-  }
-  if (!(s.friction >= 0.0)) fail("friction must be >= 0 (infinity: never slips)");
-  if (s.friction_pyramid && !std::isfinite(s.friction)) {
-    fail("friction_pyramid needs a finite friction (ODE multiplies it by the normal force)");
-  }
-  if (!(s.restitution >= 0.0 && s.restitution <= 1.0)) fail("restitution must be in [0, 1]");
-  if (s.max_contacts < 1 || s.max_contacts > 8) fail("max_contacts must be in 1..8");
-  if (!(s.ground_depth_m > 0.0) || !std::isfinite(s.ground_depth_m)) {
-    fail("ground_depth_m must be positive");
-  }
+// The settings' ranges are the [ode] schema's (ode_settings.cc), checked when the table is
+// resolved; the input's step by MakeEngineInput. What is left is the input's own consistency.
+void CheckInput(const EngineInput& in) {
   if (in.drive_kind == DriveKind::kKinematic) {
     const size_t need = static_cast<size_t>(in.steps) + 1;
     if (in.drive.ux_m.size() < need || in.drive.uy_m.size() < need) {
-      fail("kinematic drive needs ux_m and uy_m at n = 0..steps");
+      throw std::invalid_argument("ode: kinematic drive needs ux_m and uy_m at n = 0..steps");
     }
   }
 }
@@ -131,9 +106,8 @@ std::optional<OdeStepper> ParseOdeStepper(std::string_view name) {
 
 OdeWorld::OdeWorld(const EngineInput& input, const OdeSettings& settings)
     : in_(input), s_(settings) {
-  CheckSettings(in_, s_);
+  CheckInput(in_);
   dt_ = in_.time_step_s;
-  s_.time_step_s = dt_;  // the input's step is the one used
   kinematic_ = in_.drive_kind == DriveKind::kKinematic;
 
   AcquireOde();

@@ -10,11 +10,13 @@ const EngineSettingsSchema& SiconosSettingsSchema() {
     EngineSettingsSchema s;
     s.engine = "siconos";
     const SiconosSettings d;
-    s.Number("time_step", d.time_step_s, R::kPositive, "s", "none (TimeDiscretisation's h)",
-             "fixed step of the Moreau-Jean time stepping");
+    AddTimeStepSetting(s, "none (TimeDiscretisation's h)",
+                       "fixed step of the Moreau-Jean time stepping");
     AddDriveSetting(s);
     s.Number("theta", d.theta, R::kUnitInterval, "", "0.5",
-             "Moreau-Jean theta, in [0.5, 1] (0.5 trapezoidal, 1 implicit Euler)");
+             "Moreau-Jean theta, in [0.5, 1] (0.5 trapezoidal, 1 implicit Euler; unstable "
+             "below 0.5)",
+             {.min = 0.5});
     s.Number("restitution", d.restitution, R::kUnitInterval, "", "none",
              "Newton's normal restitution; 0 gives Housner's impact");
     s.Number("friction", d.friction, R::kNonNegative, "", "none",
@@ -42,7 +44,6 @@ SiconosRun MakeSiconosRun(const Scene& scene, const GroundMotion& motion,
   SiconosRun run;
   run.input = MakeEngineInput(scene, motion, "siconos", set, stop_at_rest_after_s);
   SiconosSettings& s = run.settings;
-  s.time_step_s = set.Number("time_step");
   s.theta = set.Number("theta");
   s.restitution = set.Number("restitution");
   s.friction = set.Number("friction");

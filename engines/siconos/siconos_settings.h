@@ -14,13 +14,14 @@
 
 namespace rockbench::siconos_engine {
 
+/// The [siconos] settings besides the time step of the time discretisation, which is
+/// EngineInput::time_step_s (Siconos has no default: TimeDiscretisation needs one; ours: the
+/// project's 1e-4 s).
 struct SiconosSettings {
-  /// Fixed step of the time discretisation, s. Siconos has no default (TimeDiscretisation
-  /// needs one). Ours: the project's step. Must equal EngineInput::time_step_s.
-  double time_step_s = 1e-4;
   /// Moreau-Jean theta (MoreauJeanOSI(theta)): the weight of the step's end in the smooth
   /// part (theta = 0.5: trapezoidal, energy-conserving between impacts; 1: implicit Euler,
-  /// dissipative). Siconos's default 0.5. Ours: the same.
+  /// dissipative; below 0.5 the scheme is unstable, so the schema refuses it). Siconos's
+  /// default 0.5. Ours: the same.
   double theta = 0.5;
   /// Newton's normal restitution e of every contact (NewtonImpactFrictionNSL). Siconos has no
   /// default. Ours: 0: a landing corner stops dead and, with sticking friction, the impulse

@@ -6,28 +6,11 @@
 #include <stdexcept>
 #include <string>
 
-#include "engines/common/placement.h"
 #include "engines/siconos/siconos_system.h"
 
 namespace rockbench::siconos_engine {
 
 namespace {
-
-void CheckSettings(const SiconosSettings& s) {
-  auto require = [](bool ok, const char* what) {
-    if (!ok) throw std::invalid_argument(std::string("siconos: ") + what);
-  };
-  require(std::isfinite(s.time_step_s) && s.time_step_s > 0.0, "time_step must be positive");
-  require(std::isfinite(s.theta) && s.theta >= 0.5 && s.theta <= 1.0,
-          "theta must be in [0.5, 1] (Moreau-Jean is unstable below 0.5)");
-  require(std::isfinite(s.restitution) && s.restitution >= 0.0 && s.restitution <= 1.0,
-          "restitution must be in [0, 1]");
-  require(std::isfinite(s.friction) && s.friction >= 0.0,
-          "friction must be a finite non-negative number");
-  require(std::isfinite(s.solver_tolerance) && s.solver_tolerance > 0.0,
-          "solver_tolerance must be positive");
-  require(s.solver_max_iterations >= 1, "solver_max_iterations must be at least 1");
-}
 
 SiconosBlock Block(const BlockDef& def, const PlanarPose& pose, double ux0, double uy0, double gvx,
                    double gvy) {
@@ -59,12 +42,8 @@ void ReadBody(const SiconosBodyState& st, BodyReadout* out) {
 
 SiconosWorld::SiconosWorld(const EngineInput& input, const SiconosSettings& settings)
     : in_(input), s_(settings) {
-  CheckSettings(s_);
-  if (in_.time_step_s != s_.time_step_s) {
-    throw std::invalid_argument("siconos: the input was sampled at time step " +
-                                std::to_string(in_.time_step_s) + " s, the settings ask for " +
-                                std::to_string(s_.time_step_s) + " s");
-  }
+  // The settings' ranges are the [siconos] schema's (siconos_settings.cc), checked when the
+  // table was resolved; the step is the input's, checked by MakeEngineInput.
   kinematic_ = in_.drive_kind == DriveKind::kKinematic;
   const size_t samples = static_cast<size_t>(in_.steps) + 1;
   if (kinematic_ && (in_.drive.ux_m.size() < samples || in_.drive.uy_m.size() < samples)) {
@@ -82,7 +61,7 @@ SiconosWorld::SiconosWorld(const EngineInput& input, const SiconosSettings& sett
   SiconosSystemConfig c;
   c.blocks.push_back(Block(in_.block1, place.block1, ux0, uy0, gvx, gvy));
   if (in_.block2) c.blocks.push_back(Block(*in_.block2, place.block2, ux0, uy0, gvx, gvy));
-  c.time_step_s = s_.time_step_s;
+  c.time_step_s = in_.time_step_s;
   c.theta = s_.theta;
   c.restitution = s_.restitution;
   c.friction = s_.friction;
@@ -108,7 +87,7 @@ void SiconosWorld::ApplyDrive(std::int64_t n) {
   if (kinematic_) {
     const auto& ux = in_.drive.ux_m;
     const auto& uy = in_.drive.uy_m;
-    const double dt = s_.time_step_s;
+    const double dt = in_.time_step_s;
     sys_->SetGround(ux[i], uy[i], (ux[i + 1] - ux[i]) / dt, (uy[i + 1] - uy[i]) / dt);
   } else {
     ax = in_.drive.ax_mps2.empty() ? 0.0 : in_.drive.ax_mps2[i];
@@ -130,7 +109,7 @@ void SiconosWorld::Step() {
 
 StepReadout SiconosWorld::Read(std::int64_t n) const {
   StepReadout s;
-  s.t_s = static_cast<double>(n) * s_.time_step_s;
+  s.t_s = static_cast<double>(n) * in_.time_step_s;
   ReadBody(sys_->Body(0), &s.block1);
   if (in_.block2) ReadBody(sys_->Body(1), &s.block2);
   if (failed_) {
@@ -165,9 +144,9 @@ nlohmann::json SiconosWorld::Settings() const {
   nlohmann::json j;
   j["siconos_version"] = SiconosVersionString();
   j["drive"] = kinematic_ ? "kinematic" : "inertial";
-  j["time_step_s"] = s_.time_step_s;
+  j["time_step_s"] = in_.time_step_s;
   j["output_interval_s"] = in_.run.output_interval_s;
-  j["substeps_per_sample"] = std::max(1.0, std::round(in_.run.output_interval_s / s_.time_step_s));
+  j["substeps_per_sample"] = std::max(1.0, std::round(in_.run.output_interval_s / in_.time_step_s));
   j["theta"] = s_.theta;
   j["restitution"] = s_.restitution;
   j["friction"] = s_.friction;

@@ -38,6 +38,72 @@ std::string RangeText(SettingRange range) {
   return "a number";
 }
 
+// A bound as it reads best in a message: "2", "0.5", "1e-9" (not "1e-09").
+std::string BoundText(double v) {
+  std::string t = NumberText(v);
+  const size_t e = t.find('e');
+  if (e == std::string::npos) return t;
+  size_t digits = e + 1;
+  if (digits < t.size() && (t[digits] == '-' || t[digits] == '+')) ++digits;
+  while (digits + 1 < t.size() && t[digits] == '0') t.erase(digits, 1);
+  if (t[e + 1] == '+') t.erase(e + 1, 1);
+  return t;
+}
+
+// The range with its narrower bounds, for messages: "a number in (0, 2)", "a number >= 1e-9",
+// "a number in [0.5, 1]".
+std::string RangeText(SettingRange range, const NumberBounds& bounds) {
+  if (!bounds.any()) return RangeText(range);
+  // The range as an interval, then the tighter end of each side.
+  double lo = -HUGE_VAL, hi = HUGE_VAL;
+  bool lo_open = false, hi_open = false;
+  switch (range) {
+    case SettingRange::kFinite:
+      break;
+    case SettingRange::kPositive:
+      lo = 0.0, lo_open = true;
+      break;
+    case SettingRange::kNonNegative:
+    case SettingRange::kNonNegativeOrInfinite:
+      lo = 0.0;
+      break;
+    case SettingRange::kFraction:
+      lo = 0.0, lo_open = true, hi = 1.0;
+      break;
+    case SettingRange::kUnitInterval:
+      lo = 0.0, hi = 1.0;
+      break;
+  }
+  if (bounds.min > lo || (bounds.min == lo && bounds.min_open)) {
+    lo = bounds.min, lo_open = bounds.min_open;
+  }
+  if (bounds.max < hi || (bounds.max == hi && bounds.max_open)) {
+    hi = bounds.max, hi_open = bounds.max_open;
+  }
+  std::string text;
+  if (lo > -HUGE_VAL && hi < HUGE_VAL) {
+    text = std::string("a number in ")
+               .append(lo_open ? "(" : "[")
+               .append(BoundText(lo))
+               .append(", ")
+               .append(BoundText(hi))
+               .append(hi_open ? ")" : "]");
+  } else if (lo > -HUGE_VAL) {
+    text = std::string("a number ").append(lo_open ? "> " : ">= ").append(BoundText(lo));
+  } else {
+    text = std::string("a number ").append(hi_open ? "< " : "<= ").append(BoundText(hi));
+  }
+  if (range == SettingRange::kNonNegativeOrInfinite && hi == HUGE_VAL) text.append(", or inf");
+  return text;
+}
+
+bool InBounds(double v, const NumberBounds& b) {
+  if (v == HUGE_VAL && b.max == HUGE_VAL) return true;  // the range says whether inf is allowed
+  const bool above = b.min_open ? v > b.min : v >= b.min;
+  const bool below = b.max_open ? v < b.max : v <= b.max;
+  return above && below;
+}
+
 // Every engine number: at most 1e6 in magnitude and not subnormal (docs/limits.md). No engine
 // setting means anything past it (MuJoCo's impratio = 1e300 made every step non-finite), and a
 // subnormal value only makes arithmetic slow.
@@ -70,7 +136,7 @@ std::string Expected(const SettingDef& d) {
       [&](const auto& def) -> std::string {
         using T = std::decay_t<decltype(def)>;
         if constexpr (std::is_same_v<T, double>) {
-          return RangeText(d.range) + (d.unit.empty() ? "" : " (" + d.unit + ")") +
+          return RangeText(d.range, d.bounds) + (d.unit.empty() ? "" : " (" + d.unit + ")") +
                  ", with magnitude at most 1e6 and not subnormal (docs/limits.md)";
         } else if constexpr (std::is_same_v<T, std::int64_t>) {
           return "an integer from " + std::to_string(d.min_integer) + " to " +
@@ -107,7 +173,7 @@ SettingValue Checked(const SettingDef& d, const RawSetting& raw, const std::stri
           } else {
             fail();
           }
-          if (!InRange(v, d.range)) fail();
+          if (!InRange(v, d.range) || !InBounds(v, d.bounds)) fail();
           return v;
         } else if constexpr (std::is_same_v<T, std::int64_t>) {
           const std::int64_t* i = std::get_if<std::int64_t>(&raw.value);
@@ -141,9 +207,11 @@ const SettingDef* EngineSettingsSchema::Find(std::string_view key) const {
 
 EngineSettingsSchema& EngineSettingsSchema::Number(std::string key, double value,
                                                    SettingRange range, std::string unit,
-                                                   std::string engine_default, std::string doc) {
+                                                   std::string engine_default, std::string doc,
+                                                   NumberBounds bounds) {
   SettingDef d;
   d.key = std::move(key), d.default_value = value, d.range = range, d.unit = std::move(unit);
+  d.bounds = bounds;
   d.engine_default = std::move(engine_default), d.doc = std::move(doc);
   settings.push_back(std::move(d));
   return *this;

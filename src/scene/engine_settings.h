@@ -32,11 +32,26 @@ enum class SettingRange {
   kUnitInterval,           ///< [0, 1]
 };
 
+/// Bounds of a number setting narrower than its SettingRange says, for what an engine cannot
+/// take: ODE's SOR factor in (0, 2), Moreau-Jean's theta from 0.5, DART's cfm from its floor
+/// 1e-9. Checked with the range (the tighter end wins), and named in the error message.
+struct NumberBounds {
+  double min = -std::numeric_limits<double>::infinity();  ///< lower bound, in the unit
+  bool min_open = false;                                  ///< true: min itself excluded
+  double max = std::numeric_limits<double>::infinity();   ///< upper bound, in the unit
+  bool max_open = false;                                  ///< true: max itself excluded
+  bool any() const {
+    return min != -std::numeric_limits<double>::infinity() ||
+           max != std::numeric_limits<double>::infinity();
+  }
+};
+
 /// One key of an engine's table.
 struct SettingDef {
   std::string key;                             ///< "time_step"
   SettingValue default_value;                  ///< ours; its alternative is the setting's type
   SettingRange range = SettingRange::kFinite;  ///< numbers
+  NumberBounds bounds;                         ///< numbers: narrower than `range`, if set
   std::int64_t min_integer = 1;                ///< integers: the allowed range
   std::int64_t max_integer = std::numeric_limits<std::int64_t>::max();
   std::vector<std::string> choices;  ///< strings: the allowed values
@@ -54,9 +69,11 @@ struct EngineSettingsSchema {
   const SettingDef* Find(std::string_view key) const;
 
   // Adding keys, in the docs' order: the key, our default, what is allowed, the engine's own
-  // default as text ("1/60 s", "-" when it has none) and one line of doc.
+  // default as text ("1/60 s", "-" when it has none) and one line of doc. A number may have
+  // bounds narrower than its range: every range check of a setting is said here, once.
   EngineSettingsSchema& Number(std::string key, double value, SettingRange range, std::string unit,
-                               std::string engine_default, std::string doc);
+                               std::string engine_default, std::string doc,
+                               NumberBounds bounds = {});
   EngineSettingsSchema& Integer(std::string key, std::int64_t value, std::int64_t min_value,
                                 std::int64_t max_value, std::string engine_default,
                                 std::string doc);

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -118,6 +119,87 @@ TEST_P(EngineConformance, TableErrorsNameTheFileTheLineAndTheKey) {
   const Scene s = LoadScene(file, {name + ".time_step=2e-4"});
   EXPECT_EQ(ResolveEngineSettings(s, engine().settings_schema()).Number("time_step"), 2e-4);
   EXPECT_NE(ErrorOf([&] { load({name + ".time_step=0"}); }).find("override"), std::string::npos);
+}
+
+// A bound as the settings' messages write it: "2", "0.5", "1e-9".
+std::string BoundText(double v) {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.17g", v);
+  for (int p = 1; p <= 17; ++p) {
+    std::snprintf(buf, sizeof buf, "%.*g", p, v);
+    if (std::strtod(buf, nullptr) == v) break;
+  }
+  std::string t = buf;
+  const size_t e = t.find("e-0");
+  if (e != std::string::npos) t.erase(e + 2, 1);
+  return t;
+}
+
+// A key's bounds narrower than its range (NumberBounds: ODE's quick_step_w below 2, DART's cfm
+// from 1e-9, Siconos's theta from 0.5, MuJoCo's friction from 1e-5) are the table's checks like
+// the ranges: a value past a bound is refused when the table is resolved, naming the key and
+// the bound; one at a closed bound is taken.
+TEST_P(EngineConformance, NarrowerBoundsAreCheckedWithTheTable) {
+  const EngineSettingsSchema& schema = engine().settings_schema();
+  auto error_for = [&](const std::string& key, double v) {
+    Scene s;
+    s.path = "scene.toml";
+    SetEngineSetting(s, GetParam(), key, v);
+    return ErrorOf([&] { ResolveEngineSettings(s, schema); });
+  };
+  for (const SettingDef& d : schema.settings) {
+    if (!d.bounds.any()) continue;
+    const std::string expected = GetParam() + "." + d.key + ": expected a number ";
+    for (const bool lower : {true, false}) {
+      const double bound = lower ? d.bounds.min : d.bounds.max;
+      if (!std::isfinite(bound)) continue;
+      const bool open = lower ? d.bounds.min_open : d.bounds.max_open;
+      const double past = lower ? (bound > 0.0 ? bound / 2.0 : bound - 1.0)
+                                : (bound > 0.0 ? bound * 2.0 : bound + 1.0);
+      std::string msg = error_for(d.key, past);
+      EXPECT_NE(msg.find(expected), std::string::npos) << msg;
+      EXPECT_NE(msg.find(BoundText(bound)), std::string::npos) << msg;
+      msg = error_for(d.key, bound);
+      if (open) {
+        EXPECT_NE(msg.find(expected), std::string::npos) << d.key << " = " << bound << ": " << msg;
+      } else {
+        EXPECT_EQ(msg, "no error") << d.key << " = " << bound;
+      }
+    }
+  }
+}
+
+// The messages of bounds narrower than the range (the ranges' own are unchanged).
+TEST(SettingsSchema, NamesNarrowerBoundsInItsMessages) {
+  EngineSettingsSchema schema;
+  schema.engine = "e";
+  schema.Number("w", 1.0, SettingRange::kPositive, "", "-", "sor", {.max = 2.0, .max_open = true})
+      .Number("theta", 0.5, SettingRange::kUnitInterval, "", "-", "theta", {.min = 0.5})
+      .Number("cfm", 1e-5, SettingRange::kNonNegative, "", "-", "cfm", {.min = 1e-9})
+      .Number("mu", 2.0, SettingRange::kNonNegativeOrInfinite, "", "-", "mu", {.min = 1e-5})
+      .Number("x", 0.0, SettingRange::kFinite, "m", "-", "x", {.max = 5.0, .max_open = true})
+      .Number("plain", 0.0, SettingRange::kNonNegative, "", "-", "plain");
+  auto error_for = [&](const std::string& key, double v) {
+    Scene s;
+    SetEngineSetting(s, "e", key, v);
+    return ErrorOf([&] { ResolveEngineSettings(s, schema); });
+  };
+  const struct {
+    const char* key;
+    double bad, good;
+    const char* text;
+  } cases[] = {
+      {"w", 2.0, 1.999, "e.w: expected a number in (0, 2), with magnitude"},
+      {"theta", 0.4, 0.5, "e.theta: expected a number in [0.5, 1], with magnitude"},
+      {"cfm", 1e-10, 1e-9, "e.cfm: expected a number >= 1e-9, with magnitude"},
+      {"mu", 1e-6, HUGE_VAL, "e.mu: expected a number >= 1e-5, or inf, with magnitude"},
+      {"x", 5.0, -3.0, "e.x: expected a number < 5 (m), with magnitude"},
+      {"plain", -1.0, 0.0, "e.plain: expected a number >= 0, with magnitude"},
+  };
+  for (const auto& c : cases) {
+    EXPECT_NE(error_for(c.key, c.bad).find(c.text), std::string::npos) << error_for(c.key, c.bad);
+    EXPECT_EQ(error_for(c.key, c.good), "no error") << c.key;
+  }
 }
 
 TEST_P(EngineConformance, SweepAndStressGridsAreWellFormed) {
