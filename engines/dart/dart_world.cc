@@ -20,7 +20,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "engines/common/placement.h"
+#include "scene/stack_pose.h"
 
 namespace rockbench::dart_engine {
 

@@ -12,7 +12,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "engines/common/placement.h"
+#include "scene/stack_pose.h"
 
 // Kinematic drive. A moving ground in MuJoCo would be a mocap body (or a body welded to one).
 // Mocap bodies have no degrees of freedom: mj_comVel gives them zero velocity, and the contact

@@ -9,7 +9,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "engines/common/placement.h"
+#include "scene/stack_pose.h"
 
 #if !defined(dDOUBLE)
 #error "rockbench's ODE engine needs ODE built in double precision (dDOUBLE)"

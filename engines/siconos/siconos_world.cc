@@ -7,6 +7,7 @@
 #include <string>
 
 #include "engines/siconos/siconos_system.h"
+#include "scene/stack_pose.h"
 
 namespace rockbench::siconos_engine {
 
