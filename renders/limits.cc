@@ -38,8 +38,9 @@ ExportEstimate EstimateExport(const ExportRequest& r) {
   e.frame_bytes = 2.0 * 3.0 * pixels + 64.0 * 1024.0;
   e.times_bytes = 8.0 * r.frames;
   e.history_bytes = r.history_bytes;
-  // IntegrateBaseDisplacement: the two acceleration series, then velocity and displacement of
-  // each component (5 doubles a sample at the peak).
+  // IntegrateBaseDisplacement: the two acceleration series on the drive's step grid, then per
+  // component the leapfrog path, the high-pass's padded copy and the corrected path (5 doubles a
+  // sample at the peak; BaseDisplacementSamples counts the pads as samples).
   e.base_bytes = 5.0 * 8.0 * r.base_samples;
   // ffmpeg: x264's look-ahead and reference frames (measured: 171 MB at 1280x720, about 100
   // yuv420 frames); the GIF's palettegen and paletteuse hold a few RGB frames.
