@@ -34,7 +34,7 @@ const Run& ThesisRun() {
     r.scene = LoadScene(kScene);
     r.motion = GroundMotion::FromScene(r.scene);
     r.history = RunEngine("reference", r.scene, r.motion).history;
-    r.base = IntegrateBaseDisplacement(r.motion, 20.0);
+    r.base = IntegrateBaseDisplacement(r.motion, 20.0, BaseIntegrationFor(r.scene));
     return r;
   }();
   return run;

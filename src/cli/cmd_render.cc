@@ -333,7 +333,8 @@ renders::ExportEstimate CheckResources(const RenderOptions& opt,
   request.mp4 = opt.mp4;
   request.gif = opt.gif;
   if (motion.have_ground_motion && !opt.no_base) {
-    request.base_samples = renders::BaseDisplacementSamples(motion.ground_motion, base_t_end_s);
+    request.base_samples = renders::BaseDisplacementSamples(
+        motion.ground_motion, base_t_end_s, renders::BaseIntegrationFor(motion.scene));
   }
   for (const auto& t : motion.tracks) {
     request.history_bytes += static_cast<double>(t.history.samples.capacity()) *
@@ -471,7 +472,8 @@ void Execute(const RenderOptions& opt) {
   const renders::ExportEstimate estimate = CheckResources(opt, config, motion, t_end_s, budget);
   renders::BaseDisplacement base;
   if (motion.have_ground_motion && !opt.no_base) {
-    base = renders::IntegrateBaseDisplacement(motion.ground_motion, t_end_s);
+    base = renders::IntegrateBaseDisplacement(motion.ground_motion, t_end_s,
+                                              renders::BaseIntegrationFor(motion.scene));
   }
   config.title = motion.scene.title;
   Draw(opt, config, std::move(motion), std::move(base), estimate, deadline);

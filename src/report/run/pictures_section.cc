@@ -96,7 +96,8 @@ void PicturesSection(const RunData& run, const GroundMotion& motion,
   config.width_px = options.animation_width_px;
   config.height_px = options.animation_height_px;
   config.title = run.scene.title;
-  const renders::BaseDisplacement base = renders::IntegrateBaseDisplacement(motion, run.t_end_s);
+  const renders::BaseDisplacement base = renders::IntegrateBaseDisplacement(
+      motion, run.t_end_s, renders::BaseIntegrationFor(run.scene));
   try {
     if (options.keyframes) {
       renders::RenderConfig kc = config;
