@@ -143,7 +143,9 @@ void RunBenchmark(benchmark::State& state, const Prepared& p) {
   state.counters["steps"] = static_cast<double>(s.steps_accepted);
   state.counters["rejected"] = static_cast<double>(s.steps_rejected);
   state.counters["rhs"] = static_cast<double>(s.rhs_evaluations);
-  state.SetLabel(p.is_reference ? s.status + ", errors vs rtol 1e-13" : s.status);
+  std::string label = StatusText(s.status);
+  if (p.is_reference) label.append(", errors vs rtol 1e-13");
+  state.SetLabel(label);
 }
 
 }  // namespace

@@ -369,8 +369,7 @@ class Simulator {
     return std::max(event_tol_, 8 * std::numeric_limits<double>::epsilon() * std::abs(t));
   }
   // Records an event that ends the run at t_ in state s (no change of state).
-  void StopWith(const char* kind, const State& s, const std::string& note,
-                const std::string& status) {
+  void StopWith(const char* kind, const State& s, const std::string& note, RunStatus status) {
     Event ev;
     ev.t_s = t_;
     ev.kind = kind;
@@ -390,8 +389,8 @@ class Simulator {
     if (geo_.two_blocks)
       sum.min_normal_interface_n = std::min(sum.min_normal_interface_n, r.N_interface);
   }
-  void Finish(const std::string& status) {
-    if (result_.summary.status == "completed") result_.summary.status = status;
+  void Finish(RunStatus status) {
+    if (result_.summary.status == RunStatus::kCompleted) result_.summary.status = status;
     done_ = true;
   }
 
@@ -467,7 +466,7 @@ bool Simulator::StartMode(double t, const State& s, const char* kind, Mode befor
     ev.note = "no mode satisfies the contact conditions (tensile normal force: uplift)";
     result_.summary.status_detail = ev.note;
     AddEvent(ev);
-    result_.summary.status = "assumption_violated";
+    result_.summary.status = RunStatus::kAssumptionViolated;
     done_ = true;
     return false;
   }
@@ -560,7 +559,7 @@ void Simulator::RunRest() {
       result_.trajectory.Append(seg);
       EmitSamplesUntil(t_end_, true);
       t_ = t_end_;
-      Finish("at_rest");
+      Finish(RunStatus::kAtRest);
       return;
     }
     double t1 = std::min(motion_.next_breakpoint_after(t0), t_end_);
@@ -810,7 +809,7 @@ void Simulator::HandleEvent(const LocatedEvent& ev, const StepDense& at, double 
       const bool first = std::abs(s.theta1) >= std::abs(s.theta2) || !geo_.two_blocks;
       sum.overturn_block = first ? 1 : 2;
       sum.overturn_t_s = t_;
-      StopWith("overturn", s, first ? "block 1" : "block 2", "overturned");
+      StopWith("overturn", s, first ? "block 1" : "block 2", RunStatus::kOverturned);
       break;
     }
     case StepEvent::kMargin: {
@@ -824,7 +823,7 @@ void Simulator::HandleEvent(const LocatedEvent& ev, const StepDense& at, double 
         StartMode(t_, sh, "transition", mode_, "face opens");
       } else {
         sum.status_detail = "tensile normal force at a pivot (uplift)";
-        StopWith("assumption_violated", s, sum.status_detail, "assumption_violated");
+        StopWith("assumption_violated", s, sum.status_detail, RunStatus::kAssumptionViolated);
       }
       break;
     }
@@ -873,7 +872,7 @@ void Simulator::StopNonFinite(const NonFinite& nf, double t_bad, const State& la
   sum.non_finite_last_t_s = t_;
   sum.status_detail = nf.quantity + " is " + sum.non_finite_value + " at t = " + TimeText(t_bad) +
                       " s; the run stops at its last finite state, t = " + TimeText(t_) + " s";
-  StopWith("non_finite", last, sum.status_detail, "non_finite");
+  StopWith("non_finite", last, sum.status_detail, RunStatus::kNonFinite);
 }
 
 void Simulator::RunMoving() {
@@ -926,7 +925,7 @@ void Simulator::RunMoving() {
     // Guard against an endless cascade of events at one instant.
     if (EventCascade(ev.t)) {
       result_.summary.status_detail = "event cascade at one instant";
-      Finish("assumption_violated");
+      Finish(RunStatus::kAssumptionViolated);
       return;
     }
     State s = ToState(y_end);
@@ -972,7 +971,7 @@ Result Simulator::Run() {
       }
     }
     if (!bad.found()) {
-      result_.summary.status = "assumption_violated";
+      result_.summary.status = RunStatus::kAssumptionViolated;
       result_.summary.status_detail = "the initial state satisfies no mode's contact conditions";
       Trajectory::Segment seg{0.0, 0.0, Mode::kRest, DenseStep{}};
       seg.dense.c[0] = y_;
@@ -1018,8 +1017,9 @@ Result Simulator::Run() {
   }
   while (k < samples.size()) merged.push_back(samples[k++]);
   samples = std::move(merged);
-  if (result_.summary.status == "completed" && mode_ == Mode::kRest && t_ >= motion_.end_s()) {
-    result_.summary.status = "at_rest";
+  if (result_.summary.status == RunStatus::kCompleted && mode_ == Mode::kRest &&
+      t_ >= motion_.end_s()) {
+    result_.summary.status = RunStatus::kAtRest;
   }
   result_.summary.rhs_evaluations = rhs_count_;
   return std::move(result_);

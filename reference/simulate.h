@@ -8,6 +8,7 @@
 #include "reference/integrator.h"
 #include "scene/ground_motion.h"
 #include "scene/history.h"
+#include "scene/outcome.h"
 #include "scene/scene.h"
 
 namespace rockbench::reference {
@@ -37,7 +38,7 @@ class Trajectory {
 /// Summary figures of a reference run.
 struct Summary {
   /// completed | overturned | at_rest | assumption_violated | non_finite
-  std::string status = "completed";
+  RunStatus status = RunStatus::kCompleted;
   std::string status_detail;  ///< why, for assumption_violated and non_finite
   /// For status non_finite: the first quantity found not finite ("theta2", "omega1", "energy",
   /// "event time", "normal force at rest"), its value ("NaN", "+inf", "-inf") and the time it

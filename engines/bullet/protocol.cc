@@ -4,6 +4,7 @@
 #include <cstring>
 #include <fstream>
 #include <iterator>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <type_traits>
@@ -245,7 +246,7 @@ std::string SerializeOutput(const EngineResult& out) {
     w.PutStr(e.note);
   }
   const RunOutcome& o = out.outcome;
-  w.PutStr(o.status);
+  w.PutStr(StatusText(o.status));
   w.Put<std::int32_t>(o.overturned_block);
   w.Put(o.overturn_t_s);
   w.Put(o.end_t_s);
@@ -303,7 +304,9 @@ EngineResult ParseOutput(const std::string& bytes) {
     e.note = r.GetStr();
   }
   RunOutcome& o = out.outcome;
-  o.status = r.GetStr();
+  const std::optional<RunStatus> status = ParseRunStatus(r.GetStr());
+  if (!status) throw std::runtime_error("bullet helper protocol: bad status");
+  o.status = *status;
   o.overturned_block = r.Get<std::int32_t>();
   o.overturn_t_s = r.Get<double>();
   o.end_t_s = r.Get<double>();

@@ -291,7 +291,7 @@ void Monitor::Start(const StepReadout& s) {
 }
 
 bool Monitor::Step(std::int64_t n, const StepReadout& s) {
-  if (status_ == "non_finite") return false;
+  if (status_ == RunStatus::kNonFinite) return false;
   steps_done_ = n;
   if (!s.engine_fault.empty()) {
     StopNonFinite("the engine's next state", "not finite", s.t_s, n, s.engine_fault);
@@ -334,7 +334,7 @@ bool Monitor::Step(std::int64_t n, const StepReadout& s) {
 
 void Monitor::StopNonFinite(const std::string& quantity, const std::string& value, double t_s,
                             std::int64_t n, const std::string& why) {
-  status_ = "non_finite";
+  status_ = RunStatus::kNonFinite;
   non_finite_quantity_ = quantity;
   non_finite_value_ = value;
   non_finite_t_s_ = t_s;
@@ -368,7 +368,7 @@ std::array<bool, std::size(kViolationFlags)> Monitor::Raised() const {
           penetration_ground_max_m_ > cfg_.penetration_flag_m ||
               (two_ && penetration_interface_max_m_ > cfg_.penetration_flag_m),
           energy_gain_max_j_ > cfg_.energy_growth_flag_rel * tipping_energy_j_,
-          status_ == "blow_up" || status_ == "non_finite"};
+          status_ == RunStatus::kBlowUp || status_ == RunStatus::kNonFinite};
 }
 
 std::array<bool, std::size(kViolationFlags)> Monitor::RaisedSignificantly() const {
@@ -618,7 +618,7 @@ bool Monitor::Stopped(const Derived& d, double t_prev, double abs1_prev, double 
   crossed(1, abs1_prev, std::abs(cur.theta1_rad));
   if (two_) crossed(2, abs2_prev, std::abs(cur.theta2_rad));
   if (over_block != 0) {
-    status_ = "overturned";
+    status_ = RunStatus::kOverturned;
     overturn_block_ = over_block;
     overturn_t_s_ = t_over;
     status_detail_ = "block " + std::to_string(over_block) +
@@ -642,18 +642,18 @@ bool Monitor::Stopped(const Derived& d, double t_prev, double abs1_prev, double 
   }
   if (rest_since_s_ >= 0.0 && t >= in_meta_.stop_at_rest_after_s &&
       t - rest_since_s_ >= cfg_.settled_for_s - 0.5 * dt_) {
-    status_ = "at_rest";
+    status_ = RunStatus::kAtRest;
     status_detail_ = "at rest after " + std::to_string(in_meta_.stop_at_rest_after_s) +
                      " s, when the base motion can no longer start rocking";
     return true;
   }
   if (max_rate_radps_ > cfg_.blow_up_rate_radps) {
-    status_ = "blow_up";
+    status_ = RunStatus::kBlowUp;
     status_detail_ = "|omega| above " + std::to_string(cfg_.blow_up_rate_radps) + " rad/s";
     return true;
   }
   if (energy_gain_max_j_ > cfg_.blow_up_energy_rel * tipping_energy_j_) {
-    status_ = "blow_up";
+    status_ = RunStatus::kBlowUp;
     status_detail_ = "energy grew without base input by more than the tipping energy";
     return true;
   }
@@ -709,9 +709,9 @@ RunOutcome Monitor::Outcome() const {
 nlohmann::json Monitor::Summary() const {
   using nlohmann::json;
   json j;
-  j["status"] = status_;
+  j["status"] = StatusText(status_);
   if (!status_detail_.empty()) j["status_detail"] = status_detail_;
-  if (status_ == "non_finite") {
+  if (status_ == RunStatus::kNonFinite) {
     j["non_finite"] = {{"quantity", non_finite_quantity_},
                        {"value", non_finite_value_},
                        {"t_s", non_finite_t_s_},

@@ -121,7 +121,7 @@ class Monitor {
   nlohmann::json Summary() const;
   /// The typed outcome (the same numbers as Summary()).
   RunOutcome Outcome() const;
-  const std::string& status() const { return status_; }
+  RunStatus status() const { return status_; }
   /// Last state read, in the thesis's convention.
   const Sample& last() const { return last_; }
 
@@ -240,7 +240,7 @@ class Monitor {
                                                                kNoOnset, kNoOnset};
   static constexpr double kNoOnset = std::numeric_limits<double>::quiet_NaN();
 
-  std::string status_ = "completed";
+  RunStatus status_ = RunStatus::kCompleted;
   std::string status_detail_;
   // Status non_finite: the quantity, its value in words and the time it was read, s.
   std::string non_finite_quantity_, non_finite_value_;

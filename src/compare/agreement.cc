@@ -187,7 +187,8 @@ EngineAgreement CompareWithReference(const Scene& scene, const reference::Result
   // ended non_finite has nothing after its last finite state.
   const double eng_end = run.history.samples.empty() ? 0.0 : run.history.samples.back().t_s;
   double until = eng_end;
-  if (rs.status == "overturned" || rs.status == "assumption_violated" || IsNonFinite(rs.status)) {
+  if (rs.status == RunStatus::kOverturned || rs.status == RunStatus::kAssumptionViolated ||
+      IsNonFinite(rs.status)) {
     until = std::min(until, ref.trajectory.end_s());
   }
   a.compared_until_s = until;
@@ -299,7 +300,7 @@ EngineAgreement CompareWithReference(const Scene& scene, const reference::Result
 nlohmann::json AgreementJson(const EngineAgreement& a) {
   nlohmann::json j;
   j["wall_s"] = a.wall_s;
-  j["status"] = a.status;
+  j["status"] = StatusText(a.status);
   if (IsNonFinite(a.status)) j["status_detail"] = a.status_detail;
   j["compared_until_s"] = RoundTime_s(a.compared_until_s);
   j["samples_compared"] = a.samples_compared;
@@ -347,7 +348,7 @@ nlohmann::json ComparisonJson(const Scene& scene, const reference::Result& ref,
   j["scene"] = {
       {"path", scene.path.string()}, {"title", scene.title}, {"two_blocks", scene.two_blocks()}};
   const reference::Summary& rs = ref.summary;
-  j["reference"] = {{"status", rs.status},
+  j["reference"] = {{"status", StatusText(rs.status)},
                     {"wall_s", reference_wall_s},
                     {"impacts", rs.impacts_ground + rs.impacts_interface},
                     {"peak_theta1_rad", rs.peak_theta1_rad},
@@ -390,7 +391,7 @@ std::string ComparisonCsv(const std::vector<EngineAgreement>& engines) {
                     g.rms_error_horizon_rad, g.peak_reference_rad, g.peak_engine_rad,
                     g.peak_rel_error, g.peak_time_error_s, a.impacts.reference_impacts,
                     a.impacts.engine_impacts, a.impacts.matched, a.impacts.max_abs_time_error_s,
-                    a.overturn_agree ? 1 : 0, a.final_agree ? 1 : 0, a.status.c_str(), a.wall_s,
+                    a.overturn_agree ? 1 : 0, a.final_agree ? 1 : 0, StatusText(a.status), a.wall_s,
                     std::isfinite(g.predictability_horizon_s)
                         ? std::to_string(g.predictability_horizon_s).c_str()
                         : "",

@@ -83,8 +83,8 @@ struct CompareOptions {
 struct EngineAgreement {
   std::string engine;
   double wall_s = 0.0;
-  std::string status;         ///< the engine's status (summary "status")
-  std::string status_detail;  ///< and its detail (summary "status_detail")
+  RunStatus status = RunStatus::kCompleted;  ///< the engine's status (summary "status")
+  std::string status_detail;                 ///< and its detail (summary "status_detail")
   /// Status non_finite (harness/engines.h): what stopped being finite ("energy is +inf") and
   /// when, s (summary "non_finite"); the comparison ends at the run's last finite state.
   std::string non_finite_what;
@@ -112,7 +112,8 @@ struct EngineAgreement {
   std::vector<double> significant_onsets_t_s;
   /// The reference's status and where its solution ends (s): past an "assumption_violated"
   /// end the model has nothing to say; past a "non_finite" end nothing was computed.
-  std::string reference_status, reference_status_detail;
+  RunStatus reference_status = RunStatus::kCompleted;
+  std::string reference_status_detail;
   double reference_end_s = 0.0;
   /// Reference status non_finite: what stopped being finite and when, s.
   std::string reference_non_finite_what;

@@ -110,7 +110,7 @@ CompareRun RunCompare(const Scene& scene, const GroundMotion& motion,
   out.reference_scene = scene;
   if (&ref != &out.reference.nominal) out.reference_scene.model = check.witness;
   std::snprintf(buf, sizeof buf, "reference: %s, %zu events, %.3g ms; witness within %.2g rad%s",
-                ref.summary.status.c_str(), ref.history.events.size(),
+                StatusText(ref.summary.status), ref.history.events.size(),
                 out.reference.nominal_wall_s * 1e3, check.max_abs_diff(),
                 check.converged ? ", converged" : "");
   log(buf);

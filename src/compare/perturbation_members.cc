@@ -196,7 +196,8 @@ ReferenceEnsemble RunReferenceEnsemble(const Scene& nominal_scene, const GroundM
   // overturned block stays at its overturn angle (a lasting outcome that other members may not
   // share) and the other block's angle is undefined (NaN: the model ends there).
   auto on_grid = [&](const reference::Result& r, std::vector<double>* th) {
-    const bool stopped = r.summary.status == "assumption_violated" || IsNonFinite(r.summary.status);
+    const bool stopped =
+        r.summary.status == RunStatus::kAssumptionViolated || IsNonFinite(r.summary.status);
     const int overturned = r.summary.overturn_block.value_or(0);
     const double end = r.trajectory.end_s();
     th[0].assign(n_grid, std::nan(""));
@@ -314,7 +315,8 @@ nlohmann::json PredictabilityJson(const Scene& scene, const ReferenceEnsemble& e
   }
   nlohmann::json statuses = nlohmann::json::object();
   for (const MemberOutcome& o : e.outcomes) {
-    statuses[o.status] = statuses.value(o.status, 0) + 1;
+    const char* text = StatusText(o.status);
+    statuses[text] = statuses.value(text, 0) + 1;
   }
   j["statuses"] = statuses;
   j["wall_s"] = e.wall_s;
@@ -357,7 +359,7 @@ std::string OutcomesCsv(const std::vector<MemberOutcome>& outcomes,
     for (double v : {p.horizontal_factor, p.vertical_factor, p.initial_factor[0]}) {
       out.append(",").append(Num(v));
     }
-    out.append(",").append(o.status).append(",");
+    out.append(",").append(StatusText(o.status)).append(",");
     if (o.overturned_block) out.append(std::to_string(o.overturned_block));
     out.append(",");
     if (o.overturned_block) out.append(Num(o.overturn_t_s));

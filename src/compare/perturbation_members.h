@@ -45,7 +45,7 @@ MemberInput PerturbedInput(const Scene& scene, const GroundMotion& motion, int m
 /// What a user cares about in one run.
 struct MemberOutcome {
   int member = -1;
-  std::string status;               ///< as in summary.json
+  RunStatus status = RunStatus::kCompleted;  ///< as in summary.json
   std::string detail;               ///< summary.json's status_detail (why it ended so)
   int overturned_block = 0;         ///< 0: none, 1 or 2
   double overturn_t_s = 0.0;        ///< when overturned_block != 0
@@ -60,7 +60,7 @@ struct MemberOutcome {
   double wall_s = 0.0;
   /// A run that stopped because the model's assumptions failed, or that ended non_finite
   /// (harness/engines.h), has no outcome to compare.
-  bool valid() const { return status != "assumption_violated" && !IsNonFinite(status); }
+  bool valid() const { return status != RunStatus::kAssumptionViolated && !IsNonFinite(status); }
 };
 
 /// The outcome of a run (reference or engine) of `scene`: summary "status", "peaks",

@@ -245,7 +245,7 @@ Verdict MakeVerdict(const Scene& scene, const EngineAgreement& a,
   const double slack_s = scene.run.output_interval_s;
   const double inf = std::numeric_limits<double>::infinity();
   // Where the reference's model holds: to its end when it stopped on a violated assumption.
-  const bool model_ends = a.reference_status == "assumption_violated";
+  const bool model_ends = a.reference_status == RunStatus::kAssumptionViolated;
   const double model_end_s = model_ends ? a.reference_end_s : inf;
 
   // A run that is not finite failed: never an agreement. The engine's failure is its own,
@@ -299,7 +299,7 @@ Verdict MakeVerdict(const Scene& scene, const EngineAgreement& a,
     const std::string failure = FlagsText(a, -inf, inf, {"blow_up", "energy_growth"}, true);
     const std::string forbidden =
         FlagsText(a, -inf, model_end_s, {"sliding", "uplift", "penetration"}, true);
-    if (!failure.empty() || !forbidden.empty() || a.status == "blow_up") {
+    if (!failure.empty() || !forbidden.empty() || a.status == RunStatus::kBlowUp) {
       v.kind = "violates_model";
       v.agrees = false;
       std::string what = failure;

@@ -38,7 +38,7 @@ std::string ReferenceEngine::SummaryLine(const EngineResult& result) const {
   std::snprintf(line, sizeof line,
                 "reference: %s, peak |theta1| %.4g rad at %.3f s, peak |theta2| %.4g rad at "
                 "%.3f s, %d impacts, %.3g ms",
-                s.status.c_str(), s.peak_theta1_rad, s.peak_theta1_t_s, s.peak_theta2_rad,
+                StatusText(s.status), s.peak_theta1_rad, s.peak_theta1_t_s, s.peak_theta2_rad,
                 s.peak_theta2_t_s, s.impacts_ground + s.impacts_interface, result.wall_s * 1e3);
   std::string text = line;
   if (checked.check && !checked.check->converged) {

@@ -16,7 +16,7 @@ namespace {
 // A run with no solution after its end: stopped on a violated assumption, or at its last finite
 // state.
 bool EndsEarly(const reference::Result& r) {
-  return r.summary.status == "assumption_violated" || IsNonFinite(r.summary.status);
+  return r.summary.status == RunStatus::kAssumptionViolated || IsNonFinite(r.summary.status);
 }
 
 }  // namespace

@@ -40,9 +40,9 @@ nlohmann::json ReferenceSummaryJson(const Scene& scene, const reference::Result&
                                     double wall_s) {
   const reference::Summary& s = result.summary;
   nlohmann::json j;
-  j["status"] = s.status;
+  j["status"] = StatusText(s.status);
   if (!s.status_detail.empty()) j["status_detail"] = s.status_detail;
-  if (s.status == "non_finite") {
+  if (s.status == RunStatus::kNonFinite) {
     // What stopped being finite, and where the computed part (the history, the peaks, the
     // counts below) ends.
     j["non_finite"] = {{"quantity", s.non_finite_quantity},

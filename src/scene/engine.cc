@@ -84,7 +84,7 @@ std::string Engine::SummaryLine(const EngineResult& r) const {
   char line[320];
   std::snprintf(line, sizeof line,
                 "%s (%s): %s, peak |theta1| %.4g rad at %.3f s, %d impacts, flags: %s, %.3g ms",
-                name().c_str(), r.settings_line.c_str(), o.status.c_str(), o.peak_theta1_rad,
+                name().c_str(), r.settings_line.c_str(), StatusText(o.status), o.peak_theta1_rad,
                 o.peak_theta1_t_s, o.impacts(), flags.empty() ? "none" : flags.c_str(),
                 r.wall_s * 1e3);
   return line;

@@ -1,5 +1,6 @@
 // A stress row as the child prints it (one line of JSON) and as stress.csv holds it.
 #include <limits>
+#include <optional>
 
 #include "run/engine_run.h"
 #include "stress/stress.h"
@@ -94,8 +95,9 @@ std::string StressCsv(const std::vector<StressRow>& rows) {
   auto g = [](double v) { return Format("%.6g", v); };
   for (const StressRow& r : rows) {
     // Peaks of a run that stopped early are those of its computed part.
-    const bool ran =
-        r.finished || r.status == "blow_up" || IsNonFinite(r.status) || r.status == "error";
+    const std::optional<RunStatus> status = ParseRunStatus(r.status);
+    const bool ran = r.finished || status == RunStatus::kBlowUp ||
+                     status == RunStatus::kNonFinite || r.status == "error";
     out += Clean(r.case_name) + "," + r.engine + "," + (r.finished ? "1" : "0") + "," +
            Clean(r.status) + "," + (r.nan ? "1" : "0") + ",";
     out += (r.energy_impacts > 0 ? Format("%.3e", r.max_energy_gain_rel) : "") + "," +

@@ -115,7 +115,7 @@ StressRow RunReference(const StressCase& c, StressRow row) {
   const reference::Result r = reference::Simulate(c.scene, motion);
   row.wall_s = SecondsSince(start);
   const reference::Summary& s = r.summary;
-  row.status = s.status;
+  row.status = StatusText(s.status);
   row.detail = s.status_detail;
   // A run that ended non_finite failed (its figures are those of its finite part).
   row.finished = !IsNonFinite(s.status);
@@ -155,10 +155,10 @@ StressRow RunEngineCase(const StressCase& c, const std::string& engine, StressRo
   const EngineRun run = RunEngine(engine, c.scene, motion);
   row.wall_s = run.wall_s;
   const RunOutcome& o = run.outcome;
-  row.status = o.status.empty() ? "unknown" : o.status;
+  row.status = StatusText(o.status);
   row.detail = run.summary.value("status_detail", "");
-  row.finished = row.status == "completed" || row.status == "overturned" ||
-                 row.status == "at_rest" || row.status == "assumption_violated";
+  row.finished = o.status == RunStatus::kCompleted || o.status == RunStatus::kOverturned ||
+                 o.status == RunStatus::kAtRest || o.status == RunStatus::kAssumptionViolated;
   row.peak_theta1_rad = o.peak_theta1_rad;
   row.peak_theta2_rad = o.peak_theta2_rad;
   row.nan = IsNonFinite(o.status) || HistoryHasNonFinite(run.history);

@@ -53,7 +53,7 @@ void SetIntensity(const Scene& scene, const GroundMotion& motion, MemberRow* row
 }
 
 void SetOutcome(const MemberOutcome& o, MemberRow* row) {
-  row->status = o.status;
+  row->status = StatusText(o.status);
   row->overturned_block = o.overturned_block;
   row->overturn_t_s = o.overturn_t_s;
   row->peak_theta1_rad = o.peak_rad[0];

@@ -189,8 +189,8 @@ std::string SweepCsv(const std::vector<SweepRow>& rows) {
     }
     const EngineAgreement& a = r.agreement;
     const AngleAgreement& t1 = a.theta1;
-    std::snprintf(buf, sizeof buf, "%s,%.6g,%.6e,%.6e,%.9g,%.6e,%.6e,", a.status.c_str(), r.wall_s,
-                  t1.max_abs_error_rad, t1.rms_error_rad, t1.horizon_s, t1.peak_rel_error,
+    std::snprintf(buf, sizeof buf, "%s,%.6g,%.6e,%.6e,%.9g,%.6e,%.6e,", StatusText(a.status),
+                  r.wall_s, t1.max_abs_error_rad, t1.rms_error_rad, t1.horizon_s, t1.peak_rel_error,
                   t1.peak_time_error_s);
     out += buf;
     if (a.theta2) {
@@ -242,7 +242,7 @@ nlohmann::json SweepJson(const Scene& scene, const std::vector<std::string>& ove
   j["tight_reference"]["rtol"] = kSweepTightRtol;
   j["tight_reference"]["atol"] = kSweepTightAtol;
   j["tight_reference"]["wall_s"] = baseline.wall_s;
-  j["tight_reference"]["status"] = baseline.status;
+  j["tight_reference"]["status"] = StatusText(baseline.status);
   j["tight_reference"]["peak_theta1_rad"] = baseline.peak_theta1_rad;
   j["tight_reference"]["peak_theta1_t_s"] = baseline.peak_theta1_t_s;
   j["tight_reference"]["peak_theta2_rad"] = baseline.peak_theta2_rad;

@@ -52,7 +52,7 @@ inline constexpr double kSweepTightAtol = 1e-14;
 /// The tight reference every row is compared with (dopri5, kSweepTightRtol/Atol).
 struct SweepBaseline {
   double wall_s = 0.0;           ///< its wall time, s
-  std::string status;            ///< its summary status (completed, overturned, at_rest, ...)
+  RunStatus status = RunStatus::kCompleted;  ///< its summary status (completed, overturned, ...)
   double peak_theta1_rad = 0.0;  ///< peak |theta1| over the run, rad
   double peak_theta1_t_s = 0.0;  ///< its time, s (0: the release angle is the peak)
   double peak_theta2_rad = 0.0;  ///< peak |theta2|, rad (0 for one block)

@@ -93,7 +93,7 @@ TEST(ProtocolTest, OutputRoundTripIsBitExact) {
   e.note = "a note";
   a.history.events.push_back(e);
   a.summary = {{"status", "completed"}, {"violations", {{"slip_ground_m", 1e-7}}}};
-  a.outcome.status = "overturned";
+  a.outcome.status = RunStatus::kOverturned;
   a.outcome.overturned_block = 2;
   a.outcome.overturn_t_s = 3.25;
   a.outcome.peak_theta2_rad = 1.5;
@@ -110,7 +110,7 @@ TEST(ProtocolTest, OutputRoundTripIsBitExact) {
   EXPECT_EQ(b.history.events[0].note, "a note");
   EXPECT_EQ(b.summary["violations"]["slip_ground_m"], 1e-7);
   // The typed outcome travels bit-exact.
-  EXPECT_EQ(b.outcome.status, "overturned");
+  EXPECT_EQ(b.outcome.status, RunStatus::kOverturned);
   EXPECT_EQ(b.outcome.overturned_block, 2);
   EXPECT_EQ(b.outcome.overturn_t_s, 3.25);
   EXPECT_EQ(b.outcome.peak_theta2_rad, 1.5);

@@ -37,7 +37,7 @@ EngineRun FromReference(const reference::Result& ref, double t0, double dt, doub
   run.history.events = ref.history.events;
   run.summary = nlohmann::json::object();
   // The outcome a monitor would report: the peak over the samples.
-  run.outcome.status = "completed";
+  run.outcome.status = RunStatus::kCompleted;
   for (const Sample& x : run.history.samples) {
     if (std::abs(x.theta1_rad) > run.outcome.peak_theta1_rad) {
       run.outcome.peak_theta1_rad = std::abs(x.theta1_rad);
@@ -202,7 +202,7 @@ TEST_F(CompareTest, JsonAndCsvCarryTheKeysOtherToolsRead) {
       EXPECT_TRUE(e[b][k].is_number()) << b << "." << k;
     }
   }
-  EXPECT_EQ(j["reference"]["status"], ref.summary.status);
+  EXPECT_EQ(j["reference"]["status"], StatusText(ref.summary.status));
   // CSV: a header and one row per block, same number of fields.
   const std::string csv = ComparisonCsv({a});
   std::istringstream in(csv);

@@ -184,7 +184,7 @@ TEST(MemberOutcome, ReadsTheRunsSummaryAndHistory) {
 TEST(MemberOutcome, AnOverturnedBlocksPeakIsTheOverturnAngle) {
   const Scene s = testing_util::HousnerHalfAngleRelease(4.0);
   EngineRun run;
-  run.outcome.status = "overturned";
+  run.outcome.status = RunStatus::kOverturned;
   run.outcome.peak_theta1_rad = 1.5709;
   run.outcome.peak_theta1_t_s = 2.0;
   run.outcome.overturned_block = 1;

@@ -21,7 +21,7 @@ std::vector<MemberOutcome> Outcomes(int n, double peak, double spread, int offse
   for (int i = 0; i < n; ++i) {
     MemberOutcome& o = out[i];
     o.member = i;
-    o.status = "completed";
+    o.status = RunStatus::kCompleted;
     const double u = n > 1 ? (2.0 * ((i * 7 + offset) % n) / (n - 1) - 1.0) : 0.0;
     o.peak_rad[0] = peak * (1.0 + spread * u);
     o.peak_rad[1] = 2.0 * peak * (1.0 + spread * u);
@@ -83,7 +83,7 @@ TEST(CompareEnsembles, OverturningEveryTimeAgainstNeverIsDetected) {
 
 TEST(CompareEnsembles, MembersWhoseReferenceViolatedTheModelAreLeftOut) {
   auto ref = Outcomes(32, 0.1, 0.2, 0), eng = Outcomes(16, 0.1, 0.2, 3);
-  ref[3].status = "assumption_violated";
+  ref[3].status = RunStatus::kAssumptionViolated;
   const StatisticalComparison s = CompareEnsembles(ref, eng, true, kTolerance, 0.01);
   EXPECT_EQ(s.excluded, 1);
   EXPECT_EQ(s.reference_members, 31);
@@ -148,7 +148,7 @@ TEST(MakeVerdict, AnEngineThatDoesWhatTheModelForbidsDoesNotAgree) {
   Scene s;
   Horizons h;  // predictable throughout
   EngineAgreement a = Agreement(30.0, 30.0, true, true);
-  a.reference_status = "completed";
+  a.reference_status = RunStatus::kCompleted;
   ASSERT_EQ(MakeVerdict(s, a, h, std::nullopt).kind, "agrees");
   // Sliding while the model holds decides, whatever the angle error (here none).
   a.flags = {"sliding"};
@@ -165,12 +165,12 @@ TEST(MakeVerdict, AnEngineThatDoesWhatTheModelForbidsDoesNotAgree) {
   // Energy growth or a blow-up decide even after the model ends.
   a.flags = a.significant_flags = {"energy_growth"};
   a.flag_onsets_t_s = a.significant_onsets_t_s = {2.0};
-  a.reference_status = "assumption_violated";
+  a.reference_status = RunStatus::kAssumptionViolated;
   a.reference_end_s = 1.0;
   EXPECT_EQ(MakeVerdict(s, a, h, std::nullopt).kind, "violates_model");
   a.significant_flags.clear();
   a.significant_onsets_t_s.clear();
-  a.status = "blow_up";
+  a.status = RunStatus::kBlowUp;
   EXPECT_EQ(MakeVerdict(s, a, h, std::nullopt).kind, "violates_model");
   // No ensemble: the flags still decide.
   EXPECT_EQ(MakeVerdict(s, a, std::nullopt, std::nullopt).kind, "violates_model");
@@ -181,7 +181,7 @@ TEST(MakeVerdict, WhereTheReferenceStopsTheVerdictIsOutsideTheModel) {
   Horizons h;
   h.horizon_s[1] = 3.5;
   EngineAgreement a = Agreement(4.3, 4.3, true, true);
-  a.reference_status = "assumption_violated";
+  a.reference_status = RunStatus::kAssumptionViolated;
   a.reference_status_detail = "block 2 lifts off";
   a.reference_end_s = 4.3;
   // The engine lifts and slides after the model ends: outside the model, and said so.
@@ -214,9 +214,9 @@ TEST(MakeVerdict, NoValidReferenceMemberBeyondTheHorizonIsOutsideTheModel) {
   Horizons h;
   h.horizon_s[1] = 3.5;
   EngineAgreement a = Agreement(20.0, 20.0, true, true);
-  a.reference_status = "completed";
+  a.reference_status = RunStatus::kCompleted;
   std::vector<MemberOutcome> ref = Outcomes(32, 0.1, 0.2, 0);
-  for (MemberOutcome& o : ref) o.status = "assumption_violated";
+  for (MemberOutcome& o : ref) o.status = RunStatus::kAssumptionViolated;
   const StatisticalComparison st =
       CompareEnsembles(ref, Outcomes(16, 0.1, 0.2, 3), true, kTolerance, 0.01);
   ASSERT_FALSE(st.available);
@@ -226,7 +226,7 @@ TEST(MakeVerdict, NoValidReferenceMemberBeyondTheHorizonIsOutsideTheModel) {
 TEST(MakeVerdict, AnOverturnThePredictableReferenceDoesNotMakeIsTheEngines) {
   Scene s;
   EngineAgreement a = Agreement(30.0, 30.0, true, true);
-  a.reference_status = "completed";
+  a.reference_status = RunStatus::kCompleted;
   a.overturn_agree = false;
   a.overturn_block_engine = 2;
   const Verdict v = MakeVerdict(s, a, Horizons{}, std::nullopt);

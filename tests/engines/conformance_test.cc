@@ -277,7 +277,7 @@ TEST_P(EngineConformance, HousnerFreeRockingMatchesTheClosedForms) {
   const Scene s = LoadScene(kScenes / "housner_free_rocking.toml", {"run.output_interval=0.001"});
   ASSERT_NEAR(s.initial.theta1_rad, theta0, 1e-15);
   const EngineResult out = Run(s, GroundMotion());
-  EXPECT_EQ(out.outcome.status, "completed");
+  EXPECT_EQ(out.outcome.status, RunStatus::kCompleted);
   const std::vector<Event> imp = GroundImpacts(out.history);
   ASSERT_GE(imp.size(), 4u);
   // The first four impact times within one step plus what one-step-late impacts move them by
@@ -369,7 +369,7 @@ TEST_P(EngineConformance, StackCarriedByAKinematicGroundStaysAtRest) {
   GroundMotion m;
   m.set_horizontal(MotionComponent::FromSamples(accel_mps2, 0.01, 0.0, "push then carry"));
   const EngineResult out = Run(s, m);
-  EXPECT_EQ(out.outcome.status, "completed");
+  EXPECT_EQ(out.outcome.status, RunStatus::kCompleted);
   // 1e-5 rad: the monitor's tilt threshold (engines/common/monitor.h), as at rest on a still
   // ground. The pivots keep their place on the ground to one step's travel of the ground's
   // change of velocity, h dv = 1e-4 s x 0.49 m/s = 4.9e-5 m: a scheme that holds the contact at

@@ -219,7 +219,7 @@ TEST(MonitorTest, EnergyGrowthWithoutInputIsABlowUp) {
   // Spin the flat block faster and faster with no base input.
   for (; go && n < 100; ++n) go = m.Step(n, At(in, n * 1e-3, 0.0, 0.0 + 0.2 * n));
   EXPECT_FALSE(go);
-  EXPECT_EQ(m.status(), "blow_up");
+  EXPECT_EQ(m.status(), RunStatus::kBlowUp);
   const auto s = m.Summary();
   EXPECT_TRUE(s["violations"]["blow_up"].get<bool>());
   EXPECT_TRUE(s["violations"]["energy_growth"].get<bool>());
@@ -245,7 +245,7 @@ TEST(MonitorTest, NonFiniteStateStopsTheRunWithoutThrowing) {
   EXPECT_FALSE(m.Step(2, r));
   EXPECT_FALSE(m.Step(3, At(in, 3e-3, 0.01, 0.0, 0.01, 0.0)));  // stopped: no more steps
   m.Finish();
-  EXPECT_EQ(m.status(), "non_finite");
+  EXPECT_EQ(m.status(), RunStatus::kNonFinite);
   // The NaN state is not a sample: the history ends at the last finite state, with an event.
   ASSERT_EQ(m.history().samples.size(), 2u);
   EXPECT_EQ(m.history().samples.back().t_s, 1e-3);
@@ -262,7 +262,7 @@ TEST(MonitorTest, NonFiniteStateStopsTheRunWithoutThrowing) {
             0u)
       << s["status_detail"];
   EXPECT_TRUE(s["violations"]["blow_up"].get<bool>());
-  EXPECT_EQ(m.Outcome().status, "non_finite");
+  EXPECT_EQ(m.Outcome().status, RunStatus::kNonFinite);
 }
 
 // Finite poses and velocities whose energy overflows (a speed of 1e160 m/s) are not a result
@@ -276,7 +276,7 @@ TEST(MonitorTest, AnEnergyThatOverflowsOrAnEngineFaultStopsTheRun) {
     r.block1.vx_mps = 1e160;
     EXPECT_FALSE(m.Step(1, r));
     m.Finish();
-    EXPECT_EQ(m.status(), "non_finite");
+    EXPECT_EQ(m.status(), RunStatus::kNonFinite);
     EXPECT_EQ(m.Summary()["non_finite"]["quantity"], "energy");
     EXPECT_EQ(m.Summary()["non_finite"]["value"], "+inf");
     EXPECT_EQ(m.history().samples.size(), 1u);
@@ -287,7 +287,7 @@ TEST(MonitorTest, AnEnergyThatOverflowsOrAnEngineFaultStopsTheRun) {
     StepReadout r = At(in, 1e-3, 0.01, 0.0);
     r.engine_fault = "the step was not taken";
     EXPECT_FALSE(m.Step(1, r));
-    EXPECT_EQ(m.status(), "non_finite");
+    EXPECT_EQ(m.status(), RunStatus::kNonFinite);
     const std::string detail = m.Summary()["status_detail"].get<std::string>();
     EXPECT_NE(detail.find("the step was not taken"), std::string::npos) << detail;
   }
@@ -309,7 +309,7 @@ TEST(MonitorTest, OverturnIsTheInterpolatedCrossingOfTheModelAngle) {
     // Crossed a quarter into the step: overturned at 2.25 ms, not at the step's end.
     EXPECT_FALSE(m.Step(3, At(in, 3e-3, side * (half_pi + 0.015), side * 2.0)));
     m.Finish();
-    EXPECT_EQ(m.status(), "overturned");
+    EXPECT_EQ(m.status(), RunStatus::kOverturned);
     const auto s = m.Summary();
     EXPECT_EQ(s["overturn"]["block"], 1);
     EXPECT_NEAR(s["overturn"]["t_s"].get<double>(), 2.25e-3, 1e-15);

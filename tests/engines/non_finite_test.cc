@@ -83,7 +83,7 @@ TEST_P(EngineNonFinite, AnAbsurdSpikeEndsTheRunAtItsLastFiniteState) {
   const EngineRun run = RunEngine(GetParam(), scene, motion);
   const nlohmann::json& j = run.summary;
 
-  ASSERT_EQ(run.outcome.status, "non_finite") << j.value("status_detail", "");
+  ASSERT_EQ(run.outcome.status, RunStatus::kNonFinite) << j.value("status_detail", "");
   ASSERT_TRUE(j.contains("non_finite"));
   const nlohmann::json& nf = j["non_finite"];
   const std::string quantity = nf["quantity"].get<std::string>();
@@ -150,9 +150,9 @@ EngineRun ReferenceAsEngine(const Scene& scene, const GroundMotion& motion) {
 TEST(NonFiniteHarness, AFailedReferenceGivesNoVerdict) {
   const Scene scene = StackAtRest();
   const reference::Result failed = reference::Simulate(scene, Spike(1e200, 50));
-  ASSERT_EQ(failed.summary.status, "non_finite");
+  ASSERT_EQ(failed.summary.status, RunStatus::kNonFinite);
   const EngineRun fine = ReferenceAsEngine(scene, Spike(0.0, 50));
-  ASSERT_EQ(fine.outcome.status, "at_rest");
+  ASSERT_EQ(fine.outcome.status, RunStatus::kAtRest);
   const EngineAgreement a = CompareWithReference(scene, failed, fine);
   for (const std::optional<Horizons>& h : {std::optional<Horizons>(), std::optional(Horizons{})}) {
     const Verdict v = MakeVerdict(scene, a, h, std::nullopt);
@@ -175,10 +175,11 @@ TEST(NonFiniteHarness, TheWitnessNeverHidesAFailure) {
   ASSERT_NE(ReferenceResultOf(run.extension.get()), nullptr);
   const CheckedReference& checked = *ReferenceResultOf(run.extension.get());
   ASSERT_TRUE(checked.check.has_value());
-  ASSERT_NE(checked.nominal.summary.status, "non_finite") << checked.nominal.summary.status;
-  ASSERT_EQ(checked.witness->summary.status, "non_finite");
+  ASSERT_NE(checked.nominal.summary.status, RunStatus::kNonFinite)
+      << checked.nominal.summary.status;
+  ASSERT_EQ(checked.witness->summary.status, RunStatus::kNonFinite);
   EXPECT_TRUE(checked.check->witness_non_finite);
-  EXPECT_EQ(checked.used().summary.status, "non_finite");
+  EXPECT_EQ(checked.used().summary.status, RunStatus::kNonFinite);
   EXPECT_EQ(run.summary["status"], "non_finite");
   EXPECT_EQ(run.summary["convergence"]["used"], "witness");
   EXPECT_TRUE(run.summary.contains("non_finite"));
@@ -201,7 +202,7 @@ TEST(NonFiniteHarness, FailedEnsembleMembersAreNeverAnAgreement) {
     members[i].member = i;
   }
   std::vector<MemberOutcome> engine = members;
-  engine[3].status = "non_finite";
+  engine[3].status = RunStatus::kNonFinite;
   engine[3].detail = "energy is +inf at t = 0.4901 s";
   const double tol[2] = {0.01, 0.01};
   const StatisticalComparison st = CompareEnsembles(members, engine, true, tol, 0.01);
@@ -215,7 +216,7 @@ TEST(NonFiniteHarness, FailedEnsembleMembersAreNeverAnAgreement) {
   EXPECT_NE(v.text.find("member 3: energy is +inf"), std::string::npos) << v.text;
   EXPECT_EQ(StatisticsJson(st)["engine_non_finite"], 1);
 
-  members[5].status = "non_finite";
+  members[5].status = RunStatus::kNonFinite;
   EXPECT_FALSE(members[5].valid());
   h.non_finite_members = 1;
   h.non_finite_detail = "member 5: theta1 is NaN at t = 0 s";

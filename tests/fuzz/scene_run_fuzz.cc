@@ -38,7 +38,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     const rockbench::GroundMotion motion = rockbench::GroundMotion::FromScene(scene);
     const rockbench::reference::Result r = rockbench::reference::Simulate(scene, motion);
     const rockbench::reference::Summary& s = r.summary;
-    if (s.status != "completed") return;  // a stated outcome (overturned, non_finite, ...)
+    // A stated outcome (overturned, non_finite, ...).
+    if (s.status != rockbench::RunStatus::kCompleted) return;
     const auto check = [&](const char* what, double v, double t) {
       if (!std::isfinite(v)) {
         rockbench::fuzz::Finding(std::string("scene_run: status completed, but ") + what + " = " +

@@ -92,7 +92,7 @@ TEST(EventsTest, GrazingOverturnInsideOneStepIsFound) {
     sc.model.rtol = rtol;
     const Result r = Simulate(sc, GroundMotion{});
     EXPECT_EQ(FirstMissedEvent(sc, GroundMotion{}, r), "");
-    EXPECT_EQ(r.summary.status, "overturned");
+    EXPECT_EQ(r.summary.status, RunStatus::kOverturned);
     // The tight run's crossing is good to ~1e-12 s; the loose runs' arcs differ from it by
     // their own error (rtol 1e-6 on 0.1 rad over a rate of 0.013 rad/s near the crossing:
     // ~1e-5 s at most; measured 1e-10 s, the arc being nearly polynomial).
@@ -125,7 +125,7 @@ TEST(EventsTest, UpliftDipsUnderFastVerticalMotionAreFoundAtTheFirstOne) {
     sc.model.rtol = rtol;
     const Result r = Simulate(sc, gm);
     EXPECT_EQ(FirstMissedEvent(sc, gm, r), "");
-    EXPECT_EQ(r.summary.status, "assumption_violated");
+    EXPECT_EQ(r.summary.status, RunStatus::kAssumptionViolated);
     const double t_stop = r.history.samples.back().t_s;
     if (t_first < 0.0) t_first = t_stop;
     // The same dip: its located start agrees to the loose runs' error, far below the 20 ms

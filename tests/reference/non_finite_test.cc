@@ -54,7 +54,7 @@ bool Finite(const Event& e) {
 // figures of the computed part.
 void ExpectStoppedFinite(const Result& r, double from_s, double to_s) {
   const Summary& s = r.summary;
-  ASSERT_EQ(s.status, "non_finite") << s.status_detail;
+  ASSERT_EQ(s.status, RunStatus::kNonFinite) << s.status_detail;
   EXPECT_FALSE(s.non_finite_quantity.empty());
   EXPECT_TRUE(s.non_finite_value == "NaN" || s.non_finite_value == "+inf" ||
               s.non_finite_value == "-inf")
@@ -130,7 +130,7 @@ TEST_P(NonFiniteTest, RockingStackUnderAnAbsurdSpike) {
   const Result r = Simulate(sc, Spike(1e200, 150));
   ExpectStoppedFinite(r, 1.49, 1.50);
   const Result zero = Simulate(sc, Spike(0.0, 150));
-  ASSERT_EQ(zero.summary.status, "completed");
+  ASSERT_EQ(zero.summary.status, RunStatus::kCompleted);
   size_t compared = 0;
   for (const Sample& s : r.history.samples) {
     if (s.t_s > 1.49) break;
@@ -189,7 +189,7 @@ TEST(NonFiniteIssue21, OneAbsurdSampleAtTheWitnessSettings) {
   sc.model.atol = 1e-16;
   const Result r = Simulate(sc, Spike(1e20, 10));
   ExpectStoppedFinite(r, 0.09, 0.10);
-  EXPECT_NE(r.summary.status, "completed");
+  EXPECT_NE(r.summary.status, RunStatus::kCompleted);
 }
 
 INSTANTIATE_TEST_SUITE_P(

@@ -40,10 +40,11 @@ bool Overturns(Scene s, double amplitude_g, double t1_s, Equations equations) {
   d.amplitude_g = amplitude_g;
   d.duration_s = t1_s;
   s.horizontal = d;
-  const std::string status = Simulate(s, GroundMotion::FromScene(s)).summary.status;
-  EXPECT_TRUE(status == "overturned" || status == "completed" || status == "at_rest")
+  const RunStatus status = Simulate(s, GroundMotion::FromScene(s)).summary.status;
+  EXPECT_TRUE(status == RunStatus::kOverturned || status == RunStatus::kCompleted ||
+              status == RunStatus::kAtRest)
       << status << " at " << amplitude_g << " g";
-  return status == "overturned";
+  return status == RunStatus::kOverturned;
 }
 
 // Whether one cycle of a sine pulse of frequency f overturns the block without an impact
@@ -57,9 +58,10 @@ bool OverturnsWithoutImpact(Scene s, double amplitude_g, double f_hz, Equations 
   d.frequency_hz = f_hz;
   s.horizontal = d;
   const Summary sum = Simulate(s, GroundMotion::FromScene(s)).summary;
-  EXPECT_TRUE(sum.status == "overturned" || sum.status == "completed" || sum.status == "at_rest")
+  EXPECT_TRUE(sum.status == RunStatus::kOverturned || sum.status == RunStatus::kCompleted ||
+              sum.status == RunStatus::kAtRest)
       << sum.status << " at " << amplitude_g << " g";
-  return sum.status == "overturned" && sum.impacts_ground == 0;
+  return sum.status == RunStatus::kOverturned && sum.impacts_ground == 0;
 }
 
 // The smallest amplitude in [lo, hi] at which `overturns` holds, by bisection to 1e-10

@@ -125,7 +125,7 @@ TEST(SimilarityTest, RecordedMotionRestAndImpactsScaleWithSqrtK) {
   }
   const Summary& s = runs[0].result.summary;
   // The case does what it is here for: many impacts, settling and final rest.
-  EXPECT_EQ(s.status, "at_rest");
+  EXPECT_EQ(s.status, RunStatus::kAtRest);
   EXPECT_GT(s.impacts_ground + s.impacts_interface, 200);
   int settled = 0;
   for (const Event& e : runs[0].result.history.events) {

@@ -203,7 +203,7 @@ TEST(SimulateTest, ThesisExample631) {
   for (const Event& e : res.history.events) {
     EXPECT_LE(e.energy_after_j, e.energy_before_j * (1 + 1e-12)) << e.t_s << " " << e.kind;
   }
-  EXPECT_EQ(res.summary.status, "at_rest");
+  EXPECT_EQ(res.summary.status, RunStatus::kAtRest);
   // The located events are exact roots: theta1 = 0 at a ground impact to 1e-10 s (|theta1'|
   // ~ 0.5 rad/s, so |theta1| < 1e-10 rad there).
   for (const Event& e : impacts) {
@@ -226,7 +226,7 @@ TEST(SimulateTest, ThesisExample631) {
 TEST(SimulateTest, RestRuleEndsCascadesAndMotionRestarts) {
   Scene sc = OneBlock(1.0, 2.0, 0.2, 12.0);
   const Result res = Simulate(sc, GroundMotion{});
-  EXPECT_EQ(res.summary.status, "at_rest");
+  EXPECT_EQ(res.summary.status, RunStatus::kAtRest);
   // Housner: every impact multiplies the rate by e = 1 - 1.5 sin^2(theta_c) = 0.7, and energy
   // is conserved between impacts, so the rate after impact n is e^n w1 (w1 from energy: the
   // fall from 0.2 rad, 0.967 rad/s). The rest rule stops the first impact whose rate would be
@@ -322,7 +322,7 @@ TEST(SimulateTest, Overturning) {
   const Geometry geo = MakeGeometry(sc);
   sc.initial.theta1_rad = geo.block1.theta_c + 0.01;
   const Result r = Simulate(sc, GroundMotion{});
-  EXPECT_EQ(r.summary.status, "overturned");
+  EXPECT_EQ(r.summary.status, RunStatus::kOverturned);
   ASSERT_TRUE(r.summary.overturn_block.has_value());
   EXPECT_EQ(*r.summary.overturn_block, 1);
   EXPECT_GT(r.summary.overturn_t_s, 0.5);
@@ -345,7 +345,7 @@ TEST(SimulateTest, VerticalBelowMinusGStopsWithStatus) {
   GroundMotion gm;
   gm.set_vertical(MotionComponent::FromDef(v));
   const Result r = Simulate(sc, gm);
-  EXPECT_EQ(r.summary.status, "assumption_violated");
+  EXPECT_EQ(r.summary.status, RunStatus::kAssumptionViolated);
   EXPECT_NEAR(r.history.samples.back().t_s, 0.5, 0.011);
 }
 

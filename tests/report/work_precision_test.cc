@@ -43,7 +43,7 @@ SweepRow Bullet(const char* precision, double dt, int iterations, double wall_s,
                               {"time_step", dt},
                               {"solver_iterations", std::int64_t{iterations}}};
   r.wall_s = wall_s;
-  r.agreement.status = "completed";
+  r.agreement.status = RunStatus::kCompleted;
   r.agreement.theta1.max_abs_error_rad = max_error_rad / 4.0;
   r.agreement.theta1.peak_rel_error = 1e-4;
   AngleAgreement t2;
@@ -61,7 +61,7 @@ SweepRow Dopri(double rtol, double wall_s, double max_error_rad) {
   r.point.integrator = Integrator::kDopri5;
   r.point.rtol = rtol;
   r.point.atol = rtol * 1e-2;
-  r.agreement.status = "at_rest";
+  r.agreement.status = RunStatus::kAtRest;
   return r;
 }
 
@@ -112,12 +112,12 @@ fs::path WriteSweepFolder(const fs::path& dir, const std::vector<SweepRow>& rows
     scene.run.duration_s = duration_s;
     SweepBaseline baseline;
     baseline.wall_s = 0.003;
-    baseline.status = "at_rest";
+    baseline.status = RunStatus::kAtRest;
     baseline.peak_theta1_rad = 0.2;  // the release angle
     baseline.peak_theta2_rad = 0.4;
     baseline.peak_theta2_t_s = 1.2;
     if (overturn_t_s > 0.0) {
-      baseline.status = "overturned";
+      baseline.status = RunStatus::kOverturned;
       baseline.overturn_block = 2;
       baseline.overturn_t_s = overturn_t_s;
       baseline.peak_theta2_rad = 1.5707963267948966;

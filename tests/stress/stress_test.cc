@@ -209,7 +209,7 @@ TEST(StressTest, HousnerCascadeEndsAfterTheGeometricCount) {
   ASSERT_GT(n - std::floor(n), 0.01);  // not at an integer, where rounding would decide
   const int expected = static_cast<int>(std::ceil(n));
   const reference::Result r = RunReference(c);
-  EXPECT_EQ(r.summary.status, "at_rest");
+  EXPECT_EQ(r.summary.status, RunStatus::kAtRest);
   EXPECT_EQ(r.summary.impacts_ground, expected) << "w1 " << w1 << " e " << e;
   const StressRow row = RunStressCaseHere(c, "reference");
   // Every impact loses the same fraction 1 - e^2 of its kinetic energy.
@@ -255,10 +255,11 @@ TEST(StressTest, UpliftOnePercentBelowAndAbove) {
 TEST(StressTest, LargerBlocksAreMoreStable) {
   const std::vector<StressCase> cat = StressCatalogue();
   const reference::Result small = RunReference(Find(cat, "size/single/b=0.1m"));
-  EXPECT_EQ(small.summary.status, "overturned");
+  EXPECT_EQ(small.summary.status, RunStatus::kOverturned);
   const StressCase& big_case = Find(cat, "size/single/b=50m");
   const reference::Result big = RunReference(big_case);
-  EXPECT_TRUE(big.summary.status == "completed" || big.summary.status == "at_rest");
+  EXPECT_TRUE(big.summary.status == RunStatus::kCompleted ||
+              big.summary.status == RunStatus::kAtRest);
   const double theta_c = reference::MakeGeometry(big_case.scene).theta_c;
   EXPECT_LT(big.summary.peak_theta1_rad, 0.1 * theta_c);
   // The stack family: the 1 cm and 10 cm stacks tip past their slenderness angle (they
@@ -274,7 +275,8 @@ TEST(StressTest, LargerBlocksAreMoreStable) {
     const double tc = reference::MakeGeometry(c.scene).theta_c;
     if (b1 < 1.0) {
       EXPECT_GT(r.summary.peak_theta1_rad, tc) << name;
-      EXPECT_TRUE(r.summary.status == "overturned" || r.summary.status == "assumption_violated")
+      EXPECT_TRUE(r.summary.status == RunStatus::kOverturned ||
+                  r.summary.status == RunStatus::kAssumptionViolated)
           << name << ": " << r.summary.status;
       continue;
     }
@@ -292,19 +294,20 @@ TEST(StressTest, LargerBlocksAreMoreStable) {
 TEST(StressTest, ReleaseJustInsideFallsBackJustOutsideOverturns) {
   const std::vector<StressCase> cat = StressCatalogue();
   const reference::Result in1 = RunReference(Find(cat, "release/single/inside_1pct"));
-  EXPECT_NE(in1.summary.status, "overturned");
+  EXPECT_NE(in1.summary.status, RunStatus::kOverturned);
   EXPECT_GE(in1.summary.impacts_ground, 1);
   const reference::Result out1 = RunReference(Find(cat, "release/single/outside_1pct"));
-  EXPECT_EQ(out1.summary.status, "overturned");
+  EXPECT_EQ(out1.summary.status, RunStatus::kOverturned);
   EXPECT_EQ(out1.summary.impacts_ground, 0);
   // The stack: inside it falls back onto its base; outside it never lands again and topples
   // until the model stops it (overturned, or a pivot turning tensile as it falls fast).
   const reference::Result in2 = RunReference(Find(cat, "release/stack/inside_1pct"));
-  EXPECT_NE(in2.summary.status, "overturned");
+  EXPECT_NE(in2.summary.status, RunStatus::kOverturned);
   EXPECT_GE(in2.summary.impacts_ground, 1);
   const StressCase& out_case = Find(cat, "release/stack/outside_1pct");
   const reference::Result out2 = RunReference(out_case);
-  EXPECT_TRUE(out2.summary.status == "overturned" || out2.summary.status == "assumption_violated")
+  EXPECT_TRUE(out2.summary.status == RunStatus::kOverturned ||
+              out2.summary.status == RunStatus::kAssumptionViolated)
       << out2.summary.status;
   EXPECT_EQ(out2.summary.impacts_ground + out2.summary.impacts_interface, 0);
   EXPECT_GT(out2.summary.peak_theta1_rad, 2.0 * reference::MakeGeometry(out_case.scene).theta_c);
@@ -318,11 +321,11 @@ TEST(StressTest, VerticalAccelerationPastMinusG) {
   const std::vector<StressCase> cat = StressCatalogue();
   // -0.99 g: the faces still carry 1% of the weight; nothing moves.
   const reference::Result near = RunReference(Find(cat, "vertical/at_rest/yg=-0.99g"));
-  EXPECT_EQ(near.summary.status, "at_rest");
+  EXPECT_EQ(near.summary.status, RunStatus::kAtRest);
   EXPECT_TRUE(near.history.events.empty());
   // -1.01 g: no contact can hold the blocks down; the model says so when the pulse starts.
   const reference::Result past = RunReference(Find(cat, "vertical/at_rest/yg=-1.01g"));
-  EXPECT_EQ(past.summary.status, "assumption_violated");
+  EXPECT_EQ(past.summary.status, RunStatus::kAssumptionViolated);
   ASSERT_FALSE(past.history.events.empty());
   EXPECT_EQ(past.history.events.back().kind, "assumption_violated");
   EXPECT_NEAR(past.history.events.back().t_s, 0.2, 1e-9);
@@ -348,7 +351,7 @@ TEST(StressTest, APulseRestartsTheStackAtRest) {
   int restarts = 0;
   for (const Event& e : r.history.events) restarts += e.kind == "initiation" && e.t_s >= pulse_s;
   EXPECT_GE(restarts, 1);
-  EXPECT_EQ(r.summary.status, "at_rest");
+  EXPECT_EQ(r.summary.status, RunStatus::kAtRest);
 }
 
 TEST(StressTest, RowRoundTripsThroughJsonAndCsvHasFixedColumns) {

@@ -187,7 +187,7 @@ TEST(SweepTest, CsvHasOneRowPerRunAndAFixedWidth) {
                                {"time_step", 1e-3},
                                {"solver_iterations", std::int64_t{10}}};
   ok.wall_s = 0.5;
-  ok.agreement.status = "completed";
+  ok.agreement.status = RunStatus::kCompleted;
   ok.agreement.theta2 = AngleAgreement{};
   SweepRow ref;
   ref.point.engine = "reference";
@@ -233,7 +233,7 @@ TEST(SweepTest, ChosenPointsReplaceTheGrid) {
   EXPECT_GT(e0 / e1, 8.0);
   // The tight reference: Housner's block released from theta_c / 2 peaks at release.
   EXPECT_GT(baseline.wall_s, 0.0);
-  EXPECT_EQ(baseline.status, "completed");
+  EXPECT_EQ(baseline.status, RunStatus::kCompleted);
   EXPECT_DOUBLE_EQ(baseline.peak_theta1_rad, ShortHousner().initial.theta1_rad);
   EXPECT_EQ(baseline.peak_theta1_t_s, 0.0);
   EXPECT_EQ(baseline.overturn_block, 0);
@@ -249,7 +249,7 @@ TEST(SweepTest, JsonSaysWhatTheRowsDoNot) {
   o.repeat = 3;
   SweepBaseline b;
   b.wall_s = 0.25;
-  b.status = "overturned";
+  b.status = RunStatus::kOverturned;
   b.peak_theta2_rad = 1.5;
   b.overturn_block = 2;
   b.overturn_t_s = 3.5;

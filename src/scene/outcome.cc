@@ -1,0 +1,39 @@
+#include "scene/outcome.h"
+
+#include <array>
+#include <ostream>
+#include <utility>
+
+namespace rockbench {
+namespace {
+
+constexpr std::array<std::pair<RunStatus, const char*>, 6> kStatusTexts = {{
+    {RunStatus::kCompleted, "completed"},
+    {RunStatus::kOverturned, "overturned"},
+    {RunStatus::kAtRest, "at_rest"},
+    {RunStatus::kAssumptionViolated, "assumption_violated"},
+    {RunStatus::kBlowUp, "blow_up"},
+    {RunStatus::kNonFinite, "non_finite"},
+}};
+
+}  // namespace
+
+const char* StatusText(RunStatus status) {
+  for (const auto& [s, text] : kStatusTexts) {
+    if (s == status) return text;
+  }
+  return "unknown";
+}
+
+std::optional<RunStatus> ParseRunStatus(std::string_view text) {
+  for (const auto& [s, t] : kStatusTexts) {
+    if (text == t) return s;
+  }
+  return std::nullopt;
+}
+
+std::ostream& operator<<(std::ostream& os, RunStatus status) {
+  return os << StatusText(status);
+}
+
+}  // namespace rockbench
