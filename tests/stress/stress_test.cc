@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "reference/benchmarks/closed_forms.h"
 #include "reference/geometry.h"
 #include "reference/simulate.h"
 #include "reference/transitions.h"
@@ -201,9 +202,10 @@ TEST(StressTest, HousnerCascadeEndsAfterTheGeometricCount) {
   const reference::Geometry geo = reference::MakeGeometry(c.scene);
   const auto& b = geo.block1;
   const double theta0 = c.scene.initial.theta1_rad;
-  const double w1 = std::sqrt(2.0 * b.m * geo.g * b.r *
-                              (std::cos(b.theta_c - theta0) - std::cos(b.theta_c)) / b.I_O);
-  const double e = 1.0 - 1.5 * std::pow(std::sin(b.theta_c), 2);
+  const reference::benchmarks::RockingBody body =
+      reference::benchmarks::RectangularBlock(b, geo.g);
+  const double w1 = reference::benchmarks::FreeRockingImpactRate_radps(body, theta0);
+  const double e = reference::benchmarks::CornerImpactRestitution(body);
   const double rest_radps = c.scene.model.rest_rate_rel * std::sqrt(geo.g / b.r);
   const double n = std::log(w1 / rest_radps) / std::log(1.0 / e);
   ASSERT_GT(n - std::floor(n), 0.01);  // not at an integer, where rounding would decide
