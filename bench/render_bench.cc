@@ -8,7 +8,7 @@
 
 #include "run/engine_run.h"
 #include "renders/animation.h"
-#include "renders/geometry.h"
+#include "renders/drawn_motion.h"
 #include "renders/renderer.h"
 #include "scene/ground_motion.h"
 #include "scene/scene.h"

@@ -11,7 +11,7 @@
 #include <string_view>
 #include <vector>
 
-#include "renders/geometry.h"
+#include "renders/drawn_motion.h"
 #include "renders/image.h"
 #include "renders/text.h"
 #include "scene/history.h"

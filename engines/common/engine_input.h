@@ -102,17 +102,4 @@ void AddKinematicHighpassSetting(EngineSettingsSchema& schema);
 /// displacements before and after it.
 nlohmann::json KinematicDriveJson(const EngineInput& input);
 
-/// Kinematic drive: the ground path of one component (scene/ground_displacement.h
-/// IntegrateGroundPath), in the form of earlier versions: returns u at n = 0..a.size() and fills
-/// the velocity before step 0 and the peak |u| before the correction. Kept for the tests in
-/// tests/bullet/engine_input_test.cc; new code calls IntegrateGroundPath.
-inline std::vector<double> KinematicDisplacement(const std::vector<double>& accel_mps2, double dt_s,
-                                                 double highpass_hz, double* velocity_before_mps,
-                                                 double* raw_peak_m) {
-  GroundPath path = IntegrateGroundPath(accel_mps2, dt_s, highpass_hz);
-  if (raw_peak_m) *raw_peak_m = path.raw_peak_m;
-  if (velocity_before_mps) *velocity_before_mps = path.velocity_before_mps;
-  return std::move(path.u_m);
-}
-
 }  // namespace rockbench

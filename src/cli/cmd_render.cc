@@ -22,7 +22,7 @@
 #include "run/engine_run.h"
 #include "run/resource_estimate.h"
 #include "renders/animation.h"
-#include "renders/geometry.h"
+#include "renders/drawn_motion.h"
 #include "renders/gl_context.h"
 #include "renders/limits.h"
 #include "renders/renderer.h"

@@ -5,7 +5,7 @@
 ///   t_n = n dt (SampleGroundAcceleration), integrated twice with the leapfrog rule, then
 ///   optionally baseline-corrected by a zero-phase Butterworth high-pass. The engines move their
 ///   ground along it (engines/common/engine_input.h) and the animations draw the ground along
-///   it (renders/geometry.h), so that a picture shows the path a kinematic-drive engine saw.
+///   it (renders/drawn_motion.h), so that a picture shows the path a kinematic-drive engine saw.
 /// - The exact integrals of the piecewise-linear acceleration of a component, from rest, with
 ///   no correction (ExactGroundPeaks): the peak ground velocity and displacement of the
 ///   intensity measures (scene/intensity.h).

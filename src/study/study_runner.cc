@@ -49,7 +49,7 @@ Worker StartWorker(const std::vector<std::string>& argv, const std::filesystem::
   Worker w;
   w.process = Subprocess(argv, options);
   if (!w.process.started()) {
-    throw SceneError("cannot start the worker " + argv[0] + ": " + w.process.start_error());
+    throw SceneError("cannot start the worker " + w.process.start_error());
   }
   return w;
 }

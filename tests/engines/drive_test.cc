@@ -1,7 +1,7 @@
 // What every engine is driven with (engines/common/engine_input.h), tested on its own, without
 // any engine: the base motion on the step grid, the kinematic drive's ground path and its
 // report, the initial poses of the pivot chain, and the promise that the animations draw the
-// ground along the same path (renders/geometry.h IntegrateBaseDisplacement).
+// ground along the same path (renders/drawn_motion.h IntegrateBaseDisplacement).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "engines/common/engine_input.h"
-#include "renders/geometry.h"
+#include "renders/drawn_motion.h"
 #include "scene/ground_displacement.h"
 #include "scene/stack_pose.h"
 

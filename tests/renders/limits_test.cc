@@ -10,7 +10,7 @@
 #include <limits>
 #include <stdexcept>
 
-#include "renders/geometry.h"
+#include "renders/drawn_motion.h"
 #include "renders/renderer.h"
 
 namespace rockbench::renders {

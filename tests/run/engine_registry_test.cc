@@ -32,7 +32,12 @@ TEST(EngineRegistry, ListsEveryRegisteredEngineOnceBuiltOrNot) {
   }
   // Bullet is a required dependency (cmake/Dependencies.cmake).
   EXPECT_NE(FindEngine("bullet"), nullptr);
-  EXPECT_EQ(FindEngine("reference"), nullptr);  // the reference is not an engine
+  // The reference is an engine behind the same interface, found by name, and not a built
+  // physics engine.
+  ASSERT_NE(FindEngine("reference"), nullptr);
+  EXPECT_EQ(FindEngine("reference")->name(), "reference");
+  EXPECT_TRUE(IsReference(FindEngine("reference")->name()));
+  for (const std::string& n : BuiltEngineNames()) EXPECT_FALSE(IsReference(n)) << n;
   EXPECT_EQ(FindEngine("bulet"), nullptr);
 }
 

@@ -5,7 +5,7 @@
 #include <cstdio>
 
 #include "renders/animation.h"
-#include "renders/geometry.h"
+#include "renders/drawn_motion.h"
 #include "renders/gl_context.h"
 #include "renders/renderer.h"
 #include "report/common/json_keys.h"

@@ -1,7 +1,7 @@
 // Geometry of the drawing: block corners from a state (the scene's pivot chain, thesis sign
 // convention), states between samples, the base displacement (the kinematic drive's ground path),
 // the camera, and frame times.
-#include "renders/geometry.h"
+#include "renders/drawn_motion.h"
 
 #include <gtest/gtest.h>
 

@@ -1,5 +1,6 @@
 #pragma once
-/// Pure geometry of the drawing (no GL): block corners from a state, state at a time of a
+/// The motion as drawn (no GL; named apart from reference/geometry.h, the model's block
+/// geometry): block corners from a state, state at a time of a
 /// history, the base displacement and the camera that frames a whole motion. The corners come
 /// from the scene's pivot chain (scene/stack_pose.h) and the base displacement from the
 /// kinematic drive's ground path (scene/ground_displacement.h), the same the engines use.

@@ -1,4 +1,4 @@
-#include "renders/geometry.h"
+#include "renders/drawn_motion.h"
 
 #include <algorithm>
 #include <cmath>
