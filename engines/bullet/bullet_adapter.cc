@@ -1,4 +1,4 @@
-// The Bullet engine behind the engine interface (engines/common/engine.h): double precision in
+// The Bullet engine behind the engine interface (src/scene/engine.h): double precision in
 // this process, single precision through the helper program (float_helper.h).
 #include <LinearMath/btScalar.h>
 

@@ -3,7 +3,7 @@
 /// (double precision, used in process by the harness) and rockbench_bullet_float (single
 /// precision, used only by the helper program rockbench-bullet-float).
 #include "engines/bullet/bullet_settings.h"
-#include "engines/common/engine.h"
+#include "scene/engine.h"
 
 namespace rockbench::bullet {
 

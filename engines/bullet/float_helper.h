@@ -5,7 +5,7 @@
 #include <filesystem>
 
 #include "engines/bullet/bullet_settings.h"
-#include "engines/common/engine.h"
+#include "scene/engine.h"
 
 namespace rockbench::bullet {
 

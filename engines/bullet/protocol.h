@@ -7,7 +7,7 @@
 #include <string>
 
 #include "engines/bullet/bullet_settings.h"
-#include "engines/common/engine.h"
+#include "scene/engine.h"
 
 namespace rockbench::bullet {
 

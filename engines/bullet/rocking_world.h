@@ -11,7 +11,7 @@
 
 #include "engines/bullet/bullet_engine.h"
 #include "engines/bullet/bullet_settings.h"
-#include "engines/common/engine.h"
+#include "scene/engine.h"
 #include "engines/common/monitor.h"
 
 namespace rockbench::bullet {

@@ -8,7 +8,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "engines/common/engine.h"
+#include "scene/engine.h"
 #include "engines/common/engine_input.h"
 #include "engines/common/monitor.h"
 

@@ -1,4 +1,4 @@
-// DART behind the engine interface (engines/common/engine.h): DartWorld stepped by the shared
+// DART behind the engine interface (src/scene/engine.h): DartWorld stepped by the shared
 // fixed-step loop, watched by the shared monitor.
 #include <cstdio>
 #include <dart/config.hpp>

@@ -1,4 +1,4 @@
-// MuJoCo behind the engine interface (engines/common/engine.h): MujocoWorld stepped by the shared
+// MuJoCo behind the engine interface (src/scene/engine.h): MujocoWorld stepped by the shared
 // fixed-step loop, watched by the shared monitor.
 #include <mujoco/mujoco.h>
 

@@ -1,4 +1,4 @@
-// ODE behind the engine interface (engines/common/engine.h): OdeWorld stepped by the shared
+// ODE behind the engine interface (src/scene/engine.h): OdeWorld stepped by the shared
 // fixed-step loop, watched by the shared monitor.
 #include <ode/ode.h>
 

@@ -1,4 +1,4 @@
-// Siconos behind the engine interface (engines/common/engine.h): SiconosWorld stepped by the
+// Siconos behind the engine interface (src/scene/engine.h): SiconosWorld stepped by the
 // shared fixed-step loop, watched by the shared monitor.
 #include <cstdio>
 #include <memory>
