@@ -195,8 +195,10 @@ StressRow RunEngineCase(const StressCase& c, const std::string& engine, StressRo
 }
 
 void SetSettings(const StressCase& c, const std::string& engine, StressRow* row) {
+  // Only an engine with a settings table has settings to show (the reference's are the scene's
+  // [model] table).
   const Engine* e = FindEngine(engine);
-  if (e == nullptr) return;
+  if (e == nullptr || e->settings_schema().settings.empty()) return;
   row->has_settings = true;
   try {
     row->dt_s = ResolveEngineSettings(c.scene, e->settings_schema()).Number("time_step");
