@@ -6,10 +6,10 @@
 #include <filesystem>
 #include <string>
 
-#include "run/engine_run.h"
 #include "renders/animation.h"
 #include "renders/drawn_motion.h"
 #include "renders/renderer.h"
+#include "run/engine_run.h"
 #include "scene/ground_motion.h"
 #include "scene/scene.h"
 

@@ -1,4 +1,4 @@
-// Power and false-alarm rate of the statistical verdict (src/harness/verdict_power.h) on the
+// Power and false-alarm rate of the statistical verdict (src/compare/verdict_power.h) on the
 // shipped scenes, for a range of ensemble sizes. Not a timing benchmark: it prints, per scene and
 // size, how often a synthetic engine with a 5% peak bias is detected and how often an unbiased
 // one is flagged. Results are recorded in docs/verdicts.md.

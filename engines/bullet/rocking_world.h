@@ -11,8 +11,8 @@
 
 #include "engines/bullet/bullet_engine.h"
 #include "engines/bullet/bullet_settings.h"
-#include "scene/engine.h"
 #include "engines/common/monitor.h"
+#include "scene/engine.h"
 
 namespace rockbench::bullet {
 

@@ -719,7 +719,7 @@ nlohmann::json Monitor::Summary() const {
   }
   j["end_t_s"] = end_t_s_;
   j["steps"] = steps_done_;
-  // Same shape as the reference's part of summary.json (harness/summary.cc).
+  // Same shape as the reference's part of summary.json (run/summary.cc).
   j["peaks"]["theta1"] = {{"abs_rad", peak1_}, {"t_s", peak1_t_}};
   if (two_) j["peaks"]["theta2"] = {{"abs_rad", peak2_}, {"t_s", peak2_t_}};
   j["impacts"] = {{"total", impacts_ground_ + impacts_interface_},

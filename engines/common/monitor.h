@@ -47,10 +47,10 @@ struct MonitorConfig {
   double slip_flag_rel = 1e-3;
   double penetration_flag_m = 1e-4;
   double energy_growth_flag_rel = 0.01;
-  /// The verdict's scale of the contact flags (harness/verdict.h): uplift or penetration of
+  /// The verdict's scale of the contact flags (compare/verdict.h): uplift or penetration of
   /// a block counts against it once it exceeds this fraction of the block's critical angle
   /// alpha times its width B: a corner moved by d tilts the block by d / B, so this is 10% of
-  /// the comparison's smallest tolerance (1% of alpha, harness/tolerance.h), the same 10% of
+  /// the comparison's smallest tolerance (1% of alpha, run/tolerance.h), the same 10% of
   /// the scale the comparison applies to angles. Below it, the flag is reported only. Sliding
   /// counts as flagged (slip_flag_rel).
   double significant_critical_fraction = 1e-3;

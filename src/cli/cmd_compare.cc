@@ -1,30 +1,31 @@
 // `rockbench compare SCENE --out DIR [--engines all|NAME,NAME] [--members N] [--quick] [--set k=v
-// ...]`: runs the reference (checked against its witness), its ensemble on perturbed inputs (the
-// predictability horizon), each engine, and each engine's ensemble beyond the horizon; writes
+// ...]`: runs the reference (checked against its witness), its perturbation members (runs on
+// perturbed inputs: the predictability horizon), each engine, and each engine's perturbation
+// members beyond the horizon (files ensemble.csv and ensemble_band.csv keep their names); writes
 // histories, comparison.json, comparison.csv and summary.json, and prints one verdict per engine.
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <limits>
-#include <thread>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "cli/commands.h"
 #include "cli/limit_options.h"
 #include "compare/agreement.h"
 #include "compare/compare_run.h"
-#include "run/reference_witness.h"
-#include "run/engine_registry.h"
-#include "run/engine_run.h"
 #include "compare/perturbation_members.h"
-#include "run/resource_estimate.h"
-#include "run/summary.h"
 #include "compare/verdict.h"
 #include "reference/simulate.h"
+#include "run/engine_registry.h"
+#include "run/engine_run.h"
+#include "run/reference_witness.h"
+#include "run/resource_estimate.h"
+#include "run/summary.h"
 #include "scene/ground_motion.h"
 #include "scene/history.h"
 #include "scene/scene.h"
@@ -39,7 +40,7 @@ struct CompareCliOptions {
   std::vector<std::string> overrides;
   int members = -1;         // -1: the scene's compare.members
   int engine_members = -1;  // -1: the scene's compare.engine_members
-  bool quick = false;       // no ensembles: pointwise comparison only
+  bool quick = false;       // no perturbation members: pointwise comparison only
   int jobs = 0;             // 0: all hardware threads
   LimitOptions limits;
 };
@@ -72,9 +73,9 @@ void Execute(const CompareCliOptions& opt) {
   const std::vector<std::string> engines = CheckedEngines(opt.engines);
   const int threads =
       opt.jobs > 0 ? opt.jobs : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  CheckRunEstimate(EstimateRun(scene, engines, scene.compare.members, scene.compare.engine_members,
-                               threads),
-                   budget, opt.scene);
+  CheckRunEstimate(
+      EstimateRun(scene, engines, scene.compare.members, scene.compare.engine_members, threads),
+      budget, opt.scene);
   const GroundMotion motion = GroundMotion::FromScene(scene);
   const std::filesystem::path out(opt.out);
   std::filesystem::create_directories(out);
@@ -90,10 +91,12 @@ void Execute(const CompareCliOptions& opt) {
 
   // Files: each written to a temporary name and renamed when complete.
   WriteEngineFiles(run.reference_run, out);
-  if (run.ensemble) {
-    WriteFileAtomic(out / "reference" / "ensemble_band.csv", EnsembleBandCsv(*run.ensemble, two));
+  if (run.perturbation_members) {
+    WriteFileAtomic(out / "reference" / "ensemble_band.csv",
+                    PerturbationBandCsv(*run.perturbation_members, two));
     WriteFileAtomic(out / "reference" / "ensemble.csv",
-                    OutcomesCsv(run.ensemble->outcomes, run.ensemble->perturbations, two));
+                    OutcomesCsv(run.perturbation_members->outcomes,
+                                run.perturbation_members->perturbations, two));
   }
   nlohmann::json summary;
   summary["scene"] = {{"path", std::filesystem::absolute(opt.scene).lexically_normal().string()},
@@ -107,8 +110,9 @@ void Execute(const CompareCliOptions& opt) {
     WriteEngineFiles(run.engine_runs[k], out);
     summary["engines"][engines[k]] = run.engine_runs[k].summary;
     if (!run.engine_outcomes[k].empty()) {
-      WriteFileAtomic(out / engines[k] / "ensemble.csv",
-                      OutcomesCsv(run.engine_outcomes[k], run.ensemble->perturbations, two));
+      WriteFileAtomic(
+          out / engines[k] / "ensemble.csv",
+          OutcomesCsv(run.engine_outcomes[k], run.perturbation_members->perturbations, two));
     }
   }
   WriteFileAtomic(out / "comparison.json", run.comparison.dump(2) + "\n");
@@ -169,15 +173,16 @@ void RegisterCompare(CLI::App& app) {
                   "(`rockbench engines` lists them)")
       ->capture_default_str();
   cmd->add_option("--members", opt->members,
-                  "Reference ensemble members (default: the scene's compare.members, 32); 0: "
-                  "pointwise comparison only")
+                  "Reference perturbation members, for the predictability horizon (default: the "
+                  "scene's compare.members, 32); 0: pointwise comparison only")
       ->check(CLI::NonNegativeNumber);
   cmd->add_option(
          "--engine-members", opt->engine_members,
-         "Engine ensemble members beyond the horizon (default: compare.engine_members, 16)")
+         "Engine perturbation members beyond the horizon (default: compare.engine_members, 16)")
       ->check(CLI::NonNegativeNumber);
-  cmd->add_flag("--quick", opt->quick, "No ensembles: the pointwise comparison only");
-  cmd->add_option("--jobs,-j", opt->jobs, "Threads for the ensembles (default: all cores)")
+  cmd->add_flag("--quick", opt->quick, "No perturbation members: the pointwise comparison only");
+  cmd->add_option("--jobs,-j", opt->jobs,
+                  "Threads for the perturbation members (default: all cores)")
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--set", opt->overrides, "Override a scene value: key=value (repeatable)");
   AddLimitOptions(cmd, &opt->limits);

@@ -1,7 +1,7 @@
 // `rockbench ensemble STUDY.toml --out DIR [--jobs N] [--resume] [--keep-histories]`, and the
 // same under `mpirun -n N`: every (member, run) of a study in a worker process
 // (`rockbench ensemble STUDY --worker`, hidden), rows to DIR/members.csv as they finish, the
-// file in member order at the end, and DIR/study.json (src/harness/study_runner.h,
+// file in member order at the end, and DIR/study.json (src/study/study_runner.h,
 // docs/ensemble.md).
 #include <sys/prctl.h>
 #include <sys/resource.h>
@@ -19,11 +19,11 @@
 #include "cli/commands.h"
 #include "cli/limit_options.h"
 #include "run/parallel.h"
+#include "scene/limits.h"
+#include "scene/scene.h"
 #include "study/study.h"
 #include "study/study_mpi.h"
 #include "study/study_runner.h"
-#include "scene/limits.h"
-#include "scene/scene.h"
 
 namespace rockbench::cli {
 namespace {

@@ -11,9 +11,9 @@
 #include <vector>
 
 #include "cli/commands.h"
+#include "report/run/run_report.h"
 #include "report/study/study_csv.h"
 #include "report/study/study_report.h"
-#include "report/run/run_report.h"
 #include "report/sweep/work_precision.h"
 #include "scene/scene.h"
 

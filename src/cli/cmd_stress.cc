@@ -1,5 +1,5 @@
 // `rockbench stress --out DIR [--quick] [--case PATTERN ...] [--jobs N] [--list]`: the stress
-// catalogue (src/harness/stress.h, docs/stress.md). Every (case, engine) runs in a child
+// catalogue (src/stress/stress.h, docs/stress.md). Every (case, engine) runs in a child
 // process, `rockbench stress --run-case NAME --engine E` (hidden options), which prints one
 // JSON row; DIR/stress.csv is written atomically, rows in catalogue order.
 #include <algorithm>
@@ -16,9 +16,9 @@
 #include "cli/limit_options.h"
 #include "run/engine_registry.h"
 #include "run/parallel.h"
-#include "stress/stress.h"
 #include "scene/history.h"
 #include "scene/scene.h"
+#include "stress/stress.h"
 
 namespace rockbench::cli {
 namespace {

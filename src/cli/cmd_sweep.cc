@@ -14,10 +14,10 @@
 #include "run/engine_registry.h"
 #include "run/parallel.h"
 #include "run/resource_estimate.h"
-#include "sweep/sweep.h"
 #include "scene/ground_motion.h"
 #include "scene/history.h"
 #include "scene/scene.h"
+#include "sweep/sweep.h"
 
 namespace rockbench::cli {
 namespace {

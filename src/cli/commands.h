@@ -26,7 +26,7 @@ void RegisterEngines(CLI::App& app);
 /// Exit code for bad input (scene, record, option): 2. Physics outcomes exit 0.
 inline constexpr int kExitBadInput = 2;
 /// Exit code of `run` and `compare` when a run ended non_finite (its state, energy, an event time
-/// or a contact force stopped being finite; harness/engines.h): 4. The outputs are written, each
+/// or a contact force stopped being finite; run/engine_run.h): 4. The outputs are written, each
 /// ending at its run's last finite state, and stderr names every failed run.
 inline constexpr int kExitRunFailed = 4;
 

@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "run/engine_run.h"
 #include "reference/simulate.h"
+#include "run/engine_run.h"
 #include "run/tolerance.h"
 #include "scene/scene.h"
 
@@ -19,7 +19,7 @@ namespace rockbench {
 /// Agreement of one block's angle (theta1 or theta2) with the reference.
 struct AngleAgreement {
   /// The tolerance at the reference's peak (AngleTolerance_rad): the scale of the run's
-  /// largest motion. The horizon uses the local tolerance (harness/tolerance.h).
+  /// largest motion. The horizon uses the local tolerance (run/tolerance.h).
   double tolerance_rad = 0.0;
   double tolerance_min_rad = 0.0;         ///< the local tolerance's smallest value
   double tolerance_at_horizon_rad = 0.0;  ///< the local tolerance the error exceeded
@@ -43,7 +43,8 @@ struct AngleAgreement {
   double max_abs_error_predictable_rad = 0.0, rms_error_predictable_rad = 0.0;
   double max_abs_error_beyond_rad = 0.0, rms_error_beyond_rad = 0.0;
   int samples_beyond = 0;
-  /// The horizon used for that split (+inf: predictable to the end, or no ensemble was run).
+  /// The horizon used for that split (+inf: predictable to the end, or no perturbation members were
+  /// run).
   double predictability_horizon_s = std::numeric_limits<double>::infinity();
 };
 
@@ -65,7 +66,6 @@ struct ImpactAgreement {
   std::string first_mismatch;         ///< empty when every impact of both runs matched
 };
 
-
 /// Options of the comparison.
 struct CompareOptions {
   /// Per block, the reference's predictability horizon (s): errors are also reported
@@ -85,7 +85,7 @@ struct EngineAgreement {
   double wall_s = 0.0;
   RunStatus status = RunStatus::kCompleted;  ///< the engine's status (summary "status")
   std::string status_detail;                 ///< and its detail (summary "status_detail")
-  /// Status non_finite (harness/engines.h): what stopped being finite ("energy is +inf") and
+  /// Status non_finite (run/engine_run.h): what stopped being finite ("energy is +inf") and
   /// when, s (summary "non_finite"); the comparison ends at the run's last finite state.
   std::string non_finite_what;
   double non_finite_t_s = 0.0;
@@ -118,7 +118,7 @@ struct EngineAgreement {
   /// Reference status non_finite: what stopped being finite and when, s.
   std::string reference_non_finite_what;
   double reference_non_finite_t_s = 0.0;
-  /// The verdict (harness/verdict.h), when one was made: its kind, whether the engine agrees,
+  /// The verdict (compare/verdict.h), when one was made: its kind, whether the engine agrees,
   /// the plain-words text and the statistical comparison (engines.<name>.statistics).
   std::string verdict_kind, verdict;
   bool verdict_agrees = false;

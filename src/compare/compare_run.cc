@@ -17,7 +17,7 @@ std::string HorizonText(const std::optional<double>& h) {
 }
 
 // The ensemble's horizons, as the verdict reads them and as the comparison splits its errors.
-void TakeHorizons(const ReferenceEnsemble& e, int nb, Horizons* h, CompareOptions* o) {
+void TakeHorizons(const ReferencePerturbationMembers& e, int nb, Horizons* h, CompareOptions* o) {
   for (int b = 0; b < nb; ++b) {
     h->horizon_s[b] = e.horizon_s[b];
     if (e.horizon_s[b]) o->predictability_horizon_s[b] = *e.horizon_s[b];
@@ -36,13 +36,13 @@ struct SeedCheck {
   bool same = true;  ///< every seed agrees (or differs) as the first
 };
 
-// Re-runs the reference ensemble (cached per seed in `extra_ensembles`, shared by the engines)
-// and engine `name`'s ensemble with seeds scene.compare.seed + 1, + 2, ..., and judges each
-// as the first seed's verdict `first` was judged.
-SeedCheck RecheckWithSeeds(const Scene& scene, const CompareRun& out, const GroundMotion& motion,
-                           const std::string& name, const EngineRun& run, int engine_members,
-                           int jobs, const Verdict& first, double first_p,
-                           std::vector<std::optional<ReferenceEnsemble>>* extra_ensembles) {
+// Re-runs the reference's perturbation members (cached per seed in `extra_ensembles`, shared by the
+// engines) and engine `name`'s ensemble with seeds scene.compare.seed + 1, + 2, ..., and judges
+// each as the first seed's verdict `first` was judged.
+SeedCheck RecheckWithSeeds(
+    const Scene& scene, const CompareRun& out, const GroundMotion& motion, const std::string& name,
+    const EngineRun& run, int engine_members, int jobs, const Verdict& first, double first_p,
+    std::vector<std::optional<ReferencePerturbationMembers>>* extra_ensembles) {
   const reference::Result& ref = out.reference.used();
   const CompareOptions base;
   const bool two = scene.two_blocks();
@@ -52,21 +52,21 @@ SeedCheck RecheckWithSeeds(const Scene& scene, const CompareRun& out, const Grou
   for (int k = 1; k < kVerdictSeeds; ++k) {
     Scene seeded = scene;
     seeded.compare.seed = scene.compare.seed + static_cast<uint64_t>(k);
-    std::optional<ReferenceEnsemble>& e = (*extra_ensembles)[k - 1];
+    std::optional<ReferencePerturbationMembers>& e = (*extra_ensembles)[k - 1];
     if (!e) {
       Scene seeded_reference = out.reference_scene;
       seeded_reference.compare.seed = seeded.compare.seed;
-      e = RunReferenceEnsemble(seeded_reference, motion, ref, scene.compare.members,
-                               out.tolerance_rad, jobs, base.min_impact_rate_radps);
+      e = RunReferencePerturbationMembers(seeded_reference, motion, ref, scene.compare.members,
+                                          out.tolerance_rad, jobs, base.min_impact_rate_radps);
     }
     Horizons h;
     CompareOptions o = base;
     TakeHorizons(*e, two ? 2 : 1, &h, &o);
     const EngineAgreement ak = CompareWithReference(seeded, ref, run, o);
-    const std::vector<MemberOutcome> ok =
-        RunEngineEnsemble(name, seeded, motion, engine_members, jobs, base.min_impact_rate_radps);
-    const StatisticalComparison sk =
-        CompareEnsembles(e->outcomes, ok, two, out.tolerance_rad, scene.run.output_interval_s);
+    const std::vector<MemberOutcome> ok = RunEnginePerturbationMembers(
+        name, seeded, motion, engine_members, jobs, base.min_impact_rate_radps);
+    const StatisticalComparison sk = ComparePerturbationMembers(
+        e->outcomes, ok, two, out.tolerance_rad, scene.run.output_interval_s);
     const Verdict vk = MakeVerdict(seeded, ak, h, sk);
     c.same = c.same && vk.agrees == first.agrees;
     c.seeds.push_back({{"seed", seeded.compare.seed},
@@ -116,7 +116,7 @@ CompareRun RunCompare(const Scene& scene, const GroundMotion& motion,
   log(buf);
   if (!check.converged) log("  WARNING: " + ConvergenceWarning(check));
 
-  // 2. The reference ensemble: the predictability horizon.
+  // 2. The reference's perturbation members: the predictability horizon.
   out.tolerance_rad[0] = AngleTolerance_rad(scene, 1, ref.summary.peak_theta1_rad);
   out.tolerance_rad[1] = two ? AngleTolerance_rad(scene, 2, ref.summary.peak_theta2_rad) : 0.0;
   std::optional<Horizons> horizons;
@@ -126,30 +126,32 @@ CompareRun RunCompare(const Scene& scene, const GroundMotion& motion,
   const bool reference_failed = IsNonFinite(ref.summary.status);
   if (reference_failed) log("  FAILED: " + NonFiniteText(out.reference_run));
   if (scene.compare.members > 0 && !reference_failed) {
-    out.ensemble =
-        RunReferenceEnsemble(out.reference_scene, motion, ref, scene.compare.members,
-                             out.tolerance_rad, options.jobs, base.min_impact_rate_radps);
+    out.perturbation_members = RunReferencePerturbationMembers(
+        out.reference_scene, motion, ref, scene.compare.members, out.tolerance_rad, options.jobs,
+        base.min_impact_rate_radps);
     horizons = Horizons{};
-    TakeHorizons(*out.ensemble, nb, &*horizons, &compare_options);
+    TakeHorizons(*out.perturbation_members, nb, &*horizons, &compare_options);
     std::string line = "predictability (" + std::to_string(scene.compare.members) + " members";
     std::snprintf(buf, sizeof buf,
                   ", amplitude +-%g, samples +-%g of their printed precision, initial state "
                   "+-%g): theta1 horizon ",
                   scene.compare.amplitude_rel, scene.compare.sample_precision,
                   scene.compare.initial_rel);
-    line += buf + HorizonText(out.ensemble->horizon_s[0]);
-    if (two) line += ", theta2 horizon " + HorizonText(out.ensemble->horizon_s[1]);
-    std::snprintf(buf, sizeof buf, " (ensemble wall time %.2f s)", out.ensemble->wall_s);
+    line += buf + HorizonText(out.perturbation_members->horizon_s[0]);
+    if (two) line += ", theta2 horizon " + HorizonText(out.perturbation_members->horizon_s[1]);
+    std::snprintf(buf, sizeof buf, " (ensemble wall time %.2f s)",
+                  out.perturbation_members->wall_s);
     log(line + buf);
   }
   const bool horizon_within_run =
       horizons && (horizons->horizon_s[0] || (two && horizons->horizon_s[1]));
 
-  // 3. Each engine: its nominal run, and its ensemble when the reference's horizon falls inside
+  // 3. Each engine: its nominal run, and its perturbation members when the reference's horizon
+  // falls inside
   //    the run (before it, one run is enough to judge) and the engine agrees up to it.
   const int engine_members = std::min(scene.compare.engine_members, scene.compare.members);
-  // Reference ensembles of the extra seeds, run once for every engine that needs them.
-  std::vector<std::optional<ReferenceEnsemble>> extra_ensembles(kVerdictSeeds - 1);
+  // Reference perturbation memberss of the extra seeds, run once for every engine that needs them.
+  std::vector<std::optional<ReferencePerturbationMembers>> extra_ensembles(kVerdictSeeds - 1);
   for (const std::string& name : engines) {
     EngineRun run = RunEngine(name, scene, motion);
     log(run.one_line);
@@ -162,10 +164,10 @@ CompareRun RunCompare(const Scene& scene, const GroundMotion& motion,
                         v.kind != "reference_failed";
     if (beyond) {
       if (engine_members > 0) {
-        outcomes = RunEngineEnsemble(name, scene, motion, engine_members, options.jobs,
-                                     base.min_impact_rate_radps);
-        statistics = CompareEnsembles(out.ensemble->outcomes, outcomes, two, out.tolerance_rad,
-                                      scene.run.output_interval_s);
+        outcomes = RunEnginePerturbationMembers(name, scene, motion, engine_members, options.jobs,
+                                                base.min_impact_rate_radps);
+        statistics = ComparePerturbationMembers(out.perturbation_members->outcomes, outcomes, two,
+                                                out.tolerance_rad, scene.run.output_interval_s);
       }
       v = MakeVerdict(scene, a, horizons, statistics);
     }
@@ -211,7 +213,7 @@ CompareRun RunCompare(const Scene& scene, const GroundMotion& motion,
   if (const std::string t = NonFiniteText(out.reference_run); !t.empty()) {
     out.failures.push_back(t);
   }
-  if (out.ensemble) members("reference", out.ensemble->outcomes);
+  if (out.perturbation_members) members("reference", out.perturbation_members->outcomes);
   for (size_t k = 0; k < out.engine_runs.size(); ++k) {
     if (const std::string t = NonFiniteText(out.engine_runs[k]); !t.empty()) {
       out.failures.push_back(t);
@@ -221,8 +223,9 @@ CompareRun RunCompare(const Scene& scene, const GroundMotion& motion,
 
   out.comparison = ComparisonJson(scene, ref, out.reference.nominal_wall_s, out.agreements, base);
   out.comparison["reference"]["convergence"] = ConvergenceJson(scene, check);
-  out.comparison["predictability"] =
-      out.ensemble ? PredictabilityJson(scene, *out.ensemble) : nlohmann::json(nullptr);
+  out.comparison["predictability"] = out.perturbation_members
+                                         ? PredictabilityJson(scene, *out.perturbation_members)
+                                         : nlohmann::json(nullptr);
   return out;
 }
 

@@ -1,8 +1,8 @@
 #pragma once
 /// The whole comparison `rockbench compare` makes, in process: the reference checked against its
-/// witness, the reference ensemble (predictability horizon), each engine's run and, where the
-/// horizon falls inside the run, its ensemble and the statistical comparison; then one verdict
-/// per engine. Used by the CLI and by the agreement suite.
+/// witness, the reference's perturbation members (predictability horizon), each engine's run and,
+/// where the horizon falls inside the run, its perturbation members and the statistical comparison;
+/// then one verdict per engine. Used by the CLI and by the agreement suite.
 #include <functional>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -10,15 +10,15 @@
 #include <vector>
 
 #include "compare/agreement.h"
-#include "run/reference_witness.h"
-#include "run/engine_run.h"
 #include "compare/perturbation_members.h"
 #include "compare/verdict.h"
+#include "run/engine_run.h"
+#include "run/reference_witness.h"
 
 namespace rockbench {
 
 struct CompareRunOptions {
-  int jobs = 0;  ///< threads for the ensembles (0: every hardware thread)
+  int jobs = 0;  ///< threads for the perturbation members (0: every hardware thread)
   /// Called with one line of progress text as each stage ends (the CLI prints them).
   std::function<void(const std::string&)> log;
 };
@@ -27,18 +27,19 @@ struct CompareRun {
   CheckedReference reference;
   Scene reference_scene;  ///< the scene with the model settings of the solution used
   double tolerance_rad[2] = {0, 0};
-  std::optional<ReferenceEnsemble> ensemble;  ///< absent with compare.members = 0
-  std::vector<EngineRun> engine_runs;         ///< nominal runs, in the order asked
-  /// Per engine: its ensemble's outcomes (empty when none was run).
+  std::optional<ReferencePerturbationMembers>
+      perturbation_members;            ///< none with compare.members = 0
+  std::vector<EngineRun> engine_runs;  ///< nominal runs, in the order asked
+  /// Per engine: its perturbation members' outcomes (empty when none was run).
   std::vector<std::vector<MemberOutcome>> engine_outcomes;
   std::vector<EngineAgreement> agreements;  ///< with their verdicts
   nlohmann::json comparison;                ///< comparison.json
   /// The reference's run as written to DIR/reference (history of the solution used; summary
   /// with "convergence").
   EngineRun reference_run;
-  /// Every run of the comparison that ended non_finite (harness/engines.h), one line each
-  /// ("reference: theta2 is NaN at t = ...", "bullet ensemble member 3: ..."): the reference
-  /// (the solution used), the engines, and the members of the ensembles. Not empty: the
+  /// Every run of the comparison that ended non_finite (run/engine_run.h), one line each
+  /// ("reference: theta2 is NaN at t = ...", "bullet perturbation member 3: ..."): the reference
+  /// (the solution used), the engines, and the members of the perturbation members. Not empty: the
   /// comparison failed (`rockbench compare` exits with kExitRunFailed).
   std::vector<std::string> failures;
 };

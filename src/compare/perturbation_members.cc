@@ -6,12 +6,12 @@
 #include <cstdio>
 
 #include "compare/agreement.h"
+#include "reference/geometry.h"
+#include "reference/transitions.h"
 #include "run/parallel.h"
 #include "run/summary.h"
 #include "run/tolerance.h"
 #include "run/wall_clock.h"
-#include "reference/geometry.h"
-#include "reference/transitions.h"
 #include "util/format.h"
 
 namespace rockbench {
@@ -177,13 +177,12 @@ MemberOutcome OutcomeOf(const EngineRun& run, const Scene& scene, double min_imp
   return o;
 }
 
-ReferenceEnsemble RunReferenceEnsemble(const Scene& nominal_scene, const GroundMotion& motion,
-                                       const reference::Result& nominal, int members,
-                                       const double tolerance_rad[2], int threads,
-                                       double min_impact_rate_radps) {
+ReferencePerturbationMembers RunReferencePerturbationMembers(
+    const Scene& nominal_scene, const GroundMotion& motion, const reference::Result& nominal,
+    int members, const double tolerance_rad[2], int threads, double min_impact_rate_radps) {
   const auto start = std::chrono::steady_clock::now();
   const bool two = nominal_scene.two_blocks();
-  ReferenceEnsemble e;
+  ReferencePerturbationMembers e;
   e.members = members;
   e.tolerance_rad[0] = tolerance_rad[0];
   e.tolerance_rad[1] = tolerance_rad[1];
@@ -268,9 +267,9 @@ ReferenceEnsemble RunReferenceEnsemble(const Scene& nominal_scene, const GroundM
   return e;
 }
 
-std::vector<MemberOutcome> RunEngineEnsemble(const std::string& name, const Scene& scene,
-                                             const GroundMotion& motion, int members, int threads,
-                                             double min_impact_rate_radps) {
+std::vector<MemberOutcome> RunEnginePerturbationMembers(const std::string& name, const Scene& scene,
+                                                        const GroundMotion& motion, int members,
+                                                        int threads, double min_impact_rate_radps) {
   std::vector<MemberOutcome> out(members);
   ProgressLine progress(name + " ensemble");
   ParallelFor(
@@ -288,7 +287,7 @@ std::vector<MemberOutcome> RunEngineEnsemble(const std::string& name, const Scen
   return out;
 }
 
-nlohmann::json PredictabilityJson(const Scene& scene, const ReferenceEnsemble& e) {
+nlohmann::json PredictabilityJson(const Scene& scene, const ReferencePerturbationMembers& e) {
   const bool two = scene.two_blocks();
   const CompareConfig& c = scene.compare;
   nlohmann::json j;
@@ -323,7 +322,7 @@ nlohmann::json PredictabilityJson(const Scene& scene, const ReferenceEnsemble& e
   return j;
 }
 
-std::string EnsembleBandCsv(const ReferenceEnsemble& e, bool two) {
+std::string PerturbationBandCsv(const ReferencePerturbationMembers& e, bool two) {
   std::string out = two ? "t,theta1_lo,theta1_hi,theta1_spread,theta1_tol,theta2_lo,theta2_hi,"
                           "theta2_spread,theta2_tol\n"
                         : "t,theta1_lo,theta1_hi,theta1_spread,theta1_tol\n";

@@ -1,9 +1,10 @@
 #pragma once
-/// Ensembles on perturbed inputs: what the problem itself does when its inputs move within what
-/// they are known to. Member i's inputs depend only on ([compare] seed, i), so engine member i
-/// sees exactly the inputs of reference member i.
+/// Perturbation members: runs on perturbed inputs: what the problem itself does when its inputs
+/// move within what they are known to. Member i's inputs depend only on ([compare] seed, i), so
+/// engine member i sees exactly the inputs of reference member i.
 ///
-/// - The reference ensemble gives the predictability horizon: per block, the first time the
+/// - The reference's perturbation members gives the predictability horizon: per block, the first
+/// time the
 ///   members spread from the nominal run by more than the comparison tolerance.
 /// - Member outcomes (peaks, overturning, time of the largest excursion, impacts, residual
 ///   angle) are what the statistical comparison beyond the horizon is made of.
@@ -12,8 +13,8 @@
 #include <string>
 #include <vector>
 
-#include "run/engine_run.h"
 #include "reference/simulate.h"
+#include "run/engine_run.h"
 #include "scene/ground_motion.h"
 #include "scene/scene.h"
 
@@ -46,20 +47,20 @@ MemberInput PerturbedInput(const Scene& scene, const GroundMotion& motion, int m
 struct MemberOutcome {
   int member = -1;
   RunStatus status = RunStatus::kCompleted;  ///< as in summary.json
-  std::string detail;               ///< summary.json's status_detail (why it ended so)
-  int overturned_block = 0;         ///< 0: none, 1 or 2
-  double overturn_t_s = 0.0;        ///< when overturned_block != 0
-  double peak_rad[2] = {0, 0};      ///< peak |theta1|, |theta2|
-  double peak_t_s[2] = {0, 0};      ///< their times (the time of the largest excursion)
-  int impacts = 0;                  ///< impacts at or above the comparison's minimum rate
-  double residual_rad[2] = {0, 0};  ///< theta1, theta2 at the end of the run
+  std::string detail;                        ///< summary.json's status_detail (why it ended so)
+  int overturned_block = 0;                  ///< 0: none, 1 or 2
+  double overturn_t_s = 0.0;                 ///< when overturned_block != 0
+  double peak_rad[2] = {0, 0};               ///< peak |theta1|, |theta2|
+  double peak_t_s[2] = {0, 0};               ///< their times (the time of the largest excursion)
+  int impacts = 0;                           ///< impacts at or above the comparison's minimum rate
+  double residual_rad[2] = {0, 0};           ///< theta1, theta2 at the end of the run
   /// The root mean square of theta1, theta2 over the scene's duration (sqrt of the integral of
   /// theta^2 to the run's end, or to an overturn, over run.duration): the intensity of the
   /// whole response, which counts nothing and so has no counting threshold.
   double rms_rad[2] = {0, 0};
   double wall_s = 0.0;
   /// A run that stopped because the model's assumptions failed, or that ended non_finite
-  /// (harness/engines.h), has no outcome to compare.
+  /// (run/engine_run.h), has no outcome to compare.
   bool valid() const { return status != RunStatus::kAssumptionViolated && !IsNonFinite(status); }
 };
 
@@ -69,8 +70,8 @@ struct MemberOutcome {
 /// angle says nothing more, and engines stop on the step after it.
 MemberOutcome OutcomeOf(const EngineRun& run, const Scene& scene, double min_impact_rate_radps);
 
-/// The reference ensemble and what it says about predictability.
-struct ReferenceEnsemble {
+/// The reference's perturbation members and what it says about predictability.
+struct ReferencePerturbationMembers {
   int members = 0;
   std::vector<MemberPerturbation> perturbations;
   std::vector<MemberOutcome> outcomes;
@@ -78,7 +79,7 @@ struct ReferenceEnsemble {
   /// and the nominal run span, and the largest |member - nominal|.
   std::vector<double> t_s;
   std::vector<double> lo_rad[2], hi_rad[2], spread_rad[2];
-  /// The local tolerance of each block on the grid (harness/tolerance.h), which judges an
+  /// The local tolerance of each block on the grid (run/tolerance.h), which judges an
   /// engine's error before the horizon.
   std::vector<double> local_tolerance_rad[2];
   /// The tolerance at the scale of the nominal run's peak (AngleTolerance_rad): the horizon is
@@ -86,16 +87,15 @@ struct ReferenceEnsemble {
   double tolerance_rad[2] = {0, 0};
   std::optional<double> horizon_s[2];  ///< nullopt: within the tolerance for the whole run
   double max_spread_rad[2] = {0, 0};
-  double wall_s = 0.0;  ///< wall-clock time of the whole ensemble
+  double wall_s = 0.0;  ///< wall-clock time of all the members
 };
 
 /// Runs `members` reference members with the model settings of `nominal_scene` (pass the scene
 /// whose model produced `nominal`, e.g. the witness's when the default was not converged) and
 /// measures their spread around `nominal`. `tolerance_rad`: per block.
-ReferenceEnsemble RunReferenceEnsemble(const Scene& nominal_scene, const GroundMotion& motion,
-                                       const reference::Result& nominal, int members,
-                                       const double tolerance_rad[2], int threads,
-                                       double min_impact_rate_radps);
+ReferencePerturbationMembers RunReferencePerturbationMembers(
+    const Scene& nominal_scene, const GroundMotion& motion, const reference::Result& nominal,
+    int members, const double tolerance_rad[2], int threads, double min_impact_rate_radps);
 
 /// The time (s) after which the base motion can no longer start rocking from rest: the last time
 /// at which `safety` times the base acceleration (the vertical part taken at its worst sign)
@@ -109,15 +109,15 @@ double SettledAfter_s(const Scene& scene, const GroundMotion& motion, double saf
 
 /// Runs engine `name` on members 0 .. members-1 (the first reference members' inputs); each
 /// stops once at rest after SettledAfter_s of its own inputs.
-std::vector<MemberOutcome> RunEngineEnsemble(const std::string& name, const Scene& scene,
-                                             const GroundMotion& motion, int members, int threads,
-                                             double min_impact_rate_radps);
+std::vector<MemberOutcome> RunEnginePerturbationMembers(const std::string& name, const Scene& scene,
+                                                        const GroundMotion& motion, int members,
+                                                        int threads, double min_impact_rate_radps);
 
 /// comparison.json "predictability".
-nlohmann::json PredictabilityJson(const Scene& scene, const ReferenceEnsemble& e);
+nlohmann::json PredictabilityJson(const Scene& scene, const ReferencePerturbationMembers& e);
 
 /// reference/ensemble_band.csv: t,theta1_lo,theta1_hi,theta1_spread[,theta2_lo,...] (rad).
-std::string EnsembleBandCsv(const ReferenceEnsemble& e, bool two_blocks);
+std::string PerturbationBandCsv(const ReferencePerturbationMembers& e, bool two_blocks);
 
 /// <engine>/ensemble.csv: one row per member with its perturbation and outcome.
 std::string OutcomesCsv(const std::vector<MemberOutcome>& outcomes,

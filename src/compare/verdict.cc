@@ -41,10 +41,10 @@ std::string Value(double v, const std::string& unit) {
 
 }  // namespace
 
-StatisticalComparison CompareEnsembles(const std::vector<MemberOutcome>& reference,
-                                       const std::vector<MemberOutcome>& engine, bool two_blocks,
-                                       const double tolerance_rad[2], double time_margin_s,
-                                       double alpha) {
+StatisticalComparison ComparePerturbationMembers(const std::vector<MemberOutcome>& reference,
+                                                 const std::vector<MemberOutcome>& engine,
+                                                 bool two_blocks, const double tolerance_rad[2],
+                                                 double time_margin_s, double alpha) {
   StatisticalComparison s;
   s.alpha = alpha;
   // Members whose reference run stopped on a violated assumption have no reference outcome;

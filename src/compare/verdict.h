@@ -5,10 +5,10 @@
 /// 1. Where the reference is predictable (before its predictability horizon), the engine must
 ///    stay within the comparison tolerance of the reference: an error there is the engine's.
 /// 2. Beyond the horizon, runs whose inputs differ within what the inputs are known to spread by
-///    more than the tolerance, so one run's error ranks nothing: the engine's ensemble (the same
-///    perturbed inputs) is compared with the reference's by two-sample tests on what a user cares
-///    about (peaks, time of the largest excursion, impacts, residual angle, overturning), Holm-
-///    adjusted as one family at alpha = 0.05.
+///    more than the tolerance, so one run's error ranks nothing: the engine's perturbation members
+///    (the same perturbed inputs) is compared with the reference's by two-sample tests on what a
+///    user cares about (peaks, time of the largest excursion, impacts, residual angle,
+///    overturning), Holm- adjusted as one family at alpha = 0.05.
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
@@ -37,7 +37,7 @@ struct QuantityComparison {
   bool in_family = true;
 };
 
-/// The engine's ensemble against the reference's.
+/// The engine's perturbation members against the reference's.
 struct StatisticalComparison {
   bool available = false;
   std::string unavailable_reason;  ///< when not available
@@ -51,7 +51,8 @@ struct StatisticalComparison {
   std::string engine_non_finite_detail;
   double alpha = 0.05;
   std::vector<QuantityComparison> quantities;
-  /// Overturning: counts of none / block 1 / block 2 in each ensemble, Fisher-Freeman-Halton.
+  /// Overturning: counts of none / block 1 / block 2 in each set of perturbation members,
+  /// Fisher-Freeman-Halton.
   int overturn_reference[3] = {0, 0, 0}, overturn_engine[3] = {0, 0, 0};
   stats::TestResult overturn;
   double overturn_p_holm = 1.0;
@@ -62,10 +63,10 @@ struct StatisticalComparison {
 /// Compares the engine's member outcomes with the reference's. `tolerance_rad`: the comparison
 /// tolerances per block (they set the angle margins: 10% of them); `time_margin_s`: the margin
 /// of times (the scene's output interval).
-StatisticalComparison CompareEnsembles(const std::vector<MemberOutcome>& reference,
-                                       const std::vector<MemberOutcome>& engine, bool two_blocks,
-                                       const double tolerance_rad[2], double time_margin_s,
-                                       double alpha = 0.05);
+StatisticalComparison ComparePerturbationMembers(const std::vector<MemberOutcome>& reference,
+                                                 const std::vector<MemberOutcome>& engine,
+                                                 bool two_blocks, const double tolerance_rad[2],
+                                                 double time_margin_s, double alpha = 0.05);
 
 /// The verdict on one engine.
 struct Verdict {
@@ -73,15 +74,15 @@ struct Verdict {
   /// "agrees_to_horizon" (no statistical comparison was made beyond it),
   /// "differs_before_horizon" (an engine error where the reference is predictable, on the
   /// local tolerance, or an overturn the reference does not make),
-  /// "differs_beyond_horizon" (the engine's ensemble differs from the reference's),
+  /// "differs_beyond_horizon" (the engine's perturbation members differs from the reference's),
   /// "violates_model" (the engine's run ended non_finite, decided by "non_finite at t = ...";
   /// or it blew up or gained energy, or slid, lifted or penetrated where the reference's model
-  /// holds; or a member of its ensemble ended non_finite),
-  /// "reference_failed" (the reference's solution, or a member of its ensemble, ended
+  /// holds; or a member of its perturbation members ended non_finite),
+  /// "reference_failed" (the reference's solution, or a member of its perturbation members, ended
   /// non_finite: there is nothing to compare with, and the comparison failed),
   /// "outside_model" (the reference stops where its assumptions end: nothing to compare),
-  /// "marginal" (the statistical decision changes with the ensemble's seed),
-  /// "pointwise_only" / "pointwise_differs" (no reference ensemble was run).
+  /// "marginal" (the statistical decision changes with the members' seed),
+  /// "pointwise_only" / "pointwise_differs" (no perturbation members were run).
   std::string kind;
   bool agrees = false;
   std::string text;        ///< one paragraph in plain words
@@ -106,10 +107,10 @@ inline bool InMarginalBand(double p) {
 }
 
 /// Horizons per block: nullopt inside means "predictable for the whole run"; an absent
-/// `predictability` means no ensemble was run.
+/// `predictability` means no perturbation members were run.
 struct Horizons {
   std::optional<double> horizon_s[2];
-  /// Reference members that ended non_finite (harness/engines.h), and the first one's
+  /// Reference members that ended non_finite (run/engine_run.h), and the first one's
   /// "member i: detail": the horizon measured without them is not the reference's, and the
   /// verdict is reference_failed.
   int non_finite_members = 0;

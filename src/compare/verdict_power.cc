@@ -6,9 +6,9 @@
 
 #include "compare/agreement.h"
 #include "compare/perturbation_members.h"
+#include "reference/simulate.h"
 #include "run/parallel.h"
 #include "run/summary.h"
-#include "reference/simulate.h"
 
 namespace rockbench {
 namespace {
@@ -52,7 +52,7 @@ PowerEstimate EstimateVerdictPower(const Scene& scene, const GroundMotion& motio
       outcomes[i].member = i;
     });
     const std::vector<MemberOutcome> reference(outcomes.begin(), outcomes.begin() + n);
-    // The engine's members are numbered 0 .. M-1 for CompareEnsembles' pairing (every
+    // The engine's members are numbered 0 .. M-1 for ComparePerturbationMembers' pairing (every
     // reference member it pairs with must be valid for the engine member to count).
     std::vector<MemberOutcome> unbiased(outcomes.begin() + n, outcomes.end());
     for (int i = 0; i < m; ++i) unbiased[i].member = i;
@@ -61,9 +61,9 @@ PowerEstimate EstimateVerdictPower(const Scene& scene, const GroundMotion& motio
       for (double& p : o.peak_rad) p *= 1.0 + config.bias;
     }
     const StatisticalComparison sb =
-        CompareEnsembles(reference, biased, two, tolerance, scene.run.output_interval_s);
-    const StatisticalComparison su =
-        CompareEnsembles(reference, unbiased, two, tolerance, scene.run.output_interval_s);
+        ComparePerturbationMembers(reference, biased, two, tolerance, scene.run.output_interval_s);
+    const StatisticalComparison su = ComparePerturbationMembers(reference, unbiased, two, tolerance,
+                                                                scene.run.output_interval_s);
     if (sb.available && !sb.consistent) ++est.detected_biased;
     if (su.available && !su.consistent) ++est.flagged_unbiased;
     est.min_p_biased.push_back(MinHolm(sb));

@@ -11,7 +11,7 @@ namespace rockbench {
 
 /// Settings of a power estimate.
 struct PowerConfig {
-  int reference_members = 32;  ///< the reference ensemble's size
+  int reference_members = 32;  ///< the reference's perturbation members's size
   int engine_members = 16;     ///< the synthetic engine ensemble's size
   double bias = 0.05;          ///< relative bias added to every peak |theta| of the engine
   int trials = 40;             ///< independent repetitions (seeds first_seed, first_seed + 1...)
@@ -32,12 +32,12 @@ struct PowerEstimate {
   }
 };
 
-/// In trial k (seed first_seed + k) the reference ensemble is members 0 .. N-1 and the
-/// synthetic engine ensemble is the reference model on members N .. N+M-1 (inputs drawn
+/// In trial k (seed first_seed + k) the reference's perturbation members is members 0 .. N-1 and
+/// the synthetic engine ensemble is the reference model on members N .. N+M-1 (inputs drawn
 /// independently of the reference sample's: the null holds exactly, so the false-alarm rate is
 /// the test's size; a real engine runs on members 0 .. M-1, which only makes it more
 /// conservative). The unbiased engine is that ensemble as is, the biased one multiplies its
-/// peaks by 1 + bias. Both go through CompareEnsembles with the scene's tolerances.
+/// peaks by 1 + bias. Both go through ComparePerturbationMembers with the scene's tolerances.
 PowerEstimate EstimateVerdictPower(const Scene& scene, const GroundMotion& motion,
                                    const PowerConfig& config);
 

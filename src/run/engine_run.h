@@ -31,13 +31,13 @@ struct EngineRun {
 /// Whether `status` is non_finite, the status of a run (the reference's or an engine's) whose
 /// state, energy, an event time or a contact force stopped being finite: the run failed. Its
 /// history, events and summary end at its last finite state (summary.json "non_finite": quantity,
-/// value, t_s, last_finite_t_s); it is never an agreement (harness/verdict.h) and `run` and
+/// value, t_s, last_finite_t_s); it is never an agreement (compare/verdict.h) and `run` and
 /// `compare` exit with a failure.
 inline bool IsNonFinite(RunStatus status) {
   return status == RunStatus::kNonFinite;
 }
 
-/// "reference" and the engines this build has (harness/engine_registry.h), in that order.
+/// "reference" and the engines this build has (run/engine_registry.h), in that order.
 std::vector<std::string> AvailableEngines();
 
 /// Runs engine `name` ("reference" or a physics engine: the same interface, scene/engine.h).

@@ -5,9 +5,9 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 
+#include "reference/simulate.h"
 #include "run/engine_run.h"
 #include "run/tolerance.h"
-#include "reference/simulate.h"
 #include "scene/ground_motion.h"
 #include "scene/scene.h"
 
@@ -31,7 +31,7 @@ struct ConvergenceCheck {
   std::optional<double> diverges_at_s;
   bool same_status = true;  ///< both runs end the same way (status and overturned block)
   bool converged = true;    ///< never diverges and ends the same way
-  /// Which of the two ended non_finite (harness/engines.h IsNonFinite): such a run failed, and
+  /// Which of the two ended non_finite (run/engine_run.h IsNonFinite): such a run failed, and
   /// the solution used is the failed one, so that the failure is reported, never hidden behind
   /// the other run.
   bool nominal_non_finite = false, witness_non_finite = false;

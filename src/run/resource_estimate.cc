@@ -147,7 +147,7 @@ RunEstimate EstimateRun(const Scene& scene, const std::vector<std::string>& engi
   // The reference's steps: rk4's fixed step, or at least one per largest step and per record
   // sample inside the run.
   double ref_steps = 0.0;
-  // The convergence witness (harness/convergence.h, WitnessModel) takes 10 times the steps of
+  // The convergence witness (run/reference_witness.h, WitnessModel) takes 10 times the steps of
   // the thesis's event scheme, 4 times rk4's, and about as many as dopri5's or dop853's.
   double witness = 1.0;
   std::string ref_key, ref_what;

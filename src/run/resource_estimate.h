@@ -31,7 +31,7 @@ struct RunEstimate {
 };
 
 /// What a run of the reference and `engines` (built engine names) with `members` reference and
-/// `engine_members` engine ensemble members on `jobs` threads needs. The engines' steps come
+/// `engine_members` engine perturbation members on `jobs` threads needs. The engines' steps come
 /// from their tables' time_step (resolved against their schemas; a scene whose table does not
 /// resolve is left to the engine's own error). Throws nothing for a valid scene.
 RunEstimate EstimateRun(const Scene& scene, const std::vector<std::string>& engines, int members,

@@ -68,8 +68,8 @@ std::string ToleranceRuleText(const ToleranceConfig& config = {});
 /// The tolerance of block `block` (1 or 2) at the scale of the reference's peak, rad: the scene's
 /// [compare] tolerance, else 10% of the peak |theta| (capped at the block's critical angle
 /// atan(B/H)), never below 1% of the critical angle: the local rule above where the
-/// envelope is the peak. The convergence check, the ensembles' statistics and the final state
-/// use it; the agreement horizon uses the local tolerance.
+/// envelope is the peak. The convergence check, the perturbation members' statistics and the final
+/// state use it; the agreement horizon uses the local tolerance.
 double AngleTolerance_rad(const Scene& scene, int block, double reference_peak_rad);
 
 }  // namespace rockbench

@@ -1,9 +1,10 @@
 #pragma once
 /// The engine interface: what the reference (src/run/reference_engine.h) and every physics
-/// engine adapter (engines/<name>/) implement, and all the harness knows of an engine. An engine declares its settings (the scene's [<name>] table),
-/// the settings grid it offers to the work-precision sweep, and simulates a scene. The list of
-/// engines is engines/CMakeLists.txt (one line each); an engine whose library is missing at
-/// build time is left out and named by `rockbench engines`.
+/// engine adapter (engines/<name>/) implement, and all the harness knows of an engine. An engine
+/// declares its settings (the scene's [<name>] table), the settings grid it offers to the
+/// work-precision sweep, and simulates a scene. The list of engines is engines/CMakeLists.txt (one
+/// line each); an engine whose library is missing at build time is left out and named by `rockbench
+/// engines`.
 #include <functional>
 #include <limits>
 #include <memory>

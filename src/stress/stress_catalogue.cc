@@ -5,12 +5,12 @@
 #include <cmath>
 #include <numbers>
 
-#include "run/engine_registry.h"
-#include "stress/stress.h"
 #include "reference/geometry.h"
 #include "reference/kinematics.h"
 #include "reference/transitions.h"
+#include "run/engine_registry.h"
 #include "scene/ground_motion.h"
+#include "stress/stress.h"
 #include "util/format.h"
 
 namespace rockbench {

@@ -12,16 +12,16 @@
 #include <mutex>
 #include <thread>
 
-#include "engines/common/monitor.h"
 #include "compare/agreement.h"
-#include "run/engine_registry.h"
-#include "run/engine_run.h"
-#include "stress/stress.h"
-#include "run/wall_clock.h"
+#include "engines/common/monitor.h"
 #include "reference/geometry.h"
 #include "reference/kinematics.h"
 #include "reference/simulate.h"
+#include "run/engine_registry.h"
+#include "run/engine_run.h"
+#include "run/wall_clock.h"
 #include "scene/ground_motion.h"
+#include "stress/stress.h"
 #include "util/format.h"
 #include "util/subprocess.h"
 

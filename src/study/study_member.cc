@@ -6,10 +6,10 @@
 #include <cmath>
 
 #include "compare/agreement.h"
-#include "run/engine_registry.h"
-#include "run/reference_engine.h"
-#include "run/engine_run.h"
 #include "compare/perturbation_members.h"
+#include "run/engine_registry.h"
+#include "run/engine_run.h"
+#include "run/reference_engine.h"
 #include "scene/ground_motion.h"
 #include "scene/intensity.h"
 

@@ -32,9 +32,9 @@ struct MemberRow {
   int impacts = 0;  ///< impacts at or above the study's min_impact_rate
   double wall_s = 0.0;
   bool has_result = false;  ///< the run gave an outcome (false for crash, wall_limit, error)
-  /// Reference rows: the run agrees with its witness (harness/convergence.h).
+  /// Reference rows: the run agrees with its witness (run/reference_witness.h).
   std::optional<bool> converged;
-  /// Engine rows: the comparison with the member's reference (harness/compare.h).
+  /// Engine rows: the comparison with the member's reference (compare/agreement.h).
   struct Agreement {
     double theta1_max_abs_error_rad = 0.0, theta1_horizon_s = 0.0;
     std::optional<double> theta2_max_abs_error_rad, theta2_horizon_s;

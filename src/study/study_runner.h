@@ -4,7 +4,7 @@
 /// member order. A worker that crashes or hangs costs only its run (a row with its status) and
 /// is replaced. `--resume` skips the rows already in the file; a study killed at any moment and
 /// resumed ends with the same file as one never interrupted (wall times aside). Under MPI the
-/// ranks share the runs through rank 0 (harness/study_mpi.h), which alone writes the file.
+/// ranks share the runs through rank 0 (study/study_mpi.h), which alone writes the file.
 #include <cstdint>
 #include <filesystem>
 #include <functional>

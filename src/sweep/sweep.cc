@@ -12,10 +12,10 @@
 #include <mutex>
 #include <thread>
 
+#include "reference/simulate.h"
 #include "run/engine_registry.h"
 #include "run/engine_run.h"
 #include "run/wall_clock.h"
-#include "reference/simulate.h"
 
 namespace rockbench {
 

@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "scene/engine.h"
 #include "compare/agreement.h"
+#include "scene/engine.h"
 #include "scene/ground_motion.h"
 #include "scene/scene.h"
 
@@ -51,11 +51,11 @@ inline constexpr double kSweepTightAtol = 1e-14;
 
 /// The tight reference every row is compared with (dopri5, kSweepTightRtol/Atol).
 struct SweepBaseline {
-  double wall_s = 0.0;           ///< its wall time, s
+  double wall_s = 0.0;                       ///< its wall time, s
   RunStatus status = RunStatus::kCompleted;  ///< its summary status (completed, overturned, ...)
-  double peak_theta1_rad = 0.0;  ///< peak |theta1| over the run, rad
-  double peak_theta1_t_s = 0.0;  ///< its time, s (0: the release angle is the peak)
-  double peak_theta2_rad = 0.0;  ///< peak |theta2|, rad (0 for one block)
+  double peak_theta1_rad = 0.0;              ///< peak |theta1| over the run, rad
+  double peak_theta1_t_s = 0.0;              ///< its time, s (0: the release angle is the peak)
+  double peak_theta2_rad = 0.0;              ///< peak |theta2|, rad (0 for one block)
   double peak_theta2_t_s = 0.0;
   int overturn_block = 0;  ///< 1 or 2 when a block overturned, else 0
   double overturn_t_s = 0.0;

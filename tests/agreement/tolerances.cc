@@ -12,9 +12,9 @@
 
 #include "compare/agreement.h"
 #include "compare/compare_run.h"
+#include "reference/simulate.h"
 #include "run/engine_registry.h"
 #include "run/engine_run.h"
-#include "reference/simulate.h"
 #include "scene/ground_motion.h"
 #include "scene/scene.h"
 

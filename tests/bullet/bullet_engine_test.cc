@@ -21,9 +21,9 @@
 #include <vector>
 
 #include "compare/agreement.h"
-#include "run/engine_run.h"
 #include "reference/benchmarks/closed_forms.h"
 #include "reference/simulate.h"
+#include "run/engine_run.h"
 #include "scene/ground_motion.h"
 #include "scene/scene.h"
 

@@ -1,5 +1,7 @@
 // Bullet's settings: the [bullet] table's checks (the shared engine input and the kinematic
 // drive are tested on their own in tests/engines/drive_test.cc).
+#include "engines/bullet/bullet_settings.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -7,8 +9,6 @@
 #include <numbers>
 #include <string>
 #include <vector>
-
-#include "engines/bullet/bullet_settings.h"
 
 namespace rockbench::bullet {
 namespace {

@@ -10,8 +10,8 @@
 
 #include "compare/agreement.h"
 #include "run/engine_run.h"
-#include "stress/stress.h"
 #include "scene/ground_motion.h"
+#include "stress/stress.h"
 #include "tests/common/housner_scene.h"
 
 namespace rockbench {
@@ -80,17 +80,18 @@ TEST(PerturbedInput, KeepsClosedContactsClosed) {
   }
 }
 
-ReferenceEnsemble Ensemble(const Scene& s, const GroundMotion& m, int members, int threads) {
+ReferencePerturbationMembers Ensemble(const Scene& s, const GroundMotion& m, int members,
+                                      int threads) {
   const reference::Result nominal = reference::Simulate(s, m);
   const double tol[2] = {AngleTolerance_rad(s, 1, nominal.summary.peak_theta1_rad),
                          AngleTolerance_rad(s, 2, nominal.summary.peak_theta2_rad)};
-  return RunReferenceEnsemble(s, m, nominal, members, tol, threads, 0.02);
+  return RunReferencePerturbationMembers(s, m, nominal, members, tol, threads, 0.02);
 }
 
-TEST(ReferenceEnsemble, NoPerturbationMeansNoSpreadAndNoHorizon) {
+TEST(ReferencePerturbationMembers, NoPerturbationMeansNoSpreadAndNoHorizon) {
   Scene s = Rinaldi();
   s.compare.amplitude_rel = s.compare.sample_precision = s.compare.initial_rel = 0.0;
-  const ReferenceEnsemble e = Ensemble(s, GroundMotion::FromScene(s), 4, 2);
+  const ReferencePerturbationMembers e = Ensemble(s, GroundMotion::FromScene(s), 4, 2);
   EXPECT_EQ(e.max_spread_rad[0], 0.0);
   EXPECT_EQ(e.max_spread_rad[1], 0.0);
   EXPECT_FALSE(e.horizon_s[0].has_value());
@@ -101,25 +102,26 @@ TEST(ReferenceEnsemble, NoPerturbationMeansNoSpreadAndNoHorizon) {
 // neither its horizon nor the band reach past the overturn (they used to hold block 1's last
 // angle and call the members' later rocking a spread: a theta1 horizon of 6.18 s after a 5.42 s
 // overturn).
-TEST(ReferenceEnsemble, NothingIsComparedAfterTheNominalRunEnds) {
+TEST(ReferencePerturbationMembers, NothingIsComparedAfterTheNominalRunEnds) {
   const Scene s = Rinaldi();
   const GroundMotion m = GroundMotion::FromScene(s);
   const reference::Result nominal = reference::Simulate(s, m);
   ASSERT_EQ(nominal.summary.overturn_block.value_or(0), 2);
   const double end_s = nominal.summary.overturn_t_s;
-  const ReferenceEnsemble e = Ensemble(s, m, 32, 2);
+  const ReferencePerturbationMembers e = Ensemble(s, m, 32, 2);
   for (int b = 0; b < 2; ++b) {
     if (e.horizon_s[b]) {
       EXPECT_LE(*e.horizon_s[b], end_s) << "theta" << b + 1;
     }
   }
-  const std::string band = EnsembleBandCsv(e, true);
+  const std::string band = PerturbationBandCsv(e, true);
   const std::string last_line = band.substr(band.rfind('\n', band.size() - 2) + 1);
   EXPECT_LE(std::stod(last_line), end_s) << last_line;
   EXPECT_GT(std::stod(last_line), end_s - 2.0 * s.run.output_interval_s) << last_line;
 }
 
-TEST(ReferenceEnsemble, SpreadIsLinearInASmallPerturbationAndTheHorizonComesEarlierWhenLarger) {
+TEST(ReferencePerturbationMembers,
+     SpreadIsLinearInASmallPerturbationAndTheHorizonComesEarlierWhenLarger) {
   // Rinaldi 228 on the thesis's stack: before the first impacts the response is a smooth
   // function of the record's scale, so the members' spread up to 3 s scales with the amplitude
   // perturbation (ratio 10 for 1e-4 -> 1e-3, within 20%: the second-order term is ~1e-3 of the
@@ -128,7 +130,7 @@ TEST(ReferenceEnsemble, SpreadIsLinearInASmallPerturbationAndTheHorizonComesEarl
   s.compare.sample_precision = 0.0;
   s.compare.initial_rel = 0.0;
   const GroundMotion m = GroundMotion::FromScene(s);
-  auto spread_until = [](const ReferenceEnsemble& e, double t_end) {
+  auto spread_until = [](const ReferencePerturbationMembers& e, double t_end) {
     double v = 0.0;
     for (size_t k = 0; k < e.t_s.size() && e.t_s[k] <= t_end; ++k) {
       v = std::max(v, e.spread_rad[1][k]);
@@ -136,11 +138,11 @@ TEST(ReferenceEnsemble, SpreadIsLinearInASmallPerturbationAndTheHorizonComesEarl
     return v;
   };
   s.compare.amplitude_rel = 1e-4;
-  const ReferenceEnsemble small = Ensemble(s, m, 8, 2);
+  const ReferencePerturbationMembers small = Ensemble(s, m, 8, 2);
   s.compare.amplitude_rel = 1e-3;
-  const ReferenceEnsemble mid = Ensemble(s, m, 8, 2);
+  const ReferencePerturbationMembers mid = Ensemble(s, m, 8, 2);
   s.compare.amplitude_rel = 1e-2;
-  const ReferenceEnsemble large = Ensemble(s, m, 8, 2);
+  const ReferencePerturbationMembers large = Ensemble(s, m, 8, 2);
   const double ratio = spread_until(mid, 3.0) / spread_until(small, 3.0);
   EXPECT_NEAR(ratio, 10.0, 2.0);
   EXPECT_FALSE(small.horizon_s[1].has_value());
@@ -153,11 +155,11 @@ TEST(ReferenceEnsemble, SpreadIsLinearInASmallPerturbationAndTheHorizonComesEarl
   }
 }
 
-TEST(ReferenceEnsemble, TheSameBytesWhateverTheThreadCount) {
+TEST(ReferencePerturbationMembers, TheSameBytesWhateverTheThreadCount) {
   Scene s = Rinaldi();
   const GroundMotion m = GroundMotion::FromScene(s);
-  const ReferenceEnsemble one = Ensemble(s, m, 6, 1), three = Ensemble(s, m, 6, 3);
-  EXPECT_EQ(EnsembleBandCsv(one, true), EnsembleBandCsv(three, true));
+  const ReferencePerturbationMembers one = Ensemble(s, m, 6, 1), three = Ensemble(s, m, 6, 3);
+  EXPECT_EQ(PerturbationBandCsv(one, true), PerturbationBandCsv(three, true));
   EXPECT_EQ(OutcomesCsv(one.outcomes, one.perturbations, true),
             OutcomesCsv(three.outcomes, three.perturbations, true));
 }

@@ -34,34 +34,34 @@ std::vector<MemberOutcome> Outcomes(int n, double peak, double spread, int offse
 
 const double kTolerance[2] = {0.01, 0.02};  // 10% of the peaks below
 
-TEST(CompareEnsembles, SameDistributionIsConsistent) {
+TEST(ComparePerturbationMembers, SameDistributionIsConsistent) {
   const auto ref = Outcomes(32, 0.1, 0.2, 0), eng = Outcomes(16, 0.1, 0.2, 3);
-  const StatisticalComparison s = CompareEnsembles(ref, eng, true, kTolerance, 0.01);
+  const StatisticalComparison s = ComparePerturbationMembers(ref, eng, true, kTolerance, 0.01);
   ASSERT_TRUE(s.available);
   EXPECT_TRUE(s.consistent) << s.rejected.size();
   EXPECT_EQ(s.reference_members, 32);
   EXPECT_EQ(s.engine_members, 16);
 }
 
-TEST(CompareEnsembles, AFivePercentPeakBiasOnATightEnsembleIsDetected) {
+TEST(ComparePerturbationMembers, AFivePercentPeakBiasOnATightEnsembleIsDetected) {
   // Peaks within +-1% (what a +-1% record scale gives where the response is linear); the engine's
   // are 5% higher: after the 1% slack (10% of the 10% tolerance) 3% remain, beyond every
   // reference value: D = 1 for 32 against 16 (exact p 2 / C(48, 16) ~ 4e-13 without slack).
   const auto ref = Outcomes(32, 0.1, 0.01, 0);
   auto eng = Outcomes(16, 0.1, 0.01, 3);
   for (MemberOutcome& o : eng) o.peak_rad[1] *= 1.05;
-  const StatisticalComparison s = CompareEnsembles(ref, eng, true, kTolerance, 0.01);
+  const StatisticalComparison s = ComparePerturbationMembers(ref, eng, true, kTolerance, 0.01);
   EXPECT_FALSE(s.consistent);
   ASSERT_EQ(s.rejected.size(), 1u);
   EXPECT_EQ(s.rejected[0], "peak_theta2_rad");
 }
 
-TEST(CompareEnsembles, DifferencesBelowTheResolutionAreNotDifferences) {
+TEST(ComparePerturbationMembers, DifferencesBelowTheResolutionAreNotDifferences) {
   // An engine at rest 1e-10 rad off zero (a contact's compliance) while the reference ends
   // exactly at 0: without slack KS would see D = 1.
   auto ref = Outcomes(32, 0.1, 0.2, 0), eng = Outcomes(16, 0.1, 0.2, 3);
   for (MemberOutcome& o : eng) o.residual_rad[0] = (o.member % 2 ? 1e-10 : -2e-10);
-  const StatisticalComparison s = CompareEnsembles(ref, eng, true, kTolerance, 0.01);
+  const StatisticalComparison s = ComparePerturbationMembers(ref, eng, true, kTolerance, 0.01);
   EXPECT_TRUE(s.consistent);
   for (const QuantityComparison& q : s.quantities) {
     if (q.key == "residual_theta1_rad") {
@@ -71,25 +71,25 @@ TEST(CompareEnsembles, DifferencesBelowTheResolutionAreNotDifferences) {
   }
 }
 
-TEST(CompareEnsembles, OverturningEveryTimeAgainstNeverIsDetected) {
+TEST(ComparePerturbationMembers, OverturningEveryTimeAgainstNeverIsDetected) {
   auto ref = Outcomes(32, 0.1, 0.2, 0), eng = Outcomes(16, 0.1, 0.2, 3);
   for (MemberOutcome& o : eng) o.overturned_block = 2;
-  const StatisticalComparison s = CompareEnsembles(ref, eng, true, kTolerance, 0.01);
+  const StatisticalComparison s = ComparePerturbationMembers(ref, eng, true, kTolerance, 0.01);
   EXPECT_EQ(s.overturn_engine[2], 16);
   EXPECT_EQ(s.overturn_reference[0], 32);
   EXPECT_LT(s.overturn.p_value, 1e-10);  // 1 / C(48, 16)
   EXPECT_FALSE(s.consistent);
 }
 
-TEST(CompareEnsembles, MembersWhoseReferenceViolatedTheModelAreLeftOut) {
+TEST(ComparePerturbationMembers, MembersWhoseReferenceViolatedTheModelAreLeftOut) {
   auto ref = Outcomes(32, 0.1, 0.2, 0), eng = Outcomes(16, 0.1, 0.2, 3);
   ref[3].status = RunStatus::kAssumptionViolated;
-  const StatisticalComparison s = CompareEnsembles(ref, eng, true, kTolerance, 0.01);
+  const StatisticalComparison s = ComparePerturbationMembers(ref, eng, true, kTolerance, 0.01);
   EXPECT_EQ(s.excluded, 1);
   EXPECT_EQ(s.reference_members, 31);
   EXPECT_EQ(s.engine_members, 15);
   const auto few = Outcomes(4, 0.1, 0.2, 0);
-  EXPECT_FALSE(CompareEnsembles(few, few, true, kTolerance, 0.01).available);
+  EXPECT_FALSE(ComparePerturbationMembers(few, few, true, kTolerance, 0.01).available);
 }
 
 EngineAgreement Agreement(double horizon1, double horizon2, bool within1, bool within2) {
@@ -127,14 +127,15 @@ TEST(MakeVerdict, BeyondTheHorizonTheStatisticsDecide) {
   EXPECT_EQ(MakeVerdict(s, a, h, std::nullopt).kind, "agrees_to_horizon");
   const auto ref = Outcomes(32, 0.1, 0.2, 0);
   const StatisticalComparison same =
-      CompareEnsembles(ref, Outcomes(16, 0.1, 0.2, 3), true, kTolerance, 0.01);
+      ComparePerturbationMembers(ref, Outcomes(16, 0.1, 0.2, 3), true, kTolerance, 0.01);
   const Verdict ok = MakeVerdict(s, a, h, same);
   EXPECT_EQ(ok.kind, "agrees");
   EXPECT_TRUE(ok.agrees);
   EXPECT_NE(ok.text.find("KS p = "), std::string::npos) << ok.text;
   auto eng = Outcomes(16, 0.1, 0.2, 3);
   for (MemberOutcome& o : eng) o.overturned_block = 2;
-  const Verdict bad = MakeVerdict(s, a, h, CompareEnsembles(ref, eng, true, kTolerance, 0.01));
+  const Verdict bad =
+      MakeVerdict(s, a, h, ComparePerturbationMembers(ref, eng, true, kTolerance, 0.01));
   EXPECT_EQ(bad.kind, "differs_beyond_horizon");
   EXPECT_NE(bad.text.find("overturning"), std::string::npos) << bad.text;
   // Predictable throughout, within the tolerance: agrees, statistics or not.
@@ -218,7 +219,7 @@ TEST(MakeVerdict, NoValidReferenceMemberBeyondTheHorizonIsOutsideTheModel) {
   std::vector<MemberOutcome> ref = Outcomes(32, 0.1, 0.2, 0);
   for (MemberOutcome& o : ref) o.status = RunStatus::kAssumptionViolated;
   const StatisticalComparison st =
-      CompareEnsembles(ref, Outcomes(16, 0.1, 0.2, 3), true, kTolerance, 0.01);
+      ComparePerturbationMembers(ref, Outcomes(16, 0.1, 0.2, 3), true, kTolerance, 0.01);
   ASSERT_FALSE(st.available);
   EXPECT_EQ(MakeVerdict(s, a, h, st).kind, "outside_model");
 }
@@ -234,13 +235,13 @@ TEST(MakeVerdict, AnOverturnThePredictableReferenceDoesNotMakeIsTheEngines) {
   EXPECT_EQ(v.decided_by, "overturning");
 }
 
-TEST(CompareEnsembles, TheImpactCountIsReportedButDoesNotDecide) {
+TEST(ComparePerturbationMembers, TheImpactCountIsReportedButDoesNotDecide) {
   // Counts that differ by a shift (every engine member 5 impacts fewer): reported with its
   // p-value, outside the Holm family, so the ensembles stay consistent.
   const auto ref = Outcomes(32, 0.1, 0.2, 0);
   auto eng = Outcomes(16, 0.1, 0.2, 3);
   for (MemberOutcome& o : eng) o.impacts -= 5;
-  const StatisticalComparison s = CompareEnsembles(ref, eng, true, kTolerance, 0.01);
+  const StatisticalComparison s = ComparePerturbationMembers(ref, eng, true, kTolerance, 0.01);
   ASSERT_TRUE(s.available);
   const QuantityComparison* impacts = nullptr;
   for (const QuantityComparison& q : s.quantities) {
@@ -254,7 +255,7 @@ TEST(CompareEnsembles, TheImpactCountIsReportedButDoesNotDecide) {
   for (MemberOutcome& o : eng) o.rms_rad[1] = 0.8 * 0.05;
   auto ref2 = ref;
   for (MemberOutcome& o : ref2) o.rms_rad[1] = 0.05;
-  EXPECT_FALSE(CompareEnsembles(ref2, eng, true, kTolerance, 0.01).consistent);
+  EXPECT_FALSE(ComparePerturbationMembers(ref2, eng, true, kTolerance, 0.01).consistent);
 }
 
 TEST(VerdictPower, DetectsAFivePercentPeakBiasAtTheDefaultSizesAndRarelyFlagsAnUnbiasedEngine) {

@@ -20,9 +20,9 @@
 
 #include "common/error_of.h"
 #include "common/scratch_dir_test.h"
-#include "run/engine_registry.h"
 #include "reference/benchmarks/closed_forms.h"
 #include "reference/simulate.h"
+#include "run/engine_registry.h"
 #include "scene/ground_motion.h"
 #include "scene/scene.h"
 

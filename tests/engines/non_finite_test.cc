@@ -13,13 +13,13 @@
 
 #include "common/thesis_scene.h"
 #include "compare/agreement.h"
-#include "run/reference_engine.h"
-#include "run/engine_registry.h"
-#include "run/engine_run.h"
 #include "compare/perturbation_members.h"
-#include "run/summary.h"
 #include "compare/verdict.h"
 #include "reference/simulate.h"
+#include "run/engine_registry.h"
+#include "run/engine_run.h"
+#include "run/reference_engine.h"
+#include "run/summary.h"
 #include "scene/ground_motion.h"
 #include "scene/history.h"
 
@@ -205,7 +205,7 @@ TEST(NonFiniteHarness, FailedEnsembleMembersAreNeverAnAgreement) {
   engine[3].status = RunStatus::kNonFinite;
   engine[3].detail = "energy is +inf at t = 0.4901 s";
   const double tol[2] = {0.01, 0.01};
-  const StatisticalComparison st = CompareEnsembles(members, engine, true, tol, 0.01);
+  const StatisticalComparison st = ComparePerturbationMembers(members, engine, true, tol, 0.01);
   EXPECT_EQ(st.engine_non_finite, 1);
   EXPECT_EQ(st.engine_members, 11);
   Horizons h;

@@ -3,8 +3,6 @@
 // member says so and marks that member; a fragility study whose engine overturns at twice the
 // reference's PGA says the difference excludes zero, and one whose engine agrees says it
 // contains zero; a malformed members.csv is an error naming its line.
-#include "report/study/study_report.h"
-
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -12,8 +10,9 @@
 #include <sstream>
 
 #include "common/scratch_dir_test.h"
-#include "study/study_member.h"
 #include "report/run/run_report.h"
+#include "report/study/study_report.h"
+#include "study/study_member.h"
 
 namespace rockbench::report {
 namespace {

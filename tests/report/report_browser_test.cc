@@ -13,8 +13,8 @@
 
 #include "renders/animation.h"
 #include "renders/image.h"
-#include "report/run_folder.h"
 #include "report/run/run_report.h"
+#include "report/run_folder.h"
 #include "scene/history.h"
 #include "util/subprocess.h"
 

@@ -18,9 +18,9 @@
 #include <vector>
 
 #include "report/common/page.h"
-#include "report/run_folder.h"
-#include "report/run/run_report.h"
 #include "report/compare/verdict_section.h"
+#include "report/run/run_report.h"
+#include "report/run_folder.h"
 #include "scene/history.h"
 
 namespace rockbench::report {

@@ -13,9 +13,9 @@
 #include <vector>
 
 #include "common/scratch_dir_test.h"
-#include "sweep/sweep.h"
 #include "report/common/gnuplot.h"
 #include "scene/history.h"
+#include "sweep/sweep.h"
 
 namespace rockbench::report {
 namespace {

@@ -1,4 +1,4 @@
-// The local tolerance (harness/tolerance.h): closed forms of the rule on histories whose
+// The local tolerance (run/tolerance.h): closed forms of the rule on histories whose
 // envelope is known, and the single-number tolerance at the peak.
 #include "run/tolerance.h"
 

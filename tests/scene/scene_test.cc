@@ -290,7 +290,7 @@ TEST(Errors, UnknownKeysAndTables) {
   EXPECT_CONTAINS(e1, "run.duraton");
   EXPECT_CONTAINS(e1, "unknown key");
   // Any other table may be an engine's: the scene keeps it raw, with where it was, for the
-  // harness to check against the engines of the build (tests/harness/engine_registry_test.cc).
+  // harness to check against the engines of the build (tests/run/engine_registry_test.cc).
   const Scene t = ParseScene(kBlocks + "\n[blok3]\nwidth = 1\n", "scenes/x.toml");
   ASSERT_EQ(t.engine_tables.count("blok3"), 1u);
   EXPECT_EQ(t.engine_tables.at("blok3").where, "scenes/x.toml:10");

@@ -9,9 +9,9 @@
 #include <cstdio>
 #include <string>
 
-#include "stress/stress.h"
 #include "reference/simulate.h"
 #include "scene/ground_motion.h"
+#include "stress/stress.h"
 
 namespace rockbench {
 namespace {

@@ -202,8 +202,7 @@ TEST(StressTest, HousnerCascadeEndsAfterTheGeometricCount) {
   const reference::Geometry geo = reference::MakeGeometry(c.scene);
   const auto& b = geo.block1;
   const double theta0 = c.scene.initial.theta1_rad;
-  const reference::benchmarks::RockingBody body =
-      reference::benchmarks::RectangularBlock(b, geo.g);
+  const reference::benchmarks::RockingBody body = reference::benchmarks::RectangularBlock(b, geo.g);
   const double w1 = reference::benchmarks::FreeRockingImpactRate_radps(body, theta0);
   const double e = reference::benchmarks::CornerImpactRestitution(body);
   const double rest_radps = c.scene.model.rest_rate_rel * std::sqrt(geo.g / b.r);

@@ -1,4 +1,4 @@
-// Study files (src/harness/study.h), member rows and members.csv (study_member.h) and the
+// Study files (src/study/study.h), member rows and members.csv (study_member.h) and the
 // journal (study_runner.h), in process: members in product and zip order, derived axes against
 // their definitions, error messages naming the file, line and key, rows that survive JSON, and
 // a journal that resumes after a line cut short.
@@ -15,11 +15,11 @@
 
 #include "common/scratch_dir_test.h"
 #include "common/shell_test.h"
-#include "study/study_member.h"
-#include "study/study_runner.h"
 #include "scene/ground_motion.h"
 #include "scene/intensity.h"
 #include "scene/limits.h"
+#include "study/study_member.h"
+#include "study/study_runner.h"
 
 namespace rockbench {
 namespace {

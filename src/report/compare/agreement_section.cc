@@ -3,11 +3,11 @@
 #include <algorithm>
 #include <cmath>
 
-#include "run/engine_registry.h"
-#include "run/tolerance.h"
 #include "report/common/interpolation.h"
 #include "report/common/json_keys.h"
 #include "report/common/number_text.h"
+#include "run/engine_registry.h"
+#include "run/tolerance.h"
 
 namespace rockbench::report {
 namespace {

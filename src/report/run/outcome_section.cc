@@ -5,8 +5,8 @@
 
 #include "report/common/json_keys.h"
 #include "report/common/number_text.h"
-#include "report/run/run_figures.h"
 #include "report/compare/verdict_section.h"
+#include "report/run/run_figures.h"
 
 namespace rockbench::report {
 namespace {

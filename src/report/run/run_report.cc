@@ -3,13 +3,13 @@
 #include <stdexcept>
 
 #include "reference/geometry.h"
+#include "report/common/page.h"
 #include "report/compare/agreement_section.h"
 #include "report/run/angles_section.h"
 #include "report/run/energy_section.h"
 #include "report/run/friction_section.h"
 #include "report/run/impacts_section.h"
 #include "report/run/outcome_section.h"
-#include "report/common/page.h"
 #include "report/run/pictures_section.h"
 #include "report/run/run_figures.h"
 #include "report/run/run_readers.h"

@@ -1,6 +1,6 @@
 #pragma once
 /// An ensemble folder read back: study.json (the study's axes and engines) and members.csv (one
-/// record per member and run, src/harness/study_member.h). The report groups, fits and draws
+/// record per member and run, src/study/study_member.h). The report groups, fits and draws
 /// from these records only.
 #include <filesystem>
 #include <map>

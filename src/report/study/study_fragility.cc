@@ -5,12 +5,12 @@
 #include <cmath>
 #include <map>
 
-#include "study/fragility.h"
-#include "run/engine_registry.h"
-#include "statistics/statistics.h"
-#include "report/study/study_sections.h"
 #include "report/common/gnuplot.h"
 #include "report/common/number_text.h"
+#include "report/study/study_sections.h"
+#include "run/engine_registry.h"
+#include "statistics/statistics.h"
+#include "study/fragility.h"
 
 namespace rockbench::report {
 namespace {

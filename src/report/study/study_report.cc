@@ -3,10 +3,10 @@
 
 #include <map>
 
-#include "report/study/study_csv.h"
-#include "report/study/study_sections.h"
 #include "report/common/number_text.h"
 #include "report/common/page.h"
+#include "report/study/study_csv.h"
+#include "report/study/study_sections.h"
 #include "scene/history.h"
 
 namespace rockbench::report {

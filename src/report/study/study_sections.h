@@ -9,8 +9,8 @@
 #include <utility>
 #include <vector>
 
-#include "report/study/study_csv.h"
 #include "report/common/page.h"
+#include "report/study/study_csv.h"
 
 namespace rockbench::report {
 

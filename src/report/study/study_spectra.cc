@@ -4,9 +4,9 @@
 #include <map>
 #include <set>
 
-#include "report/study/study_sections.h"
 #include "report/common/gnuplot.h"
 #include "report/common/number_text.h"
+#include "report/study/study_sections.h"
 #include "run/engine_registry.h"
 
 namespace rockbench::report {

@@ -3,11 +3,11 @@
 #include <cmath>
 #include <map>
 
-#include "study/fragility_surface.h"
-#include "report/study/study_sections.h"
 #include "report/common/gnuplot.h"
 #include "report/common/number_text.h"
+#include "report/study/study_sections.h"
 #include "run/engine_registry.h"
+#include "study/fragility_surface.h"
 
 namespace rockbench::report {
 

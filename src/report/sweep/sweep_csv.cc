@@ -1,11 +1,12 @@
 #include "report/sweep/sweep_csv.h"
-#include "run/engine_registry.h"
 
 #include <cmath>
 #include <cstdlib>
 #include <map>
 #include <sstream>
 #include <stdexcept>
+
+#include "run/engine_registry.h"
 
 namespace rockbench::report {
 namespace {

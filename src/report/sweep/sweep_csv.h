@@ -7,7 +7,7 @@
 
 namespace rockbench::report {
 
-/// One row of sweep.csv as read back (columns as src/harness/sweep.h's SweepCsv writes them).
+/// One row of sweep.csv as read back (columns as src/sweep/sweep.h's SweepCsv writes them).
 struct SweepRecord {
   int line = 0;          ///< 1-based line number in sweep.csv
   std::string engine;    ///< an engine's name, or "reference"
