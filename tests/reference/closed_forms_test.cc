@@ -19,6 +19,7 @@
 #include <tuple>
 #include <vector>
 
+#include "common/rectangular_pulse.h"
 #include "common/thesis_scene.h"
 #include "reference/geometry.h"
 #include "reference/impact.h"
@@ -258,20 +259,6 @@ Scene SlenderBlock(double ratio) {
   return s;
 }
 
-bool Overturns(Scene s, double amplitude_g, double duration_s, Equations equations) {
-  s.model.equations = equations;
-  MotionDef d;
-  d.key = "base.horizontal";
-  d.kind = MotionKind::kRectangularPulse;
-  d.amplitude_g = amplitude_g;
-  d.duration_s = duration_s;
-  s.horizontal = d;
-  const Summary sum = Simulate(s, GroundMotion::FromScene(s)).summary;
-  // Within the model's assumptions (no uplift, no non-finite state): no status detail.
-  EXPECT_EQ(sum.status_detail, "") << amplitude_g << " g";
-  return sum.overturn_block.has_value();
-}
-
 // The thesis-linearised threshold is the linearized model's exactly: a pair of runs 1e-7 either
 // side of it brackets it. Near the threshold the block lingers at the top for (1/q) ln(1 /
 // 1e-7) = 8.4 s at most (q >= 1.9 rad/s here), inside the 15 s run; the integrator's rtol
@@ -301,14 +288,14 @@ TEST(ClosedFormsTest, RectangularPulseThresholdBracketsTheReference) {
       const double lin = bm::RectangularPulseOverturningAcceleration_mps2(body, td) / body.g_mps2;
       const double housner =
           bm::HousnerRectangularPulseOverturningAcceleration_mps2(body, td) / body.g_mps2;
-      EXPECT_FALSE(Overturns(s, lin * (1 - 1e-7), td, Equations::kLinearized));
-      EXPECT_TRUE(Overturns(s, lin * (1 + 1e-7), td, Equations::kLinearized));
+      EXPECT_FALSE(RectangularPulseOverturns(s, lin * (1 - 1e-7), td, Equations::kLinearized));
+      EXPECT_TRUE(RectangularPulseOverturns(s, lin * (1 + 1e-7), td, Equations::kLinearized));
       double lo = lin * (1 - a * a), hi = lin * (1 + a * a);
-      ASSERT_FALSE(Overturns(s, lo, td, Equations::kNonlinear));
-      ASSERT_TRUE(Overturns(s, hi, td, Equations::kNonlinear));
+      ASSERT_FALSE(RectangularPulseOverturns(s, lo, td, Equations::kNonlinear));
+      ASSERT_TRUE(RectangularPulseOverturns(s, hi, td, Equations::kNonlinear));
       while (hi - lo > 1e-7 * hi) {
         const double mid = 0.5 * (lo + hi);
-        (Overturns(s, mid, td, Equations::kNonlinear) ? hi : lo) = mid;
+        (RectangularPulseOverturns(s, mid, td, Equations::kNonlinear) ? hi : lo) = mid;
       }
       EXPECT_NEAR(hi / housner, 1.0, a * a);
       scaled_gap[k].push_back((hi / lin - 1.0) / (a * a));

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <string>
 
+#include "common/rectangular_pulse.h"
 #include "reference/benchmarks/closed_forms.h"
 #include "reference/geometry.h"
 #include "reference/simulate.h"
@@ -28,23 +29,6 @@ Scene Slender() {
   // falling on past about 1 rad its pivot force turns tensile (the model stops: uplift).
   s.model.overturn_rad = 0.5;
   return s;
-}
-
-// Whether the pulse overturns the block; any other end than overturned or at rest/completed
-// fails the test (the pulse must stay within the model's assumptions: no uplift).
-bool Overturns(Scene s, double amplitude_g, double t1_s, Equations equations) {
-  s.model.equations = equations;
-  MotionDef d;
-  d.key = "base.horizontal";
-  d.kind = MotionKind::kRectangularPulse;
-  d.amplitude_g = amplitude_g;
-  d.duration_s = t1_s;
-  s.horizontal = d;
-  const RunStatus status = Simulate(s, GroundMotion::FromScene(s)).summary.status;
-  EXPECT_TRUE(status == RunStatus::kOverturned || status == RunStatus::kCompleted ||
-              status == RunStatus::kAtRest)
-      << status << " at " << amplitude_g << " g";
-  return status == RunStatus::kOverturned;
 }
 
 // Whether one cycle of a sine pulse of frequency f overturns the block without an impact
@@ -79,7 +63,7 @@ double Bisect(double lo, double hi, const Predicate& overturns) {
 
 double Threshold(const Scene& s, double t1_s, Equations equations, double guess) {
   return Bisect(0.9 * guess, 1.1 * guess,
-                [&](double a) { return Overturns(s, a, t1_s, equations); });
+                [&](double a) { return RectangularPulseOverturns(s, a, t1_s, equations); });
 }
 
 TEST(PulseOverturning, LinearizedModelHasHousnersRectangularPulseThreshold) {

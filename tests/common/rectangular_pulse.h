@@ -1,0 +1,32 @@
+#pragma once
+// Whether a rectangular pulse of amplitude_g (in units of the scene's gravity) lasting
+// duration_s overturns the scene's block, run by the reference with `equations`. The run must
+// stay within the model's assumptions (no uplift, nothing non-finite): it ends overturned,
+// completed or at rest with no status detail, else the calling test fails. Shared by
+// tests/reference/pulse_test.cc and closed_forms_test.cc.
+#include <gtest/gtest.h>
+
+#include "reference/simulate.h"
+#include "scene/ground_motion.h"
+#include "scene/scene.h"
+
+namespace rockbench::reference {
+
+inline bool RectangularPulseOverturns(Scene s, double amplitude_g, double duration_s,
+                                      Equations equations) {
+  s.model.equations = equations;
+  MotionDef d;
+  d.key = "base.horizontal";
+  d.kind = MotionKind::kRectangularPulse;
+  d.amplitude_g = amplitude_g;
+  d.duration_s = duration_s;
+  s.horizontal = d;
+  const Summary sum = Simulate(s, GroundMotion::FromScene(s)).summary;
+  EXPECT_TRUE(sum.status == RunStatus::kOverturned || sum.status == RunStatus::kCompleted ||
+              sum.status == RunStatus::kAtRest)
+      << sum.status << " at " << amplitude_g << " g";
+  EXPECT_EQ(sum.status_detail, "") << amplitude_g << " g";
+  return sum.status == RunStatus::kOverturned;
+}
+
+}  // namespace rockbench::reference
