@@ -131,7 +131,7 @@ std::vector<std::string> RunFolderEngines(const fs::path& dir) {
     }
   }
   std::sort(names.begin(), names.end(), [](const std::string& a, const std::string& b) {
-    if ((IsReference(a)) != (IsReference(b))) return IsReference(a);
+    if (IsReference(a) != IsReference(b)) return IsReference(a);
     return a < b;
   });
   return names;
@@ -281,11 +281,7 @@ Motion MotionOfScene(const RenderOptions& opt, const fs::path& input,
   const std::vector<std::string> names =
       opt.engines.empty() ? std::vector<std::string>{"reference"} : opt.engines;
   // The runs' memory and time, estimated from the scene before anything is simulated.
-  std::vector<std::string> engines;
-  for (const std::string& name : names) {
-    if (!IsReference(name)) engines.push_back(name);
-  }
-  CheckRunEstimate(EstimateRun(m.scene, engines, 0, 0, 1), budget, Excerpt(opt.input, 80));
+  CheckRunEstimate(EstimateRun(m.scene, names, 0, 0, 1), budget, Excerpt(opt.input, 80));
   m.ground_motion = GroundMotion::FromScene(m.scene);
   for (const std::string& name : names) {
     EngineRun run = RunEngine(name, m.scene, m.ground_motion);

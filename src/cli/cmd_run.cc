@@ -29,13 +29,7 @@ void Execute(const RunOptions& opt) {
   const ResourceBudget budget = StartLimits(opt.limits, opt.out, "run");
   const Scene scene = LoadScene(opt.scene, opt.overrides);
   CheckEngineTables(scene);
-  {
-    std::vector<std::string> engines;
-    for (const std::string& name : opt.engines) {
-      if (!IsReference(name)) engines.push_back(name);
-    }
-    CheckRunEstimate(EstimateRun(scene, engines, 0, 0, 1), budget, opt.scene);
-  }
+  CheckRunEstimate(EstimateRun(scene, opt.engines, 0, 0, 1), budget, opt.scene);
   const GroundMotion motion = GroundMotion::FromScene(scene);
   for (const char* comp : {"horizontal", "vertical"}) {
     const auto& c = std::string(comp) == "horizontal" ? motion.horizontal() : motion.vertical();

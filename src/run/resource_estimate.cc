@@ -174,8 +174,9 @@ RunEstimate EstimateRun(const Scene& scene, const std::vector<std::string>& engi
 
   // Each engine's fixed steps.
   for (const std::string& name : engines) {
+    // The reference's steps are the term above; an engine steps at its table's time_step.
     const Engine* engine = FindEngine(name);
-    if (engine == nullptr) continue;
+    if (engine == nullptr || engine->settings_schema().Find("time_step") == nullptr) continue;
     double dt = 0.0;
     // A solver's iterations past its default cost in proportion (an upper bound: some stop
     // early when they converge); the key that raised them is the one named.

@@ -411,9 +411,7 @@ Scene BuildScene(const StudyDef& study, const std::vector<int>& idx, size_t set_
   ResourceBudget budget = ProcessBudget();
   budget.wall_s = std::numeric_limits<double>::infinity();
   for (const std::string& engine : study.engines) {
-    const std::vector<std::string> engines =
-        IsReference(engine) ? std::vector<std::string>{} : std::vector<std::string>{engine};
-    CheckRunEstimate(EstimateRun(scene, engines, 0, 0, 1), budget, Shown(scene.path.string()));
+    CheckRunEstimate(EstimateRun(scene, {engine}, 0, 0, 1), budget, Shown(scene.path.string()));
   }
   return scene;
 }
