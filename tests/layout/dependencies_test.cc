@@ -1,6 +1,7 @@
 // Dependencies point one way (README, Layout), checked on the sources: every project #include of
 // every code folder against the folder's rule, and the libraries the engines' and the renders'
 // CMakeLists.txt link.
+#include <dlfcn.h>
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -122,6 +123,18 @@ TEST(Layout, EnginesAndRendersDoNotLinkTheReference) {
           << fs::relative(e.path(), kRoot).string() << " links the reference";
     }
   }
+}
+
+// Every program answers cblas_* from GSL's reference CBLAS (CMakeLists.txt pins it first):
+// Siconos's contact solver calls it, and OpenBLAS, which the process also loads, gives other
+// last bits, so a program that took its CBLAS by link order gave other histories.
+TEST(Layout, EveryProgramTakesItsCblasFromGsl) {
+  void* ddot = dlsym(RTLD_DEFAULT, "cblas_ddot");
+  ASSERT_NE(ddot, nullptr) << "no cblas_ddot in the process";
+  Dl_info info{};
+  ASSERT_NE(dladdr(ddot, &info), 0);
+  EXPECT_NE(std::string(info.dli_fname).find("libgslcblas"), std::string::npos)
+      << "cblas_ddot comes from " << info.dli_fname;
 }
 
 }  // namespace
