@@ -114,8 +114,14 @@ const EstimateTerm* RunEstimate::largest_cpu() const {
   return best;
 }
 
-RunEstimate EstimateRun(const Scene& scene, const std::vector<std::string>& engines, int members,
-                        int engine_members, int jobs) {
+RunEstimate EstimateRun(const Scene& scene, const std::vector<std::string>& run_engines,
+                        int members, int engine_members, int jobs) {
+  // The reference is always run and estimated (its nominal run, witness and members below); the
+  // list's other engines are the physics engines.
+  std::vector<std::string> engines;
+  for (const std::string& name : run_engines) {
+    if (!IsReference(name)) engines.push_back(name);
+  }
   RunEstimate e;
   const double duration = scene.run.duration_s;
   const int threads = std::max(1, jobs);
@@ -174,9 +180,8 @@ RunEstimate EstimateRun(const Scene& scene, const std::vector<std::string>& engi
 
   // Each engine's fixed steps.
   for (const std::string& name : engines) {
-    // The reference's steps are the term above; an engine steps at its table's time_step.
     const Engine* engine = FindEngine(name);
-    if (engine == nullptr || engine->settings_schema().Find("time_step") == nullptr) continue;
+    if (engine == nullptr) continue;
     double dt = 0.0;
     // A solver's iterations past its default cost in proportion (an upper bound: some stop
     // early when they converge); the key that raised them is the one named.

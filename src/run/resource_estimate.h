@@ -30,7 +30,8 @@ struct RunEstimate {
   const EstimateTerm* largest_cpu() const;
 };
 
-/// What a run of the reference and `engines` (built engine names) with `members` reference and
+/// What a run of the reference and `engines` (engine names; "reference" among them adds nothing:
+/// the reference is always counted) with `members` reference and
 /// `engine_members` engine perturbation members on `jobs` threads needs. The engines' steps come
 /// from their tables' time_step (resolved against their schemas; a scene whose table does not
 /// resolve is left to the engine's own error). Throws nothing for a valid scene.
