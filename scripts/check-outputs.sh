@@ -6,9 +6,11 @@
 #   scripts/check-outputs.sh check DIR      run everything again and compare with DIR
 # Options (environment): ROCKBENCH_BIN (default build/src/cli/rockbench), ONLY=scenes|studies,
 # JOBS (study workers, default 2). Wall-clock figures are replaced by "W" before comparing: JSON
-# values whose key contains "wall" or "real_time", CSV columns whose header does, wall times
-# printed on stdout. Everything else must be identical. The check normalises the recorded copy
-# again, so a figure the normaliser learns later is blanked on both sides.
+# values whose key contains "wall", "real_time" or "serial_s" (a study's serial part's wall
+# time), CSV columns whose header contains "wall" or "real_time", wall times printed on stdout
+# and stderr, the temporary folder's name. Everything else must be identical. The check
+# normalises the recorded copy again, so a figure the normaliser learns later is blanked on both
+# sides.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 mode=${1:?"usage: scripts/check-outputs.sh record|check DIR"}
@@ -31,7 +33,7 @@ import csv, io, re, sys
 path = sys.argv[1]
 text = open(path, encoding="utf-8", errors="surrogateescape").read()
 if path.endswith(".json"):
-    text = re.sub(r'("[A-Za-z0-9_]*(?:wall|real_time)[A-Za-z0-9_]*"\s*:\s*)(-?[0-9.eE+-]+|null)', r'\1"W"', text)
+    text = re.sub(r'("[A-Za-z0-9_]*(?:wall|real_time|serial_s)[A-Za-z0-9_]*"\s*:\s*)(-?[0-9.eE+-]+|null)', r'\1"W"', text)
 elif path.endswith(".csv"):
     lines = text.split("\n")
     header = next((i for i, l in enumerate(lines) if l and not l.startswith("#")), None)
@@ -50,7 +52,7 @@ elif path.endswith(".csv"):
                 csv.writer(buf, lineterminator="").writerow(row)
                 lines[i] = buf.getvalue()
     text = "\n".join(lines)
-elif path.endswith(".stdout"):
+elif path.endswith(".stdout") or path.endswith(".stderr"):
     # Printed wall times: a run's ", 4.48 ms" at the end of its line (or before ";"), "wall time
     # 0.21 s", and figures after "took"; the temporary output folder's name.
     text = re.sub(r'((?:wall|took|in)[^0-9\n]{0,12})[0-9]+(\.[0-9]+)?( ?(?:s|ms|min)\b)', r'\1W\3', text)
@@ -90,7 +92,7 @@ if [ "${ONLY:-all}" != scenes ]; then
 fi
 
 # Normalise, then record or compare.
-while IFS= read -r -d '' f; do normalise "$f"; done < <(find "$out" -type f \( -name '*.json' -o -name '*.csv' -o -name '*.stdout' \) -print0)
+while IFS= read -r -d '' f; do normalise "$f"; done < <(find "$out" -type f \( -name '*.json' -o -name '*.csv' -o -name '*.stdout' -o -name '*.stderr' \) -print0)
 if [ "$mode" = record ]; then
   rm -rf "$dir"
   mkdir -p "$(dirname "$dir")"
@@ -99,12 +101,19 @@ if [ "$mode" = record ]; then
   echo "check-outputs: recorded $(wc -l <"$dir.sha256") files in $dir"
 else
   cp -r "$dir" "$work/recorded"
-  while IFS= read -r -d '' f; do normalise "$f"; done < <(find "$work/recorded" -type f \( -name '*.json' -o -name '*.csv' -o -name '*.stdout' \) -print0)
+  # ONLY=scenes or ONLY=studies compares that part alone.
+  case "${ONLY:-all}" in
+    scenes) rm -rf "$work/recorded"/study_* ;;
+    studies) rm -rf "$work/recorded"/run_* "$work/recorded"/compare_* ;;
+  esac
+  while IFS= read -r -d '' f; do normalise "$f"; done < <(find "$work/recorded" -type f \( -name '*.json' -o -name '*.csv' -o -name '*.stdout' -o -name '*.stderr' \) -print0)
   if diff -r "$work/recorded" "$out" >"$work/diff.txt"; then
     echo "check-outputs: identical ($(find "$out" -type f | wc -l) files)"
   else
-    echo "check-outputs: DIFFERENT:"
-    head -100 "$work/diff.txt"
+    echo "check-outputs: DIFFERENT (the whole diff: $dir.diff):"
+    { diff -rq "$work/recorded" "$out" || true; } | sed "s|$work/||g"
+    cp "$work/diff.txt" "$dir.diff"
+    head -60 "$work/diff.txt"
     exit 1
   fi
 fi
