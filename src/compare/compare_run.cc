@@ -43,7 +43,7 @@ SeedCheck RecheckWithSeeds(
     const Scene& scene, const CompareRun& out, const GroundMotion& motion, const std::string& name,
     const EngineRun& run, int engine_members, int jobs, const Verdict& first, double first_p,
     std::vector<std::optional<ReferencePerturbationMembers>>* extra_ensembles) {
-  const reference::Result& ref = out.reference.used();
+  const reference::Result& ref = out.reference().used();
   const CompareOptions base;
   const bool two = scene.two_blocks();
   SeedCheck c;
@@ -104,14 +104,13 @@ CompareRun RunCompare(const Scene& scene, const GroundMotion& motion,
   // 1. The reference and its witness; comparisons use the witness when the default is not
   //    converged.
   out.reference_run = RunEngine(std::string(kReferenceEngine), scene, motion);
-  out.reference = *ReferenceResultOf(out.reference_run.extension.get());
-  const reference::Result& ref = out.reference.used();
-  const ConvergenceCheck& check = *out.reference.check;
+  const reference::Result& ref = out.reference().used();
+  const ConvergenceCheck& check = *out.reference().check;
   out.reference_scene = scene;
-  if (&ref != &out.reference.nominal) out.reference_scene.model = check.witness;
+  if (&ref != &out.reference().nominal) out.reference_scene.model = check.witness;
   std::snprintf(buf, sizeof buf, "reference: %s, %zu events, %.3g ms; witness within %.2g rad%s",
                 StatusText(ref.summary.status), ref.history.events.size(),
-                out.reference.nominal_wall_s * 1e3, check.max_abs_diff(),
+                out.reference().nominal_wall_s * 1e3, check.max_abs_diff(),
                 check.converged ? ", converged" : "");
   log(buf);
   if (!check.converged) log("  WARNING: " + ConvergenceWarning(check));
@@ -221,7 +220,7 @@ CompareRun RunCompare(const Scene& scene, const GroundMotion& motion,
     members(out.engine_runs[k].engine, out.engine_outcomes[k]);
   }
 
-  out.comparison = ComparisonJson(scene, ref, out.reference.nominal_wall_s, out.agreements, base);
+  out.comparison = ComparisonJson(scene, ref, out.reference().nominal_wall_s, out.agreements, base);
   out.comparison["reference"]["convergence"] = ConvergenceJson(scene, check);
   out.comparison["predictability"] = out.perturbation_members
                                          ? PredictabilityJson(scene, *out.perturbation_members)

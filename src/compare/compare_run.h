@@ -13,7 +13,7 @@
 #include "compare/perturbation_members.h"
 #include "compare/verdict.h"
 #include "run/engine_run.h"
-#include "run/reference_witness.h"
+#include "run/reference_engine.h"
 
 namespace rockbench {
 
@@ -24,7 +24,10 @@ struct CompareRunOptions {
 };
 
 struct CompareRun {
-  CheckedReference reference;
+  /// The reference's own result, from reference_run's extension (no copy).
+  const CheckedReference& reference() const {
+    return *ReferenceResultOf(reference_run.extension.get());
+  }
   Scene reference_scene;  ///< the scene with the model settings of the solution used
   double tolerance_rad[2] = {0, 0};
   std::optional<ReferencePerturbationMembers>

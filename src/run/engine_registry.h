@@ -9,7 +9,6 @@
 
 namespace rockbench {
 
-/// One registered engine.
 /// The reference's name: the engine every other is compared with (run/reference_engine.h).
 inline constexpr std::string_view kReferenceEngine = "reference";
 
@@ -19,6 +18,7 @@ inline bool IsReference(std::string_view engine) {
   return engine == kReferenceEngine;
 }
 
+/// One registered engine.
 struct RegisteredEngine {
   std::string name;            ///< "bullet"
   const Engine* engine;        ///< null when the build left it out

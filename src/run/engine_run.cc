@@ -1,8 +1,5 @@
 #include "run/engine_run.h"
 
-#include <chrono>
-#include <cstdio>
-
 #include "run/engine_registry.h"
 #include "run/reference_engine.h"
 
