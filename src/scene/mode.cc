@@ -33,6 +33,68 @@ Mode ModeOf(Contacts c, bool two_blocks) {
   return same ? Mode::k1b : Mode::k2b;
 }
 
+Configuration::Configuration(int interfaces) : size_(interfaces) {}
+
+int Configuration::open_count() const {
+  int n = 0;
+  for (int k = 0; k < size_; ++k) n += (*this)[k] != Contact::kFace;
+  return n;
+}
+
+Configuration ConfigurationOf(Mode mode, int blocks) {
+  const Contacts c = ContactsOf(mode);
+  Configuration out(blocks);
+  out.set(0, c.ground);
+  if (blocks >= 2) out.set(1, c.interface);
+  return out;
+}
+
+std::optional<Mode> ModeOfConfiguration(const Configuration& configuration) {
+  if (configuration.size() == 1) return ModeOf({configuration[0], Contact::kFace}, false);
+  if (configuration.size() == 2) return ModeOf({configuration[0], configuration[1]}, true);
+  return std::nullopt;
+}
+
+std::string ConfigurationName(const Configuration& configuration) {
+  if (const std::optional<Mode> mode = ModeOfConfiguration(configuration)) {
+    return std::string(ModeName(*mode));
+  }
+  std::string text(static_cast<size_t>(configuration.size()), 'f');
+  for (int k = 0; k < configuration.size(); ++k) {
+    if (configuration[k] == Contact::kRight) text[k] = 'r';
+    if (configuration[k] == Contact::kLeft) text[k] = 'l';
+  }
+  return text;
+}
+
+std::optional<Configuration> ParseConfiguration(std::string_view text, int blocks) {
+  if (blocks < 1 || blocks > kMaxBlocks) return std::nullopt;
+  if (blocks <= 2) {
+    if (const std::optional<Mode> mode = ParseMode(text)) {
+      // One block has only rest, 3a and 3b (its block-2 contact is a face).
+      if (blocks == 1 && ContactsOf(*mode).interface != Contact::kFace) return std::nullopt;
+      return ConfigurationOf(*mode, blocks);
+    }
+  }
+  if (text.size() != static_cast<size_t>(blocks)) return std::nullopt;
+  Configuration out(blocks);
+  for (int k = 0; k < blocks; ++k) {
+    switch (text[k]) {
+      case 'f':
+        break;
+      case 'r':
+        out.set(k, Contact::kRight);
+        break;
+      case 'l':
+        out.set(k, Contact::kLeft);
+        break;
+      default:
+        return std::nullopt;
+    }
+  }
+  return out;
+}
+
 Contact TiltContact(Contact angle_side, double rate_radps, double rate_threshold_radps) {
   if (angle_side != Contact::kFace) return angle_side;
   if (!(std::abs(rate_radps) > rate_threshold_radps)) return Contact::kFace;

@@ -1,6 +1,7 @@
 #pragma once
 /// Rocking modes of two stacked blocks (Roussis 1999, section 4.2) and of one block, the contacts
 /// each mode closes, and the rule that gives a tilt its contact.
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -55,6 +56,64 @@ inline Contacts ContactsOf(Mode mode) {
 
 /// The mode of a contact set (for one block the interface is ignored).
 Mode ModeOf(Contacts contacts, bool two_blocks);
+
+/// Most blocks a stack may have (scene/limits.h checks a scene against it).
+inline constexpr int kMaxBlocks = 64;
+
+/// The contact state of a stack of N blocks: one Contact per interface, bottom first. Interface
+/// k (1-based) is block k on its support (the ground for k = 1, block k - 1 above it): closed on
+/// its face, or rocking about block k's right or left base corner. N = 1 and N = 2 are the
+/// thesis's modes (ConfigurationOf / ModeOfConfiguration); N >= 3 has 3^N of them, named by
+/// their letters. A value type of 24 bytes (no allocation), so that every history sample and
+/// every event can carry one.
+class Configuration {
+ public:
+  /// No interfaces (an empty stack).
+  Configuration() = default;
+  /// `interfaces` interfaces (0..kMaxBlocks), every one closed on its face: the stack at rest.
+  explicit Configuration(int interfaces);
+
+  /// Number of interfaces (= blocks).
+  int size() const { return size_; }
+  /// Interface k's contact, k = 0 (the ground) .. size() - 1.
+  Contact operator[](int k) const {
+    return static_cast<Contact>((bits_[k >> 5] >> (2 * (k & 31))) & 3u);
+  }
+  void set(int k, Contact c) {
+    const int shift = 2 * (k & 31);
+    bits_[k >> 5] =
+        (bits_[k >> 5] & ~(uint64_t{3} << shift)) | (uint64_t{static_cast<unsigned>(c)} << shift);
+  }
+  /// Every interface closed on its face.
+  bool at_rest() const { return bits_[0] == 0 && bits_[1] == 0; }
+  /// Number of interfaces that rock (the degrees of freedom).
+  int open_count() const;
+  friend bool operator==(const Configuration& a, const Configuration& b) {
+    return a.size_ == b.size_ && a.bits_[0] == b.bits_[0] && a.bits_[1] == b.bits_[1];
+  }
+  friend bool operator!=(const Configuration& a, const Configuration& b) { return !(a == b); }
+
+ private:
+  // Two bits per interface (Contact's value: face 0, right 1, left 2), 32 per word.
+  uint64_t bits_[2] = {0, 0};
+  int32_t size_ = 0;
+};
+static_assert(static_cast<int>(Contact::kFace) == 0, "a zeroed Configuration is at rest");
+
+/// The configuration of a thesis mode in a stack of `blocks` (1 or 2) blocks: its contacts
+/// (ContactsOf), the interface dropped for one block.
+Configuration ConfigurationOf(Mode mode, int blocks);
+/// The thesis mode of a configuration of 1 or 2 interfaces; nullopt for more.
+std::optional<Mode> ModeOfConfiguration(const Configuration& configuration);
+
+/// The text of a configuration, as histories and events write it: the thesis's mode name for 1
+/// or 2 blocks ("rest", "3a", "1b", ...), else one letter per interface, bottom first: 'f' a
+/// closed face, 'r' the right corner, 'l' the left corner ("frr": block 1 at rest, blocks 2 and 3
+/// rocking on their right corners).
+std::string ConfigurationName(const Configuration& configuration);
+/// Inverse of ConfigurationName for a stack of `blocks` blocks; the letter form is read for any
+/// number of blocks. nullopt for a text that names no configuration of that stack.
+std::optional<Configuration> ParseConfiguration(std::string_view text, int blocks);
 
 /// Below these a tilt gives no side. Zero (the default) is the rule for exact states, such as
 /// the reference's: its closed contacts have exactly zero angle and rate. A noisy state, such as
