@@ -1,0 +1,272 @@
+#include "reference/stack_contacts.h"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <utility>
+
+namespace rockbench::reference {
+namespace {
+
+double SideSign(Contact c) {
+  return c == Contact::kLeft ? -1.0 : 1.0;
+}
+
+Contact Other(Contact c) {
+  return c == Contact::kRight ? Contact::kLeft : Contact::kRight;
+}
+
+// The relative angle and rate of interface k (block k on its support; the ground's are zero).
+double RelativeAngle(const double* theta, int k) {
+  return k == 0 ? theta[0] : theta[k] - theta[k - 1];
+}
+double RelativeRate(const double* omega, int k) {
+  return k == 0 ? omega[0] : omega[k] - omega[k - 1];
+}
+
+}  // namespace
+
+StackContacts::StackContacts(StackGeometry geometry) : chain_(std::move(geometry)) {
+  const StackGeometry& geo = chain_.geometry();
+  const int n = geo.size();
+  double mass = 0.0;
+  for (const BlockProps& p : geo.blocks) mass += p.m;
+  weight_n_ = mass * geo.g;
+  // R_k: block k's base corner to the mass centre of the blocks from k up, at rest.
+  rest_radius_.assign(n, 0.0);
+  double m_above = 0.0, moment_above = 0.0;  // mass and first moment about block k's base
+  for (int k = n - 1; k >= 0; --k) {
+    const BlockProps& p = geo.blocks[k];
+    // Shifting the base up by block k's height moves the blocks above by 2 h_k.
+    moment_above += m_above * 2.0 * p.h + p.m * p.h;
+    m_above += p.m;
+    rest_radius_[k] = std::hypot(p.b, moment_above / m_above);
+  }
+  loads_.assign(n, InterfaceLoad{});
+  acc_.assign(n, 0.0);
+  omega_.assign(n, 0.0);
+  free_.reserve(n);
+}
+
+StackMargins StackContacts::MarginsOfLoads(const Configuration& c) const {
+  StackMargins m;
+  for (int k = 0; k < size(); ++k) {
+    const InterfaceLoad& L = loads_[k];
+    if (c[k] == Contact::kFace) {
+      m.face = std::min(m.face, std::min(L.left_n, L.right_n) / weight_n_);
+    } else {
+      m.point = std::min(m.point, L.normal_n / weight_n_);
+    }
+  }
+  return m;
+}
+
+StackMargins StackContacts::Evaluate(const Configuration& c, const double* theta,
+                                     const double* omega, double xg, double yg, double* theta_dd) {
+  chain_.Place(c, theta, omega);
+  chain_.Accelerations(xg, yg, theta_dd, loads_.data());
+  return MarginsOfLoads(c);
+}
+
+bool StackContacts::Closed(const double* theta, const double* omega, int k) {
+  return k == 0 ? theta[0] == 0.0 && omega[0] == 0.0
+                : theta[k] == theta[k - 1] && omega[k] == omega[k - 1];
+}
+
+bool StackContacts::Consistent(const Configuration& c, const double* theta, const double* omega,
+                               double xg, double yg) {
+  const StackMargins m = Evaluate(c, theta, omega, xg, yg, acc_.data());
+  // An interface that opens from closed must accelerate open.
+  for (int k = 0; k < size(); ++k) {
+    if (c[k] == Contact::kFace || !Closed(theta, omega, k)) continue;
+    if (!(SideSign(c[k]) * RelativeAngle(acc_.data(), k) > 0.0)) return false;
+  }
+  return m.face >= 0.0 && m.point >= 0.0;
+}
+
+StackSelection StackContacts::Select(const double* theta, const double* omega, double xg,
+                                     double yg) {
+  const int n = size();
+  Configuration c(n);
+  free_.clear();
+  for (int k = 0; k < n; ++k) {
+    if (Closed(theta, omega, k)) {
+      free_.push_back(k);
+      continue;
+    }
+    // An open interface keeps the side of its gap, or of its rate when the gap is zero.
+    const double gap = RelativeAngle(theta, k);
+    const double v = gap != 0.0 ? gap : RelativeRate(omega, k);
+    c.set(k, v > 0.0 ? Contact::kRight : Contact::kLeft);
+  }
+  const int nfree = static_cast<int>(free_.size());
+  int tried = 0;
+  bool capped = false;
+  // Depth-first over the free interfaces with `open` of them still to open: right, left, then
+  // closed, from the bottom.
+  std::function<bool(int, int)> search = [&](int pos, int open) -> bool {
+    if (pos == nfree) {
+      if (open != 0) return false;
+      if (++tried > kMaxCandidates) {
+        capped = true;
+        return false;
+      }
+      return Consistent(c, theta, omega, xg, yg);
+    }
+    const int k = free_[pos];
+    if (open > 0) {
+      for (const Contact side : {Contact::kRight, Contact::kLeft}) {
+        c.set(k, side);
+        if (search(pos + 1, open - 1) || capped) return !capped;
+      }
+    }
+    if (nfree - pos > open) {
+      c.set(k, Contact::kFace);
+      if (search(pos + 1, open) || capped) return !capped;
+    }
+    return false;
+  };
+  for (int open = 0; open <= nfree; ++open) {
+    if (search(0, open)) return {c, true, false};
+    if (capped) break;
+  }
+  return {Configuration(n), false, capped};
+}
+
+double StackContacts::RestRate(int k, double rest_rate_rel) const {
+  return rest_rate_rel * std::sqrt(geometry().g / rest_radius_[k]);
+}
+
+StackImpactOutcome StackContacts::EvaluateImpact(const Configuration& before,
+                                                 const Configuration& after, const double* theta,
+                                                 const double* omega_minus) {
+  const int n = size();
+  StackImpactOutcome out;
+  out.config = after;
+  out.omega_radps.assign(n, 0.0);
+  chain_.Place(before, theta, omega_minus);
+  double p_scale = 1e-300, rate_scale = 1e-300;
+  for (int i = 0; i < n; ++i) {
+    const BodyMotion b = chain_.Body(i);
+    p_scale += geometry().blocks[i].m * std::hypot(b.vG.x, b.vG.y);
+    rate_scale += std::abs(omega_minus[i]);
+  }
+  chain_.ImpactRates(after, out.omega_radps.data(), loads_.data());
+  const double* w = out.omega_radps.data();
+  // Velocities: an interface that opens from a zero gap must open, not close.
+  bool ok = true;
+  for (int k = 0; k < n && ok; ++k) {
+    if (after[k] == Contact::kFace || RelativeAngle(theta, k) != 0.0) continue;
+    ok = SideSign(after[k]) * RelativeRate(w, k) >= -1e-12 * rate_scale;
+  }
+  out.velocity_admissible = ok;
+  // Impulses: every contact of `after` pushes.
+  double min_imp = INFINITY;
+  for (int k = 0; k < n; ++k) {
+    const InterfaceLoad& L = loads_[k];
+    min_imp =
+        std::min(min_imp, after[k] == Contact::kFace ? std::min(L.left_n, L.right_n) : L.normal_n);
+  }
+  out.min_normal_impulse = min_imp;
+  out.impulse_admissible = min_imp >= -1e-9 * p_scale;
+  out.energy_after_j = chain_.Energy();
+  return out;
+}
+
+StackImpact StackContacts::ResolveImpact(const Configuration& before, const double* theta,
+                                         const double* omega_minus, int k_impact,
+                                         double rest_rate_rel) {
+  const int n = size();
+  StackImpact res;
+  chain_.Place(before, theta, omega_minus);
+  res.energy_before_j = chain_.Energy();
+  // The baseline: the landing interface rebounds onto its other corner, the rest as before.
+  Configuration base = before;
+  const Contact rebound = Other(before[k_impact]);
+  base.set(k_impact, rebound);
+  free_.clear();
+  for (int k = 0; k < n; ++k) {
+    if (k == k_impact || before[k] == Contact::kFace) free_.push_back(k);
+  }
+  const int nfree = static_cast<int>(free_.size());
+  // Each free interface's other options: the landing one closes; a closed one opens, on the
+  // rebound's side first.
+  auto changes = [&](int k, Contact* opts) -> int {
+    if (k == k_impact) {
+      opts[0] = Contact::kFace;
+      return 1;
+    }
+    opts[0] = rebound;
+    opts[1] = Other(rebound);
+    return 2;
+  };
+  bool have_pick = false, have_velocity = false, have_fallback = false;
+  StackImpactOutcome pick, first_velocity, fallback;
+  Configuration c = base;
+  bool capped = false;
+  std::function<bool(int, int)> search = [&](int pos, int left) -> bool {
+    if (pos == nfree) {
+      if (left != 0) return false;
+      if (++res.candidates_tried > kMaxCandidates) {
+        capped = true;
+        return false;
+      }
+      StackImpactOutcome o = EvaluateImpact(before, c, theta, omega_minus);
+      if (o.velocity_admissible && o.impulse_admissible) {
+        pick = std::move(o);
+        return have_pick = true;
+      }
+      if (o.velocity_admissible && !have_velocity) {
+        first_velocity = o;
+        have_velocity = true;
+      }
+      // Nothing separates: the fewest open interfaces (the last such in the order).
+      if (!have_fallback || o.config.open_count() <= fallback.config.open_count()) {
+        fallback = std::move(o);
+        have_fallback = true;
+      }
+      return false;
+    }
+    const int k = free_[pos];
+    if (left > 0) {
+      Contact opts[2];
+      const int m = changes(k, opts);
+      for (int i = 0; i < m; ++i) {
+        c.set(k, opts[i]);
+        if (search(pos + 1, left - 1) || capped) return !capped;
+      }
+    }
+    if (nfree - pos > left) {
+      c.set(k, base[k]);
+      if (search(pos + 1, left) || capped) return !capped;
+    }
+    return false;
+  };
+  for (int d = 0; d <= nfree && !have_pick && !capped; ++d) search(0, d);
+  std::string note;
+  if (!have_pick) {
+    res.admissible = false;
+    note = capped ? "inadmissible: no admissible outcome among the first " +
+                        std::to_string(kMaxCandidates) + " (search stopped)"
+                  : "inadmissible: no outcome both separates and pushes";
+    pick = have_velocity ? first_velocity : fallback;
+  }
+  res.chosen = std::move(pick);
+  // The rest rule: an interface that opens from a zero gap too slowly stays closed.
+  Configuration settled = res.chosen.config;
+  for (int k = 0; k < n; ++k) {
+    if (settled[k] == Contact::kFace || RelativeAngle(theta, k) != 0.0) continue;
+    if (std::abs(RelativeRate(res.chosen.omega_radps.data(), k)) < RestRate(k, rest_rate_rel)) {
+      settled.set(k, Contact::kFace);
+    }
+  }
+  if (settled != res.chosen.config) {
+    res.settled = true;
+    res.chosen = EvaluateImpact(before, settled, theta, omega_minus);
+    note += note.empty() ? "settled (rest rule)" : " settled (rest rule)";
+  }
+  res.note = std::move(note);
+  return res;
+}
+
+}  // namespace rockbench::reference
