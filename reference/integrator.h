@@ -1,6 +1,7 @@
 #pragma once
-/// Explicit Runge-Kutta steps with dense output for the 4-vector state
-/// y = (theta1, theta2, omega1, omega2): Dormand-Prince 5(4) with its 4th-order continuous
+/// Explicit Runge-Kutta steps with dense output for a state of D components, the angles of the
+/// blocks first, then their rates: y = (theta1, theta2, omega1, omega2) for the thesis's two
+/// blocks (D = 4). Dormand-Prince 5(4) with its 4th-order continuous
 /// extension (Hairer, Norsett & Wanner, "Solving ODEs I", II.6, as in dopri5.f), Dormand-Prince
 /// 8(5,3) with its 7th-order continuous extension (the same book, II.10, as in dop853.f), and
 /// the classical fixed-step RK4 of the thesis (eq. 6.2, 6.3) with cubic Hermite dense output.
@@ -14,23 +15,29 @@
 
 namespace rockbench::reference {
 
-using Vec4 = std::array<double, 4>;
+/// A state of D components.
+template <size_t D>
+using VecN = std::array<double, D>;
+/// The two blocks' state (theta1, theta2, omega1, omega2).
+using Vec4 = VecN<4>;
 
 /// Continuous output of one step on [t0, t0 + h].
-struct DenseStep {
+template <size_t D>
+struct DenseStepN {
+  using Vec = VecN<D>;
   enum Kind { kConstant, kDopri, kHermite, kDop853 };
   Kind kind = kConstant;
   double t0 = 0.0, h = 0.0;
   /// kConstant: c[0]; kDopri: rcont1..5; kHermite: y0, y1, h f0, h f1; kDop853: y0 and the
   /// seven coefficients of dop853.f's contd8.
-  std::array<Vec4, 8> c{};
+  std::array<Vec, 8> c{};
   /// An enclosure of the interpolant over the whole step: lo[i] <= At(t)[i] <= hi[i] for every
   /// t in [t0, t0 + h], rounding of At included. Every interpolant here is the chord from y0 to
   /// y1 plus s (1 - s) times a bounded remainder (s (1 - s) <= 1/4), so the enclosure is the
   /// chord's range widened by a quarter of the remainder's coefficients' magnitudes.
-  void Bounds(Vec4* lo, Vec4* hi) const {
+  void Bounds(Vec* lo, Vec* hi) const {
     constexpr double kEps = std::numeric_limits<double>::epsilon();
-    for (int i = 0; i < 4; ++i) {
+    for (size_t i = 0; i < D; ++i) {
       double y0 = c[0][i], y1 = c[0][i], rest = 0.0, size = std::abs(c[0][i]);
       if (kind == kDopri || kind == kDop853) {
         // y0 + s c1 + s (1 - s) (c2 + s (c3 + ...)): y1 = y0 + c1.
@@ -52,16 +59,16 @@ struct DenseStep {
     }
   }
   /// State at t (0 <= (t - t0) / h <= 1).
-  Vec4 At(double t) const {
+  Vec At(double t) const {
     if (kind == kConstant || h == 0.0) return c[0];
     const double s = (t - t0) / h, s1 = 1.0 - s;
-    Vec4 y;
+    Vec y;
     if (kind == kDopri) {
-      for (int i = 0; i < 4; ++i) {
+      for (size_t i = 0; i < D; ++i) {
         y[i] = c[0][i] + s * (c[1][i] + s1 * (c[2][i] + s * (c[3][i] + s1 * c[4][i])));
       }
     } else if (kind == kDop853) {
-      for (int i = 0; i < 4; ++i) {
+      for (size_t i = 0; i < D; ++i) {
         const double inner = c[5][i] + s1 * (c[6][i] + s * c[7][i]);
         y[i] =
             c[0][i] + s * (c[1][i] + s1 * (c[2][i] + s * (c[3][i] + s1 * (c[4][i] + s * inner))));
@@ -69,7 +76,7 @@ struct DenseStep {
     } else {
       const double h00 = (1 + 2 * s) * s1 * s1, h10 = s * s1 * s1, h01 = s * s * (3 - 2 * s),
                    h11 = -s * s * s1;
-      for (int i = 0; i < 4; ++i) {
+      for (size_t i = 0; i < D; ++i) {
         y[i] = h00 * c[0][i] + h10 * c[2][i] + h01 * c[1][i] + h11 * c[3][i];
       }
     }
@@ -77,18 +84,25 @@ struct DenseStep {
   }
 };
 
-/// Result of one step from (t, y) with step h.
-struct StepResult {
-  Vec4 y1{};
-  Vec4 f1{};         ///< f(t + h, y1) (first-same-as-last for the next step)
-  double err = 0.0;  ///< scaled RMS error estimate (DOPRI only; <= 1 accepts)
-  DenseStep dense;
-};
+using DenseStep = DenseStepN<4>;
 
-/// One Dormand-Prince 5(4) step. f0 = f(t, y). rhs(t, y) -> Vec4.
-template <class Rhs>
-StepResult Dopri5Step(const Rhs& rhs, double t, const Vec4& y, const Vec4& f0, double h,
-                      double rtol, double atol) {
+/// Result of one step from (t, y) with step h.
+template <size_t D>
+struct StepResultN {
+  VecN<D> y1{};
+  VecN<D> f1{};      ///< f(t + h, y1) (first-same-as-last for the next step)
+  double err = 0.0;  ///< scaled RMS error estimate (DOPRI only; <= 1 accepts)
+  DenseStepN<D> dense;
+};
+using StepResult = StepResultN<4>;
+
+/// One Dormand-Prince 5(4) step. f0 = f(t, y). rhs(t, y) -> VecN<D>. The error norm is the
+/// root mean square over `active` components (D by default; a state padded with zeros beyond
+/// its active components passes their count: the padding adds nothing to the sum).
+template <class Rhs, size_t D>
+StepResultN<D> Dopri5Step(const Rhs& rhs, double t, const VecN<D>& y, const VecN<D>& f0, double h,
+                          double rtol, double atol, int active = static_cast<int>(D)) {
+  using Vec = VecN<D>;
   constexpr double c2 = 1.0 / 5, c3 = 3.0 / 10, c4 = 4.0 / 5, c5 = 8.0 / 9;
   constexpr double a21 = 1.0 / 5, a31 = 3.0 / 40, a32 = 9.0 / 40, a41 = 44.0 / 45, a42 = -56.0 / 15,
                    a43 = 32.0 / 9, a51 = 19372.0 / 6561, a52 = -25360.0 / 2187,
@@ -100,40 +114,40 @@ StepResult Dopri5Step(const Rhs& rhs, double t, const Vec4& y, const Vec4& f0, d
   constexpr double d1 = -12715105075.0 / 11282082432, d3 = 87487479700.0 / 32700410799,
                    d4 = -10690763975.0 / 1880347072, d5 = 701980252875.0 / 199316789632,
                    d6 = -1453857185.0 / 822651844, d7 = 69997945.0 / 29380423;
-  const Vec4& k1 = f0;
-  Vec4 yt;
-  for (int i = 0; i < 4; ++i) yt[i] = y[i] + h * a21 * k1[i];
-  const Vec4 k2 = rhs(t + c2 * h, yt);
-  for (int i = 0; i < 4; ++i) yt[i] = y[i] + h * (a31 * k1[i] + a32 * k2[i]);
-  const Vec4 k3 = rhs(t + c3 * h, yt);
-  for (int i = 0; i < 4; ++i) yt[i] = y[i] + h * (a41 * k1[i] + a42 * k2[i] + a43 * k3[i]);
-  const Vec4 k4 = rhs(t + c4 * h, yt);
-  for (int i = 0; i < 4; ++i) {
+  const Vec& k1 = f0;
+  Vec yt;
+  for (size_t i = 0; i < D; ++i) yt[i] = y[i] + h * a21 * k1[i];
+  const Vec k2 = rhs(t + c2 * h, yt);
+  for (size_t i = 0; i < D; ++i) yt[i] = y[i] + h * (a31 * k1[i] + a32 * k2[i]);
+  const Vec k3 = rhs(t + c3 * h, yt);
+  for (size_t i = 0; i < D; ++i) yt[i] = y[i] + h * (a41 * k1[i] + a42 * k2[i] + a43 * k3[i]);
+  const Vec k4 = rhs(t + c4 * h, yt);
+  for (size_t i = 0; i < D; ++i) {
     yt[i] = y[i] + h * (a51 * k1[i] + a52 * k2[i] + a53 * k3[i] + a54 * k4[i]);
   }
-  const Vec4 k5 = rhs(t + c5 * h, yt);
-  for (int i = 0; i < 4; ++i) {
+  const Vec k5 = rhs(t + c5 * h, yt);
+  for (size_t i = 0; i < D; ++i) {
     yt[i] = y[i] + h * (a61 * k1[i] + a62 * k2[i] + a63 * k3[i] + a64 * k4[i] + a65 * k5[i]);
   }
-  const Vec4 k6 = rhs(t + h, yt);
-  StepResult r;
-  for (int i = 0; i < 4; ++i) {
+  const Vec k6 = rhs(t + h, yt);
+  StepResultN<D> r;
+  for (size_t i = 0; i < D; ++i) {
     r.y1[i] = y[i] + h * (a71 * k1[i] + a73 * k3[i] + a74 * k4[i] + a75 * k5[i] + a76 * k6[i]);
   }
-  const Vec4 k7 = rhs(t + h, r.y1);
+  const Vec k7 = rhs(t + h, r.y1);
   r.f1 = k7;
   double sum = 0.0;
-  for (int i = 0; i < 4; ++i) {
+  for (size_t i = 0; i < D; ++i) {
     const double e =
         h * (e1 * k1[i] + e3 * k3[i] + e4 * k4[i] + e5 * k5[i] + e6 * k6[i] + e7 * k7[i]);
     const double sc = atol + rtol * std::max(std::abs(y[i]), std::abs(r.y1[i]));
     sum += (e / sc) * (e / sc);
   }
-  r.err = std::sqrt(sum / 4.0);
-  r.dense.kind = DenseStep::kDopri;
+  r.err = std::sqrt(sum / active);
+  r.dense.kind = DenseStepN<D>::kDopri;
   r.dense.t0 = t;
   r.dense.h = h;
-  for (int i = 0; i < 4; ++i) {
+  for (size_t i = 0; i < D; ++i) {
     const double ydiff = r.y1[i] - y[i];
     const double bspl = h * k1[i] - ydiff;
     r.dense.c[0][i] = y[i];
@@ -146,20 +160,22 @@ StepResult Dopri5Step(const Rhs& rhs, double t, const Vec4& y, const Vec4& f0, d
   return r;
 }
 
-/// One Dormand-Prince 8(5,3) step (dop853.f). f0 = f(t, y). 15 evaluations of rhs: 11 stages,
+/// One Dormand-Prince 8(5,3) step (dop853.f), the error norm over `active` components as
+/// Dopri5Step's. f0 = f(t, y). 15 evaluations of rhs: 11 stages,
 /// f(t + h, y1) and 3 for the 7th-order dense output. The error is dop853.f's: the 5th-order
-/// estimate damped by the 3rd-order one, err = |h| e5^2 / sqrt(4 (e5^2 + 0.01 e3^2)) with e5, e3
+/// estimate damped by the 3rd-order one, err = |h| e5^2 / sqrt(n (e5^2 + 0.01 e3^2)) with e5, e3
 /// the scaled norms (<= 1 accepts).
-template <class Rhs>
-StepResult Dop853Step(const Rhs& rhs, double t, const Vec4& y, const Vec4& f0, double h,
-                      double rtol, double atol) {
+template <class Rhs, size_t D>
+StepResultN<D> Dop853Step(const Rhs& rhs, double t, const VecN<D>& y, const VecN<D>& f0, double h,
+                          double rtol, double atol, int active = static_cast<int>(D)) {
   using namespace dop853;
-  std::array<Vec4, 16> k;
+  using Vec = VecN<D>;
+  std::array<Vec, 16> k;
   k[0] = f0;
-  Vec4 yt;
+  Vec yt;
   // The stages of the step (1-11), f(t + h, y1) (12) and the dense output's (13-15).
   auto stage = [&](int s) {
-    for (int i = 0; i < 4; ++i) {
+    for (size_t i = 0; i < D; ++i) {
       double sum = 0.0;
       for (int j = 0; j < s; ++j) sum += kA[s][j] * k[j][i];
       yt[i] = y[i] + h * sum;
@@ -167,14 +183,14 @@ StepResult Dop853Step(const Rhs& rhs, double t, const Vec4& y, const Vec4& f0, d
     k[s] = rhs(t + kC[s] * h, yt);
   };
   for (int s = 1; s < 12; ++s) stage(s);
-  StepResult r;
-  for (int i = 0; i < 4; ++i) {
+  StepResultN<D> r;
+  for (size_t i = 0; i < D; ++i) {
     double sum = 0.0;
     for (int j = 0; j < 12; ++j) sum += kA[12][j] * k[j][i];
     r.y1[i] = y[i] + h * sum;
   }
   double e5 = 0.0, e3 = 0.0;
-  for (int i = 0; i < 4; ++i) {
+  for (size_t i = 0; i < D; ++i) {
     double s5 = 0.0, s3 = 0.0;
     for (int j = 0; j < 12; ++j) {
       s5 += kE5[j] * k[j][i];
@@ -185,14 +201,14 @@ StepResult Dop853Step(const Rhs& rhs, double t, const Vec4& y, const Vec4& f0, d
     e3 += (s3 / sc) * (s3 / sc);
   }
   const double deno = e5 + 0.01 * e3;
-  r.err = deno > 0.0 ? std::abs(h) * e5 / std::sqrt(4.0 * deno) : 0.0;
+  r.err = deno > 0.0 ? std::abs(h) * e5 / std::sqrt(active * deno) : 0.0;
   k[12] = rhs(t + h, r.y1);
   r.f1 = k[12];
   for (int s = 13; s < 16; ++s) stage(s);
-  r.dense.kind = DenseStep::kDop853;
+  r.dense.kind = DenseStepN<D>::kDop853;
   r.dense.t0 = t;
   r.dense.h = h;
-  for (int i = 0; i < 4; ++i) {
+  for (size_t i = 0; i < D; ++i) {
     const double ydiff = r.y1[i] - y[i];
     const double bspl = h * k[0][i] - ydiff;
     r.dense.c[0][i] = y[i];
@@ -209,23 +225,24 @@ StepResult Dop853Step(const Rhs& rhs, double t, const Vec4& y, const Vec4& f0, d
 }
 
 /// One classical RK4 step (thesis eq. 6.2). f0 = f(t, y). Dense output: cubic Hermite.
-template <class Rhs>
-StepResult Rk4Step(const Rhs& rhs, double t, const Vec4& y, const Vec4& f0, double h) {
-  Vec4 yt;
-  const Vec4& k1 = f0;
-  for (int i = 0; i < 4; ++i) yt[i] = y[i] + 0.5 * h * k1[i];
-  const Vec4 k2 = rhs(t + 0.5 * h, yt);
-  for (int i = 0; i < 4; ++i) yt[i] = y[i] + 0.5 * h * k2[i];
-  const Vec4 k3 = rhs(t + 0.5 * h, yt);
-  for (int i = 0; i < 4; ++i) yt[i] = y[i] + h * k3[i];
-  const Vec4 k4 = rhs(t + h, yt);
-  StepResult r;
-  for (int i = 0; i < 4; ++i) r.y1[i] = y[i] + h / 6.0 * (k1[i] + 2 * k2[i] + 2 * k3[i] + k4[i]);
+template <class Rhs, size_t D>
+StepResultN<D> Rk4Step(const Rhs& rhs, double t, const VecN<D>& y, const VecN<D>& f0, double h) {
+  using Vec = VecN<D>;
+  Vec yt;
+  const Vec& k1 = f0;
+  for (size_t i = 0; i < D; ++i) yt[i] = y[i] + 0.5 * h * k1[i];
+  const Vec k2 = rhs(t + 0.5 * h, yt);
+  for (size_t i = 0; i < D; ++i) yt[i] = y[i] + 0.5 * h * k2[i];
+  const Vec k3 = rhs(t + 0.5 * h, yt);
+  for (size_t i = 0; i < D; ++i) yt[i] = y[i] + h * k3[i];
+  const Vec k4 = rhs(t + h, yt);
+  StepResultN<D> r;
+  for (size_t i = 0; i < D; ++i) r.y1[i] = y[i] + h / 6.0 * (k1[i] + 2 * k2[i] + 2 * k3[i] + k4[i]);
   r.f1 = rhs(t + h, r.y1);
-  r.dense.kind = DenseStep::kHermite;
+  r.dense.kind = DenseStepN<D>::kHermite;
   r.dense.t0 = t;
   r.dense.h = h;
-  for (int i = 0; i < 4; ++i) {
+  for (size_t i = 0; i < D; ++i) {
     r.dense.c[0][i] = y[i];
     r.dense.c[1][i] = r.y1[i];
     r.dense.c[2][i] = h * f0[i];
