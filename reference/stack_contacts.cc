@@ -49,16 +49,17 @@ StackContacts::StackContacts(StackGeometry geometry) : chain_(std::move(geometry
 }
 
 StackMargins StackContacts::MarginsOfLoads(const Configuration& c) const {
-  StackMargins m;
+  // The smallest over the faces and over the pivots; 1 for a kind the configuration lacks.
+  double face = INFINITY, point = INFINITY;
   for (int k = 0; k < size(); ++k) {
     const InterfaceLoad& L = loads_[k];
     if (c[k] == Contact::kFace) {
-      m.face = std::min(m.face, std::min(L.left_n, L.right_n) / weight_n_);
+      face = std::min(face, std::min(L.left_n, L.right_n) / weight_n_);
     } else {
-      m.point = std::min(m.point, L.normal_n / weight_n_);
+      point = std::min(point, L.normal_n / weight_n_);
     }
   }
-  return m;
+  return {face == INFINITY ? 1.0 : face, point == INFINITY ? 1.0 : point};
 }
 
 StackMargins StackContacts::Evaluate(const Configuration& c, const double* theta,

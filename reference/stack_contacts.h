@@ -29,6 +29,7 @@ namespace rockbench::reference {
 struct StackMargins {
   double face = 1.0;   ///< smallest face-corner force / (M g); 1 when no interface is closed
   double point = 1.0;  ///< smallest pivot normal force / (M g); 1 when none is open
+  // (Not capped at 1: the driver's probes of the margins follow their values.)
 };
 
 /// The configuration a state must move in, and whether any is consistent.
@@ -97,6 +98,8 @@ class StackContacts {
   /// from block k's base corner to the mass centre of the blocks from k up, at rest (for two
   /// blocks: the stack's R at the ground, block 2's r at the interface, as impact.h RestRate).
   double RestRate(int k, double rest_rate_rel) const;
+  /// R_k of RestRate, m.
+  double rest_radius_m(int k) const { return rest_radius_[k]; }
 
   /// Resolves an impact at interface k (its relative angle exactly zero) of a stack moving in
   /// `before` at (theta, omega_minus). Candidates: interface k rocks on its other corner or

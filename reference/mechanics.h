@@ -1,0 +1,136 @@
+#pragma once
+/// The two formulations of the stack's mechanics the reference's driver (simulate.cc) runs on,
+/// behind one interface:
+/// - ThesisMechanics: the thesis's explicit equations of motion, criteria and impact laws for
+///   one or two blocks (modes.h, transitions.h, impact.h), on the state y = (theta1, theta2,
+///   omega1, omega2) (one block: theta2 = theta1, omega2 = omega1). The default for one or two
+///   blocks: it is the cheaper (docs/performance-reference.md).
+/// - ChainMechanics<Cap>: the N-block pivot chain (stack_chain.h, stack_contacts.h) for up to
+///   Cap blocks, on y = (theta_1..theta_Cap, omega_1..omega_Cap), the entries beyond the stack's
+///   N blocks zero. Any N; for two blocks it agrees with ThesisMechanics to rounding
+///   (tests/reference/stack_chain_test.cc, stack_contacts_test.cc, mechanics_test.cc).
+/// The driver asks each the same questions: the accelerations of a configuration, its contact
+/// margins, the configuration a state must move in, what an impact leaves, the energy.
+#include <array>
+#include <cstddef>
+#include <string>
+
+#include "reference/geometry.h"
+#include "reference/integrator.h"
+#include "reference/stack_contacts.h"
+#include "scene/mode.h"
+#include "scene/scene.h"
+
+namespace rockbench::reference {
+
+/// The contact conditions of a configuration at a state: the margins (normalised by the total
+/// weight; negative: a face must open, or a pivot pulls) and, per interface (0: the ground),
+/// the normal force (N) and the friction coefficient it needs.
+template <size_t Cap>
+struct MarginsN {
+  double face = 1.0;   ///< smallest face-corner force / (M g); 1 when no interface is closed
+  double point = 1.0;  ///< smallest pivot normal force / (M g); 1 when none is open
+  std::array<double, Cap> normal_n{};
+  std::array<double, Cap> mu{};
+};
+
+/// The configuration a state must move in.
+struct Selection {
+  Configuration config;
+  bool consistent = true;
+  std::string note;  ///< why none is consistent, when that is not uplift
+};
+
+/// What an impact leaves.
+template <size_t D>
+struct ImpactN {
+  Configuration config;
+  VecN<D> y{};  ///< the state after (angles unchanged)
+  bool admissible = true;
+  bool settled = false;
+  double energy_before_j = 0.0, energy_after_j = 0.0;
+  std::string note;
+};
+
+/// The thesis's one or two blocks.
+class ThesisMechanics {
+ public:
+  static constexpr size_t kCap = 2;
+  using Y = Vec4;
+  using Margins = MarginsN<kCap>;
+  using Impact = ImpactN<4>;
+
+  explicit ThesisMechanics(const Scene& scene);
+  int blocks() const { return geo_.two_blocks ? 2 : 1; }
+  /// Components of the error norm: all four (one block's are mirrored, as they always were).
+  int active() const { return 4; }
+  /// sqrt(R / g), R block 1's base corner to the stack's mass centre, s.
+  double time_scale_s() const;
+  const Geometry& geometry() const { return geo_; }
+
+  /// (omega, theta'') of configuration c at y under (xg'', yg'').
+  Y Rhs(const Configuration& c, const Y& y, double xg, double yg) const;
+  /// y on c's constraints (a closed interface's block takes its support's angle and rate; one
+  /// block's mirror).
+  Y Project(const Configuration& c, const Y& y) const;
+  Margins Evaluate(const Configuration& c, const Y& y, double xg, double yg) const;
+  /// The same from c's accelerations at y already computed (an integrator's last stage f).
+  Margins EvaluateWithRhs(const Configuration& c, const Y& y, const Y& f, double xg,
+                          double yg) const;
+  Selection Select(const Y& y, double xg, double yg) const;
+  /// Whether any configuration's contact forces at y are not finite (an absurd base
+  /// acceleration), and the first such value.
+  bool NonFiniteForces(const Y& y, double xg, double yg, double* value) const;
+  Impact ResolveImpact(const Configuration& c, const Y& y, int interface, double rest_rel) const;
+  double Energy(const Configuration& c, const Y& y) const;
+
+ private:
+  Geometry geo_;
+  Equations equations_;
+};
+
+/// The N-block chain, up to Cap blocks.
+template <size_t Cap>
+class ChainMechanics {
+ public:
+  static constexpr size_t kCap = Cap;
+  using Y = VecN<2 * Cap>;
+  using Margins = MarginsN<Cap>;
+  using Impact = ImpactN<2 * Cap>;
+
+  /// Throws SceneError for the linearized equations (the thesis's, for two blocks only).
+  explicit ChainMechanics(const Scene& scene);
+  int blocks() const { return n_; }
+  int active() const { return 2 * n_; }
+  double time_scale_s() const;
+
+  Y Rhs(const Configuration& c, const Y& y, double xg, double yg) const;
+  Y Project(const Configuration& c, const Y& y) const;
+  Margins Evaluate(const Configuration& c, const Y& y, double xg, double yg) const;
+  Margins EvaluateWithRhs(const Configuration& c, const Y& y, const Y& f, double xg,
+                          double yg) const {
+    (void)f;  // the loads come out of the recursion again (it is O(N), as the right-hand side)
+    return Evaluate(c, y, xg, yg);
+  }
+  Selection Select(const Y& y, double xg, double yg) const;
+  bool NonFiniteForces(const Y& y, double xg, double yg, double* value) const;
+  Impact ResolveImpact(const Configuration& c, const Y& y, int interface, double rest_rel) const;
+  double Energy(const Configuration& c, const Y& y) const;
+
+ private:
+  int n_ = 0;
+  // The chain keeps a workspace: the mechanics' questions are const to the driver.
+  mutable StackContacts contacts_;
+};
+
+/// The N-block chain's geometry of a scene (its blocks, bottom first, and gravity).
+StackGeometry StackGeometryOf(const Scene& scene);
+
+extern template class ChainMechanics<2>;
+extern template class ChainMechanics<4>;
+extern template class ChainMechanics<8>;
+extern template class ChainMechanics<16>;
+extern template class ChainMechanics<32>;
+extern template class ChainMechanics<64>;
+
+}  // namespace rockbench::reference
