@@ -21,11 +21,36 @@ using VecN = std::array<double, D>;
 /// The two blocks' state (theta1, theta2, omega1, omega2).
 using Vec4 = VecN<4>;
 
+/// The kinds of dense output, and one component of each (shared by every state size).
+struct DenseKinds {
+  enum Kind { kConstant, kDopri, kHermite, kDop853 };
+  /// Number of coefficients of each component in a step of `kind`.
+  static constexpr int Coefficients(Kind kind) {
+    return kind == kDopri ? 5 : kind == kHermite ? 4 : kind == kDop853 ? 8 : 1;
+  }
+  /// One component of the interpolant of a step of `kind` at s = (t - t0) / h, from its
+  /// coefficients coef[0], coef[stride], ... (a kConstant step: coef[0]).
+  static double Component(Kind kind, double s, const double* coef, size_t stride) {
+    const double s1 = 1.0 - s;
+    auto cf = [&](int j) { return coef[j * stride]; };
+    if (kind == kDopri) return cf(0) + s * (cf(1) + s1 * (cf(2) + s * (cf(3) + s1 * cf(4))));
+    if (kind == kDop853) {
+      const double inner = cf(5) + s1 * (cf(6) + s * cf(7));
+      return cf(0) + s * (cf(1) + s1 * (cf(2) + s * (cf(3) + s1 * (cf(4) + s * inner))));
+    }
+    if (kind == kHermite) {
+      const double h00 = (1 + 2 * s) * s1 * s1, h10 = s * s1 * s1, h01 = s * s * (3 - 2 * s),
+                   h11 = -s * s * s1;
+      return h00 * cf(0) + h10 * cf(2) + h01 * cf(1) + h11 * cf(3);
+    }
+    return cf(0);
+  }
+};
+
 /// Continuous output of one step on [t0, t0 + h].
 template <size_t D>
-struct DenseStepN {
+struct DenseStepN : DenseKinds {
   using Vec = VecN<D>;
-  enum Kind { kConstant, kDopri, kHermite, kDop853 };
   Kind kind = kConstant;
   double t0 = 0.0, h = 0.0;
   /// kConstant: c[0]; kDopri: rcont1..5; kHermite: y0, y1, h f0, h f1; kDop853: y0 and the
@@ -61,25 +86,9 @@ struct DenseStepN {
   /// State at t (0 <= (t - t0) / h <= 1).
   Vec At(double t) const {
     if (kind == kConstant || h == 0.0) return c[0];
-    const double s = (t - t0) / h, s1 = 1.0 - s;
+    const double s = (t - t0) / h;
     Vec y;
-    if (kind == kDopri) {
-      for (size_t i = 0; i < D; ++i) {
-        y[i] = c[0][i] + s * (c[1][i] + s1 * (c[2][i] + s * (c[3][i] + s1 * c[4][i])));
-      }
-    } else if (kind == kDop853) {
-      for (size_t i = 0; i < D; ++i) {
-        const double inner = c[5][i] + s1 * (c[6][i] + s * c[7][i]);
-        y[i] =
-            c[0][i] + s * (c[1][i] + s1 * (c[2][i] + s * (c[3][i] + s1 * (c[4][i] + s * inner))));
-      }
-    } else {
-      const double h00 = (1 + 2 * s) * s1 * s1, h10 = s * s1 * s1, h01 = s * s * (3 - 2 * s),
-                   h11 = -s * s * s1;
-      for (size_t i = 0; i < D; ++i) {
-        y[i] = h00 * c[0][i] + h10 * c[2][i] + h01 * c[1][i] + h11 * c[3][i];
-      }
-    }
+    for (size_t i = 0; i < D; ++i) y[i] = Component(kind, s, &c[0][i], D);
     return y;
   }
 };
