@@ -51,6 +51,18 @@ ThesisMechanics::Y ThesisMechanics::Project(const Configuration& c, const Y& y) 
   return p;
 }
 
+ThesisMechanics::Y ThesisMechanics::Land(const Configuration& c, Y y, int interface) const {
+  const bool ground_moves = c[0] != Contact::kFace;
+  const bool interface_moves = geo_.two_blocks && c[1] != Contact::kFace;
+  if (interface == 0) {
+    y[0] = 0.0;
+    if (!interface_moves) y[1] = 0.0;
+  } else {
+    y[1] = ground_moves ? y[0] : 0.0;
+  }
+  return y;
+}
+
 namespace {
 ThesisMechanics::Margins MarginsOf(const ContactMargins& cm) {
   ThesisMechanics::Margins m;
@@ -177,6 +189,14 @@ typename ChainMechanics<Cap>::Y ChainMechanics<Cap>::Project(const Configuration
     p[Cap + k] = k == 0 ? 0.0 : p[Cap + k - 1];
   }
   return p;
+}
+
+template <size_t Cap>
+typename ChainMechanics<Cap>::Y ChainMechanics<Cap>::Land(const Configuration& c, Y y,
+                                                          int interface) const {
+  y[interface] = interface == 0 ? 0.0 : y[interface - 1];
+  for (int k = interface + 1; k < n_ && c[k] == Contact::kFace; ++k) y[k] = y[k - 1];
+  return y;
 }
 
 template <size_t Cap>

@@ -73,6 +73,9 @@ class ThesisMechanics {
   /// y on c's constraints (a closed interface's block takes its support's angle and rate; one
   /// block's mirror).
   Y Project(const Configuration& c, const Y& y) const;
+  /// y with interface k's gap closed exactly (it lands), the blocks resting on faces above it
+  /// landing with it.
+  Y Land(const Configuration& c, Y y, int interface) const;
   Margins Evaluate(const Configuration& c, const Y& y, double xg, double yg) const;
   /// The same from c's accelerations at y already computed (an integrator's last stage f).
   Margins EvaluateWithRhs(const Configuration& c, const Y& y, const Y& f, double xg,
@@ -106,6 +109,7 @@ class ChainMechanics {
 
   Y Rhs(const Configuration& c, const Y& y, double xg, double yg) const;
   Y Project(const Configuration& c, const Y& y) const;
+  Y Land(const Configuration& c, Y y, int interface) const;
   Margins Evaluate(const Configuration& c, const Y& y, double xg, double yg) const;
   Margins EvaluateWithRhs(const Configuration& c, const Y& y, const Y& f, double xg,
                           double yg) const {
