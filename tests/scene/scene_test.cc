@@ -59,19 +59,19 @@ TEST(ShippedScenes, AllParseAndTheirMotionLoads) {
 TEST(ShippedScenes, ThesisFreeRocking) {
   // Thesis 6.3.1: B1 = H1 = 1.25 m, B2 = 1.0 m, H2 = 2.5 m, 2500 kg/m^3, theta = 0.15 rad.
   const Scene s = LoadScene(kScenes / "thesis_free_rocking.toml");
-  ASSERT_TRUE(s.two_blocks());
-  EXPECT_EQ(s.block1.width_m, 1.25);
-  EXPECT_EQ(s.block1.height_m, 1.25);
-  EXPECT_EQ(s.block1.depth_m, 1.0);
-  EXPECT_EQ(s.block1.density_kgpm3, 2500.0);
-  EXPECT_DOUBLE_EQ(s.block1.mass_kg, 2500.0 * 1.25 * 1.25);
-  EXPECT_EQ(s.block2->width_m, 1.0);
-  EXPECT_EQ(s.block2->height_m, 2.5);
-  EXPECT_DOUBLE_EQ(s.block2->mass_kg, 6250.0);
-  EXPECT_EQ(s.initial.theta1_rad, 0.15);
-  EXPECT_EQ(s.initial.theta2_rad, 0.15);
-  EXPECT_EQ(s.initial.omega1_radps, 0.0);
-  EXPECT_EQ(s.initial.omega2_radps, 0.0);
+  ASSERT_TRUE(s.block_count() == 2);
+  EXPECT_EQ(s.blocks[0].width_m, 1.25);
+  EXPECT_EQ(s.blocks[0].height_m, 1.25);
+  EXPECT_EQ(s.blocks[0].depth_m, 1.0);
+  EXPECT_EQ(s.blocks[0].density_kgpm3, 2500.0);
+  EXPECT_DOUBLE_EQ(s.blocks[0].mass_kg, 2500.0 * 1.25 * 1.25);
+  EXPECT_EQ(s.blocks[1].width_m, 1.0);
+  EXPECT_EQ(s.blocks[1].height_m, 2.5);
+  EXPECT_DOUBLE_EQ(s.blocks[1].mass_kg, 6250.0);
+  EXPECT_EQ(s.initial.theta_rad[0], 0.15);
+  EXPECT_EQ(s.initial.theta_rad[1], 0.15);
+  EXPECT_EQ(s.initial.omega_radps[0], 0.0);
+  EXPECT_EQ(s.initial.omega_radps[1], 0.0);
   EXPECT_FALSE(s.horizontal || s.vertical);
   EXPECT_EQ(s.run.duration_s, 6.0);
   EXPECT_EQ(s.run.output_interval_s, 0.005);
@@ -95,9 +95,9 @@ TEST(ShippedScenes, ThesisRinaldiResolvesTheRecordNextToTheScene) {
 
 TEST(ShippedScenes, HousnerIsASingleBlockAtHalfItsSlenderness) {
   const Scene s = LoadScene(kScenes / "housner_free_rocking.toml");
-  EXPECT_FALSE(s.two_blocks());
-  const double theta_c = std::atan(s.block1.width_m / s.block1.height_m);
-  EXPECT_DOUBLE_EQ(s.initial.theta1_rad, 0.5 * theta_c);
+  EXPECT_FALSE(s.block_count() == 2);
+  const double theta_c = std::atan(s.blocks[0].width_m / s.blocks[0].height_m);
+  EXPECT_DOUBLE_EQ(s.initial.theta_rad[0], 0.5 * theta_c);
   EXPECT_EQ(s.run.duration_s, 4.0);
 }
 
@@ -134,10 +134,10 @@ TEST(ShippedScenes, RunGravityLeavesTheBaseMotionAlone) {
 TEST(Parse, DefaultsOfAMinimalScene) {
   const Scene s = ParseScene("[block1]\nwidth = 1\nheight = 2\nmass = 100\n", "");
   const Scene d;
-  EXPECT_FALSE(s.two_blocks());
-  EXPECT_EQ(s.block1.mass_kg, 100.0);
-  EXPECT_EQ(s.block1.density_kgpm3, 0.0);
-  EXPECT_EQ(s.block1.depth_m, 1.0);
+  EXPECT_FALSE(s.block_count() == 2);
+  EXPECT_EQ(s.blocks[0].mass_kg, 100.0);
+  EXPECT_EQ(s.blocks[0].density_kgpm3, 0.0);
+  EXPECT_EQ(s.blocks[0].depth_m, 1.0);
   EXPECT_EQ(s.run.duration_s, d.run.duration_s);
   EXPECT_EQ(s.run.output_interval_s, d.run.output_interval_s);
   EXPECT_EQ(s.run.gravity_mps2, d.run.gravity_mps2);
@@ -145,7 +145,7 @@ TEST(Parse, DefaultsOfAMinimalScene) {
   EXPECT_EQ(s.model.rtol, d.model.rtol);
   EXPECT_TRUE(s.engine_tables.empty());  // engines' settings: their own defaults
   EXPECT_FALSE(s.compare.tolerance_rad);
-  EXPECT_EQ(s.initial.theta1_rad, 0.0);
+  EXPECT_EQ(s.initial.theta_rad[0], 0.0);
 }
 
 TEST(Parse, EveryKeyOfTheSchema) {
@@ -217,13 +217,13 @@ seed = 7
 )";
   const Scene s = ParseScene(text, "");
   EXPECT_EQ(s.title, "all keys");
-  EXPECT_EQ(s.block1.width_m, 2.0);  // a TOML integer is accepted as a number
-  EXPECT_DOUBLE_EQ(s.block1.mass_kg, 2000.0 * 2.0 * 3.0 * 0.5);
-  EXPECT_EQ(s.block2->mass_kg, 700.0);
-  EXPECT_EQ(s.block2->density_kgpm3, 0.0);
-  EXPECT_EQ(s.block2->depth_m, 0.5);
-  EXPECT_EQ(s.initial.theta2_rad, -0.02);
-  EXPECT_EQ(s.initial.omega2_radps, -0.4);
+  EXPECT_EQ(s.blocks[0].width_m, 2.0);  // a TOML integer is accepted as a number
+  EXPECT_DOUBLE_EQ(s.blocks[0].mass_kg, 2000.0 * 2.0 * 3.0 * 0.5);
+  EXPECT_EQ(s.blocks[1].mass_kg, 700.0);
+  EXPECT_EQ(s.blocks[1].density_kgpm3, 0.0);
+  EXPECT_EQ(s.blocks[1].depth_m, 0.5);
+  EXPECT_EQ(s.initial.theta_rad[1], -0.02);
+  EXPECT_EQ(s.initial.omega_radps[1], -0.4);
   EXPECT_EQ(s.horizontal->kind, MotionKind::kRicker);
   EXPECT_EQ(s.horizontal->key, "base.horizontal");
   EXPECT_EQ(s.horizontal->amplitude_g, 0.25);
@@ -522,7 +522,7 @@ TEST(Overrides, CreateMissingTablesAndKeys) {
       ParseScene(kBlocks, "",
                  {"initial.theta1=0.05", "compare.tolerance=0.02", "base.vertical.kind=sine_pulse",
                   "base.vertical.amplitude_g=0.2", "base.vertical.frequency_hz=3"});
-  EXPECT_EQ(s.initial.theta1_rad, 0.05);
+  EXPECT_EQ(s.initial.theta_rad[0], 0.05);
   EXPECT_EQ(*s.compare.tolerance_rad, 0.02);
   ASSERT_TRUE(s.vertical);
   EXPECT_EQ(s.vertical->kind, MotionKind::kSinePulse);
@@ -552,19 +552,19 @@ TEST(Overrides, Errors) {
 
 TEST(Validate, SceneBuiltInCode) {
   Scene s;
-  s.block1 = BlockDef{1.0, 2.0, 1.0, 100.0, 0.0};
+  s.blocks = {BlockDef{1.0, 2.0, 1.0, 100.0, 0.0}};
   EXPECT_NO_THROW(ValidateScene(s));
-  s.block1.width_m = -1.0;
+  s.blocks[0].width_m = -1.0;
   try {
     ValidateScene(s);
     ADD_FAILURE() << "no error";
   } catch (const SceneError& e) {
     EXPECT_EQ(std::string(e.what()), "scene: block1.width: expected a positive number (m), got -1");
   }
-  s.block1.width_m = 1.0;
-  s.initial.theta2_rad = 0.1;  // no block 2
+  s.blocks[0].width_m = 1.0;
+  s.initial.theta_rad[1] = 0.1;  // no block 2
   EXPECT_THROW(ValidateScene(s), SceneError);
-  s.initial.theta2_rad = 0.0;
+  s.initial.theta_rad[1] = 0.0;
   s.run.output_interval_s = 20.0;
   EXPECT_THROW(ValidateScene(s), SceneError);
   s.run.output_interval_s = 0.01;
