@@ -52,19 +52,22 @@ Geometry MakeGeometry(double B1, double H1, double m1, double B2, double H2, dou
 }
 
 Geometry MakeGeometry(const Scene& scene) {
-  const double B2 = scene.block2 ? scene.block2->width_m : 0.0;
-  const double H2 = scene.block2 ? scene.block2->height_m : 0.0;
-  const double m2 = scene.block2 ? scene.block2->mass_kg : 0.0;
-  if (scene.block2 && B2 > scene.block1.width_m) {
+  RequireAtMostTwoBlocks(scene, "reference model geometry");
+  if (scene.blocks.empty()) throw SceneError(scene.path.string() + ": block1: missing");
+  const BlockDef& b1 = scene.blocks[0];
+  const bool two = scene.block_count() == 2;
+  const double B2 = two ? scene.blocks[1].width_m : 0.0;
+  const double H2 = two ? scene.blocks[1].height_m : 0.0;
+  const double m2 = two ? scene.blocks[1].mass_kg : 0.0;
+  if (two && B2 > b1.width_m) {
     std::ostringstream os;
     os << scene.path.string() << ": block2.width (" << B2 << " m) exceeds block1.width ("
-       << scene.block1.width_m
+       << b1.width_m
        << " m): block 2 would pivot outside block 1's top face, which the thesis's model "
           "does not describe";
     throw SceneError(os.str());
   }
-  return MakeGeometry(scene.block1.width_m, scene.block1.height_m, scene.block1.mass_kg, B2, H2, m2,
-                      scene.run.gravity_mps2);
+  return MakeGeometry(b1.width_m, b1.height_m, b1.mass_kg, B2, H2, m2, scene.run.gravity_mps2);
 }
 
 }  // namespace rockbench::reference

@@ -8,10 +8,12 @@ namespace rockbench::reference {
 
 State StateOf(const Sample& sample, bool two_blocks) {
   State st;
-  st.theta1 = sample.theta1_rad;
-  st.omega1 = sample.omega1_radps;
-  st.theta2 = two_blocks ? sample.theta2_rad : sample.theta1_rad;
-  st.omega2 = two_blocks ? sample.omega2_radps : sample.omega1_radps;
+  // The top block of the state: block 2, or for one block the block itself.
+  const size_t top = two_blocks && sample.theta_rad.size() >= 2 ? 1 : 0;
+  st.theta1 = sample.theta_rad[0];
+  st.omega1 = sample.omega_radps[0];
+  st.theta2 = sample.theta_rad[top];
+  st.omega2 = sample.omega_radps[top];
   return st;
 }
 

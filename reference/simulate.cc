@@ -197,6 +197,35 @@ class MotionCursor {
   mutable MotionComponent::LinearPiece piece_;
 };
 
+// An event at t from `before` (rates of `pre`) to `after` (rates of `post`) of a stack of
+// `blocks` (1 or 2) blocks, in the history's vocabulary: one configuration and one rate per
+// block. Out of line: events are rare, and the integration loop's inlining is not to change.
+[[gnu::noinline]] Event MakeEvent(int blocks, double t, const char* kind, Mode before, Mode after,
+                                  const State& pre, const State& post) {
+  Event ev(blocks);
+  ev.t_s = t;
+  ev.kind = kind;
+  ev.mode_before = ConfigurationOf(before, blocks);
+  ev.mode_after = ConfigurationOf(after, blocks);
+  ev.omega_before_radps[0] = pre.omega1;
+  ev.omega_after_radps[0] = post.omega1;
+  if (blocks == 2) {
+    ev.omega_before_radps[1] = pre.omega2;
+    ev.omega_after_radps[1] = post.omega2;
+  }
+  return ev;
+}
+
+// The per-block figures of the summary while a run of one or two blocks goes on, as plain
+// numbers in the integration loop (Summary's per-block vectors are filled at the end).
+struct Figures {
+  double peak_theta1_rad = 0.0, peak_theta1_t_s = 0.0;
+  double peak_theta2_rad = 0.0, peak_theta2_t_s = 0.0;
+  int impacts_ground = 0, impacts_interface = 0;
+  double friction_required_ground = 0.0, friction_required_interface = 0.0;
+  double min_normal_ground_n = kInf, min_normal_interface_n = kInf;
+};
+
 class Simulator {
  public:
   Simulator(const Scene& scene, const GroundMotion& motion)
@@ -205,7 +234,11 @@ class Simulator {
         motion_(motion),
         xg_(motion.horizontal()),
         yg_(motion.vertical()),
-        geo_(MakeGeometry(scene)) {
+        geo_(MakeGeometry(scene)),
+        blocks_(geo_.two_blocks ? 2 : 1) {
+    result_.summary = Summary(blocks_);
+    result_.history.blocks = blocks_;
+    result_.trajectory.set_blocks(blocks_);
     for (const auto* c : {&motion.horizontal(), &motion.vertical()}) {
       if (*c && (*c)->samples_mps2().empty()) analytic_motion_ = true;
     }
@@ -247,8 +280,21 @@ class Simulator {
     return p;
   }
 
-  void EmitSamplesUntil(double t_end, bool inclusive);
-  void AddEvent(Event ev) { result_.history.events.push_back(std::move(ev)); }
+  // Records the samples of the output times up to t_end (inclusive or not): most calls have
+  // none to record, and return at once.
+  void EmitSamplesUntil(double t_end, bool inclusive) {
+    const double ts = next_sample_ * scene_.run.output_interval_s;
+    if (ts > t_end_ + 1e-12 * t_end_ || (inclusive ? ts > t_end : ts >= t_end)) return;
+    EmitSamples(t_end, inclusive);
+  }
+  [[gnu::noinline]] void EmitSamples(double t_end, bool inclusive);
+  // Out of line, as every path that records events or samples: rare work, kept out of the
+  // integration loop's inlining.
+  [[gnu::noinline]] void AddEvent(Event ev) { result_.history.events.push_back(std::move(ev)); }
+  Event NewEvent(double t, const char* kind, Mode before, Mode after, const State& pre,
+                 const State& post) const {
+    return MakeEvent(blocks_, t, kind, before, after, pre, post);
+  }
   void Track(double t, const State& s);
   bool StartMode(double t, const State& s, const char* kind, Mode before, const std::string& note);
   // At a located switch the choice of mode can hang on rounding (a face force or an opening
@@ -369,25 +415,38 @@ class Simulator {
     return std::max(event_tol_, 8 * std::numeric_limits<double>::epsilon() * std::abs(t));
   }
   // Records an event that ends the run at t_ in state s (no change of state).
-  void StopWith(const char* kind, const State& s, const std::string& note, RunStatus status) {
-    Event ev;
-    ev.t_s = t_;
-    ev.kind = kind;
-    ev.mode_before = ev.mode_after = mode_;
-    ev.omega1_before = ev.omega1_after = s.omega1;
-    ev.omega2_before = ev.omega2_after = s.omega2;
+  [[gnu::noinline]] void StopWith(const char* kind, const State& s, const std::string& note,
+                                  RunStatus status) {
+    Event ev = NewEvent(t_, kind, mode_, mode_, s, s);
     ev.energy_before_j = ev.energy_after_j = Energy(geo_, mode_, s);
     ev.note = note;
-    AddEvent(ev);
+    AddEvent(std::move(ev));
     y_ = ToVec(s);
     Finish(status);
   }
   // Smallest normal reactions seen (summary).
   void NoteNormalForces(const Reactions& r) {
-    Summary& sum = result_.summary;
+    Figures& sum = fig_;
     sum.min_normal_ground_n = std::min(sum.min_normal_ground_n, r.N_ground);
     if (geo_.two_blocks)
       sum.min_normal_interface_n = std::min(sum.min_normal_interface_n, r.N_interface);
+  }
+  // The result's summary gets the per-block figures.
+  Result TakeResult() {
+    Summary& sum = result_.summary;
+    sum.peak_theta_rad[0] = fig_.peak_theta1_rad;
+    sum.peak_theta_t_s[0] = fig_.peak_theta1_t_s;
+    sum.impacts_at[0] = fig_.impacts_ground;
+    sum.friction_required[0] = fig_.friction_required_ground;
+    sum.min_normal_n[0] = fig_.min_normal_ground_n;
+    if (blocks_ == 2) {
+      sum.peak_theta_rad[1] = fig_.peak_theta2_rad;
+      sum.peak_theta_t_s[1] = fig_.peak_theta2_t_s;
+      sum.impacts_at[1] = fig_.impacts_interface;
+      sum.friction_required[1] = fig_.friction_required_interface;
+      sum.min_normal_n[1] = fig_.min_normal_interface_n;
+    }
+    return std::move(result_);
   }
   void Finish(RunStatus status) {
     if (result_.summary.status == RunStatus::kCompleted) result_.summary.status = status;
@@ -399,7 +458,9 @@ class Simulator {
   const GroundMotion& motion_;
   MotionCursor xg_, yg_;
   const Geometry geo_;
+  const int blocks_;  // 1 or 2: the history's and the summary's
   Result result_;
+  Figures fig_;
   Mode mode_ = Mode::kRest;
   double t_ = 0.0;
   Vec4 y_{};
@@ -420,7 +481,7 @@ class Simulator {
 };
 
 void Simulator::Track(double t, const State& s) {
-  Summary& sum = result_.summary;
+  Figures& sum = fig_;
   if (std::abs(s.theta1) > sum.peak_theta1_rad) {
     sum.peak_theta1_rad = std::abs(s.theta1);
     sum.peak_theta1_t_s = t;
@@ -431,16 +492,15 @@ void Simulator::Track(double t, const State& s) {
   }
 }
 
-void Simulator::EmitSamplesUntil(double t_end, bool inclusive) {
+void Simulator::EmitSamples(double t_end, bool inclusive) {
   const double dt = scene_.run.output_interval_s;
   auto& samples = result_.history.samples;
   while (true) {
     const double ts = next_sample_ * dt;
     if (ts > t_end_ + 1e-12 * t_end_) break;
     if (inclusive ? ts > t_end : ts >= t_end) break;
-    Sample smp = result_.trajectory.At(ts);
-    smp.t_s = ts;
-    samples.push_back(smp);
+    samples.push_back(result_.trajectory.At(ts));
+    samples.back().t_s = ts;
     ++next_sample_;
   }
 }
@@ -452,30 +512,22 @@ bool Simulator::StartMode(double t, const State& s, const char* kind, Mode befor
     mode_ = sel.mode;  // no event to record
     return true;
   }
-  Event ev;
-  ev.t_s = t;
-  ev.mode_before = before;
-  ev.omega1_before = s.omega1;
-  ev.omega2_before = s.omega2;
-  ev.omega1_after = s.omega1;
-  ev.omega2_after = s.omega2;
+  Event ev = NewEvent(t, kind, before, before, s, s);
   ev.energy_before_j = ev.energy_after_j = Energy(geo_, before, s);
   if (!sel.consistent) {
     ev.kind = "assumption_violated";
-    ev.mode_after = before;
     ev.note = "no mode satisfies the contact conditions (tensile normal force: uplift)";
     result_.summary.status_detail = ev.note;
-    AddEvent(ev);
+    AddEvent(std::move(ev));
     result_.summary.status = RunStatus::kAssumptionViolated;
     done_ = true;
     return false;
   }
-  ev.kind = kind;
-  ev.mode_after = sel.mode;
+  ev.mode_after = ConfigurationOf(sel.mode, blocks_);
   ev.note = note;
   if (std::string(kind) == "initiation") ++result_.summary.initiations;
   if (std::string(kind) == "transition") ++result_.summary.transitions;
-  AddEvent(ev);
+  AddEvent(std::move(ev));
   mode_ = sel.mode;
   return true;
 }
@@ -495,15 +547,8 @@ void Simulator::DoImpact(double t, const State& pre, ImpactKind kind) {
     return;
   }
   Summary& sum = result_.summary;
-  Event ev;
-  ev.t_s = t;
-  ev.kind = kind == ImpactKind::kGround ? "ground_impact" : "interface_impact";
-  ev.mode_before = before;
-  ev.mode_after = ir.chosen.mode;
-  ev.omega1_before = pre.omega1;
-  ev.omega2_before = geo_.two_blocks ? pre.omega2 : 0.0;
-  ev.omega1_after = ir.chosen.state.omega1;
-  ev.omega2_after = geo_.two_blocks ? ir.chosen.state.omega2 : 0.0;
+  Event ev = NewEvent(t, kind == ImpactKind::kGround ? "ground_impact" : "interface_impact", before,
+                      ir.chosen.mode, pre, ir.chosen.state);
   ev.energy_before_j = ir.energy_before_j;
   ev.energy_after_j = ir.chosen.energy_after_j;
   ev.note = ir.note;
@@ -514,8 +559,8 @@ void Simulator::DoImpact(double t, const State& pre, ImpactKind kind) {
     ev.note += std::string(ev.note.empty() ? "" : " ") + "ENERGY GAIN";
   }
   if (!ir.admissible) ++sum.impacts_inadmissible;
-  (kind == ImpactKind::kGround ? sum.impacts_ground : sum.impacts_interface)++;
-  AddEvent(ev);
+  (kind == ImpactKind::kGround ? fig_.impacts_ground : fig_.impacts_interface)++;
+  AddEvent(std::move(ev));
   mode_ = ir.chosen.mode;
   // The post-impact mode must also satisfy the contact forces (a locked pair may open at once).
   StartMode(t, ir.chosen.state, "transition", mode_, "after impact");
@@ -755,7 +800,7 @@ Simulator::LocatedEvent Simulator::FindEvent(const StepDense& at, double t1,
 
 void Simulator::RecordStep(const StepDense& at, const DenseStep& dense, double t_seg_end,
                            const Vec4& y_end, const ContactMargins& cm_end) {
-  Summary& sum = result_.summary;
+  Figures& sum = fig_;
   Trajectory::Segment seg{t_, t_seg_end, mode_, dense};
   result_.trajectory.Append(seg);
   EmitSamplesUntil(t_seg_end, false);
@@ -943,9 +988,9 @@ Result Simulator::Run() {
   ValidateScene(scene_);
   t_end_ = scene_.run.duration_s;
   const InitialState& in = scene_.initial;
-  State s{in.theta1_rad, geo_.two_blocks ? in.theta2_rad : in.theta1_rad, in.omega1_radps,
-          geo_.two_blocks ? in.omega2_radps : in.omega1_radps};
-  result_.history.two_blocks = geo_.two_blocks;
+  // One block: the stack is the one block (theta2 = theta1), as the equations expect.
+  const int top = geo_.two_blocks ? 1 : 0;
+  State s{in.theta_rad[0], in.theta_rad[top], in.omega_radps[0], in.omega_radps[top]};
   Track(0.0, s);
   if (std::abs(s.theta1) >= cfg_.overturn_rad || std::abs(s.theta2) >= cfg_.overturn_rad) {
     throw SceneError(scene_.path.string() + ": initial angle beyond model.overturn_angle");
@@ -978,7 +1023,7 @@ Result Simulator::Run() {
       result_.trajectory.Append(seg);
       t_end_ = 0.0;
       EmitSamplesUntil(0.0, true);
-      return result_;
+      return TakeResult();
     }
     StopNonFinite(bad, 0.0, s);
     EndTrajectory();
@@ -988,12 +1033,9 @@ Result Simulator::Run() {
   if (!done_ && mode_ != Mode::kRest && s.theta1 == 0.0 && s.theta2 == 0.0 && s.omega1 == 0.0 &&
       s.omega2 == 0.0) {
     // Motion starts at t = 0 from rest.
-    Event ev;
-    ev.kind = "initiation";
-    ev.mode_before = Mode::kRest;
-    ev.mode_after = mode_;
+    Event ev = NewEvent(0.0, "initiation", Mode::kRest, mode_, State{}, State{});
     ev.energy_before_j = ev.energy_after_j = Energy(geo_, Mode::kRest, s);
-    AddEvent(ev);
+    AddEvent(std::move(ev));
     ++result_.summary.initiations;
   }
   while (!done_ && t_ < t_end_) {
@@ -1010,19 +1052,19 @@ Result Simulator::Run() {
   merged.reserve(samples.size() + result_.history.events.size());
   size_t k = 0;
   for (const Event& ev : result_.history.events) {
-    while (k < samples.size() && samples[k].t_s < ev.t_s) merged.push_back(samples[k++]);
+    while (k < samples.size() && samples[k].t_s < ev.t_s) merged.push_back(std::move(samples[k++]));
     if (k < samples.size() && samples[k].t_s == ev.t_s) continue;
     if (!merged.empty() && merged.back().t_s == ev.t_s) continue;
     merged.push_back(result_.trajectory.At(ev.t_s));
   }
-  while (k < samples.size()) merged.push_back(samples[k++]);
+  while (k < samples.size()) merged.push_back(std::move(samples[k++]));
   samples = std::move(merged);
   if (result_.summary.status == RunStatus::kCompleted && mode_ == Mode::kRest &&
       t_ >= motion_.end_s()) {
     result_.summary.status = RunStatus::kAtRest;
   }
   result_.summary.rhs_evaluations = rhs_count_;
-  return std::move(result_);
+  return TakeResult();
 }
 
 }  // namespace
@@ -1030,6 +1072,7 @@ Result Simulator::Run() {
 Result Simulate(const Scene& scene, const GroundMotion& motion) {
   // The scene's rules first (the same for every engine): its messages name the key and limit.
   ValidateScene(scene);
+  RequireAtMostTwoBlocks(scene, "reference model");
   Simulator sim(scene, motion);
   return sim.Run();
 }

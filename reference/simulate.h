@@ -28,11 +28,15 @@ class Trajectory {
     Mode mode = Mode::kRest;
     DenseStep dense;
   };
+  /// One block or two (the samples At() gives have this many).
+  void set_blocks(int blocks) { blocks_ = blocks; }
+  int blocks() const { return blocks_; }
   void Append(Segment segment);
   const std::vector<Segment>& segments() const { return segments_; }
 
  private:
   std::vector<Segment> segments_;
+  int blocks_ = 2;
 };
 
 /// Summary figures of a reference run.
@@ -46,23 +50,41 @@ struct Summary {
   /// state, non_finite_last_t_s (s): nothing after it was computed.
   std::string non_finite_quantity, non_finite_value;
   double non_finite_t_s = 0.0, non_finite_last_t_s = 0.0;
-  std::optional<int> overturn_block;  ///< 1 or 2
+  std::optional<int> overturn_block;  ///< 1..N
   double overturn_t_s = 0.0;
-  double peak_theta1_rad = 0.0, peak_theta1_t_s = 0.0;  ///< peak |theta1| and its time
-  double peak_theta2_rad = 0.0, peak_theta2_t_s = 0.0;
-  int impacts_ground = 0;                    ///< block 1 (or the stack) hits the ground
-  int impacts_interface = 0;                 ///< block 2 hits block 1
-  int impacts_inadmissible = 0;              ///< no thesis outcome was admissible (see README)
-  int impacts_energy_gain = 0;               ///< impacts that would add energy (must stay 0)
-  int transitions = 0;                       ///< mode changes without impact
-  int initiations = 0;                       ///< starts from rest
-  double friction_required_ground = 0.0;     ///< max |T|/N at the ground contact
-  double friction_required_interface = 0.0;  ///< max |T|/N at the block-1/block-2 contact
-  /// Smallest normal reaction at the ground and at the interface (two blocks) over the step
-  /// ends, N; +infinity when the run took no step.
-  double min_normal_ground_n = std::numeric_limits<double>::infinity();
-  double min_normal_interface_n = std::numeric_limits<double>::infinity();
+  /// Peak |theta_k| and its time, one entry per block (block k at k - 1).
+  std::vector<double> peak_theta_rad, peak_theta_t_s;
+  /// Per interface, one entry per block: [0] block 1 (or the stack) on the ground, [k] block
+  /// k + 1 on block k. Impacts there; the largest |T|/N the contact needed; its smallest normal
+  /// reaction over the step ends, N (+infinity when the run took no step).
+  std::vector<int> impacts_at;
+  std::vector<double> friction_required;
+  std::vector<double> min_normal_n;
+  int impacts_inadmissible = 0;  ///< no thesis outcome was admissible (see README)
+  int impacts_energy_gain = 0;   ///< impacts that would add energy (must stay 0)
+  int transitions = 0;           ///< mode changes without impact
+  int initiations = 0;           ///< starts from rest
   long steps_accepted = 0, steps_rejected = 0, rhs_evaluations = 0;
+
+  /// No blocks (fill it, or build it for a number of blocks).
+  Summary() = default;
+  /// The summary of a run of `blocks` blocks before it starts.
+  explicit Summary(int blocks)
+      : peak_theta_rad(static_cast<size_t>(blocks), 0.0),
+        peak_theta_t_s(static_cast<size_t>(blocks), 0.0),
+        impacts_at(static_cast<size_t>(blocks), 0),
+        friction_required(static_cast<size_t>(blocks), 0.0),
+        min_normal_n(static_cast<size_t>(blocks), std::numeric_limits<double>::infinity()) {}
+  int blocks() const { return static_cast<int>(peak_theta_rad.size()); }
+  /// Impacts of block 1 (or the stack) on the ground.
+  int impacts_ground() const { return impacts_at.empty() ? 0 : impacts_at[0]; }
+  /// Impacts at every interface between blocks.
+  int impacts_interface() const { return impacts() - impacts_ground(); }
+  int impacts() const {
+    int n = 0;
+    for (const int i : impacts_at) n += i;
+    return n;
+  }
 };
 
 struct Result {
@@ -71,8 +93,9 @@ struct Result {
   Summary summary;
 };
 
-/// Runs the reference model on a scene. Never throws for physics outcomes (overturning,
-/// assumption violations are statuses); throws SceneError for impossible settings. A state,
+/// Runs the reference model on a scene of one or two blocks. Never throws for physics outcomes
+/// (overturning, assumption violations are statuses); throws SceneError for impossible settings
+/// and for a scene of three or more blocks (not simulated yet: issue 23). A state,
 /// energy, event time or contact force that is not finite (an absurd base motion built in code)
 /// ends the run with status "non_finite" at its last finite state: no NaN or infinity reaches
 /// the history, the events or the summary.

@@ -17,8 +17,13 @@
 namespace rockbench::renders {
 
 InitialState StackState(const Sample& s, bool two_blocks) {
-  return {s.theta1_rad, two_blocks ? s.theta2_rad : s.theta1_rad, s.omega1_radps,
-          two_blocks ? s.omega2_radps : s.omega1_radps};
+  const size_t top = two_blocks && s.blocks() >= 2 ? 1 : 0;
+  InitialState out;
+  out.theta_rad[0] = s.theta_rad[0];
+  out.theta_rad[1] = s.theta_rad[top];
+  out.omega_radps[0] = s.omega_radps[0];
+  out.omega_radps[1] = s.omega_radps[top];
+  return out;
 }
 
 StackCorners PoseFor(const Scene& scene, const InitialState& state, Vec2 base) {
@@ -30,7 +35,10 @@ StackCorners PoseFor(const Scene& scene, const InitialState& state, Vec2 base) {
 }
 
 StackCorners PoseFor(const Scene& scene, double theta1_rad, double theta2_rad, Vec2 base) {
-  return PoseFor(scene, InitialState{theta1_rad, theta2_rad, 0.0, 0.0}, base);
+  InitialState state;
+  state.theta_rad[0] = theta1_rad;
+  state.theta_rad[1] = theta2_rad;
+  return PoseFor(scene, state, base);
 }
 
 Sample StateAt(const History& history, double t_s) {
@@ -47,10 +55,10 @@ Sample StateAt(const History& history, double t_s) {
   const double w = span > 0.0 ? (t_s - a.t_s) / span : 0.0;
   Sample out = a;
   out.t_s = t_s;
-  out.theta1_rad = a.theta1_rad + w * (b.theta1_rad - a.theta1_rad);
-  out.theta2_rad = a.theta2_rad + w * (b.theta2_rad - a.theta2_rad);
-  out.omega1_radps = a.omega1_radps + w * (b.omega1_radps - a.omega1_radps);
-  out.omega2_radps = a.omega2_radps + w * (b.omega2_radps - a.omega2_radps);
+  for (size_t k = 0; k < out.theta_rad.size() && k < b.theta_rad.size(); ++k) {
+    out.theta_rad[k] = a.theta_rad[k] + w * (b.theta_rad[k] - a.theta_rad[k]);
+    out.omega_radps[k] = a.omega_radps[k] + w * (b.omega_radps[k] - a.omega_radps[k]);
+  }
   return out;
 }
 
@@ -194,10 +202,11 @@ Box MotionBox(const Scene& scene, const std::vector<const History*>& histories,
   add_pose({}, t_from_s);
   for (const History* h : histories) {
     if (!h || h->samples.empty()) continue;
-    for (double t : {t_from_s, t_to_s}) add_pose(StackState(StateAt(*h, t), h->two_blocks), t);
+    const bool two = h->blocks == 2;
+    for (double t : {t_from_s, t_to_s}) add_pose(StackState(StateAt(*h, t), two), t);
     for (const Sample& s : h->samples) {
       if (s.t_s < t_from_s || s.t_s > t_to_s) continue;
-      add_pose(StackState(s, h->two_blocks), s.t_s);
+      add_pose(StackState(s, two), s.t_s);
     }
   }
   // The base displacement over the whole window (between history samples too).
@@ -211,7 +220,8 @@ Box MotionBox(const Scene& scene, const std::vector<const History*>& histories,
     }
   }
   // A strip of ground below the lowest ground position.
-  const double stack_h = scene.block1.height_m + (scene.block2 ? scene.block2->height_m : 0.0);
+  double stack_h = 0.0;
+  for (const BlockDef& b : scene.blocks) stack_h += b.height_m;
   box.y_min_m -= 0.2 * stack_h;
   const double m = margin_frac * std::max(box.width_m(), box.height_m());
   box.x_min_m -= m;

@@ -31,6 +31,8 @@ std::optional<Layout> ParseLayout(std::string_view name) {
 
 FrameLayout ComputeLayout(const Scene& scene, const std::vector<Track>& tracks,
                           const BaseDisplacement& base, const RenderConfig& config) {
+  // The entry of every frame: the renders draw one or two blocks for now (issue 23).
+  RequireAtMostTwoBlocks(scene, "render");
   const std::string size = std::to_string(config.width_px) + "x" + std::to_string(config.height_px);
   if (config.width_px < kMinWidth_px || config.height_px < kMinHeight_px) {
     throw std::invalid_argument("image size " + size + ": must be at least " +
@@ -110,8 +112,9 @@ FrameLayout ComputeLayout(const Scene& scene, const std::vector<Track>& tracks,
   // Chart range: the largest |theta| in the window, rounded up to a round number.
   double peak = 0.0;
   auto add_peak = [&](const History& hist, const Sample& s) {
-    peak = std::max(peak, std::abs(s.theta1_rad));
-    if (hist.two_blocks) peak = std::max(peak, std::abs(s.theta2_rad));
+    for (int k = 0; k < std::min(hist.blocks, s.blocks()); ++k) {
+      peak = std::max(peak, std::abs(s.theta_rad[k]));
+    }
   };
   for (const Track& t : tracks) {
     add_peak(t.history, StateAt(t.history, lay.t_from_s));

@@ -154,7 +154,7 @@ struct FrameRenderer::Impl {
   }
 
   StackCorners PoseOf(const Track& track, double t) const {
-    return PoseFor(scene, StackState(StateAt(track.history, t), track.history.two_blocks),
+    return PoseFor(scene, StackState(StateAt(track.history, t), track.history.blocks == 2),
                    BaseAt(t));
   }
 
@@ -217,20 +217,20 @@ struct FrameRenderer::Impl {
         glLineStipple(3 * s, 0xF0F0);
       }
       glLineWidth(static_cast<float>((i == 0 ? 1.5 : 1.2) * line_w() * s));
-      for (int which = h.two_blocks ? 1 : 0; which >= 0; --which) {
+      for (int which = h.blocks == 2 ? 1 : 0; which >= 0; --which) {
         Colour(which == 0 ? palette.chart_theta1 : palette.chart_theta2);
         glBegin(GL_LINE_STRIP);
         const Sample first = StateAt(h, layout.t_from_s);
-        const Vec2 p0 = px(layout.t_from_s, which == 0 ? first.theta1_rad : first.theta2_rad);
+        const Vec2 p0 = px(layout.t_from_s, first.theta_rad[which]);
         glVertex2d(p0.x, p0.y);
         for (const Sample& smp : h.samples) {
           if (smp.t_s <= layout.t_from_s) continue;
           if (smp.t_s > t_clamped) break;
-          const Vec2 p = px(smp.t_s, which == 0 ? smp.theta1_rad : smp.theta2_rad);
+          const Vec2 p = px(smp.t_s, smp.theta_rad[which]);
           glVertex2d(p.x, p.y);
         }
         const Sample now = StateAt(h, t_clamped);
-        const Vec2 p = px(t_clamped, which == 0 ? now.theta1_rad : now.theta2_rad);
+        const Vec2 p = px(t_clamped, now.theta_rad[which]);
         glVertex2d(p.x, p.y);
         glEnd();
       }
@@ -280,9 +280,9 @@ struct FrameRenderer::Impl {
     const Sample s = StateAt(track.history, t);
     std::string line;
     if (with_name) line = track.engine + "   ";
-    line += "mode " + std::string(ModeName(s.mode)) + "   θ₁ = " + Format("%+.4f", s.theta1_rad) +
-            " rad";
-    if (track.history.two_blocks) line += "   θ₂ = " + Format("%+.4f", s.theta2_rad) + " rad";
+    line +=
+        "mode " + ConfigurationName(s.mode) + "   θ₁ = " + Format("%+.4f", s.theta_rad[0]) + " rad";
+    if (track.history.blocks == 2) line += "   θ₂ = " + Format("%+.4f", s.theta_rad[1]) + " rad";
     return line;
   }
 
@@ -324,9 +324,11 @@ struct FrameRenderer::Impl {
           const int x = static_cast<int>(std::lround(r.x_px));
           const Sample s = StateAt(tracks[i].history, t);
           font->Draw(img, x, baseline(r, 0),
-                     tracks[i].engine + "   mode " + std::string(ModeName(s.mode)), palette.text);
-          std::string angles = "θ₁ = " + Format("%+.4f", s.theta1_rad);
-          if (tracks[i].history.two_blocks) angles += "   θ₂ = " + Format("%+.4f", s.theta2_rad);
+                     tracks[i].engine + "   mode " + ConfigurationName(s.mode), palette.text);
+          std::string angles = "θ₁ = " + Format("%+.4f", s.theta_rad[0]);
+          if (tracks[i].history.blocks == 2) {
+            angles += "   θ₂ = " + Format("%+.4f", s.theta_rad[1]);
+          }
           font->Draw(img, x, baseline(r, 1), angles + " rad", palette.text);
         }
       } else {
@@ -368,7 +370,7 @@ struct FrameRenderer::Impl {
         }
       }
       const bool two = std::any_of(tracks.begin(), tracks.end(),
-                                   [](const Track& tr) { return tr.history.two_blocks; });
+                                   [](const Track& tr) { return tr.history.blocks == 2; });
       const int space = font->Measure("  ");
       const int w1 = font->Measure("θ₁");
       const int w2 = two ? space + font->Measure("θ₂") : 0;

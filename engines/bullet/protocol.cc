@@ -16,7 +16,9 @@ namespace {
 
 constexpr char kInputMagic[8] = {'R', 'B', 'B', 'I', 'N', 'P', 'U', 'T'};
 constexpr char kOutputMagic[8] = {'R', 'B', 'B', 'O', 'U', 'T', 'P', 'T'};
-constexpr std::uint32_t kVersion = 3;  // 3: each flag with its onset time
+// 3: each flag with its onset time; 4: the history, events and outcome of N blocks (rates and
+// configurations per block).
+constexpr std::uint32_t kVersion = 4;
 constexpr std::uint64_t kViolationFlagCount = std::size(kViolationFlags);
 
 class Writer {
@@ -124,10 +126,10 @@ std::string SerializeInput(const BulletInput& in) {
   PutBlock(w, in.block1);
   w.PutBool(in.block2.has_value());
   if (in.block2) PutBlock(w, *in.block2);
-  w.Put(in.initial.theta1_rad);
-  w.Put(in.initial.theta2_rad);
-  w.Put(in.initial.omega1_radps);
-  w.Put(in.initial.omega2_radps);
+  w.Put(in.initial.theta_rad[0]);
+  w.Put(in.initial.theta_rad[1]);
+  w.Put(in.initial.omega_radps[0]);
+  w.Put(in.initial.omega_radps[1]);
   w.Put(in.run.duration_s);
   w.Put(in.run.output_interval_s);
   w.Put(in.run.gravity_mps2);
@@ -173,10 +175,10 @@ BulletInput ParseInput(const std::string& bytes) {
   BulletInput in;
   in.block1 = GetBlock(r);
   if (r.GetBool()) in.block2 = GetBlock(r);
-  in.initial.theta1_rad = r.Get<double>();
-  in.initial.theta2_rad = r.Get<double>();
-  in.initial.omega1_radps = r.Get<double>();
-  in.initial.omega2_radps = r.Get<double>();
+  in.initial.theta_rad[0] = r.Get<double>();
+  in.initial.theta_rad[1] = r.Get<double>();
+  in.initial.omega_radps[0] = r.Get<double>();
+  in.initial.omega_radps[1] = r.Get<double>();
   in.run.duration_s = r.Get<double>();
   in.run.output_interval_s = r.Get<double>();
   in.run.gravity_mps2 = r.Get<double>();
@@ -221,26 +223,32 @@ std::string SerializeOutput(const EngineResult& out) {
   Writer w;
   w.PutRaw(kOutputMagic, 8);
   w.Put(kVersion);
-  w.PutBool(out.history.two_blocks);
+  const int blocks = out.history.blocks;
+  w.Put<std::int32_t>(blocks);
+  // Every per-block vector of the history and the outcome has `blocks` entries.
+  const auto put_values = [&](const std::vector<double>& v) {
+    for (int k = 0; k < blocks; ++k) w.Put(k < static_cast<int>(v.size()) ? v[k] : 0.0);
+  };
+  const auto put_configuration = [&](const Configuration& c) {
+    for (int k = 0; k < blocks; ++k) {
+      w.Put<std::int32_t>(k < c.size() ? static_cast<std::int32_t>(c[k]) : 0);
+    }
+  };
   w.Put<std::uint64_t>(out.history.samples.size());
   for (const Sample& s : out.history.samples) {
     w.Put(s.t_s);
-    w.Put(s.theta1_rad);
-    w.Put(s.theta2_rad);
-    w.Put(s.omega1_radps);
-    w.Put(s.omega2_radps);
-    w.Put<std::int32_t>(static_cast<std::int32_t>(s.mode));
+    put_values(s.theta_rad);
+    put_values(s.omega_radps);
+    put_configuration(s.mode);
   }
   w.Put<std::uint64_t>(out.history.events.size());
   for (const Event& e : out.history.events) {
     w.Put(e.t_s);
     w.PutStr(e.kind);
-    w.Put<std::int32_t>(static_cast<std::int32_t>(e.mode_before));
-    w.Put<std::int32_t>(static_cast<std::int32_t>(e.mode_after));
-    w.Put(e.omega1_before);
-    w.Put(e.omega2_before);
-    w.Put(e.omega1_after);
-    w.Put(e.omega2_after);
+    put_configuration(e.mode_before);
+    put_configuration(e.mode_after);
+    put_values(e.omega_before_radps);
+    put_values(e.omega_after_radps);
     w.Put(e.energy_before_j);
     w.Put(e.energy_after_j);
     w.PutStr(e.note);
@@ -250,12 +258,11 @@ std::string SerializeOutput(const EngineResult& out) {
   w.Put<std::int32_t>(o.overturned_block);
   w.Put(o.overturn_t_s);
   w.Put(o.end_t_s);
-  w.Put(o.peak_theta1_rad);
-  w.Put(o.peak_theta1_t_s);
-  w.Put(o.peak_theta2_rad);
-  w.Put(o.peak_theta2_t_s);
-  w.Put<std::int32_t>(o.impacts_ground);
-  w.Put<std::int32_t>(o.impacts_interface);
+  put_values(o.peak_theta_rad);
+  put_values(o.peak_theta_t_s);
+  for (int k = 0; k < blocks; ++k) {
+    w.Put<std::int32_t>(k < static_cast<int>(o.impacts_at.size()) ? o.impacts_at[k] : 0);
+  }
   // Each flag with its onset (the run's end for an onset the outcome does not carry).
   auto put_flags = [&](const std::vector<std::string>& flags, const std::vector<double>& onsets) {
     w.Put<std::uint64_t>(flags.size());
@@ -275,47 +282,60 @@ EngineResult ParseOutput(const std::string& bytes) {
   Reader r(bytes);
   r.Expect(kOutputMagic);
   EngineResult out;
-  out.history.two_blocks = r.GetBool();
+  const int blocks = r.Get<std::int32_t>();
+  if (blocks < 1 || blocks > kMaxBlocks) {
+    throw std::runtime_error("bullet helper protocol: bad block count");
+  }
+  out.history.blocks = blocks;
+  const auto get_values = [&](std::vector<double>* v) {
+    v->assign(static_cast<size_t>(blocks), 0.0);
+    for (double& x : *v) x = r.Get<double>();
+  };
+  const auto get_configuration = [&](Configuration* c) {
+    *c = Configuration(blocks);
+    for (int k = 0; k < blocks; ++k) {
+      const auto contact = r.Get<std::int32_t>();
+      if (contact < 0 || contact > 2) throw std::runtime_error("bullet helper protocol: bad mode");
+      c->set(k, static_cast<Contact>(contact));
+    }
+  };
   const auto ns = r.Get<std::uint64_t>();
   if (ns > bytes.size()) throw std::runtime_error("bullet helper protocol: bad sample count");
-  out.history.samples.resize(ns);
-  for (Sample& s : out.history.samples) {
+  out.history.samples.reserve(ns);
+  for (std::uint64_t i = 0; i < ns; ++i) {
+    Sample s(blocks);
     s.t_s = r.Get<double>();
-    s.theta1_rad = r.Get<double>();
-    s.theta2_rad = r.Get<double>();
-    s.omega1_radps = r.Get<double>();
-    s.omega2_radps = r.Get<double>();
-    s.mode = static_cast<Mode>(r.Get<std::int32_t>());
+    get_values(&s.theta_rad);
+    get_values(&s.omega_radps);
+    get_configuration(&s.mode);
+    out.history.samples.push_back(std::move(s));
   }
   const auto ne = r.Get<std::uint64_t>();
   if (ne > bytes.size()) throw std::runtime_error("bullet helper protocol: bad event count");
-  out.history.events.resize(ne);
-  for (Event& e : out.history.events) {
+  out.history.events.reserve(ne);
+  for (std::uint64_t i = 0; i < ne; ++i) {
+    Event& e = out.history.events.emplace_back(blocks);
     e.t_s = r.Get<double>();
     e.kind = r.GetStr();
-    e.mode_before = static_cast<Mode>(r.Get<std::int32_t>());
-    e.mode_after = static_cast<Mode>(r.Get<std::int32_t>());
-    e.omega1_before = r.Get<double>();
-    e.omega2_before = r.Get<double>();
-    e.omega1_after = r.Get<double>();
-    e.omega2_after = r.Get<double>();
+    get_configuration(&e.mode_before);
+    get_configuration(&e.mode_after);
+    get_values(&e.omega_before_radps);
+    get_values(&e.omega_after_radps);
     e.energy_before_j = r.Get<double>();
     e.energy_after_j = r.Get<double>();
     e.note = r.GetStr();
   }
   RunOutcome& o = out.outcome;
+  o = RunOutcome(blocks);
   const std::optional<RunStatus> status = ParseRunStatus(r.GetStr());
   if (!status) throw std::runtime_error("bullet helper protocol: bad status");
   o.status = *status;
   o.overturned_block = r.Get<std::int32_t>();
   o.overturn_t_s = r.Get<double>();
   o.end_t_s = r.Get<double>();
-  o.peak_theta1_rad = r.Get<double>();
-  o.peak_theta1_t_s = r.Get<double>();
-  o.peak_theta2_rad = r.Get<double>();
-  o.peak_theta2_t_s = r.Get<double>();
-  o.impacts_ground = r.Get<std::int32_t>();
-  o.impacts_interface = r.Get<std::int32_t>();
+  get_values(&o.peak_theta_rad);
+  get_values(&o.peak_theta_t_s);
+  for (int& n : o.impacts_at) n = r.Get<std::int32_t>();
   auto get_flags = [&r](std::vector<std::string>* flags, std::vector<double>* onsets) {
     const auto n = r.Get<std::uint64_t>();
     if (n > kViolationFlagCount) throw std::runtime_error("bullet helper protocol: bad flags");

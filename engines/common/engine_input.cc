@@ -73,6 +73,8 @@ const char* DriveKindName(DriveKind kind) {
 EngineInput MakeEngineInput(const Scene& scene, const GroundMotion& motion,
                             const std::string& engine, double time_step_s, DriveKind drive,
                             double kinematic_highpass_hz) {
+  // The entry of every fixed-step engine: one or two blocks for now (issue 23).
+  RequireAtMostTwoBlocks(scene, "engine " + engine);
   const double dt = time_step_s;
   const std::string where = scene.path.empty() ? std::string("scene") : scene.path.string();
   if (!(std::isfinite(dt) && dt > 0.0)) {
@@ -84,8 +86,8 @@ EngineInput MakeEngineInput(const Scene& scene, const GroundMotion& motion,
                      "small)");
   }
   EngineInput in;
-  in.block1 = scene.block1;
-  in.block2 = scene.block2;
+  in.block1 = scene.blocks.at(0);
+  if (scene.block_count() == 2) in.block2 = scene.blocks[1];
   in.initial = scene.initial;
   in.run = scene.run;
   in.time_step_s = dt;

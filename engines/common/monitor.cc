@@ -148,6 +148,9 @@ Monitor::Monitor(const EngineInput& input, MonitorConfig config) : cfg_(config) 
   in_meta_.stop_at_rest_after_s = input.stop_at_rest_after_s;
   in_meta_.steps = input.steps;
   two_ = input.two_blocks();
+  blocks_ = two_ ? 2 : 1;
+  last_ = Sample(blocks_);
+  prev_ = Derived(blocks_);
   b1_ = 0.5 * input.block1.width_m;
   h1_ = 0.5 * input.block1.height_m;
   m1_ = input.block1.mass_kg;
@@ -166,17 +169,17 @@ Monitor::Monitor(const EngineInput& input, MonitorConfig config) : cfg_(config) 
   // alpha B per block: a corner moved by d tilts the block by d / B.
   significant_m_[0] = cfg_.significant_critical_fraction * props1_.theta_c * 2.0 * b1_;
   if (two_) significant_m_[1] = cfg_.significant_critical_fraction * props2_.theta_c * 2.0 * b2_;
-  history_.two_blocks = two_;
+  history_.blocks = blocks_;
 }
 
 Monitor::Derived Monitor::Derive(const StepReadout& s) {
-  Derived d;
+  Derived d(blocks_);
   const BodyReadout& r1 = s.block1;
   // Unwrapped CCW angles; the thesis's theta is -phi.
   phi1_ += std::remainder(std::atan2(r1.sin_phi, r1.cos_phi) - phi1_, 2.0 * std::numbers::pi);
   d.sample.t_s = s.t_s;
-  d.sample.theta1_rad = -phi1_;
-  d.sample.omega1_radps = -r1.w_radps;
+  d.sample.theta_rad[0] = -phi1_;
+  d.sample.omega_radps[0] = -r1.w_radps;
   // Base frame.
   const double x1 = r1.x_m - s.ground_x_m, y1 = r1.y_m - s.ground_y_m;
   const double vx1 = r1.vx_mps - s.ground_vx_mps, vy1 = r1.vy_mps - s.ground_vy_mps;
@@ -193,8 +196,8 @@ Monitor::Derived Monitor::Derive(const StepReadout& s) {
   if (two_) {
     const BodyReadout& r2 = s.block2;
     phi2_ += std::remainder(std::atan2(r2.sin_phi, r2.cos_phi) - phi2_, 2.0 * std::numbers::pi);
-    d.sample.theta2_rad = -phi2_;
-    d.sample.omega2_radps = -r2.w_radps;
+    d.sample.theta_rad[1] = -phi2_;
+    d.sample.omega_radps[1] = -r2.w_radps;
     const double x2 = r2.x_m - s.ground_x_m, y2 = r2.y_m - s.ground_y_m;
     const double vx2 = r2.vx_mps - s.ground_vx_mps, vy2 = r2.vy_mps - s.ground_vy_mps;
     d.energy_j += BlockEnergy_j(props2_, g_, {{x2, y2}, {vx2, vy2}, r2.w_radps});
@@ -235,19 +238,19 @@ void Monitor::Pivots(const StepReadout& s, Derived* d, int* side1, int* side2) c
 void Monitor::TiltSides(const Sample& s, int* side1, int* side2) const {
   // The reference's rule (scene/mode.h TiltContact), with the angle's side from the
   // hysteresis and the flat band's rate threshold of MonitorConfig.
-  *side1 =
-      SideOfContact(TiltContact(ContactOfSide(ground_.side), s.omega1_radps, cfg_.rate_tol_radps));
+  *side1 = SideOfContact(
+      TiltContact(ContactOfSide(ground_.side), s.omega_radps[0], cfg_.rate_tol_radps));
   *side2 = 0;
   if (two_) {
     *side2 = SideOfContact(TiltContact(ContactOfSide(interface_.side),
-                                       s.omega2_radps - s.omega1_radps, cfg_.rate_tol_radps));
+                                       s.omega_radps[1] - s.omega_radps[0], cfg_.rate_tol_radps));
   }
 }
 
-Mode Monitor::InferMode(const Sample& s) const {
+Configuration Monitor::InferMode(const Sample& s) const {
   int s1 = 0, s2 = 0;
   TiltSides(s, &s1, &s2);
-  return ModeOf({ContactOfSide(s1), ContactOfSide(s2)}, two_);
+  return ConfigurationOf(ModeOf({ContactOfSide(s1), ContactOfSide(s2)}, two_), blocks_);
 }
 
 void Monitor::Record(const Sample& s) {
@@ -270,18 +273,18 @@ void Monitor::Start(const StepReadout& s) {
   phi1_ = a1;
   if (two_) phi2_ = std::atan2(s.block2.sin_phi, s.block2.cos_phi);
   Derived d = Derive(s);
-  ground_.side =
-      std::abs(d.sample.theta1_rad) > cfg_.angle_enter_rad ? Sign(d.sample.theta1_rad) : 0;
-  ground_.prev = d.sample.theta1_rad;
+  const double theta1 = d.sample.theta_rad[0];
+  ground_.side = std::abs(theta1) > cfg_.angle_enter_rad ? Sign(theta1) : 0;
+  ground_.prev = theta1;
   if (two_) {
-    const double rel = d.sample.theta2_rad - d.sample.theta1_rad;
+    const double rel = d.sample.theta_rad[1] - theta1;
     interface_.side = std::abs(rel) > cfg_.angle_enter_rad ? Sign(rel) : 0;
     interface_.prev = rel;
   }
   d.sample.mode = InferMode(d.sample);
   Pivots(s, &d, &pivot_side1_, &pivot_side2_);
-  peak1_ = std::abs(d.sample.theta1_rad);
-  peak2_ = std::abs(d.sample.theta2_rad);
+  peak1_ = std::abs(theta1);
+  peak2_ = two_ ? std::abs(d.sample.theta_rad[1]) : 0.0;
   prev_ = d;
   last_ = d.sample;
   energy_min_free_j_ = d.energy_j;
@@ -309,8 +312,8 @@ bool Monitor::Step(std::int64_t n, const StepReadout& s) {
   Sample& cur = d.sample;
   const double t_prev = prev_.sample.t_s, t = cur.t_s;
   // |theta| of both blocks before this step (prev_ is overwritten before the overturn check).
-  const double abs1_prev = std::abs(prev_.sample.theta1_rad);
-  const double abs2_prev = std::abs(prev_.sample.theta2_rad);
+  const double abs1_prev = std::abs(prev_.sample.theta_rad[0]);
+  const double abs2_prev = two_ ? std::abs(prev_.sample.theta_rad[1]) : 0.0;
 
   const Landings landings = DetectLandings(cur, t_prev);
   cur.mode = InferMode(cur);
@@ -347,12 +350,11 @@ void Monitor::StopNonFinite(const std::string& quantity, const std::string& valu
   // The run, its history and its outcome end at the last finite state.
   end_t_s_ = last_.t_s;
   if (any_finite) {
-    Event e;
+    Event e(blocks_);
     e.t_s = last_.t_s;
     e.kind = "non_finite";
     e.mode_before = e.mode_after = last_.mode;
-    e.omega1_before = e.omega1_after = last_.omega1_radps;
-    e.omega2_before = e.omega2_after = last_.omega2_radps;
+    e.omega_before_radps = e.omega_after_radps = last_.omega_radps;
     e.energy_before_j = e.energy_after_j = prev_.energy_j;
     e.note = status_detail_;
     PushEvent(std::move(e));
@@ -395,14 +397,14 @@ Monitor::Landings Monitor::DetectLandings(const Sample& cur, double t_prev) {
   // Impacts: a tilted block lands.
   Landings l;
   l.t_prev = t_prev;
-  l.rel = two_ ? cur.theta2_rad - cur.theta1_rad : 0.0;
+  l.rel = two_ ? cur.theta_rad[1] - cur.theta_rad[0] : 0.0;
   l.rel_prev = interface_.prev;
   l.theta1_prev = ground_.prev;
   l.side_ground = ground_.side;
   l.side_interface = interface_.side;
-  l.ground = UpdateSide(&ground_.side, ground_.prev, cur.theta1_rad, t_prev, cur.t_s,
+  l.ground = UpdateSide(&ground_.side, ground_.prev, cur.theta_rad[0], t_prev, cur.t_s,
                         cfg_.angle_enter_rad, cfg_.angle_leave_rad, &l.t_ground, &l.crossed_ground);
-  ground_.prev = cur.theta1_rad;
+  ground_.prev = cur.theta_rad[0];
   if (two_) {
     l.interface =
         UpdateSide(&interface_.side, interface_.prev, l.rel, t_prev, cur.t_s, cfg_.angle_enter_rad,
@@ -421,7 +423,7 @@ void Monitor::CompletePendingImpacts(const Derived& d, const Landings& l) {
   const Sample& prev = prev_.sample;
   for (size_t k = 0; k < pending_.size();) {
     PendingImpact& p = pending_[k];
-    const double angle = p.interface ? l.rel : cur.theta1_rad;
+    const double angle = p.interface ? l.rel : cur.theta_rad[0];
     const double angle_prev = p.interface ? l.rel_prev : l.theta1_prev;
     bool done = false;
     if (p.crossed) {
@@ -429,8 +431,7 @@ void Monitor::CompletePendingImpacts(const Derived& d, const Landings& l) {
     } else if (p.side * angle <= 0.0) {
       p.crossed = true;
       p.event.t_s = CrossingTime(angle_prev, angle, l.t_prev, cur.t_s);
-      p.event.omega1_before = prev.omega1_radps;
-      p.event.omega2_before = prev.omega2_radps;
+      p.event.omega_before_radps = prev.omega_radps;
       p.event.energy_before_j = prev_.energy_j;
     } else if (++p.waited >= kImpactWaitSteps) {
       done = true;
@@ -438,8 +439,7 @@ void Monitor::CompletePendingImpacts(const Derived& d, const Landings& l) {
     }
     if (done) {
       p.event.mode_after = cur.mode;
-      p.event.omega1_after = cur.omega1_radps;
-      p.event.omega2_after = cur.omega2_radps;
+      p.event.omega_after_radps = cur.omega_radps;
       p.event.energy_after_j = d.energy_j;
       PushEvent(std::move(p.event));
       pending_.erase(pending_.begin() + static_cast<std::ptrdiff_t>(k));
@@ -453,7 +453,7 @@ void Monitor::CompletePendingImpacts(const Derived& d, const Landings& l) {
 void Monitor::OpenImpacts(const Landings& l) {
   const Sample& prev = prev_.sample;
   auto make_impact = [&](const char* kind, bool interface, int side, double when, bool crossed) {
-    PendingImpact p;
+    PendingImpact p(blocks_);
     p.interface = interface;
     p.side = side;
     p.crossed = crossed;
@@ -463,8 +463,7 @@ void Monitor::OpenImpacts(const Landings& l) {
     // The state before the crossing step is before the contact impulse: Bullet applies it in
     // the step that crosses (a speculative contact already in the manifold) or in the next one
     // (a contact found penetrating), so the step after the crossing is after it.
-    p.event.omega1_before = prev.omega1_radps;
-    p.event.omega2_before = prev.omega2_radps;
+    p.event.omega_before_radps = prev.omega_radps;
     p.event.energy_before_j = prev_.energy_j;
     pending_.push_back(std::move(p));
   };
@@ -484,18 +483,17 @@ void Monitor::RecordModeChange(const Derived& d) {
   const bool impact_busy = !pending_.empty() || suppress_mode_events_ > 0;
   // Mode changes without impact.
   if (cur.mode != prev.mode && !impact_busy) {
-    Event e;
+    Event e(blocks_);
     e.t_s = cur.t_s;
     e.mode_before = prev.mode;
     e.mode_after = cur.mode;
-    e.omega1_before = e.omega1_after = cur.omega1_radps;
-    e.omega2_before = e.omega2_after = cur.omega2_radps;
+    e.omega_before_radps = e.omega_after_radps = cur.omega_radps;
     e.energy_before_j = prev_.energy_j;
     e.energy_after_j = d.energy_j;
-    if (prev.mode == Mode::kRest) {
+    if (prev.mode.at_rest()) {
       e.kind = "initiation";
       ++initiations_;
-    } else if (cur.mode == Mode::kRest) {
+    } else if (cur.mode.at_rest()) {
       e.kind = "rest";
       ++rests_;
     } else {
@@ -556,16 +554,16 @@ void Monitor::MeasurePeaksAndEnergy(const Derived& d, bool base_accelerating) {
   const Sample& cur = d.sample;
   const double t = cur.t_s;
   // Peaks.
-  if (std::abs(cur.theta1_rad) > peak1_) {
-    peak1_ = std::abs(cur.theta1_rad);
+  if (std::abs(cur.theta_rad[0]) > peak1_) {
+    peak1_ = std::abs(cur.theta_rad[0]);
     peak1_t_ = t;
   }
-  if (two_ && std::abs(cur.theta2_rad) > peak2_) {
-    peak2_ = std::abs(cur.theta2_rad);
+  if (two_ && std::abs(cur.theta_rad[1]) > peak2_) {
+    peak2_ = std::abs(cur.theta_rad[1]);
     peak2_t_ = t;
   }
   max_rate_radps_ = std::max(
-      {max_rate_radps_, std::abs(cur.omega1_radps), two_ ? std::abs(cur.omega2_radps) : 0.0});
+      {max_rate_radps_, std::abs(cur.omega_radps[0]), two_ ? std::abs(cur.omega_radps[1]) : 0.0});
 
   // Energy without input must not grow.
   if (base_accelerating) {
@@ -615,27 +613,26 @@ bool Monitor::Stopped(const Derived& d, double t_prev, double abs1_prev, double 
       t_over = when;
     }
   };
-  crossed(1, abs1_prev, std::abs(cur.theta1_rad));
-  if (two_) crossed(2, abs2_prev, std::abs(cur.theta2_rad));
+  crossed(1, abs1_prev, std::abs(cur.theta_rad[0]));
+  if (two_) crossed(2, abs2_prev, std::abs(cur.theta_rad[1]));
   if (over_block != 0) {
     status_ = RunStatus::kOverturned;
     overturn_block_ = over_block;
     overturn_t_s_ = t_over;
     status_detail_ = "block " + std::to_string(over_block) +
                      " reached |theta| = " + std::to_string(over) + " rad (model.overturn_angle)";
-    Event e;
+    Event e(blocks_);
     e.t_s = t_over;
     e.kind = "overturn";
     e.mode_before = e.mode_after = cur.mode;
-    e.omega1_before = e.omega1_after = cur.omega1_radps;
-    e.omega2_before = e.omega2_after = cur.omega2_radps;
+    e.omega_before_radps = e.omega_after_radps = cur.omega_radps;
     e.energy_before_j = e.energy_after_j = d.energy_j;
     e.note = "block " + std::to_string(over_block);
     PushEvent(std::move(e));
     return true;
   }
   // Settled: at rest once the base can no longer start rocking (ensemble members only).
-  if (cur.mode != Mode::kRest) {
+  if (!cur.mode.at_rest()) {
     rest_since_s_ = -1.0;
   } else if (rest_since_s_ < 0.0) {
     rest_since_s_ = t;
@@ -664,8 +661,7 @@ void Monitor::Finish() {
   // Impacts still waiting for their post-impact state: complete them with the last state.
   for (PendingImpact& p : pending_) {
     p.event.mode_after = last_.mode;
-    p.event.omega1_after = last_.omega1_radps;
-    p.event.omega2_after = last_.omega2_radps;
+    p.event.omega_after_radps = last_.omega_radps;
     p.event.energy_after_j = prev_.energy_j;
     p.event.note = "run ended before the contact was resolved";
     PushEvent(std::move(p.event));
@@ -681,15 +677,17 @@ void Monitor::Finish() {
 }
 
 RunOutcome Monitor::Outcome() const {
-  RunOutcome o;
+  RunOutcome o(blocks_);
   o.status = status_;
   o.overturned_block = overturn_block_;
   if (overturn_block_ != 0) o.overturn_t_s = overturn_t_s_;
   o.end_t_s = end_t_s_;
-  o.peak_theta1_rad = peak1_, o.peak_theta1_t_s = peak1_t_;
-  if (two_) o.peak_theta2_rad = peak2_, o.peak_theta2_t_s = peak2_t_;
-  o.impacts_ground = impacts_ground_;
-  o.impacts_interface = impacts_interface_;
+  o.peak_theta_rad[0] = peak1_, o.peak_theta_t_s[0] = peak1_t_;
+  o.impacts_at[0] = impacts_ground_;
+  if (two_) {
+    o.peak_theta_rad[1] = peak2_, o.peak_theta_t_s[1] = peak2_t_;
+    o.impacts_at[1] = impacts_interface_;
+  }
   // The raised flags with their onsets; a flag first raised by this evaluation (never, in a run
   // that stepped) is dated at the run's end.
   auto list = [this](const auto& raised, const auto& onsets, std::vector<std::string>* names,
@@ -735,13 +733,13 @@ nlohmann::json Monitor::Summary() const {
   }
   json fin;
   fin["t_s"] = last_.t_s;
-  fin["theta1_rad"] = last_.theta1_rad;
-  fin["omega1_radps"] = last_.omega1_radps;
+  fin["theta1_rad"] = last_.theta_rad[0];
+  fin["omega1_radps"] = last_.omega_radps[0];
   if (two_) {
-    fin["theta2_rad"] = last_.theta2_rad;
-    fin["omega2_radps"] = last_.omega2_radps;
+    fin["theta2_rad"] = last_.theta_rad[1];
+    fin["omega2_radps"] = last_.omega_radps[1];
   }
-  fin["mode"] = std::string(ModeName(last_.mode));
+  fin["mode"] = ConfigurationName(last_.mode);
   j["final"] = fin;
 
   json v;

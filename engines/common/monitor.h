@@ -132,6 +132,7 @@ class Monitor {
     double prev = 0.0;  // previous angle
   };
   struct Derived {
+    explicit Derived(int blocks) : sample(blocks) {}
     Sample sample;
     double gap_ground_m = 0.0, gap_interface_m = 0.0;  // lowest corner above its support
     double pivot_ground_x_m = 0.0, pivot_interface_x_m = 0.0;
@@ -159,8 +160,8 @@ class Monitor {
   // The side each tilt pivots on (+1 right, -1 left, 0 flat): the hysteresis's side, or for a
   // flat tilt the side of its rate above MonitorConfig::rate_tol_radps.
   void TiltSides(const Sample& s, int* side1, int* side2) const;
-  // The mode of those sides (scene/mode.h ModeOf).
-  Mode InferMode(const Sample& s) const;
+  // The configuration of those sides (scene/mode.h ModeOf).
+  Configuration InferMode(const Sample& s) const;
   // Pivot points and sides of the state (for slip): block 1's on the ground, block 2's on
   // block 1 (in block 1's frame).
   void Pivots(const StepReadout& s, Derived* d, int* side1, int* side2) const;
@@ -189,13 +190,14 @@ class Monitor {
   EngineInput in_meta_;  // geometry and settings (drive samples not kept)
   MonitorConfig cfg_;
   bool two_ = false;
+  int blocks_ = 1;  // 1 or 2
   double b1_ = 0.0, h1_ = 0.0, b2_ = 0.0, h2_ = 0.0, m1_ = 0.0, m2_ = 0.0;
   BlockProps props1_, props2_;  // for the energy (scene/rigid_block.h)
   double g_ = 9.81, dt_ = 0.0, out_dt_ = 0.0, tipping_energy_j_ = 0.0;
 
   History history_;
-  Sample last_;
-  Derived prev_;
+  Sample last_{1};
+  Derived prev_{1};
   Side ground_, interface_;
   double phi1_ = 0.0, phi2_ = 0.0;  // unwrapped CCW angles
   std::int64_t next_out_ = 1;       // index of the next output time
@@ -204,6 +206,7 @@ class Monitor {
   // Pending impacts: completed with the state one step later (a fixed-step engine such as
   // Bullet may resolve a contact in the step after the one that brought the corner down).
   struct PendingImpact {
+    explicit PendingImpact(int blocks) : event(blocks) {}
     Event event;
     bool interface = false;  // block 2 on block 1 (else block 1 on the ground)
     int side = 0;            // side the block was tilted to before it landed

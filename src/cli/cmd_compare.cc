@@ -79,7 +79,7 @@ void Execute(const CompareCliOptions& opt) {
   const GroundMotion motion = GroundMotion::FromScene(scene);
   const std::filesystem::path out(opt.out);
   std::filesystem::create_directories(out);
-  const bool two = scene.two_blocks();
+  const bool two = scene.block_count() == 2;
   const int nb = two ? 2 : 1;
   CompareRunOptions run_options;
   run_options.jobs = opt.jobs;

@@ -45,7 +45,7 @@ void Execute(const RunOptions& opt) {
   nlohmann::json summary;
   summary["scene"] = {{"path", std::filesystem::absolute(opt.scene).lexically_normal().string()},
                       {"overrides", opt.overrides},
-                      {"two_blocks", scene.two_blocks()}};
+                      {"two_blocks", scene.block_count() == 2}};
   summary["base"] = BaseMotionJson(motion);
   std::vector<std::string> failed;  // runs that ended non_finite
   for (const std::string& name : opt.engines) {

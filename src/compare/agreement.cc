@@ -16,8 +16,8 @@ bool IsImpact(const Event& e) {
 
 // Landing rate of an impact: the rate of the block that lands, relative to its support.
 double LandingRate(const Event& e) {
-  return e.kind == "ground_impact" ? std::abs(e.omega1_before)
-                                   : std::abs(e.omega2_before - e.omega1_before);
+  const std::vector<double>& w = e.omega_before_radps;
+  return e.kind == "ground_impact" || w.size() < 2 ? std::abs(w[0]) : std::abs(w[1] - w[0]);
 }
 
 std::vector<const Event*> Impacts(const History& h, double min_rate, int* all) {
@@ -33,14 +33,16 @@ std::vector<const Event*> Impacts(const History& h, double min_rate, int* all) {
 
 // Peak |theta_i| and its time, measured by the run itself (at every step for the engines).
 void EnginePeak(const EngineRun& run, int block, double* peak, double* t) {
-  *peak = block == 1 ? run.outcome.peak_theta1_rad : run.outcome.peak_theta2_rad;
-  *t = block == 1 ? run.outcome.peak_theta1_t_s : run.outcome.peak_theta2_t_s;
+  const RunOutcome& o = run.outcome;
+  const bool has = block >= 1 && block <= o.blocks();
+  *peak = has ? o.peak_theta_rad[block - 1] : 0.0;
+  *t = has ? o.peak_theta_t_s[block - 1] : 0.0;
 }
 
 // Mode family for the final-state check.
-std::string Family(Mode m, bool overturned) {
+std::string Family(const Configuration& m, bool overturned) {
   if (overturned) return "overturned";
-  return m == Mode::kRest ? "rest" : "rocking";
+  return m.at_rest() ? "rest" : "rocking";
 }
 
 ImpactAgreement MatchImpacts(const History& ref, const History& eng, double until_s,
@@ -166,7 +168,7 @@ EngineAgreement CompareWithReference(const Scene& scene, const reference::Result
       a.non_finite_t_s = nf->value("t_s", 0.0);
     }
   }
-  const bool two = scene.two_blocks();
+  const bool two = scene.block_count() == 2;
   const reference::Summary& rs = ref.summary;
   a.flags = run.outcome.violations;
   a.flag_onsets_t_s = run.outcome.violation_onsets_t_s;
@@ -194,8 +196,8 @@ EngineAgreement CompareWithReference(const Scene& scene, const reference::Result
   a.compared_until_s = until;
 
   // Tolerances: scene [compare] tolerance, else 10% of the reference's peak |theta|.
-  const double peak_ref[2] = {rs.peak_theta1_rad, rs.peak_theta2_rad};
-  const double peak_ref_t[2] = {rs.peak_theta1_t_s, rs.peak_theta2_t_s};
+  const double peak_ref[2] = {rs.peak_theta_rad[0], two ? rs.peak_theta_rad[1] : 0.0};
+  const double peak_ref_t[2] = {rs.peak_theta_t_s[0], two ? rs.peak_theta_t_s[1] : 0.0};
   AngleAgreement ang[2];
   ToleranceProfile profile[2];
   for (int b = 0; b < 2; ++b) {
@@ -213,7 +215,8 @@ EngineAgreement CompareWithReference(const Scene& scene, const reference::Result
   for (const Sample& s : run.history.samples) {
     if (s.t_s > until + 1e-12) break;
     const Sample r = ref.trajectory.At(s.t_s);
-    const double err[2] = {s.theta1_rad - r.theta1_rad, s.theta2_rad - r.theta2_rad};
+    const double err[2] = {s.theta_rad[0] - r.theta_rad[0],
+                           two ? s.theta_rad[1] - r.theta_rad[1] : 0.0};
     ++n;
     for (int b = 0; b < (two ? 2 : 1); ++b) {
       const double e = std::abs(err[b]);
@@ -288,8 +291,8 @@ EngineAgreement CompareWithReference(const Scene& scene, const reference::Result
     const Sample r = ref.trajectory.At(last->t_s);
     a.final_mode_reference = Family(r.mode, rs.overturn_block.has_value());
     a.final_mode_engine = Family(last->mode, a.overturn_block_engine.has_value());
-    a.final_theta1_error_rad = last->theta1_rad - r.theta1_rad;
-    a.final_theta2_error_rad = two ? last->theta2_rad - r.theta2_rad : 0.0;
+    a.final_theta1_error_rad = last->theta_rad[0] - r.theta_rad[0];
+    a.final_theta2_error_rad = two ? last->theta_rad[1] - r.theta_rad[1] : 0.0;
     a.final_agree = a.final_mode_reference == a.final_mode_engine &&
                     std::abs(a.final_theta1_error_rad) <= ang[0].tolerance_rad &&
                     (!two || std::abs(a.final_theta2_error_rad) <= ang[1].tolerance_rad);
@@ -344,26 +347,25 @@ nlohmann::json AgreementJson(const EngineAgreement& a) {
 nlohmann::json ComparisonJson(const Scene& scene, const reference::Result& ref,
                               double reference_wall_s, const std::vector<EngineAgreement>& engines,
                               const CompareOptions& options) {
+  const bool two = scene.block_count() == 2;
   nlohmann::json j;
-  j["scene"] = {
-      {"path", scene.path.string()}, {"title", scene.title}, {"two_blocks", scene.two_blocks()}};
+  j["scene"] = {{"path", scene.path.string()}, {"title", scene.title}, {"two_blocks", two}};
   const reference::Summary& rs = ref.summary;
   j["reference"] = {{"status", StatusText(rs.status)},
                     {"wall_s", reference_wall_s},
-                    {"impacts", rs.impacts_ground + rs.impacts_interface},
-                    {"peak_theta1_rad", rs.peak_theta1_rad},
-                    {"peak_theta1_t_s", rs.peak_theta1_t_s},
+                    {"impacts", rs.impacts()},
                     {"end_s", ref.trajectory.end_s()}};
-  if (scene.two_blocks()) {
-    j["reference"]["peak_theta2_rad"] = rs.peak_theta2_rad;
-    j["reference"]["peak_theta2_t_s"] = rs.peak_theta2_t_s;
+  for (int k = 0; k < rs.blocks(); ++k) {
+    const std::string theta = "peak_theta" + std::to_string(k + 1);
+    j["reference"][theta + "_rad"] = rs.peak_theta_rad[k];
+    j["reference"][theta + "_t_s"] = rs.peak_theta_t_s[k];
   }
   j["tolerance"] = scene.compare.tolerance_rad
                        ? nlohmann::json{{"rule", "scene"}, {"rad", *scene.compare.tolerance_rad}}
                        : nlohmann::json{{"rule", ToleranceRuleText()}};
-  j["tolerance"]["theta1_rad"] = AngleTolerance_rad(scene, 1, rs.peak_theta1_rad);
-  if (scene.two_blocks()) {
-    j["tolerance"]["theta2_rad"] = AngleTolerance_rad(scene, 2, rs.peak_theta2_rad);
+  for (int k = 0; k < rs.blocks(); ++k) {
+    j["tolerance"]["theta" + std::to_string(k + 1) + "_rad"] =
+        AngleTolerance_rad(scene, k + 1, rs.peak_theta_rad[k]);
   }
   j["impact_min_rate_radps"] = options.min_impact_rate_radps;
   j["engines"] = nlohmann::json::object();

@@ -45,7 +45,7 @@ SeedCheck RecheckWithSeeds(
     std::vector<std::optional<ReferencePerturbationMembers>>* extra_ensembles) {
   const reference::Result& ref = out.reference().used();
   const CompareOptions base;
-  const bool two = scene.two_blocks();
+  const bool two = scene.block_count() == 2;
   SeedCheck c;
   c.seeds.push_back(
       {{"seed", scene.compare.seed}, {"verdict_kind", first.kind}, {"smallest_p_holm", first_p}});
@@ -96,9 +96,11 @@ CompareRun RunCompare(const Scene& scene, const GroundMotion& motion,
     if (options.log) options.log(line);
   };
   char buf[512];
+  // The entry of a comparison: one or two blocks for now (issue 23).
+  RequireAtMostTwoBlocks(scene, "compare");
   CompareRun out;
   const CompareOptions base;
-  const bool two = scene.two_blocks();
+  const bool two = scene.block_count() == 2;
   const int nb = two ? 2 : 1;
 
   // 1. The reference and its witness; comparisons use the witness when the default is not
@@ -116,8 +118,8 @@ CompareRun RunCompare(const Scene& scene, const GroundMotion& motion,
   if (!check.converged) log("  WARNING: " + ConvergenceWarning(check));
 
   // 2. The reference's perturbation members: the predictability horizon.
-  out.tolerance_rad[0] = AngleTolerance_rad(scene, 1, ref.summary.peak_theta1_rad);
-  out.tolerance_rad[1] = two ? AngleTolerance_rad(scene, 2, ref.summary.peak_theta2_rad) : 0.0;
+  out.tolerance_rad[0] = AngleTolerance_rad(scene, 1, ref.summary.peak_theta_rad[0]);
+  out.tolerance_rad[1] = two ? AngleTolerance_rad(scene, 2, ref.summary.peak_theta_rad[1]) : 0.0;
   std::optional<Horizons> horizons;
   CompareOptions compare_options = base;
   // A reference that failed (non_finite) leaves nothing to compare with: no ensemble, and every

@@ -84,15 +84,16 @@ MemberInput PerturbedInput(const Scene& scene, const GroundMotion& motion, int m
   // or block 2 flat on block 1: a relative value of 0) stays closed, so a member starts in the
   // nominal mode.
   InitialState& s = in.scene.initial;
-  const double rel_theta = s.theta2_rad - s.theta1_rad, rel_omega = s.omega2_radps - s.omega1_radps;
+  const double rel_theta = s.theta_rad[1] - s.theta_rad[0];
+  const double rel_omega = s.omega_radps[1] - s.omega_radps[0];
   for (int k = 0; k < 4; ++k) {
     p.initial_factor[k] = 1.0 + Uniform(cfg.seed, m, kSlotInitial + k) * cfg.initial_rel;
   }
-  s.theta1_rad *= p.initial_factor[0];
-  s.omega1_radps *= p.initial_factor[2];
-  if (scene.two_blocks()) {
-    s.theta2_rad = s.theta1_rad + rel_theta * p.initial_factor[1];
-    s.omega2_radps = s.omega1_radps + rel_omega * p.initial_factor[3];
+  s.theta_rad[0] *= p.initial_factor[0];
+  s.omega_radps[0] *= p.initial_factor[2];
+  if (scene.block_count() == 2) {
+    s.theta_rad[1] = s.theta_rad[0] + rel_theta * p.initial_factor[1];
+    s.omega_radps[1] = s.omega_radps[0] + rel_omega * p.initial_factor[3];
   }
   return in;
 }
@@ -131,7 +132,7 @@ double SettledAfter_s(const Scene& scene, const GroundMotion& motion, double saf
 }
 
 MemberOutcome OutcomeOf(const EngineRun& run, const Scene& scene, double min_impact_rate_radps) {
-  const bool two_blocks = scene.two_blocks();
+  const bool two_blocks = scene.block_count() == 2 && run.outcome.blocks() == 2;
   MemberOutcome o;
   const RunOutcome& s = run.outcome;
   o.status = s.status;
@@ -141,11 +142,12 @@ MemberOutcome OutcomeOf(const EngineRun& run, const Scene& scene, double min_imp
     o.overturned_block = s.overturned_block;
     o.overturn_t_s = s.overturn_t_s;
   }
-  o.peak_rad[0] = s.peak_theta1_rad, o.peak_t_s[0] = s.peak_theta1_t_s;
-  if (two_blocks) o.peak_rad[1] = s.peak_theta2_rad, o.peak_t_s[1] = s.peak_theta2_t_s;
+  if (s.blocks() >= 1) o.peak_rad[0] = s.peak_theta_rad[0], o.peak_t_s[0] = s.peak_theta_t_s[0];
+  if (two_blocks) o.peak_rad[1] = s.peak_theta_rad[1], o.peak_t_s[1] = s.peak_theta_t_s[1];
   if (!run.history.samples.empty()) {
-    o.residual_rad[0] = run.history.samples.back().theta1_rad;
-    o.residual_rad[1] = two_blocks ? run.history.samples.back().theta2_rad : 0.0;
+    const Sample& last = run.history.samples.back();
+    o.residual_rad[0] = last.theta_rad[0];
+    o.residual_rad[1] = two_blocks ? last.theta_rad[1] : 0.0;
   }
   // An overturned block's peak and residual are the overturn angle, whatever sample an engine
   // stopped on after crossing it (Bullet's last step ends past the crossing).
@@ -167,8 +169,8 @@ MemberOutcome OutcomeOf(const EngineRun& run, const Scene& scene, double min_imp
       const Sample& a = run.history.samples[k - 1];
       const Sample& c = run.history.samples[k];
       if (a.t_s >= t_end) break;
-      const double va = b == 0 ? a.theta1_rad : a.theta2_rad;
-      const double vc = b == 0 ? c.theta1_rad : c.theta2_rad;
+      const double va = a.theta_rad[b];
+      const double vc = c.theta_rad[b];
       integral += 0.5 * (va * va + vc * vc) * (std::min(c.t_s, t_end) - a.t_s);
     }
     o.rms_rad[b] = scene.run.duration_s > 0.0 ? std::sqrt(integral / scene.run.duration_s) : 0.0;
@@ -181,7 +183,7 @@ ReferencePerturbationMembers RunReferencePerturbationMembers(
     const Scene& nominal_scene, const GroundMotion& motion, const reference::Result& nominal,
     int members, const double tolerance_rad[2], int threads, double min_impact_rate_radps) {
   const auto start = std::chrono::steady_clock::now();
-  const bool two = nominal_scene.two_blocks();
+  const bool two = nominal_scene.block_count() == 2;
   ReferencePerturbationMembers e;
   e.members = members;
   e.tolerance_rad[0] = tolerance_rad[0];
@@ -205,8 +207,8 @@ ReferencePerturbationMembers RunReferencePerturbationMembers(
       const bool after_end = e.t_s[k] > end;
       if (stopped && after_end) break;
       const Sample s = r.trajectory.At(e.t_s[k]);
-      if (!after_end || overturned == 1) th[0][k] = s.theta1_rad;
-      if (!after_end || overturned == 2) th[1][k] = two ? s.theta2_rad : 0.0;
+      if (!after_end || overturned == 1) th[0][k] = s.theta_rad[0];
+      if (!after_end || overturned == 2) th[1][k] = two ? s.theta_rad[1] : 0.0;
     }
   };
   std::vector<double> nominal_grid[2];
@@ -288,7 +290,7 @@ std::vector<MemberOutcome> RunEnginePerturbationMembers(const std::string& name,
 }
 
 nlohmann::json PredictabilityJson(const Scene& scene, const ReferencePerturbationMembers& e) {
-  const bool two = scene.two_blocks();
+  const bool two = scene.block_count() == 2;
   const CompareConfig& c = scene.compare;
   nlohmann::json j;
   j["members"] = e.members;

@@ -27,12 +27,12 @@ double MinHolm(const StatisticalComparison& s) {
 PowerEstimate EstimateVerdictPower(const Scene& scene, const GroundMotion& motion,
                                    const PowerConfig& config) {
   const CompareOptions compare_options;
-  const bool two = scene.two_blocks();
+  const bool two = scene.block_count() == 2;
   // The scene's tolerances, from its nominal run.
   const reference::Result nominal = reference::Simulate(scene, motion);
   const double tolerance[2] = {
-      AngleTolerance_rad(scene, 1, nominal.summary.peak_theta1_rad),
-      two ? AngleTolerance_rad(scene, 2, nominal.summary.peak_theta2_rad) : 0.0};
+      AngleTolerance_rad(scene, 1, nominal.summary.peak_theta_rad[0]),
+      two ? AngleTolerance_rad(scene, 2, nominal.summary.peak_theta_rad[1]) : 0.0};
   const int n = config.reference_members, m = config.engine_members;
   PowerEstimate est;
   est.trials = config.trials;

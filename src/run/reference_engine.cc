@@ -1,5 +1,6 @@
 #include "run/reference_engine.h"
 
+#include <algorithm>
 #include <cstdio>
 
 #include "run/summary.h"
@@ -34,13 +35,18 @@ EngineResult ReferenceEngine::Simulate(const Scene& scene, const GroundMotion& m
 std::string ReferenceEngine::SummaryLine(const EngineResult& result) const {
   const CheckedReference& checked = *ReferenceResultOf(result.extension.get());
   const reference::Summary& s = checked.used().summary;
-  char line[256];
-  std::snprintf(line, sizeof line,
-                "reference: %s, peak |theta1| %.4g rad at %.3f s, peak |theta2| %.4g rad at "
-                "%.3f s, %d impacts, %.3g ms",
-                StatusText(s.status), s.peak_theta1_rad, s.peak_theta1_t_s, s.peak_theta2_rad,
-                s.peak_theta2_t_s, s.impacts_ground + s.impacts_interface, result.wall_s * 1e3);
-  std::string text = line;
+  // Every block's peak (block 2's is 0 for one block).
+  std::string text = std::string("reference: ") + StatusText(s.status);
+  for (int k = 0; k < std::max(s.blocks(), 2); ++k) {
+    char peak[128];
+    std::snprintf(peak, sizeof peak, ", peak |theta%d| %.4g rad at %.3f s", k + 1,
+                  k < s.blocks() ? s.peak_theta_rad[k] : 0.0,
+                  k < s.blocks() ? s.peak_theta_t_s[k] : 0.0);
+    text += peak;
+  }
+  char tail[128];
+  std::snprintf(tail, sizeof tail, ", %d impacts, %.3g ms", s.impacts(), result.wall_s * 1e3);
+  text += tail;
   if (checked.check && !checked.check->converged) {
     text += "\n  WARNING: ";
     text += ConvergenceWarning(*checked.check);

@@ -42,9 +42,9 @@ ConvergenceCheck CompareWithWitness(const Scene& scene, const reference::Result&
                                     const reference::Result& witness) {
   ConvergenceCheck c;
   c.witness = WitnessModel(scene.model);
-  const bool two = scene.two_blocks();
-  c.tolerance_rad[0] = AngleTolerance_rad(scene, 1, nominal.summary.peak_theta1_rad);
-  c.tolerance_rad[1] = two ? AngleTolerance_rad(scene, 2, nominal.summary.peak_theta2_rad) : 0.0;
+  const bool two = scene.block_count() == 2;
+  c.tolerance_rad[0] = AngleTolerance_rad(scene, 1, nominal.summary.peak_theta_rad[0]);
+  c.tolerance_rad[1] = two ? AngleTolerance_rad(scene, 2, nominal.summary.peak_theta_rad[1]) : 0.0;
   // A run that stops on a violated assumption has no solution after its end: compare up to the
   // earlier end. An overturned run stays overturned (Trajectory::At clamps to its end).
   double until = scene.run.duration_s;
@@ -61,8 +61,8 @@ ConvergenceCheck CompareWithWitness(const Scene& scene, const reference::Result&
   grid.erase(std::unique(grid.begin(), grid.end()), grid.end());
   for (double t : grid) {
     const Sample a = nominal.trajectory.At(t), b = witness.trajectory.At(t);
-    const double d[2] = {std::abs(a.theta1_rad - b.theta1_rad),
-                         two ? std::abs(a.theta2_rad - b.theta2_rad) : 0.0};
+    const double d[2] = {std::abs(a.theta_rad[0] - b.theta_rad[0]),
+                         two ? std::abs(a.theta_rad[1] - b.theta_rad[1]) : 0.0};
     for (int k = 0; k < 2; ++k) {
       c.max_abs_diff_rad[k] = std::max(c.max_abs_diff_rad[k], d[k]);
       if (!c.diverges_at_s && d[k] > c.tolerance_rad[k] && (k == 0 || two)) c.diverges_at_s = t;
@@ -99,7 +99,7 @@ nlohmann::json ConvergenceJson(const Scene& scene, const ConvergenceCheck& c) {
   j["max_abs_diff_rad"] = c.max_abs_diff();
   j["max_abs_diff_rad_per_block"] = {{"theta1", c.max_abs_diff_rad[0]}};
   j["tolerance_rad"] = {{"theta1", c.tolerance_rad[0]}};
-  if (scene.two_blocks()) {
+  if (scene.block_count() == 2) {
     j["max_abs_diff_rad_per_block"]["theta2"] = c.max_abs_diff_rad[1];
     j["tolerance_rad"]["theta2"] = c.tolerance_rad[1];
   }

@@ -164,7 +164,7 @@ RunEstimate EstimateRun(const Scene& scene, const std::vector<std::string>& run_
     ref_key = "model.step";
     ref_what = Count(ref_steps) + " rk4 steps (run.duration / model.step)";
   } else {
-    const double r1 = 0.5 * std::hypot(scene.block1.width_m, scene.block1.height_m);
+    const double r1 = 0.5 * std::hypot(scene.blocks.at(0).width_m, scene.blocks.at(0).height_m);
     const double max_step = std::min(kMaxStepRel * std::sqrt(r1 / scene.run.gravity_mps2),
                                      kMaxStepMotion * ShortestPeriod(scene));
     ref_steps = std::ceil(duration / max_step) + record_breakpoints;

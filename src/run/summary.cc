@@ -1,6 +1,8 @@
 #include "run/summary.h"
 
+#include <algorithm>
 #include <cmath>
+#include <string>
 
 namespace rockbench {
 
@@ -51,15 +53,21 @@ nlohmann::json ReferenceSummaryJson(const Scene& scene, const reference::Result&
                        {"last_finite_t_s", s.non_finite_last_t_s}};
   }
   j["wall_s"] = wall_s;
-  j["peaks"]["theta1"] = {{"abs_rad", s.peak_theta1_rad}, {"t_s", s.peak_theta1_t_s}};
-  if (scene.two_blocks()) {
-    j["peaks"]["theta2"] = {{"abs_rad", s.peak_theta2_rad}, {"t_s", s.peak_theta2_t_s}};
+  const int n = s.blocks();
+  for (int k = 0; k < n; ++k) {
+    j["peaks"]["theta" + std::to_string(k + 1)] = {{"abs_rad", s.peak_theta_rad[k]},
+                                                   {"t_s", s.peak_theta_t_s[k]}};
   }
-  j["impacts"] = {{"total", s.impacts_ground + s.impacts_interface},
-                  {"ground", s.impacts_ground},
-                  {"interface", s.impacts_interface},
+  j["impacts"] = {{"total", s.impacts()},
+                  {"ground", s.impacts_ground()},
                   {"inadmissible", s.impacts_inadmissible},
                   {"energy_gain", s.impacts_energy_gain}};
+  // Per interface: "interface" for one block (0) or two; "interface2", ... beyond.
+  if (n <= 2) {
+    j["impacts"]["interface"] = s.impacts_interface();
+  } else {
+    for (int k = 1; k < n; ++k) j["impacts"][InterfaceName(k, n)] = s.impacts_at[k];
+  }
   j["transitions"] = s.transitions;
   j["initiations"] = s.initiations;
   if (s.overturn_block) {
@@ -67,15 +75,20 @@ nlohmann::json ReferenceSummaryJson(const Scene& scene, const reference::Result&
   } else {
     j["overturn"] = nullptr;
   }
-  j["friction_required"] = {{"ground", s.friction_required_ground},
-                            {"interface", s.friction_required_interface}};
+  j["friction_required"] = {{"ground", s.friction_required[0]}};
+  if (n <= 2) {
+    j["friction_required"]["interface"] = n == 2 ? s.friction_required[1] : 0.0;
+  } else {
+    for (int k = 1; k < n; ++k)
+      j["friction_required"][InterfaceName(k, n)] = s.friction_required[k];
+  }
   // Smallest normal reactions along the solution (null when no step was taken).
   const auto finite_or_null = [](double v) -> nlohmann::json {
     return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
   };
-  j["min_normal_force_n"] = {{"ground", finite_or_null(s.min_normal_ground_n)}};
-  if (scene.two_blocks()) {
-    j["min_normal_force_n"]["interface"] = finite_or_null(s.min_normal_interface_n);
+  j["min_normal_force_n"] = {{"ground", finite_or_null(s.min_normal_n[0])}};
+  for (int k = 1; k < n; ++k) {
+    j["min_normal_force_n"][InterfaceName(k, n)] = finite_or_null(s.min_normal_n[k]);
   }
   j["integration"] = {{"steps_accepted", s.steps_accepted},
                       {"steps_rejected", s.steps_rejected},
@@ -86,15 +99,14 @@ nlohmann::json ReferenceSummaryJson(const Scene& scene, const reference::Result&
 
 RunOutcome ReferenceOutcome(const reference::Result& result) {
   const reference::Summary& s = result.summary;
-  RunOutcome o;
+  RunOutcome o(s.blocks());
   o.status = s.status;
   o.overturned_block = s.overturn_block.value_or(0);
   if (s.overturn_block) o.overturn_t_s = s.overturn_t_s;
   o.end_t_s = result.history.samples.empty() ? 0.0 : result.history.samples.back().t_s;
-  o.peak_theta1_rad = s.peak_theta1_rad, o.peak_theta1_t_s = s.peak_theta1_t_s;
-  o.peak_theta2_rad = s.peak_theta2_rad, o.peak_theta2_t_s = s.peak_theta2_t_s;
-  o.impacts_ground = s.impacts_ground;
-  o.impacts_interface = s.impacts_interface;
+  o.peak_theta_rad = s.peak_theta_rad;
+  o.peak_theta_t_s = s.peak_theta_t_s;
+  o.impacts_at = s.impacts_at;
   return o;
 }
 

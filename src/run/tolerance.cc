@@ -35,7 +35,8 @@ struct BlockScale {
 };
 
 BlockScale ScaleOf(const Scene& scene, int block) {
-  const BlockDef& b = block == 2 && scene.block2 ? *scene.block2 : scene.block1;
+  const BlockDef& b =
+      block >= 2 && block <= scene.block_count() ? scene.blocks[block - 1] : scene.blocks.at(0);
   const double r_m = 0.5 * std::hypot(b.width_m, b.height_m);
   return {std::atan(b.width_m / b.height_m), std::sqrt(3.0 * scene.run.gravity_mps2 / (4.0 * r_m))};
 }
@@ -77,7 +78,8 @@ ToleranceProfile LocalTolerance(const Scene& scene, int block, const History& re
   std::vector<double> cell(n, -1.0);
   double last = 0.0;
   for (const Sample& s : reference.samples) {
-    const double v = std::abs(block == 2 ? s.theta2_rad : s.theta1_rad);
+    const double v =
+        std::abs(block >= 2 && block <= s.blocks() ? s.theta_rad[block - 1] : s.theta_rad[0]);
     if (!std::isfinite(v)) continue;
     const double k = std::floor(s.t_s / p.grid_dt_s + 0.5);
     const size_t i = k <= 0.0 ? 0 : std::min(n - 1, static_cast<size_t>(k));

@@ -84,9 +84,10 @@ std::string Engine::SummaryLine(const EngineResult& r) const {
   char line[320];
   std::snprintf(line, sizeof line,
                 "%s (%s): %s, peak |theta1| %.4g rad at %.3f s, %d impacts, flags: %s, %.3g ms",
-                name().c_str(), r.settings_line.c_str(), StatusText(o.status), o.peak_theta1_rad,
-                o.peak_theta1_t_s, o.impacts(), flags.empty() ? "none" : flags.c_str(),
-                r.wall_s * 1e3);
+                name().c_str(), r.settings_line.c_str(), StatusText(o.status),
+                o.peak_theta_rad.empty() ? 0.0 : o.peak_theta_rad[0],
+                o.peak_theta_t_s.empty() ? 0.0 : o.peak_theta_t_s[0], o.impacts(),
+                flags.empty() ? "none" : flags.c_str(), r.wall_s * 1e3);
   return line;
 }
 

@@ -3,6 +3,7 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <charconv>
 #include <cmath>
@@ -66,48 +67,88 @@ constexpr const char* kEventsCsvHeader =
     "t,kind,mode_before,mode_after,omega1_before,omega2_before,omega1_after,omega2_after,"
     "energy_before_j,energy_after_j,note";
 
+// The header of events.csv for `blocks` blocks: kEventsCsvHeader for one or two.
+std::string EventsCsvHeader(int blocks) {
+  if (blocks <= 2) return kEventsCsvHeader;
+  std::string out = "t,kind,mode_before,mode_after";
+  for (const char* when : {"_before", "_after"}) {
+    for (int k = 1; k <= blocks; ++k) out += ",omega" + std::to_string(k) + when;
+  }
+  return out + ",energy_before_j,energy_after_j,note";
+}
+
+// The configuration's name (ConfigurationName), without a temporary for one or two blocks.
+void AppendConfiguration(std::string& out, const Configuration& c) {
+  if (const std::optional<Mode> mode = ModeOfConfiguration(c)) {
+    out += ModeName(*mode);
+  } else {
+    out += ConfigurationName(c);
+  }
+}
+
+[[noreturn]] void Inconsistent(const char* what, double t_s, int got, int blocks) {
+  throw std::logic_error(std::string(what) + " at t = " + std::to_string(t_s) + " has " +
+                         std::to_string(got) + " blocks, its history " + std::to_string(blocks));
+}
+
 }  // namespace
 
-std::string HistoryCsvHeader(bool two_blocks) {
-  return two_blocks ? "t,theta1,theta2,omega1,omega2,mode" : "t,theta1,omega1,mode";
+std::string HistoryCsvHeader(int blocks) {
+  std::string out = "t";
+  for (const char* q : {",theta", ",omega"}) {
+    for (int k = 1; k <= blocks; ++k) out += q + std::to_string(k);
+  }
+  return out + ",mode";
 }
 
 std::string HistoryToCsv(const History& history) {
-  std::string out = HistoryCsvHeader(history.two_blocks) + "\n";
-  out.reserve(out.size() + history.samples.size() * 90);
+  const int n = history.blocks;
+  std::string out = HistoryCsvHeader(n) + "\n";
+  out.reserve(out.size() + history.samples.size() * (30 + 40 * static_cast<size_t>(n)));
   for (const Sample& s : history.samples) {
+    if (s.blocks() != n || static_cast<int>(s.omega_radps.size()) != n) {
+      Inconsistent("history: a sample", s.t_s, s.blocks(), n);
+    }
     AppendTime(out, s.t_s);
-    out += ',';
-    AppendValue(out, s.theta1_rad);
-    out += ',';
-    if (history.two_blocks) {
-      AppendValue(out, s.theta2_rad);
-      out += ',';
+    for (const std::vector<double>* v : {&s.theta_rad, &s.omega_radps}) {
+      for (const double x : *v) {
+        out += ',';
+        AppendValue(out, x);
+      }
     }
-    AppendValue(out, s.omega1_radps);
     out += ',';
-    if (history.two_blocks) {
-      AppendValue(out, s.omega2_radps);
-      out += ',';
-    }
-    out += ModeName(s.mode);
+    AppendConfiguration(out, s.mode);
     out += '\n';
   }
   return out;
 }
 
 std::string EventsToCsv(const History& history) {
-  std::string out = std::string(kEventsCsvHeader) + "\n";
+  const int n = history.blocks;
+  std::string out = EventsCsvHeader(n) + "\n";
   for (const Event& e : history.events) {
+    if (e.blocks() != n || static_cast<int>(e.omega_after_radps.size()) != n) {
+      Inconsistent("events: an event", e.t_s, e.blocks(), n);
+    }
     AppendTime(out, e.t_s);
     out += ',' + CsvCell(e.kind) + ',';
-    out += ModeName(e.mode_before);
+    AppendConfiguration(out, e.mode_before);
     out += ',';
-    out += ModeName(e.mode_after);
-    for (double v : {e.omega1_before, e.omega2_before, e.omega1_after, e.omega2_after,
-                     e.energy_before_j, e.energy_after_j}) {
+    AppendConfiguration(out, e.mode_after);
+    for (const std::vector<double>* v : {&e.omega_before_radps, &e.omega_after_radps}) {
+      for (const double x : *v) {
+        out += ',';
+        AppendValue(out, x);
+      }
+      // One block keeps the two-block columns: its omega2 is written as 0.
+      if (n == 1) {
+        out += ',';
+        AppendValue(out, 0.0);
+      }
+    }
+    for (const double x : {e.energy_before_j, e.energy_after_j}) {
       out += ',';
-      AppendValue(out, v);
+      AppendValue(out, x);
     }
     out += ',' + CsvCell(e.note) + '\n';
   }
@@ -124,51 +165,53 @@ History ReadHistoryCsv(const std::filesystem::path& path) {
   const auto fail = [&](const std::string& msg) {
     throw std::runtime_error(path.string() + ":" + std::to_string(number) + ": " + msg);
   };
+  size_t want = 0;
   while (std::getline(in, line)) {
     ++number;
     if (!line.empty() && line.back() == '\r') line.pop_back();
     if (!header_seen) {
-      if (line == HistoryCsvHeader(true)) {
-        h.two_blocks = true;
-      } else if (line == HistoryCsvHeader(false)) {
-        h.two_blocks = false;
-      } else {
-        fail("expected the header '" + HistoryCsvHeader(true) + "' or '" + HistoryCsvHeader(false) +
-             "', got '" + line + "'");
+      // "t", N angles, N rates, "mode": the columns give N, the header must then be its own.
+      const size_t columns = SplitCommas(line).size();
+      const int n = columns >= 4 && columns % 2 == 0 ? static_cast<int>((columns - 2) / 2) : 0;
+      if (n < 1 || n > kMaxBlocks || line != HistoryCsvHeader(n)) {
+        fail("expected the header '" + HistoryCsvHeader(2) + "' or '" + HistoryCsvHeader(1) +
+             "' (or t,theta1,...,thetaN,omega1,...,omegaN,mode for N blocks), got '" + line + "'");
       }
+      h.blocks = n;
+      want = columns;
       header_seen = true;
       continue;
     }
     if (line.empty()) continue;
     const std::vector<std::string_view> cells = SplitCommas(line);
-    const size_t want = h.two_blocks ? 6 : 4;
     if (cells.size() != want) {
       fail("expected " + std::to_string(want) + " columns, got " + std::to_string(cells.size()));
     }
-    double v[5] = {0, 0, 0, 0, 0};
+    Sample s(h.blocks);
     for (size_t i = 0; i + 1 < want; ++i) {
       const std::optional<double> x = ParseNumberCell(cells[i]);
       if (!x) {
         fail("column " + std::to_string(i + 1) + ": expected a number, got '" +
              std::string(cells[i]) + "'");
       }
-      v[i] = *x;
+      const size_t n = static_cast<size_t>(h.blocks);
+      if (i == 0) {
+        s.t_s = *x;
+      } else if (i <= n) {
+        s.theta_rad[i - 1] = *x;
+      } else {
+        s.omega_radps[i - 1 - n] = *x;
+      }
     }
-    const auto mode = ParseMode(cells[want - 1]);
-    if (!mode)
-      fail("expected a mode name (rest, 1a, ..., 4b), got '" + std::string(cells[want - 1]) + "'");
-    Sample s;
-    s.t_s = v[0];
-    s.theta1_rad = v[1];
-    if (h.two_blocks) {
-      s.theta2_rad = v[2];
-      s.omega1_radps = v[3];
-      s.omega2_radps = v[4];
-    } else {
-      s.omega1_radps = v[2];
+    const std::optional<Configuration> mode = ParseConfiguration(cells[want - 1], h.blocks);
+    if (!mode) {
+      fail(h.blocks <= 2 ? "expected a mode name (rest, 1a, ..., 4b), got '" +
+                               std::string(cells[want - 1]) + "'"
+                         : "expected a configuration (one letter f, r or l per block), got '" +
+                               std::string(cells[want - 1]) + "'");
     }
     s.mode = *mode;
-    h.samples.push_back(s);
+    h.samples.push_back(std::move(s));
   }
   if (in.bad()) throw std::runtime_error(path.string() + ": cannot read the history file");
   if (!header_seen) {
@@ -177,7 +220,7 @@ History ReadHistoryCsv(const std::filesystem::path& path) {
   return h;
 }
 
-std::vector<Event> ReadEventsCsv(const std::filesystem::path& path) {
+std::vector<Event> ReadEventsCsv(const std::filesystem::path& path, int blocks) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw std::runtime_error(path.string() + ": cannot open the events file");
   std::vector<Event> events;
@@ -186,44 +229,63 @@ std::vector<Event> ReadEventsCsv(const std::filesystem::path& path) {
   const auto fail = [&](const std::string& msg) {
     throw std::runtime_error(path.string() + ":" + std::to_string(number) + ": " + msg);
   };
+  // The header's blocks (1 or 2 share one: `blocks`, 2 when unknown) and its columns.
+  int n = 0;
+  size_t want = 0;
   while (std::getline(in, line)) {
     ++number;
     if (!line.empty() && line.back() == '\r') line.pop_back();
     if (number == 1) {
-      if (line != kEventsCsvHeader) {
-        fail(std::string("expected the header '") + kEventsCsvHeader + "', got '" + line + "'");
+      const size_t columns = SplitCommas(line).size();
+      if (line == kEventsCsvHeader && blocks <= 2) {
+        n = blocks == 1 ? 1 : 2;
+      } else if (columns >= 13 && columns % 2 == 1 && (columns - 7) / 2 <= kMaxBlocks &&
+                 line == EventsCsvHeader(static_cast<int>((columns - 7) / 2)) &&
+                 (blocks == 0 || blocks == static_cast<int>((columns - 7) / 2))) {
+        n = static_cast<int>((columns - 7) / 2);
+      } else {
+        fail("expected the header '" + EventsCsvHeader(blocks) + "', got '" + line + "'");
       }
+      want = n <= 2 ? 11 : columns;
       continue;
     }
     if (line.empty()) continue;
     const std::vector<std::string_view> cells = SplitCommas(line);
-    if (cells.size() != 11) {
-      fail("expected 11 columns, got " + std::to_string(cells.size()));
+    if (cells.size() != want) {
+      fail("expected " + std::to_string(want) + " columns, got " + std::to_string(cells.size()));
     }
-    const auto number_at = [&](size_t i, const char* what) {
+    const auto number_at = [&](size_t i, const std::string& what) {
       const std::optional<double> x = ParseNumberCell(cells[i]);
       if (!x || !std::isfinite(*x)) {
-        fail(std::string(what) + ": expected a finite number, got '" + std::string(cells[i]) + "'");
+        fail(what + ": expected a finite number, got '" + std::string(cells[i]) + "'");
       }
       return *x;
     };
     const auto mode_at = [&](size_t i, const char* what) {
-      const auto m = ParseMode(cells[i]);
+      const std::optional<Configuration> m = ParseConfiguration(cells[i], n);
       if (!m) fail(std::string(what) + ": unknown mode '" + std::string(cells[i]) + "'");
       return *m;
     };
-    Event e;
+    Event e(n);
     e.t_s = number_at(0, "t");
     e.kind = std::string(cells[1]);
     e.mode_before = mode_at(2, "mode_before");
     e.mode_after = mode_at(3, "mode_after");
-    e.omega1_before = number_at(4, "omega1_before");
-    e.omega2_before = number_at(5, "omega2_before");
-    e.omega1_after = number_at(6, "omega1_after");
-    e.omega2_after = number_at(7, "omega2_after");
-    e.energy_before_j = number_at(8, "energy_before_j");
-    e.energy_after_j = number_at(9, "energy_after_j");
-    e.note = std::string(cells[10]);
+    // The rate columns: max(n, 2) before, then as many after (one block's omega2 is unused).
+    const int columns = std::max(n, 2);
+    for (int side = 0; side < 2; ++side) {
+      std::vector<double>& v = side == 0 ? e.omega_before_radps : e.omega_after_radps;
+      for (int k = 0; k < columns; ++k) {
+        const double x =
+            number_at(4 + static_cast<size_t>(side * columns + k),
+                      "omega" + std::to_string(k + 1) + (side == 0 ? "_before" : "_after"));
+        if (k < n) v[static_cast<size_t>(k)] = x;
+      }
+    }
+    const size_t tail = 4 + 2 * static_cast<size_t>(columns);
+    e.energy_before_j = number_at(tail, "energy_before_j");
+    e.energy_after_j = number_at(tail + 1, "energy_after_j");
+    e.note = std::string(cells[tail + 2]);
     events.push_back(std::move(e));
   }
   if (in.bad()) throw std::runtime_error(path.string() + ": cannot read the events file");

@@ -8,49 +8,69 @@
 
 namespace rockbench {
 
-/// One sample of the state. For a single block theta2/omega2 are unused (written as absent).
+/// One sample of the state of a stack of N blocks: block k's absolute angle and rate at index
+/// k - 1 (bottom first), and the contact configuration. Built for a number of blocks
+/// (Sample(N)), so that its vectors always hold one entry per block.
 struct Sample {
   double t_s = 0.0;
-  double theta1_rad = 0.0;
-  double theta2_rad = 0.0;
-  double omega1_radps = 0.0;
-  double omega2_radps = 0.0;
-  Mode mode = Mode::kRest;
+  std::vector<double> theta_rad;    ///< rad, one per block
+  std::vector<double> omega_radps;  ///< rad/s, one per block
+  Configuration mode;               ///< one contact per interface (block)
+
+  /// A sample of `blocks` blocks at t = 0, at rest.
+  explicit Sample(int blocks)
+      : theta_rad(static_cast<size_t>(blocks), 0.0),
+        omega_radps(static_cast<size_t>(blocks), 0.0),
+        mode(blocks) {}
+  int blocks() const { return static_cast<int>(theta_rad.size()); }
 };
 
-/// An event: impact, transition, initiation, rest, overturn, assumption violated, ...
+/// An event: impact, transition, initiation, rest, overturn, assumption violated, ... The rates
+/// hold one entry per block (Event(N)).
 struct Event {
   double t_s = 0.0;
   std::string kind;  ///< "ground_impact", "interface_impact", "initiation", "transition", "rest",
                      ///< "overturn", "assumption_violated"
-  Mode mode_before = Mode::kRest;
-  Mode mode_after = Mode::kRest;
-  double omega1_before = 0.0, omega2_before = 0.0;     ///< rad/s
-  double omega1_after = 0.0, omega2_after = 0.0;       ///< rad/s
-  double energy_before_j = 0.0, energy_after_j = 0.0;  ///< kinetic + potential, J
+  Configuration mode_before, mode_after;
+  std::vector<double> omega_before_radps, omega_after_radps;  ///< rad/s, one per block
+  double energy_before_j = 0.0, energy_after_j = 0.0;         ///< kinetic + potential, J
   std::string note;  ///< free text (no commas), e.g. "inadmissible: ..." or a criterion name
+
+  /// An event of a stack of `blocks` blocks: at rest before and after, every rate zero.
+  explicit Event(int blocks)
+      : mode_before(blocks),
+        mode_after(blocks),
+        omega_before_radps(static_cast<size_t>(blocks), 0.0),
+        omega_after_radps(static_cast<size_t>(blocks), 0.0) {}
+  int blocks() const { return static_cast<int>(omega_before_radps.size()); }
 };
 
 struct History {
-  bool two_blocks = true;
+  int blocks = 2;  ///< blocks of the stack: every sample and event has this many
   std::vector<Sample> samples;
   std::vector<Event> events;
 };
 
-/// CSV header of history.csv: "t,theta1,theta2,omega1,omega2,mode" (two blocks) or
-/// "t,theta1,omega1,mode" (one block).
-std::string HistoryCsvHeader(bool two_blocks);
+/// CSV header of history.csv: "t,theta1,omega1,mode" (one block), "t,theta1,theta2,omega1,
+/// omega2,mode" (two), "t,theta1,...,thetaN,omega1,...,omegaN,mode" (N).
+std::string HistoryCsvHeader(int blocks);
 /// The history as CSV text (deterministic formatting: "%.9f" for times, "%.12e" for angles and
-/// rates, the mode by ModeName). A single-block history has no theta2/omega2 columns.
+/// rates, the mode by ConfigurationName: the thesis's names for one or two blocks, the letters
+/// beyond).
 std::string HistoryToCsv(const History& history);
-/// events.csv text: header "t,kind,mode_before,mode_after,omega1_before,omega2_before,
-/// omega1_after,omega2_after,energy_before_j,energy_after_j,note"; same number formats; commas
-/// in kind/note become ';'.
+/// events.csv text. One or two blocks: header "t,kind,mode_before,mode_after,omega1_before,
+/// omega2_before,omega1_after,omega2_after,energy_before_j,energy_after_j,note" (a single block
+/// writes its omega2 columns as 0). N >= 3 blocks: "t,kind,mode_before,mode_after,
+/// omega1_before,...,omegaN_before,omega1_after,...,omegaN_after,energy_before_j,
+/// energy_after_j,note". Same number formats; commas in kind/note become ';'.
 std::string EventsToCsv(const History& history);
-/// Reads a history.csv (either header). Throws std::runtime_error naming file and line.
+/// Reads a history.csv (any block count, from the header). Throws std::runtime_error naming
+/// file and line.
 History ReadHistoryCsv(const std::filesystem::path& path);
-/// Reads an events.csv (EventsToCsv's format). Throws std::runtime_error naming file and line.
-std::vector<Event> ReadEventsCsv(const std::filesystem::path& path);
+/// Reads an events.csv (EventsToCsv's format) of a stack of `blocks` blocks (1 or 2 share a
+/// header: 2 when 0; N >= 3 is also read from the header, which must then agree). Throws
+/// std::runtime_error naming file and line.
+std::vector<Event> ReadEventsCsv(const std::filesystem::path& path, int blocks = 0);
 
 /// The whole content of a file (bytes as stored). Throws std::runtime_error naming the file
 /// when it cannot be opened or read.

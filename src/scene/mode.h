@@ -57,7 +57,7 @@ inline Contacts ContactsOf(Mode mode) {
 /// The mode of a contact set (for one block the interface is ignored).
 Mode ModeOf(Contacts contacts, bool two_blocks);
 
-/// Most blocks a stack may have (scene/limits.h checks a scene against it).
+/// Most blocks a stack may have (the scene reader and ValidateScene check a scene against it).
 inline constexpr int kMaxBlocks = 64;
 
 /// The contact state of a stack of N blocks: one Contact per interface, bottom first. Interface

@@ -2,6 +2,7 @@
 
 #include <array>
 #include <ostream>
+#include <string>
 #include <utility>
 
 namespace rockbench {
@@ -30,6 +31,12 @@ std::optional<RunStatus> ParseRunStatus(std::string_view text) {
     if (text == t) return s;
   }
   return std::nullopt;
+}
+
+std::string InterfaceName(int k, int blocks) {
+  if (k == 0) return "ground";
+  if (blocks <= 2) return "interface";
+  return "interface" + std::to_string(k + 1);
 }
 
 std::ostream& operator<<(std::ostream& os, RunStatus status) {

@@ -44,12 +44,14 @@ NLOHMANN_JSON_SERIALIZE_ENUM(RunStatus, {{RunStatus::kCompleted, "completed"},
 
 struct RunOutcome {
   RunStatus status = RunStatus::kCompleted;  ///< how the run ended
-  int overturned_block = 0;                  ///< 0: none; 1 or 2: the block that overturned first
+  int overturned_block = 0;                  ///< 0: none; 1..N: the block that overturned first
   double overturn_t_s = std::numeric_limits<double>::quiet_NaN();
-  double end_t_s = 0.0;                                 ///< last simulated time, s
-  double peak_theta1_rad = 0.0, peak_theta1_t_s = 0.0;  ///< largest |theta1| and when
-  double peak_theta2_rad = 0.0, peak_theta2_t_s = 0.0;  ///< zero for a single block
-  int impacts_ground = 0, impacts_interface = 0;
+  double end_t_s = 0.0;  ///< last simulated time, s
+  /// Largest |theta_k| and when (s), one entry per block (block k at k - 1).
+  std::vector<double> peak_theta_rad, peak_theta_t_s;
+  /// Impacts per interface, one entry per block: [0] block 1 on the ground, [k] block k + 1 on
+  /// block k.
+  std::vector<int> impacts_at;
   /// Engines: the flags their monitor raised ("sliding", "uplift", "penetration",
   /// "energy_growth", "blow_up"), in that order; empty for the reference.
   std::vector<std::string> violations;
@@ -61,8 +63,30 @@ struct RunOutcome {
   std::vector<std::string> significant_violations;
   std::vector<double> significant_onsets_t_s;
 
-  int impacts() const { return impacts_ground + impacts_interface; }
+  /// No blocks (fill it, or build it for a number of blocks).
+  RunOutcome() = default;
+  /// The outcome of a run of `blocks` blocks: no peak, no impact.
+  explicit RunOutcome(int blocks)
+      : peak_theta_rad(static_cast<size_t>(blocks), 0.0),
+        peak_theta_t_s(static_cast<size_t>(blocks), 0.0),
+        impacts_at(static_cast<size_t>(blocks), 0) {}
+
+  int blocks() const { return static_cast<int>(peak_theta_rad.size()); }
+  /// Impacts of block 1 on the ground.
+  int impacts_ground() const { return impacts_at.empty() ? 0 : impacts_at[0]; }
+  /// Impacts at every interface between blocks.
+  int impacts_interface() const { return impacts() - impacts_ground(); }
+  int impacts() const {
+    int n = 0;
+    for (const int i : impacts_at) n += i;
+    return n;
+  }
   bool overturned() const { return overturned_block != 0; }
 };
+
+/// The name of interface k (k = 0: block 1 on the ground; k: block k + 1 on block k) in the
+/// keys of summaries: "ground"; "interface" in a stack of two blocks; "interface<k + 1>" in a
+/// stack of three or more ("interface3": block 3 on block 2; docs/outputs.md).
+std::string InterfaceName(int k, int blocks);
 
 }  // namespace rockbench

@@ -184,6 +184,7 @@ const std::map<std::string, KeyList, std::less<>>& Schema() {
        {{"title", false},
         {"block1", true},
         {"block2", true},
+        {"block", true},  // [[block]]: an array of tables, bottom first
         {"initial", true},
         {"base", true},
         {"run", true},
@@ -191,7 +192,8 @@ const std::map<std::string, KeyList, std::less<>>& Schema() {
         {"compare", true}}},
       {"block1", kBlock},
       {"block2", kBlock},
-      {"initial", {{"theta1", false}, {"theta2", false}, {"omega1", false}, {"omega2", false}}},
+      // [initial] takes theta, omega and thetaK, omegaK for any K (ParseInitialKey).
+      {"initial", {}},
       {"base", {{"horizontal", true}, {"vertical", true}}},
       {"base.horizontal", kMotion},
       {"base.vertical", kMotion},
@@ -221,6 +223,47 @@ const std::map<std::string, KeyList, std::less<>>& Schema() {
 
 std::string Join(const std::string& prefix, std::string_view name) {
   return prefix.empty() ? std::string(name) : prefix + "." + std::string(name);
+}
+
+// "blockK" (K = 1, 2, ...; no leading zero) -> K; 0 for any other name.
+int BlockIndexOf(std::string_view name) {
+  if (name.size() < 6 || name.substr(0, 5) != "block" || name[5] == '0') return 0;
+  int k = 0;
+  for (const char c : name.substr(5)) {
+    if (c < '0' || c > '9' || k > 100000) return 0;
+    k = 10 * k + (c - '0');
+  }
+  return k;
+}
+
+// The keys of [initial]: "theta" and "omega" (arrays, one entry per block) and "thetaK",
+// "omegaK" (K = 1..kMaxBlocks, no leading zero). *quantity is "theta" or "omega", *block K (0
+// for the array).
+bool ParseInitialKey(std::string_view name, std::string_view* quantity, int* block) {
+  for (const std::string_view q : {std::string_view("theta"), std::string_view("omega")}) {
+    if (name.substr(0, q.size()) != q) continue;
+    const std::string_view digits = name.substr(q.size());
+    int k = 0;
+    if (!digits.empty()) {
+      if (digits[0] == '0' || digits.size() > 3) return false;
+      for (const char c : digits) {
+        if (c < '0' || c > '9') return false;
+        k = 10 * k + (c - '0');
+      }
+      if (k > kMaxBlocks) return false;
+    }
+    *quantity = q;
+    *block = k;
+    return true;
+  }
+  return false;
+}
+
+// "theta1, theta2, omega1, omega2, theta, omega" for up to two blocks; the ranges beyond.
+std::string InitialKeyList(int blocks) {
+  if (blocks <= 2) return "theta1, theta2, omega1, omega2, theta, omega";
+  const std::string n = std::to_string(blocks);
+  return "theta1 to theta" + n + ", omega1 to omega" + n + ", theta, omega";
 }
 
 std::string Trim(std::string_view s) {
@@ -257,6 +300,16 @@ const Choices<SyntheticEnvelope> kEnvelopes = {{"jennings", SyntheticEnvelope::k
 const Choices<AccelUnits> kUnits = {
     {"g", AccelUnits::kG}, {"m/s2", AccelUnits::kMps2}, {"cm/s2", AccelUnits::kCmps2}};
 
+// The message of block k (2..N) wider than block k - 1: its pivots would not be on the top face
+// below it.
+std::string WiderThanBelow(const Scene& s, int k) {
+  const std::string below = std::to_string(k - 1), self = std::to_string(k);
+  return "expected at most block" + below + ".width (" + ShortestText(s.blocks[k - 2].width_m) +
+         " m: block " + self + " would pivot outside block " + below +
+         "'s top face, which the model does not describe), got " +
+         ShortestText(s.blocks[k - 1].width_m);
+}
+
 // Reads the TOML tree into a Scene, with messages "FILE:LINE: KEY: expected ..., got ...".
 class Reader {
  public:
@@ -280,16 +333,23 @@ class Reader {
 
   // Rejects keys that the schema does not list for `prefix`. At the top level, a table the
   // schema does not list is an engine's settings table (checked by the engine).
+  // [initial]'s list: InitialKeyList(blocks_); a [[block]] table (prefix "blockK") has a
+  // [block1]'s keys.
   void CheckKeys(const toml::table& table, const std::string& prefix) const {
-    const KeyList& allowed = Schema().at(prefix);
+    const bool initial = prefix == "initial";
+    const KeyList& allowed = Schema().at(BlockIndexOf(prefix) > 0 ? std::string("block1") : prefix);
     for (auto&& [k, v] : table) {
       bool known = false;
       for (const auto& [name, is_table] : allowed) known = known || name == k.str();
+      std::string_view quantity;
+      int block = 0;
+      if (initial) known = ParseInitialKey(k.str(), &quantity, &block);
       if (known || (prefix.empty() && v.is_table())) continue;
       std::string list;
       for (const auto& [name, is_table] : allowed) {
         list += (list.empty() ? "" : ", ") + std::string(name);
       }
+      if (initial) list = InitialKeyList(blocks_);
       const std::string key = Excerpt(Join(prefix, k.str()));
       std::string loc = file_;
       if (k.source().begin.line > 0) loc += ":" + std::to_string(k.source().begin.line);
@@ -595,19 +655,144 @@ class Reader {
     return m;
   }
 
-  // [initial]: the angles and rates at t = 0 (theta2, omega2 only with a [block2]).
-  void ReadInitial(const toml::table& in, Scene* s) const {
-    s->initial.theta1_rad = Number(in, "initial", "theta1", Rule::kFinite, "rad").value_or(0.0);
-    s->initial.omega1_radps =
-        Number(in, "initial", "omega1", Rule::kFinite, "rad/s", &kRateLimit).value_or(0.0);
-    if (!s->two_blocks()) {
-      const std::string why = "not allowed in a single-block scene (there is no [block2])";
-      Forbid(in, "initial", "theta2", why);
-      Forbid(in, "initial", "omega2", why);
+  // The blocks: [[block]] tables, bottom first (named block1, block2, ... in messages), or
+  // [block1] and an optional [block2]; not both.
+  void ReadBlocks(const toml::table& root, Scene* s) const {
+    const toml::node* array = root.get("block");
+    if (array == nullptr) {
+      const toml::table* b1 = Table(root, "", "block1");
+      if (b1 == nullptr) {
+        throw SceneError(file_ +
+                         ": block1: missing table [block1] (the lower block: width, height, "
+                         "density or mass)");
+      }
+      s->blocks.push_back(ReadBlock(*b1, "block1"));
+      if (const toml::table* b2 = Table(root, "", "block2")) {
+        s->blocks.push_back(ReadBlock(*b2, "block2"));
+      }
+      return;
     }
-    s->initial.theta2_rad = Number(in, "initial", "theta2", Rule::kFinite, "rad").value_or(0.0);
-    s->initial.omega2_radps =
-        Number(in, "initial", "omega2", Rule::kFinite, "rad/s", &kRateLimit).value_or(0.0);
+    const toml::array* tables = array->as_array();
+    if (tables == nullptr || (!tables->empty() && !tables->is_array_of_tables())) {
+      Fail("block", array,
+           "expected [[block]] tables (one per block, bottom first), got " + Describe(*array));
+    }
+    for (const char* legacy : {"block1", "block2"}) {
+      if (const toml::node* node = root.get(legacy)) {
+        Fail(legacy, node,
+             std::string("a [") + legacy +
+                 "] table beside [[block]] tables: give the blocks either as [[block]] tables "
+                 "(bottom first) or as [block1] and [block2], not both");
+      }
+    }
+    if (tables->empty()) Fail("block", array, "expected at least one [[block]] table, got none");
+    const size_t count = tables->size();
+    if (count > static_cast<size_t>(kMaxBlocks)) {
+      Fail("block", &(*tables)[kMaxBlocks],
+           "expected at most " + std::to_string(kMaxBlocks) +
+               " [[block]] tables (the most blocks a stack may have), got " +
+               std::to_string(count));
+    }
+    for (size_t k = 0; k < count; ++k) {
+      const std::string prefix = "block" + std::to_string(k + 1);
+      const toml::table& t = *(*tables)[k].as_table();
+      CheckKeys(t, prefix);
+      s->blocks.push_back(ReadBlock(t, prefix));
+    }
+  }
+
+  // Block k's table (k = 1..N), either style; nullptr when there is none.
+  static const toml::table* BlockTable(const toml::table& root, int k) {
+    if (const toml::array* tables = root.get_as<toml::array>("block")) {
+      if (k < 1 || static_cast<size_t>(k) > tables->size()) return nullptr;
+      return (*tables)[static_cast<size_t>(k - 1)].as_table();
+    }
+    return k <= 2 ? root.get_as<toml::table>("block" + std::to_string(k)) : nullptr;
+  }
+
+  // One number of an [initial] array (entry k - 1 of initial.<quantity>), reported as
+  // initial.<quantity>k.
+  double InitialEntry(const toml::array& array, const toml::node* where, std::string_view quantity,
+                      int k) const {
+    const std::string key = "initial." + std::string(quantity) + std::to_string(k);
+    const bool rate = quantity == "omega";
+    const std::string unit = rate ? "rad/s" : "rad";
+    const toml::node& node = array[static_cast<size_t>(k - 1)];
+    const auto fail = [&](const std::string& got) {
+      throw SceneError(Loc("initial." + std::string(quantity), where) + ": " + key + ": expected " +
+                       Expectation(Rule::kFinite, unit) + (rate ? LimitText(kRateLimit) : "") +
+                       " (entry " + std::to_string(k) + " of initial." + std::string(quantity) +
+                       "), got " + got);
+    };
+    double v = 0.0;
+    if (auto f = node.as_floating_point()) {
+      v = f->get();
+    } else if (auto i = node.as_integer()) {
+      v = static_cast<double>(i->get());
+    } else {
+      fail(Describe(node));
+    }
+    if (!Satisfies(v, Rule::kFinite) || (rate && !Within(v, kRateLimit))) fail(ShortestText(v));
+    return v;
+  }
+
+  // [initial]: the angles and rates at t = 0, one per block: arrays theta = [...] and
+  // omega = [...] (one entry per block), or thetaK and omegaK (K = 1..N); not both ways for one
+  // quantity. No key of a block the scene does not have.
+  void ReadInitial(const toml::table& in, Scene* s) const {
+    const int n = s->block_count();
+    const toml::array* arrays[2] = {nullptr, nullptr};
+    for (int q = 0; q < 2; ++q) {
+      const std::string_view quantity = q == 0 ? "theta" : "omega";
+      const std::string key = "initial." + std::string(quantity);
+      const toml::node* node = in.get(quantity);
+      if (node == nullptr) continue;
+      const std::string what = "an array of " + std::to_string(n) + " numbers (" +
+                               (q == 0 ? "rad" : "rad/s") + ", one per block, bottom first)";
+      arrays[q] = node->as_array();
+      if (arrays[q] == nullptr) Fail(key, node, "expected " + what + ", got " + Describe(*node));
+      if (arrays[q]->size() != static_cast<size_t>(n)) {
+        Fail(key, node,
+             "expected " + what + ": the scene has " + std::to_string(n) +
+                 (n == 1 ? " block" : " blocks") + ", got " + std::to_string(arrays[q]->size()) +
+                 (arrays[q]->size() == 1 ? " entry" : " entries"));
+      }
+      for (int k = 1; k <= n; ++k) {
+        (q == 0 ? s->initial.theta_rad : s->initial.omega_radps)[k - 1] =
+            InitialEntry(*arrays[q], node, quantity, k);
+      }
+    }
+    for (int k = 1; k <= n; ++k) {
+      for (int q = 0; q < 2; ++q) {
+        const std::string name = (q == 0 ? "theta" : "omega") + std::to_string(k);
+        if (arrays[q] != nullptr) {
+          Forbid(in, "initial", name,
+                 std::string("give either initial.") + (q == 0 ? "theta" : "omega") +
+                     " (an array, one entry per block) or initial." + name + ", not both");
+          continue;
+        }
+        const std::optional<double> v =
+            q == 0 ? Number(in, "initial", name, Rule::kFinite, "rad")
+                   : Number(in, "initial", name, Rule::kFinite, "rad/s", &kRateLimit);
+        (q == 0 ? s->initial.theta_rad : s->initial.omega_radps)[k - 1] = v.value_or(0.0);
+      }
+      if (k == 1) ForbidBeyond(in, n);
+    }
+  }
+
+  // thetaK, omegaK for a block K beyond the scene's N.
+  void ForbidBeyond(const toml::table& in, int n) const {
+    for (int k = n + 1; k <= kMaxBlocks; ++k) {
+      for (const char* quantity : {"theta", "omega"}) {
+        const std::string name = quantity + std::to_string(k);
+        if (n == 1 && k == 2) {
+          Forbid(in, "initial", name, "not allowed in a single-block scene (there is no [block2])");
+        }
+        Forbid(in, "initial", name,
+               "not allowed: the scene has " + std::to_string(n) + (n == 1 ? " block" : " blocks") +
+                   " (no block " + std::to_string(k) + ")");
+      }
+    }
   }
 
   // [run]: duration, output interval, gravity.
@@ -686,46 +871,47 @@ class Reader {
     return c;
   }
 
-  // The rules that involve several keys, one for every engine and the reference: block 2 no
-  // wider than block 1, and every initial angle short of model.overturn_angle.
+  // The rules that involve several keys, one for every engine and the reference: every block
+  // no wider than the one below it, and every initial angle short of model.overturn_angle.
   void CheckStackRules(const toml::table& root, const Scene& s) const {
-    const toml::node* b2 = root.get("block2");
-    if (s.block2 && s.block2->width_m > s.block1.width_m) {
-      const toml::node* w = b2 != nullptr && b2->is_table() ? b2->as_table()->get("width") : b2;
-      Fail("block2.width", w,
-           "expected at most block1.width (" + ShortestText(s.block1.width_m) +
-               " m: block 2 would pivot outside block 1's top face, which the model does not "
-               "describe), got " +
-               ShortestText(s.block2->width_m));
+    for (int k = 2; k <= s.block_count(); ++k) {
+      if (s.blocks[k - 1].width_m <= s.blocks[k - 2].width_m) continue;
+      const toml::table* t = BlockTable(root, k);
+      const std::string key = "block" + std::to_string(k) + ".width";
+      Fail(key, t != nullptr ? t->get("width") : nullptr, WiderThanBelow(s, k));
     }
     const toml::node* in = root.get("initial");
     const toml::table* it = in != nullptr ? in->as_table() : nullptr;
-    const auto angle = [&](const char* name, double v) {
-      if (std::abs(v) < s.model.overturn_rad) return;
-      Fail(std::string("initial.") + name, it != nullptr ? it->get(name) : nullptr,
-           "expected |" + std::string(name) + "| below model.overturn_angle (" +
+    for (int k = 1; k <= s.block_count(); ++k) {
+      const double v = s.initial.theta_rad[k - 1];
+      if (std::abs(v) < s.model.overturn_rad) continue;
+      const std::string name = "theta" + std::to_string(k);
+      const toml::node* node = nullptr;
+      if (it != nullptr) node = it->get("theta") != nullptr ? it->get("theta") : it->get(name);
+      Fail("initial." + name, node,
+           "expected |" + name + "| below model.overturn_angle (" +
                ShortestText(s.model.overturn_rad) + " rad; the block would have overturned), got " +
                ShortestText(v));
-    };
-    angle("theta1", s.initial.theta1_rad);
-    angle("theta2", s.initial.theta2_rad);
+    }
   }
 
-  Scene Read(const toml::table& root, const std::filesystem::path& path) const {
+  Scene Read(const toml::table& root, const std::filesystem::path& path) {
     Scene s;
     s.path = path;
     CheckKeys(root, "");
+    // [block3] and beyond are not engine tables: more than two blocks are [[block]] tables.
+    for (auto&& [k, v] : root) {
+      if (BlockIndexOf(k.str()) > 2) {
+        Fail(std::string(k.str()), &v,
+             "unknown table: [block1] and [block2] give one or two blocks; a stack of more is "
+             "given as [[block]] tables, bottom first");
+      }
+    }
     ReadEngineTables(root, &s);
     s.title = String(root, "", "title", "a string").value_or("");
 
-    const toml::table* b1 = Table(root, "", "block1");
-    if (b1 == nullptr) {
-      throw SceneError(file_ +
-                       ": block1: missing table [block1] (the lower block: width, height, "
-                       "density or mass)");
-    }
-    s.block1 = ReadBlock(*b1, "block1");
-    if (const toml::table* b2 = Table(root, "", "block2")) s.block2 = ReadBlock(*b2, "block2");
+    ReadBlocks(root, &s);
+    blocks_ = s.block_count();
 
     if (const toml::table* in = Table(root, "", "initial")) ReadInitial(*in, &s);
 
@@ -750,6 +936,7 @@ class Reader {
  private:
   std::string file_;
   std::map<std::string, std::string> overrides_;  // dotted key -> override text
+  int blocks_ = 0;                                // the scene's blocks, once read
 };
 
 // Applies "key=value" overrides to the parsed tree; returns dotted key -> override text.
@@ -775,14 +962,49 @@ std::map<std::string, std::string> ApplyOverrides(toml::table& root,
       if (dot == std::string::npos) break;
       start = dot + 1;
     }
+    if (parts[0] == "block") {
+      fail("block: [[block]] tables are set by their index: blockK.key (block1.width=...)");
+    }
+    // blockK.key of a [[block]] scene, or of a block beyond [block2]: the K-th block's table.
+    toml::array* block_tables = root.get_as<toml::array>("block");
+    const int block_k = BlockIndexOf(parts[0]);
+    toml::table* block_table = nullptr;
+    if (block_k > 2 || (block_k > 0 && block_tables != nullptr)) {
+      if (parts.size() == 1) {
+        fail(parts[0] + " is a table; set its keys one by one (" + parts[0] + ".x=...)");
+      }
+      bool known = false;
+      for (const auto& [name, tbl] : Schema().at("block1")) known = known || name == parts[1];
+      if (!known) fail("unknown key " + Excerpt(parts[0] + "." + parts[1]));
+      if (parts.size() > 2) fail(parts[0] + "." + parts[1] + " is not a table");
+      int n = 0;
+      if (block_tables != nullptr) {
+        n = static_cast<int>(block_tables->size());
+      } else {
+        n = root.get("block2") != nullptr ? 2 : root.get("block1") != nullptr ? 1 : 0;
+      }
+      if (block_k > n) {
+        fail(Excerpt(key) + ": no block " + std::to_string(block_k) + " (the scene has " +
+             std::to_string(n) + (n == 1 ? " block)" : " blocks)"));
+      }
+      if (block_tables == nullptr || !(*block_tables)[block_k - 1].is_table()) {
+        fail("block in the scene is not an array of tables");
+      }
+      block_table = (*block_tables)[block_k - 1].as_table();
+    }
     bool engine_table = false;
-    for (size_t i = 0; i < parts.size(); ++i) {
+    for (size_t i = 0; i < parts.size() && block_table == nullptr; ++i) {
       auto it = Schema().find(prefix);
       bool found = false, is_table = false;
       if (it != Schema().end()) {
         for (const auto& [name, tbl] : it->second) {
           if (name == parts[i]) found = true, is_table = tbl;
         }
+      }
+      std::string_view quantity;
+      int initial_block = 0;
+      if (prefix == "initial" && ParseInitialKey(parts[i], &quantity, &initial_block)) {
+        found = true;
       }
       const std::string here = Join(prefix, parts[i]);
       // engine.key: an engine's table and its key, checked by the engine.
@@ -806,8 +1028,8 @@ std::map<std::string, std::string> ApplyOverrides(toml::table& root,
     } catch (const toml::parse_error&) {
       is_toml = false;
     }
-    toml::table* t = &root;
-    for (size_t i = 0; i + 1 < parts.size(); ++i) {
+    toml::table* t = block_table != nullptr ? block_table : &root;
+    for (size_t i = 0; i + 1 < parts.size() && block_table == nullptr; ++i) {
       toml::node* n = t->get(parts[i]);
       if (n == nullptr) {
         t->insert(parts[i], toml::table{});
@@ -832,6 +1054,13 @@ std::string FileLabel(const std::filesystem::path& path) {
 }
 
 }  // namespace
+
+void RequireAtMostTwoBlocks(const Scene& scene, std::string_view who) {
+  const int n = scene.block_count();
+  if (n <= 2) return;
+  throw SceneError(FileLabel(scene.path) + ": " + std::string(who) + ": N-block scenes (" +
+                   std::to_string(n) + " blocks) are not simulated yet (issue 23); 1 or 2 blocks");
+}
 
 bool IsAt2File(const std::filesystem::path& file) {
   std::string ext = file.extension().string();
@@ -970,31 +1199,45 @@ void ValidateScene(const Scene& scene) {
       limit(p + ".density", b.density_kgpm3, kDensityLimit, Rule::kPositive, "kg/m^3");
     }
   };
-  block(scene.block1, "block1");
-  if (scene.block2) block(*scene.block2, "block2");
-  if (scene.block2 && scene.block2->width_m > scene.block1.width_m) {
-    fail("block2.width", "expected at most block1.width (" + ShortestText(scene.block1.width_m) +
-                             " m: block 2 would pivot outside block 1's top face, which the "
-                             "model does not describe), got " +
-                             ShortestText(scene.block2->width_m));
+  const int n = scene.block_count();
+  if (n == 0) fail("block1", "missing (the scene has no blocks; the lower block is required)");
+  if (n > kMaxBlocks) {
+    fail("block" + std::to_string(kMaxBlocks + 1),
+         "expected at most " + std::to_string(kMaxBlocks) +
+             " blocks (the most a stack may have), got " + std::to_string(n));
   }
-  check("initial.theta1", scene.initial.theta1_rad, Rule::kFinite, "rad");
-  limit("initial.omega1", scene.initial.omega1_radps, kRateLimit, Rule::kFinite, "rad/s");
-  check("initial.theta2", scene.initial.theta2_rad, Rule::kFinite, "rad");
-  limit("initial.omega2", scene.initial.omega2_radps, kRateLimit, Rule::kFinite, "rad/s");
-  limit("model.overturn_angle", scene.model.overturn_rad, kOverturnLimit, Rule::kPositive, "rad");
-  for (const auto& [name, v] : {std::pair{"theta1", scene.initial.theta1_rad},
-                                std::pair{"theta2", scene.initial.theta2_rad}}) {
-    if (!(std::abs(v) < scene.model.overturn_rad)) {
-      fail(std::string("initial.") + name,
-           "expected |" + std::string(name) + "| below model.overturn_angle (" +
-               ShortestText(scene.model.overturn_rad) +
-               " rad; the block would have overturned), got " + ShortestText(v));
+  for (int k = 1; k <= n; ++k) block(scene.blocks[k - 1], "block" + std::to_string(k));
+  for (int k = 2; k <= n; ++k) {
+    if (scene.blocks[k - 1].width_m > scene.blocks[k - 2].width_m) {
+      fail("block" + std::to_string(k) + ".width", WiderThanBelow(scene, k));
     }
   }
-  if (!scene.two_blocks() &&
-      (scene.initial.theta2_rad != 0.0 || scene.initial.omega2_radps != 0.0)) {
-    fail("initial.theta2", "must be 0 with omega2 in a single-block scene (there is no block2)");
+  const InitialState& in = scene.initial;
+  for (int k = 1; k <= n; ++k) {
+    const std::string i = std::to_string(k);
+    check("initial.theta" + i, in.theta_rad[k - 1], Rule::kFinite, "rad");
+    limit("initial.omega" + i, in.omega_radps[k - 1], kRateLimit, Rule::kFinite, "rad/s");
+  }
+  limit("model.overturn_angle", scene.model.overturn_rad, kOverturnLimit, Rule::kPositive, "rad");
+  for (int k = 1; k <= n; ++k) {
+    const std::string name = "theta" + std::to_string(k);
+    const double v = in.theta_rad[k - 1];
+    if (!(std::abs(v) < scene.model.overturn_rad)) {
+      fail("initial." + name, "expected |" + name + "| below model.overturn_angle (" +
+                                  ShortestText(scene.model.overturn_rad) +
+                                  " rad; the block would have overturned), got " + ShortestText(v));
+    }
+  }
+  // The entries of blocks the scene does not have.
+  for (int k = n + 1; k <= kMaxBlocks; ++k) {
+    if (in.theta_rad[k - 1] == 0.0 && in.omega_radps[k - 1] == 0.0) continue;
+    const std::string i = std::to_string(k);
+    if (n == 1 && k == 2) {
+      fail("initial.theta2", "must be 0 with omega2 in a single-block scene (there is no block2)");
+    }
+    fail(in.theta_rad[k - 1] != 0.0 ? "initial.theta" + i : "initial.omega" + i,
+         "must be 0: the scene has " + std::to_string(n) + (n == 1 ? " block" : " blocks") +
+             " (no block " + i + ")");
   }
   for (const auto* m : {&scene.horizontal, &scene.vertical}) {
     if (!*m) continue;

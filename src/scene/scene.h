@@ -1,6 +1,7 @@
 #pragma once
 /// The scene: what a run simulates. Read from TOML (see README "Scene files"); every field has
 /// the documented default, so a scene that omits a key gets exactly what the README says.
+#include <array>
 #include <cstdint>
 #include <filesystem>
 #include <limits>
@@ -12,6 +13,7 @@
 #include <vector>
 
 #include "scene/engine_settings.h"
+#include "scene/mode.h"
 #include "scene/synthetic_motion.h"
 
 namespace rockbench {
@@ -25,12 +27,17 @@ struct BlockDef {
   double density_kgpm3 = 0.0;  ///< density, kg/m^3 (0 when the scene gave the mass)
 };
 
-/// Initial state, thesis sign convention (theta > 0 tilts right about the right-hand corner).
+/// Initial state, thesis sign convention (theta > 0 tilts right about the right-hand corner):
+/// block k's absolute angle and rate at index k - 1 (bottom first). A fixed capacity on purpose:
+/// code that sets an entry (initial.theta_rad[1]) can never write out of bounds. The entries at
+/// and beyond the scene's block_count() are zero (ValidateScene checks it).
 struct InitialState {
-  double theta1_rad = 0.0;
-  double theta2_rad = 0.0;
-  double omega1_radps = 0.0;
-  double omega2_radps = 0.0;
+  std::array<double, kMaxBlocks> theta_rad{};    ///< rad
+  std::array<double, kMaxBlocks> omega_radps{};  ///< rad/s
+
+  /// At rest. (Declared, so that the old four-number braces {theta1, theta2, omega1, omega2}
+  /// no longer compile: they would fill theta_rad.)
+  InitialState() = default;
 };
 
 enum class AccelUnits { kG, kMps2, kCmps2 };
@@ -124,10 +131,11 @@ struct CompareConfig {
 };
 
 struct Scene {
-  std::filesystem::path path;      ///< the scene file (empty for a scene built in code)
-  std::string title;               ///< optional free text
-  BlockDef block1;                 ///< lower block
-  std::optional<BlockDef> block2;  ///< upper block; absent: single block (Housner)
+  std::filesystem::path path;  ///< the scene file (empty for a scene built in code)
+  std::string title;           ///< optional free text
+  /// The stack, bottom first: blocks[0] stands on the ground, blocks[k] sits centred on
+  /// blocks[k - 1]. 1 (Housner's block) to kMaxBlocks blocks.
+  std::vector<BlockDef> blocks;
   InitialState initial;
   std::optional<MotionDef> horizontal;
   std::optional<MotionDef> vertical;
@@ -138,7 +146,8 @@ struct Scene {
   std::map<std::string, RawEngineTable, std::less<>> engine_tables;
   CompareConfig compare;
 
-  bool two_blocks() const { return block2.has_value(); }
+  /// Number of blocks of the stack.
+  int block_count() const { return static_cast<int>(blocks.size()); }
 };
 
 /// A scene error: names the file, line and key and what was expected.
@@ -157,6 +166,12 @@ Scene ParseScene(std::string_view toml_text, const std::filesystem::path& path,
 
 /// Checks a scene built in code (the same checks as the reader). Throws SceneError.
 void ValidateScene(const Scene& scene);
+
+/// The entry check of a part of the harness that simulates, draws or analyses one or two blocks
+/// only (issue 23 generalises it): throws SceneError "FILE: WHO: N-block scenes (N blocks) are
+/// not simulated yet (issue 23); 1 or 2 blocks" for a scene of 3 or more blocks. `who` names the
+/// part ("reference model", "engine bullet", "render", ...).
+void RequireAtMostTwoBlocks(const Scene& scene, std::string_view who);
 
 /// True when a record file is read as PEER AT2: its name ends in ".AT2" (any case). Any other
 /// file is read as a plain column file.

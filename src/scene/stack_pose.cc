@@ -16,8 +16,9 @@ int PivotSide(double angle_rad, double rate_radps) {
 StackPlacement PlaceStack(double b1, double h1, double b2, double h2, bool two_blocks,
                           const InitialState& s) {
   StackPlacement out;
-  out.ground_side = PivotSide(s.theta1_rad, s.omega1_radps);
-  const double phi1 = -s.theta1_rad, w1 = -s.omega1_radps;
+  const double theta1 = s.theta_rad[0], omega1 = s.omega_radps[0];
+  out.ground_side = PivotSide(theta1, omega1);
+  const double phi1 = -theta1, w1 = -omega1;
   // Block 1 about its ground pivot P1 (a flat block: any point of the base, take the centre).
   const Vec2 p1{out.ground_side * b1, 0.0};
   const Vec2 g1 = p1 + Rotate(phi1, Vec2{0.0, h1} - Vec2{out.ground_side * b1, 0.0});
@@ -25,8 +26,9 @@ StackPlacement PlaceStack(double b1, double h1, double b2, double h2, bool two_b
   out.block1 = {g1.x, g1.y, phi1, vg1.x, vg1.y, w1};
   if (!two_blocks) return out;
 
-  out.interface_side = PivotSide(s.theta2_rad - s.theta1_rad, s.omega2_radps - s.omega1_radps);
-  const double phi2 = -s.theta2_rad, w2 = -s.omega2_radps;
+  const double theta2 = s.theta_rad[1], omega2 = s.omega_radps[1];
+  out.interface_side = PivotSide(theta2 - theta1, omega2 - omega1);
+  const double phi2 = -theta2, w2 = -omega2;
   const double s2b2 = out.interface_side * b2;
   // Block 2's pivot Q2: its base corner on block 1's top face (2 h1 above block 1's base).
   const Vec2 q2 = p1 + Rotate(phi1, Vec2{s2b2, 2.0 * h1} - Vec2{out.ground_side * b1, 0.0});
@@ -38,10 +40,12 @@ StackPlacement PlaceStack(double b1, double h1, double b2, double h2, bool two_b
 }
 
 StackPlacement PlaceStack(const Scene& scene, const InitialState& state) {
-  const double b1 = 0.5 * scene.block1.width_m, h1 = 0.5 * scene.block1.height_m;
-  const double b2 = scene.block2 ? 0.5 * scene.block2->width_m : 0.0;
-  const double h2 = scene.block2 ? 0.5 * scene.block2->height_m : 0.0;
-  return PlaceStack(b1, h1, b2, h2, scene.block2.has_value(), state);
+  RequireAtMostTwoBlocks(scene, "stack placement");
+  const bool two = scene.block_count() == 2;
+  const double b1 = 0.5 * scene.blocks.at(0).width_m, h1 = 0.5 * scene.blocks.at(0).height_m;
+  const double b2 = two ? 0.5 * scene.blocks[1].width_m : 0.0;
+  const double h2 = two ? 0.5 * scene.blocks[1].height_m : 0.0;
+  return PlaceStack(b1, h1, b2, h2, two, state);
 }
 
 BlockCorners Corners(const PlanarPose& pose, double b, double h) {
@@ -53,10 +57,12 @@ BlockCorners Corners(const PlanarPose& pose, double b, double h) {
 StackCorners StackCornersAt(const Scene& scene, const InitialState& state) {
   const StackPlacement place = PlaceStack(scene, state);
   StackCorners out;
-  out.block1 = Corners(place.block1, 0.5 * scene.block1.width_m, 0.5 * scene.block1.height_m);
-  if (scene.block2) {
+  const BlockDef& b1 = scene.blocks[0];
+  out.block1 = Corners(place.block1, 0.5 * b1.width_m, 0.5 * b1.height_m);
+  if (scene.block_count() == 2) {
+    const BlockDef& b2 = scene.blocks[1];
     out.has_block2 = true;
-    out.block2 = Corners(place.block2, 0.5 * scene.block2->width_m, 0.5 * scene.block2->height_m);
+    out.block2 = Corners(place.block2, 0.5 * b2.width_m, 0.5 * b2.height_m);
   }
   return out;
 }

@@ -37,14 +37,13 @@ Scene BaseScene(double duration_s) {
 
 Scene StackScene(double B1, double H1, double B2, double H2, double duration_s) {
   Scene s = BaseScene(duration_s);
-  s.block1 = Block(B1, H1);
-  s.block2 = Block(B2, H2);
+  s.blocks = {Block(B1, H1), Block(B2, H2)};
   return s;
 }
 
 Scene SingleScene(double B, double H, double duration_s) {
   Scene s = BaseScene(duration_s);
-  s.block1 = Block(B, H);
+  s.blocks = {Block(B, H)};
   return s;
 }
 
@@ -55,8 +54,7 @@ double StackThetaC(const Scene& s) {
 
 // Released from rest with both blocks tilted by `theta_rad` (the stack leaning as one).
 void Release(Scene& s, double theta_rad) {
-  s.initial.theta1_rad = theta_rad;
-  if (s.two_blocks()) s.initial.theta2_rad = theta_rad;
+  for (int k = 0; k < s.block_count(); ++k) s.initial.theta_rad[k] = theta_rad;
 }
 
 MotionDef Motion(const char* key, MotionKind kind, double amplitude_g, double frequency_hz,
@@ -109,8 +107,8 @@ void AddSlenderness(std::vector<StressCase>& cat) {
 void AddMassRatio(std::vector<StressCase>& cat) {
   for (double x : {1e-3, 1e-2, 0.1, 1.0, 10.0, 100.0, 1e3}) {
     Scene s = StackScene(1.25, 1.25, 1.0, 2.5, 5.0);
-    s.block2->density_kgpm3 = 0.0;
-    s.block2->mass_kg = x * s.block1.mass_kg;
+    s.blocks[1].density_kgpm3 = 0.0;
+    s.blocks[1].mass_kg = x * s.blocks[0].mass_kg;
     Release(s, 0.5 * StackThetaC(s));
     cat.push_back(Case("mass_ratio/m2_over_m1=" + Format("%g", x),
                        "thesis geometry with m2/m1 = " + Format("%g", x) +
@@ -129,8 +127,7 @@ void AddSize(std::vector<StressCase>& cat) {
   for (double b1 : {0.01, 0.1, 1.0, 10.0, 50.0}) {
     const double k = b1 / 1.25;
     Scene s = BaseScene(5.0);
-    s.block1 = Block(1.25 * k, 1.25 * k, k);
-    s.block2 = Block(1.0 * k, 2.5 * k, k);
+    s.blocks = {Block(1.25 * k, 1.25 * k, k), Block(1.0 * k, 2.5 * k, k)};
     s.horizontal =
         Motion("base.horizontal", MotionKind::kSinePulse, kSizePulse_g, kSizePulse_hz, 0, 0.1);
     cat.push_back(Case("size/stack/b1=" + Format("%g", b1) + "m",
@@ -141,7 +138,7 @@ void AddSize(std::vector<StressCase>& cat) {
   // Housner's single block, H/B = 4, B = b.
   for (double b : {0.01, 0.1, 1.0, 10.0, 50.0}) {
     Scene s = BaseScene(5.0);
-    s.block1 = Block(b, 4.0 * b, b);
+    s.blocks = {Block(b, 4.0 * b, b)};
     s.horizontal =
         Motion("base.horizontal", MotionKind::kSinePulse, kSizePulse_g, kSizePulse_hz, 0, 0.1);
     cat.push_back(Case("size/single/b=" + Format("%g", b) + "m",
@@ -289,7 +286,7 @@ void AddEngineSettings(std::vector<StressCase>& cat) {
 }  // namespace
 
 double UpliftThreshold_mps2(const Scene& scene, UpliftKind kind) {
-  if (kind == UpliftKind::kTop && !scene.two_blocks()) {
+  if (kind == UpliftKind::kTop && scene.block_count() != 2) {
     throw SceneError("uplift threshold of block 2 on block 1: the scene has one block");
   }
   const reference::Geometry geo = reference::MakeGeometry(scene);

@@ -33,17 +33,17 @@ bool Finite(double v) {
 }
 
 bool HistoryHasNonFinite(const History& h) {
+  const auto all_finite = [](const std::vector<double>& v) {
+    return std::all_of(v.begin(), v.end(), [](double x) { return Finite(x); });
+  };
   for (const Sample& s : h.samples) {
-    if (!Finite(s.t_s) || !Finite(s.theta1_rad) || !Finite(s.theta2_rad) ||
-        !Finite(s.omega1_radps) || !Finite(s.omega2_radps)) {
-      return true;
-    }
+    if (!Finite(s.t_s) || !all_finite(s.theta_rad) || !all_finite(s.omega_radps)) return true;
   }
   for (const Event& e : h.events) {
-    for (double v : {e.t_s, e.omega1_before, e.omega2_before, e.omega1_after, e.omega2_after,
-                     e.energy_before_j, e.energy_after_j}) {
+    for (double v : {e.t_s, e.energy_before_j, e.energy_after_j}) {
       if (!Finite(v)) return true;
     }
+    if (!all_finite(e.omega_before_radps) || !all_finite(e.omega_after_radps)) return true;
   }
   return false;
 }
@@ -67,9 +67,17 @@ void CountEvents(const History& h, StressRow* row) {
   }
 }
 
-// Kinetic energy (base frame) of a state moving in `mode`, J: sum of m v_G^2 / 2 + I_G w^2 / 2,
-// computed directly (not as total minus potential energy, which would cancel digits).
-double KineticEnergy(const reference::Geometry& geo, Mode mode, reference::State s) {
+// The state at an impact of one or two blocks: the angles of `at`, the rates `w`.
+reference::State ImpactState(const Sample& at, const std::vector<double>& w) {
+  const size_t top = at.theta_rad.size() >= 2 && w.size() >= 2 ? 1 : 0;
+  return {at.theta_rad[0], at.theta_rad[top], w[0], w[top]};
+}
+
+// Kinetic energy (base frame) of a state moving in configuration `c` (one or two blocks), J:
+// sum of m v_G^2 / 2 + I_G w^2 / 2, computed directly (not as total minus potential energy,
+// which would cancel digits).
+double KineticEnergy(const reference::Geometry& geo, const Configuration& c, reference::State s) {
+  const Mode mode = ModeOfConfiguration(c).value_or(Mode::kRest);
   if (!geo.two_blocks) {
     s.theta2 = s.theta1;
     s.omega2 = s.omega1;
@@ -86,7 +94,7 @@ double KineticEnergy(const reference::Geometry& geo, Mode mode, reference::State
 
 // Linear interpolation of a history's angles at t (clamped to its ends).
 Sample AnglesAt(const History& h, double t) {
-  if (h.samples.empty()) return Sample{};
+  if (h.samples.empty()) return Sample(h.blocks);
   auto it = std::lower_bound(h.samples.begin(), h.samples.end(), t,
                              [](const Sample& s, double tt) { return s.t_s < tt; });
   if (it == h.samples.begin()) return h.samples.front();
@@ -95,8 +103,9 @@ Sample AnglesAt(const History& h, double t) {
   const Sample& a = *(it - 1);
   const double w = b.t_s > a.t_s ? (t - a.t_s) / (b.t_s - a.t_s) : 1.0;
   Sample s = b;
-  s.theta1_rad = a.theta1_rad + w * (b.theta1_rad - a.theta1_rad);
-  s.theta2_rad = a.theta2_rad + w * (b.theta2_rad - a.theta2_rad);
+  for (size_t k = 0; k < s.theta_rad.size() && k < a.theta_rad.size(); ++k) {
+    s.theta_rad[k] = a.theta_rad[k] + w * (b.theta_rad[k] - a.theta_rad[k]);
+  }
   return s;
 }
 
@@ -119,10 +128,10 @@ StressRow RunReference(const StressCase& c, StressRow row) {
   row.detail = s.status_detail;
   // A run that ended non_finite failed (its figures are those of its finite part).
   row.finished = !IsNonFinite(s.status);
-  row.peak_theta1_rad = s.peak_theta1_rad;
-  row.peak_theta2_rad = s.peak_theta2_rad;
-  row.nan = IsNonFinite(s.status) || HistoryHasNonFinite(r.history) || !Finite(s.peak_theta1_rad) ||
-            !Finite(s.peak_theta2_rad);
+  row.peak_theta1_rad = s.peak_theta_rad[0];
+  row.peak_theta2_rad = s.blocks() == 2 ? s.peak_theta_rad[1] : 0.0;
+  row.nan = IsNonFinite(s.status) || HistoryHasNonFinite(r.history) ||
+            !Finite(row.peak_theta1_rad) || !Finite(row.peak_theta2_rad);
   CountEvents(r.history, &row);
   // Energy across each impact: the configuration does not jump, so E_after - E_before is the
   // change of kinetic energy, computed directly at the impact's angles (the post-event state of
@@ -131,10 +140,9 @@ StressRow RunReference(const StressCase& c, StressRow row) {
   for (const Event& e : r.history.events) {
     if (!IsImpact(e)) continue;
     const Sample at = r.trajectory.At(e.t_s);
-    const double ke_before = KineticEnergy(
-        geo, e.mode_before, {at.theta1_rad, at.theta2_rad, e.omega1_before, e.omega2_before});
-    const double ke_after = KineticEnergy(
-        geo, e.mode_after, {at.theta1_rad, at.theta2_rad, e.omega1_after, e.omega2_after});
+    const double ke_before =
+        KineticEnergy(geo, e.mode_before, ImpactState(at, e.omega_before_radps));
+    const double ke_after = KineticEnergy(geo, e.mode_after, ImpactState(at, e.omega_after_radps));
     if (!(ke_before > 0.0)) continue;
     RecordGain((ke_after - ke_before) / ke_before, &row);
   }
@@ -159,8 +167,8 @@ StressRow RunEngineCase(const StressCase& c, const std::string& engine, StressRo
   row.detail = run.summary.value("status_detail", "");
   row.finished = o.status == RunStatus::kCompleted || o.status == RunStatus::kOverturned ||
                  o.status == RunStatus::kAtRest || o.status == RunStatus::kAssumptionViolated;
-  row.peak_theta1_rad = o.peak_theta1_rad;
-  row.peak_theta2_rad = o.peak_theta2_rad;
+  row.peak_theta1_rad = o.blocks() >= 1 ? o.peak_theta_rad[0] : 0.0;
+  row.peak_theta2_rad = o.blocks() == 2 ? o.peak_theta_rad[1] : 0.0;
   row.nan = IsNonFinite(o.status) || HistoryHasNonFinite(run.history);
   CountEvents(run.history, &row);
   std::string flags;
@@ -174,8 +182,8 @@ StressRow RunEngineCase(const StressCase& c, const std::string& engine, StressRo
   for (const Event& e : run.history.events) {
     if (!IsImpact(e)) continue;
     const Sample at = AnglesAt(run.history, e.t_s);
-    const double ke_before = KineticEnergy(
-        geo, e.mode_before, {at.theta1_rad, at.theta2_rad, e.omega1_before, e.omega2_before});
+    const double ke_before =
+        KineticEnergy(geo, e.mode_before, ImpactState(at, e.omega_before_radps));
     if (!(ke_before > floor_j)) continue;
     RecordGain((e.energy_after_j - e.energy_before_j) / ke_before, &row);
   }

@@ -320,19 +320,18 @@ void ReadTop(const toml::table& root, StudyDef* s) {
 
 // Block 1's p = sqrt(3 g / (4 R)) (rad/s) and tan(alpha1).
 void Block1Parameters(const Scene& scene, double* p_radps, double* tan_alpha) {
-  const double b = scene.block1.width_m / 2.0, h = scene.block1.height_m / 2.0;
+  const double b = scene.blocks.at(0).width_m / 2.0, h = scene.blocks.at(0).height_m / 2.0;
   *p_radps = std::sqrt(3.0 * scene.run.gravity_mps2 / (4.0 * std::hypot(b, h)));
   *tan_alpha = b / h;
 }
 
 void ApplyDerived(const std::string& key, double v, Scene* scene) {
   if (key == "size_factor") {
-    for (BlockDef* b : {&scene->block1, scene->block2 ? &*scene->block2 : nullptr}) {
-      if (b == nullptr) continue;
-      b->width_m *= v;
-      b->height_m *= v;
-      b->depth_m *= v;
-      b->mass_kg *= v * v * v;
+    for (BlockDef& b : scene->blocks) {
+      b.width_m *= v;
+      b.height_m *= v;
+      b.depth_m *= v;
+      b.mass_kg *= v * v * v;
     }
     return;
   }
@@ -397,6 +396,8 @@ Scene BuildScene(const StudyDef& study, const std::vector<int>& idx, size_t set_
     if (!a.derived) overrides.push_back(a.key + "=" + a.values[idx[k]].toml);
   }
   Scene scene = LoadScene(study.scene_path, overrides);
+  // The entry of a study's member: one or two blocks for now (issue 23).
+  RequireAtMostTwoBlocks(scene, "study");
   // Derived axes in their fixed order: geometry first, then what depends on it.
   for (const std::string& key : DerivedKeys()) {
     for (size_t k = 0; k < axis_count; ++k) {

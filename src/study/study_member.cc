@@ -33,11 +33,13 @@ void SetGeometry(const Scene& scene, MemberRow* row) {
     return std::sqrt(3.0 * scene.run.gravity_mps2 /
                      (4.0 * std::hypot(b.width_m / 2.0, b.height_m / 2.0)));
   };
-  row->p1_radps = p(scene.block1);
-  row->alpha1_rad = std::atan2(scene.block1.width_m, scene.block1.height_m);
-  if (scene.block2) {
-    row->p2_radps = p(*scene.block2);
-    row->alpha2_rad = std::atan2(scene.block2->width_m, scene.block2->height_m);
+  const BlockDef& b1 = scene.blocks.at(0);
+  row->p1_radps = p(b1);
+  row->alpha1_rad = std::atan2(b1.width_m, b1.height_m);
+  if (scene.block_count() >= 2) {
+    const BlockDef& b2 = scene.blocks[1];
+    row->p2_radps = p(b2);
+    row->alpha2_rad = std::atan2(b2.width_m, b2.height_m);
   }
 }
 

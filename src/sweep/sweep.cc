@@ -80,6 +80,8 @@ Scene SceneForPoint(const Scene& base, const SweepPoint& p) {
 std::vector<SweepRow> RunSweep(const Scene& scene, const GroundMotion& motion,
                                const SweepOptions& options, const SweepProgress& progress,
                                SweepBaseline* baseline_out) {
+  // The entry of a sweep: one or two blocks for now (issue 23).
+  RequireAtMostTwoBlocks(scene, "sweep");
   if (options.repeat < 1) throw SceneError("--repeat: expected a positive integer");
   if (options.threads < 0) throw SceneError("--threads: expected a non-negative integer");
   const std::vector<SweepPoint> grid =
@@ -97,13 +99,14 @@ std::vector<SweepRow> RunSweep(const Scene& scene, const GroundMotion& motion,
   if (baseline_out) {
     baseline_out->wall_s = SecondsSince(start);
     baseline_out->status = baseline.summary.status;
-    baseline_out->peak_theta1_rad = baseline.summary.peak_theta1_rad;
-    baseline_out->peak_theta1_t_s = baseline.summary.peak_theta1_t_s;
-    baseline_out->peak_theta2_rad = baseline.summary.peak_theta2_rad;
-    baseline_out->peak_theta2_t_s = baseline.summary.peak_theta2_t_s;
+    const reference::Summary& bs = baseline.summary;
+    baseline_out->peak_theta1_rad = bs.peak_theta_rad[0];
+    baseline_out->peak_theta1_t_s = bs.peak_theta_t_s[0];
+    baseline_out->peak_theta2_rad = bs.blocks() == 2 ? bs.peak_theta_rad[1] : 0.0;
+    baseline_out->peak_theta2_t_s = bs.blocks() == 2 ? bs.peak_theta_t_s[1] : 0.0;
     baseline_out->overturn_block = baseline.summary.overturn_block.value_or(0);
     baseline_out->overturn_t_s = baseline.summary.overturn_t_s;
-    baseline_out->two_blocks = scene.two_blocks();
+    baseline_out->two_blocks = scene.block_count() == 2;
   }
 
   std::vector<SweepRow> rows(grid.size());
@@ -234,7 +237,7 @@ nlohmann::json SweepJson(const Scene& scene, const std::vector<std::string>& ove
   j["scene"]["title"] = scene.title;
   j["scene"]["overrides"] = overrides;
   j["simulated_duration_s"] = scene.run.duration_s;
-  j["two_blocks"] = scene.two_blocks();
+  j["two_blocks"] = scene.block_count() == 2;
   j["options"]["quick"] = options.quick;
   j["options"]["repeat"] = options.repeat;
   j["options"]["threads"] = options.threads;

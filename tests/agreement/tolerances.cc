@@ -295,7 +295,7 @@ std::vector<Bound> ParseTolerances(std::string_view text, const std::string& fil
                         b.reference_settings.end());
     const std::string load_key = b.scene + "\n" + Join(b.settings, "\t");
     if (!two_blocks.count(load_key)) {
-      two_blocks[load_key] = LoadFor(b, b.settings, "settings").two_blocks();
+      two_blocks[load_key] = LoadFor(b, b.settings, "settings").block_count() == 2;
     }
     if (!b.reference_settings.empty()) LoadFor(b, ref_settings, "reference_settings");
     EngineAgreement shape;

@@ -15,7 +15,7 @@ namespace {
 
 Scene OneBlock() {
   Scene s;
-  s.block1 = {1.0, 4.0, 1.0, 10000.0, 0.0};
+  s.blocks = {{1.0, 4.0, 1.0, 10000.0, 0.0}};
   s.run.duration_s = 1.0;
   return s;
 }

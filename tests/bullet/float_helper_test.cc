@@ -62,8 +62,8 @@ TEST(FloatHelperTest, RunsBulletInSinglePrecisionCloseToDouble) {
   double worst = 0.0;
   for (size_t k = 0; k < d.history.samples.size(); ++k) {
     ASSERT_EQ(f.history.samples[k].t_s, d.history.samples[k].t_s);
-    worst = std::max(worst,
-                     std::abs(f.history.samples[k].theta1_rad - d.history.samples[k].theta1_rad));
+    worst = std::max(
+        worst, std::abs(f.history.samples[k].theta_rad[0] - d.history.samples[k].theta_rad[0]));
   }
   // Measured 5.7e-5 rad over 2 s at dt = 1e-4 (float rounding of ~1e-7 relative per step,
   // amplified at the impact); float is not double: the difference is not zero either.

@@ -9,14 +9,19 @@
 #include <stdexcept>
 #include <string>
 
+#include "tests/common/initial_state.h"
+#include "tests/common/sample.h"
+
 namespace rockbench::bullet {
 namespace {
+
+using testing_util::MakeSample;
 
 BulletInput SomeInput() {
   BulletInput in;
   in.block1 = {1.25, 1.25, 0.7, 3906.25, 2500.0};
   in.block2 = BlockDef{1.0, 2.5, 1.1, 6250.0, 0.0};
-  in.initial = {0.1, 0.2, -0.3, 1.0 / 3.0};
+  in.initial = testing_util::Initial(0.1, 0.2, -0.3, 1.0 / 3.0);
   in.run = {20.0, 0.01, 9.80665};
   in.time_step_s = 1.0 / 60.0;
   in.config.solver_iterations = 77;
@@ -62,7 +67,7 @@ TEST(ProtocolTest, InputRoundTripIsBitExact) {
   const BulletInput b = ParseInput(bytes);
   EXPECT_EQ(SerializeInput(b), bytes);  // every field, every bit
   EXPECT_EQ(b.block2->depth_m, 1.1);
-  EXPECT_EQ(b.initial.omega2_radps, 1.0 / 3.0);
+  EXPECT_EQ(b.initial.omega_radps[1], 1.0 / 3.0);
   EXPECT_EQ(b.config.precision, BulletPrecision::kFloat);
   EXPECT_EQ(b.drive_kind, DriveKind::kKinematic);
   EXPECT_EQ(b.config.solver_iterations, 77);
@@ -79,32 +84,33 @@ TEST(ProtocolTest, InputRoundTripIsBitExact) {
 
 TEST(ProtocolTest, OutputRoundTripIsBitExact) {
   EngineResult a;
-  a.history.two_blocks = true;
-  a.history.samples.push_back({0.0, 0.1, 0.2, 0.3, 0.4, Mode::k1a});
-  a.history.samples.push_back({1e-3, -1.0 / 3.0, 2.0 / 7.0, 0.5, -0.5, Mode::k4b});
-  Event e;
+  a.history.blocks = 2;
+  a.history.samples.push_back(MakeSample({0.0, 0.1, 0.2, 0.3, 0.4, Mode::k1a}));
+  a.history.samples.push_back(MakeSample({1e-3, -1.0 / 3.0, 2.0 / 7.0, 0.5, -0.5, Mode::k4b}));
+  Event e(2);
   e.t_s = 0.6983;
   e.kind = "ground_impact";
-  e.mode_before = Mode::k3a;
-  e.mode_after = Mode::k3b;
-  e.omega1_before = -0.3995;
-  e.omega1_after = -0.3642;
+  e.mode_before = ConfigurationOf(Mode::k3a, 2);
+  e.mode_after = ConfigurationOf(Mode::k3b, 2);
+  e.omega_before_radps[0] = -0.3995;
+  e.omega_after_radps[0] = -0.3642;
   e.energy_before_j = 1.0 / 3.0;
   e.note = "a note";
   a.history.events.push_back(e);
   a.summary = {{"status", "completed"}, {"violations", {{"slip_ground_m", 1e-7}}}};
+  a.outcome = RunOutcome(2);
   a.outcome.status = RunStatus::kOverturned;
   a.outcome.overturned_block = 2;
   a.outcome.overturn_t_s = 3.25;
-  a.outcome.peak_theta2_rad = 1.5;
-  a.outcome.impacts_interface = 4;
+  a.outcome.peak_theta_rad[1] = 1.5;
+  a.outcome.impacts_at[1] = 4;
   a.outcome.violations = {"uplift", "energy_growth"};
   a.wall_s = 0.125;
   const EngineResult b = ParseOutput(SerializeOutput(a));
   EXPECT_EQ(SerializeOutput(b), SerializeOutput(a));
   ASSERT_EQ(b.history.samples.size(), 2u);
-  EXPECT_EQ(b.history.samples[1].theta1_rad, -1.0 / 3.0);
-  EXPECT_EQ(b.history.samples[1].mode, Mode::k4b);
+  EXPECT_EQ(b.history.samples[1].theta_rad[0], -1.0 / 3.0);
+  EXPECT_EQ(ModeOfConfiguration(b.history.samples[1].mode), Mode::k4b);
   ASSERT_EQ(b.history.events.size(), 1u);
   EXPECT_EQ(b.history.events[0].kind, "ground_impact");
   EXPECT_EQ(b.history.events[0].note, "a note");
@@ -113,8 +119,8 @@ TEST(ProtocolTest, OutputRoundTripIsBitExact) {
   EXPECT_EQ(b.outcome.status, RunStatus::kOverturned);
   EXPECT_EQ(b.outcome.overturned_block, 2);
   EXPECT_EQ(b.outcome.overturn_t_s, 3.25);
-  EXPECT_EQ(b.outcome.peak_theta2_rad, 1.5);
-  EXPECT_EQ(b.outcome.impacts_interface, 4);
+  EXPECT_EQ(b.outcome.peak_theta_rad[1], 1.5);
+  EXPECT_EQ(b.outcome.impacts_interface(), 4);
   EXPECT_EQ(b.outcome.violations, a.outcome.violations);
   EXPECT_EQ(b.wall_s, 0.125);
 }

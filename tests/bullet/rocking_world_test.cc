@@ -14,6 +14,7 @@
 #include "reference/kinematics.h"
 #include "scene/ground_motion.h"
 #include "scene/scene.h"
+#include "tests/common/initial_state.h"
 
 namespace rockbench::bullet {
 namespace {
@@ -25,9 +26,10 @@ struct V2 {
 // The thesis's geometry (section 6.3): B1 = H1 = 1.25 m, B2 = 1 m, H2 = 2.5 m.
 Scene ThesisStack(double theta1, double theta2, double omega1, double omega2) {
   Scene s;
-  s.block1 = {1.25, 1.25, 1.0, 3906.25, 0.0};
-  s.block2 = BlockDef{1.0, 2.5, 1.0, 6250.0, 0.0};
-  s.initial = {theta1, theta2, omega1, omega2};
+  s.blocks = {{1.25, 1.25, 1.0, 3906.25, 0.0}};
+  s.blocks.resize(1);
+  s.blocks.push_back(BlockDef{1.0, 2.5, 1.0, 6250.0, 0.0});
+  s.initial = testing_util::Initial(theta1, theta2, omega1, omega2);
   s.run.duration_s = 0.01;
   SetEngineSetting(s, "bullet", "split_impulse_threshold", 0.0);
   return s;
@@ -44,9 +46,10 @@ V2 RotCw(double theta, V2 v) {
 // top face with its pivot corner (right if theta2 > theta1, left if theta2 < theta1) and turns
 // by theta2 about it. Order: bottom-left, bottom-right, top-right, top-left.
 std::array<std::array<V2, 4>, 2> ChainCorners(const Scene& s) {
-  const double B1 = s.block1.width_m, H1 = s.block1.height_m;
-  const double B2 = s.block2 ? s.block2->width_m : 0.0, H2 = s.block2 ? s.block2->height_m : 0.0;
-  const double t1 = s.initial.theta1_rad, t2 = s.initial.theta2_rad;
+  const double B1 = s.blocks[0].width_m, H1 = s.blocks[0].height_m;
+  const bool two = s.block_count() == 2;
+  const double B2 = two ? s.blocks[1].width_m : 0.0, H2 = two ? s.blocks[1].height_m : 0.0;
+  const double t1 = s.initial.theta_rad[0], t2 = s.initial.theta_rad[1];
   // Block 1's pivot at x = +-B1/2; a flat block is not turned (pivot irrelevant).
   const double p1x = t1 > 0 ? B1 / 2 : (t1 < 0 ? -B1 / 2 : 0.0);
   auto on1 = [&](V2 local_from_base_centre) {  // a point of block 1 given at rest
@@ -55,7 +58,7 @@ std::array<std::array<V2, 4>, 2> ChainCorners(const Scene& s) {
   };
   std::array<std::array<V2, 4>, 2> c{};
   c[0] = {on1({-B1 / 2, 0}), on1({B1 / 2, 0}), on1({B1 / 2, H1}), on1({-B1 / 2, H1})};
-  if (!s.block2) return c;
+  if (!two) return c;
   const double rel = t2 - t1;
   const double q_local = rel > 0 ? B2 / 2 : (rel < 0 ? -B2 / 2 : 0.0);  // on block 1's top
   const V2 q = on1({q_local, H1});
@@ -148,9 +151,9 @@ TEST(RockingWorldTest, PlacesBothBlocksByThePivotChainTo1e12) {
 
 TEST(RockingWorldTest, SingleBlockPlacementAndReadBack) {
   Scene s;
-  s.block1 = {1.0, 4.0, 1.0, 10000.0, 0.0};
-  s.initial.theta1_rad = -0.1;
-  s.initial.omega1_radps = 0.25;
+  s.blocks = {{1.0, 4.0, 1.0, 10000.0, 0.0}};
+  s.initial.theta_rad[0] = -0.1;
+  s.initial.omega_radps[0] = 0.25;
   s.run.duration_s = 0.01;
   const BulletInput input = MakeBulletInput(s, GroundMotion());
   RockingWorld world(input);

@@ -10,8 +10,8 @@ namespace rockbench::testing_util {
 
 inline Scene HousnerHalfAngleRelease(double duration_s) {
   Scene s;
-  s.block1 = {1.0, 4.0, 1.0, 10000.0, 0.0};
-  s.initial.theta1_rad = 0.5 * std::atan(0.25);
+  s.blocks = {BlockDef{1.0, 4.0, 1.0, 10000.0, 0.0}};
+  s.initial.theta_rad[0] = 0.5 * std::atan(0.25);
   s.run.duration_s = duration_s;
   s.run.output_interval_s = 0.01;
   return s;

@@ -8,9 +8,8 @@ namespace rockbench::testing_util {
 
 inline Scene ThesisFreeRockingStack(double duration_s = 6.0, double output_interval_s = 0.005) {
   Scene sc;
-  sc.block1 = {1.25, 1.25, 1.0, 3906.25, 2500.0};
-  sc.block2 = BlockDef{1.0, 2.5, 1.0, 6250.0, 2500.0};
-  sc.initial = {0.15, 0.15, 0.0, 0.0};
+  sc.blocks = {BlockDef{1.25, 1.25, 1.0, 3906.25, 2500.0}, BlockDef{1.0, 2.5, 1.0, 6250.0, 2500.0}};
+  sc.initial.theta_rad[0] = sc.initial.theta_rad[1] = 0.15;
   sc.run.duration_s = duration_s;
   sc.run.output_interval_s = output_interval_s;
   return sc;

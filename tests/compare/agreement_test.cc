@@ -13,6 +13,7 @@
 #include "reference/simulate.h"
 #include "scene/ground_motion.h"
 #include "tests/common/housner_scene.h"
+#include "tests/common/initial_state.h"
 
 namespace rockbench {
 namespace {
@@ -27,21 +28,22 @@ EngineRun FromReference(const reference::Result& ref, double t0, double dt, doub
                         double (*err)(double)) {
   EngineRun run;
   run.engine = "fake";
-  run.history.two_blocks = false;
+  run.history.blocks = 1;
   for (double t = t0; t <= t_end + 1e-12; t += dt) {
     Sample s = ref.trajectory.At(t);
     s.t_s = t;
-    s.theta1_rad += err(t);
+    s.theta_rad[0] += err(t);
     run.history.samples.push_back(s);
   }
   run.history.events = ref.history.events;
   run.summary = nlohmann::json::object();
   // The outcome a monitor would report: the peak over the samples.
+  run.outcome = RunOutcome(1);
   run.outcome.status = RunStatus::kCompleted;
   for (const Sample& x : run.history.samples) {
-    if (std::abs(x.theta1_rad) > run.outcome.peak_theta1_rad) {
-      run.outcome.peak_theta1_rad = std::abs(x.theta1_rad);
-      run.outcome.peak_theta1_t_s = x.t_s;
+    if (std::abs(x.theta_rad[0]) > run.outcome.peak_theta_rad[0]) {
+      run.outcome.peak_theta_rad[0] = std::abs(x.theta_rad[0]);
+      run.outcome.peak_theta_t_s[0] = x.t_s;
     }
   }
   run.wall_s = 0.5;
@@ -93,7 +95,7 @@ TEST_F(CompareTest, ErrorMetricsAndHorizon) {
   EXPECT_DOUBLE_EQ(a.theta1.tolerance_rad, 1e-3);
   // Default tolerance: 10% of the reference's peak |theta1| (the release angle here).
   const EngineAgreement d = CompareWithReference(*scene_, *ref_, run);
-  EXPECT_DOUBLE_EQ(d.theta1.tolerance_rad, 0.1 * ref_->summary.peak_theta1_rad);
+  EXPECT_DOUBLE_EQ(d.theta1.tolerance_rad, 0.1 * ref_->summary.peak_theta_rad[0]);
   EXPECT_TRUE(d.theta1.within_tolerance);
   EXPECT_NEAR(d.theta1.horizon_s, 4.0, 1e-9);  // the end of the grid
 }
@@ -105,19 +107,19 @@ TEST_F(CompareTest, PeaksAreTheOnesTheEngineMeasured) {
   // The release at t = 0 is the peak here.
   EXPECT_NEAR(a.theta1.peak_rel_error, 0.0, 1e-12);
   EXPECT_NEAR(a.theta1.peak_time_error_s, 0.0, 1e-12);
-  run.outcome.peak_theta1_rad = 1.01 * ref_->summary.peak_theta1_rad;
-  run.outcome.peak_theta1_t_s = ref_->summary.peak_theta1_t_s + 0.02;
+  run.outcome.peak_theta_rad[0] = 1.01 * ref_->summary.peak_theta_rad[0];
+  run.outcome.peak_theta_t_s[0] = ref_->summary.peak_theta_t_s[0] + 0.02;
   a = CompareWithReference(*scene_, *ref_, run);
   EXPECT_NEAR(a.theta1.peak_rel_error, 0.01, 1e-12);
   EXPECT_NEAR(a.theta1.peak_time_error_s, 0.02, 1e-12);
 }
 
 Event Impact(double t, const char* kind, double w1 = -0.4, double w2 = 0.0) {
-  Event e;
+  Event e(2);
   e.t_s = t;
   e.kind = kind;
-  e.omega1_before = w1;
-  e.omega2_before = w2;
+  e.omega_before_radps[0] = w1;
+  e.omega_before_radps[1] = w2;
   return e;
 }
 
@@ -167,24 +169,23 @@ TEST_F(CompareTest, OverturningAndFinalState) {
   EXPECT_EQ(a.final_mode_engine, "overturned");
   // An engine at rest at the end while the reference still rocks.
   run = FromReference(*ref_, 0.0, 0.01, 4.0, [](double) { return 0.0; });
-  run.history.samples.back().mode = Mode::kRest;
+  run.history.samples.back().mode = Configuration(1);
   a = CompareWithReference(*scene_, *ref_, run);
   EXPECT_FALSE(a.final_agree);
 }
 
 TEST_F(CompareTest, JsonAndCsvCarryTheKeysOtherToolsRead) {
   Scene two;
-  two.block1 = {1.25, 1.25, 1.0, 3906.25, 0.0};
-  two.block2 = BlockDef{1.0, 2.5, 1.0, 6250.0, 0.0};
-  two.initial = {0.15, 0.15, 0.0, 0.0};
+  two.blocks = {BlockDef{1.25, 1.25, 1.0, 3906.25, 0.0}, BlockDef{1.0, 2.5, 1.0, 6250.0, 0.0}};
+  two.initial = testing_util::Initial(0.15, 0.15, 0.0, 0.0);
   two.run.duration_s = 1.0;
   const reference::Result ref = reference::Simulate(two, GroundMotion());
   EngineRun run;
   run.engine = "bullet";
-  run.history.two_blocks = true;
+  run.history.blocks = 2;
   for (double t = 0.0; t <= 1.0; t += 0.01) {
     Sample x = ref.trajectory.At(t);
-    x.theta2_rad += 1e-3;
+    x.theta_rad[1] += 1e-3;
     run.history.samples.push_back(x);
   }
   run.wall_s = 0.25;
@@ -224,20 +225,21 @@ TEST(CompareTolerance, ABlockThatNeverMovesIsNotHeldToAToleranceOfZero) {
   // (contact compliance) would leave the tolerance at its first sample. The floor is 1% of the
   // block's critical angle atan(B/H).
   Scene s;
-  s.block1 = {3.0, 0.5, 1.0, 3750.0, 2500.0};
-  s.block2 = BlockDef{0.4, 1.2, 1.0, 1200.0, 2500.0};
-  s.initial.theta2_rad = 0.1;
+  s.blocks = {{3.0, 0.5, 1.0, 3750.0, 2500.0}};
+  s.blocks.resize(1);
+  s.blocks.push_back(BlockDef{0.4, 1.2, 1.0, 1200.0, 2500.0});
+  s.initial.theta_rad[1] = 0.1;
   s.run.duration_s = 2.0;
   const reference::Result ref = reference::Simulate(s, GroundMotion());
-  ASSERT_EQ(ref.summary.peak_theta1_rad, 0.0);
+  ASSERT_EQ(ref.summary.peak_theta_rad[0], 0.0);
   EXPECT_DOUBLE_EQ(AngleTolerance_rad(s, 1, 0.0), 0.01 * std::atan(3.0 / 0.5));
   EngineRun run;
   run.engine = "fake";
-  run.history.two_blocks = true;
+  run.history.blocks = 2;
   for (double t = 0.0; t <= 2.0 + 1e-12; t += 0.01) {
     Sample x = ref.trajectory.At(t);
     x.t_s = t;
-    x.theta1_rad += 1e-7;
+    x.theta_rad[0] += 1e-7;
     run.history.samples.push_back(x);
   }
   run.summary = nlohmann::json::object();
@@ -245,7 +247,7 @@ TEST(CompareTolerance, ABlockThatNeverMovesIsNotHeldToAToleranceOfZero) {
   EXPECT_TRUE(a.theta1.within_tolerance);
   EXPECT_NEAR(a.theta1.horizon_s, 2.0, 1e-9);
   // The 10% rule still holds for a block that moves: block 2's tolerance is 10% of its peak.
-  EXPECT_DOUBLE_EQ(a.theta2->tolerance_rad, 0.1 * ref.summary.peak_theta2_rad);
+  EXPECT_DOUBLE_EQ(a.theta2->tolerance_rad, 0.1 * ref.summary.peak_theta_rad[1]);
 }
 
 TEST(CompareTolerance, ErrorsAreSplitAtThePredictabilityHorizon) {

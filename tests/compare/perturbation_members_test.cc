@@ -60,31 +60,32 @@ TEST(PerturbedInput, KeepsClosedContactsClosed) {
   // The thesis's free rocking starts with the two blocks as one (theta2 = theta1): a member must
   // too, or it would start in another mode (block 2 tipping on block 1).
   Scene s;
-  s.block1 = {1.25, 1.25, 1.0, 3906.25, 2500.0};
-  s.block2 = BlockDef{1.0, 2.5, 1.0, 6250.0, 2500.0};
-  s.initial.theta1_rad = s.initial.theta2_rad = 0.15;
+  s.blocks = {{1.25, 1.25, 1.0, 3906.25, 2500.0}};
+  s.blocks.resize(1);
+  s.blocks.push_back(BlockDef{1.0, 2.5, 1.0, 6250.0, 2500.0});
+  s.initial.theta_rad[0] = s.initial.theta_rad[1] = 0.15;
   s.compare.initial_rel = 0.01;
   for (int i = 0; i < 10; ++i) {
     const MemberInput in = PerturbedInput(s, GroundMotion(), i);
-    EXPECT_EQ(in.scene.initial.theta2_rad, in.scene.initial.theta1_rad);
-    EXPECT_EQ(in.scene.initial.omega1_radps, 0.0);
-    EXPECT_LE(std::abs(in.scene.initial.theta1_rad / 0.15 - 1.0), 0.01);
+    EXPECT_EQ(in.scene.initial.theta_rad[1], in.scene.initial.theta_rad[0]);
+    EXPECT_EQ(in.scene.initial.omega_radps[0], 0.0);
+    EXPECT_LE(std::abs(in.scene.initial.theta_rad[0] / 0.15 - 1.0), 0.01);
   }
   // A block standing flat (theta1 = 0) stays flat.
-  s.initial.theta1_rad = 0.0;
-  s.initial.theta2_rad = 0.1;
+  s.initial.theta_rad[0] = 0.0;
+  s.initial.theta_rad[1] = 0.1;
   for (int i = 0; i < 10; ++i) {
     const MemberInput in = PerturbedInput(s, GroundMotion(), i);
-    EXPECT_EQ(in.scene.initial.theta1_rad, 0.0);
-    EXPECT_LE(std::abs(in.scene.initial.theta2_rad / 0.1 - 1.0), 0.01);
+    EXPECT_EQ(in.scene.initial.theta_rad[0], 0.0);
+    EXPECT_LE(std::abs(in.scene.initial.theta_rad[1] / 0.1 - 1.0), 0.01);
   }
 }
 
 ReferencePerturbationMembers Ensemble(const Scene& s, const GroundMotion& m, int members,
                                       int threads) {
   const reference::Result nominal = reference::Simulate(s, m);
-  const double tol[2] = {AngleTolerance_rad(s, 1, nominal.summary.peak_theta1_rad),
-                         AngleTolerance_rad(s, 2, nominal.summary.peak_theta2_rad)};
+  const double tol[2] = {AngleTolerance_rad(s, 1, nominal.summary.peak_theta_rad[0]),
+                         AngleTolerance_rad(s, 2, nominal.summary.peak_theta_rad[1])};
   return RunReferencePerturbationMembers(s, m, nominal, members, tol, threads, 0.02);
 }
 
@@ -168,15 +169,16 @@ TEST(MemberOutcome, ReadsTheRunsSummaryAndHistory) {
   const Scene s = testing_util::HousnerHalfAngleRelease(4.0);
   const reference::Result r = reference::Simulate(s, GroundMotion());
   EngineRun run;
+  run.outcome = RunOutcome(1);
   run.outcome.status = r.summary.status;
-  run.outcome.peak_theta1_rad = 0.123;
-  run.outcome.peak_theta1_t_s = 0.5;
+  run.outcome.peak_theta_rad[0] = 0.123;
+  run.outcome.peak_theta_t_s[0] = 0.5;
   run.history = r.history;
   const MemberOutcome o = OutcomeOf(run, s, 0.02);
   EXPECT_EQ(o.peak_rad[0], 0.123);
   EXPECT_EQ(o.peak_t_s[0], 0.5);
   EXPECT_EQ(o.overturned_block, 0);
-  EXPECT_EQ(o.residual_rad[0], r.history.samples.back().theta1_rad);
+  EXPECT_EQ(o.residual_rad[0], r.history.samples.back().theta_rad[0]);
   EXPECT_EQ(o.impacts, CountComparedImpacts(r.history, 0.02));
   EXPECT_GE(o.impacts, 4);  // four impacts in 4 s (tests/common/housner_scene.h)
 }
@@ -186,15 +188,17 @@ TEST(MemberOutcome, ReadsTheRunsSummaryAndHistory) {
 TEST(MemberOutcome, AnOverturnedBlocksPeakIsTheOverturnAngle) {
   const Scene s = testing_util::HousnerHalfAngleRelease(4.0);
   EngineRun run;
+  run.outcome = RunOutcome(1);
   run.outcome.status = RunStatus::kOverturned;
-  run.outcome.peak_theta1_rad = 1.5709;
-  run.outcome.peak_theta1_t_s = 2.0;
+  run.outcome.peak_theta_rad[0] = 1.5709;
+  run.outcome.peak_theta_t_s[0] = 2.0;
   run.outcome.overturned_block = 1;
   run.outcome.overturn_t_s = 1.9995;
-  Sample last;
+  Sample last(1);
   last.t_s = 2.0;
-  last.theta1_rad = -1.5709;
-  run.history.samples = {Sample{}, last};
+  last.theta_rad[0] = -1.5709;
+  run.history.blocks = 1;
+  run.history.samples = {Sample(1), last};
   const MemberOutcome o = OutcomeOf(run, s, 0.02);
   EXPECT_EQ(o.overturned_block, 1);
   EXPECT_EQ(o.peak_rad[0], s.model.overturn_rad);

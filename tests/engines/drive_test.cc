@@ -13,13 +13,14 @@
 #include "renders/drawn_motion.h"
 #include "scene/ground_displacement.h"
 #include "scene/stack_pose.h"
+#include "tests/common/initial_state.h"
 
 namespace rockbench {
 namespace {
 
 Scene OneBlock() {
   Scene s;
-  s.block1 = {1.0, 4.0, 1.0, 10000.0, 0.0};
+  s.blocks = {{1.0, 4.0, 1.0, 10000.0, 0.0}};
   s.run.duration_s = 1.0;
   return s;
 }
@@ -141,8 +142,9 @@ TEST(EngineDrive, TheAnimationDrawsTheGroundTheKinematicEngineWasDrivenWith) {
 TEST(EngineDrive, InitialPosesAreThePivotChains) {
   // The poses an engine starts from are scene/stack_pose.h's, for the input's blocks and state.
   Scene s = OneBlock();
-  s.block2 = BlockDef{0.6, 2.0, 1.0, 1000.0, 0.0};
-  s.initial = {0.1, 0.25, 0.0, 0.5};
+  s.blocks.resize(1);
+  s.blocks.push_back(BlockDef{0.6, 2.0, 1.0, 1000.0, 0.0});
+  s.initial = testing_util::Initial(0.1, 0.25, 0.0, 0.5);
   const EngineInput in =
       MakeEngineInput(s, GroundMotion(), "test", 1e-3, DriveKind::kInertial, 0.0);
   const StackPlacement a = PlaceStack(s, in.initial);

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "scene/stack_pose.h"
+#include "tests/common/initial_state.h"
 
 namespace rockbench {
 namespace {
@@ -41,7 +42,8 @@ StepReadout At(const EngineInput& in, double t, double th1, double w1, double th
   const double b1 = 0.5 * in.block1.width_m, h1 = 0.5 * in.block1.height_m;
   const double b2 = in.block2 ? 0.5 * in.block2->width_m : 0.0;
   const double h2 = in.block2 ? 0.5 * in.block2->height_m : 0.0;
-  const StackPlacement p = PlaceStack(b1, h1, b2, h2, in.two_blocks(), {th1, th2, w1, w2});
+  const StackPlacement p =
+      PlaceStack(b1, h1, b2, h2, in.two_blocks(), testing_util::Initial(th1, th2, w1, w2));
   StepReadout r;
   r.t_s = t;
   r.block1 = ToReadout(p.block1);
@@ -54,15 +56,15 @@ TEST(MonitorTest, ReadsAnglesBackInTheThesisConvention) {
   in.overturn_rad = 10.0;  // let the blocks turn past pi without stopping
   Monitor m(in);
   m.Start(At(in, 0.0, 0.1, -0.2, 0.15, 0.3));
-  EXPECT_NEAR(m.last().theta1_rad, 0.1, 1e-15);
-  EXPECT_NEAR(m.last().theta2_rad, 0.15, 1e-15);
-  EXPECT_NEAR(m.last().omega1_radps, -0.2, 1e-15);
-  EXPECT_NEAR(m.last().omega2_radps, 0.3, 1e-15);
-  EXPECT_EQ(m.last().mode, Mode::k1a);
+  EXPECT_NEAR(m.last().theta_rad[0], 0.1, 1e-15);
+  EXPECT_NEAR(m.last().theta_rad[1], 0.15, 1e-15);
+  EXPECT_NEAR(m.last().omega_radps[0], -0.2, 1e-15);
+  EXPECT_NEAR(m.last().omega_radps[1], 0.3, 1e-15);
+  EXPECT_EQ(ModeOfConfiguration(m.last().mode), Mode::k1a);
   // Angles are unwrapped: a block turned past pi keeps counting.
   m.Step(1, At(in, 1e-3, 3.0, 0.0, 3.0, 0.0));
   m.Step(2, At(in, 2e-3, 3.3, 0.0, 3.3, 0.0));
-  EXPECT_NEAR(m.last().theta1_rad, 3.3, 1e-12);
+  EXPECT_NEAR(m.last().theta_rad[0], 3.3, 1e-12);
 }
 
 TEST(MonitorTest, InfersEveryModeFromTheState) {
@@ -84,13 +86,13 @@ TEST(MonitorTest, InfersEveryModeFromTheState) {
   for (const Case& c : cases) {
     Monitor m(in);
     m.Start(At(in, 0.0, c.th1, c.w1, c.th2, c.w2));
-    EXPECT_EQ(m.last().mode, c.mode) << c.th1 << " " << c.th2 << " " << c.w1;
+    EXPECT_EQ(ModeOfConfiguration(m.last().mode), c.mode) << c.th1 << " " << c.th2 << " " << c.w1;
   }
   const EngineInput one = Input(false);
   Monitor m(one);
   m.Start(At(one, 0.0, -0.05, 0.0));
-  EXPECT_EQ(m.last().mode, Mode::k3b);
-  EXPECT_FALSE(m.history().two_blocks);
+  EXPECT_EQ(m.last().mode, ConfigurationOf(Mode::k3b, 1));
+  EXPECT_EQ(m.history().blocks, 1);
 }
 
 TEST(MonitorTest, GroundImpactTimeIsTheInterpolatedCrossingAndRatesComeAfterContact) {
@@ -108,10 +110,10 @@ TEST(MonitorTest, GroundImpactTimeIsTheInterpolatedCrossingAndRatesComeAfterCont
   const Event& e = m.history().events[0];
   EXPECT_EQ(e.kind, "ground_impact");
   EXPECT_NEAR(e.t_s, 2.25e-3, 1e-12);
-  EXPECT_EQ(e.mode_before, Mode::k3a);
-  EXPECT_EQ(e.mode_after, Mode::k3b);
-  EXPECT_DOUBLE_EQ(e.omega1_before, -0.4);  // the step before the crossing
-  EXPECT_DOUBLE_EQ(e.omega1_after, -0.36);
+  EXPECT_EQ(ModeOfConfiguration(e.mode_before), Mode::k3a);
+  EXPECT_EQ(ModeOfConfiguration(e.mode_after), Mode::k3b);
+  EXPECT_DOUBLE_EQ(e.omega_before_radps[0], -0.4);  // the step before the crossing
+  EXPECT_DOUBLE_EQ(e.omega_after_radps[0], -0.36);
   EXPECT_EQ(m.Summary()["impacts"]["ground"], 1);
 }
 
@@ -127,8 +129,8 @@ TEST(MonitorTest, InterfaceImpactWhenBlockTwoLandsOnBlockOne) {
   ASSERT_EQ(m.history().events.size(), 1u);
   EXPECT_EQ(m.history().events[0].kind, "interface_impact");
   EXPECT_NEAR(m.history().events[0].t_s, 1.5e-3, 1e-12);
-  EXPECT_EQ(m.history().events[0].mode_before, Mode::k4a);
-  EXPECT_EQ(m.history().events[0].mode_after, Mode::k4b);
+  EXPECT_EQ(ModeOfConfiguration(m.history().events[0].mode_before), Mode::k4a);
+  EXPECT_EQ(ModeOfConfiguration(m.history().events[0].mode_after), Mode::k4b);
 }
 
 TEST(MonitorTest, InitiationAndRestAreModeChanges) {
@@ -140,7 +142,7 @@ TEST(MonitorTest, InitiationAndRestAreModeChanges) {
   m.Finish();
   ASSERT_EQ(m.history().events.size(), 1u);
   EXPECT_EQ(m.history().events[0].kind, "initiation");
-  EXPECT_EQ(m.history().events[0].mode_after, Mode::k3b);
+  EXPECT_EQ(ModeOfConfiguration(m.history().events[0].mode_after), Mode::k3b);
   EXPECT_EQ(m.Summary()["initiations"], 1);
 }
 

@@ -10,6 +10,7 @@
 // kMaxRows output rows. Their cost is what the input asks for, in proportion (the program's
 // --wall-limit and memory budget bound it); what is looked for here is cost out of proportion.
 #include <cmath>
+#include <string>
 
 #include "reference/simulate.h"
 #include "scene/ground_motion.h"
@@ -40,22 +41,23 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     const rockbench::reference::Summary& s = r.summary;
     // A stated outcome (overturned, non_finite, ...).
     if (s.status != rockbench::RunStatus::kCompleted) return;
-    const auto check = [&](const char* what, double v, double t) {
+    const auto check = [&](const std::string& what, double v, double t) {
       if (!std::isfinite(v)) {
         rockbench::fuzz::Finding(std::string("scene_run: status completed, but ") + what + " = " +
                                  rockbench::ShortestText(v) +
                                  " at t = " + rockbench::ShortestText(t) + " s");
       }
     };
-    check("peak_theta1", s.peak_theta1_rad, s.peak_theta1_t_s);
-    check("peak_theta2", s.peak_theta2_rad, s.peak_theta2_t_s);
+    for (int k = 0; k < s.blocks(); ++k) {
+      check("peak_theta" + std::to_string(k + 1), s.peak_theta_rad[k], s.peak_theta_t_s[k]);
+    }
     for (const rockbench::Sample& x : r.history.samples) {
       check("t", x.t_s, x.t_s);
-      check("theta1 in history", x.theta1_rad, x.t_s);
-      check("omega1 in history", x.omega1_radps, x.t_s);
-      if (r.history.two_blocks) {
-        check("theta2 in history", x.theta2_rad, x.t_s);
-        check("omega2 in history", x.omega2_radps, x.t_s);
+      check("theta1 in history", x.theta_rad[0], x.t_s);
+      check("omega1 in history", x.omega_radps[0], x.t_s);
+      if (r.history.blocks == 2) {
+        check("theta2 in history", x.theta_rad[1], x.t_s);
+        check("omega2 in history", x.omega_radps[1], x.t_s);
       }
     }
   });

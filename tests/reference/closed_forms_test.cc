@@ -45,8 +45,8 @@ std::vector<Event> Impacts(const History& h) {
 // A single block of full width B and height H (m), 2500 kg/m^3, 1 m deep, from rest at theta0.
 Scene OneBlock(double B, double H, double theta0_rad, double duration_s) {
   Scene sc;
-  sc.block1 = {B, H, 1.0, 2500.0 * B * H, 2500.0};
-  sc.initial.theta1_rad = theta0_rad;
+  sc.blocks = {{B, H, 1.0, 2500.0 * B * H, 2500.0}};
+  sc.initial.theta_rad[0] = theta0_rad;
   sc.run.duration_s = duration_s;
   sc.model.rtol = 1e-12;
   sc.model.atol = 1e-14;
@@ -186,21 +186,21 @@ TEST(ClosedFormsTest, LinearisedFormsHaveTheirOrders) {
 TEST(ClosedFormsTest, ReferenceFreeRockingFollowsTheExactForms) {
   Scene sc = OneBlock(1.0, 4.0, 0.0, 3.0);
   const Geometry geo = MakeGeometry(sc);
-  const bm::RockingBody body = bm::RectangularBlock(1.0, 4.0, sc.block1.mass_kg, geo.g);
+  const bm::RockingBody body = bm::RectangularBlock(1.0, 4.0, sc.blocks[0].mass_kg, geo.g);
   const double theta0 = 0.5 * body.alpha_rad();
-  sc.initial.theta1_rad = theta0;
+  sc.initial.theta_rad[0] = theta0;
   const Result res = Simulate(sc, GroundMotion{});
   const std::vector<Event> imp = Impacts(res.history);
   ASSERT_GE(imp.size(), 3u);
   const double t1 = bm::FirstImpactTime_s(body, theta0);
   EXPECT_NEAR(imp[0].t_s, t1, 1e-9 * t1);
   const double w1 = bm::FreeRockingImpactRate_radps(body, theta0);
-  EXPECT_NEAR(std::abs(imp[0].omega1_before), w1, 1e-9 * w1);
-  EXPECT_NEAR(imp[0].omega1_after / imp[0].omega1_before, bm::CornerImpactRestitution(body),
-              16 * kEps);
-  const double half = bm::FreeRockingHalfCycle_s(body, std::abs(imp[0].omega1_after));
+  EXPECT_NEAR(std::abs(imp[0].omega_before_radps[0]), w1, 1e-9 * w1);
+  EXPECT_NEAR(imp[0].omega_after_radps[0] / imp[0].omega_before_radps[0],
+              bm::CornerImpactRestitution(body), 16 * kEps);
+  const double half = bm::FreeRockingHalfCycle_s(body, std::abs(imp[0].omega_after_radps[0]));
   EXPECT_NEAR(imp[1].t_s - imp[0].t_s, half, 1e-9 * half);
-  const double apex = std::abs(res.trajectory.At(imp[0].t_s + 0.5 * half).theta1_rad);
+  const double apex = std::abs(res.trajectory.At(imp[0].t_s + 0.5 * half).theta_rad[0]);
   EXPECT_NEAR(apex, bm::FreeRockingAmplitudeAfterImpacts_rad(body, theta0, 1), 1e-10);
 }
 
@@ -219,16 +219,16 @@ TEST(ClosedFormsTest, ReferenceStackFirstImpactFollowsTheLockedStackForms) {
   const Result res = Simulate(sc, GroundMotion{});
   const std::vector<Event> imp = Impacts(res.history);
   ASSERT_FALSE(imp.empty());
-  ASSERT_EQ(imp[0].mode_before, Mode::k3a);
-  const double t1 = bm::FirstImpactTime_s(stack, sc.initial.theta1_rad);
+  ASSERT_EQ(ModeOfConfiguration(imp[0].mode_before), Mode::k3a);
+  const double t1 = bm::FirstImpactTime_s(stack, sc.initial.theta_rad[0]);
   EXPECT_NEAR(imp[0].t_s, t1, 1e-9 * t1);
-  const double w = bm::FreeRockingImpactRate_radps(stack, sc.initial.theta1_rad);
-  EXPECT_NEAR(std::abs(imp[0].omega1_before), w, 1e-9 * w);
+  const double w = bm::FreeRockingImpactRate_radps(stack, sc.initial.theta_rad[0]);
+  EXPECT_NEAR(std::abs(imp[0].omega_before_radps[0]), w, 1e-9 * w);
   ASSERT_TRUE(bm::ThesisOutcomeAfter3aIs1b(geo.block1, geo.block2));
-  EXPECT_EQ(imp[0].mode_after, Mode::k1b);
+  EXPECT_EQ(ModeOfConfiguration(imp[0].mode_after), Mode::k1b);
   const bm::RateRatios r = bm::StackGroundImpact3aTo1b(geo.block1, geo.block2);
-  EXPECT_NEAR(imp[0].omega1_after / imp[0].omega1_before, r.theta1, 1e-12);
-  EXPECT_NEAR(imp[0].omega2_after / imp[0].omega1_before, r.theta2, 1e-12);
+  EXPECT_NEAR(imp[0].omega_after_radps[0] / imp[0].omega_before_radps[0], r.theta1, 1e-12);
+  EXPECT_NEAR(imp[0].omega_after_radps[1] / imp[0].omega_before_radps[0], r.theta2, 1e-12);
 }
 
 // The reference's equations = "linearized" are the thesis's eq. 3.39 for one block: first
@@ -239,12 +239,12 @@ TEST(ClosedFormsTest, ReferenceLinearizedModelFollowsTheLinearisedForms) {
   sc.model.equations = Equations::kLinearized;
   const Geometry geo = MakeGeometry(sc);
   const bm::RockingBody body = bm::RectangularBlock(geo.block1, geo.g);
-  sc.initial.theta1_rad = 0.5 * body.alpha_rad();
+  sc.initial.theta_rad[0] = 0.5 * body.alpha_rad();
   const std::vector<Event> imp = Impacts(Simulate(sc, GroundMotion{}).history);
   ASSERT_GE(imp.size(), 2u);
-  const double t1 = bm::LinearizedFirstImpactTime_s(body, sc.initial.theta1_rad);
+  const double t1 = bm::LinearizedFirstImpactTime_s(body, sc.initial.theta_rad[0]);
   EXPECT_NEAR(imp[0].t_s, t1, 1e-9 * t1);
-  const double half = bm::LinearizedHalfCycle_s(body, std::abs(imp[0].omega1_after));
+  const double half = bm::LinearizedHalfCycle_s(body, std::abs(imp[0].omega_after_radps[0]));
   EXPECT_NEAR(imp[1].t_s - imp[0].t_s, half, 1e-9 * half);
 }
 

@@ -72,20 +72,20 @@ std::string FirstMissedEvent(const Scene& sc, const GroundMotion& gm, const Resu
 // dense output).
 TEST(EventsTest, GrazingOverturnInsideOneStepIsFound) {
   Scene sc;
-  sc.block1 = {1.0, 4.0, 1.0, 10000.0, 2500.0};
-  sc.initial.omega1_radps = 0.3718;
+  sc.blocks = {{1.0, 4.0, 1.0, 10000.0, 2500.0}};
+  sc.initial.omega_radps[0] = 0.3718;
   sc.run.duration_s = 3.0;
   sc.model.rtol = 1e-12;
   sc.model.atol = 1e-14;
   const Geometry geo = MakeGeometry(sc);
   const double apex = benchmarks::FreeRockingAmplitude_rad(
-      benchmarks::RectangularBlock(geo.block1, geo.g), sc.initial.omega1_radps);
+      benchmarks::RectangularBlock(geo.block1, geo.g), sc.initial.omega_radps[0]);
   const Result free = Simulate(sc, GroundMotion{});
-  EXPECT_NEAR(free.summary.peak_theta1_rad, apex, 1e-11);
+  EXPECT_NEAR(free.summary.peak_theta_rad[0], apex, 1e-11);
   sc.model.overturn_rad = apex - 5e-6;
   // The crossing of the limit on the rising arc of the free run.
-  auto f = [&](double t) { return free.trajectory.At(t).theta1_rad - sc.model.overturn_rad; };
-  const double t_apex = free.summary.peak_theta1_t_s;
+  auto f = [&](double t) { return free.trajectory.At(t).theta_rad[0] - sc.model.overturn_rad; };
+  const double t_apex = free.summary.peak_theta_t_s[0];
   const double t_cross = BrentBracket(f, 0.0, t_apex, f(0.0), f(t_apex), 1e-14).second;
   for (const double rtol : {1e-6, 1e-9, 1e-12}) {
     SCOPED_TRACE("rtol " + std::to_string(rtol));
@@ -107,8 +107,8 @@ TEST(EventsTest, GrazingOverturnInsideOneStepIsFound) {
 // dips fall inside steps. The run must stop at the first dip, the same at every tolerance.
 TEST(EventsTest, UpliftDipsUnderFastVerticalMotionAreFoundAtTheFirstOne) {
   Scene sc;
-  sc.block1 = {1.0, 4.0, 1.0, 10000.0, 2500.0};
-  sc.initial.theta1_rad = 0.1;
+  sc.blocks = {{1.0, 4.0, 1.0, 10000.0, 2500.0}};
+  sc.initial.theta_rad[0] = 0.1;
   sc.run.duration_s = 2.0;
   sc.model.atol = 1e-14;
   MotionDef v;
@@ -141,8 +141,9 @@ TEST(EventsTest, UpliftDipsUnderFastVerticalMotionAreFoundAtTheFirstOne) {
 // ones once the stack had settled). The stack must start to rock at the first peak.
 TEST(EventsTest, BriefExcursionAboveTheUpliftThresholdAtRestStartsMotion) {
   Scene sc;
-  sc.block1 = {1.25, 1.25, 1.0, 3906.25, 2500.0};
-  sc.block2 = BlockDef{1.0, 2.5, 1.0, 6250.0, 2500.0};
+  sc.blocks = {{1.25, 1.25, 1.0, 3906.25, 2500.0}};
+  sc.blocks.resize(1);
+  sc.blocks.push_back(BlockDef{1.0, 2.5, 1.0, 6250.0, 2500.0});
   sc.run.duration_s = 0.1;
   sc.model.rtol = 1e-12;
   sc.model.atol = 1e-14;

@@ -179,8 +179,8 @@ TEST(Dop853, ThesisStackAgreesWithTheDefaultPair) {
   double max_diff = 0.0;
   for (double t = 0.0; t <= 6.0; t += 1e-3) {
     const Sample a = dopri5.trajectory.At(t), b = dop853.trajectory.At(t);
-    max_diff = std::max(
-        {max_diff, std::abs(a.theta1_rad - b.theta1_rad), std::abs(a.theta2_rad - b.theta2_rad)});
+    max_diff = std::max({max_diff, std::abs(a.theta_rad[0] - b.theta_rad[0]),
+                         std::abs(a.theta_rad[1] - b.theta_rad[1])});
   }
   EXPECT_LT(max_diff, 1e-9);
   // Fewer, longer steps: the reason to offer it.

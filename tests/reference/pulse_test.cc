@@ -22,7 +22,7 @@ namespace {
 // A slender block, B/H = 0.1, in standard gravity (so that amplitude_g is A / g exactly).
 Scene Slender() {
   Scene s;
-  s.block1 = {0.4, 4.0, 1.0, 2500.0 * 1.6, 2500.0};
+  s.blocks = {{0.4, 4.0, 1.0, 2500.0 * 1.6, 2500.0}};
   s.run.duration_s = 15.0;
   s.run.gravity_mps2 = kStandardGravity_mps2;
   // Overturned once past 0.5 rad: a free block beyond its top (0.1 rad) cannot come back, and
@@ -45,7 +45,7 @@ bool OverturnsWithoutImpact(Scene s, double amplitude_g, double f_hz, Equations 
   EXPECT_TRUE(sum.status == RunStatus::kOverturned || sum.status == RunStatus::kCompleted ||
               sum.status == RunStatus::kAtRest)
       << sum.status << " at " << amplitude_g << " g";
-  return sum.status == RunStatus::kOverturned && sum.impacts_ground == 0;
+  return sum.status == RunStatus::kOverturned && sum.impacts_ground() == 0;
 }
 
 // The smallest amplitude in [lo, hi] at which `overturns` holds, by bisection to 1e-10

@@ -10,15 +10,20 @@
 #include <map>
 #include <string>
 
+#include "tests/common/sample.h"
+
 // Everything here draws frames: built only with OSMesa (tests/renders/CMakeLists.txt).
 namespace rockbench::renders {
 namespace {
+
+using testing_util::MakeSample;
 namespace fs = std::filesystem;
 
 Scene Stack() {
   Scene s;
-  s.block1 = {.width_m = 1.0, .height_m = 1.5, .mass_kg = 100.0};
-  s.block2 = BlockDef{.width_m = 0.6, .height_m = 1.0, .mass_kg = 30.0};
+  s.blocks = {{.width_m = 1.0, .height_m = 1.5, .mass_kg = 100.0}};
+  s.blocks.resize(1);
+  s.blocks.push_back(BlockDef{.width_m = 0.6, .height_m = 1.0, .mass_kg = 30.0});
   return s;
 }
 
@@ -26,10 +31,10 @@ History Rocking() {
   History h;
   for (int i = 0; i <= 100; ++i) {
     const double t = 0.01 * i;
-    h.samples.push_back({.t_s = t,
-                         .theta1_rad = 0.1 * std::sin(6 * t),
-                         .theta2_rad = 0.1 * std::sin(6 * t) + 0.1 * std::sin(9 * t),
-                         .mode = Mode::k1a});
+    h.samples.push_back(MakeSample({.t_s = t,
+                                    .theta1_rad = 0.1 * std::sin(6 * t),
+                                    .theta2_rad = 0.1 * std::sin(6 * t) + 0.1 * std::sin(9 * t),
+                                    .mode = Mode::k1a}));
   }
   return h;
 }

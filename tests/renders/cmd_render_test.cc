@@ -19,11 +19,14 @@
 #include "renders/renderer.h"
 #include "scene/history.h"
 #include "scene/scene.h"
+#include "tests/common/sample.h"
 
 extern char** environ;
 
 namespace rockbench::renders {
 namespace {
+
+using testing_util::MakeSample;
 namespace fs = std::filesystem;
 
 const fs::path kSource = ROCKBENCH_SOURCE_DIR;
@@ -82,9 +85,9 @@ TEST(CmdRender, RunFolderIsDrawnFromItsHistories) {
   History ref, other;
   for (int i = 0; i <= 10; ++i) {
     ref.samples.push_back(
-        {.t_s = 0.1 * i, .theta1_rad = 0.3, .theta2_rad = 0.3, .mode = Mode::k3a});
+        MakeSample({.t_s = 0.1 * i, .theta1_rad = 0.3, .theta2_rad = 0.3, .mode = Mode::k3a}));
     other.samples.push_back(
-        {.t_s = 0.1 * i, .theta1_rad = -0.2, .theta2_rad = 0.1, .mode = Mode::k2b});
+        MakeSample({.t_s = 0.1 * i, .theta1_rad = -0.2, .theta2_rad = 0.1, .mode = Mode::k2b}));
   }
   WriteFileAtomic(dir / "reference" / "history.csv", HistoryToCsv(ref));
   WriteFileAtomic(dir / "other" / "history.csv", HistoryToCsv(other));

@@ -14,9 +14,13 @@
 #include "scene/engine_settings.h"
 #include "scene/ground_displacement.h"
 #include "scene/stack_pose.h"
+#include "tests/common/initial_state.h"
+#include "tests/common/sample.h"
 
 namespace rockbench::renders {
 namespace {
+
+using testing_util::MakeSample;
 
 // Corner positions are sums of a few products of metre-sized numbers: exact to ~1e-15 m; 1e-12 m
 // leaves room for the order of operations.
@@ -24,8 +28,9 @@ constexpr double kTolM = 1e-12;
 
 Scene TwoBlocks(double b1_w = 1.0, double h1 = 1.5, double b2_w = 0.6, double h2 = 1.2) {
   Scene s;
-  s.block1 = {.width_m = b1_w, .height_m = h1, .mass_kg = 100.0};
-  s.block2 = BlockDef{.width_m = b2_w, .height_m = h2, .mass_kg = 30.0};
+  s.blocks = {{.width_m = b1_w, .height_m = h1, .mass_kg = 100.0}};
+  s.blocks.resize(1);
+  s.blocks.push_back(BlockDef{.width_m = b2_w, .height_m = h2, .mass_kg = 30.0});
   return s;
 }
 
@@ -118,7 +123,7 @@ TEST(PoseFor, IsTheEnginesPivotChain) {
   // The corners are those of the poses the engines start from (scene/stack_pose.h PlaceStack),
   // bit for bit: one geometry.
   const Scene s = TwoBlocks();
-  const InitialState state{0.12, -0.07, 0.3, -0.4};
+  const InitialState state = testing_util::Initial(0.12, -0.07, 0.3, -0.4);
   const StackCorners p = PoseFor(s, state);
   const StackPlacement place = PlaceStack(0.5, 0.75, 0.3, 0.6, true, state);
   const BlockCorners c1 = Corners(place.block1, 0.5, 0.75), c2 = Corners(place.block2, 0.3, 0.6);
@@ -135,7 +140,7 @@ TEST(PoseFor, AZeroAngleWithARateMovesNoCorner) {
   // zero about either corner leaves every corner at rest.
   const StackCorners rest = PoseFor(TwoBlocks(), 0.0, 0.0);
   for (const InitialState& state :
-       {InitialState{0.0, 0.0, 1.5, 1.5}, InitialState{0.0, 0.0, -2.0, 1.0}}) {
+       {testing_util::Initial(0.0, 0.0, 1.5, 1.5), testing_util::Initial(0.0, 0.0, -2.0, 1.0)}) {
     const StackCorners p = PoseFor(TwoBlocks(), state);
     for (int i = 0; i < 4; ++i) {
       ExpectNear(p.block1[i], rest.block1[i]);
@@ -145,18 +150,21 @@ TEST(PoseFor, AZeroAngleWithARateMovesNoCorner) {
 }
 
 TEST(StackState, ASingleBlockHistoryLocksBlock2) {
-  const Sample s{
-      .t_s = 1.0, .theta1_rad = 0.1, .theta2_rad = 0.5, .omega1_radps = -0.2, .omega2_radps = 3.0};
+  const Sample s = MakeSample({.t_s = 1.0,
+                               .theta1_rad = 0.1,
+                               .theta2_rad = 0.5,
+                               .omega1_radps = -0.2,
+                               .omega2_radps = 3.0});
   const InitialState one = StackState(s, false), two = StackState(s, true);
-  EXPECT_EQ(one.theta2_rad, 0.1);
-  EXPECT_EQ(one.omega2_radps, -0.2);
-  EXPECT_EQ(two.theta2_rad, 0.5);
-  EXPECT_EQ(two.omega2_radps, 3.0);
+  EXPECT_EQ(one.theta_rad[1], 0.1);
+  EXPECT_EQ(one.omega_radps[1], -0.2);
+  EXPECT_EQ(two.theta_rad[1], 0.5);
+  EXPECT_EQ(two.omega_radps[1], 3.0);
 }
 
 TEST(PoseFor, SingleBlockHasNoBlock2) {
   Scene s = TwoBlocks();
-  s.block2.reset();
+  s.blocks.resize(1);
   const StackCorners p = PoseFor(s, 0.1, 0.0);
   EXPECT_FALSE(p.has_block2);
   ExpectNear(p.block1[1], {0.5, 0.0});
@@ -173,13 +181,13 @@ TEST(PoseFor, BaseDisplacementShiftsEverything) {
 
 History Ramp() {
   History h;
-  h.two_blocks = true;
+  h.blocks = 2;
   for (int i = 0; i <= 10; ++i) {
-    Sample s;
+    Sample s(2);
     s.t_s = 0.1 * i;
-    s.theta1_rad = 0.01 * i;
-    s.theta2_rad = -0.02 * i;
-    s.mode = i < 5 ? Mode::k1a : Mode::k2a;
+    s.theta_rad[0] = 0.01 * i;
+    s.theta_rad[1] = -0.02 * i;
+    s.mode = ConfigurationOf(i < 5 ? Mode::k1a : Mode::k2a, 2);
     h.samples.push_back(s);
   }
   return h;
@@ -188,27 +196,27 @@ History Ramp() {
 TEST(StateAt, InterpolatesLinearlyAndTakesTheModeOfTheSampleBefore) {
   const History h = Ramp();
   const Sample s = StateAt(h, 0.45);
-  EXPECT_NEAR(s.theta1_rad, 0.045, 1e-15);
-  EXPECT_NEAR(s.theta2_rad, -0.09, 1e-15);
-  EXPECT_EQ(s.mode, Mode::k1a);
-  EXPECT_EQ(StateAt(h, 0.55).mode, Mode::k2a);
+  EXPECT_NEAR(s.theta_rad[0], 0.045, 1e-15);
+  EXPECT_NEAR(s.theta_rad[1], -0.09, 1e-15);
+  EXPECT_EQ(s.mode, ConfigurationOf(Mode::k1a, 2));
+  EXPECT_EQ(StateAt(h, 0.55).mode, ConfigurationOf(Mode::k2a, 2));
 }
 
 TEST(StateAt, HoldsBeforeTheFirstAndAfterTheLastSample) {
   const History h = Ramp();
-  EXPECT_EQ(StateAt(h, -1.0).theta1_rad, 0.0);
-  EXPECT_NEAR(StateAt(h, 5.0).theta1_rad, 0.1, 1e-15);
+  EXPECT_EQ(StateAt(h, -1.0).theta_rad[0], 0.0);
+  EXPECT_NEAR(StateAt(h, 5.0).theta_rad[0], 0.1, 1e-15);
 }
 
 TEST(StateAt, AtAnEventTimeGivesThePostEventSample) {
   History h;
-  h.samples = {{.t_s = 0.0, .theta1_rad = 0.0},
-               {.t_s = 1.0, .theta1_rad = 0.2, .omega1_radps = 1.0, .mode = Mode::k3a},
-               {.t_s = 1.0, .theta1_rad = 0.2, .omega1_radps = -0.5, .mode = Mode::k3b},
-               {.t_s = 2.0, .theta1_rad = 0.0, .mode = Mode::k3b}};
+  h.samples = {MakeSample({.t_s = 0.0, .theta1_rad = 0.0}),
+               MakeSample({.t_s = 1.0, .theta1_rad = 0.2, .omega1_radps = 1.0, .mode = Mode::k3a}),
+               MakeSample({.t_s = 1.0, .theta1_rad = 0.2, .omega1_radps = -0.5, .mode = Mode::k3b}),
+               MakeSample({.t_s = 2.0, .theta1_rad = 0.0, .mode = Mode::k3b})};
   const Sample s = StateAt(h, 1.0);
-  EXPECT_EQ(s.mode, Mode::k3b);
-  EXPECT_EQ(s.omega1_radps, -0.5);
+  EXPECT_EQ(s.mode, ConfigurationOf(Mode::k3b, 2));
+  EXPECT_EQ(s.omega_radps[0], -0.5);
 }
 
 TEST(StateAt, RejectsAnEmptyHistory) {
@@ -350,15 +358,15 @@ TEST(Camera, FrameTheBoxWithTrueProportions) {
 TEST(Camera, MotionBoxHoldsAnOverturningBlock) {
   Scene s = TwoBlocks();
   History h;
-  h.two_blocks = true;
+  h.blocks = 2;
   for (int i = 0; i <= 100; ++i) {
     const double th = 0.5 * std::numbers::pi * i / 100.0;
-    h.samples.push_back({.t_s = 0.01 * i, .theta1_rad = th, .theta2_rad = th});
+    h.samples.push_back(MakeSample({.t_s = 0.01 * i, .theta1_rad = th, .theta2_rad = th}));
   }
   const Box box = MotionBox(s, {&h}, {}, 0.0, 1.0);
   const Camera cam = FitCamera(box, 0, 0, 640, 360);
   for (const Sample& smp : h.samples) {
-    const StackCorners p = PoseFor(s, smp.theta1_rad, smp.theta2_rad);
+    const StackCorners p = PoseFor(s, smp.theta_rad[0], smp.theta_rad[1]);
     for (const BlockCorners* q : {&p.block1, &p.block2}) {
       for (const Vec2& c : *q) {
         const Vec2 px = cam.ToPixel(c);

@@ -4,14 +4,18 @@
 #include <cmath>
 
 #include "renders/renderer.h"
+#include "tests/common/sample.h"
 
 namespace rockbench::renders {
 namespace {
 
+using testing_util::MakeSample;
+
 Scene Stack() {
   Scene s;
-  s.block1 = {.width_m = 1.25, .height_m = 1.25, .mass_kg = 3906.0};
-  s.block2 = BlockDef{.width_m = 1.0, .height_m = 2.5, .mass_kg = 6250.0};
+  s.blocks = {{.width_m = 1.25, .height_m = 1.25, .mass_kg = 3906.0}};
+  s.blocks.resize(1);
+  s.blocks.push_back(BlockDef{.width_m = 1.0, .height_m = 2.5, .mass_kg = 6250.0});
   return s;
 }
 
@@ -19,9 +23,9 @@ History Wobble(double amp_rad, double t_end_s = 4.0) {
   History h;
   for (int i = 0; i <= static_cast<int>(t_end_s * 100); ++i) {
     const double t = 0.01 * i;
-    h.samples.push_back({.t_s = t,
-                         .theta1_rad = amp_rad * std::sin(3 * t),
-                         .theta2_rad = 2 * amp_rad * std::sin(4 * t)});
+    h.samples.push_back(MakeSample({.t_s = t,
+                                    .theta1_rad = amp_rad * std::sin(3 * t),
+                                    .theta2_rad = 2 * amp_rad * std::sin(4 * t)}));
   }
   return h;
 }
@@ -83,7 +87,7 @@ TEST(ComputeLayout, TheWindowLimitsTheChartRange) {
   History h;
   for (int i = 0; i <= 400; ++i) {
     const double t = 0.01 * i;
-    h.samples.push_back({.t_s = t, .theta1_rad = 0.01 * t * t, .theta2_rad = 0.0});
+    h.samples.push_back(MakeSample({.t_s = t, .theta1_rad = 0.01 * t * t, .theta2_rad = 0.0}));
   }
   RenderConfig cfg;
   cfg.t_from_s = 0.0;

@@ -12,9 +12,12 @@
 
 #include "renders/drawn_motion.h"
 #include "renders/renderer.h"
+#include "tests/common/sample.h"
 
 namespace rockbench::renders {
 namespace {
+
+using testing_util::MakeSample;
 
 TEST(FrameCount, IsTheCountFrameTimesMakes) {
   for (const auto& [from, to, fps, speed] : {std::array<double, 4>{0.0, 5.42015, 60.0, 0.25},
@@ -47,9 +50,9 @@ TEST(FrameTimes, RefusesMoreThanTheFrameLimitBeforeAllocating) {
 
 TEST(ComputeLayout, RefusesImagesPastTheSizeLimitsBeforeAnyBuffer) {
   Scene scene;
-  scene.block1 = {.width_m = 0.4, .height_m = 1.2, .mass_kg = 960.0};
+  scene.blocks = {{.width_m = 0.4, .height_m = 1.2, .mass_kg = 960.0}};
   History h;
-  h.samples = {{.t_s = 0.0}, {.t_s = 1.0}};
+  h.samples = {MakeSample({.t_s = 0.0}), MakeSample({.t_s = 1.0})};
   const std::vector<Track> tracks = {{"reference", h}};
   RenderConfig cfg;
   cfg.width_px = kMaxSide_px;

@@ -9,21 +9,26 @@
 #include <filesystem>
 #include <numbers>
 
+#include "tests/common/sample.h"
+
 namespace rockbench::renders {
 namespace {
 
+using testing_util::MakeSample;
+
 Scene Stack() {
   Scene s;
-  s.block1 = {.width_m = 1.25, .height_m = 1.25, .mass_kg = 3906.0};
-  s.block2 = BlockDef{.width_m = 0.5, .height_m = 1.5, .mass_kg = 1875.0};
+  s.blocks = {{.width_m = 1.25, .height_m = 1.25, .mass_kg = 3906.0}};
+  s.blocks.resize(1);
+  s.blocks.push_back(BlockDef{.width_m = 0.5, .height_m = 1.5, .mass_kg = 1875.0});
   return s;
 }
 
 // Block 2 tilted by 0.2 rad on block 1 at rest (mode 4a), held for one second.
 History Tilted() {
   History h;
-  h.samples = {{.t_s = 0.0, .theta1_rad = 0.0, .theta2_rad = 0.2, .mode = Mode::k4a},
-               {.t_s = 1.0, .theta1_rad = 0.0, .theta2_rad = 0.2, .mode = Mode::k4a}};
+  h.samples = {MakeSample({.t_s = 0.0, .theta1_rad = 0.0, .theta2_rad = 0.2, .mode = Mode::k4a}),
+               MakeSample({.t_s = 1.0, .theta1_rad = 0.0, .theta2_rad = 0.2, .mode = Mode::k4a})};
   return h;
 }
 
@@ -165,7 +170,7 @@ TEST(FrameRenderer, SameInputSameBytes) {
   cfg.width_px = 320;
   cfg.height_px = 240;
   History h = Tilted();
-  h.samples[1].theta1_rad = 0.05;
+  h.samples[1].theta_rad[0] = 0.05;
   FrameRenderer a(Stack(), {{"reference", h}}, {}, cfg);
   FrameRenderer b(Stack(), {{"reference", h}}, {}, cfg);
   const Image a1 = a.Render(0.37);
@@ -182,7 +187,7 @@ TEST(FrameRenderer, EdgesAreAntiAliased) {
   // Supersampled 2x2 and box-filtered: pixels on block 1's tilted edge take intermediate shades
   // between the block colour and the background; drawn at 1x there are none.
   History h;
-  h.samples = {{.t_s = 0.0, .theta1_rad = 0.1, .theta2_rad = 0.1, .mode = Mode::k3a}};
+  h.samples = {MakeSample({.t_s = 0.0, .theta1_rad = 0.1, .theta2_rad = 0.1, .mode = Mode::k3a})};
   auto shades = [&](int supersample) {
     RenderConfig cfg;
     cfg.width_px = 320;
@@ -213,10 +218,10 @@ TEST(FrameRenderer, EdgesAreAntiAliased) {
 
 TEST(FrameRenderer, SingleBlockScene) {
   Scene s = Stack();
-  s.block2.reset();
+  s.blocks.resize(1);
   History h;
-  h.two_blocks = false;
-  h.samples = {{.t_s = 0.0, .theta1_rad = -0.15, .mode = Mode::k3b}};
+  h.blocks = 1;
+  h.samples = {MakeSample({.t_s = 0.0, .theta1_rad = -0.15, .mode = Mode::k3b, .blocks = 1})};
   RenderConfig cfg;
   cfg.width_px = 320;
   cfg.height_px = 240;
@@ -273,14 +278,16 @@ TEST(FrameRenderer, GoldenImage) {
   History ref, other;
   for (int i = 0; i <= 300; ++i) {
     const double t = 0.01 * i;
-    ref.samples.push_back({.t_s = t,
-                           .theta1_rad = 0.08 * std::sin(2.0 * t),
-                           .theta2_rad = 0.08 * std::sin(2.0 * t) + 0.12 * std::sin(3.0 * t),
-                           .mode = Mode::k1a});
-    other.samples.push_back({.t_s = t,
-                             .theta1_rad = 0.06 * std::sin(2.1 * t),
-                             .theta2_rad = 0.06 * std::sin(2.1 * t) + 0.15 * std::sin(3.1 * t),
-                             .mode = Mode::k2a});
+    ref.samples.push_back(
+        MakeSample({.t_s = t,
+                    .theta1_rad = 0.08 * std::sin(2.0 * t),
+                    .theta2_rad = 0.08 * std::sin(2.0 * t) + 0.12 * std::sin(3.0 * t),
+                    .mode = Mode::k1a}));
+    other.samples.push_back(
+        MakeSample({.t_s = t,
+                    .theta1_rad = 0.06 * std::sin(2.1 * t),
+                    .theta2_rad = 0.06 * std::sin(2.1 * t) + 0.15 * std::sin(3.1 * t),
+                    .mode = Mode::k2a}));
   }
   RenderConfig cfg;
   cfg.width_px = 320;

@@ -210,21 +210,21 @@ TEST(HistoryInterpolator, ReproducesACubicAndKeepsTheRateJumpOfAnImpact) {
   // theta(t) = t^3 - t on [0, 1] (a cubic: Hermite is exact), then after an "impact" at t = 1
   // the rate jumps from 2 to -1 and theta(t) = -(t - 1) on [1, 2].
   History h;
-  h.two_blocks = false;
+  h.blocks = 1;
   const auto f = [](double t) { return t <= 1.0 ? t * t * t - t : -(t - 1.0); };
   const auto df = [](double t) { return t < 1.0 ? 3 * t * t - 1.0 : -1.0; };
   for (double t : {0.0, 0.4, 1.0, 1.5, 2.0}) {
-    Sample s;
+    Sample s(1);
     s.t_s = t;
-    s.theta1_rad = f(t);
-    s.omega1_radps = df(t);
+    s.theta_rad[0] = f(t);
+    s.omega_radps[0] = df(t);
     h.samples.push_back(s);
   }
-  Event impact;
+  Event impact(1);
   impact.t_s = 1.0;
   impact.kind = "ground_impact";
-  impact.omega1_before = 2.0;
-  impact.omega1_after = -1.0;
+  impact.omega_before_radps[0] = 2.0;
+  impact.omega_after_radps[0] = -1.0;
   const HistoryInterpolator interp(h, {impact});
   for (double t = 0.0; t <= 2.0; t += 0.01) {
     EXPECT_NEAR(interp.Angles(t)[0], f(t), 1e-13) << t;

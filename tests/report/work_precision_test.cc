@@ -107,8 +107,9 @@ fs::path WriteSweepFolder(const fs::path& dir, const std::vector<SweepRow>& rows
     Scene scene;
     scene.path = "scenes/synthetic.toml";
     scene.title = "synthetic";
-    scene.block1 = {1.0, 4.0, 1.0, 10000.0, 0.0};
-    scene.block2 = scene.block1;
+    scene.blocks = {{1.0, 4.0, 1.0, 10000.0, 0.0}};
+    scene.blocks.resize(1);
+    scene.blocks.push_back(scene.blocks[0]);
     scene.run.duration_s = duration_s;
     SweepBaseline baseline;
     baseline.wall_s = 0.003;

@@ -16,9 +16,10 @@ namespace {
 // The thesis's free-rocking example (6.3.1): two blocks released together from 0.15 rad.
 Scene ThesisFreeRocking() {
   Scene s;
-  s.block1 = {1.25, 1.25, 1.0, 2500.0 * 1.25 * 1.25, 2500.0};
-  s.block2 = BlockDef{1.0, 2.5, 1.0, 2500.0 * 2.5, 2500.0};
-  s.initial.theta1_rad = s.initial.theta2_rad = 0.15;
+  s.blocks = {{1.25, 1.25, 1.0, 2500.0 * 1.25 * 1.25, 2500.0}};
+  s.blocks.resize(1);
+  s.blocks.push_back(BlockDef{1.0, 2.5, 1.0, 2500.0 * 2.5, 2500.0});
+  s.initial.theta_rad[0] = s.initial.theta_rad[1] = 0.15;
   s.run.duration_s = 6.0;
   return s;
 }

@@ -18,9 +18,10 @@ constexpr double kEps = std::numeric_limits<double>::epsilon();
 // Housner's block B = 1 m, H = 4 m (alpha = atan(1/4), R = sqrt(17)/2 m), 10 s at 0.01 s.
 Scene Block() {
   Scene s;
-  s.block1.width_m = 1.0;
-  s.block1.height_m = 4.0;
-  s.block1.mass_kg = 1000.0;
+  s.blocks.resize(1);
+  s.blocks[0].width_m = 1.0;
+  s.blocks[0].height_m = 4.0;
+  s.blocks[0].mass_kg = 1000.0;
   s.run.duration_s = 10.0;
   s.run.output_interval_s = 0.01;
   s.run.gravity_mps2 = 9.81;
@@ -31,11 +32,11 @@ Scene Block() {
 template <class Amplitude>
 History Oscillation(const Scene& s, Amplitude amplitude, double f_hz) {
   History h;
-  h.two_blocks = false;
+  h.blocks = 1;
   for (int k = 0; k * s.run.output_interval_s <= s.run.duration_s + 1e-9; ++k) {
-    Sample x;
+    Sample x(1);
     x.t_s = k * s.run.output_interval_s;
-    x.theta1_rad = amplitude(x.t_s) * std::sin(2.0 * M_PI * f_hz * x.t_s + 0.3);
+    x.theta_rad[0] = amplitude(x.t_s) * std::sin(2.0 * M_PI * f_hz * x.t_s + 0.3);
     h.samples.push_back(x);
   }
   return h;
@@ -85,11 +86,11 @@ TEST(LocalTolerance, IsCappedAtTheCriticalAngle) {
   const double alpha = std::atan(0.25);
   // A block that overturns: theta rises to pi/2. The tolerance never exceeds 10% of alpha.
   History h;
-  h.two_blocks = false;
+  h.blocks = 1;
   for (int k = 0; k <= 1000; ++k) {
-    Sample x;
+    Sample x(1);
     x.t_s = k * 0.01;
-    x.theta1_rad = std::min(M_PI / 2, 0.001 * std::exp(0.8 * x.t_s));
+    x.theta_rad[0] = std::min(M_PI / 2, 0.001 * std::exp(0.8 * x.t_s));
     h.samples.push_back(x);
   }
   const ToleranceProfile p = LocalTolerance(s, 1, h);

@@ -349,7 +349,7 @@ TEST_F(GroundMotionTest, PadsTheShorterOfTwoRecords) {
   const fs::path h = Write("h.txt", "1\n2\n3\n4\n5\n6\n7\n8\n9\n10\n");
   const fs::path v = Write("v.txt", "1\n2\n3\n4\n5\n6\n7\n8\n9\n10\n11\n12\n13\n14\n15\n");
   Scene scene;
-  scene.block1 = BlockDef{1.0, 2.0, 1.0, 100.0, 0.0};
+  scene.blocks = {BlockDef{1.0, 2.0, 1.0, 100.0, 0.0}};
   scene.horizontal = FileDef(h);
   scene.horizontal->units = AccelUnits::kMps2;
   scene.horizontal->units_given = true;
@@ -375,7 +375,7 @@ TEST_F(GroundMotionTest, PadsShippedRecordsOfDifferentLengths) {
   // Rinaldi 228 (1991 samples at 0.01 s, 19.90 s) with Kobe KJMA UP (7500 at 0.02 s, 149.98 s):
   // the horizontal gets zeros up to 149.98 s, i.e. 14999 samples in all.
   Scene scene;
-  scene.block1 = BlockDef{1.0, 2.0, 1.0, 100.0, 0.0};
+  scene.blocks = {BlockDef{1.0, 2.0, 1.0, 100.0, 0.0}};
   scene.horizontal = FileDef(kRinaldi228);
   scene.vertical = FileDef(kRecords / "kobe1995_kjma_UP.AT2");
   scene.vertical->key = "base.vertical";
@@ -503,7 +503,7 @@ TEST_F(GroundMotionTest, At2HeaderUnitsDecideTheConversion) {
 // acceleration) does not rescale a record in g, an analytic amplitude_g, or peak_g.
 TEST_F(GroundMotionTest, RunGravityDoesNotRescaleTheBaseMotion) {
   Scene scene;
-  scene.block1 = BlockDef{1.0, 2.0, 1.0, 100.0, 0.0};
+  scene.blocks = {BlockDef{1.0, 2.0, 1.0, 100.0, 0.0}};
   scene.horizontal = FileDef(kRinaldi228);
   scene.vertical = Analytic(MotionKind::kHarmonic, 0.2, 3.0, 0.0, 1.0);
   scene.vertical->key = "base.vertical";

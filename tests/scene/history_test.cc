@@ -10,6 +10,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "tests/common/scratch_dir_test.h"
 
@@ -28,48 +29,98 @@ class HistoryTest : public testing_util::ScratchDirTest {
   }
 };
 
-// A deterministic history with irrational-looking values of both signs and all modes.
-History MakeHistory(bool two_blocks, int n) {
+// A configuration of `blocks` interfaces from an index: every mode of the thesis for one or
+// two blocks (rest, 3a and 3b for one), letters beyond.
+Configuration ConfigurationFor(int blocks, int i) {
+  if (blocks == 1)
+    return ConfigurationOf(i % 3 == 0 ? Mode::kRest : (i % 3 == 1 ? Mode::k3a : Mode::k3b), 1);
+  if (blocks == 2) return ConfigurationOf(static_cast<Mode>(i % 9), 2);
+  Configuration c(blocks);
+  for (int k = 0; k < blocks; ++k) c.set(k, static_cast<Contact>((i / (k + 1) + k) % 3));
+  return c;
+}
+
+// A deterministic history of `blocks` blocks with irrational-looking values of both signs and
+// all modes.
+History MakeHistory(int blocks, int n) {
   History h;
-  h.two_blocks = two_blocks;
+  h.blocks = blocks;
   for (int i = 0; i < n; ++i) {
-    Sample s;
+    Sample s(blocks);
     s.t_s = 0.005 * i + (i % 7 == 3 ? 1.234567e-4 : 0.0);  // some event times between outputs
-    s.theta1_rad = 0.15 * std::cos(0.37 * i) * std::exp(-0.01 * i);
-    s.omega1_radps = -1.7 * std::sin(0.37 * i + 0.2);
-    if (two_blocks) {
-      s.theta2_rad = 1e-7 * std::sin(1.3 * i);
-      s.omega2_radps = 3.0e5 * std::cos(0.11 * i);
+    s.theta_rad[0] = 0.15 * std::cos(0.37 * i) * std::exp(-0.01 * i);
+    s.omega_radps[0] = -1.7 * std::sin(0.37 * i + 0.2);
+    for (int k = 1; k < blocks; ++k) {
+      s.theta_rad[k] = 1e-7 * k * std::sin(1.3 * i + k);
+      s.omega_radps[k] = 3.0e5 * std::cos(0.11 * i - k);
     }
-    s.mode = static_cast<Mode>(i % 9);
-    if (!two_blocks) s.mode = i % 3 == 0 ? Mode::kRest : (i % 3 == 1 ? Mode::k3a : Mode::k3b);
+    s.mode = ConfigurationFor(blocks, i);
     h.samples.push_back(s);
   }
   return h;
 }
 
+// A sample of two blocks.
+Sample TwoBlockSample(double t, double th1, double th2, double w1, double w2, Mode mode) {
+  Sample s(2);
+  s.t_s = t;
+  s.theta_rad = {th1, th2};
+  s.omega_radps = {w1, w2};
+  s.mode = ConfigurationOf(mode, 2);
+  return s;
+}
+
 TEST_F(HistoryTest, Headers) {
-  EXPECT_EQ(HistoryCsvHeader(true), "t,theta1,theta2,omega1,omega2,mode");
-  EXPECT_EQ(HistoryCsvHeader(false), "t,theta1,omega1,mode");
+  EXPECT_EQ(HistoryCsvHeader(2), "t,theta1,theta2,omega1,omega2,mode");
+  EXPECT_EQ(HistoryCsvHeader(1), "t,theta1,omega1,mode");
+  EXPECT_EQ(HistoryCsvHeader(3), "t,theta1,theta2,theta3,omega1,omega2,omega3,mode");
 }
 
 TEST_F(HistoryTest, ExactFormatOfARow) {
   History h;
-  h.samples.push_back({0.005, 0.15, -0.0625, 1.5, -2.0, Mode::k1a});
+  h.samples.push_back(TwoBlockSample(0.005, 0.15, -0.0625, 1.5, -2.0, Mode::k1a));
   EXPECT_EQ(HistoryToCsv(h),
             "t,theta1,theta2,omega1,omega2,mode\n"
             "0.005000000,1.500000000000e-01,-6.250000000000e-02,1.500000000000e+00,"
             "-2.000000000000e+00,1a\n");
-  h.two_blocks = false;
-  EXPECT_EQ(HistoryToCsv(h),
+  History one;
+  one.blocks = 1;
+  Sample s(1);
+  s.t_s = 0.005;
+  s.theta_rad[0] = 0.15;
+  s.omega_radps[0] = 1.5;
+  s.mode = ConfigurationOf(Mode::k3a, 1);
+  one.samples.push_back(s);
+  EXPECT_EQ(HistoryToCsv(one),
             "t,theta1,omega1,mode\n"
-            "0.005000000,1.500000000000e-01,1.500000000000e+00,1a\n");
+            "0.005000000,1.500000000000e-01,1.500000000000e+00,3a\n");
+  // Three blocks: every angle, then every rate, and the configuration's letters.
+  History three;
+  three.blocks = 3;
+  Sample t(3);
+  t.t_s = 0.25;
+  t.theta_rad = {0.0, 0.5, -0.25};
+  t.omega_radps = {0.0, 1.0, 2.0};
+  t.mode.set(1, Contact::kRight);
+  t.mode.set(2, Contact::kLeft);
+  three.samples.push_back(t);
+  EXPECT_EQ(HistoryToCsv(three),
+            "t,theta1,theta2,theta3,omega1,omega2,omega3,mode\n"
+            "0.250000000,0.000000000000e+00,5.000000000000e-01,-2.500000000000e-01,"
+            "0.000000000000e+00,1.000000000000e+00,2.000000000000e+00,frl\n");
+}
+
+TEST_F(HistoryTest, ASampleOfAnotherBlockCountIsAnError) {
+  History h;
+  h.blocks = 3;
+  h.samples.push_back(Sample(2));
+  EXPECT_THROW(HistoryToCsv(h), std::logic_error);
 }
 
 // Round trip: what is read back equals what was written to the printed precision: t to
 // 0.5e-9 s (9 decimals), the states to half a unit in the 13th significant digit.
 void ExpectRoundTrip(const History& in, const History& out) {
-  ASSERT_EQ(out.two_blocks, in.two_blocks);
+  ASSERT_EQ(out.blocks, in.blocks);
   ASSERT_EQ(out.samples.size(), in.samples.size());
   const auto near = [](double a, double b) {
     return std::abs(a - b) <= 0.5e-12 * std::abs(a) * 1.0000001 + 1e-300;
@@ -77,22 +128,19 @@ void ExpectRoundTrip(const History& in, const History& out) {
   for (size_t i = 0; i < in.samples.size(); ++i) {
     const Sample& a = in.samples[i];
     const Sample& b = out.samples[i];
+    ASSERT_EQ(b.blocks(), in.blocks) << i;
+    ASSERT_EQ(b.omega_radps.size(), static_cast<size_t>(in.blocks)) << i;
     EXPECT_NEAR(b.t_s, a.t_s, 0.5e-9 + 1e-15) << i;
-    EXPECT_TRUE(near(a.theta1_rad, b.theta1_rad)) << i << " " << a.theta1_rad;
-    EXPECT_TRUE(near(a.omega1_radps, b.omega1_radps)) << i;
-    if (in.two_blocks) {
-      EXPECT_TRUE(near(a.theta2_rad, b.theta2_rad)) << i;
-      EXPECT_TRUE(near(a.omega2_radps, b.omega2_radps)) << i;
-    } else {
-      EXPECT_EQ(b.theta2_rad, 0.0);
-      EXPECT_EQ(b.omega2_radps, 0.0);
+    for (int k = 0; k < in.blocks; ++k) {
+      EXPECT_TRUE(near(a.theta_rad[k], b.theta_rad[k])) << i << " " << k << " " << a.theta_rad[k];
+      EXPECT_TRUE(near(a.omega_radps[k], b.omega_radps[k])) << i << " " << k;
     }
     EXPECT_EQ(b.mode, a.mode) << i;
   }
 }
 
 TEST_F(HistoryTest, RoundTripTwoBlocks) {
-  const History h = MakeHistory(true, 500);
+  const History h = MakeHistory(2, 500);
   const fs::path p = dir_ / "run" / "reference" / "history.csv";
   WriteFileAtomic(p, HistoryToCsv(h));
   const History back = ReadHistoryCsv(p);
@@ -102,13 +150,26 @@ TEST_F(HistoryTest, RoundTripTwoBlocks) {
 }
 
 TEST_F(HistoryTest, RoundTripOneBlockWithCrLf) {
-  const History h = MakeHistory(false, 200);
+  const History h = MakeHistory(1, 200);
   std::string text = HistoryToCsv(h);
   std::string crlf;
   for (char c : text) crlf += c == '\n' ? std::string("\r\n") : std::string(1, c);
   const fs::path p = dir_ / "history.csv";
   WriteFileAtomic(p, crlf);
   ExpectRoundTrip(h, ReadHistoryCsv(p));
+}
+
+// Every block count reads back what was written, and writes the same bytes again.
+TEST_F(HistoryTest, RoundTripOneTwoThreeAndSixBlocks) {
+  for (const int blocks : {1, 2, 3, 6}) {
+    SCOPED_TRACE(blocks);
+    const History h = MakeHistory(blocks, 120);
+    const fs::path p = dir_ / ("history" + std::to_string(blocks) + ".csv");
+    WriteFileAtomic(p, HistoryToCsv(h));
+    const History back = ReadHistoryCsv(p);
+    ExpectRoundTrip(h, back);
+    EXPECT_EQ(HistoryToCsv(back), Slurp(p));
+  }
 }
 
 TEST_F(HistoryTest, ReadErrorsNameFileAndLine) {
@@ -132,6 +193,14 @@ TEST_F(HistoryTest, ReadErrorsNameFileAndLine) {
   expect_error("t,theta1,omega1,mode\n0.0,1e-3,rest\n", ":2:", "4 columns");
   expect_error("t,theta1,theta2,omega1,omega2,mode\n0.0,1,2,3,4,1a,extra\n", ":2:", "6 columns");
   expect_error("t,theta1,omega1,mode\n0.0,,2e-3,rest\n", ":2:", "column 2");
+  // A single block has no mode with block 2 rocking.
+  expect_error("t,theta1,omega1,mode\n0.0,1e-3,2e-3,1a\n", ":2:", "mode");
+  // N blocks: the header's own columns, N letters of f, r or l.
+  expect_error("t,theta1,theta2,theta3,omega1,omega3,omega2,mode\n", ":1:", "header");
+  expect_error("t,theta1,theta2,theta3,omega1,omega2,omega3,mode\n0,1,2,3,4,5,6,fr\n",
+               ":2:", "configuration");
+  expect_error("t,theta1,theta2,theta3,omega1,omega2,omega3,mode\n0,1,2,3,4,5,rest\n",
+               ":2:", "8 columns");
   try {
     ReadHistoryCsv(dir_ / "none.csv");
     ADD_FAILURE();
@@ -142,15 +211,13 @@ TEST_F(HistoryTest, ReadErrorsNameFileAndLine) {
 
 TEST_F(HistoryTest, EventsCsv) {
   History h;
-  Event e;
+  Event e(2);
   e.t_s = 1.25;
   e.kind = "ground_impact";
-  e.mode_before = Mode::k1a;
-  e.mode_after = Mode::k2b;
-  e.omega1_before = -0.5;
-  e.omega2_before = 0.25;
-  e.omega1_after = 0.125;
-  e.omega2_after = -1.0;
+  e.mode_before = ConfigurationOf(Mode::k1a, 2);
+  e.mode_after = ConfigurationOf(Mode::k2b, 2);
+  e.omega_before_radps = {-0.5, 0.25};
+  e.omega_after_radps = {0.125, -1.0};
   e.energy_before_j = 1000.0;
   e.energy_after_j = 750.5;
   e.note = "inadmissible: a, b\nc";
@@ -161,19 +228,116 @@ TEST_F(HistoryTest, EventsCsv) {
             "1.250000000,ground_impact,1a,2b,-5.000000000000e-01,2.500000000000e-01,"
             "1.250000000000e-01,-1.000000000000e+00,1.000000000000e+03,7.505000000000e+02,"
             "inadmissible: a; b c\n");
+  // One block keeps the two-block columns, its omega2 written as 0.
+  History one;
+  one.blocks = 1;
+  Event f(1);
+  f.t_s = 0.5;
+  f.kind = "overturn";
+  f.mode_before = f.mode_after = ConfigurationOf(Mode::k3a, 1);
+  f.omega_before_radps = f.omega_after_radps = {2.0};
+  one.events.push_back(f);
+  EXPECT_EQ(EventsToCsv(one),
+            "t,kind,mode_before,mode_after,omega1_before,omega2_before,omega1_after,omega2_after,"
+            "energy_before_j,energy_after_j,note\n"
+            "0.500000000,overturn,3a,3a,2.000000000000e+00,0.000000000000e+00,2.000000000000e+00,"
+            "0.000000000000e+00,0.000000000000e+00,0.000000000000e+00,\n");
+  // Three blocks: every block's rate before, then after.
+  History three;
+  three.blocks = 3;
+  Event g(3);
+  g.t_s = 2.0;
+  g.kind = "interface_impact";
+  g.mode_after.set(2, Contact::kRight);
+  g.omega_before_radps = {0.0, 0.0, -1.0};
+  g.omega_after_radps = {0.0, 0.0, 0.5};
+  three.events.push_back(g);
+  EXPECT_EQ(EventsToCsv(three),
+            "t,kind,mode_before,mode_after,omega1_before,omega2_before,omega3_before,"
+            "omega1_after,omega2_after,omega3_after,energy_before_j,energy_after_j,note\n"
+            "2.000000000,interface_impact,fff,ffr,0.000000000000e+00,0.000000000000e+00,"
+            "-1.000000000000e+00,0.000000000000e+00,0.000000000000e+00,5.000000000000e-01,"
+            "0.000000000000e+00,0.000000000000e+00,\n");
+}
+
+// `blocks` events of every kind of configuration and rates of both signs.
+std::vector<Event> MakeEvents(int blocks, int n) {
+  std::vector<Event> out;
+  for (int i = 0; i < n; ++i) {
+    Event e(blocks);
+    e.t_s = 0.359512345 + 0.25 * i;
+    e.kind = i % 2 == 0 ? "ground_impact" : "transition";
+    e.mode_before = ConfigurationFor(blocks, i);
+    e.mode_after = ConfigurationFor(blocks, i + 1);
+    for (int k = 0; k < blocks; ++k) {
+      e.omega_before_radps[k] = -0.123456789012 * (k + 1) * (i % 3 - 1);
+      e.omega_after_radps[k] = 0.5 * std::sin(1.7 * i + k);
+    }
+    e.energy_before_j = 7315.47 + i;
+    e.energy_after_j = 7000.25 + i;
+    e.note = i % 3 == 0 ? "" : "a note";
+    out.push_back(std::move(e));
+  }
+  return out;
+}
+
+// events.csv of 1, 2, 3 and 6 blocks reads back what EventsToCsv wrote (rates to 13 significant
+// digits) and writes the same bytes again.
+TEST_F(HistoryTest, EventsCsvRoundTripOneTwoThreeAndSixBlocks) {
+  for (const int blocks : {1, 2, 3, 6}) {
+    SCOPED_TRACE(blocks);
+    History h;
+    h.blocks = blocks;
+    h.events = MakeEvents(blocks, 12);
+    const auto path = Write("events" + std::to_string(blocks) + ".csv", EventsToCsv(h));
+    // One and two blocks share a header: the reader is told the count (two when it is not).
+    const std::vector<Event> back = ReadEventsCsv(path, blocks <= 2 ? blocks : 0);
+    ASSERT_EQ(back.size(), h.events.size());
+    for (size_t i = 0; i < back.size(); ++i) {
+      const Event& a = h.events[i];
+      const Event& b = back[i];
+      ASSERT_EQ(b.blocks(), blocks);
+      ASSERT_EQ(b.omega_after_radps.size(), static_cast<size_t>(blocks));
+      EXPECT_EQ(b.t_s, a.t_s);
+      EXPECT_EQ(b.kind, a.kind);
+      EXPECT_EQ(b.mode_before, a.mode_before) << i;
+      EXPECT_EQ(b.mode_after, a.mode_after) << i;
+      for (int k = 0; k < blocks; ++k) {
+        // To half a unit in the 13th significant digit.
+        for (const auto* v : {&a.omega_before_radps, &a.omega_after_radps}) {
+          const double x = (*v)[k];
+          const double y =
+              (v == &a.omega_before_radps ? b.omega_before_radps : b.omega_after_radps)[k];
+          EXPECT_NEAR(y, x, 0.5e-12 * std::abs(x) * 1.0000001 + 1e-300) << i << " " << k;
+        }
+      }
+      EXPECT_EQ(b.energy_before_j, a.energy_before_j);
+      EXPECT_EQ(b.note, a.note);
+    }
+    History again;
+    again.blocks = blocks;
+    again.events = back;
+    EXPECT_EQ(EventsToCsv(again), EventsToCsv(h));
+  }
+  // An N-block file read as another count is refused.
+  History h;
+  h.blocks = 3;
+  h.events = MakeEvents(3, 2);
+  const auto path = Write("events3.csv", EventsToCsv(h));
+  EXPECT_THROW(ReadEventsCsv(path, 4), std::runtime_error);
+  EXPECT_THROW(ReadEventsCsv(path, 2), std::runtime_error);
 }
 
 // events.csv reads back what EventsToCsv wrote (values with 13 significant digits, the note
 // with its commas and line breaks replaced), and a bad line is named.
 TEST_F(HistoryTest, EventsCsvRoundTripAndErrors) {
   History h;
-  Event a;
+  Event a(2);
   a.t_s = 0.359512345;
   a.kind = "transition";
-  a.mode_before = Mode::k3a;
-  a.mode_after = Mode::k1a;
-  a.omega1_before = a.omega1_after = -0.123456789012;
-  a.omega2_before = a.omega2_after = 0.5;
+  a.mode_before = ConfigurationOf(Mode::k3a, 2);
+  a.mode_after = ConfigurationOf(Mode::k1a, 2);
+  a.omega_before_radps = a.omega_after_radps = {-0.123456789012, 0.5};
   a.energy_before_j = a.energy_after_j = 7315.47;
   Event b = a;
   b.t_s = 1.0;
@@ -185,13 +349,13 @@ TEST_F(HistoryTest, EventsCsvRoundTripAndErrors) {
   ASSERT_EQ(back.size(), 2u);
   EXPECT_EQ(back[0].t_s, a.t_s);
   EXPECT_EQ(back[0].kind, "transition");
-  EXPECT_EQ(back[0].mode_before, Mode::k3a);
-  EXPECT_EQ(back[0].mode_after, Mode::k1a);
-  EXPECT_DOUBLE_EQ(back[0].omega1_before, a.omega1_before);
+  EXPECT_EQ(back[0].mode_before, ConfigurationOf(Mode::k3a, 2));
+  EXPECT_EQ(back[0].mode_after, ConfigurationOf(Mode::k1a, 2));
+  EXPECT_DOUBLE_EQ(back[0].omega_before_radps[0], a.omega_before_radps[0]);
   EXPECT_EQ(back[0].energy_after_j, 7315.47);
   EXPECT_EQ(back[1].note, "");
-  EXPECT_EQ(HistoryToCsv(History{true, {}, back}), HistoryToCsv(h));  // events do not print
-  EXPECT_EQ(EventsToCsv(History{true, {}, back}), EventsToCsv(h));
+  EXPECT_EQ(HistoryToCsv(History{2, {}, back}), HistoryToCsv(h));  // events do not print
+  EXPECT_EQ(EventsToCsv(History{2, {}, back}), EventsToCsv(h));
 
   const std::string header = EventsToCsv(History{});
   const auto expect_error = [&](const std::string& text, const std::string& what) {

@@ -120,15 +120,15 @@ TEST(SceneLimits, TheStackRulesAreTheReaders) {
                   "block2.width: expected at most block1.width (1.25 m");
   // A scene built in code gets the same rules from ValidateScene.
   Scene s = ParseScene(kBlocks, "scenes/x.toml");
-  s.initial.theta1_rad = -1.6;
+  s.initial.theta_rad[0] = -1.6;
   try {
     ValidateScene(s);
     ADD_FAILURE() << "no error";
   } catch (const SceneError& err) {
     EXPECT_CONTAINS(err.what(), "initial.theta1: expected |theta1| below model.overturn_angle");
   }
-  s.initial.theta1_rad = 0.0;
-  s.block1.width_m = 5e-324;
+  s.initial.theta_rad[0] = 0.0;
+  s.blocks[0].width_m = 5e-324;
   try {
     ValidateScene(s);
     ADD_FAILURE() << "no error";

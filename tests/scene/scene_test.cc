@@ -59,19 +59,19 @@ TEST(ShippedScenes, AllParseAndTheirMotionLoads) {
 TEST(ShippedScenes, ThesisFreeRocking) {
   // Thesis 6.3.1: B1 = H1 = 1.25 m, B2 = 1.0 m, H2 = 2.5 m, 2500 kg/m^3, theta = 0.15 rad.
   const Scene s = LoadScene(kScenes / "thesis_free_rocking.toml");
-  ASSERT_TRUE(s.two_blocks());
-  EXPECT_EQ(s.block1.width_m, 1.25);
-  EXPECT_EQ(s.block1.height_m, 1.25);
-  EXPECT_EQ(s.block1.depth_m, 1.0);
-  EXPECT_EQ(s.block1.density_kgpm3, 2500.0);
-  EXPECT_DOUBLE_EQ(s.block1.mass_kg, 2500.0 * 1.25 * 1.25);
-  EXPECT_EQ(s.block2->width_m, 1.0);
-  EXPECT_EQ(s.block2->height_m, 2.5);
-  EXPECT_DOUBLE_EQ(s.block2->mass_kg, 6250.0);
-  EXPECT_EQ(s.initial.theta1_rad, 0.15);
-  EXPECT_EQ(s.initial.theta2_rad, 0.15);
-  EXPECT_EQ(s.initial.omega1_radps, 0.0);
-  EXPECT_EQ(s.initial.omega2_radps, 0.0);
+  ASSERT_TRUE(s.block_count() == 2);
+  EXPECT_EQ(s.blocks[0].width_m, 1.25);
+  EXPECT_EQ(s.blocks[0].height_m, 1.25);
+  EXPECT_EQ(s.blocks[0].depth_m, 1.0);
+  EXPECT_EQ(s.blocks[0].density_kgpm3, 2500.0);
+  EXPECT_DOUBLE_EQ(s.blocks[0].mass_kg, 2500.0 * 1.25 * 1.25);
+  EXPECT_EQ(s.blocks[1].width_m, 1.0);
+  EXPECT_EQ(s.blocks[1].height_m, 2.5);
+  EXPECT_DOUBLE_EQ(s.blocks[1].mass_kg, 6250.0);
+  EXPECT_EQ(s.initial.theta_rad[0], 0.15);
+  EXPECT_EQ(s.initial.theta_rad[1], 0.15);
+  EXPECT_EQ(s.initial.omega_radps[0], 0.0);
+  EXPECT_EQ(s.initial.omega_radps[1], 0.0);
   EXPECT_FALSE(s.horizontal || s.vertical);
   EXPECT_EQ(s.run.duration_s, 6.0);
   EXPECT_EQ(s.run.output_interval_s, 0.005);
@@ -95,9 +95,9 @@ TEST(ShippedScenes, ThesisRinaldiResolvesTheRecordNextToTheScene) {
 
 TEST(ShippedScenes, HousnerIsASingleBlockAtHalfItsSlenderness) {
   const Scene s = LoadScene(kScenes / "housner_free_rocking.toml");
-  EXPECT_FALSE(s.two_blocks());
-  const double theta_c = std::atan(s.block1.width_m / s.block1.height_m);
-  EXPECT_DOUBLE_EQ(s.initial.theta1_rad, 0.5 * theta_c);
+  EXPECT_FALSE(s.block_count() == 2);
+  const double theta_c = std::atan(s.blocks[0].width_m / s.blocks[0].height_m);
+  EXPECT_DOUBLE_EQ(s.initial.theta_rad[0], 0.5 * theta_c);
   EXPECT_EQ(s.run.duration_s, 4.0);
 }
 
@@ -134,10 +134,10 @@ TEST(ShippedScenes, RunGravityLeavesTheBaseMotionAlone) {
 TEST(Parse, DefaultsOfAMinimalScene) {
   const Scene s = ParseScene("[block1]\nwidth = 1\nheight = 2\nmass = 100\n", "");
   const Scene d;
-  EXPECT_FALSE(s.two_blocks());
-  EXPECT_EQ(s.block1.mass_kg, 100.0);
-  EXPECT_EQ(s.block1.density_kgpm3, 0.0);
-  EXPECT_EQ(s.block1.depth_m, 1.0);
+  EXPECT_FALSE(s.block_count() == 2);
+  EXPECT_EQ(s.blocks[0].mass_kg, 100.0);
+  EXPECT_EQ(s.blocks[0].density_kgpm3, 0.0);
+  EXPECT_EQ(s.blocks[0].depth_m, 1.0);
   EXPECT_EQ(s.run.duration_s, d.run.duration_s);
   EXPECT_EQ(s.run.output_interval_s, d.run.output_interval_s);
   EXPECT_EQ(s.run.gravity_mps2, d.run.gravity_mps2);
@@ -145,7 +145,7 @@ TEST(Parse, DefaultsOfAMinimalScene) {
   EXPECT_EQ(s.model.rtol, d.model.rtol);
   EXPECT_TRUE(s.engine_tables.empty());  // engines' settings: their own defaults
   EXPECT_FALSE(s.compare.tolerance_rad);
-  EXPECT_EQ(s.initial.theta1_rad, 0.0);
+  EXPECT_EQ(s.initial.theta_rad[0], 0.0);
 }
 
 TEST(Parse, EveryKeyOfTheSchema) {
@@ -217,13 +217,13 @@ seed = 7
 )";
   const Scene s = ParseScene(text, "");
   EXPECT_EQ(s.title, "all keys");
-  EXPECT_EQ(s.block1.width_m, 2.0);  // a TOML integer is accepted as a number
-  EXPECT_DOUBLE_EQ(s.block1.mass_kg, 2000.0 * 2.0 * 3.0 * 0.5);
-  EXPECT_EQ(s.block2->mass_kg, 700.0);
-  EXPECT_EQ(s.block2->density_kgpm3, 0.0);
-  EXPECT_EQ(s.block2->depth_m, 0.5);
-  EXPECT_EQ(s.initial.theta2_rad, -0.02);
-  EXPECT_EQ(s.initial.omega2_radps, -0.4);
+  EXPECT_EQ(s.blocks[0].width_m, 2.0);  // a TOML integer is accepted as a number
+  EXPECT_DOUBLE_EQ(s.blocks[0].mass_kg, 2000.0 * 2.0 * 3.0 * 0.5);
+  EXPECT_EQ(s.blocks[1].mass_kg, 700.0);
+  EXPECT_EQ(s.blocks[1].density_kgpm3, 0.0);
+  EXPECT_EQ(s.blocks[1].depth_m, 0.5);
+  EXPECT_EQ(s.initial.theta_rad[1], -0.02);
+  EXPECT_EQ(s.initial.omega_radps[1], -0.4);
   EXPECT_EQ(s.horizontal->kind, MotionKind::kRicker);
   EXPECT_EQ(s.horizontal->key, "base.horizontal");
   EXPECT_EQ(s.horizontal->amplitude_g, 0.25);
@@ -522,7 +522,7 @@ TEST(Overrides, CreateMissingTablesAndKeys) {
       ParseScene(kBlocks, "",
                  {"initial.theta1=0.05", "compare.tolerance=0.02", "base.vertical.kind=sine_pulse",
                   "base.vertical.amplitude_g=0.2", "base.vertical.frequency_hz=3"});
-  EXPECT_EQ(s.initial.theta1_rad, 0.05);
+  EXPECT_EQ(s.initial.theta_rad[0], 0.05);
   EXPECT_EQ(*s.compare.tolerance_rad, 0.02);
   ASSERT_TRUE(s.vertical);
   EXPECT_EQ(s.vertical->kind, MotionKind::kSinePulse);
@@ -552,19 +552,19 @@ TEST(Overrides, Errors) {
 
 TEST(Validate, SceneBuiltInCode) {
   Scene s;
-  s.block1 = BlockDef{1.0, 2.0, 1.0, 100.0, 0.0};
+  s.blocks = {BlockDef{1.0, 2.0, 1.0, 100.0, 0.0}};
   EXPECT_NO_THROW(ValidateScene(s));
-  s.block1.width_m = -1.0;
+  s.blocks[0].width_m = -1.0;
   try {
     ValidateScene(s);
     ADD_FAILURE() << "no error";
   } catch (const SceneError& e) {
     EXPECT_EQ(std::string(e.what()), "scene: block1.width: expected a positive number (m), got -1");
   }
-  s.block1.width_m = 1.0;
-  s.initial.theta2_rad = 0.1;  // no block 2
+  s.blocks[0].width_m = 1.0;
+  s.initial.theta_rad[1] = 0.1;  // no block 2
   EXPECT_THROW(ValidateScene(s), SceneError);
-  s.initial.theta2_rad = 0.0;
+  s.initial.theta_rad[1] = 0.0;
   s.run.output_interval_s = 20.0;
   EXPECT_THROW(ValidateScene(s), SceneError);
   s.run.output_interval_s = 0.01;
@@ -582,6 +582,267 @@ TEST(Validate, SceneBuiltInCode) {
   EXPECT_THROW(ValidateScene(s), SceneError);  // plain file without units
   s.horizontal->units_given = true;
   EXPECT_NO_THROW(ValidateScene(s));
+}
+
+// ---- N blocks: [[block]] tables, [initial] arrays and per-block keys, overrides ----
+
+// `n` [[block]] tables, block k (1-based) width 2 / k, height 1 + k, density 2000 + 10 k (block 1
+// given its mass instead when `mass_for_block1`).
+std::string BlockTables(int n, bool mass_for_block1 = false) {
+  std::string out;
+  for (int k = 1; k <= n; ++k) {
+    out += "[[block]]\nwidth = " + ShortestText(2.0 / k) + "\nheight = " + ShortestText(1.0 + k) +
+           "\n";
+    out += k == 1 && mass_for_block1 ? "mass = 1500.0\n"
+                                     : "density = " + ShortestText(2000.0 + 10.0 * k) + "\n";
+  }
+  return out;
+}
+
+TEST(BlockTables, ThreeAndSixBlocksReadBackExactly) {
+  for (const int n : {3, 6}) {
+    SCOPED_TRACE(n);
+    const Scene s = ParseScene(BlockTables(n, true), "");
+    ASSERT_EQ(s.block_count(), n);
+    for (int k = 1; k <= n; ++k) {
+      const BlockDef& b = s.blocks[k - 1];
+      EXPECT_EQ(b.width_m, 2.0 / k) << k;
+      EXPECT_EQ(b.height_m, 1.0 + k) << k;
+      EXPECT_EQ(b.depth_m, 1.0) << k;
+      if (k == 1) {
+        EXPECT_EQ(b.mass_kg, 1500.0);
+        EXPECT_EQ(b.density_kgpm3, 0.0);
+      } else {
+        EXPECT_EQ(b.density_kgpm3, 2000.0 + 10.0 * k) << k;
+        EXPECT_EQ(b.mass_kg, (2000.0 + 10.0 * k) * (2.0 / k) * (1.0 + k) * 1.0) << k;
+      }
+    }
+    for (int k = 0; k < kMaxBlocks; ++k) {
+      EXPECT_EQ(s.initial.theta_rad[k], 0.0);
+      EXPECT_EQ(s.initial.omega_radps[k], 0.0);
+    }
+  }
+}
+
+// Everything a reader fills, compared field by field (Scene has no ==).
+void ExpectSameScene(const Scene& a, const Scene& b) {
+  ASSERT_EQ(a.block_count(), b.block_count());
+  for (int k = 0; k < a.block_count(); ++k) {
+    EXPECT_EQ(a.blocks[k].width_m, b.blocks[k].width_m) << k;
+    EXPECT_EQ(a.blocks[k].height_m, b.blocks[k].height_m) << k;
+    EXPECT_EQ(a.blocks[k].depth_m, b.blocks[k].depth_m) << k;
+    EXPECT_EQ(a.blocks[k].mass_kg, b.blocks[k].mass_kg) << k;
+    EXPECT_EQ(a.blocks[k].density_kgpm3, b.blocks[k].density_kgpm3) << k;
+  }
+  EXPECT_EQ(a.initial.theta_rad, b.initial.theta_rad);
+  EXPECT_EQ(a.initial.omega_radps, b.initial.omega_radps);
+  EXPECT_EQ(a.title, b.title);
+  EXPECT_EQ(a.run.duration_s, b.run.duration_s);
+  EXPECT_EQ(a.model.integrator, b.model.integrator);
+  EXPECT_EQ(a.horizontal.has_value(), b.horizontal.has_value());
+}
+
+TEST(BlockTables, TheLegacyTablesGiveTheSameScene) {
+  const std::string rest =
+      "[initial]\ntheta1 = 0.15\ntheta2 = 0.1\nomega2 = -0.2\n[run]\nduration = 3\n";
+  const Scene legacy = ParseScene(
+      "[block1]\nwidth = 1.25\nheight = 1.25\ndensity = 2500.0\n"
+      "[block2]\nwidth = 1.0\nheight = 2.5\nmass = 6250.0\ndepth = 2\n" +
+          rest,
+      "");
+  const Scene tables = ParseScene(
+      "[[block]]\nwidth = 1.25\nheight = 1.25\ndensity = 2500.0\n"
+      "[[block]]\nwidth = 1.0\nheight = 2.5\nmass = 6250.0\ndepth = 2\n" +
+          rest,
+      "");
+  ExpectSameScene(legacy, tables);
+  EXPECT_EQ(tables.block_count(), 2);
+  EXPECT_EQ(tables.initial.omega_radps[1], -0.2);
+  // One block, both ways.
+  ExpectSameScene(ParseScene("[block1]\nwidth = 1\nheight = 4\nmass = 10\n", ""),
+                  ParseScene("[[block]]\nwidth = 1\nheight = 4\nmass = 10\n", ""));
+  // The same scene file as the shipped thesis scene, written with [[block]] tables.
+  const Scene shipped = LoadScene(kScenes / "thesis_free_rocking.toml");
+  const Scene rewritten = ParseScene(
+      "title = \"" + shipped.title + "\"\n" +
+          "[[block]]\nwidth = 1.25\nheight = 1.25\ndensity = 2500.0\n"
+          "[[block]]\nwidth = 1.0\nheight = 2.5\ndensity = 2500.0\n"
+          "[initial]\ntheta = [0.15, 0.15]\n[run]\nduration = 6.0\noutput_interval = 0.005\n",
+      "");
+  ExpectSameScene(shipped, rewritten);
+}
+
+TEST(BlockTables, BothStylesInOneFileAreAnError) {
+  const std::string e = ErrorOf("[block1]\nwidth = 1\nheight = 1\nmass = 1\n" + BlockTables(2));
+  EXPECT_CONTAINS(e, "scenes/x.toml:1: block1: a [block1] table beside [[block]] tables");
+  EXPECT_CONTAINS(e, "not both");
+  EXPECT_CONTAINS(ErrorOf(BlockTables(2) + "[block2]\nwidth = 1\nheight = 1\nmass = 1\n"),
+                  "block2: a [block2] table beside [[block]] tables");
+  // A [block3] table is not an engine's: more than two blocks are [[block]] tables.
+  EXPECT_CONTAINS(ErrorOf(kBlocks + "[block3]\nwidth = 1\nheight = 1\nmass = 1\n"),
+                  "block3: unknown table: [block1] and [block2] give one or two blocks");
+  // block = ... that is not an array of tables.
+  EXPECT_CONTAINS(ErrorOf("block = 3\n"), "block: expected [[block]] tables");
+  EXPECT_CONTAINS(ErrorOf("block = []\n"), "block: expected at least one [[block]] table");
+}
+
+TEST(BlockTables, AnErrorNamesTheBlockByItsIndex) {
+  // Lines: block 1 is lines 1-4, block 2 lines 5-8, block 3 lines 9-12.
+  const std::string three = BlockTables(2) + "[[block]]\nwidth = -1\nheight = 2\ndensity = 10\n";
+  EXPECT_EQ(ErrorOf(three),
+            "scenes/x.toml:10: block3.width: expected a positive number (m), got -1");
+  EXPECT_CONTAINS(ErrorOf(BlockTables(2) + "[[block]]\nwidth = 1\ndensity = 10\n"),
+                  "block3.height: missing; expected a positive number (m)");
+  EXPECT_CONTAINS(ErrorOf(BlockTables(2) + "[[block]]\nwidth = 1\nheight = 1\n"),
+                  "block3: missing density (kg/m^3) or mass (kg)");
+  EXPECT_CONTAINS(ErrorOf(BlockTables(2) + "[[block]]\nwidth = 1\nheight = 1\nmass = 1\nfoo = 2\n"),
+                  "block3.foo: unknown key (expected one of: width, height, density, mass, depth)");
+}
+
+TEST(BlockTables, EveryBlockIsNoWiderThanTheOneBelow) {
+  const std::string wide = BlockTables(2) + "[[block]]\nwidth = 1.5\nheight = 1\nmass = 1\n";
+  EXPECT_EQ(ErrorOf(wide),
+            "scenes/x.toml:10: block3.width: expected at most block2.width (1 m: block 3 would "
+            "pivot outside block 2's top face, which the model does not describe), got 1.5");
+  // Today's message for block 2, either style.
+  const std::string legacy =
+      "[block1]\nwidth = 1\nheight = 1\nmass = 1\n"
+      "[block2]\nwidth = 2\nheight = 1\nmass = 1\n";
+  EXPECT_EQ(ErrorOf(legacy),
+            "scenes/x.toml:6: block2.width: expected at most block1.width (1 m: block 2 would "
+            "pivot outside block 1's top face, which the model does not describe), got 2");
+  Scene s = ParseScene(BlockTables(4), "");
+  s.blocks[3].width_m = 10.0;
+  try {
+    ValidateScene(s);
+    ADD_FAILURE() << "no error";
+  } catch (const SceneError& e) {
+    EXPECT_CONTAINS(e.what(), "scene: block4.width: expected at most block3.width");
+  }
+}
+
+TEST(BlockTables, AtMostMaxBlocks) {
+  EXPECT_EQ(ErrorOf(BlockTables(kMaxBlocks)), "");
+  const std::string e = ErrorOf(BlockTables(kMaxBlocks + 1));
+  EXPECT_CONTAINS(e, "scenes/x.toml:257: block: expected at most 64 [[block]] tables");
+  EXPECT_CONTAINS(e, "got 65");
+  Scene s;
+  s.blocks.assign(kMaxBlocks + 1, BlockDef{1.0, 1.0, 1.0, 1.0, 0.0});
+  EXPECT_THROW(ValidateScene(s), SceneError);
+  s.blocks.clear();
+  EXPECT_THROW(ValidateScene(s), SceneError);
+}
+
+TEST(InitialArrays, OneEntryPerBlock) {
+  const Scene s = ParseScene(
+      BlockTables(3) + "[initial]\ntheta = [0.1, 0.2, -0.3]\nomega = [0, 1, -2.5]\n", "");
+  EXPECT_EQ(s.initial.theta_rad[0], 0.1);
+  EXPECT_EQ(s.initial.theta_rad[1], 0.2);
+  EXPECT_EQ(s.initial.theta_rad[2], -0.3);
+  EXPECT_EQ(s.initial.omega_radps[1], 1.0);
+  EXPECT_EQ(s.initial.omega_radps[2], -2.5);
+  EXPECT_EQ(s.initial.theta_rad[3], 0.0);
+  // The arrays work for the legacy tables too, and give what theta1, theta2, ... give.
+  ExpectSameScene(
+      ParseScene(kBlocks + "[initial]\ntheta = [0.15, 0.1]\nomega = [0, 0.5]\n", ""),
+      ParseScene(kBlocks + "[initial]\ntheta1 = 0.15\ntheta2 = 0.1\nomega2 = 0.5\n", ""));
+}
+
+TEST(InitialArrays, TheLengthMustBeTheBlockCount) {
+  EXPECT_EQ(ErrorOf(BlockTables(3) + "[initial]\ntheta = [0.1, 0.2]\n"),
+            "scenes/x.toml:14: initial.theta: expected an array of 3 numbers (rad, one per "
+            "block, bottom first): the scene has 3 blocks, got 2 entries");
+  EXPECT_CONTAINS(ErrorOf(kBlocks + "[initial]\nomega = [0.1, 0.2, 0.3]\n"),
+                  "initial.omega: expected an array of 2 numbers (rad/s, one per block, bottom "
+                  "first): the scene has 2 blocks, got 3 entries");
+  EXPECT_CONTAINS(ErrorOf(BlockTables(3) + "[initial]\ntheta = 0.1\n"),
+                  "initial.theta: expected an array of 3 numbers");
+  EXPECT_CONTAINS(ErrorOf(BlockTables(3) + "[initial]\ntheta = [0.1, \"x\", 0]\n"),
+                  "initial.theta2: expected a finite number (rad) (entry 2 of initial.theta), "
+                  "got \"x\"");
+  // Each entry is held to today's rules, named by its block.
+  EXPECT_CONTAINS(ErrorOf(BlockTables(3) + "[initial]\nomega = [0, 0, 200]\n"),
+                  "initial.omega3: expected a finite number (rad/s) with magnitude at most");
+  EXPECT_CONTAINS(ErrorOf(BlockTables(3) + "[initial]\ntheta = [0, 0, 2]\n"),
+                  "initial.theta3: expected |theta3| below model.overturn_angle");
+}
+
+TEST(InitialArrays, AnArrayAndAPerBlockKeyOfOneQuantityAreAnError) {
+  EXPECT_EQ(ErrorOf(BlockTables(3) + "[initial]\ntheta = [0.1, 0.2, 0.3]\ntheta2 = 0.2\n"),
+            "scenes/x.toml:15: initial.theta2: give either initial.theta (an array, one entry "
+            "per block) or initial.theta2, not both");
+  // An array of one quantity and per-block keys of the other are fine.
+  const Scene s =
+      ParseScene(BlockTables(3) + "[initial]\ntheta = [0.1, 0.2, 0.3]\nomega3 = 1\n", "");
+  EXPECT_EQ(s.initial.omega_radps[2], 1.0);
+}
+
+TEST(InitialArrays, PerBlockKeysOfAnyBlock) {
+  const Scene s = ParseScene(BlockTables(3) + "[initial]\ntheta3 = 0.25\nomega1 = -0.5\n", "");
+  EXPECT_EQ(s.initial.theta_rad[2], 0.25);
+  EXPECT_EQ(s.initial.omega_radps[0], -0.5);
+  EXPECT_EQ(s.initial.theta_rad[0], 0.0);
+  // A block the scene does not have.
+  EXPECT_EQ(ErrorOf(BlockTables(3) + "[initial]\ntheta4 = 0.1\n"),
+            "scenes/x.toml:14: initial.theta4: not allowed: the scene has 3 blocks (no block 4)");
+  EXPECT_CONTAINS(ErrorOf(kBlocks + "[initial]\nomega3 = 0.1\n"),
+                  "initial.omega3: not allowed: the scene has 2 blocks (no block 3)");
+  // One block: today's message, whichever style.
+  EXPECT_CONTAINS(ErrorOf("[[block]]\nwidth = 1\nheight = 1\nmass = 1\n[initial]\ntheta2 = 0.1\n"),
+                  "initial.theta2: not allowed in a single-block scene (there is no [block2])");
+  EXPECT_CONTAINS(ErrorOf(BlockTables(3) + "[initial]\nphi = 1\n"),
+                  "initial.phi: unknown key (expected one of: theta1 to theta3, omega1 to omega3, "
+                  "theta, omega)");
+  // Built in code: the entries beyond the block count must be zero, named by their key.
+  Scene c = ParseScene(BlockTables(3), "");
+  c.initial.omega_radps[4] = 0.5;
+  try {
+    ValidateScene(c);
+    ADD_FAILURE() << "no error";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "scene: initial.omega5: must be 0: the scene has 3 blocks (no block 5)");
+  }
+}
+
+TEST(Overrides, BlockKOfEitherStyle) {
+  const Scene s = ParseScene(BlockTables(3, true), "", {"block3.width=0.5", "block1.mass=7"});
+  EXPECT_EQ(s.blocks[2].width_m, 0.5);
+  EXPECT_EQ(s.blocks[0].mass_kg, 7.0);
+  EXPECT_EQ(s.blocks[0].density_kgpm3, 0.0);
+  EXPECT_EQ(s.blocks[1].width_m, 1.0);
+  // Legacy tables: block1 and block2 as today.
+  const Scene l = ParseScene(kBlocks, "", {"block2.width=0.5"});
+  EXPECT_EQ(l.blocks[1].width_m, 0.5);
+  // A block the scene does not have: the key and the block count.
+  EXPECT_EQ(ErrorOf(kBlocks, {"block3.width=0.5"}),
+            "scenes/x.toml: override \"block3.width=0.5\": block3.width: no block 3 (the scene "
+            "has 2 blocks)");
+  EXPECT_CONTAINS(ErrorOf(BlockTables(3), {"block4.height=1"}),
+                  "block4.height: no block 4 (the scene has 3 blocks)");
+  EXPECT_CONTAINS(ErrorOf(BlockTables(3), {"block3.size=1"}), "unknown key block3.size");
+  EXPECT_CONTAINS(ErrorOf(BlockTables(3), {"block3=1"}), "block3 is a table");
+  EXPECT_CONTAINS(ErrorOf(BlockTables(3), {"block.width=1"}), "set by their index: blockK.key");
+  // A bad value of an override names the override and the block.
+  EXPECT_CONTAINS(ErrorOf(BlockTables(3), {"block3.width=-1"}),
+                  "override \"block3.width=-1\": block3.width: expected a positive number (m)");
+  // [initial]'s per-block keys and arrays.
+  const Scene i =
+      ParseScene(BlockTables(3), "", {"initial.theta3=0.05", "initial.omega=[1, 2, 3]"});
+  EXPECT_EQ(i.initial.theta_rad[2], 0.05);
+  EXPECT_EQ(i.initial.omega_radps[1], 2.0);
+}
+
+TEST(Validate, RequireAtMostTwoBlocks) {
+  EXPECT_NO_THROW(RequireAtMostTwoBlocks(ParseScene(kBlocks, ""), "x"));
+  try {
+    RequireAtMostTwoBlocks(ParseScene(BlockTables(3), "scenes/three.toml"), "reference model");
+    ADD_FAILURE() << "no error";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "scenes/three.toml: reference model: N-block scenes (3 blocks) are not simulated "
+              "yet (issue 23); 1 or 2 blocks");
+  }
 }
 
 TEST(Helpers, NamesAndUnits) {

@@ -8,6 +8,8 @@
 
 #include <cmath>
 
+#include "tests/common/initial_state.h"
+
 namespace rockbench {
 namespace {
 
@@ -45,7 +47,8 @@ TEST(PivotSide, TheAngleFirstThenTheRate) {
 
 TEST(PlaceStack, PositiveTiltTurnsBlock1AboutItsRightCorner) {
   const double th = 0.3, om = 1.7;
-  const StackPlacement p = PlaceStack(b1, h1, 0.0, 0.0, false, {th, 0.0, om, 0.0});
+  const StackPlacement p =
+      PlaceStack(b1, h1, 0.0, 0.0, false, testing_util::Initial(th, 0.0, om, 0.0));
   EXPECT_EQ(p.ground_side, 1);
   // G1 = P1 + R_cw(theta) (G1 - P1 at rest), P1 = (b1, 0).
   const Vec2 r = Clockwise(th, {-b1, h1});
@@ -62,7 +65,8 @@ TEST(PlaceStack, PositiveTiltTurnsBlock1AboutItsRightCorner) {
 
 TEST(PlaceStack, NegativeTiltTurnsBlock1AboutItsLeftCorner) {
   const double th = -0.2, om = 0.4;
-  const StackPlacement p = PlaceStack(b1, h1, 0.0, 0.0, false, {th, 0.0, om, 0.0});
+  const StackPlacement p =
+      PlaceStack(b1, h1, 0.0, 0.0, false, testing_util::Initial(th, 0.0, om, 0.0));
   EXPECT_EQ(p.ground_side, -1);
   const Vec2 r = Clockwise(th, {b1, h1});
   ExpectNear(Centre(p.block1), {-b1 + r.x, r.y}, "G1");
@@ -76,13 +80,14 @@ TEST(PlaceStack, AtZeroAngleTheRateChoosesThePivot) {
   // A block upright and starting to rock: its centre is at (0, h1) whichever the side, but the
   // velocity is that of a turn about the corner the rate leans to: (omega h1, +-omega b1).
   for (const double om : {2.0, -2.0}) {
-    const StackPlacement p = PlaceStack(b1, h1, 0.0, 0.0, false, {0.0, 0.0, om, 0.0});
+    const StackPlacement p =
+        PlaceStack(b1, h1, 0.0, 0.0, false, testing_util::Initial(0.0, 0.0, om, 0.0));
     EXPECT_EQ(p.ground_side, om > 0.0 ? 1 : -1);
     ExpectNear(Centre(p.block1), {0.0, h1}, "G1");
     ExpectNear(Velocity(p.block1), {om * h1, std::abs(om) * b1}, "vG1");
   }
   // At rest: flat on its face, no pivot.
-  const StackPlacement rest = PlaceStack(b1, h1, 0.0, 0.0, false, {});
+  const StackPlacement rest = PlaceStack(b1, h1, 0.0, 0.0, false, InitialState());
   EXPECT_EQ(rest.ground_side, 0);
   ExpectNear(Centre(rest.block1), {0.0, h1}, "G1 at rest");
   ExpectNear(Velocity(rest.block1), {0.0, 0.0}, "vG1 at rest");
@@ -93,7 +98,8 @@ TEST(PlaceStack, Block2TurnsAboutItsOwnCornerOnBlock1sTopFace) {
   // frame, carried by block 1's turn; theta2 < theta1: about its left one.
   for (const auto& [th1, th2] :
        {std::pair{0.1, 0.35}, std::pair{0.1, -0.2}, std::pair{-0.15, -0.1}}) {
-    const StackPlacement p = PlaceStack(b1, h1, b2, h2, true, {th1, th2, 0.0, 0.0});
+    const StackPlacement p =
+        PlaceStack(b1, h1, b2, h2, true, testing_util::Initial(th1, th2, 0.0, 0.0));
     const int s1 = th1 > 0.0 ? 1 : -1, s2 = th2 > th1 ? 1 : -1;
     EXPECT_EQ(p.ground_side, s1);
     EXPECT_EQ(p.interface_side, s2);
@@ -111,7 +117,8 @@ TEST(PlaceStack, Block2TurnsAboutItsOwnCornerOnBlock1sTopFace) {
 TEST(PlaceStack, LockedBlock2RidesBlock1AndItsRelativeRateChoosesItsPivot) {
   const double th = 0.12, om1 = 0.8;
   for (const double om2 : {1.5, 0.2}) {
-    const StackPlacement p = PlaceStack(b1, h1, b2, h2, true, {th, th, om1, om2});
+    const StackPlacement p =
+        PlaceStack(b1, h1, b2, h2, true, testing_util::Initial(th, th, om1, om2));
     const int s2 = om2 > om1 ? 1 : -1;
     EXPECT_EQ(p.interface_side, s2);
     // Centred on block 1's top face: G2 = P1 + R_cw(theta) ((0, 2 h1 + h2) - P1).
@@ -129,12 +136,13 @@ TEST(PlaceStack, VelocitiesAreTheTimeDerivativesOfThePositions) {
   // gives (pivots fixed: no angle crosses zero). Central differences at dt = 1e-5 s are exact to
   // (dt^2 / 6) |x'''| ~ 1e-10 m/s here (rates ~1 rad/s on metre arms); 1e-8 m/s bounds that and
   // the rounding (1e-16 m / 1e-5 s).
-  const InitialState s{0.2, 0.45, -0.7, 1.1};
+  const InitialState s = testing_util::Initial(0.2, 0.45, -0.7, 1.1);
   const double dt = 1e-5;
   auto at = [&](double t) {
     return PlaceStack(b1, h1, b2, h2, true,
-                      {s.theta1_rad + s.omega1_radps * t, s.theta2_rad + s.omega2_radps * t,
-                       s.omega1_radps, s.omega2_radps});
+                      testing_util::Initial(s.theta_rad[0] + s.omega_radps[0] * t,
+                                            s.theta_rad[1] + s.omega_radps[1] * t, s.omega_radps[0],
+                                            s.omega_radps[1]));
   };
   const StackPlacement p = at(0.0), a = at(-dt), b = at(dt);
   for (const auto& [now, before, after] :
@@ -147,16 +155,16 @@ TEST(PlaceStack, VelocitiesAreTheTimeDerivativesOfThePositions) {
 
 TEST(StackCornersAt, AtRestBlock2IsCentredOnBlock1) {
   Scene scene;
-  scene.block1 = {.width_m = 2.0 * b1, .height_m = 2.0 * h1, .mass_kg = 100.0};
-  scene.block2 = BlockDef{.width_m = 2.0 * b2, .height_m = 2.0 * h2, .mass_kg = 30.0};
+  scene.blocks = {BlockDef{.width_m = 2.0 * b1, .height_m = 2.0 * h1, .mass_kg = 100.0},
+                  BlockDef{.width_m = 2.0 * b2, .height_m = 2.0 * h2, .mass_kg = 30.0}};
   const StackCorners c = StackCornersAt(scene, {});
   ASSERT_TRUE(c.has_block2);
   ExpectNear(c.block1[0], {-b1, 0.0}, "block 1 bottom-left");
   ExpectNear(c.block1[2], {b1, 2.0 * h1}, "block 1 top-right");
   ExpectNear(c.block2[0], {-b2, 2.0 * h1}, "block 2 bottom-left");
   ExpectNear(c.block2[2], {b2, 2.0 * (h1 + h2)}, "block 2 top-right");
-  scene.block2.reset();
-  EXPECT_FALSE(StackCornersAt(scene, {0.1, 0.0, 0.0, 0.0}).has_block2);
+  scene.blocks.resize(1);
+  EXPECT_FALSE(StackCornersAt(scene, testing_util::Initial(0.1, 0.0, 0.0, 0.0)).has_block2);
 }
 
 }  // namespace

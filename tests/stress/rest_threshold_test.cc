@@ -24,8 +24,8 @@ double MaxAngleDifference(const reference::Result& a, const reference::Result& b
   double worst = 0.0;
   auto at = [&](double t) {
     const Sample p = a.trajectory.At(t), q = b.trajectory.At(t);
-    worst = std::max(
-        {worst, std::abs(p.theta1_rad - q.theta1_rad), std::abs(p.theta2_rad - q.theta2_rad)});
+    worst = std::max({worst, std::abs(p.theta_rad[0] - q.theta_rad[0]),
+                      std::abs(p.theta_rad[1] - q.theta_rad[1])});
   };
   const int n = static_cast<int>(std::ceil(duration_s / 1e-3));
   for (int i = 0; i <= n; ++i) at(duration_s * i / n);
@@ -86,8 +86,8 @@ TEST(RestThresholdTest, DividingTheThresholdBy100ChangesNoCaseBeyondItsNumerical
     const double d_rule = MaxAngleDifference(a, b, T);
     const double u_a = MaxAngleDifference(a, wa, T), u_b = MaxAngleDifference(b, wb, T);
     const double r_a = MaxAngleDifference(a, ga, T);
-    const int impacts_a = a.summary.impacts_ground + a.summary.impacts_interface;
-    const int impacts_b = b.summary.impacts_ground + b.summary.impacts_interface;
+    const int impacts_a = a.summary.impacts_ground() + a.summary.impacts_interface();
+    const int impacts_b = b.summary.impacts_ground() + b.summary.impacts_interface();
     settling_cases += impacts_b > impacts_a;
     EXPECT_EQ(a.summary.status, b.summary.status);
     EXPECT_EQ(a.summary.overturn_block, b.summary.overturn_block);

@@ -88,8 +88,8 @@ TEST_F(StudyTest, DerivedAxesFollowTheirDefinitions) {
                       "[[axis]]\nkey = \"pulse.frequency_ratio\"\nvalues = [3]\n"
                       "[[axis]]\nkey = \"pulse.amplitude_ratio\"\nvalues = [1.5]\n"));
   const Scene m = MemberScene(s, 0);
-  EXPECT_EQ(m.block1.width_m, 0.8);
-  EXPECT_EQ(m.block1.height_m, 2.4);
+  EXPECT_EQ(m.blocks[0].width_m, 0.8);
+  EXPECT_EQ(m.blocks[0].height_m, 2.4);
   const double R = std::hypot(0.4, 1.2);
   const double p = std::sqrt(3.0 * 9.81 / (4.0 * R));
   EXPECT_NEAR(m.horizontal->frequency_hz, 3.0 * p / (2.0 * M_PI), 1e-15);

@@ -234,7 +234,7 @@ TEST(SweepTest, ChosenPointsReplaceTheGrid) {
   // The tight reference: Housner's block released from theta_c / 2 peaks at release.
   EXPECT_GT(baseline.wall_s, 0.0);
   EXPECT_EQ(baseline.status, RunStatus::kCompleted);
-  EXPECT_DOUBLE_EQ(baseline.peak_theta1_rad, ShortHousner().initial.theta1_rad);
+  EXPECT_DOUBLE_EQ(baseline.peak_theta1_rad, ShortHousner().initial.theta_rad[0]);
   EXPECT_EQ(baseline.peak_theta1_t_s, 0.0);
   EXPECT_EQ(baseline.overturn_block, 0);
   EXPECT_FALSE(baseline.two_blocks);

@@ -10,27 +10,30 @@ HistoryInterpolator::HistoryInterpolator(const History& history, const std::vect
   // Pre-event rates by event time: the first event at a time holds the rates before them all.
   std::map<double, const Event*> first_event;
   for (const Event& e : events) first_event.emplace(e.t_s, &e);
+  // One block or two: a single block's "block 2" is the block itself.
+  const size_t top = history.blocks == 2 ? 1 : 0;
   for (const Sample& s : history.samples) {
-    const double th2 = history.two_blocks ? s.theta2_rad : s.theta1_rad;
-    const double w2 = history.two_blocks ? s.omega2_radps : s.omega1_radps;
+    const double th2 = s.theta_rad[top];
+    const double w2 = s.omega_radps[top];
     if (!nodes_.empty() && s.t_s <= nodes_.back().t) {
       // Several samples at one instant (a cascade of events): keep the last state after it.
       Node& n = nodes_.back();
-      n.theta[0] = s.theta1_rad;
+      n.theta[0] = s.theta_rad[0];
       n.theta[1] = th2;
-      n.rate_right[0] = s.omega1_radps;
+      n.rate_right[0] = s.omega_radps[0];
       n.rate_right[1] = w2;
       continue;
     }
     Node n;
     n.t = s.t_s;
-    n.theta[0] = s.theta1_rad;
+    n.theta[0] = s.theta_rad[0];
     n.theta[1] = th2;
-    n.rate_right[0] = n.rate_left[0] = s.omega1_radps;
+    n.rate_right[0] = n.rate_left[0] = s.omega_radps[0];
     n.rate_right[1] = n.rate_left[1] = w2;
     if (const auto it = first_event.find(s.t_s); it != first_event.end()) {
-      n.rate_left[0] = it->second->omega1_before;
-      n.rate_left[1] = history.two_blocks ? it->second->omega2_before : it->second->omega1_before;
+      const std::vector<double>& w = it->second->omega_before_radps;
+      n.rate_left[0] = w[0];
+      n.rate_left[1] = w.size() > top ? w[top] : w[0];
     }
     nodes_.push_back(n);
   }

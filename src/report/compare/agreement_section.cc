@@ -32,8 +32,8 @@ EngineErrors AngleErrors(const RunData& run, const EngineData& e, const HistoryI
     if (s.t_s > until + 1e-12) break;
     const auto a = ref.Angles(s.t_s);
     out.t.push_back(s.t_s);
-    out.e1.push_back(std::abs(s.theta1_rad - a[0]));
-    out.e2.push_back(run.scene.two_blocks() ? std::abs(s.theta2_rad - a[1]) : 0.0);
+    out.e1.push_back(std::abs(s.theta_rad[0] - a[0]));
+    out.e2.push_back(run.scene.block_count() == 2 ? std::abs(s.theta_rad[1] - a[1]) : 0.0);
     out.max1 = std::max(out.max1, out.e1.back());
     out.max2 = std::max(out.max2, out.e2.back());
   }
@@ -49,7 +49,7 @@ void MetricsTable(const RunData& run, Page& page) {
     if (IsReference(e.name)) continue;
     const std::string k = "engines." + e.name;
     if (Find(c, k) == nullptr) continue;
-    for (int b = 1; b <= (run.scene.two_blocks() ? 2 : 1); ++b) {
+    for (int b = 1; b <= (run.scene.block_count() == 2 ? 2 : 1); ++b) {
       const std::string kb = k + ".theta" + std::to_string(b);
       const bool within = OptBool(c, kb + ".within_tolerance", file);
       rows.push_back({e.name, "theta" + std::to_string(b),
@@ -173,7 +173,7 @@ std::string ErrorCaption(const RunData& run, const RunReportOptions& options) {
 void ErrorFigure(const RunData& run, const RunReportOptions& options, Figures& fig) {
   const EngineData& ref = run.engines.front();
   const HistoryInterpolator interp(ref.history, ref.events);
-  const bool two = run.scene.two_blocks();
+  const bool two = run.scene.block_count() == 2;
   GnuplotFigure f;
   f.name = "angle_error";
   f.height_px = two ? 720 : 420;

@@ -26,7 +26,7 @@ std::string AnglesCaption(const RunData& run) {
 
 // theta1 and theta2 against time, every run on shared axes, the reference ensemble's band behind.
 void AnglesFigure(const RunData& run, Figures& fig) {
-  const bool two = run.scene.two_blocks();
+  const bool two = run.scene.block_count() == 2;
   GnuplotFigure f;
   f.name = "angles";
   f.height_px = two ? 720 : 420;
@@ -35,10 +35,10 @@ void AnglesFigure(const RunData& run, Figures& fig) {
     for (const Sample& s : e.history.samples) {
       AppendDat(dat, s.t_s);
       dat += ' ';
-      AppendDat(dat, s.theta1_rad);
+      AppendDat(dat, s.theta_rad[0]);
       if (two) {
         dat += ' ';
-        AppendDat(dat, s.theta2_rad);
+        AppendDat(dat, s.theta_rad[1]);
       }
       dat += '\n';
     }

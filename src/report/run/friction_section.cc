@@ -14,7 +14,7 @@ using nlohmann::json;
 // |T|/N along the reference's samples, left out where the normal force nearly vanishes.
 FrictionFacts ComputeFriction(const RunData& run, const reference::Geometry& geo,
                               const GroundMotion& motion, const RunReportOptions& options) {
-  const bool two = run.scene.two_blocks();
+  const bool two = run.scene.block_count() == 2;
   const EngineData& ref = run.engines.front();
   const double W = geo.M * geo.g;
   const double n_min = options.friction_min_normal_fraction * W;
@@ -22,9 +22,10 @@ FrictionFacts ComputeFriction(const RunData& run, const reference::Geometry& geo
   auto& rows = facts.rows;
   Span& span = facts.span;
   for (const Sample& s : ref.history.samples) {
-    const reference::ContactDemand c = reference::ContactReactions(
-        geo, s.mode, reference::StateOf(s, geo.two_blocks), motion.xg_mps2(s.t_s),
-        motion.yg_mps2(s.t_s), run.scene.model.equations);
+    const reference::ContactDemand c =
+        reference::ContactReactions(geo, ModeOfConfiguration(s.mode).value_or(Mode::kRest),
+                                    reference::StateOf(s, geo.two_blocks), motion.xg_mps2(s.t_s),
+                                    motion.yg_mps2(s.t_s), run.scene.model.equations);
     const reference::Reactions& d = c.reactions;
     if (d.N_ground < facts.min_N_ground)
       facts.min_N_ground = d.N_ground, facts.min_N_ground_t = s.t_s;
@@ -78,7 +79,7 @@ void FrictionWarnings(const RunData& run, const reference::Geometry& geo,
   const auto engine_mu = EngineFriction(run);
   for (const char* contact : {"ground", "interface"}) {
     if (!engine_mu) break;
-    if (std::string(contact) == "interface" && !run.scene.two_blocks()) continue;
+    if (std::string(contact) == "interface" && run.scene.block_count() != 2) continue;
     const double need = std::string(contact) == "ground" ? facts.max_ground : facts.max_interface;
     if (need > engine_mu->first) {
       warnings.push_back(
@@ -95,7 +96,7 @@ void FrictionWarnings(const RunData& run, const reference::Geometry& geo,
   // weight; at an uplift the run stops where N crosses zero, and that sample is N = 0 to 1e-9).
   const double tension_n = -1e-6 * geo.M * geo.g;
   if (facts.min_N_ground < tension_n ||
-      (run.scene.two_blocks() && facts.min_N_interface < tension_n)) {
+      (run.scene.block_count() == 2 && facts.min_N_interface < tension_n)) {
     const bool ground = facts.min_N_ground < tension_n;
     warnings.push_back(std::string("Tension: the reference's normal force at the ") +
                        (ground ? "ground" : "interface") + " is negative (" +
@@ -109,7 +110,7 @@ void FrictionSection(const RunData& run, const FrictionFacts& facts,
                      const RunReportOptions& options, Figures& fig) {
   Page& page = *fig.page;
   page.Heading("Friction needed");
-  const bool two = run.scene.two_blocks();
+  const bool two = run.scene.block_count() == 2;
   Span span = facts.span;
   const auto& rows = facts.rows;
   const auto engine_mu = EngineFriction(run);

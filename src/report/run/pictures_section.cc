@@ -56,7 +56,7 @@ std::vector<Keyframe> KeyframeTimes(const RunData& run, int max_frames) {
     }
   };
   const EngineData& ref = run.engines.front();
-  for (int b = 1; b <= (run.scene.two_blocks() ? 2 : 1); ++b) {
+  for (int b = 1; b <= (run.scene.block_count() == 2 ? 2 : 1); ++b) {
     const std::string key = "peaks.theta" + std::to_string(b) + ".t_s";
     add(OptNumber(ref.summary, key, run.summary_path),
         "peak |theta" + std::to_string(b) + "| of the reference");

@@ -72,7 +72,7 @@ std::string HorizonMark(const RunData& run, int block, double label_y_graph) {
 
 bool AnyHorizonMark(const RunData& run) {
   return !HorizonMark(run, 1, 0.5).empty() ||
-         (run.scene.two_blocks() && !HorizonMark(run, 2, 0.5).empty());
+         (run.scene.block_count() == 2 && !HorizonMark(run, 2, 0.5).empty());
 }
 
 // "t v1 v2 ..." rows of ensemble_band.csv's `columns` (each at least `floor`) up to the axis end,

@@ -15,19 +15,25 @@ using nlohmann::json;
 // Line colours of the engines after the reference (black): distinct in hue and in greyscale.
 constexpr const char* kEngineColours[] = {"#d95f02", "#1b9e77", "#7570b3", "#e7298a", "#66a61e"};
 
+// "one block", "two blocks", "N blocks"; with `count_only`: "one", "two", "N".
+std::string BlocksText(int n, bool count_only = false) {
+  const std::string count = n == 1 ? "one" : n == 2 ? "two" : std::to_string(n);
+  return count_only ? count : count + (n == 1 ? " block" : " blocks");
+}
+
 // The reference ensemble of a compare folder, when it has one.
 void ReadReferenceEnsemble(RunData& run) {
   if (run.comparison) {
     run.predictability =
-        ReadPredictability(*run.comparison, run.comparison_path, run.scene.two_blocks());
+        ReadPredictability(*run.comparison, run.comparison_path, run.scene.block_count() == 2);
   }
   const fs::path csv = run.dir / "reference" / "ensemble_band.csv";
   run.band = ReadEnsembleBand(csv);
-  if (run.band && run.band->two_blocks != run.scene.two_blocks()) {
+  if (run.band && run.band->two_blocks != (run.scene.block_count() == 2)) {
     throw std::runtime_error(csv.string() + ": has " +
                              (run.band->two_blocks ? "two blocks" : "one block") +
                              " but the scene " + run.scene.path.string() + " has " +
-                             (run.scene.two_blocks() ? "two" : "one"));
+                             BlocksText(run.scene.block_count(), true));
   }
 }
 
@@ -74,6 +80,8 @@ void ReadSummaryAndScene(const fs::path& run_dir, RunData& run) {
                              "and friction");
   }
   run.scene = LoadScene(scene_path, run.overrides);
+  // The entry of a report: one or two blocks for now (issue 23).
+  RequireAtMostTwoBlocks(run.scene, "report");
 }
 
 // The reference's and every engine's history.csv and events.csv, with colour and label.
@@ -101,15 +109,14 @@ void ReadEngines(const fs::path& run_dir, RunData& run) {
     EngineData d;
     d.name = name;
     d.history = ReadHistoryCsv(run_dir / name / "history.csv");
-    d.events = ReadEventsCsv(run_dir / name / "events.csv");
+    d.events = ReadEventsCsv(run_dir / name / "events.csv", d.history.blocks);
     if (d.history.samples.empty()) {
       throw std::runtime_error((run_dir / name / "history.csv").string() + ": has no samples");
     }
-    if (d.history.two_blocks != run.scene.two_blocks()) {
+    if (d.history.blocks != run.scene.block_count()) {
       throw std::runtime_error((run_dir / name / "history.csv").string() + ": has " +
-                               (d.history.two_blocks ? "two blocks" : "one block") +
-                               " but the scene " + scene_path + " has " +
-                               (run.scene.two_blocks() ? "two" : "one"));
+                               BlocksText(d.history.blocks) + " but the scene " + scene_path +
+                               " has " + BlocksText(run.scene.block_count(), true));
     }
     if (IsReference(name)) {
       d.summary = run.summary;

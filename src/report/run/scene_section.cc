@@ -153,22 +153,25 @@ void SceneSection(const RunData& run, const GroundMotion& motion, Figures& fig) 
   }
   page.Paragraph(where + ".");
   std::vector<std::vector<std::string>> rows;
-  rows.push_back({"block 1 (lower)", BlockDescription(s.block1),
-                  "H/B = " + Num(s.block1.height_m / s.block1.width_m) + ", slenderness " +
+  const BlockDef& b1 = s.blocks.at(0);
+  rows.push_back({"block 1 (lower)", BlockDescription(b1),
+                  "H/B = " + Num(b1.height_m / b1.width_m) + ", slenderness " +
                       Num(geo.block1.theta_c) + " rad"});
-  if (s.block2) {
-    rows.push_back({"block 2 (upper)", BlockDescription(*s.block2),
-                    "H/B = " + Num(s.block2->height_m / s.block2->width_m) + ", slenderness " +
+  const bool two = s.block_count() == 2;
+  if (two) {
+    const BlockDef& b2 = s.blocks[1];
+    rows.push_back({"block 2 (upper)", BlockDescription(b2),
+                    "H/B = " + Num(b2.height_m / b2.width_m) + ", slenderness " +
                         Num(geo.block2.theta_c) + " rad"});
     rows.push_back({"stack", "mass " + Num(geo.M, 6) + " kg",
                     "slenderness of the stack " + Num(geo.theta_c) + " rad"});
   }
   rows.push_back({"initial state",
-                  "theta1 = " + Num(s.initial.theta1_rad) +
-                      " rad, omega1 = " + Num(s.initial.omega1_radps) + " rad/s" +
-                      (s.block2 ? ", theta2 = " + Num(s.initial.theta2_rad) +
-                                      " rad, omega2 = " + Num(s.initial.omega2_radps) + " rad/s"
-                                : ""),
+                  "theta1 = " + Num(s.initial.theta_rad[0]) +
+                      " rad, omega1 = " + Num(s.initial.omega_radps[0]) + " rad/s" +
+                      (two ? ", theta2 = " + Num(s.initial.theta_rad[1]) +
+                                 " rad, omega2 = " + Num(s.initial.omega_radps[1]) + " rad/s"
+                           : ""),
                   "theta > 0: tilted to the right"});
   rows.push_back({"run",
                   "duration " + Num(s.run.duration_s) + " s, output every " +
