@@ -32,6 +32,12 @@ double ThesisMechanics::time_scale_s() const {
   return std::sqrt(geo_.R / geo_.g);
 }
 
+ThesisMechanics::Y ThesisMechanics::Initial(const InitialState& in) const {
+  // One block: the stack is the one block (theta2 = theta1), as the equations expect.
+  const int top = geo_.two_blocks ? 1 : 0;
+  return {in.theta_rad[0], in.theta_rad[top], in.omega_radps[0], in.omega_radps[top]};
+}
+
 ThesisMechanics::Y ThesisMechanics::Rhs(const Configuration& c, const Y& y, double xg,
                                         double yg) const {
   const auto acc = ModeAccelerations(geo_, *ModeOfConfiguration(c), ToState(y), xg, yg, equations_);
@@ -131,20 +137,13 @@ double ThesisMechanics::Energy(const Configuration& c, const Y& y) const {
 
 StackGeometry StackGeometryOf(const Scene& scene) {
   std::vector<BlockSize> sizes;
-  sizes.push_back({scene.block1.width_m, scene.block1.height_m, scene.block1.mass_kg});
-  if (scene.block2)
-    sizes.push_back({scene.block2->width_m, scene.block2->height_m, scene.block2->mass_kg});
+  for (const BlockDef& b : scene.blocks) sizes.push_back({b.width_m, b.height_m, b.mass_kg});
   return MakeStackGeometry(sizes, scene.run.gravity_mps2);
 }
 
 namespace {
 StackGeometry CheckedGeometry(const Scene& scene, size_t cap) {
-  if (scene.model.equations == Equations::kLinearized) {
-    throw SceneError(scene.path.string() +
-                     ": model.equations: \"linearized\" is the thesis's linearization of its "
-                     "two-block equations (section 4.3.3); the N-block chain solves the "
-                     "nonlinear ones only (use \"nonlinear\")");
-  }
+  // ValidateScene has refused the linearized equations for the chain.
   StackGeometry geo = StackGeometryOf(scene);
   if (geo.blocks.size() > cap) {
     throw SceneError(scene.path.string() + ": internal: " + std::to_string(geo.blocks.size()) +
@@ -157,6 +156,16 @@ StackGeometry CheckedGeometry(const Scene& scene, size_t cap) {
 template <size_t Cap>
 ChainMechanics<Cap>::ChainMechanics(const Scene& scene) : contacts_(CheckedGeometry(scene, Cap)) {
   n_ = contacts_.size();
+}
+
+template <size_t Cap>
+typename ChainMechanics<Cap>::Y ChainMechanics<Cap>::Initial(const InitialState& in) const {
+  Y y{};
+  for (int i = 0; i < n_; ++i) {
+    y[i] = in.theta_rad[i];
+    y[Cap + i] = in.omega_radps[i];
+  }
+  return y;
 }
 
 template <size_t Cap>

@@ -67,6 +67,8 @@ class ThesisMechanics {
   /// sqrt(R / g), R block 1's base corner to the stack's mass centre, s.
   double time_scale_s() const;
   const Geometry& geometry() const { return geo_; }
+  /// The state of the scene's [initial].
+  Y Initial(const InitialState& in) const;
 
   /// (omega, theta'') of configuration c at y under (xg'', yg'').
   Y Rhs(const Configuration& c, const Y& y, double xg, double yg) const;
@@ -101,11 +103,12 @@ class ChainMechanics {
   using Margins = MarginsN<Cap>;
   using Impact = ImpactN<2 * Cap>;
 
-  /// Throws SceneError for the linearized equations (the thesis's, for two blocks only).
+  /// The scene's stack (ValidateScene has checked it: at most Cap blocks, nonlinear equations).
   explicit ChainMechanics(const Scene& scene);
   int blocks() const { return n_; }
   int active() const { return 2 * n_; }
   double time_scale_s() const;
+  Y Initial(const InitialState& in) const;
 
   Y Rhs(const Configuration& c, const Y& y, double xg, double yg) const;
   Y Project(const Configuration& c, const Y& y) const;

@@ -1,5 +1,7 @@
-// The reference model's driver: integrates the mode's equations, locates events on the dense
-// output, applies impacts and transitions, and monitors the model's assumptions.
+// The reference model's driver: integrates the configuration's equations, locates events on
+// the dense output, applies impacts and transitions, and monitors the model's assumptions. One
+// driver for every stack: its mechanics (mechanics.h) are the thesis's explicit equations for one
+// or two blocks, or the N-block chain.
 #include "reference/simulate.h"
 
 #include <algorithm>
@@ -13,11 +15,7 @@
 #include <tuple>
 #include <utility>
 
-#include "reference/geometry.h"
-#include "reference/impact.h"
-#include "reference/kinematics.h"
-#include "reference/modes.h"
-#include "reference/transitions.h"
+#include "reference/mechanics.h"
 
 namespace rockbench::reference {
 namespace {
@@ -86,9 +84,9 @@ double ProbeTime(double ta, double tb, int k, int n) {
 // checked at the n + 1 points t[k] (states y[k]) and, between two of them where its rate turns
 // from negative to positive, at the minimum (the rate's root, on the states at(t)). Exact
 // while the rate changes sign at most once between points.
-template <class Fy, class Ry, class At>
+template <class Fy, class Ry, class At, class Y>
 std::pair<double, double> ProbeCheap(const Fy& fy, const Ry& ry, const At& at, const double* t,
-                                     const Vec4* y, int n, double tol) {
+                                     const Y* y, int n, double tol) {
   double tp = t[0], rp = ry(y[0]);
   for (int k = 1;; ++k) {
     const double tk = t[k];
@@ -165,13 +163,6 @@ std::string TimeText(double t_s) {
   return buf;
 }
 
-State ToState(const Vec4& y) {
-  return {y[0], y[1], y[2], y[3]};
-}
-Vec4 ToVec(const State& s) {
-  return {s.theta1, s.theta2, s.omega1, s.omega2};
-}
-
 double Side(Contact c) {
   return c == Contact::kLeft ? -1.0 : 1.0;
 }
@@ -197,58 +188,41 @@ class MotionCursor {
   mutable MotionComponent::LinearPiece piece_;
 };
 
-// An event at t from `before` (rates of `pre`) to `after` (rates of `post`) of a stack of
-// `blocks` (1 or 2) blocks, in the history's vocabulary: one configuration and one rate per
-// block. Out of line: events are rare, and the integration loop's inlining is not to change.
-[[gnu::noinline]] Event MakeEvent(int blocks, double t, const char* kind, Mode before, Mode after,
-                                  const State& pre, const State& post) {
-  Event ev(blocks);
-  ev.t_s = t;
-  ev.kind = kind;
-  ev.mode_before = ConfigurationOf(before, blocks);
-  ev.mode_after = ConfigurationOf(after, blocks);
-  ev.omega_before_radps[0] = pre.omega1;
-  ev.omega_after_radps[0] = post.omega1;
-  if (blocks == 2) {
-    ev.omega_before_radps[1] = pre.omega2;
-    ev.omega_after_radps[1] = post.omega2;
-  }
-  return ev;
-}
-
-// The per-block figures of the summary while a run of one or two blocks goes on, as plain
-// numbers in the integration loop (Summary's per-block vectors are filled at the end).
-struct Figures {
-  double peak_theta1_rad = 0.0, peak_theta1_t_s = 0.0;
-  double peak_theta2_rad = 0.0, peak_theta2_t_s = 0.0;
-  int impacts_ground = 0, impacts_interface = 0;
-  double friction_required_ground = 0.0, friction_required_interface = 0.0;
-  double min_normal_ground_n = kInf, min_normal_interface_n = kInf;
-};
-
+// The driver, on the mechanics Mech (mechanics.h): its state Y holds block i's angle at i and
+// its rate at Mech::kCap + i.
+template <class Mech>
 class Simulator {
  public:
+  using Y = typename Mech::Y;
+  using Margins = typename Mech::Margins;
+  using Dense = DenseStepN<std::tuple_size<Y>::value>;
+  using Step = StepResultN<std::tuple_size<Y>::value>;
+  static constexpr size_t kCap = Mech::kCap;
+
   Simulator(const Scene& scene, const GroundMotion& motion)
       : scene_(scene),
         cfg_(scene.model),
         motion_(motion),
         xg_(motion.horizontal()),
         yg_(motion.vertical()),
-        geo_(MakeGeometry(scene)),
-        blocks_(geo_.two_blocks ? 2 : 1) {
-    result_.summary = Summary(blocks_);
-    result_.history.blocks = blocks_;
-    result_.trajectory.set_blocks(blocks_);
+        mech_(scene),
+        n_(mech_.blocks()),
+        rest_(n_),
+        config_(n_) {
+    result_.summary = Summary(n_);
+    result_.history.blocks = n_;
+    result_.trajectory = Trajectory(n_);
     for (const auto* c : {&motion.horizontal(), &motion.vertical()}) {
       if (*c && (*c)->samples_mps2().empty()) analytic_motion_ = true;
     }
-    const double t_geo = std::sqrt(geo_.R / geo_.g);
+    const double t_geo = mech_.time_scale_s();
     const double t_motion = MotionTimeScale(motion);
     event_tol_ = kEventTolRel * t_geo;
     max_step_ = std::min(kMaxStepRel * t_geo, kMaxStepMotion * t_motion);
     min_step_ = kMinStepRel * t_geo;
     rest_scan_ = kRestScanMotion * t_motion;
     h_ = std::min(kFirstStepRel * t_geo, max_step_);
+    fig_.min_normal_n.fill(kInf);
   }
 
   Result Run();
@@ -257,27 +231,25 @@ class Simulator {
   // Base accelerations (m/s^2) at t.
   double Xg(double t) const { return xg_.At(t); }
   double Yg(double t) const { return yg_.At(t); }
-  Vec4 Rhs(double t, const Vec4& y) const {
-    const auto acc = ModeAccelerations(geo_, mode_, ToState(y), Xg(t), Yg(t), cfg_.equations);
+  Y Rhs(double t, const Y& y) const {
+    const Y f = mech_.Rhs(config_, y, Xg(t), Yg(t));
     ++rhs_count_;
-    return {y[2], y[3], acc[0], acc[1]};
+    return f;
   }
-  // Projects a state onto the mode's constraints (mode 3: theta2 = theta1; mode 4: theta1 = 0).
-  Vec4 Project(const Vec4& y) const {
-    Vec4 p = y;
-    const Contacts c = ContactsOf(mode_);
-    if (!geo_.two_blocks) {
-      p[1] = p[0];
-      p[3] = p[2];
-    } else if (c.interface == Contact::kFace) {
-      p[1] = p[0];
-      p[3] = p[2];
+  // Projects a state onto the configuration's constraints (a closed interface's block turns
+  // with its support).
+  Y Project(const Y& y) const { return mech_.Project(config_, y); }
+  // Interface k's relative angle and rate (block k on its support; the ground's are zero).
+  static double Rel(const Y& y, int k) { return k == 0 ? y[0] : y[k] - y[k - 1]; }
+  static double RelRate(const Y& y, int k) {
+    return k == 0 ? y[kCap] : y[kCap + k] - y[kCap + k - 1];
+  }
+  // Whether every angle and rate of a state is zero.
+  bool AtRestState(const Y& y) const {
+    for (int i = 0; i < n_; ++i) {
+      if (y[i] != 0.0 || y[kCap + i] != 0.0) return false;
     }
-    if (c.ground == Contact::kFace) {
-      p[0] = 0.0;
-      p[2] = 0.0;
-    }
-    return p;
+    return true;
   }
 
   // Records the samples of the output times up to t_end (inclusive or not): most calls have
@@ -291,54 +263,74 @@ class Simulator {
   // Out of line, as every path that records events or samples: rare work, kept out of the
   // integration loop's inlining.
   [[gnu::noinline]] void AddEvent(Event ev) { result_.history.events.push_back(std::move(ev)); }
-  Event NewEvent(double t, const char* kind, Mode before, Mode after, const State& pre,
-                 const State& post) const {
-    return MakeEvent(blocks_, t, kind, before, after, pre, post);
+  // An event at t from `before` (rates of `pre`) to `after` (rates of `post`).
+  [[gnu::noinline]] Event NewEvent(double t, const char* kind, const Configuration& before,
+                                   const Configuration& after, const Y& pre, const Y& post) const {
+    Event ev(n_);
+    ev.t_s = t;
+    ev.kind = kind;
+    ev.mode_before = before;
+    ev.mode_after = after;
+    for (int i = 0; i < n_; ++i) {
+      ev.omega_before_radps[i] = pre[kCap + i];
+      ev.omega_after_radps[i] = post[kCap + i];
+    }
+    return ev;
   }
-  void Track(double t, const State& s);
-  bool StartMode(double t, const State& s, const char* kind, Mode before, const std::string& note);
-  // At a located switch the choice of mode can hang on rounding (a face force or an opening
-  // acceleration of ~1e-16): the first time from t on (1e-12 s, doubling, up to t_max) at which
-  // a mode other than `leaving` is consistent; t itself when none is found.
+  void Track(double t, const Y& y) {
+    for (int i = 0; i < n_; ++i) {
+      if (std::abs(y[i]) > fig_.peak_theta_rad[i]) {
+        fig_.peak_theta_rad[i] = std::abs(y[i]);
+        fig_.peak_theta_t_s[i] = t;
+      }
+    }
+  }
+  bool StartMode(double t, const Y& y, const char* kind, const Configuration& before,
+                 const std::string& note);
+  // At a located switch the choice of configuration can hang on rounding (a face force or an
+  // opening acceleration of ~1e-16): the first time from t on (1e-12 s, doubling, up to t_max)
+  // at which a configuration other than `leaving` is consistent; t itself when none is found.
   template <class StateAt>
-  double SwitchTime(double t, double t_max, Mode leaving, const StateAt& state_at) const {
+  double SwitchTime(double t, double t_max, const Configuration& leaving,
+                    const StateAt& state_at) const {
     for (double dt = 0.0; t + dt <= t_max; dt = dt == 0.0 ? EventTol(t) : 2 * dt) {
       const double tt = t + dt;
-      const ModeSelection sel = SelectMode(geo_, state_at(tt), Xg(tt), Yg(tt), cfg_.equations);
-      if (sel.consistent && sel.mode != leaving) return tt;
+      const Selection sel = mech_.Select(state_at(tt), Xg(tt), Yg(tt));
+      if (sel.consistent && sel.config != leaving) return tt;
     }
     return t;
   }
-  void DoImpact(double t, const State& s, ImpactKind kind);
+  void DoImpact(double t, const Y& pre, int interface);
   void RunRest();
-  // RunMoving's parts: one step of the mode's equations, the earliest event inside it, the
-  // step's record (trajectory, samples, peaks, reactions) and the event's handling.
-  enum class StepEvent { kNone, kGroundImpact, kInterfaceImpact, kOverturn, kMargin };
+  // RunMoving's parts: one step of the configuration's equations, the earliest event inside it,
+  // the step's record (trajectory, samples, peaks, reactions) and the event's handling.
+  enum class StepEvent { kNone, kImpact, kOverturn, kMargin };
   struct LocatedEvent {
     StepEvent which = StepEvent::kNone;
+    int interface = 0;   // kImpact: the interface that lands
     double t = kInf;     // s, the located bracket's lower end (the event time)
     double t_hi = kInf;  // s, its upper end (just past the root)
   };
-  // The state at t inside the step that starts at (t0, y0), projected onto the mode, and an
-  // enclosure [lo, hi] of it over the whole step (DenseStep::Bounds, projected: Project only
-  // copies and zeroes components). The states at the probe points (ProbeTime), which the cheap
-  // event functions check, are evaluated once, when first asked for (Probe), and kept.
+  // The state at t inside the step that starts at (t0, y0), projected onto the configuration,
+  // and an enclosure [lo, hi] of it over the whole step (DenseStepN::Bounds, projected: Project
+  // only copies and zeroes components). The states at the probe points (ProbeTime), which the
+  // cheap event functions check, are evaluated once, when first asked for (Probe), and kept.
   struct StepDense {
-    StepDense(const Simulator& s, const StepResult& r, double t_start, const Vec4& y_start)
+    StepDense(const Simulator& s, const Step& r, double t_start, const Y& y_start)
         : sim(s), st(r), t0(t_start), y0(y_start) {
       r.dense.Bounds(&lo, &hi);
       lo = s.Project(lo);
       hi = s.Project(hi);
     }
     const Simulator& sim;
-    const StepResult& st;
+    const Step& st;
     double t0;
-    Vec4 y0;
-    Vec4 lo{}, hi{};
+    Y y0;
+    Y lo{}, hi{};
     mutable bool probed = false;
     mutable std::array<double, kInteriorChecks + 1> probe_t{};
-    mutable std::array<Vec4, kInteriorChecks + 1> probe_y{};
-    Vec4 Evaluate(double t) const { return sim.Project(t == t0 ? y0 : st.dense.At(t)); }
+    mutable std::array<Y, kInteriorChecks + 1> probe_y{};
+    Y Evaluate(double t) const { return sim.Project(t == t0 ? y0 : st.dense.At(t)); }
     void Probe(double t1) const {
       if (probed) return;
       for (int k = 0; k <= kInteriorChecks; ++k) {
@@ -349,27 +341,26 @@ class Simulator {
     }
     // The largest |y[i]| anywhere in the step.
     double MaxAbs(int i) const { return std::max(std::abs(lo[i]), std::abs(hi[i])); }
-    Vec4 operator()(double t) const { return Evaluate(t); }
+    Y operator()(double t) const { return Evaluate(t); }
   };
-  StepResult AdvanceOneStep(bool rk4, const Vec4& f0, double* h_taken);
+  Step AdvanceOneStep(bool rk4, const Y& f0, double* h_taken);
   // The first zero of fn in [t_pos, t_neg], given fn(t_pos) = f_pos >= 0 > fn(t_neg) = f_neg,
   // kept in *ev when it is earlier than the event already there.
   template <class Fn>
-  void Locate(StepEvent kind, const Fn& fn, double t_pos, double f_pos, double t_neg, double f_neg,
-              LocatedEvent* ev) const;
+  void Locate(StepEvent kind, int interface, const Fn& fn, double t_pos, double f_pos, double t_neg,
+              double f_neg, LocatedEvent* ev) const;
   // fy, ry: the event function and its rate as functions of the state; lower: a lower bound of
   // fy over the step from the enclosure (at.lo, at.hi). When it is positive the function
   // cannot vanish in the step and the search is skipped: it would find nothing.
   template <class Fy, class Ry>
-  void ConsiderCheap(StepEvent kind, const Fy& fy, const Ry& ry, double lower, const StepDense& at,
-                     double t1, bool thesis_events, LocatedEvent* ev) const;
-  LocatedEvent FindEvent(const StepDense& at, double t1, const ContactMargins& cm1,
-                         bool thesis_events);
-  void RecordStep(const StepDense& at, const DenseStep& dense, double t_seg_end, const Vec4& y_end,
-                  const ContactMargins& cm_end);
+  void ConsiderCheap(StepEvent kind, int interface, const Fy& fy, const Ry& ry, double lower,
+                     const StepDense& at, double t1, bool thesis_events, LocatedEvent* ev) const;
+  LocatedEvent FindEvent(const StepDense& at, double t1, const Margins& cm1, bool thesis_events);
+  void RecordStep(const StepDense& at, const Dense& dense, double t_seg_end, const Y& y_end,
+                  const Margins& cm_end);
   // True when more than 20 events fall at one instant (an endless cascade).
   bool EventCascade(double t_ev);
-  void HandleEvent(const LocatedEvent& ev, const StepDense& at, double t1, State s);
+  void HandleEvent(const LocatedEvent& ev, const StepDense& at, double t1, Y y);
   void RunMoving();
   // A quantity of the run that is not finite: its name and value (an empty name: none).
   struct NonFinite {
@@ -377,74 +368,63 @@ class Simulator {
     double value = 0.0;
     bool found() const { return !quantity.empty(); }
   };
-  // The first of a state's angles and rates that is not finite (block 1's only for one block,
-  // whose block-2 components mirror them).
-  [[gnu::cold]] NonFinite NonFiniteState(const Vec4& y) const;
+  // The first of a state's angles and rates that is not finite: the angles block by block,
+  // then the rates.
+  [[gnu::cold]] NonFinite NonFiniteState(const Y& y) const;
   // The same for a step: its end state y1, the enclosure of its dense output (every state the
   // step's samples and events are taken from), the contact margins at its end and, above
   // kEnergyCheckRate_radps, the energy there. Called only when StepFinite says a value is not
   // finite (never on a valid run).
-  [[gnu::cold]] NonFinite NonFiniteStep(const StepDense& at, const Vec4& y1,
-                                        const ContactMargins& cm1) const;
+  [[gnu::cold]] NonFinite NonFiniteStep(const StepDense& at, const Y& y1, const Margins& cm1) const;
   // Whether NonFiniteStep finds nothing, cheaply: a sum is finite when every term is (a finite
   // sum that overflows is sorted out by NonFiniteStep).
-  static bool StepFinite(const StepDense& at, const Vec4& y1, const ContactMargins& cm1) {
+  static bool StepFinite(const StepDense& at, const Y& y1, const Margins& cm1) {
     double sum = cm1.face + cm1.point;
-    for (int i = 0; i < 4; ++i) sum += y1[i] + at.lo[i] + at.hi[i];
-    return std::isfinite(sum) &&
-           std::max(std::abs(y1[2]), std::abs(y1[3])) <= kEnergyCheckRate_radps;
+    for (size_t i = 0; i < y1.size(); ++i) sum += y1[i] + at.lo[i] + at.hi[i];
+    double rate = 0.0;
+    for (size_t i = 0; i < kCap; ++i) rate = std::max(rate, std::abs(y1[kCap + i]));
+    return std::isfinite(sum) && rate <= kEnergyCheckRate_radps;
   }
   // Ends the run at its last finite state `last`, at t_: status non_finite with `nf`, found at
   // t_bad (s), named in status_detail and in a "non_finite" event (Finish; the caller ends the
   // trajectory with EndTrajectory).
-  [[gnu::cold]] void StopNonFinite(const NonFinite& nf, double t_bad, const State& last);
+  [[gnu::cold]] void StopNonFinite(const NonFinite& nf, double t_bad, const Y& last);
   // After a stop at t_: the trajectory ends at t_ in y_, and the samples up to t_ are emitted.
   void EndTrajectory();
-  double GapGround(const Vec4& y) const { return Side(ContactsOf(mode_).ground) * y[0]; }
-  double GapInterface(const Vec4& y) const {
-    const Contacts c = ContactsOf(mode_);
-    const double rel = c.ground == Contact::kFace ? y[1] : y[1] - y[0];
-    return Side(c.interface) * rel;
-  }
-  ContactMargins Margins(double t, const Vec4& y) const {
-    return EvaluateContacts(geo_, mode_, ToState(y), Xg(t), Yg(t), cfg_.equations);
+  double Gap(const Y& y, int k) const { return Side(config_[k]) * Rel(y, k); }
+  Margins EvaluateAt(double t, const Y& y) const {
+    return mech_.Evaluate(config_, y, Xg(t), Yg(t));
   }
   // Width to which an event near t is located: kEventTolRel sqrt(R / g), and never below a
   // few ulps of t.
   double EventTol(double t) const {
     return std::max(event_tol_, 8 * std::numeric_limits<double>::epsilon() * std::abs(t));
   }
-  // Records an event that ends the run at t_ in state s (no change of state).
-  [[gnu::noinline]] void StopWith(const char* kind, const State& s, const std::string& note,
+  // Records an event that ends the run at t_ in state y (no change of state).
+  [[gnu::noinline]] void StopWith(const char* kind, const Y& y, const std::string& note,
                                   RunStatus status) {
-    Event ev = NewEvent(t_, kind, mode_, mode_, s, s);
-    ev.energy_before_j = ev.energy_after_j = Energy(geo_, mode_, s);
+    Event ev = NewEvent(t_, kind, config_, config_, y, y);
+    ev.energy_before_j = ev.energy_after_j = mech_.Energy(config_, y);
     ev.note = note;
     AddEvent(std::move(ev));
-    y_ = ToVec(s);
+    y_ = y;
     Finish(status);
   }
   // Smallest normal reactions seen (summary).
-  void NoteNormalForces(const Reactions& r) {
-    Figures& sum = fig_;
-    sum.min_normal_ground_n = std::min(sum.min_normal_ground_n, r.N_ground);
-    if (geo_.two_blocks)
-      sum.min_normal_interface_n = std::min(sum.min_normal_interface_n, r.N_interface);
+  void NoteNormalForces(const Margins& cm) {
+    for (int k = 0; k < n_; ++k) {
+      fig_.min_normal_n[k] = std::min(fig_.min_normal_n[k], cm.normal_n[k]);
+    }
   }
   // The result's summary gets the per-block figures.
   Result TakeResult() {
     Summary& sum = result_.summary;
-    sum.peak_theta_rad[0] = fig_.peak_theta1_rad;
-    sum.peak_theta_t_s[0] = fig_.peak_theta1_t_s;
-    sum.impacts_at[0] = fig_.impacts_ground;
-    sum.friction_required[0] = fig_.friction_required_ground;
-    sum.min_normal_n[0] = fig_.min_normal_ground_n;
-    if (blocks_ == 2) {
-      sum.peak_theta_rad[1] = fig_.peak_theta2_rad;
-      sum.peak_theta_t_s[1] = fig_.peak_theta2_t_s;
-      sum.impacts_at[1] = fig_.impacts_interface;
-      sum.friction_required[1] = fig_.friction_required_interface;
-      sum.min_normal_n[1] = fig_.min_normal_interface_n;
+    for (int i = 0; i < n_; ++i) {
+      sum.peak_theta_rad[i] = fig_.peak_theta_rad[i];
+      sum.peak_theta_t_s[i] = fig_.peak_theta_t_s[i];
+      sum.impacts_at[i] = fig_.impacts_at[i];
+      sum.friction_required[i] = fig_.friction_required[i];
+      sum.min_normal_n[i] = fig_.min_normal_n[i];
     }
     return std::move(result_);
   }
@@ -457,13 +437,19 @@ class Simulator {
   const ModelConfig& cfg_;
   const GroundMotion& motion_;
   MotionCursor xg_, yg_;
-  const Geometry geo_;
-  const int blocks_;  // 1 or 2: the history's and the summary's
+  const Mech mech_;
+  const int n_;               // blocks
+  const Configuration rest_;  // every interface closed
   Result result_;
-  Figures fig_;
-  Mode mode_ = Mode::kRest;
+  // The per-block figures of the summary while the run goes on (plain arrays in the loop).
+  struct Figures {
+    std::array<double, kCap> peak_theta_rad{}, peak_theta_t_s{};
+    std::array<int, kCap> impacts_at{};
+    std::array<double, kCap> friction_required{}, min_normal_n{};
+  } fig_;
+  Configuration config_;
   double t_ = 0.0;
-  Vec4 y_{};
+  Y y_{};
   double t_end_ = 0.0;
   long next_sample_ = 0;
   bool done_ = false;
@@ -473,26 +459,15 @@ class Simulator {
   double min_step_ = 0.0;         // s, see kMinStepRel
   double rest_scan_ = kInf;       // s, see kRestScanMotion
   double h_ = 0.0;                // the next trial step, s
-  ContactMargins cm0_;            // the margins at the step start (when cm0_valid_)
+  Margins cm0_;                   // the margins at the step start (when cm0_valid_)
   bool cm0_valid_ = false;
   mutable long rhs_count_ = 0;
   int same_time_events_ = 0;
   double last_event_t_ = -1.0;
 };
 
-void Simulator::Track(double t, const State& s) {
-  Figures& sum = fig_;
-  if (std::abs(s.theta1) > sum.peak_theta1_rad) {
-    sum.peak_theta1_rad = std::abs(s.theta1);
-    sum.peak_theta1_t_s = t;
-  }
-  if (geo_.two_blocks && std::abs(s.theta2) > sum.peak_theta2_rad) {
-    sum.peak_theta2_rad = std::abs(s.theta2);
-    sum.peak_theta2_t_s = t;
-  }
-}
-
-void Simulator::EmitSamples(double t_end, bool inclusive) {
+template <class Mech>
+void Simulator<Mech>::EmitSamples(double t_end, bool inclusive) {
   const double dt = scene_.run.output_interval_s;
   auto& samples = result_.history.samples;
   while (true) {
@@ -505,70 +480,77 @@ void Simulator::EmitSamples(double t_end, bool inclusive) {
   }
 }
 
-bool Simulator::StartMode(double t, const State& s, const char* kind, Mode before,
-                          const std::string& note) {
-  const ModeSelection sel = SelectMode(geo_, s, Xg(t), Yg(t), cfg_.equations);
-  if (sel.consistent && sel.mode == before) {
-    mode_ = sel.mode;  // no event to record
+template <class Mech>
+bool Simulator<Mech>::StartMode(double t, const Y& y, const char* kind, const Configuration& before,
+                                const std::string& note) {
+  const Selection sel = mech_.Select(y, Xg(t), Yg(t));
+  if (sel.consistent && sel.config == before) {
+    config_ = sel.config;  // no event to record
     return true;
   }
-  Event ev = NewEvent(t, kind, before, before, s, s);
-  ev.energy_before_j = ev.energy_after_j = Energy(geo_, before, s);
+  Event ev = NewEvent(t, kind, before, before, y, y);
+  ev.energy_before_j = ev.energy_after_j = mech_.Energy(before, y);
   if (!sel.consistent) {
     ev.kind = "assumption_violated";
-    ev.note = "no mode satisfies the contact conditions (tensile normal force: uplift)";
+    ev.note = std::string("no ") + (n_ <= 2 ? "mode" : "configuration") +
+              " satisfies the contact conditions (tensile normal force: uplift)";
+    if (!sel.note.empty()) ev.note += "; " + sel.note;
     result_.summary.status_detail = ev.note;
     AddEvent(std::move(ev));
     result_.summary.status = RunStatus::kAssumptionViolated;
     done_ = true;
     return false;
   }
-  ev.mode_after = ConfigurationOf(sel.mode, blocks_);
+  ev.mode_after = sel.config;
   ev.note = note;
   if (std::string(kind) == "initiation") ++result_.summary.initiations;
   if (std::string(kind) == "transition") ++result_.summary.transitions;
   AddEvent(std::move(ev));
-  mode_ = sel.mode;
+  config_ = sel.config;
   return true;
 }
 
-void Simulator::DoImpact(double t, const State& pre, ImpactKind kind) {
-  const Mode before = mode_;
-  const ImpactResult ir = ResolveImpact(geo_, before, pre, kind, cfg_.rest_rate_rel);
+template <class Mech>
+void Simulator<Mech>::DoImpact(double t, const Y& pre, int interface) {
+  const Configuration before = config_;
+  const typename Mech::Impact ir = mech_.ResolveImpact(before, pre, interface, cfg_.rest_rate_rel);
   // A post-impact state or energy that is not finite ends the run before the impact.
-  NonFinite nf = NonFiniteState(ToVec(ir.chosen.state));
-  for (const double e : {ir.energy_before_j, ir.chosen.energy_after_j}) {
+  NonFinite nf = NonFiniteState(ir.y);
+  for (const double e : {ir.energy_before_j, ir.energy_after_j}) {
     if (!nf.found() && !std::isfinite(e)) nf = {"energy", e};
   }
+  const std::string where = InterfaceName(interface, n_);
   if (nf.found()) {
-    nf.quantity +=
-        kind == ImpactKind::kGround ? " after a ground impact" : " after an interface impact";
+    nf.quantity += " after a" + std::string(interface == 0 ? " " : "n ") + where + " impact";
     StopNonFinite(nf, t, pre);
     return;
   }
   Summary& sum = result_.summary;
-  Event ev = NewEvent(t, kind == ImpactKind::kGround ? "ground_impact" : "interface_impact", before,
-                      ir.chosen.mode, pre, ir.chosen.state);
+  const std::string kind = where + "_impact";
+  Event ev = NewEvent(t, kind.c_str(), before, ir.config, pre, ir.y);
   ev.energy_before_j = ir.energy_before_j;
-  ev.energy_after_j = ir.chosen.energy_after_j;
+  ev.energy_after_j = ir.energy_after_j;
   ev.note = ir.note;
-  const double kinetic =
-      std::max(0.0, ir.energy_before_j - Energy(geo_, before, {pre.theta1, pre.theta2, 0, 0}));
+  Y still = pre;
+  for (size_t i = 0; i < kCap; ++i) still[kCap + i] = 0.0;
+  const double kinetic = std::max(0.0, ir.energy_before_j - mech_.Energy(before, still));
   if (ev.energy_after_j - ev.energy_before_j > 1e-9 * kinetic + 1e-12) {
     ++sum.impacts_energy_gain;
     ev.note += std::string(ev.note.empty() ? "" : " ") + "ENERGY GAIN";
   }
   if (!ir.admissible) ++sum.impacts_inadmissible;
-  (kind == ImpactKind::kGround ? fig_.impacts_ground : fig_.impacts_interface)++;
+  ++fig_.impacts_at[interface];
   AddEvent(std::move(ev));
-  mode_ = ir.chosen.mode;
-  // The post-impact mode must also satisfy the contact forces (a locked pair may open at once).
-  StartMode(t, ir.chosen.state, "transition", mode_, "after impact");
-  y_ = ToVec(ir.chosen.state);
+  config_ = ir.config;
+  // The post-impact configuration must also satisfy the contact forces (a locked pair may
+  // open at once).
+  StartMode(t, ir.y, "transition", config_, "after impact");
+  y_ = ir.y;
 }
 
-void Simulator::RunRest() {
-  // Criterion while at rest: the smallest corner force of the two faces (linear in xg'', yg'').
+template <class Mech>
+void Simulator<Mech>::RunRest() {
+  // Criterion while at rest: the smallest corner force of the faces (linear in xg'', yg'').
   // The last few values (a check starts where the last one ended).
   std::array<std::pair<double, double>, 4> memo;
   memo.fill({-kInf, 0.0});
@@ -576,32 +558,31 @@ void Simulator::RunRest() {
   // The first time a corner force at rest was not finite (an absurd base acceleration), and
   // its value; -1: none.
   double bad_t = -1.0, bad_value = 0.0;
+  const Y still{};
   auto margin = [&](double t) {
     for (const auto& [tm, m] : memo) {
       if (tm == t) return m;
     }
-    const ContactMargins cm =
-        EvaluateContacts(geo_, Mode::kRest, State{}, Xg(t), Yg(t), cfg_.equations);
+    const Margins cm = mech_.Evaluate(rest_, still, Xg(t), Yg(t));
     if (!std::isfinite(cm.face)) {
       if (bad_t < 0.0) {
         bad_t = t;
         bad_value = cm.face;
       }
     } else {
-      NoteNormalForces(cm.reactions);
+      NoteNormalForces(cm);
     }
     memo[next_memo] = {t, cm.face};
     next_memo = (next_memo + 1) % static_cast<int>(memo.size());
     return cm.face;
   };
   const double motion_end = motion_.end_s();
-  y_ = Vec4{};
+  y_ = Y{};
   while (!done_) {
     const double t0 = t_;
     if (t0 >= motion_end && margin(t0) >= 0.0) {
       // Nothing will move again: the blocks stay at rest to the end of the run.
-      Trajectory::Segment seg{t0, t_end_, Mode::kRest, DenseStep{}};
-      result_.trajectory.Append(seg);
+      result_.trajectory.Append(t0, t_end_, rest_, Dense{}, kCap);
       EmitSamplesUntil(t_end_, true);
       t_ = t_end_;
       Finish(RunStatus::kAtRest);
@@ -625,22 +606,21 @@ void Simulator::RunRest() {
         const auto br = BrentBracket(margin, t0, t_neg, m0, m_neg, EventTol(t_neg));
         t_start = br.second;
       }
-      t_start = SwitchTime(t_start, t_neg, Mode::kRest, [](double) { return State{}; });
+      t_start = SwitchTime(t_start, t_neg, rest_, [](double) { return Y{}; });
       t1 = t_start;
     }
     if (bad_t >= 0.0) {
       // The blocks are at rest at t0, the last finite state.
-      StopNonFinite({"normal force at rest", bad_value}, bad_t, State{});
+      StopNonFinite({"normal force at rest", bad_value}, bad_t, Y{});
       EndTrajectory();
       return;
     }
-    Trajectory::Segment seg{t0, t1, Mode::kRest, DenseStep{}};
-    result_.trajectory.Append(seg);
+    result_.trajectory.Append(t0, t1, rest_, Dense{}, kCap);
     EmitSamplesUntil(t1, false);
     t_ = t1;
     if (t_start >= 0.0) {
-      StartMode(t_, State{}, "initiation", Mode::kRest, "");
-      if (mode_ != Mode::kRest || done_) return;
+      StartMode(t_, Y{}, "initiation", rest_, "");
+      if (!config_.at_rest() || done_) return;
       // The located bracket end was still consistent with rest: step past it.
       t_ = std::nextafter(t_, kInf);
     }
@@ -652,25 +632,28 @@ void Simulator::RunRest() {
   }
 }
 
-StepResult Simulator::AdvanceOneStep(bool rk4, const Vec4& f0, double* h_taken) {
+template <class Mech>
+typename Simulator<Mech>::Step Simulator<Mech>::AdvanceOneStep(bool rk4, const Y& f0,
+                                                               double* h_taken) {
   Summary& sum = result_.summary;
   const double t_break = motion_.next_breakpoint_after(t_);
   double h = rk4 ? cfg_.step_s : std::min(h_, max_step_);
   h = std::min({h, t_break - t_, t_end_ - t_});
   if (h <= 0.0) h = std::max(t_end_ - t_, 0.0);
-  StepResult st;
+  Step st;
+  const auto rhs = [this](double t, const Y& y) { return Rhs(t, y); };
   if (rk4) {
-    st = Rk4Step([this](double t, const Vec4& y) { return Rhs(t, y); }, t_, y_, f0, h);
+    st = Rk4Step(rhs, t_, y_, f0, h);
   } else {
     // Step-size control as in dopri5.f and dop853.f: the error scales as h^(q + 1) with q the
     // order of the estimate the controller trusts (4 and 7), within their bounds on the ratio.
-    const auto rhs = [this](double t, const Vec4& y) { return Rhs(t, y); };
     const bool dop853 = cfg_.integrator == Integrator::kDop853;
     const double expo = dop853 ? -1.0 / 8.0 : -0.2;
     const double fac_min = dop853 ? 1.0 / 3.0 : 0.2, fac_max = dop853 ? 6.0 : 5.0;
+    const int active = mech_.active();
     while (true) {
-      st = dop853 ? Dop853Step(rhs, t_, y_, f0, h, cfg_.rtol, cfg_.atol)
-                  : Dopri5Step(rhs, t_, y_, f0, h, cfg_.rtol, cfg_.atol);
+      st = dop853 ? Dop853Step(rhs, t_, y_, f0, h, cfg_.rtol, cfg_.atol, active)
+                  : Dopri5Step(rhs, t_, y_, f0, h, cfg_.rtol, cfg_.atol, active);
       if (st.err <= 1.0 || h < min_step_) break;
       ++sum.steps_rejected;
       h *= std::max(fac_min, 0.9 * std::pow(st.err, expo));
@@ -683,9 +666,10 @@ StepResult Simulator::AdvanceOneStep(bool rk4, const Vec4& f0, double* h_taken) 
   return st;
 }
 
+template <class Mech>
 template <class Fn>
-void Simulator::Locate(StepEvent kind, const Fn& fn, double t_pos, double f_pos, double t_neg,
-                       double f_neg, LocatedEvent* ev) const {
+void Simulator<Mech>::Locate(StepEvent kind, int interface, const Fn& fn, double t_pos,
+                             double f_pos, double t_neg, double f_neg, LocatedEvent* ev) const {
   double lo = t_pos, hi = t_pos;
   double ta = t_pos, fta = f_pos;
   if (f_pos == 0.0) {
@@ -718,13 +702,15 @@ void Simulator::Locate(StepEvent kind, const Fn& fn, double t_pos, double f_pos,
     ev->t = lo;
     ev->t_hi = hi;
     ev->which = kind;
+    ev->interface = interface;
   }
 }
 
+template <class Mech>
 template <class Fy, class Ry>
-void Simulator::ConsiderCheap(StepEvent kind, const Fy& fy, const Ry& ry, double lower,
-                              const StepDense& at, double t1, bool thesis_events,
-                              LocatedEvent* ev) const {
+void Simulator<Mech>::ConsiderCheap(StepEvent kind, int interface, const Fy& fy, const Ry& ry,
+                                    double lower, const StepDense& at, double t1,
+                                    bool thesis_events, LocatedEvent* ev) const {
   if (!thesis_events) {
     if (lower > 0.0) return;
     at.Probe(t1);
@@ -735,60 +721,55 @@ void Simulator::ConsiderCheap(StepEvent kind, const Fy& fy, const Ry& ry, double
                                   ? std::pair{t1, fn(t1)}
                                   : ProbeCheap(fy, ry, at, at.probe_t.data(), at.probe_y.data(),
                                                kInteriorChecks, EventTol(t1));
-  if (f_neg < 0.0) Locate(kind, fn, t_, fa, t_neg, f_neg, ev);
+  if (f_neg < 0.0) Locate(kind, interface, fn, t_, fa, t_neg, f_neg, ev);
 }
 
-Simulator::LocatedEvent Simulator::FindEvent(const StepDense& at, double t1,
-                                             const ContactMargins& cm1, bool thesis_events) {
+template <class Mech>
+typename Simulator<Mech>::LocatedEvent Simulator<Mech>::FindEvent(const StepDense& at, double t1,
+                                                                  const Margins& cm1,
+                                                                  bool thesis_events) {
   // Event functions, positive while nothing happens; the earliest zero is located. Besides
   // the step end, the step's interior is searched (ProbeCheap, ProbeExpensive) so that a
   // function that dips below zero and comes back within one step is not missed (the
   // thesis's scheme sees only the step end).
-  const Contacts c = ContactsOf(mode_);
-  const bool ground_moves = c.ground != Contact::kFace;
-  const bool interface_moves = geo_.two_blocks && c.interface != Contact::kFace;
   LocatedEvent ev;
   // The angles' event functions cost one dense-output evaluation: checked at interior points
   // and at the minima between them (roots of their rates), unless the step's enclosure keeps
   // them positive. Each lower bound is a difference that is positive exactly when the
   // function's own floating-point value is positive wherever the enclosure holds.
-  if (ground_moves) {
-    const double side = Side(c.ground);
-    const double lower = side > 0.0 ? at.lo[0] : -at.hi[0];
+  // Landings: each open interface's relative angle reaching zero (bottom first).
+  for (int k = 0; k < n_; ++k) {
+    if (config_[k] == Contact::kFace) continue;
+    const double side = Side(config_[k]);
+    // theta_k - theta_{k-1} (with theta_{k-1} = 0 on a grounded face, where [lo, hi] is
+    // [0, 0]).
+    const double lower = k == 0 ? (side > 0.0 ? at.lo[0] : -at.hi[0])
+                                : (side > 0.0 ? at.lo[k] - at.hi[k - 1] : at.lo[k - 1] - at.hi[k]);
     ConsiderCheap(
-        StepEvent::kGroundImpact, [&](const Vec4& y) { return GapGround(y); },
-        [&](const Vec4& y) { return side * y[2]; }, lower, at, t1, thesis_events, &ev);
-  }
-  if (interface_moves) {
-    // theta2 - theta1 (with theta1 = 0 on a grounded face, where [lo, hi] is [0, 0]).
-    const double side = Side(c.interface);
-    const double lower = side > 0.0 ? at.lo[1] - at.hi[0] : at.lo[0] - at.hi[1];
-    ConsiderCheap(
-        StepEvent::kInterfaceImpact, [&](const Vec4& y) { return GapInterface(y); },
-        [&](const Vec4& y) { return side * (ground_moves ? y[3] - y[2] : y[3]); }, lower, at, t1,
-        thesis_events, &ev);
+        StepEvent::kImpact, k, [&](const Y& y) { return Gap(y, k); },
+        [&](const Y& y) { return side * RelRate(y, k); }, lower, at, t1, thesis_events, &ev);
   }
   // Overturning: each block's |theta| reaching overturn_angle.
   const double over = cfg_.overturn_rad;
-  for (int k = 0; k < (geo_.two_blocks ? 2 : 1); ++k) {
+  for (int k = 0; k < n_; ++k) {
     ConsiderCheap(
-        StepEvent::kOverturn, [&](const Vec4& y) { return over - std::abs(y[k]); },
-        [&](const Vec4& y) { return y[k] < 0.0 ? y[2 + k] : -y[2 + k]; }, over - at.MaxAbs(k), at,
-        t1, thesis_events, &ev);
+        StepEvent::kOverturn, k, [&](const Y& y) { return over - std::abs(y[k]); },
+        [&](const Y& y) { return y[k] < 0.0 ? y[kCap + k] : -y[kCap + k]; }, over - at.MaxAbs(k),
+        at, t1, thesis_events, &ev);
   }
-  // The contact margins (face corners opening: a transition; a point contact pulling: a
-  // violation) cost a contact-force evaluation: checked at the midpoint and at the minimum of
-  // the parabola through the values when it lies inside the step and near zero.
-  if (!cm0_valid_) cm0_ = Margins(t_, at(t_));
-  auto margin_of = [&](const ContactMargins& cm) {
+  // The contact margins (face corners opening: a transition; a pivot pulling: a violation)
+  // cost a contact-force evaluation: checked at the midpoint and at the minimum of the
+  // parabola through the values when it lies inside the step and near zero.
+  if (!cm0_valid_) cm0_ = EvaluateAt(t_, at(t_));
+  auto margin_of = [&](const Margins& cm) {
     return cfg_.check_transitions ? std::min(cm.face, cm.point) : cm.point;
   };
   {
-    auto fn = [&](double t) { return margin_of(Margins(t, at(t))); };
+    auto fn = [&](double t) { return margin_of(EvaluateAt(t, at(t))); };
     const double m0 = margin_of(cm0_), m1 = margin_of(cm1);
     const auto [t_neg, f_neg] =
         thesis_events ? std::pair{t1, m1} : ProbeExpensive(fn, t_, m0, t1, m1, EventTol(t1));
-    if (f_neg < 0.0) Locate(StepEvent::kMargin, fn, t_, m0, t_neg, f_neg, &ev);
+    if (f_neg < 0.0) Locate(StepEvent::kMargin, 0, fn, t_, m0, t_neg, f_neg, &ev);
   }
   if (thesis_events && ev.which != StepEvent::kNone) {
     // The thesis's scheme: the event is seen at the step end, pre-impact rates are the
@@ -798,33 +779,36 @@ Simulator::LocatedEvent Simulator::FindEvent(const StepDense& at, double t1,
   return ev;
 }
 
-void Simulator::RecordStep(const StepDense& at, const DenseStep& dense, double t_seg_end,
-                           const Vec4& y_end, const ContactMargins& cm_end) {
-  Figures& sum = fig_;
-  Trajectory::Segment seg{t_, t_seg_end, mode_, dense};
-  result_.trajectory.Append(seg);
+template <class Mech>
+void Simulator<Mech>::RecordStep(const StepDense& at, const Dense& dense, double t_seg_end,
+                                 const Y& y_end, const Margins& cm_end) {
+  result_.trajectory.Append(t_, t_seg_end, config_, dense, kCap);
   EmitSamplesUntil(t_seg_end, false);
   // Peaks: |theta| extremes sit where the rate vanishes inside the step, or at its ends. No
-  // state of the step can raise a peak when the step's enclosure stays within both.
-  const bool within_peaks = at.MaxAbs(0) <= sum.peak_theta1_rad &&
-                            (!geo_.two_blocks || at.MaxAbs(1) <= sum.peak_theta2_rad);
-  const int searched = within_peaks ? 0 : (geo_.two_blocks ? 2 : 1);
+  // state of the step can raise a peak when the step's enclosure stays within all of them.
+  bool within_peaks = true;
+  for (int k = 0; k < n_ && within_peaks; ++k) {
+    within_peaks = at.MaxAbs(k) <= fig_.peak_theta_rad[k];
+  }
+  const int searched = within_peaks ? 0 : n_;
   for (int k = 0; k < searched; ++k) {
-    auto rate = [&](double t) { return at(t)[2 + k]; };
+    auto rate = [&](double t) { return at(t)[kCap + k]; };
     const double ra = rate(t_), rb = rate(t_seg_end);
     if (ra * rb < 0.0) {
       const auto br = BrentBracket(rate, t_, t_seg_end, ra, rb, EventTol(t_seg_end));
-      Track(br.first, ToState(at(br.first)));
+      Track(br.first, at(br.first));
     }
   }
-  Track(t_seg_end, ToState(y_end));
+  Track(t_seg_end, y_end);
   // Friction needed and normal forces along the solution (at step ends).
-  sum.friction_required_ground = std::max(sum.friction_required_ground, cm_end.mu_ground);
-  sum.friction_required_interface = std::max(sum.friction_required_interface, cm_end.mu_interface);
-  NoteNormalForces(cm_end.reactions);
+  for (int k = 0; k < n_; ++k) {
+    fig_.friction_required[k] = std::max(fig_.friction_required[k], cm_end.mu[k]);
+  }
+  NoteNormalForces(cm_end);
 }
 
-bool Simulator::EventCascade(double t_ev) {
+template <class Mech>
+bool Simulator<Mech>::EventCascade(double t_ev) {
   if (std::abs(t_ev - last_event_t_) <= EventTol(t_ev)) {
     if (++same_time_events_ > 20) return true;
   } else {
@@ -834,41 +818,41 @@ bool Simulator::EventCascade(double t_ev) {
   return false;
 }
 
-void Simulator::HandleEvent(const LocatedEvent& ev, const StepDense& at, double t1, State s) {
+template <class Mech>
+void Simulator<Mech>::HandleEvent(const LocatedEvent& ev, const StepDense& at, double t1, Y y) {
   Summary& sum = result_.summary;
-  const Contacts c = ContactsOf(mode_);
-  const bool ground_moves = c.ground != Contact::kFace;
-  const bool interface_moves = geo_.two_blocks && c.interface != Contact::kFace;
   t_ = ev.t;
   switch (ev.which) {
-    case StepEvent::kGroundImpact:
-      s.theta1 = 0.0;
-      if (!interface_moves) s.theta2 = 0.0;
-      DoImpact(t_, s, ImpactKind::kGround);
+    case StepEvent::kImpact: {
+      // The landing interface's gap is exactly zero; the blocks above it that rest on their
+      // faces land with it (those that rock keep their angles).
+      y = mech_.Land(config_, y, ev.interface);
+      DoImpact(t_, y, ev.interface);
       break;
-    case StepEvent::kInterfaceImpact:
-      s.theta2 = ground_moves ? s.theta1 : 0.0;
-      DoImpact(t_, s, ImpactKind::kInterface);
-      break;
+    }
     case StepEvent::kOverturn: {
-      const bool first = std::abs(s.theta1) >= std::abs(s.theta2) || !geo_.two_blocks;
-      sum.overturn_block = first ? 1 : 2;
+      // The block tilted furthest (the lowest of equals).
+      int block = 0;
+      for (int k = 1; k < n_; ++k) {
+        if (std::abs(y[k]) > std::abs(y[block])) block = k;
+      }
+      sum.overturn_block = block + 1;
       sum.overturn_t_s = t_;
-      StopWith("overturn", s, first ? "block 1" : "block 2", RunStatus::kOverturned);
+      StopWith("overturn", y, "block " + std::to_string(block + 1), RunStatus::kOverturned);
       break;
     }
     case StepEvent::kMargin: {
       // Just past the located root: the smaller of the two margins is the one that crossed.
-      const ContactMargins cmh = Margins(ev.t_hi, at(ev.t_hi));
+      const Margins cmh = EvaluateAt(ev.t_hi, at(ev.t_hi));
       if (cfg_.check_transitions && cmh.face <= cmh.point) {
         // A face force has turned tensile: the face opens.
-        t_ = SwitchTime(ev.t_hi, t1, mode_, [&](double t) { return ToState(at(t)); });
-        const State sh = ToState(at(t_));
-        y_ = ToVec(sh);
-        StartMode(t_, sh, "transition", mode_, "face opens");
+        t_ = SwitchTime(ev.t_hi, t1, config_, [&](double t) { return at(t); });
+        const Y yh = at(t_);
+        y_ = yh;
+        StartMode(t_, yh, "transition", config_, "face opens");
       } else {
         sum.status_detail = "tensile normal force at a pivot (uplift)";
-        StopWith("assumption_violated", s, sum.status_detail, RunStatus::kAssumptionViolated);
+        StopWith("assumption_violated", y, sum.status_detail, RunStatus::kAssumptionViolated);
       }
       break;
     }
@@ -878,38 +862,43 @@ void Simulator::HandleEvent(const LocatedEvent& ev, const StepDense& at, double 
   if (done_) EndTrajectory();
 }
 
-void Simulator::EndTrajectory() {
+template <class Mech>
+void Simulator<Mech>::EndTrajectory() {
   // The run stops at t_: the trajectory ends there.
-  Trajectory::Segment last{t_, t_, mode_, DenseStep{}};
-  last.dense.c[0] = y_;
-  result_.trajectory.Append(last);
+  Dense last;
+  last.c[0] = y_;
+  result_.trajectory.Append(t_, t_, config_, last, kCap);
   const double stop = t_;
   t_end_ = stop;
   EmitSamplesUntil(stop, true);
 }
 
-Simulator::NonFinite Simulator::NonFiniteState(const Vec4& y) const {
-  static constexpr const char* kNames[4] = {"theta1", "theta2", "omega1", "omega2"};
-  for (int i = 0; i < 4; ++i) {
-    if (!geo_.two_blocks && (i == 1 || i == 3)) continue;
-    if (!std::isfinite(y[i])) return {kNames[i], y[i]};
+template <class Mech>
+typename Simulator<Mech>::NonFinite Simulator<Mech>::NonFiniteState(const Y& y) const {
+  for (int i = 0; i < n_; ++i) {
+    if (!std::isfinite(y[i])) return {"theta" + std::to_string(i + 1), y[i]};
+  }
+  for (int i = 0; i < n_; ++i) {
+    if (!std::isfinite(y[kCap + i])) return {"omega" + std::to_string(i + 1), y[kCap + i]};
   }
   return {};
 }
 
-Simulator::NonFinite Simulator::NonFiniteStep(const StepDense& at, const Vec4& y1,
-                                              const ContactMargins& cm1) const {
-  for (const Vec4* y : {&y1, &at.lo, &at.hi}) {
+template <class Mech>
+typename Simulator<Mech>::NonFinite Simulator<Mech>::NonFiniteStep(const StepDense& at, const Y& y1,
+                                                                   const Margins& cm1) const {
+  for (const Y* y : {&y1, &at.lo, &at.hi}) {
     if (NonFinite nf = NonFiniteState(*y); nf.found()) return nf;
   }
-  if (const double e = Energy(geo_, mode_, ToState(y1)); !std::isfinite(e)) return {"energy", e};
+  if (const double e = mech_.Energy(config_, y1); !std::isfinite(e)) return {"energy", e};
   for (const double m : {cm1.face, cm1.point}) {
     if (!std::isfinite(m)) return {"contact force", m};
   }
   return {};
 }
 
-void Simulator::StopNonFinite(const NonFinite& nf, double t_bad, const State& last) {
+template <class Mech>
+void Simulator<Mech>::StopNonFinite(const NonFinite& nf, double t_bad, const Y& last) {
   Summary& sum = result_.summary;
   sum.non_finite_quantity = nf.quantity;
   sum.non_finite_value = NonFiniteText(nf.value);
@@ -920,41 +909,41 @@ void Simulator::StopNonFinite(const NonFinite& nf, double t_bad, const State& la
   StopWith("non_finite", last, sum.status_detail, RunStatus::kNonFinite);
 }
 
-void Simulator::RunMoving() {
+template <class Mech>
+void Simulator<Mech>::RunMoving() {
   const bool thesis_events = cfg_.events == EventScheme::kThesis;
   const bool rk4 = cfg_.integrator == Integrator::kRk4 || thesis_events;
-  Vec4 f0 = Rhs(t_, y_);
+  Y f0 = Rhs(t_, y_);
   cm0_valid_ = false;
   while (!done_) {
     double h = 0.0;
-    const StepResult st = AdvanceOneStep(rk4, f0, &h);
+    const Step st = AdvanceOneStep(rk4, f0, &h);
     const double t1 = t_ + h;
-    const Vec4 y1 = Project(st.y1);
+    const Y y1 = Project(st.y1);
     const StepDense at(*this, st, t_, y_);
-    // The last stage f(t1, y1) holds the mode's accelerations at the step end: the contact
-    // margins there reuse them (y1 is already on the mode's constraints, so Project keeps it).
-    const ContactMargins cm1 = y1 == st.y1 ? EvaluateContacts(geo_, mode_, ToState(y1),
-                                                              {st.f1[2], st.f1[3]}, Xg(t1), Yg(t1))
-                                           : Margins(t1, y1);
+    // The last stage f(t1, y1) holds the configuration's accelerations at the step end: the
+    // contact margins there reuse them (y1 is already on the constraints, so Project keeps it).
+    const Margins cm1 = y1 == st.y1 ? mech_.EvaluateWithRhs(config_, y1, st.f1, Xg(t1), Yg(t1))
+                                    : EvaluateAt(t1, y1);
     // A step that reaches a value that is not finite is not recorded: the run ends at its
     // start, the last finite state.
     if (!StepFinite(at, y1, cm1)) {
       if (const NonFinite nf = NonFiniteStep(at, y1, cm1); nf.found()) {
-        StopNonFinite(nf, t1, ToState(y_));
+        StopNonFinite(nf, t1, y_);
         EndTrajectory();
         return;
       }
     }
     const LocatedEvent ev = FindEvent(at, t1, cm1, thesis_events);
     if (ev.which != StepEvent::kNone && !std::isfinite(ev.t)) {
-      StopNonFinite({"event time", ev.t}, t1, ToState(y_));
+      StopNonFinite({"event time", ev.t}, t1, y_);
       EndTrajectory();
       return;
     }
     const bool none = ev.which == StepEvent::kNone;
     const double t_seg_end = none ? t1 : ev.t;
-    const Vec4 y_end = none ? y1 : at(ev.t);
-    RecordStep(at, st.dense, t_seg_end, y_end, none ? cm1 : Margins(t_seg_end, y_end));
+    const Y y_end = none ? y1 : at(ev.t);
+    RecordStep(at, st.dense, t_seg_end, y_end, none ? cm1 : EvaluateAt(t_seg_end, y_end));
     if (none) {
       t_ = t1;
       y_ = y1;
@@ -973,73 +962,63 @@ void Simulator::RunMoving() {
       Finish(RunStatus::kAssumptionViolated);
       return;
     }
-    State s = ToState(y_end);
+    Y y = y_end;
     if (thesis_events) {
-      s.omega1 = y_[2];
-      s.omega2 = y_[3];
+      for (size_t i = 0; i < kCap; ++i) y[kCap + i] = y_[kCap + i];
     }
-    HandleEvent(ev, at, t1, s);
-    // After an event the caller restarts integration (new mode, new first stage).
+    HandleEvent(ev, at, t1, y);
+    // After an event the caller restarts integration (new configuration, new first stage).
     return;
   }
 }
 
-Result Simulator::Run() {
-  ValidateScene(scene_);
+template <class Mech>
+Result Simulator<Mech>::Run() {
   t_end_ = scene_.run.duration_s;
-  const InitialState& in = scene_.initial;
-  // One block: the stack is the one block (theta2 = theta1), as the equations expect.
-  const int top = geo_.two_blocks ? 1 : 0;
-  State s{in.theta_rad[0], in.theta_rad[top], in.omega_radps[0], in.omega_radps[top]};
-  Track(0.0, s);
-  if (std::abs(s.theta1) >= cfg_.overturn_rad || std::abs(s.theta2) >= cfg_.overturn_rad) {
-    throw SceneError(scene_.path.string() + ": initial angle beyond model.overturn_angle");
-  }
-  mode_ = Mode::kRest;
-  // The initial mode: a contact with a gap or a rate is open on that side; closed contacts
-  // stay closed unless the forces open them.
-  const double xg0 = Xg(0.0), yg0 = Yg(0.0);
-  const ModeSelection sel = SelectMode(geo_, s, xg0, yg0, cfg_.equations);
-  y_ = ToVec(s);
-  if (!sel.consistent) {
-    // No mode is consistent: an uplift, unless some mode's contact forces are not finite (an
-    // absurd base acceleration at t = 0, for which no comparison of forces holds).
-    NonFinite bad;
-    for (const Contact g : {Contact::kFace, Contact::kRight, Contact::kLeft}) {
-      for (const Contact i : {Contact::kFace, Contact::kRight, Contact::kLeft}) {
-        if (bad.found() || (!geo_.two_blocks && i != Contact::kFace)) continue;
-        const ContactMargins cm =
-            EvaluateContacts(geo_, ModeOf({g, i}, geo_.two_blocks), s, xg0, yg0, cfg_.equations);
-        for (const double m : {cm.face, cm.point}) {
-          if (!std::isfinite(m)) bad = {"contact force", m};
-        }
-      }
+  Y y = mech_.Initial(scene_.initial);
+  Track(0.0, y);
+  for (int i = 0; i < n_; ++i) {
+    if (std::abs(y[i]) >= cfg_.overturn_rad) {
+      throw SceneError(scene_.path.string() + ": initial angle beyond model.overturn_angle");
     }
-    if (!bad.found()) {
+  }
+  config_ = rest_;
+  // The initial configuration: an interface with a gap or a rate is open on that side; closed
+  // ones stay closed unless the forces open them.
+  const double xg0 = Xg(0.0), yg0 = Yg(0.0);
+  const Selection sel = mech_.Select(y, xg0, yg0);
+  y_ = y;
+  if (!sel.consistent) {
+    // No configuration is consistent: an uplift, unless some contact forces are not finite
+    // (an absurd base acceleration at t = 0, for which no comparison of forces holds).
+    double bad_value = 0.0;
+    if (!mech_.NonFiniteForces(y, xg0, yg0, &bad_value)) {
       result_.summary.status = RunStatus::kAssumptionViolated;
-      result_.summary.status_detail = "the initial state satisfies no mode's contact conditions";
-      Trajectory::Segment seg{0.0, 0.0, Mode::kRest, DenseStep{}};
-      seg.dense.c[0] = y_;
-      result_.trajectory.Append(seg);
+      result_.summary.status_detail = std::string("the initial state satisfies no ") +
+                                      (n_ <= 2 ? "mode's" : "configuration's") +
+                                      " contact conditions";
+      if (!sel.note.empty()) result_.summary.status_detail += "; " + sel.note;
+      Dense seg;
+      seg.c[0] = y_;
+      result_.trajectory.Append(0.0, 0.0, rest_, seg, kCap);
       t_end_ = 0.0;
       EmitSamplesUntil(0.0, true);
       return TakeResult();
     }
-    StopNonFinite(bad, 0.0, s);
+    StopNonFinite({"contact force", bad_value}, 0.0, y);
     EndTrajectory();
   } else {
-    mode_ = sel.mode;
+    config_ = sel.config;
   }
-  if (!done_ && mode_ != Mode::kRest && s.theta1 == 0.0 && s.theta2 == 0.0 && s.omega1 == 0.0 &&
-      s.omega2 == 0.0) {
+  if (!done_ && !config_.at_rest() && AtRestState(y)) {
     // Motion starts at t = 0 from rest.
-    Event ev = NewEvent(0.0, "initiation", Mode::kRest, mode_, State{}, State{});
-    ev.energy_before_j = ev.energy_after_j = Energy(geo_, Mode::kRest, s);
+    Event ev = NewEvent(0.0, "initiation", rest_, config_, Y{}, Y{});
+    ev.energy_before_j = ev.energy_after_j = mech_.Energy(rest_, y);
     AddEvent(std::move(ev));
     ++result_.summary.initiations;
   }
   while (!done_ && t_ < t_end_) {
-    if (mode_ == Mode::kRest) {
+    if (config_.at_rest()) {
       RunRest();
     } else {
       RunMoving();
@@ -1059,7 +1038,7 @@ Result Simulator::Run() {
   }
   while (k < samples.size()) merged.push_back(std::move(samples[k++]));
   samples = std::move(merged);
-  if (result_.summary.status == RunStatus::kCompleted && mode_ == Mode::kRest &&
+  if (result_.summary.status == RunStatus::kCompleted && config_.at_rest() &&
       t_ >= motion_.end_s()) {
     result_.summary.status = RunStatus::kAtRest;
   }
@@ -1067,14 +1046,31 @@ Result Simulator::Run() {
   return TakeResult();
 }
 
+template <class Mech>
+Result Run(const Scene& scene, const GroundMotion& motion) {
+  Simulator<Mech> sim(scene, motion);
+  return sim.Run();
+}
+
 }  // namespace
+
+bool UsesThesisEquations(const Scene& scene) {
+  const Formulation f = scene.model.formulation;
+  return f == Formulation::kThesis || (f == Formulation::kAuto && scene.block_count() <= 2);
+}
 
 Result Simulate(const Scene& scene, const GroundMotion& motion) {
   // The scene's rules first (the same for every engine): its messages name the key and limit.
   ValidateScene(scene);
-  RequireAtMostTwoBlocks(scene, "reference model");
-  Simulator sim(scene, motion);
-  return sim.Run();
+  const int n = scene.block_count();
+  if (UsesThesisEquations(scene)) return Run<ThesisMechanics>(scene, motion);
+  // The chain's state holds the smallest power of two of blocks that fits the stack.
+  if (n <= 2) return Run<ChainMechanics<2>>(scene, motion);
+  if (n <= 4) return Run<ChainMechanics<4>>(scene, motion);
+  if (n <= 8) return Run<ChainMechanics<8>>(scene, motion);
+  if (n <= 16) return Run<ChainMechanics<16>>(scene, motion);
+  if (n <= 32) return Run<ChainMechanics<32>>(scene, motion);
+  return Run<ChainMechanics<64>>(scene, motion);
 }
 
 }  // namespace rockbench::reference

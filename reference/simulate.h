@@ -8,35 +8,59 @@
 #include "reference/integrator.h"
 #include "scene/ground_motion.h"
 #include "scene/history.h"
+#include "scene/mode.h"
 #include "scene/outcome.h"
 #include "scene/scene.h"
 
 namespace rockbench::reference {
 
 /// Continuous solution: piecewise dense-output segments between events. Evaluating at an event
-/// time returns the post-event state.
+/// time returns the post-event state. Each segment keeps only the stack's own components (its
+/// blocks' angles and rates), whatever the size of the state the driver integrates.
 class Trajectory {
  public:
+  /// A trajectory of `blocks` blocks (1..kMaxBlocks).
+  explicit Trajectory(int blocks = 2) : blocks_(blocks) {}
+  int blocks() const { return blocks_; }
+
   /// State at t (clamped to [0, end]); interpolated with the integrator's dense output.
   Sample At(double t_s) const;
   double end_s() const;
   bool empty() const;
 
-  /// One integration step's interpolant on [t0, t1] (see integrator.h, DenseStep).
+  /// One integration step's interval [t0, t1] and the configuration the stack moved in.
   struct Segment {
     double t0 = 0.0, t1 = 0.0;
-    Mode mode = Mode::kRest;
-    DenseStep dense;
+    Configuration mode;
   };
-  /// One block or two (the samples At() gives have this many).
-  void set_blocks(int blocks) { blocks_ = blocks; }
-  int blocks() const { return blocks_; }
-  void Append(Segment segment);
   const std::vector<Segment>& segments() const { return segments_; }
 
+  /// Appends the step `dense` on [t0, t1] of a state whose block i has its angle at index i
+  /// and its rate at index cap + i.
+  template <size_t D>
+  void Append(double t0, double t1, const Configuration& mode, const DenseStepN<D>& dense,
+              size_t cap = D / 2) {
+    segments_.push_back({t0, t1, mode});
+    const int ncoef = DenseKinds::Coefficients(dense.kind);
+    steps_.push_back({dense.kind, dense.t0, dense.h, coef_.size()});
+    for (int j = 0; j < ncoef; ++j) {
+      for (int i = 0; i < blocks_; ++i) coef_.push_back(dense.c[j][i]);
+      for (int i = 0; i < blocks_; ++i) coef_.push_back(dense.c[j][cap + i]);
+    }
+  }
+
  private:
-  std::vector<Segment> segments_;
+  // A segment's interpolant: its kind, start, length, and where its coefficients start in
+  // coef_ (coefficient j of component i at offset + j * 2 blocks + i; angles, then rates).
+  struct Step {
+    DenseKinds::Kind kind = DenseKinds::kConstant;
+    double t0 = 0.0, h = 0.0;
+    size_t offset = 0;
+  };
   int blocks_ = 2;
+  std::vector<Segment> segments_;
+  std::vector<Step> steps_;
+  std::vector<double> coef_;
 };
 
 /// Summary figures of a reference run.
@@ -93,12 +117,17 @@ struct Result {
   Summary summary;
 };
 
-/// Runs the reference model on a scene of one or two blocks. Never throws for physics outcomes
-/// (overturning, assumption violations are statuses); throws SceneError for impossible settings
-/// and for a scene of three or more blocks (not simulated yet: issue 23). A state,
+/// Runs the reference model on a scene of any number of blocks: the thesis's equations for one
+/// or two (unless model.formulation = "chain"), the N-block chain otherwise (mechanics.h). Never
+/// throws for physics outcomes (overturning, assumption violations are statuses); throws
+/// SceneError for impossible settings. A state,
 /// energy, event time or contact force that is not finite (an absurd base motion built in code)
 /// ends the run with status "non_finite" at its last finite state: no NaN or infinity reaches
 /// the history, the events or the summary.
 Result Simulate(const Scene& scene, const GroundMotion& motion);
+
+/// Whether a scene runs on the thesis's equations (one or two blocks, model.formulation not
+/// "chain") rather than the N-block chain.
+bool UsesThesisEquations(const Scene& scene);
 
 }  // namespace rockbench::reference

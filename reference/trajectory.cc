@@ -5,10 +5,6 @@
 
 namespace rockbench::reference {
 
-void Trajectory::Append(Segment segment) {
-  segments_.push_back(std::move(segment));
-}
-
 bool Trajectory::empty() const {
   return segments_.empty();
 }
@@ -29,15 +25,22 @@ Sample Trajectory::At(double t_s) const {
                           [](double t, const Segment& s) { return t < s.t0; });
     if (it != segments_.begin()) --it;
   }
-  const Vec4 y = it->dense.At(std::min(t_s, it->t1));
-  out.t_s = t_s;
-  out.theta_rad[0] = y[0];
-  out.omega_radps[0] = y[2];
-  if (blocks_ == 2) {
-    out.theta_rad[1] = y[1];
-    out.omega_radps[1] = y[3];
+  const Step& step = steps_[static_cast<size_t>(it - segments_.begin())];
+  const double t = std::min(t_s, it->t1);
+  const size_t stride = 2 * static_cast<size_t>(blocks_);
+  const double* c = coef_.data() + step.offset;
+  // As DenseStepN::At: a constant step (or one of zero length) is its first coefficient.
+  const bool constant = step.kind == DenseKinds::kConstant || step.h == 0.0;
+  const double s = constant ? 0.0 : (t - step.t0) / step.h;
+  auto value = [&](size_t i) {
+    return constant ? c[i] : DenseKinds::Component(step.kind, s, c + i, stride);
+  };
+  for (int i = 0; i < blocks_; ++i) {
+    out.theta_rad[i] = value(static_cast<size_t>(i));
+    out.omega_radps[i] = value(static_cast<size_t>(blocks_ + i));
   }
-  out.mode = ConfigurationOf(it->mode, blocks_);
+  out.t_s = t_s;
+  out.mode = it->mode;
   return out;
 }
 

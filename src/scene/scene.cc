@@ -208,7 +208,8 @@ const std::map<std::string, KeyList, std::less<>>& Schema() {
         {"overturn_angle", false},
         {"rest_rate", false},  // removed: an error naming rest_rate_rel
         {"rest_rate_rel", false},
-        {"check_transitions", false}}},
+        {"check_transitions", false},
+        {"formulation", false}}},
       {"compare",
        {{"tolerance", false},
         {"members", false},
@@ -847,6 +848,10 @@ class Reader {
     m.rest_rate_rel =
         Number(model, "model", "rest_rate_rel", Rule::kNonNegative, "").value_or(m.rest_rate_rel);
     m.check_transitions = Bool(model, "model", "check_transitions").value_or(m.check_transitions);
+    m.formulation =
+        Enum(model, "model", "formulation",
+             Choices<Formulation>{{"thesis", Formulation::kThesis}, {"chain", Formulation::kChain}})
+            .value_or(m.formulation);
     return m;
   }
 
@@ -1074,6 +1079,12 @@ SyntheticMotionDef MotionDef::SyntheticProcess() const {
   return d;
 }
 
+std::optional<Formulation> ParseFormulation(std::string_view text) {
+  if (text == "thesis") return Formulation::kThesis;
+  if (text == "chain") return Formulation::kChain;
+  return std::nullopt;
+}
+
 const char* IntegratorName(Integrator integrator) {
   switch (integrator) {
     case Integrator::kDopri5:
@@ -1219,6 +1230,19 @@ void ValidateScene(const Scene& scene) {
     limit("initial.omega" + i, in.omega_radps[k - 1], kRateLimit, Rule::kFinite, "rad/s");
   }
   limit("model.overturn_angle", scene.model.overturn_rad, kOverturnLimit, Rule::kPositive, "rad");
+  if (scene.model.formulation == Formulation::kThesis && n > 2) {
+    fail("model.formulation",
+         "\"thesis\" is the thesis's equations of one or two blocks; this "
+         "scene has " +
+             std::to_string(n) + " (use \"chain\", or leave the key out)");
+  }
+  if (scene.model.equations == Equations::kLinearized &&
+      (n > 2 || scene.model.formulation == Formulation::kChain)) {
+    fail("model.equations",
+         "\"linearized\" is the thesis's linearization of its equations of "
+         "one or two blocks (section 4.3.3); the N-block chain solves the "
+         "nonlinear ones (use \"nonlinear\")");
+  }
   for (int k = 1; k <= n; ++k) {
     const std::string name = "theta" + std::to_string(k);
     const double v = in.theta_rad[k - 1];

@@ -86,6 +86,9 @@ struct RunConfig {
 enum class Integrator { kDopri5, kRk4, kDop853 };
 enum class EventScheme { kLocated, kThesis };
 enum class Equations { kNonlinear, kLinearized };
+/// Which equations the reference runs on (mechanics.h): the thesis's explicit ones (one or two
+/// blocks) or the N-block pivot chain (any N). kAuto: the thesis's for one or two blocks.
+enum class Formulation { kAuto, kThesis, kChain };
 
 /// Options of the reference model ([model] table).
 struct ModelConfig {
@@ -103,6 +106,9 @@ struct ModelConfig {
   /// rate would rise (2/3) rest_rate_rel^2 / sin(theta_c): 2e-14 rad for the thesis's stack.
   double rest_rate_rel = 1e-7;
   bool check_transitions = true;  ///< evaluate no-impact transition criteria in every mode
+  /// "thesis" (one or two blocks) or "chain" (any N); absent: the thesis's equations for one or
+  /// two blocks, the chain beyond (docs/n-blocks.md).
+  Formulation formulation = Formulation::kAuto;
 };
 
 /// Comparison settings ([compare] table).
@@ -183,6 +189,8 @@ std::string_view MotionKindName(MotionKind kind);
 std::string ShortestText(double v);
 /// "g", "m/s2", "cm/s2".
 std::string_view AccelUnitsName(AccelUnits units);
+/// "thesis" or "chain" as a scene writes model.formulation; nullopt for another text.
+std::optional<Formulation> ParseFormulation(std::string_view text);
 /// "dopri5", "dop853", "rk4": the [model] integrator's name as a scene writes it.
 const char* IntegratorName(Integrator integrator);
 /// The unit g of records, `units = "g"` and `amplitude_g`: standard gravity, m/s^2 by

@@ -112,9 +112,9 @@ TEST(CliRunTest, SetOverridesASceneValue) {
   fs::remove_all(out);
 }
 
-// A stack of three blocks reads, and the reference (which simulates one or two for now) says so
-// at its entry with one clear message: exit code 2, no history written.
-TEST(CliRunTest, AThreeBlockSceneIsNotSimulatedYet) {
+// A stack of three blocks runs on the reference's N-block chain: its history has a column per
+// block and a configuration of three letters, the summary a peak per block.
+TEST(CliRunTest, AThreeBlockSceneRunsOnTheReference) {
   const fs::path dir = TempDir("three");
   const fs::path scene = dir / "three.toml";
   std::ofstream(scene) << "[[block]]\nwidth = 1.5\nheight = 1.0\ndensity = 2500.0\n"
@@ -122,13 +122,19 @@ TEST(CliRunTest, AThreeBlockSceneIsNotSimulatedYet) {
                           "[[block]]\nwidth = 0.5\nheight = 1.0\ndensity = 2500.0\n"
                           "[initial]\ntheta = [0.05, 0.05, 0.05]\n[run]\nduration = 1.0\n";
   const Outcome r = Rockbench("run " + scene.string() + " --out " + (dir / "out").string());
-  EXPECT_EQ(r.exit_code, 2) << r.output;
-  EXPECT_NE(r.output.find(scene.string() +
-                          ": reference model: N-block scenes (3 blocks) are not simulated yet "
-                          "(issue 23); 1 or 2 blocks"),
-            std::string::npos)
-      << r.output;
-  EXPECT_FALSE(fs::exists(dir / "out" / "reference" / "history.csv"));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const std::string hist = Slurp(dir / "out" / "reference" / "history.csv");
+  EXPECT_EQ(hist.substr(0, hist.find('\n')), "t,theta1,theta2,theta3,omega1,omega2,omega3,mode");
+  // Released tilted to the right: block 1 rocks on its right corner from t = 0, and the
+  // configuration has a letter per interface ("r" then two of "frl").
+  std::string first = hist.substr(hist.find('\n') + 1);
+  first = first.substr(0, first.find('\n'));
+  const std::string config = first.substr(first.rfind(',') + 1);
+  ASSERT_EQ(config.size(), 3u) << first;
+  EXPECT_EQ(config[0], 'r') << first;
+  EXPECT_EQ(config.find_first_not_of("frl"), std::string::npos) << first;
+  const auto summary = nlohmann::json::parse(Slurp(dir / "out" / "summary.json"));
+  EXPECT_NE(summary.dump().find("\"theta3\":{\"abs_rad\""), std::string::npos) << summary.dump();
   fs::remove_all(dir);
 }
 

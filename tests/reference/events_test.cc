@@ -28,11 +28,15 @@ std::string FirstMissedEvent(const Scene& sc, const GroundMotion& gm, const Resu
   const Geometry geo = MakeGeometry(sc);
   for (const auto& seg : r.trajectory.segments()) {
     if (!(seg.t1 > seg.t0)) continue;
-    const Contacts c = ContactsOf(seg.mode);
+    const Mode mode = *ModeOfConfiguration(seg.mode);
+    const Contacts c = ContactsOf(mode);
     const int n = 400;
     for (int k = 1; k < n; ++k) {
       const double t = seg.t0 + (seg.t1 - seg.t0) * k / n;
-      Vec4 y = seg.dense.At(t);
+      // Inside the segment: its own interpolant (one block's theta2 mirrors theta1).
+      const Sample smp = r.trajectory.At(t);
+      const int top = geo.two_blocks ? 1 : 0;
+      Vec4 y{smp.theta_rad[0], smp.theta_rad[top], smp.omega_radps[0], smp.omega_radps[top]};
       if (!geo.two_blocks || c.interface == Contact::kFace) {
         y[1] = y[0];
         y[3] = y[2];
@@ -40,7 +44,7 @@ std::string FirstMissedEvent(const Scene& sc, const GroundMotion& gm, const Resu
       if (c.ground == Contact::kFace) y[0] = y[2] = 0.0;
       const State s{y[0], y[1], y[2], y[3]};
       const ContactMargins cm =
-          EvaluateContacts(geo, seg.mode, s, gm.xg_mps2(t), gm.yg_mps2(t), sc.model.equations);
+          EvaluateContacts(geo, mode, s, gm.xg_mps2(t), gm.yg_mps2(t), sc.model.equations);
       const double side_g = c.ground == Contact::kLeft ? -1.0 : 1.0;
       const double side_i = c.interface == Contact::kLeft ? -1.0 : 1.0;
       const std::pair<const char*, double> fns[] = {
@@ -54,7 +58,7 @@ std::string FirstMissedEvent(const Scene& sc, const GroundMotion& gm, const Resu
       for (const auto& [name, v] : fns) {
         if (v < -1e-10) {
           return std::string(name) + " = " + std::to_string(v) + " at t = " + std::to_string(t) +
-                 " s inside a " + std::string(ModeName(seg.mode)) + " segment [" +
+                 " s inside a " + std::string(ModeName(mode)) + " segment [" +
                  std::to_string(seg.t0) + ", " + std::to_string(seg.t1) + "]";
         }
       }

@@ -13,8 +13,7 @@ namespace {
 
 Scene TwoBlocks(double B1, double H1, double m1, double B2, double H2, double m2) {
   Scene s;
-  s.block1 = {B1, H1, 1.0, m1, 0.0};
-  s.block2 = BlockDef{B2, H2, 1.0, m2, 0.0};
+  s.blocks = {{B1, H1, 1.0, m1, 0.0}, {B2, H2, 1.0, m2, 0.0}};
   return s;
 }
 
