@@ -79,19 +79,19 @@ TEST_F(TiltedFrame, BlocksGroundAndSkyHaveTheirColoursWhereTheGeometryPutsThem) 
   const Image& img = *image_;
   const Palette& pal = renderer_->palette();
   const Camera& cam = renderer_->layout().views.at(0);
-  const StackCorners pose = PoseFor(Stack(), 0.0, 0.2);
+  const DrawnStack pose = PoseFor(Stack(), 0.0, 0.2);
   auto centre = [](const BlockCorners& q) {
     return Vec2{0.25 * (q[0].x + q[1].x + q[2].x + q[3].x),
                 0.25 * (q[0].y + q[1].y + q[2].y + q[3].y)};
   };
   // Interior points are flat colour (edges are 1-2 px away from them).
-  EXPECT_EQ(At(img, cam.ToPixel(centre(pose.block1))), pal.block1);
-  EXPECT_EQ(At(img, cam.ToPixel(centre(pose.block2))), pal.block2);
+  EXPECT_EQ(At(img, cam.ToPixel(centre(pose[0]))), pal.block(0));
+  EXPECT_EQ(At(img, cam.ToPixel(centre(pose[1]))), pal.block(1));
   // Block 2's top-left corner region, 5 cm inside both edges.
-  const BlockCorners& b2 = pose.block2;
+  const BlockCorners& b2 = pose[1];
   const Vec2 inside{b2[3].x + 0.05 * (b2[2].x - b2[3].x) / 0.5 + 0.05 * (b2[0].x - b2[3].x) / 1.5,
                     b2[3].y + 0.05 * (b2[2].y - b2[3].y) / 0.5 + 0.05 * (b2[0].y - b2[3].y) / 1.5};
-  EXPECT_EQ(At(img, cam.ToPixel(inside)), pal.block2);
+  EXPECT_EQ(At(img, cam.ToPixel(inside)), pal.block(1));
   // Just outside block 2's left edge, above block 1: sky.
   const Vec2 left_of_b2{b2[0].x - 0.1, b2[0].y + 0.3};
   EXPECT_EQ(At(img, cam.ToPixel(left_of_b2)), pal.background);
@@ -110,7 +110,7 @@ TEST_F(TiltedFrame, Block2TiltRecoveredFromItsPixels) {
   // of a digitised rectangle is then good to ~0.1 degree, well inside the 0.5 degree asked for.
   const Image& img = *image_;
   const Camera& cam = renderer_->layout().views.at(0);
-  const Rgb want = renderer_->palette().block2;
+  const Rgb want = renderer_->palette().block(1);
   double n = 0, sx = 0, sy = 0, sxx = 0, syy = 0, sxy = 0;
   for (int y = static_cast<int>(cam.vp_y_px); y < static_cast<int>(cam.vp_y_px + cam.vp_h_px);
        ++y) {
@@ -137,9 +137,9 @@ TEST_F(TiltedFrame, Block2TiltRecoveredFromItsPixels) {
   EXPECT_NEAR(tilt_deg, 0.2 * 180.0 / std::numbers::pi, 0.5);
   // And the pixels sit where the geometry says: pivoting about the right corner (not the left,
   // which would move the centroid ~0.1 m = ~7 px) and centred on block 1 at rest.
-  const StackCorners pose = PoseFor(Stack(), 0.0, 0.2);
+  const DrawnStack pose = PoseFor(Stack(), 0.0, 0.2);
   Vec2 c{};
-  for (const Vec2& p : pose.block2) c = {c.x + 0.25 * p.x, c.y + 0.25 * p.y};
+  for (const Vec2& p : pose[1]) c = {c.x + 0.25 * p.x, c.y + 0.25 * p.y};
   const Vec2 cpx = cam.ToPixel(c);
   EXPECT_NEAR(mx, cpx.x, 1.5);
   EXPECT_NEAR(my, cpx.y, 1.5);
@@ -151,12 +151,12 @@ TEST_F(TiltedFrame, ColoursStayApartInGreyscale) {
   // apart.
   const Image& img = *image_;
   const Camera& cam = renderer_->layout().views.at(0);
-  const StackCorners pose = PoseFor(Stack(), 0.0, 0.2);
+  const DrawnStack pose = PoseFor(Stack(), 0.0, 0.2);
   const Box& w = cam.world;
   const double l_bg = Luma(img.at(0, 0));
   const double l_b1 = Luma(At(img, cam.ToPixel({0.0, 0.6})));
-  const double l_b2 = Luma(At(img, cam.ToPixel({0.5 * (pose.block2[0].x + pose.block2[2].x),
-                                                0.5 * (pose.block2[0].y + pose.block2[2].y)})));
+  const double l_b2 = Luma(At(img, cam.ToPixel({0.5 * (pose[1][0].x + pose[1][2].x),
+                                                0.5 * (pose[1][0].y + pose[1][2].y)})));
   const double l_ground =
       Luma(At(img, cam.ToPixel({w.x_min_m + 0.25 * w.width_m(), 0.75 * w.y_min_m})));
   const double l[] = {l_bg, l_b2, l_ground, l_b1};
@@ -203,8 +203,8 @@ TEST(FrameRenderer, EdgesAreAntiAliased) {
       for (int x = 0; x < img.width_px; ++x) {
         const Rgb c = img.at(x, y);
         bool known = false;
-        for (Rgb k :
-             {pal.background, pal.block1, pal.block2, pal.ground, pal.ground_line, pal.outline}) {
+        for (Rgb k : {pal.background, pal.block(0), pal.block(1), pal.ground, pal.ground_line,
+                      pal.outline}) {
           known = known || c == k;
         }
         mixed += known ? 0 : 1;
@@ -228,16 +228,16 @@ TEST(FrameRenderer, SingleBlockScene) {
   FrameRenderer r(s, {{"reference", h}}, {}, cfg);
   const Image img = r.Render(0.0);
   const Camera& cam = r.layout().views.at(0);
-  const StackCorners pose = PoseFor(s, -0.15, 0.0);
-  EXPECT_EQ(At(img, cam.ToPixel({0.5 * (pose.block1[0].x + pose.block1[2].x),
-                                 0.5 * (pose.block1[0].y + pose.block1[2].y)})),
-            r.palette().block1);
+  const DrawnStack pose = PoseFor(s, -0.15, 0.0);
+  EXPECT_EQ(At(img, cam.ToPixel({0.5 * (pose[0][0].x + pose[0][2].x),
+                                 0.5 * (pose[0][0].y + pose[0][2].y)})),
+            r.palette().block(0));
   // Nothing of block 2's colour anywhere in the view.
   for (int y = static_cast<int>(cam.vp_y_px); y < static_cast<int>(cam.vp_y_px + cam.vp_h_px);
        ++y) {
     for (int x = static_cast<int>(cam.vp_x_px); x < static_cast<int>(cam.vp_x_px + cam.vp_w_px);
          ++x) {
-      ASSERT_GT(Diff(img.at(x, y), r.palette().block2), 20) << x << "," << y;
+      ASSERT_GT(Diff(img.at(x, y), r.palette().block(1)), 20) << x << "," << y;
     }
   }
 }
@@ -253,8 +253,8 @@ TEST(FrameRenderer, BaseDisplacementMovesTheBlocks) {
   const Camera& cam = r.layout().views.at(0);
   const Image img = r.Render(1.0);
   // Block 1's centre is 0.4 m to the right of where it starts.
-  EXPECT_EQ(At(img, cam.ToPixel({0.4, 0.6})), r.palette().block1);
-  EXPECT_NE(At(img, cam.ToPixel({-0.55, 0.6})), r.palette().block1);
+  EXPECT_EQ(At(img, cam.ToPixel({0.4, 0.6})), r.palette().block(0));
+  EXPECT_NE(At(img, cam.ToPixel({-0.55, 0.6})), r.palette().block(0));
 }
 
 TEST(FrameRenderer, MissingFontIsAClearError) {
