@@ -109,7 +109,9 @@ FrameLayout ComputeLayout(const Scene& scene, const std::vector<Track>& tracks,
 
   const Box box = MotionBox(scene, histories, config.show_base_motion ? base : BaseDisplacement{},
                             lay.t_from_s, lay.t_to_s);
-  if (side && stacked) {
+  // The views share [m, views_right] (whole numbers of pixels: the same widths as w - 2 m and
+  // w - m (n + 1) when there is no stacked chart).
+  if (side) {
     const double panel_w = (views_right - m * n) / n;
     const int label_lines = config.show_text ? 2 : 0;
     for (int i = 0; i < n; ++i) {
@@ -118,19 +120,8 @@ FrameLayout ComputeLayout(const Scene& scene, const std::vector<Track>& tracks,
       const double view_top = top + label_lines * lay.line_px;
       lay.views.push_back(FitCamera(box, x, view_top, panel_w, bottom - view_top));
     }
-  } else if (stacked) {
-    lay.views.push_back(FitCamera(box, m, top, views_right - m, bottom - top));
-  } else if (side) {
-    const double panel_w = (w - m * (n + 1)) / n;
-    const int label_lines = config.show_text ? 2 : 0;
-    for (int i = 0; i < n; ++i) {
-      const double x = m + i * (panel_w + m);
-      lay.view_labels.push_back({x, top, panel_w, static_cast<double>(label_lines * lay.line_px)});
-      const double view_top = top + label_lines * lay.line_px;
-      lay.views.push_back(FitCamera(box, x, view_top, panel_w, bottom - view_top));
-    }
   } else {
-    lay.views.push_back(FitCamera(box, m, top, w - 2 * m, bottom - top));
+    lay.views.push_back(FitCamera(box, m, top, views_right - m, bottom - top));
   }
 
   // Chart range: the largest |theta| in the window, rounded up to a round number.

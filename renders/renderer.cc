@@ -223,6 +223,26 @@ struct FrameRenderer::Impl {
     for (size_t k = 0; k < pose.size(); ++k) one(pose[k], palette.block(static_cast<int>(k)));
   }
 
+  // Block `which`'s angle in `h` from the window's start to t_clamped, as a line strip through
+  // the samples (px maps a time and an angle to pixels).
+  template <typename ToPixel>
+  void Trace(const History& h, size_t which, double t_clamped, const ToPixel& px) const {
+    glBegin(GL_LINE_STRIP);
+    const Sample first = StateAt(h, layout.t_from_s);
+    const Vec2 p0 = px(layout.t_from_s, first.theta_rad[which]);
+    glVertex2d(p0.x, p0.y);
+    for (const Sample& smp : h.samples) {
+      if (smp.t_s <= layout.t_from_s) continue;
+      if (smp.t_s > t_clamped) break;
+      const Vec2 p = px(smp.t_s, smp.theta_rad[which]);
+      glVertex2d(p.x, p.y);
+    }
+    const Sample now = StateAt(h, t_clamped);
+    const Vec2 p = px(t_clamped, now.theta_rad[which]);
+    glVertex2d(p.x, p.y);
+    glEnd();
+  }
+
   void DrawChart(double t) const {
     const PixelRect& r = layout.chart;
     Colour(palette.chart_frame);
@@ -255,20 +275,7 @@ struct FrameRenderer::Impl {
       glLineWidth(static_cast<float>((i == 0 ? 1.5 : 1.2) * line_w() * s));
       for (int which = h.blocks == 2 ? 1 : 0; which >= 0; --which) {
         Colour(palette.chart_theta(which));
-        glBegin(GL_LINE_STRIP);
-        const Sample first = StateAt(h, layout.t_from_s);
-        const Vec2 p0 = px(layout.t_from_s, first.theta_rad[which]);
-        glVertex2d(p0.x, p0.y);
-        for (const Sample& smp : h.samples) {
-          if (smp.t_s <= layout.t_from_s) continue;
-          if (smp.t_s > t_clamped) break;
-          const Vec2 p = px(smp.t_s, smp.theta_rad[which]);
-          glVertex2d(p.x, p.y);
-        }
-        const Sample now = StateAt(h, t_clamped);
-        const Vec2 p = px(t_clamped, now.theta_rad[which]);
-        glVertex2d(p.x, p.y);
-        glEnd();
+        Trace(h, which, t_clamped, px);
       }
       glDisable(GL_LINE_STIPPLE);
     }
@@ -310,20 +317,7 @@ struct FrameRenderer::Impl {
           glLineStipple(3 * s, 0xF0F0);
         }
         glLineWidth(static_cast<float>((i == 0 ? 1.5 : 1.2) * line_w() * s));
-        glBegin(GL_LINE_STRIP);
-        const Sample first = StateAt(h, layout.t_from_s);
-        const Vec2 p0 = px(layout.t_from_s, first.theta_rad[which]);
-        glVertex2d(p0.x, p0.y);
-        for (const Sample& smp : h.samples) {
-          if (smp.t_s <= layout.t_from_s) continue;
-          if (smp.t_s > t_clamped) break;
-          const Vec2 p = px(smp.t_s, smp.theta_rad[which]);
-          glVertex2d(p.x, p.y);
-        }
-        const Sample now = StateAt(h, t_clamped);
-        const Vec2 p = px(t_clamped, now.theta_rad[which]);
-        glVertex2d(p.x, p.y);
-        glEnd();
+        Trace(h, which, t_clamped, px);
         glDisable(GL_LINE_STIPPLE);
       }
       glDisable(GL_SCISSOR_TEST);
