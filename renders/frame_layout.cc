@@ -154,8 +154,10 @@ FrameLayout ComputeLayout(const Scene& scene, const std::vector<Track>& tracks,
     const double gutter_px = std::round((0.6 + 0.4 * digits + 0.6) * lay.font_px);
     lay.chart.x_px += gutter_px;
     lay.chart.w_px -= gutter_px;
-    // The axes, block 1 at the bottom, a gap between two neighbours.
-    const double gap_px = std::max(2.0, std::round(0.25 * lay.font_px));
+    // The axes, block 1 at the bottom, a gap between two neighbours (a quarter of the font, at
+    // most a fifth of an axis's share when there are many).
+    const double gap_px = std::max(1.0, std::min(std::max(2.0, std::round(0.25 * lay.font_px)),
+                                                 std::floor(0.2 * lay.chart.h_px / blocks)));
     const double panel_h = (lay.chart.h_px - (blocks - 1) * gap_px) / blocks;
     if (panel_h < 4.0 || lay.chart.w_px < 16.0) {
       throw std::invalid_argument("image too small for the chart of " + std::to_string(blocks) +
