@@ -16,25 +16,67 @@
 
 namespace rockbench::renders {
 
-InitialState StackState(const Sample& s, bool two_blocks) {
-  const size_t top = two_blocks && s.blocks() >= 2 ? 1 : 0;
+InitialState StackState(const Sample& s) {
   InitialState out;
-  out.theta_rad[0] = s.theta_rad[0];
-  out.theta_rad[1] = s.theta_rad[top];
-  out.omega_radps[0] = s.omega_radps[0];
-  out.omega_radps[1] = s.omega_radps[top];
+  const int n = s.blocks();
+  if (n == 0) return out;
+  for (int k = 0; k < kMaxBlocks; ++k) {
+    const auto from = static_cast<size_t>(std::min(k, n - 1));
+    out.theta_rad[k] = s.theta_rad[from];
+    out.omega_radps[k] = s.omega_radps[from];
+  }
   return out;
 }
 
-StackCorners PoseFor(const Scene& scene, const InitialState& state, Vec2 base) {
-  StackCorners pose = StackCornersAt(scene, state);
+DrawnStack ChainCorners(const Scene& scene, const InitialState& s) {
+  DrawnStack out;
+  out.reserve(scene.blocks.size());
+  // Block k's pivot P_k, angle phi_k and pivot offset s_k b_k, and its half height h_k, carried
+  // up to block k + 1 (PlaceStack's p1, phi1, ground_side * b1 and h1 for block 2).
+  Vec2 pivot{};
+  double phi_below = 0.0, sb_below = 0.0, h_below = 0.0;
+  for (int k = 0; k < scene.block_count(); ++k) {
+    const BlockDef& block = scene.blocks[static_cast<size_t>(k)];
+    const double b = 0.5 * block.width_m, h = 0.5 * block.height_m;
+    const double theta = s.theta_rad[k], omega = s.omega_radps[k];
+    const int side = k == 0 ? PivotSide(theta, omega)
+                            : PivotSide(theta - s.theta_rad[k - 1], omega - s.omega_radps[k - 1]);
+    const double phi = -theta;
+    const double sb = side * b;
+    pivot = k == 0 ? Vec2{sb, 0.0}
+                   : pivot + Rotate(phi_below, Vec2{sb, 2.0 * h_below} - Vec2{sb_below, 0.0});
+    const Vec2 g = pivot + Rotate(phi, Vec2{0.0, h} - Vec2{sb, 0.0});
+    PlanarPose pose;
+    pose.x_m = g.x;
+    pose.y_m = g.y;
+    pose.phi_rad = phi;
+    out.push_back(Corners(pose, b, h));
+    phi_below = phi;
+    sb_below = sb;
+    h_below = h;
+  }
+  return out;
+}
+
+DrawnStack PoseFor(const Scene& scene, const InitialState& state, Vec2 base) {
+  DrawnStack pose;
+  if (scene.block_count() <= 2) {
+    // The engines' chain (scene/stack_pose.h), which places one or two blocks: today's
+    // two-block pictures keep their bytes.
+    const StackCorners c = StackCornersAt(scene, state);
+    pose.push_back(c.block1);
+    if (c.has_block2) pose.push_back(c.block2);
+  } else {
+    pose = ChainCorners(scene, state);
+  }
   // Everything moves with the base.
-  for (auto& p : pose.block1) p = p + base;
-  for (auto& p : pose.block2) p = p + base;
+  for (BlockCorners& q : pose) {
+    for (auto& p : q) p = p + base;
+  }
   return pose;
 }
 
-StackCorners PoseFor(const Scene& scene, double theta1_rad, double theta2_rad, Vec2 base) {
+DrawnStack PoseFor(const Scene& scene, double theta1_rad, double theta2_rad, Vec2 base) {
   InitialState state;
   state.theta_rad[0] = theta1_rad;
   state.theta_rad[1] = theta2_rad;
@@ -191,10 +233,8 @@ Box MotionBox(const Scene& scene, const std::vector<const History*>& histories,
   };
   auto add_pose = [&](const InitialState& state, double t) {
     const Vec2 b = base.At(t);
-    const StackCorners pose = PoseFor(scene, state, b);
-    for (const auto& p : pose.block1) add(p);
-    if (pose.has_block2) {
-      for (const auto& p : pose.block2) add(p);
+    for (const BlockCorners& q : PoseFor(scene, state, b)) {
+      for (const auto& p : q) add(p);
     }
     add(b);
   };
@@ -202,11 +242,10 @@ Box MotionBox(const Scene& scene, const std::vector<const History*>& histories,
   add_pose({}, t_from_s);
   for (const History* h : histories) {
     if (!h || h->samples.empty()) continue;
-    const bool two = h->blocks == 2;
-    for (double t : {t_from_s, t_to_s}) add_pose(StackState(StateAt(*h, t), two), t);
+    for (double t : {t_from_s, t_to_s}) add_pose(StackState(StateAt(*h, t)), t);
     for (const Sample& s : h->samples) {
       if (s.t_s < t_from_s || s.t_s > t_to_s) continue;
-      add_pose(StackState(s, two), s.t_s);
+      add_pose(StackState(s), s.t_s);
     }
   }
   // The base displacement over the whole window (between history samples too).

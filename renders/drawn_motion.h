@@ -17,21 +17,36 @@
 
 namespace rockbench::renders {
 
-/// The stack's state of a sample of a history: its angles and rates; a single-block history
-/// drawn on a two-block scene keeps block 2 locked on block 1 (theta2 = theta1, omega2 =
-/// omega1).
-InitialState StackState(const Sample& sample, bool two_blocks);
+/// The stack's state of a sample of a history: its angles and rates; the blocks of the scene
+/// above the history's top block (a history of fewer blocks than the scene: a single-block
+/// history drawn on a two-block scene) ride locked on it, with its angle and rate (theta2 =
+/// theta1, omega2 = omega1).
+InitialState StackState(const Sample& sample);
 
-/// Block corners for a state (scene/stack_pose.h StackCornersAt: the engines' pivot chain),
-/// thesis convention: theta > 0 tilts right (clockwise). Block 1 turns by theta1 about its right
-/// base corner when theta1 > 0, its left one when theta1 < 0. Block 2 is centred on block 1 at
-/// rest and turns by (theta2 - theta1) relative to block 1, on block 1's top face, about its own
-/// right base corner when theta2 > theta1 and its left one when theta2 < theta1. A zero angle
-/// takes the side of its rate (PivotSide), which moves no corner. `base` shifts everything
-/// (ground displacement x_g, y_g, m). Angles in rad, rates in rad/s.
-StackCorners PoseFor(const Scene& scene, const InitialState& state, Vec2 base = {});
-/// The same at rest rates (omega1 = omega2 = 0).
-StackCorners PoseFor(const Scene& scene, double theta1_rad, double theta2_rad, Vec2 base = {});
+/// The corners of a stack's blocks, bottom first: one quad per block of the scene, m.
+using DrawnStack = std::vector<BlockCorners>;
+
+/// The pivot chain of a stack of any number of blocks (the renders' own, the chain of
+/// scene/stack_pose.h PlaceStack continued upwards): block 1 pivots on the ground about P_1 =
+/// (s_1 b_1, 0), block k + 1 on block k's top face about P_{k+1} = P_k + R(phi_k)((s_{k+1}
+/// b_{k+1}, 2 h_k) - (s_k b_k, 0)), and block k's corners are those about P_k turned by phi_k =
+/// -theta_k (b, h: half width and height; s_k = PivotSide of block k's angle relative to its
+/// support and of its rate: theta_1 and omega_1, theta_k - theta_{k-1} and omega_k -
+/// omega_{k-1}). The same operations in the same order as PlaceStack and Corners, so one and two
+/// blocks give StackCornersAt's corners (test PoseFor.TheChainIsTheEnginesForTwoBlocks).
+DrawnStack ChainCorners(const Scene& scene, const InitialState& state);
+
+/// Block corners for a state, thesis convention: theta > 0 tilts right (clockwise). Block 1
+/// turns by theta1 about its right base corner when theta1 > 0, its left one when theta1 < 0.
+/// Block k + 1 is centred on block k at rest and turns by (theta_{k+1} - theta_k) relative to
+/// it, on its top face, about its own right base corner when theta_{k+1} > theta_k and its left
+/// one when theta_{k+1} < theta_k. A zero angle takes the side of its rate (PivotSide), which
+/// moves no corner. One or two blocks: scene/stack_pose.h StackCornersAt (the engines' pivot
+/// chain, whose bits today's two-block pictures are drawn from); three and more: ChainCorners.
+/// `base` shifts everything (ground displacement x_g, y_g, m). Angles in rad, rates in rad/s.
+DrawnStack PoseFor(const Scene& scene, const InitialState& state, Vec2 base = {});
+/// The same for one or two blocks at rest rates (omega1 = omega2 = 0).
+DrawnStack PoseFor(const Scene& scene, double theta1_rad, double theta2_rad, Vec2 base = {});
 
 /// The state of a history at t_s: thetas interpolated linearly between the samples around t_s,
 /// the mode of the sample at or before t_s; held constant before the first and after the last

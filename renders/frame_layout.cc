@@ -31,8 +31,6 @@ std::optional<Layout> ParseLayout(std::string_view name) {
 
 FrameLayout ComputeLayout(const Scene& scene, const std::vector<Track>& tracks,
                           const BaseDisplacement& base, const RenderConfig& config) {
-  // The entry of every frame: the renders draw one or two blocks for now (issue 23).
-  RequireAtMostTwoBlocks(scene, "render");
   const std::string size = std::to_string(config.width_px) + "x" + std::to_string(config.height_px);
   if (config.width_px < kMinWidth_px || config.height_px < kMinHeight_px) {
     throw std::invalid_argument("image size " + size + ": must be at least " +
@@ -72,6 +70,9 @@ FrameLayout ComputeLayout(const Scene& scene, const std::vector<Track>& tracks,
   const int w = config.width_px, h = config.height_px;
   const int n = static_cast<int>(tracks.size());
   const bool side = config.layout == Layout::kSide && n > 1;
+  // Three and more blocks: one small axis per block, in a column right of the views.
+  const int blocks = scene.block_count();
+  const bool stacked = blocks >= 3;
   lay.font_px = std::clamp(static_cast<int>(std::lround(h / 34.0)), 9, 40);
   lay.line_px = static_cast<int>(std::lround(lay.font_px * 1.3));
   lay.margin_px = std::max(3, static_cast<int>(std::lround(h * 0.015)));
@@ -82,22 +83,36 @@ FrameLayout ComputeLayout(const Scene& scene, const std::vector<Track>& tracks,
   lay.header = {m, m, w - 2 * m, static_cast<double>(header_lines * lay.line_px)};
   const double top = header_lines > 0 ? lay.header.y_px + lay.header.h_px + m : m;
   double bottom = h - m;
-  if (config.show_chart) {
+  // The views' right edge: the image's margin, or the stacked chart's column.
+  double views_right = w - m;
+  if (config.show_chart && !stacked) {
     lay.has_chart = true;
     // The plot area, with a gutter on the left for the angle labels and a line below for the
     // time labels and the legend.
     const double chart_h = std::max(24.0, std::round(0.2 * h));
     lay.chart = {m, h - m - chart_h, w - 2 * m, chart_h - lay.line_px};
     bottom = lay.chart.y_px - m;
+  } else if (config.show_chart) {
+    lay.has_chart = true;
+    // A column of 40% of the width right of the views, from below the header to a line for the
+    // time labels and the range: a tall stack is narrow, and its views keep the height. With
+    // several engines a line above it says which is solid and which dashed. The gutter for the
+    // labels comes off its left side below.
+    const double column_w = std::round(0.4 * (w - 2 * m));
+    const double legend_h = n > 1 ? lay.line_px : 0.0;
+    lay.chart = {w - m - column_w, top + legend_h, column_w, h - m - lay.line_px - top - legend_h};
+    views_right = lay.chart.x_px - m;
   }
-  if (bottom - top < 16.0) {
+  if (bottom - top < 16.0 || views_right - m < 16.0) {
     throw std::invalid_argument("image too small for the text and chart: give a larger size");
   }
 
   const Box box = MotionBox(scene, histories, config.show_base_motion ? base : BaseDisplacement{},
                             lay.t_from_s, lay.t_to_s);
+  // The views share [m, views_right] (whole numbers of pixels: the same widths as w - 2 m and
+  // w - m (n + 1) when there is no stacked chart).
   if (side) {
-    const double panel_w = (w - m * (n + 1)) / n;
+    const double panel_w = (views_right - m * n) / n;
     const int label_lines = config.show_text ? 2 : 0;
     for (int i = 0; i < n; ++i) {
       const double x = m + i * (panel_w + m);
@@ -106,7 +121,7 @@ FrameLayout ComputeLayout(const Scene& scene, const std::vector<Track>& tracks,
       lay.views.push_back(FitCamera(box, x, view_top, panel_w, bottom - view_top));
     }
   } else {
-    lay.views.push_back(FitCamera(box, m, top, w - 2 * m, bottom - top));
+    lay.views.push_back(FitCamera(box, m, top, views_right - m, bottom - top));
   }
 
   // Chart range: the largest |theta| in the window, rounded up to a round number.
@@ -124,7 +139,7 @@ FrameLayout ComputeLayout(const Scene& scene, const std::vector<Track>& tracks,
     }
   }
   lay.chart_theta_max_rad = NiceCeil(std::max(peak, 1e-4) * 1.05);
-  if (lay.has_chart) {
+  if (lay.has_chart && !stacked) {
     // A gutter on the left for the range label "+<max>" (DejaVu Sans digits are 0.64 em wide).
     char label[32];
     std::snprintf(label, sizeof label, "+%g", lay.chart_theta_max_rad);
@@ -132,6 +147,27 @@ FrameLayout ComputeLayout(const Scene& scene, const std::vector<Track>& tracks,
         std::round((0.64 * std::max<double>(std::strlen(label), 3.0) + 0.6) * lay.font_px);
     lay.chart.x_px += gutter_px;
     lay.chart.w_px -= gutter_px;
+  } else if (lay.has_chart) {
+    // A gutter on the left for the labels "θ<k>" (theta and a subscript digit are about 0.6 and
+    // 0.4 em wide); the range goes on the line below.
+    const double digits = std::floor(std::log10(static_cast<double>(blocks))) + 1.0;
+    const double gutter_px = std::round((0.6 + 0.4 * digits + 0.6) * lay.font_px);
+    lay.chart.x_px += gutter_px;
+    lay.chart.w_px -= gutter_px;
+    // The axes, block 1 at the bottom, a gap between two neighbours (a quarter of the font, at
+    // most a fifth of an axis's share when there are many).
+    const double gap_px = std::max(1.0, std::min(std::max(2.0, std::round(0.25 * lay.font_px)),
+                                                 std::floor(0.2 * lay.chart.h_px / blocks)));
+    const double panel_h = (lay.chart.h_px - (blocks - 1) * gap_px) / blocks;
+    if (panel_h < 4.0 || lay.chart.w_px < 16.0) {
+      throw std::invalid_argument("image too small for the chart of " + std::to_string(blocks) +
+                                  " blocks' angles: give a larger size");
+    }
+    for (int k = 0; k < blocks; ++k) {
+      lay.chart_panels.push_back({lay.chart.x_px,
+                                  lay.chart.y_px + (blocks - 1 - k) * (panel_h + gap_px),
+                                  lay.chart.w_px, panel_h});
+    }
   }
   return lay;
 }

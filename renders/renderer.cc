@@ -7,6 +7,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <string>
+#include <vector>
 
 #include "renders/gl_context.h"
 #include "scene/mode.h"
@@ -97,6 +99,43 @@ std::string Format(const char* fmt, double v) {
   return buf;
 }
 
+// "θ" and block k's number as subscript digits (U+2080..U+2089): "θ₁₂" for k = 12.
+std::string ThetaLabel(int k) {
+  std::string out = "θ";
+  for (char d : std::to_string(k)) {
+    out += "\xE2\x82";
+    out += static_cast<char>(0x80 + (d - '0'));
+  }
+  return out;
+}
+
+// The angles of a sample of three and more blocks, in mrad steps: "θ₁…θ₈ = +0.012 +0.034 ...
+// rad".
+std::string StackedAngles(const Sample& s) {
+  std::string out = ThetaLabel(1) + "…" + ThetaLabel(s.blocks()) + " =";
+  for (double theta : s.theta_rad) {
+    out += ' ';
+    out += Format("%+.3f", theta);
+  }
+  return out + " rad";
+}
+
+// `text`, shortened with an ellipsis to at most room_px wide (a whole code point at a time).
+std::string Fitted(Font* font, const std::string& text, int room_px) {
+  if (font->Measure(text) <= room_px) return text;
+  std::string kept = text;
+  while (!kept.empty()) {
+    while (!kept.empty()) {
+      const auto c = static_cast<unsigned char>(kept.back());
+      kept.pop_back();
+      if ((c & 0xC0) != 0x80) break;
+    }
+    const std::string shortened = kept + "…";
+    if (font->Measure(shortened) <= room_px) return shortened;
+  }
+  return std::string();
+}
+
 }  // namespace
 
 struct FrameRenderer::Impl {
@@ -153,13 +192,12 @@ struct FrameRenderer::Impl {
     glEnd();
   }
 
-  StackCorners PoseOf(const Track& track, double t) const {
-    return PoseFor(scene, StackState(StateAt(track.history, t), track.history.blocks == 2),
-                   BaseAt(t));
+  DrawnStack PoseOf(const Track& track, double t) const {
+    return PoseFor(scene, StackState(StateAt(track.history, t)), BaseAt(t));
   }
 
   // Solid blocks: an outline band and the block colour inside.
-  void DrawSolid(const Camera& cam, const StackCorners& pose) const {
+  void DrawSolid(const Camera& cam, const DrawnStack& pose) const {
     auto one = [&](const BlockCorners& q, Rgb fill) {
       const PixelQuad outer = ToPixels(cam, q);
       Colour(palette.outline);
@@ -167,12 +205,11 @@ struct FrameRenderer::Impl {
       Colour(fill);
       FillQuad(Inset(outer, line_w()));
     };
-    one(pose.block1, palette.block1);
-    if (pose.has_block2) one(pose.block2, palette.block2);
+    for (size_t k = 0; k < pose.size(); ++k) one(pose[k], palette.block(static_cast<int>(k)));
   }
 
   // Outlined, translucent blocks (other engines in the overlay layout).
-  void DrawOutlined(const Camera& cam, const StackCorners& pose, Rgb outline) const {
+  void DrawOutlined(const Camera& cam, const DrawnStack& pose, Rgb outline) const {
     auto one = [&](const BlockCorners& q, Rgb fill) {
       const PixelQuad outer = ToPixels(cam, q);
       const PixelQuad inner = Inset(outer, 2.0 * line_w());
@@ -183,8 +220,27 @@ struct FrameRenderer::Impl {
       Colour(outline);
       Ring(outer, inner);
     };
-    one(pose.block1, palette.block1);
-    if (pose.has_block2) one(pose.block2, palette.block2);
+    for (size_t k = 0; k < pose.size(); ++k) one(pose[k], palette.block(static_cast<int>(k)));
+  }
+
+  // Block `which`'s angle in `h` from the window's start to t_clamped, as a line strip through
+  // the samples (px maps a time and an angle to pixels).
+  template <typename ToPixel>
+  void Trace(const History& h, size_t which, double t_clamped, const ToPixel& px) const {
+    glBegin(GL_LINE_STRIP);
+    const Sample first = StateAt(h, layout.t_from_s);
+    const Vec2 p0 = px(layout.t_from_s, first.theta_rad[which]);
+    glVertex2d(p0.x, p0.y);
+    for (const Sample& smp : h.samples) {
+      if (smp.t_s <= layout.t_from_s) continue;
+      if (smp.t_s > t_clamped) break;
+      const Vec2 p = px(smp.t_s, smp.theta_rad[which]);
+      glVertex2d(p.x, p.y);
+    }
+    const Sample now = StateAt(h, t_clamped);
+    const Vec2 p = px(t_clamped, now.theta_rad[which]);
+    glVertex2d(p.x, p.y);
+    glEnd();
   }
 
   void DrawChart(double t) const {
@@ -218,25 +274,54 @@ struct FrameRenderer::Impl {
       }
       glLineWidth(static_cast<float>((i == 0 ? 1.5 : 1.2) * line_w() * s));
       for (int which = h.blocks == 2 ? 1 : 0; which >= 0; --which) {
-        Colour(which == 0 ? palette.chart_theta1 : palette.chart_theta2);
-        glBegin(GL_LINE_STRIP);
-        const Sample first = StateAt(h, layout.t_from_s);
-        const Vec2 p0 = px(layout.t_from_s, first.theta_rad[which]);
-        glVertex2d(p0.x, p0.y);
-        for (const Sample& smp : h.samples) {
-          if (smp.t_s <= layout.t_from_s) continue;
-          if (smp.t_s > t_clamped) break;
-          const Vec2 p = px(smp.t_s, smp.theta_rad[which]);
-          glVertex2d(p.x, p.y);
-        }
-        const Sample now = StateAt(h, t_clamped);
-        const Vec2 p = px(t_clamped, now.theta_rad[which]);
-        glVertex2d(p.x, p.y);
-        glEnd();
+        Colour(palette.chart_theta(which));
+        Trace(h, which, t_clamped, px);
       }
       glDisable(GL_LINE_STIPPLE);
     }
     glDisable(GL_SCISSOR_TEST);
+  }
+
+  // Three and more blocks: one small axis per block, each with its block's trace of every engine
+  // (the first solid, the others dashed), a zero line and the time cursor.
+  void DrawStackedChart(double t) const {
+    const double span = std::max(layout.t_to_s - layout.t_from_s, 1e-9);
+    const double t_clamped = std::clamp(t, layout.t_from_s, layout.t_to_s);
+    const int s = config.supersample;
+    for (size_t k = 0; k < layout.chart_panels.size(); ++k) {
+      const PixelRect& r = layout.chart_panels[k];
+      auto px = [&](double ts, double theta) {
+        const double half = std::max(0.5 * r.h_px - 2.0 * line_w(), 0.35 * r.h_px);
+        return Vec2{r.x_px + (ts - layout.t_from_s) / span * r.w_px,
+                    r.y_px + 0.5 * r.h_px - theta / layout.chart_theta_max_rad * half};
+      };
+      Colour(palette.chart_frame);
+      FillRect(
+          {r.x_px - line_w(), r.y_px - line_w(), r.w_px + 2 * line_w(), r.h_px + 2 * line_w()});
+      Colour(palette.chart_background);
+      FillRect(r);
+      Colour(palette.chart_frame);
+      HLine(r.x_px, r.x_px + r.w_px, r.y_px + 0.5 * r.h_px, line_w());
+      VLine(px(t_clamped, 0).x, r.y_px, r.y_px + r.h_px, line_w());
+      glEnable(GL_SCISSOR_TEST);
+      glScissor(static_cast<int>(r.x_px * s),
+                static_cast<int>((config.height_px - r.y_px - r.h_px) * s),
+                static_cast<int>(r.w_px * s), static_cast<int>(r.h_px * s));
+      Colour(palette.chart_theta(static_cast<int>(k)));
+      for (size_t i = 0; i < tracks.size(); ++i) {
+        const History& h = tracks[i].history;
+        // A history of fewer blocks: the blocks above its top one ride locked on it.
+        const size_t which = std::min(k, static_cast<size_t>(std::max(h.blocks, 1) - 1));
+        if (i > 0) {
+          glEnable(GL_LINE_STIPPLE);
+          glLineStipple(3 * s, 0xF0F0);
+        }
+        glLineWidth(static_cast<float>((i == 0 ? 1.5 : 1.2) * line_w() * s));
+        Trace(h, which, t_clamped, px);
+        glDisable(GL_LINE_STIPPLE);
+      }
+      glDisable(GL_SCISSOR_TEST);
+    }
   }
 
   void DrawGl(double t) {
@@ -273,17 +358,65 @@ struct FrameRenderer::Impl {
       }
       glDisable(GL_SCISSOR_TEST);
     }
-    if (layout.has_chart) DrawChart(t);
+    if (layout.has_chart) {
+      if (layout.chart_panels.empty()) {
+        DrawChart(t);
+      } else {
+        DrawStackedChart(t);
+      }
+    }
   }
 
   std::string StateText(const Track& track, double t, bool with_name) const {
     const Sample s = StateAt(track.history, t);
     std::string line;
     if (with_name) line = track.engine + "   ";
+    if (track.history.blocks >= 3) {
+      return line + "mode " + ConfigurationName(s.mode) + "   " + StackedAngles(s);
+    }
     line +=
         "mode " + ConfigurationName(s.mode) + "   θ₁ = " + Format("%+.4f", s.theta_rad[0]) + " rad";
     if (track.history.blocks == 2) line += "   θ₂ = " + Format("%+.4f", s.theta_rad[1]) + " rad";
     return line;
+  }
+
+  // The stacked chart's labels: each axis's θk left of it in its trace's colour (every
+  // step-th axis when they are lower than a line of text), on the line below the times and the
+  // range every axis shares, and on the line above which engine is solid and which dashed.
+  void DrawStackedChartText(Image* img) {
+    const int asc = font->ascender_px();
+    const std::vector<PixelRect>& panels = layout.chart_panels;
+    const int gap = std::max(2, layout.font_px / 3);
+    const int left = static_cast<int>(std::lround(layout.chart.x_px));
+    const int right = static_cast<int>(std::lround(layout.chart.x_px + layout.chart.w_px));
+    const double pitch_px = panels.size() > 1 ? panels[0].y_px - panels[1].y_px : 1e9;
+    const size_t step = static_cast<size_t>(std::ceil(0.9 * layout.line_px / pitch_px));
+    for (size_t k = 0; k < panels.size(); k += std::max<size_t>(step, 1)) {
+      const std::string label = ThetaLabel(static_cast<int>(k) + 1);
+      const PixelRect& r = panels[k];
+      font->Draw(img, left - gap - font->Measure(label),
+                 static_cast<int>(std::lround(r.y_px + 0.5 * r.h_px)) + asc / 2, label,
+                 palette.chart_theta(static_cast<int>(k)));
+    }
+    const int below =
+        static_cast<int>(std::lround(layout.chart.y_px + layout.chart.h_px)) + gap + asc;
+    const std::string t_from = Format("%.4g", layout.t_from_s) + " s";
+    const std::string t_end = Format("%.4g", layout.t_to_s) + " s";
+    font->Draw(img, left, below, t_from, palette.text);
+    font->Draw(img, right - font->Measure(t_end), below, t_end, palette.text);
+    // The range every axis shares, between the two times.
+    const std::string range = "±" + Format("%g", layout.chart_theta_max_rad) + " rad";
+    font->Draw(img, (left + right - font->Measure(range)) / 2, below, range, palette.text);
+    if (tracks.size() > 1) {
+      // Above the column: which engine is solid, which dashed (shortened when it does not fit).
+      std::string legend = tracks[0].engine + " solid, ";
+      for (size_t i = 1; i < tracks.size(); ++i) {
+        legend += tracks[i].engine + (i + 1 < tracks.size() ? ", " : " dashed");
+      }
+      legend = Fitted(font.get(), legend, right - left);
+      font->Draw(img, (left + right - font->Measure(legend)) / 2,
+                 static_cast<int>(std::lround(layout.chart.y_px)) - gap, legend, palette.text);
+    }
   }
 
   void DrawText(double t, Image* img) {
@@ -325,6 +458,12 @@ struct FrameRenderer::Impl {
           const Sample s = StateAt(tracks[i].history, t);
           font->Draw(img, x, baseline(r, 0),
                      tracks[i].engine + "   mode " + ConfigurationName(s.mode), palette.text);
+          if (tracks[i].history.blocks >= 3) {
+            font->Draw(img, x, baseline(r, 1),
+                       Fitted(font.get(), StackedAngles(s), static_cast<int>(r.w_px)),
+                       palette.text);
+            continue;
+          }
           std::string angles = "θ₁ = " + Format("%+.4f", s.theta_rad[0]);
           if (tracks[i].history.blocks == 2) {
             angles += "   θ₂ = " + Format("%+.4f", s.theta_rad[1]);
@@ -335,13 +474,18 @@ struct FrameRenderer::Impl {
         for (size_t i = 0; i < tracks.size(); ++i) {
           const std::string style =
               tracks.size() > 1 ? (i == 0 ? " (solid)" : " (outline)") : std::string();
-          font->Draw(img, x0, baseline(layout.header, static_cast<int>(i) + 1),
-                     tracks[i].engine + style + "   " + StateText(tracks[i], t, false),
-                     palette.text);
+          std::string line = tracks[i].engine + style + "   " + StateText(tracks[i], t, false);
+          // Eight angles may not fit a narrow frame: shortened, they end in an ellipsis.
+          if (tracks[i].history.blocks >= 3) {
+            line = Fitted(font.get(), line, static_cast<int>(layout.header.w_px));
+          }
+          font->Draw(img, x0, baseline(layout.header, static_cast<int>(i) + 1), line, palette.text);
         }
       }
     }
-    if (layout.has_chart) {
+    if (layout.has_chart && !layout.chart_panels.empty()) {
+      DrawStackedChartText(img);
+    } else if (layout.has_chart) {
       // Angle range left of the plot, times and legend on the line below it.
       const PixelRect& r = layout.chart;
       const int gap = std::max(2, layout.font_px / 3);
@@ -376,8 +520,8 @@ struct FrameRenderer::Impl {
       const int w2 = two ? space + font->Measure("θ₂") : 0;
       int x = static_cast<int>(std::lround(r.x_px + 0.5 * r.w_px)) -
               (w1 + w2 + font->Measure(engines)) / 2;
-      x += font->Draw(img, x, below, "θ₁", palette.chart_theta1);
-      if (two) x += space + font->Draw(img, x + space, below, "θ₂", palette.chart_theta2);
+      x += font->Draw(img, x, below, "θ₁", palette.chart_theta(0));
+      if (two) x += space + font->Draw(img, x + space, below, "θ₂", palette.chart_theta(1));
       font->Draw(img, x, below, engines, palette.text);
     }
   }

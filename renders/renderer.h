@@ -1,8 +1,10 @@
 #pragma once
-/// Frames of a scene's motion: the ground and the blocks at a time of one or more engines'
-/// histories, with the base displacement, text (time, mode, angles) and a strip chart of the
-/// angles. Draws with legacy GL into an off-screen context (gl_context.h), supersampled and
-/// box-filtered down for anti-aliased edges; text is drawn with FreeType on the final pixels.
+/// Frames of a scene's motion: the ground and the blocks (any number of them) at a time of one or
+/// more engines' histories, with the base displacement, text (time, mode, angles) and a strip
+/// chart of the angles. Draws with legacy GL into an off-screen context (gl_context.h),
+/// supersampled and box-filtered down for anti-aliased edges; text is drawn with FreeType on the
+/// final pixels.
+#include <array>
 #include <filesystem>
 #include <limits>
 #include <memory>
@@ -44,7 +46,7 @@ struct RenderConfig {
   double t_from_s = std::numeric_limits<double>::quiet_NaN();
   double t_to_s = std::numeric_limits<double>::quiet_NaN();
   bool show_text = true;         ///< time stamp, mode and angles of each engine
-  bool show_chart = true;        ///< strip chart of theta1/theta2 up to the current time
+  bool show_chart = true;        ///< strip chart of every block's angle up to the current time
   bool show_base_motion = true;  ///< shift ground and blocks by the base displacement
   std::string title;             ///< optional text at the top right (e.g. the scene title)
   std::filesystem::path font_path = kDefaultFontPath;
@@ -65,8 +67,14 @@ struct FrameLayout {
   std::vector<Camera> views;           ///< overlay: one; side: one per track, left to right
   std::vector<PixelRect> view_labels;  ///< side: each view's text lines (above the view)
   bool has_chart = false;
-  PixelRect chart;                   ///< the strip chart's plot area (labels outside)
-  double chart_theta_max_rad = 0.0;  ///< the chart's y range is +-this, rad
+  /// The strip chart's plot area (labels outside): below the views for one or two blocks; for
+  /// three and more a column right of the views holding chart_panels.
+  PixelRect chart;
+  /// Three and more blocks: one small axis per block (block k + 1's at index k, block 1's at the
+  /// bottom, as the stack), stacked in `chart` with a gap between them and sharing its time
+  /// axis. Empty for one or two blocks (one axis, `chart`, with a trace per block).
+  std::vector<PixelRect> chart_panels;
+  double chart_theta_max_rad = 0.0;  ///< the chart's y range is +-this, rad (every panel's)
 };
 
 /// The layout of frames for these inputs (throws std::invalid_argument for a bad config or no
@@ -80,14 +88,41 @@ struct Palette {
   Rgb background{248, 248, 246};
   Rgb ground{120, 120, 120};
   Rgb ground_line{50, 50, 50};
-  Rgb block1{40, 72, 130};
-  Rgb block2{240, 160, 50};
+  /// Block k + 1's fill at index k (block(k) cycles beyond 8). Blocks 1 and 2 keep their dark
+  /// blue and orange; then wine, lilac, dark green, light green, olive, light aqua. Dark and
+  /// light alternate up the stack (luma 0.27, 0.66, 0.25, 0.64, 0.34, 0.75, 0.37, 0.77), so
+  /// neighbours differ by at least 0.3 in greyscale; any two of the eight differ by CIE76
+  /// Delta E >= 35 (>= 17 under simulated deuteranopia, protanopia and tritanopia, >= 37 between
+  /// neighbours), and each differs from the background and the ground by >= 37.
+  std::array<Rgb, 8> blocks{{{40, 72, 130},
+                             {240, 160, 50},
+                             {130, 40, 90},
+                             {190, 150, 210},
+                             {20, 110, 60},
+                             {150, 210, 120},
+                             {100, 100, 20},
+                             {120, 220, 200}}};
   Rgb outline{20, 20, 20};
   Rgb text{20, 20, 20};
   Rgb chart_background{255, 255, 255};
   Rgb chart_frame{150, 150, 150};
-  Rgb chart_theta1{40, 72, 130};
-  Rgb chart_theta2{205, 110, 0};
+  /// Block k + 1's angle trace and label at index k (chart_theta(k) cycles beyond 8): its fill,
+  /// darkened where the fill is too light for a thin line on white.
+  std::array<Rgb, 8> chart_thetas{{{40, 72, 130},
+                                   {205, 110, 0},
+                                   {130, 40, 90},
+                                   {120, 80, 170},
+                                   {20, 110, 60},
+                                   {60, 150, 40},
+                                   {100, 100, 20},
+                                   {0, 140, 130}}};
+
+  /// Block k + 1's fill (k = 0: block 1).
+  Rgb block(int k) const { return blocks[static_cast<size_t>(k) % blocks.size()]; }
+  /// Block k + 1's trace colour.
+  Rgb chart_theta(int k) const {
+    return chart_thetas[static_cast<size_t>(k) % chart_thetas.size()];
+  }
 };
 
 /// Draws frames. Owns a GL context (created in the constructor) and the font.

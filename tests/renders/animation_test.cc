@@ -138,6 +138,57 @@ TEST(ExportAnimation, FramesArePngsOfTheRenderedImages) {
   fs::remove_all(cfg.out_dir);
 }
 
+// A short run of three blocks rocking apart (a history made by hand: each block's own phase).
+History ThreeRocking() {
+  History h;
+  h.blocks = 3;
+  for (int i = 0; i <= 60; ++i) {
+    Sample s(3);
+    s.t_s = 0.01 * i;
+    for (int k = 0; k < 3; ++k) s.theta_rad[k] = 0.04 * (k + 1) * std::sin(6 * s.t_s + 0.5 * k);
+    h.samples.push_back(s);
+  }
+  return h;
+}
+
+TEST(ExportAnimation, AThreeBlockRunHasItsFrames) {
+  // 0.6 s at 10 fps in 2x slow motion: 12 frames, a 1.2 s video, each frame the picture of
+  // its time (three blocks, a chart axis each).
+  Scene scene;
+  for (double w : {0.9, 0.8, 0.7}) {
+    scene.blocks.push_back(BlockDef{.width_m = w, .height_m = 0.85, .mass_kg = 100.0});
+  }
+  RenderConfig rc = Small();
+  rc.width_px = 320;
+  rc.height_px = 240;
+  FrameRenderer renderer(scene, {{"reference", ThreeRocking()}}, {}, rc);
+  ASSERT_EQ(renderer.layout().chart_panels.size(), 3u);
+  AnimationConfig cfg;
+  cfg.out_dir = Folder("three_blocks");
+  cfg.fps = 10.0;
+  cfg.speed = 0.5;
+  cfg.frames = true;
+  cfg.mp4 = HaveFfmpeg();
+  const AnimationResult r = ExportAnimation(renderer, cfg);
+  EXPECT_TRUE(r.problems.empty());
+  ASSERT_EQ(r.frame_count, 12);
+  int files = 0;
+  for (const auto& e : fs::directory_iterator(cfg.out_dir / "frames")) {
+    (void)e;
+    ++files;
+  }
+  EXPECT_EQ(files, 12);
+  EXPECT_NEAR(r.frame_times_s[7], 0.35, 1e-12);
+  EXPECT_EQ(ReadPng(cfg.out_dir / "frames" / "frame_00007.png").rgb,
+            renderer.Render(r.frame_times_s[7]).rgb);
+  if (cfg.mp4) {
+    const auto info = Probe(cfg.out_dir / "animation.mp4");
+    EXPECT_EQ(info.at("nb_read_frames"), "12");
+    EXPECT_NEAR(std::stod(info.at("duration")), 1.2, 1e-3);
+  }
+  fs::remove_all(cfg.out_dir);
+}
+
 TEST(ExportAnimation, WithoutFfmpegItSaysSoAndWritesTheFrames) {
   FrameRenderer renderer(Stack(), {{"reference", Rocking()}}, {}, Small());
   AnimationConfig cfg;

@@ -112,6 +112,44 @@ TEST(CmdRender, RunFolderIsDrawnFromItsHistories) {
   fs::remove_all(dir);
 }
 
+TEST(CmdRender, AStackOfThreeBlocksIsDrawnFromItsRunFolder) {
+  // A run folder of a three-block scene ([[block]] tables) with a three-block history: drawn
+  // as it is, one frame per tenth of a second, each the direct render of the same files.
+  const fs::path dir = Folder("three_blocks");
+  fs::create_directories(dir / "reference");
+  std::ofstream(dir / "scene.toml") << "title = \"three drums\"\n"
+                                    << "[[block]]\nwidth = 0.9\nheight = 0.85\ndensity = 2700.0\n"
+                                    << "[[block]]\nwidth = 0.9\nheight = 0.85\ndensity = 2700.0\n"
+                                    << "[[block]]\nwidth = 0.8\nheight = 0.85\ndensity = 2700.0\n"
+                                    << "[initial]\ntheta = [0.05, 0.05, 0.05]\n"
+                                    << "[run]\nduration = 0.5\n";
+  History h;
+  h.blocks = 3;
+  for (int i = 0; i <= 5; ++i) {
+    Sample s(3);
+    s.t_s = 0.1 * i;
+    for (int k = 0; k < 3; ++k) s.theta_rad[k] = 0.05 + 0.01 * i * k;
+    h.samples.push_back(s);
+  }
+  WriteFileAtomic(dir / "reference" / "history.csv", HistoryToCsv(h));
+  const fs::path out = dir / "pictures";
+  const Result r =
+      RunCli(dir.string() + " --out " + out.string() + " --frames --size 320x240 --fps 10");
+  ASSERT_EQ(r.status, 0) << r.output;
+  ASSERT_EQ(CountFiles(out / "frames"), 5);
+  const Scene scene = LoadScene(dir / "scene.toml");
+  ASSERT_EQ(scene.block_count(), 3);
+  RenderConfig cfg;
+  cfg.width_px = 320;
+  cfg.height_px = 240;
+  cfg.title = scene.title;
+  FrameRenderer direct(scene, {{"reference", ReadHistoryCsv(dir / "reference" / "history.csv")}},
+                       {}, cfg);
+  EXPECT_EQ(direct.layout().chart_panels.size(), 3u);
+  EXPECT_EQ(ReadPng(out / "frames" / "frame_00003.png").rgb, direct.Render(0.3).rgb);
+  fs::remove_all(dir);
+}
+
 #else
 
 TEST(CmdRender, SaysThisBuildHasNoOsmesa) {

@@ -49,71 +49,71 @@ void ExpectNear(Vec2 a, Vec2 b) {
 }
 
 TEST(PoseFor, AtRestBlock2IsCentredOnBlock1) {
-  const StackCorners p = PoseFor(TwoBlocks(), 0.0, 0.0);
-  ExpectNear(p.block1[0], {-0.5, 0.0});
-  ExpectNear(p.block1[2], {0.5, 1.5});
-  ExpectNear(p.block2[0], {-0.3, 1.5});
-  ExpectNear(p.block2[2], {0.3, 2.7});
+  const DrawnStack p = PoseFor(TwoBlocks(), 0.0, 0.0);
+  ExpectNear(p[0][0], {-0.5, 0.0});
+  ExpectNear(p[0][2], {0.5, 1.5});
+  ExpectNear(p[1][0], {-0.3, 1.5});
+  ExpectNear(p[1][2], {0.3, 2.7});
 }
 
 TEST(PoseFor, PositiveTheta1PivotsAboutTheRightCornerClockwise) {
   const double th = 0.3;
-  const StackCorners p = PoseFor(TwoBlocks(), th, th);
+  const DrawnStack p = PoseFor(TwoBlocks(), th, th);
   // The right base corner stays put; the left one lifts; the top moves right.
-  ExpectNear(p.block1[1], {0.5, 0.0});
-  EXPECT_GT(p.block1[0].y, 0.0);
-  EXPECT_NEAR(p.block1[0].y, std::sin(th), kTolM);
-  EXPECT_GT(p.block1[3].x, -0.5);
-  EXPECT_NEAR(TiltOf(p.block1), th, kTolM);
+  ExpectNear(p[0][1], {0.5, 0.0});
+  EXPECT_GT(p[0][0].y, 0.0);
+  EXPECT_NEAR(p[0][0].y, std::sin(th), kTolM);
+  EXPECT_GT(p[0][3].x, -0.5);
+  EXPECT_NEAR(TiltOf(p[0]), th, kTolM);
   // Rigid: the sides keep their lengths.
-  EXPECT_NEAR(Dist(p.block1[0], p.block1[1]), 1.0, kTolM);
-  EXPECT_NEAR(Dist(p.block1[1], p.block1[2]), 1.5, kTolM);
+  EXPECT_NEAR(Dist(p[0][0], p[0][1]), 1.0, kTolM);
+  EXPECT_NEAR(Dist(p[0][1], p[0][2]), 1.5, kTolM);
 }
 
 TEST(PoseFor, NegativeTheta1PivotsAboutTheLeftCorner) {
   const double th = -0.25;
-  const StackCorners p = PoseFor(TwoBlocks(), th, th);
-  ExpectNear(p.block1[0], {-0.5, 0.0});
-  EXPECT_NEAR(p.block1[1].y, std::sin(-th), kTolM);
-  EXPECT_LT(p.block1[2].x, 0.5);
-  EXPECT_NEAR(TiltOf(p.block1), th, kTolM);
+  const DrawnStack p = PoseFor(TwoBlocks(), th, th);
+  ExpectNear(p[0][0], {-0.5, 0.0});
+  EXPECT_NEAR(p[0][1].y, std::sin(-th), kTolM);
+  EXPECT_LT(p[0][2].x, 0.5);
+  EXPECT_NEAR(TiltOf(p[0]), th, kTolM);
 }
 
 TEST(PoseFor, LockedBlock2StaysCentredOnTheTiltedBlock1) {
   const double th = 0.2;
-  const StackCorners p = PoseFor(TwoBlocks(), th, th);
+  const DrawnStack p = PoseFor(TwoBlocks(), th, th);
   // Block 2's base corners are block 1's top-face points at -+0.3 m from its centre.
-  const Vec2 top_mid{0.5 * (p.block1[2].x + p.block1[3].x), 0.5 * (p.block1[2].y + p.block1[3].y)};
+  const Vec2 top_mid{0.5 * (p[0][2].x + p[0][3].x), 0.5 * (p[0][2].y + p[0][3].y)};
   const Vec2 along{std::cos(th), -std::sin(th)};
-  ExpectNear(p.block2[0], {top_mid.x - 0.3 * along.x, top_mid.y - 0.3 * along.y});
-  ExpectNear(p.block2[1], {top_mid.x + 0.3 * along.x, top_mid.y + 0.3 * along.y});
-  EXPECT_NEAR(TiltOf(p.block2), th, kTolM);
+  ExpectNear(p[1][0], {top_mid.x - 0.3 * along.x, top_mid.y - 0.3 * along.y});
+  ExpectNear(p[1][1], {top_mid.x + 0.3 * along.x, top_mid.y + 0.3 * along.y});
+  EXPECT_NEAR(TiltOf(p[1]), th, kTolM);
 }
 
 TEST(PoseFor, Block2AheadOfBlock1PivotsAboutItsRightCorner) {
   // theta2 > theta1: block 2's right base corner stays where it is on block 1's top face.
   const double th1 = 0.1, th2 = 0.35;
-  const StackCorners locked = PoseFor(TwoBlocks(), th1, th1);
-  const StackCorners p = PoseFor(TwoBlocks(), th1, th2);
-  ExpectNear(p.block2[1], locked.block2[1]);
-  EXPECT_NEAR(TiltOf(p.block2), th2, kTolM);
-  EXPECT_NEAR(Dist(p.block2[1], p.block2[2]), 1.2, kTolM);
+  const DrawnStack locked = PoseFor(TwoBlocks(), th1, th1);
+  const DrawnStack p = PoseFor(TwoBlocks(), th1, th2);
+  ExpectNear(p[1][1], locked[1][1]);
+  EXPECT_NEAR(TiltOf(p[1]), th2, kTolM);
+  EXPECT_NEAR(Dist(p[1][1], p[1][2]), 1.2, kTolM);
 }
 
 TEST(PoseFor, Block2BehindBlock1PivotsAboutItsLeftCorner) {
   const double th1 = 0.1, th2 = -0.2;
-  const StackCorners locked = PoseFor(TwoBlocks(), th1, th1);
-  const StackCorners p = PoseFor(TwoBlocks(), th1, th2);
-  ExpectNear(p.block2[0], locked.block2[0]);
-  EXPECT_NEAR(TiltOf(p.block2), th2, kTolM);
+  const DrawnStack locked = PoseFor(TwoBlocks(), th1, th1);
+  const DrawnStack p = PoseFor(TwoBlocks(), th1, th2);
+  ExpectNear(p[1][0], locked[1][0]);
+  EXPECT_NEAR(TiltOf(p[1]), th2, kTolM);
 }
 
 TEST(PoseFor, Block2OnBlock1AtRestTiltsAboutItsCornerOnTheTopFace) {
   // Mode 4a: block 1 still, block 2 rocks on it about (b2, H1).
-  const StackCorners p = PoseFor(TwoBlocks(), 0.0, 0.2);
-  ExpectNear(p.block1[2], {0.5, 1.5});
-  ExpectNear(p.block2[1], {0.3, 1.5});
-  EXPECT_NEAR(p.block2[0].y, 1.5 + 0.6 * std::sin(0.2), kTolM);
+  const DrawnStack p = PoseFor(TwoBlocks(), 0.0, 0.2);
+  ExpectNear(p[0][2], {0.5, 1.5});
+  ExpectNear(p[1][1], {0.3, 1.5});
+  EXPECT_NEAR(p[1][0].y, 1.5 + 0.6 * std::sin(0.2), kTolM);
 }
 
 // A block 2 wider than block 1 is refused by the scene reader (block2.width), so the pivot
@@ -124,58 +124,186 @@ TEST(PoseFor, IsTheEnginesPivotChain) {
   // bit for bit: one geometry.
   const Scene s = TwoBlocks();
   const InitialState state = testing_util::Initial(0.12, -0.07, 0.3, -0.4);
-  const StackCorners p = PoseFor(s, state);
+  const DrawnStack p = PoseFor(s, state);
   const StackPlacement place = PlaceStack(0.5, 0.75, 0.3, 0.6, true, state);
   const BlockCorners c1 = Corners(place.block1, 0.5, 0.75), c2 = Corners(place.block2, 0.3, 0.6);
   for (int i = 0; i < 4; ++i) {
-    EXPECT_EQ(p.block1[i].x, c1[i].x);
-    EXPECT_EQ(p.block1[i].y, c1[i].y);
-    EXPECT_EQ(p.block2[i].x, c2[i].x);
-    EXPECT_EQ(p.block2[i].y, c2[i].y);
+    EXPECT_EQ(p[0][i].x, c1[i].x);
+    EXPECT_EQ(p[0][i].y, c1[i].y);
+    EXPECT_EQ(p[1][i].x, c2[i].x);
+    EXPECT_EQ(p[1][i].y, c2[i].y);
+  }
+}
+
+// A stack of `n` blocks narrowing upwards: block k (1-based) is 1.0 - 0.05 (k - 1) m wide and
+// 0.8 + 0.1 (k % 3) m high.
+Scene Column(int n) {
+  Scene s;
+  for (int k = 1; k <= n; ++k) {
+    s.blocks.push_back(BlockDef{
+        .width_m = 1.0 - 0.05 * (k - 1), .height_m = 0.8 + 0.1 * (k % 3), .mass_kg = 50.0});
+  }
+  return s;
+}
+
+InitialState StateOf(const std::vector<double>& theta, const std::vector<double>& omega = {}) {
+  InitialState state;
+  for (size_t k = 0; k < theta.size(); ++k) state.theta_rad[k] = theta[k];
+  for (size_t k = 0; k < omega.size(); ++k) state.omega_radps[k] = omega[k];
+  return state;
+}
+
+TEST(ChainCorners, IsTheEnginesChainForOneAndTwoBlocks) {
+  // The renders' N-block chain repeats PlaceStack's operations: for the one or two blocks
+  // StackCornersAt places, the same corners bit for bit, in every pivot case (signs of the
+  // angles, zero angles taking the side of the rate).
+  for (int n : {1, 2}) {
+    const Scene s = Column(n);
+    for (double th1 : {-0.2, 0.0, 0.13}) {
+      for (double th2 : {-0.3, 0.0, 0.13, 0.4}) {
+        for (double w : {-1.0, 0.0, 2.0}) {
+          const InitialState state = testing_util::Initial(th1, th2, w, -0.5 * w);
+          const StackCorners want = StackCornersAt(s, state);
+          const DrawnStack got = ChainCorners(s, state);
+          ASSERT_EQ(got.size(), static_cast<size_t>(n));
+          for (int i = 0; i < 4; ++i) {
+            EXPECT_EQ(got[0][i].x, want.block1[i].x);
+            EXPECT_EQ(got[0][i].y, want.block1[i].y);
+            if (n == 2) {
+              EXPECT_EQ(got[1][i].x, want.block2[i].x);
+              EXPECT_EQ(got[1][i].y, want.block2[i].y);
+            }
+          }
+        }
+      }
+    }
+  }
+}
+
+TEST(ChainCorners, ALockedColumnTurnsRigidlyAboutBlock1sCorner) {
+  // Every block at the same angle and rate: the column is one rigid body turning about block
+  // 1's right base corner (theta > 0) or its left one (theta < 0). Its corners are those at
+  // rest turned about that corner.
+  const Scene s = Column(8);
+  for (double th : {0.15, -0.1}) {
+    const DrawnStack rest = PoseFor(s, StateOf(std::vector<double>(8, 0.0)));
+    const DrawnStack p = PoseFor(s, StateOf(std::vector<double>(8, th)));
+    ASSERT_EQ(p.size(), 8u);
+    const Vec2 pivot{th > 0 ? 0.5 : -0.5, 0.0};
+    for (size_t k = 0; k < 8; ++k) {
+      for (int i = 0; i < 4; ++i) {
+        const Vec2 d = rest[k][i] - pivot;
+        ExpectNear(p[k][i], {pivot.x + std::cos(th) * d.x + std::sin(th) * d.y,
+                             pivot.y - std::sin(th) * d.x + std::cos(th) * d.y});
+      }
+    }
+  }
+  // At rest each block is centred on the one below, its base on the other's top.
+  const DrawnStack rest = PoseFor(s, InitialState{});
+  double y = 0.0;
+  for (int k = 0; k < 8; ++k) {
+    const double b = 0.5 * s.blocks[k].width_m, h = s.blocks[k].height_m;
+    ExpectNear(rest[k][0], {-b, y});
+    ExpectNear(rest[k][2], {b, y + h});
+    y += h;
+  }
+}
+
+TEST(ChainCorners, EachBlockPivotsOnTheTopFaceOfTheOneBelow) {
+  // Three blocks, the third tilted further right than the second (it pivots about its right
+  // base corner) and the second back to the left of the first (about its left one): each
+  // pivot is a corner of the block above lying on the top face of the block below, and each
+  // block is tilted by its own angle.
+  const Scene s = Column(3);
+  const double th1 = 0.05, th2 = -0.04, th3 = 0.12;
+  const DrawnStack p = PoseFor(s, StateOf({th1, th2, th3}));
+  ASSERT_EQ(p.size(), 3u);
+  EXPECT_NEAR(TiltOf(p[0]), th1, kTolM);
+  EXPECT_NEAR(TiltOf(p[1]), th2, kTolM);
+  EXPECT_NEAR(TiltOf(p[2]), th3, kTolM);
+  ExpectNear(p[0][1], {0.5, 0.0});  // block 1 about its right corner
+  // Block 2's left base corner: on block 1's top face, 0.475 m left of its middle (where it is
+  // when locked).
+  const DrawnStack locked12 = PoseFor(s, StateOf({th1, th1, th1}));
+  ExpectNear(p[1][0], locked12[1][0]);
+  // Block 3's right base corner: where it is when locked on block 2 (block 2 as it is now).
+  const DrawnStack locked23 = PoseFor(s, StateOf({th1, th2, th2}));
+  ExpectNear(p[2][1], locked23[2][1]);
+  // And that point is on block 2's top face, 0.45 m right of its middle.
+  const Vec2 top_mid = 0.5 * (p[1][2] + p[1][3]);
+  ExpectNear(p[2][1], top_mid + 0.45 * Vec2{std::cos(th2), -std::sin(th2)});
+  // Rigid blocks.
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_NEAR(Dist(p[k][0], p[k][1]), s.blocks[k].width_m, kTolM);
+    EXPECT_NEAR(Dist(p[k][1], p[k][2]), s.blocks[k].height_m, kTolM);
+  }
+}
+
+TEST(ChainCorners, ZeroAnglesWithRatesMoveNoCorner) {
+  const Scene s = Column(5);
+  const DrawnStack rest = PoseFor(s, InitialState{});
+  const DrawnStack p = PoseFor(s, StateOf({0, 0, 0, 0, 0}, {1.0, -2.0, 0.5, 0.5, -3.0}));
+  for (int k = 0; k < 5; ++k) {
+    for (int i = 0; i < 4; ++i) ExpectNear(p[k][i], rest[k][i]);
+  }
+}
+
+TEST(ChainCorners, BaseDisplacementShiftsEveryBlock) {
+  const Scene s = Column(4);
+  const DrawnStack a = PoseFor(s, StateOf({0.1, 0.2, 0.0, -0.1}));
+  const DrawnStack b = PoseFor(s, StateOf({0.1, 0.2, 0.0, -0.1}), {0.25, -0.05});
+  for (int k = 0; k < 4; ++k) {
+    for (int i = 0; i < 4; ++i) ExpectNear(b[k][i], {a[k][i].x + 0.25, a[k][i].y - 0.05});
   }
 }
 
 TEST(PoseFor, AZeroAngleWithARateMovesNoCorner) {
   // At theta = 0 the pivot takes the side of the rate (PivotSide's tie-break); a rotation by
   // zero about either corner leaves every corner at rest.
-  const StackCorners rest = PoseFor(TwoBlocks(), 0.0, 0.0);
+  const DrawnStack rest = PoseFor(TwoBlocks(), 0.0, 0.0);
   for (const InitialState& state :
        {testing_util::Initial(0.0, 0.0, 1.5, 1.5), testing_util::Initial(0.0, 0.0, -2.0, 1.0)}) {
-    const StackCorners p = PoseFor(TwoBlocks(), state);
+    const DrawnStack p = PoseFor(TwoBlocks(), state);
     for (int i = 0; i < 4; ++i) {
-      ExpectNear(p.block1[i], rest.block1[i]);
-      ExpectNear(p.block2[i], rest.block2[i]);
+      ExpectNear(p[0][i], rest[0][i]);
+      ExpectNear(p[1][i], rest[1][i]);
     }
   }
 }
 
-TEST(StackState, ASingleBlockHistoryLocksBlock2) {
-  const Sample s = MakeSample({.t_s = 1.0,
-                               .theta1_rad = 0.1,
-                               .theta2_rad = 0.5,
-                               .omega1_radps = -0.2,
-                               .omega2_radps = 3.0});
-  const InitialState one = StackState(s, false), two = StackState(s, true);
-  EXPECT_EQ(one.theta_rad[1], 0.1);
-  EXPECT_EQ(one.omega_radps[1], -0.2);
-  EXPECT_EQ(two.theta_rad[1], 0.5);
-  EXPECT_EQ(two.omega_radps[1], 3.0);
+TEST(StackState, BlocksAboveTheHistorysTopRideLockedOnIt) {
+  const Sample two = MakeSample({.t_s = 1.0,
+                                 .theta1_rad = 0.1,
+                                 .theta2_rad = 0.5,
+                                 .omega1_radps = -0.2,
+                                 .omega2_radps = 3.0});
+  const InitialState s2 = StackState(two);
+  EXPECT_EQ(s2.theta_rad[0], 0.1);
+  EXPECT_EQ(s2.omega_radps[0], -0.2);
+  EXPECT_EQ(s2.theta_rad[1], 0.5);
+  EXPECT_EQ(s2.omega_radps[1], 3.0);
+  EXPECT_EQ(s2.theta_rad[7], 0.5);
+  // A single-block history drawn on a two-block scene: block 2 locked on block 1.
+  const Sample one = MakeSample({.t_s = 1.0, .theta1_rad = 0.1, .omega1_radps = -0.2, .blocks = 1});
+  const InitialState s1 = StackState(one);
+  EXPECT_EQ(s1.theta_rad[1], 0.1);
+  EXPECT_EQ(s1.omega_radps[1], -0.2);
 }
 
 TEST(PoseFor, SingleBlockHasNoBlock2) {
   Scene s = TwoBlocks();
   s.blocks.resize(1);
-  const StackCorners p = PoseFor(s, 0.1, 0.0);
-  EXPECT_FALSE(p.has_block2);
-  ExpectNear(p.block1[1], {0.5, 0.0});
+  const DrawnStack p = PoseFor(s, 0.1, 0.0);
+  EXPECT_EQ(p.size(), 1u);
+  ExpectNear(p[0][1], {0.5, 0.0});
 }
 
 TEST(PoseFor, BaseDisplacementShiftsEverything) {
-  const StackCorners a = PoseFor(TwoBlocks(), 0.1, 0.3);
-  const StackCorners b = PoseFor(TwoBlocks(), 0.1, 0.3, {0.25, -0.05});
+  const DrawnStack a = PoseFor(TwoBlocks(), 0.1, 0.3);
+  const DrawnStack b = PoseFor(TwoBlocks(), 0.1, 0.3, {0.25, -0.05});
   for (int i = 0; i < 4; ++i) {
-    ExpectNear(b.block1[i], {a.block1[i].x + 0.25, a.block1[i].y - 0.05});
-    ExpectNear(b.block2[i], {a.block2[i].x + 0.25, a.block2[i].y - 0.05});
+    ExpectNear(b[0][i], {a[0][i].x + 0.25, a[0][i].y - 0.05});
+    ExpectNear(b[1][i], {a[1][i].x + 0.25, a[1][i].y - 0.05});
   }
 }
 
@@ -366,8 +494,8 @@ TEST(Camera, MotionBoxHoldsAnOverturningBlock) {
   const Box box = MotionBox(s, {&h}, {}, 0.0, 1.0);
   const Camera cam = FitCamera(box, 0, 0, 640, 360);
   for (const Sample& smp : h.samples) {
-    const StackCorners p = PoseFor(s, smp.theta_rad[0], smp.theta_rad[1]);
-    for (const BlockCorners* q : {&p.block1, &p.block2}) {
+    const DrawnStack p = PoseFor(s, smp.theta_rad[0], smp.theta_rad[1]);
+    for (const BlockCorners* q : {&p[0], &p[1]}) {
       for (const Vec2& c : *q) {
         const Vec2 px = cam.ToPixel(c);
         EXPECT_GE(px.x, 0.0);
@@ -381,6 +509,36 @@ TEST(Camera, MotionBoxHoldsAnOverturningBlock) {
   EXPECT_GE(box.x_max_m, 3.2);
   // Some ground is in view below the surface.
   EXPECT_LT(box.y_min_m, 0.0);
+}
+
+TEST(Camera, MotionBoxHoldsEveryBlockOfATallStack) {
+  // Eight blocks rocking apart: every corner of every block at every sample is in the box, and
+  // the box is as tall as the column (its height grows with the number of blocks).
+  const Scene s = Column(8);
+  History h;
+  h.blocks = 8;
+  for (int i = 0; i <= 50; ++i) {
+    Sample smp(8);
+    smp.t_s = 0.02 * i;
+    for (int k = 0; k < 8; ++k) smp.theta_rad[k] = 0.05 * (k + 1) * std::sin(3.0 * smp.t_s + k);
+    h.samples.push_back(smp);
+  }
+  const Box box = MotionBox(s, {&h}, {}, 0.0, 1.0);
+  for (const Sample& smp : h.samples) {
+    for (const BlockCorners& q : PoseFor(s, StackState(smp))) {
+      for (const Vec2& c : q) {
+        EXPECT_GE(c.x, box.x_min_m);
+        EXPECT_LE(c.x, box.x_max_m);
+        EXPECT_GE(c.y, box.y_min_m);
+        EXPECT_LE(c.y, box.y_max_m);
+      }
+    }
+  }
+  double column_h = 0.0;
+  for (const BlockDef& b : s.blocks) column_h += b.height_m;
+  EXPECT_GE(box.y_max_m, column_h);
+  // The ground strip below is a fifth of the column's height.
+  EXPECT_LE(box.y_min_m, -0.2 * column_h);
 }
 
 TEST(FrameTimes, CountAndSpacingFollowFpsAndSpeed) {

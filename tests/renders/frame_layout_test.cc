@@ -2,6 +2,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 #include "renders/renderer.h"
 #include "tests/common/sample.h"
@@ -114,6 +116,121 @@ TEST(ComputeLayout, BaseDisplacementWidensTheView) {
   cfg.show_base_motion = false;
   const FrameLayout off = ComputeLayout(Stack(), {{"reference", h}}, moving, cfg);
   EXPECT_NEAR(off.views[0].world.width_m(), still.views[0].world.width_m(), 1e-12);
+}
+
+// A column of `n` equal drums, 0.9 m wide and 0.85 m high, and a history of it rocking.
+Scene Drums(int n) {
+  Scene s;
+  for (int k = 0; k < n; ++k) {
+    s.blocks.push_back(BlockDef{.width_m = 0.9, .height_m = 0.85, .mass_kg = 1500.0});
+  }
+  return s;
+}
+
+History DrumsRocking(int n, double amp_rad) {
+  History h;
+  h.blocks = n;
+  for (int i = 0; i <= 300; ++i) {
+    Sample smp(n);
+    smp.t_s = 0.01 * i;
+    for (int k = 0; k < n; ++k) smp.theta_rad[k] = amp_rad * (k + 1) * std::sin(3.0 * smp.t_s);
+    h.samples.push_back(smp);
+  }
+  return h;
+}
+
+TEST(ComputeLayout, ThreeAndMoreBlocksGetOneAxisPerBlockRightOfTheView) {
+  for (int n : {3, 8}) {
+    SCOPED_TRACE(n);
+    RenderConfig cfg;
+    const FrameLayout lay = ComputeLayout(
+        Drums(n), {{"reference", DrumsRocking(n, 0.01)}, {"bullet", DrumsRocking(n, 0.012)}}, {},
+        cfg);
+    ASSERT_EQ(lay.views.size(), 1u);
+    ASSERT_EQ(lay.chart_panels.size(), static_cast<size_t>(n));
+    const PixelRect image{0, 0, 1280, 720};
+    const PixelRect view = ViewRect(lay.views[0]);
+    EXPECT_TRUE(Inside(image, view));
+    EXPECT_TRUE(Disjoint(view, lay.header));
+    // The chart is a column right of the view, below the header and a line for the engines'
+    // legend, down to a line for the times.
+    EXPECT_GE(lay.chart.x_px, view.x_px + view.w_px);
+    EXPECT_TRUE(Disjoint(lay.chart, lay.header));
+    EXPECT_NEAR(lay.chart.y_px, view.y_px + lay.line_px, 1e-9);
+    EXPECT_NEAR(lay.chart.y_px + lay.chart.h_px, view.y_px + view.h_px - lay.line_px, 1e-9);
+    // One axis per block inside it, block 1 at the bottom, block n at the top, apart, of one
+    // height, sharing the time axis (the same left and right edges).
+    for (int k = 0; k < n; ++k) {
+      const PixelRect& p = lay.chart_panels[k];
+      EXPECT_TRUE(Inside(image, p));
+      EXPECT_TRUE(Inside(lay.chart, p));
+      EXPECT_EQ(p.x_px, lay.chart.x_px);
+      EXPECT_EQ(p.w_px, lay.chart.w_px);
+      EXPECT_NEAR(p.h_px, lay.chart_panels[0].h_px, 1e-9);
+      if (k > 0) {
+        EXPECT_LT(p.y_px + p.h_px, lay.chart_panels[k - 1].y_px);
+      }
+    }
+    EXPECT_NEAR(lay.chart_panels[0].y_px + lay.chart_panels[0].h_px,
+                lay.chart.y_px + lay.chart.h_px, 1e-9);
+    EXPECT_NEAR(lay.chart_panels[n - 1].y_px, lay.chart.y_px, 1e-9);
+    // Readable at 1280x720: an axis is at least a line of text high.
+    EXPECT_GE(lay.chart_panels[0].h_px, lay.line_px);
+    // The shared range: just above the top block's peak, n x 0.012 rad.
+    EXPECT_GE(lay.chart_theta_max_rad, 0.012 * n);
+    EXPECT_LE(lay.chart_theta_max_rad, 0.012 * n * 1.6);
+  }
+}
+
+TEST(ComputeLayout, TheViewFitsTheWholeColumn) {
+  // The column's height grows with the number of blocks; the camera shows all of it.
+  RenderConfig cfg;
+  double previous_px_per_m = 1e9;
+  for (int n : {1, 2, 3, 8}) {
+    SCOPED_TRACE(n);
+    const FrameLayout lay =
+        ComputeLayout(Drums(n), {{"reference", DrumsRocking(n, 0.01)}}, {}, cfg);
+    const Camera& cam = lay.views.at(0);
+    const double column_m = 0.85 * n;
+    EXPECT_GE(cam.world.y_max_m, column_m);
+    EXPECT_LE(cam.ToPixel({0.0, column_m}).y, cam.vp_y_px + cam.vp_h_px);
+    EXPECT_GE(cam.ToPixel({0.0, column_m}).y, cam.vp_y_px);
+    // And no more than needed: the column (with its ground strip and margins) fills the
+    // view's height.
+    EXPECT_LT(cam.world.height_m(), 1.6 * column_m);
+    EXPECT_LT(cam.px_per_m(), previous_px_per_m);
+    previous_px_per_m = cam.px_per_m();
+  }
+}
+
+TEST(ComputeLayout, SideBySideViewsOfAStackLeaveTheChartItsColumn) {
+  RenderConfig cfg;
+  cfg.layout = Layout::kSide;
+  const FrameLayout lay = ComputeLayout(
+      Drums(6), {{"reference", DrumsRocking(6, 0.01)}, {"bullet", DrumsRocking(6, 0.01)}}, {}, cfg);
+  ASSERT_EQ(lay.views.size(), 2u);
+  ASSERT_EQ(lay.chart_panels.size(), 6u);
+  EXPECT_NEAR(lay.views[1].px_per_m(), lay.views[0].px_per_m(), 1e-9);
+  EXPECT_GE(lay.views[1].vp_x_px, lay.views[0].vp_x_px + lay.views[0].vp_w_px);
+  EXPECT_LE(lay.views[1].vp_x_px + lay.views[1].vp_w_px, lay.chart.x_px);
+}
+
+TEST(ComputeLayout, TooManyAxesForTheImageIsAClearError) {
+  RenderConfig cfg;
+  cfg.width_px = 64;
+  cfg.height_px = 48;
+  try {
+    ComputeLayout(Drums(64), {{"reference", DrumsRocking(64, 0.001)}}, {}, cfg);
+    FAIL() << "64 axes in 48 pixels must be refused";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("give a larger size"), std::string::npos) << e.what();
+  }
+}
+
+TEST(ComputeLayout, OneAndTwoBlocksKeepTheChartBelowTheView) {
+  const FrameLayout lay = ComputeLayout(Stack(), {{"reference", Wobble(0.05)}}, {}, RenderConfig{});
+  EXPECT_TRUE(lay.chart_panels.empty());
+  EXPECT_GE(lay.chart.y_px, lay.views[0].vp_y_px + lay.views[0].vp_h_px);
 }
 
 TEST(ComputeLayout, RejectsBadConfigurations) {

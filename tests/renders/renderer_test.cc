@@ -7,7 +7,9 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <memory>
 #include <numbers>
+#include <vector>
 
 #include "tests/common/sample.h"
 
@@ -79,19 +81,19 @@ TEST_F(TiltedFrame, BlocksGroundAndSkyHaveTheirColoursWhereTheGeometryPutsThem) 
   const Image& img = *image_;
   const Palette& pal = renderer_->palette();
   const Camera& cam = renderer_->layout().views.at(0);
-  const StackCorners pose = PoseFor(Stack(), 0.0, 0.2);
+  const DrawnStack pose = PoseFor(Stack(), 0.0, 0.2);
   auto centre = [](const BlockCorners& q) {
     return Vec2{0.25 * (q[0].x + q[1].x + q[2].x + q[3].x),
                 0.25 * (q[0].y + q[1].y + q[2].y + q[3].y)};
   };
   // Interior points are flat colour (edges are 1-2 px away from them).
-  EXPECT_EQ(At(img, cam.ToPixel(centre(pose.block1))), pal.block1);
-  EXPECT_EQ(At(img, cam.ToPixel(centre(pose.block2))), pal.block2);
+  EXPECT_EQ(At(img, cam.ToPixel(centre(pose[0]))), pal.block(0));
+  EXPECT_EQ(At(img, cam.ToPixel(centre(pose[1]))), pal.block(1));
   // Block 2's top-left corner region, 5 cm inside both edges.
-  const BlockCorners& b2 = pose.block2;
+  const BlockCorners& b2 = pose[1];
   const Vec2 inside{b2[3].x + 0.05 * (b2[2].x - b2[3].x) / 0.5 + 0.05 * (b2[0].x - b2[3].x) / 1.5,
                     b2[3].y + 0.05 * (b2[2].y - b2[3].y) / 0.5 + 0.05 * (b2[0].y - b2[3].y) / 1.5};
-  EXPECT_EQ(At(img, cam.ToPixel(inside)), pal.block2);
+  EXPECT_EQ(At(img, cam.ToPixel(inside)), pal.block(1));
   // Just outside block 2's left edge, above block 1: sky.
   const Vec2 left_of_b2{b2[0].x - 0.1, b2[0].y + 0.3};
   EXPECT_EQ(At(img, cam.ToPixel(left_of_b2)), pal.background);
@@ -110,7 +112,7 @@ TEST_F(TiltedFrame, Block2TiltRecoveredFromItsPixels) {
   // of a digitised rectangle is then good to ~0.1 degree, well inside the 0.5 degree asked for.
   const Image& img = *image_;
   const Camera& cam = renderer_->layout().views.at(0);
-  const Rgb want = renderer_->palette().block2;
+  const Rgb want = renderer_->palette().block(1);
   double n = 0, sx = 0, sy = 0, sxx = 0, syy = 0, sxy = 0;
   for (int y = static_cast<int>(cam.vp_y_px); y < static_cast<int>(cam.vp_y_px + cam.vp_h_px);
        ++y) {
@@ -137,9 +139,9 @@ TEST_F(TiltedFrame, Block2TiltRecoveredFromItsPixels) {
   EXPECT_NEAR(tilt_deg, 0.2 * 180.0 / std::numbers::pi, 0.5);
   // And the pixels sit where the geometry says: pivoting about the right corner (not the left,
   // which would move the centroid ~0.1 m = ~7 px) and centred on block 1 at rest.
-  const StackCorners pose = PoseFor(Stack(), 0.0, 0.2);
+  const DrawnStack pose = PoseFor(Stack(), 0.0, 0.2);
   Vec2 c{};
-  for (const Vec2& p : pose.block2) c = {c.x + 0.25 * p.x, c.y + 0.25 * p.y};
+  for (const Vec2& p : pose[1]) c = {c.x + 0.25 * p.x, c.y + 0.25 * p.y};
   const Vec2 cpx = cam.ToPixel(c);
   EXPECT_NEAR(mx, cpx.x, 1.5);
   EXPECT_NEAR(my, cpx.y, 1.5);
@@ -151,12 +153,12 @@ TEST_F(TiltedFrame, ColoursStayApartInGreyscale) {
   // apart.
   const Image& img = *image_;
   const Camera& cam = renderer_->layout().views.at(0);
-  const StackCorners pose = PoseFor(Stack(), 0.0, 0.2);
+  const DrawnStack pose = PoseFor(Stack(), 0.0, 0.2);
   const Box& w = cam.world;
   const double l_bg = Luma(img.at(0, 0));
   const double l_b1 = Luma(At(img, cam.ToPixel({0.0, 0.6})));
-  const double l_b2 = Luma(At(img, cam.ToPixel({0.5 * (pose.block2[0].x + pose.block2[2].x),
-                                                0.5 * (pose.block2[0].y + pose.block2[2].y)})));
+  const double l_b2 = Luma(At(img, cam.ToPixel({0.5 * (pose[1][0].x + pose[1][2].x),
+                                                0.5 * (pose[1][0].y + pose[1][2].y)})));
   const double l_ground =
       Luma(At(img, cam.ToPixel({w.x_min_m + 0.25 * w.width_m(), 0.75 * w.y_min_m})));
   const double l[] = {l_bg, l_b2, l_ground, l_b1};
@@ -203,8 +205,8 @@ TEST(FrameRenderer, EdgesAreAntiAliased) {
       for (int x = 0; x < img.width_px; ++x) {
         const Rgb c = img.at(x, y);
         bool known = false;
-        for (Rgb k :
-             {pal.background, pal.block1, pal.block2, pal.ground, pal.ground_line, pal.outline}) {
+        for (Rgb k : {pal.background, pal.block(0), pal.block(1), pal.ground, pal.ground_line,
+                      pal.outline}) {
           known = known || c == k;
         }
         mixed += known ? 0 : 1;
@@ -228,16 +230,16 @@ TEST(FrameRenderer, SingleBlockScene) {
   FrameRenderer r(s, {{"reference", h}}, {}, cfg);
   const Image img = r.Render(0.0);
   const Camera& cam = r.layout().views.at(0);
-  const StackCorners pose = PoseFor(s, -0.15, 0.0);
-  EXPECT_EQ(At(img, cam.ToPixel({0.5 * (pose.block1[0].x + pose.block1[2].x),
-                                 0.5 * (pose.block1[0].y + pose.block1[2].y)})),
-            r.palette().block1);
+  const DrawnStack pose = PoseFor(s, -0.15, 0.0);
+  EXPECT_EQ(At(img, cam.ToPixel({0.5 * (pose[0][0].x + pose[0][2].x),
+                                 0.5 * (pose[0][0].y + pose[0][2].y)})),
+            r.palette().block(0));
   // Nothing of block 2's colour anywhere in the view.
   for (int y = static_cast<int>(cam.vp_y_px); y < static_cast<int>(cam.vp_y_px + cam.vp_h_px);
        ++y) {
     for (int x = static_cast<int>(cam.vp_x_px); x < static_cast<int>(cam.vp_x_px + cam.vp_w_px);
          ++x) {
-      ASSERT_GT(Diff(img.at(x, y), r.palette().block2), 20) << x << "," << y;
+      ASSERT_GT(Diff(img.at(x, y), r.palette().block(1)), 20) << x << "," << y;
     }
   }
 }
@@ -253,8 +255,8 @@ TEST(FrameRenderer, BaseDisplacementMovesTheBlocks) {
   const Camera& cam = r.layout().views.at(0);
   const Image img = r.Render(1.0);
   // Block 1's centre is 0.4 m to the right of where it starts.
-  EXPECT_EQ(At(img, cam.ToPixel({0.4, 0.6})), r.palette().block1);
-  EXPECT_NE(At(img, cam.ToPixel({-0.55, 0.6})), r.palette().block1);
+  EXPECT_EQ(At(img, cam.ToPixel({0.4, 0.6})), r.palette().block(0));
+  EXPECT_NE(At(img, cam.ToPixel({-0.55, 0.6})), r.palette().block(0));
 }
 
 TEST(FrameRenderer, MissingFontIsAClearError) {
@@ -322,6 +324,154 @@ TEST(FrameRenderer, GoldenImage) {
       << "worst channel difference " << worst << "; if the change is intended, run with "
       << "ROCKBENCH_UPDATE_GOLDEN=1 and look at " << golden;
 }
+
+// A column of n drums, 0.9 m wide and 0.85 m high.
+Scene Drums(int n) {
+  Scene s;
+  for (int k = 0; k < n; ++k) {
+    s.blocks.push_back(BlockDef{.width_m = 0.9, .height_m = 0.85, .mass_kg = 1721.25});
+  }
+  return s;
+}
+
+// The column tilted right by theta as one rigid body (every block at theta, locked: mode
+// "rff...f"), held for a second.
+History TiltedColumn(int n, double theta_rad) {
+  History h;
+  h.blocks = n;
+  for (double t : {0.0, 1.0}) {
+    Sample s(n);
+    s.t_s = t;
+    for (int k = 0; k < n; ++k) s.theta_rad[k] = theta_rad;
+    s.mode.set(0, Contact::kRight);
+    h.samples.push_back(s);
+  }
+  return h;
+}
+
+// A tilted column of 3 and of 8 blocks at 640x480, text and chart on: the pixels show every
+// block in its colour where the chain puts it, the whole column in view, and one chart axis per
+// block.
+class ColumnFrame : public ::testing::TestWithParam<int> {
+ protected:
+  static constexpr double kTheta = 0.08;
+  void SetUp() override {
+    n_ = GetParam();
+    RenderConfig cfg;
+    cfg.width_px = 640;
+    cfg.height_px = 480;
+    renderer_ = std::make_unique<FrameRenderer>(
+        Drums(n_), std::vector<Track>{{"reference", TiltedColumn(n_, kTheta)}}, BaseDisplacement{},
+        cfg);
+    image_ = renderer_->Render(0.5);
+  }
+  // A corner of the column tilted rigidly about block 1's right base corner (0.45, 0): its
+  // position at rest turned clockwise by kTheta (an independent form of the chain for a locked
+  // column).
+  static Vec2 Tilted(Vec2 rest) {
+    const double dx = rest.x - 0.45, dy = rest.y;
+    return {0.45 + std::cos(kTheta) * dx + std::sin(kTheta) * dy,
+            -std::sin(kTheta) * dx + std::cos(kTheta) * dy};
+  }
+  int n_ = 0;
+  std::unique_ptr<FrameRenderer> renderer_;
+  Image image_;
+};
+
+TEST_P(ColumnFrame, TheWholeColumnIsInViewAndAsTallAsProjected) {
+  const Camera& cam = renderer_->layout().views.at(0);
+  const Rgb bg = renderer_->palette().background;
+  // The topmost row of the view with anything drawn on it (the outlines are near-black).
+  int top_row = -1;
+  for (int y = static_cast<int>(cam.vp_y_px); y < cam.vp_y_px + cam.vp_h_px && top_row < 0; ++y) {
+    for (int x = static_cast<int>(cam.vp_x_px); x < cam.vp_x_px + cam.vp_w_px; ++x) {
+      if (Diff(image_.at(x, y), bg) > 24) {
+        top_row = y;
+        break;
+      }
+    }
+  }
+  ASSERT_GE(top_row, 0);
+  // The column's highest point is its top-left corner, turned about (0.45, 0).
+  const Vec2 top = Tilted({-0.45, 0.85 * n_});
+  const double ground_px = cam.ToPixel({0.0, 0.0}).y;
+  const double want_px = ground_px - cam.ToPixel(top).y;
+  EXPECT_NEAR(ground_px - top_row, want_px, 1.5);
+  // In view with room to spare, and framed tightly: the column fills most of the view's height.
+  EXPECT_GT(top_row, cam.vp_y_px);
+  EXPECT_GT(want_px, 0.6 * cam.vp_h_px);
+}
+
+TEST_P(ColumnFrame, EveryBlockHasItsOwnColourWhereTheChainPutsIt) {
+  const Camera& cam = renderer_->layout().views.at(0);
+  const Palette& pal = renderer_->palette();
+  for (int k = 0; k < n_; ++k) {
+    SCOPED_TRACE(k + 1);
+    // Its middle, at rest (0, 0.85 (k + 1/2)), tilted with the column.
+    EXPECT_EQ(At(image_, cam.ToPixel(Tilted({0.0, 0.85 * (k + 0.5)}))), pal.block(k));
+    for (int j = 0; j < k; ++j) EXPECT_GE(Diff(pal.block(j), pal.block(k)), 40) << j + 1;
+    // Most of its area (0.9 x 0.85 m, less the outline) is of its colour.
+    int count = 0;
+    for (int y = static_cast<int>(cam.vp_y_px); y < cam.vp_y_px + cam.vp_h_px; ++y) {
+      for (int x = static_cast<int>(cam.vp_x_px); x < cam.vp_x_px + cam.vp_w_px; ++x) {
+        count += image_.at(x, y) == pal.block(k) ? 1 : 0;
+      }
+    }
+    const double area_px = 0.9 * 0.85 * cam.px_per_m() * cam.px_per_m();
+    EXPECT_GT(count, 0.6 * area_px);
+    EXPECT_LT(count, 1.05 * area_px);
+  }
+}
+
+TEST_P(ColumnFrame, TheTopBlocksCornerIsWhereTheChainPutsIt) {
+  const Camera& cam = renderer_->layout().views.at(0);
+  const Palette& pal = renderer_->palette();
+  // Block n's top-right corner, and its middle, from the rigid turn; and the same from the
+  // renders' chain.
+  const Vec2 corner = Tilted({0.45, 0.85 * n_});
+  const Vec2 middle = Tilted({0.0, 0.85 * (n_ - 0.5)});
+  const DrawnStack pose = PoseFor(Drums(n_), StackState(TiltedColumn(n_, kTheta).samples[0]));
+  ASSERT_EQ(pose.size(), static_cast<size_t>(n_));
+  EXPECT_NEAR(pose.back()[2].x, corner.x, 1e-12);
+  EXPECT_NEAR(pose.back()[2].y, corner.y, 1e-12);
+  // In the image: 4 px inside the corner along the diagonal, block n's colour; 3 px outside
+  // it, the background.
+  const Vec2 c = cam.ToPixel(corner), m = cam.ToPixel(middle);
+  const double len = std::hypot(m.x - c.x, m.y - c.y);
+  const Vec2 in{c.x + 4.0 * (m.x - c.x) / len, c.y + 4.0 * (m.y - c.y) / len};
+  const Vec2 out{c.x - 3.0 * (m.x - c.x) / len, c.y - 3.0 * (m.y - c.y) / len};
+  EXPECT_EQ(At(image_, in), pal.block(n_ - 1));
+  EXPECT_EQ(At(image_, out), pal.background);
+}
+
+TEST_P(ColumnFrame, TheChartHasOneAxisPerBlockWithItsTrace) {
+  const FrameLayout& lay = renderer_->layout();
+  const Palette& pal = renderer_->palette();
+  ASSERT_EQ(lay.chart_panels.size(), static_cast<size_t>(n_));
+  for (int k = 0; k < n_; ++k) {
+    SCOPED_TRACE(k + 1);
+    const PixelRect& r = lay.chart_panels[k];
+    // The trace: a flat line at +kTheta from 0 s to the cursor at 0.5 s (half the axis), in
+    // block k's trace colour.
+    int in_colour = 0, other = 0;
+    for (int y = static_cast<int>(r.y_px) + 1; y < r.y_px + r.h_px - 1; ++y) {
+      for (int x = static_cast<int>(r.x_px) + 1; x < r.x_px + r.w_px - 1; ++x) {
+        const Rgb p = image_.at(x, y);
+        if (Diff(p, pal.chart_theta(k)) <= 8) ++in_colour;
+        for (int j = 0; j < n_; ++j) {
+          if (j != k && Diff(pal.chart_theta(j), pal.chart_theta(k)) > 40 &&
+              Diff(p, pal.chart_theta(j)) <= 8) {
+            ++other;
+          }
+        }
+      }
+    }
+    EXPECT_GT(in_colour, 0.45 * r.w_px);
+    EXPECT_EQ(other, 0);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(ThreeAndEightBlocks, ColumnFrame, ::testing::Values(3, 8));
 
 #else
 
