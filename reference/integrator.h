@@ -28,21 +28,39 @@ struct DenseKinds {
   static constexpr int Coefficients(Kind kind) {
     return kind == kDopri ? 5 : kind == kHermite ? 4 : kind == kDop853 ? 8 : 1;
   }
+  /// The interpolants at s = (t - t0) / h, s1 = 1 - s, from one component's coefficients
+  /// cf(0), cf(1), ... (one definition for Component and DenseStepN::At, so both give the
+  /// same bits).
+  template <class Coef>
+  static double Dopri(double s, double s1, const Coef& cf) {
+    return cf(0) + s * (cf(1) + s1 * (cf(2) + s * (cf(3) + s1 * cf(4))));
+  }
+  template <class Coef>
+  static double Dop853(double s, double s1, const Coef& cf) {
+    const double inner = cf(5) + s1 * (cf(6) + s * cf(7));
+    return cf(0) + s * (cf(1) + s1 * (cf(2) + s * (cf(3) + s1 * (cf(4) + s * inner))));
+  }
+  /// Cubic Hermite on y0 = cf(0), y1 = cf(1), h f0 = cf(2), h f1 = cf(3).
+  struct HermiteWeights {
+    double h00, h10, h01, h11;
+    HermiteWeights(double s, double s1)
+        : h00((1 + 2 * s) * s1 * s1),
+          h10(s * s1 * s1),
+          h01(s * s * (3 - 2 * s)),
+          h11(-s * s * s1) {}
+    template <class Coef>
+    double operator()(const Coef& cf) const {
+      return h00 * cf(0) + h10 * cf(2) + h01 * cf(1) + h11 * cf(3);
+    }
+  };
   /// One component of the interpolant of a step of `kind` at s = (t - t0) / h, from its
   /// coefficients coef[0], coef[stride], ... (a kConstant step: coef[0]).
   static double Component(Kind kind, double s, const double* coef, size_t stride) {
     const double s1 = 1.0 - s;
     auto cf = [&](int j) { return coef[j * stride]; };
-    if (kind == kDopri) return cf(0) + s * (cf(1) + s1 * (cf(2) + s * (cf(3) + s1 * cf(4))));
-    if (kind == kDop853) {
-      const double inner = cf(5) + s1 * (cf(6) + s * cf(7));
-      return cf(0) + s * (cf(1) + s1 * (cf(2) + s * (cf(3) + s1 * (cf(4) + s * inner))));
-    }
-    if (kind == kHermite) {
-      const double h00 = (1 + 2 * s) * s1 * s1, h10 = s * s1 * s1, h01 = s * s * (3 - 2 * s),
-                   h11 = -s * s * s1;
-      return h00 * cf(0) + h10 * cf(2) + h01 * cf(1) + h11 * cf(3);
-    }
+    if (kind == kDopri) return Dopri(s, s1, cf);
+    if (kind == kDop853) return Dop853(s, s1, cf);
+    if (kind == kHermite) return HermiteWeights(s, s1)(cf);
     return cf(0);
   }
 };
@@ -83,12 +101,20 @@ struct DenseStepN : DenseKinds {
       (*hi)[i] = std::max(y0, y1) + slack;
     }
   }
-  /// State at t (0 <= (t - t0) / h <= 1).
+  /// State at t (0 <= (t - t0) / h <= 1): Component for every component, the kind decided
+  /// once (the same operations in the same order, so the same bits).
   Vec At(double t) const {
     if (kind == kConstant || h == 0.0) return c[0];
-    const double s = (t - t0) / h;
+    const double s = (t - t0) / h, s1 = 1.0 - s;
     Vec y;
-    for (size_t i = 0; i < D; ++i) y[i] = Component(kind, s, &c[0][i], D);
+    if (kind == kDopri) {
+      for (size_t i = 0; i < D; ++i) y[i] = Dopri(s, s1, [&](int j) { return c[j][i]; });
+    } else if (kind == kDop853) {
+      for (size_t i = 0; i < D; ++i) y[i] = Dop853(s, s1, [&](int j) { return c[j][i]; });
+    } else {
+      const HermiteWeights hermite(s, s1);
+      for (size_t i = 0; i < D; ++i) y[i] = hermite([&](int j) { return c[j][i]; });
+    }
     return y;
   }
 };

@@ -1,8 +1,12 @@
 #pragma once
 /// The reference model: the thesis's two-block rocking model (Roussis 1999), event-accurate.
+#include <algorithm>
+#include <cstdint>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "reference/integrator.h"
@@ -13,6 +17,27 @@
 #include "scene/scene.h"
 
 namespace rockbench::reference {
+
+/// An allocator whose vectors leave new doubles uninitialised (resize without a fill: every
+/// one is written before it is read).
+template <class T>
+struct UninitialisedAllocator : std::allocator<T> {
+  template <class U>
+  struct rebind {
+    using other = UninitialisedAllocator<U>;
+  };
+  UninitialisedAllocator() = default;
+  template <class U>
+  UninitialisedAllocator(const UninitialisedAllocator<U>&) {}
+  template <class U>
+  void construct(U* p) {
+    ::new (static_cast<void*>(p)) U;
+  }
+  template <class U, class... Args>
+  void construct(U* p, Args&&... args) {
+    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+  }
+};
 
 /// Continuous solution: piecewise dense-output segments between events. Evaluating at an event
 /// time returns the post-event state. Each segment keeps only the stack's own components (its
@@ -41,26 +66,42 @@ class Trajectory {
   void Append(double t0, double t1, const Configuration& mode, const DenseStepN<D>& dense,
               size_t cap = D / 2) {
     segments_.push_back({t0, t1, mode});
-    const int ncoef = DenseKinds::Coefficients(dense.kind);
-    steps_.push_back({dense.kind, dense.t0, dense.h, coef_.size()});
-    for (int j = 0; j < ncoef; ++j) {
-      for (int i = 0; i < blocks_; ++i) coef_.push_back(dense.c[j][i]);
-      for (int i = 0; i < blocks_; ++i) coef_.push_back(dense.c[j][cap + i]);
+    const size_t n = static_cast<size_t>(blocks_);
+    const size_t need = 2 * n * static_cast<size_t>(DenseKinds::Coefficients(dense.kind));
+    // A step's coefficients never straddle two chunks; a full chunk is never moved.
+    if (chunks_.empty() || chunks_.back().size() - used_ < need) {
+      const size_t size =
+          chunks_.empty() ? kFirstChunkDoubles : std::min(2 * chunks_.back().size(), kChunkDoubles);
+      chunks_.emplace_back(std::max(size, need));
+      used_ = 0;
+    }
+    steps_.push_back({dense.kind, dense.t0, dense.h, static_cast<uint32_t>(chunks_.size() - 1),
+                      static_cast<uint32_t>(used_)});
+    double* out = chunks_.back().data() + used_;
+    used_ += need;
+    for (size_t j = 0; j < need / (2 * n); ++j, out += 2 * n) {
+      std::copy_n(dense.c[j].data(), n, out);
+      std::copy_n(dense.c[j].data() + cap, n, out + n);
     }
   }
 
  private:
-  // A segment's interpolant: its kind, start, length, and where its coefficients start in
-  // coef_ (coefficient j of component i at offset + j * 2 blocks + i; angles, then rates).
+  // Coefficients are kept in chunks, the first of kFirstChunkDoubles doubles, each next one
+  // twice the last up to kChunkDoubles (128 KiB), so that a long run's trajectory grows without
+  // copying what it holds, and a short one holds little.
+  static constexpr size_t kFirstChunkDoubles = 1024, kChunkDoubles = 16384;
+  // A segment's interpolant: its kind, start, length, and where its coefficients start
+  // (chunks_[chunk][pos + j * 2 blocks + i]: coefficient j of component i, angles then rates).
   struct Step {
     DenseKinds::Kind kind = DenseKinds::kConstant;
     double t0 = 0.0, h = 0.0;
-    size_t offset = 0;
+    uint32_t chunk = 0, pos = 0;
   };
   int blocks_ = 2;
   std::vector<Segment> segments_;
   std::vector<Step> steps_;
-  std::vector<double> coef_;
+  std::vector<std::vector<double, UninitialisedAllocator<double>>> chunks_;
+  size_t used_ = 0;  // doubles used in the last chunk
 };
 
 /// Summary figures of a reference run.

@@ -28,7 +28,7 @@ Sample Trajectory::At(double t_s) const {
   const Step& step = steps_[static_cast<size_t>(it - segments_.begin())];
   const double t = std::min(t_s, it->t1);
   const size_t stride = 2 * static_cast<size_t>(blocks_);
-  const double* c = coef_.data() + step.offset;
+  const double* c = chunks_[step.chunk].data() + step.pos;
   // As DenseStepN::At: a constant step (or one of zero length) is its first coefficient.
   const bool constant = step.kind == DenseKinds::kConstant || step.h == 0.0;
   const double s = constant ? 0.0 : (t - step.t0) / step.h;

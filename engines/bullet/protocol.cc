@@ -226,7 +226,7 @@ std::string SerializeOutput(const EngineResult& out) {
   const int blocks = out.history.blocks;
   w.Put<std::int32_t>(blocks);
   // Every per-block vector of the history and the outcome has `blocks` entries.
-  const auto put_values = [&](const std::vector<double>& v) {
+  const auto put_values = [&](const auto& v) {
     for (int k = 0; k < blocks; ++k) w.Put(k < static_cast<int>(v.size()) ? v[k] : 0.0);
   };
   const auto put_configuration = [&](const Configuration& c) {
@@ -287,7 +287,7 @@ EngineResult ParseOutput(const std::string& bytes) {
     throw std::runtime_error("bullet helper protocol: bad block count");
   }
   out.history.blocks = blocks;
-  const auto get_values = [&](std::vector<double>* v) {
+  const auto get_values = [&](auto* v) {
     v->assign(static_cast<size_t>(blocks), 0.0);
     for (double& x : *v) x = r.Get<double>();
   };

@@ -16,7 +16,7 @@ bool IsImpact(const Event& e) {
 
 // Landing rate of an impact: the rate of the block that lands, relative to its support.
 double LandingRate(const Event& e) {
-  const std::vector<double>& w = e.omega_before_radps;
+  const BlockValues& w = e.omega_before_radps;
   return e.kind == "ground_impact" || w.size() < 2 ? std::abs(w[0]) : std::abs(w[1] - w[0]);
 }
 

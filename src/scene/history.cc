@@ -110,7 +110,7 @@ std::string HistoryToCsv(const History& history) {
       Inconsistent("history: a sample", s.t_s, s.blocks(), n);
     }
     AppendTime(out, s.t_s);
-    for (const std::vector<double>* v : {&s.theta_rad, &s.omega_radps}) {
+    for (const BlockValues* v : {&s.theta_rad, &s.omega_radps}) {
       for (const double x : *v) {
         out += ',';
         AppendValue(out, x);
@@ -135,7 +135,7 @@ std::string EventsToCsv(const History& history) {
     AppendConfiguration(out, e.mode_before);
     out += ',';
     AppendConfiguration(out, e.mode_after);
-    for (const std::vector<double>* v : {&e.omega_before_radps, &e.omega_after_radps}) {
+    for (const BlockValues* v : {&e.omega_before_radps, &e.omega_after_radps}) {
       for (const double x : *v) {
         out += ',';
         AppendValue(out, x);
@@ -274,7 +274,7 @@ std::vector<Event> ReadEventsCsv(const std::filesystem::path& path, int blocks) 
     // The rate columns: max(n, 2) before, then as many after (one block's omega2 is unused).
     const int columns = std::max(n, 2);
     for (int side = 0; side < 2; ++side) {
-      std::vector<double>& v = side == 0 ? e.omega_before_radps : e.omega_after_radps;
+      BlockValues& v = side == 0 ? e.omega_before_radps : e.omega_after_radps;
       for (int k = 0; k < columns; ++k) {
         const double x =
             number_at(4 + static_cast<size_t>(side * columns + k),

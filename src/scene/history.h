@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "scene/block_values.h"
 #include "scene/mode.h"
 
 namespace rockbench {
@@ -13,14 +14,14 @@ namespace rockbench {
 /// (Sample(N)), so that its vectors always hold one entry per block.
 struct Sample {
   double t_s = 0.0;
-  std::vector<double> theta_rad;    ///< rad, one per block
-  std::vector<double> omega_radps;  ///< rad/s, one per block
-  Configuration mode;               ///< one contact per interface (block)
+  BlockValues theta_rad;    ///< rad, one per block
+  BlockValues omega_radps;  ///< rad/s, one per block
+  Configuration mode;       ///< one contact per interface (block)
 
   /// A sample of `blocks` blocks at t = 0, at rest.
   explicit Sample(int blocks)
-      : theta_rad(static_cast<size_t>(blocks), 0.0),
-        omega_radps(static_cast<size_t>(blocks), 0.0),
+      : theta_rad(static_cast<size_t>(blocks)),
+        omega_radps(static_cast<size_t>(blocks)),
         mode(blocks) {}
   int blocks() const { return static_cast<int>(theta_rad.size()); }
 };
@@ -32,16 +33,16 @@ struct Event {
   std::string kind;  ///< "ground_impact", "interface_impact", "initiation", "transition", "rest",
                      ///< "overturn", "assumption_violated"
   Configuration mode_before, mode_after;
-  std::vector<double> omega_before_radps, omega_after_radps;  ///< rad/s, one per block
-  double energy_before_j = 0.0, energy_after_j = 0.0;         ///< kinetic + potential, J
+  BlockValues omega_before_radps, omega_after_radps;   ///< rad/s, one per block
+  double energy_before_j = 0.0, energy_after_j = 0.0;  ///< kinetic + potential, J
   std::string note;  ///< free text (no commas), e.g. "inadmissible: ..." or a criterion name
 
   /// An event of a stack of `blocks` blocks: at rest before and after, every rate zero.
   explicit Event(int blocks)
       : mode_before(blocks),
         mode_after(blocks),
-        omega_before_radps(static_cast<size_t>(blocks), 0.0),
-        omega_after_radps(static_cast<size_t>(blocks), 0.0) {}
+        omega_before_radps(static_cast<size_t>(blocks)),
+        omega_after_radps(static_cast<size_t>(blocks)) {}
   int blocks() const { return static_cast<int>(omega_before_radps.size()); }
 };
 

@@ -20,19 +20,6 @@ std::optional<Mode> ParseMode(std::string_view name) {
   return std::nullopt;
 }
 
-Mode ModeOf(Contacts c, bool two_blocks) {
-  if (!two_blocks) c.interface = Contact::kFace;
-  if (c.ground == Contact::kFace) {
-    if (c.interface == Contact::kFace) return Mode::kRest;
-    return c.interface == Contact::kRight ? Mode::k4a : Mode::k4b;
-  }
-  const bool right = c.ground == Contact::kRight;
-  if (c.interface == Contact::kFace) return right ? Mode::k3a : Mode::k3b;
-  const bool same = c.interface == c.ground;
-  if (right) return same ? Mode::k1a : Mode::k2a;
-  return same ? Mode::k1b : Mode::k2b;
-}
-
 Configuration::Configuration(int interfaces) : size_(interfaces) {}
 
 int Configuration::open_count() const {
@@ -47,12 +34,6 @@ Configuration ConfigurationOf(Mode mode, int blocks) {
   out.set(0, c.ground);
   if (blocks >= 2) out.set(1, c.interface);
   return out;
-}
-
-std::optional<Mode> ModeOfConfiguration(const Configuration& configuration) {
-  if (configuration.size() == 1) return ModeOf({configuration[0], Contact::kFace}, false);
-  if (configuration.size() == 2) return ModeOf({configuration[0], configuration[1]}, true);
-  return std::nullopt;
 }
 
 std::string ConfigurationName(const Configuration& configuration) {

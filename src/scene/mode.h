@@ -54,8 +54,20 @@ inline Contacts ContactsOf(Mode mode) {
   return {};
 }
 
-/// The mode of a contact set (for one block the interface is ignored).
-Mode ModeOf(Contacts contacts, bool two_blocks);
+/// The mode of a contact set (for one block the interface is ignored). Inline: the thesis's
+/// equations ask for it at every evaluation.
+inline Mode ModeOf(Contacts c, bool two_blocks) {
+  if (!two_blocks) c.interface = Contact::kFace;
+  if (c.ground == Contact::kFace) {
+    if (c.interface == Contact::kFace) return Mode::kRest;
+    return c.interface == Contact::kRight ? Mode::k4a : Mode::k4b;
+  }
+  const bool right = c.ground == Contact::kRight;
+  if (c.interface == Contact::kFace) return right ? Mode::k3a : Mode::k3b;
+  const bool same = c.interface == c.ground;
+  if (right) return same ? Mode::k1a : Mode::k2a;
+  return same ? Mode::k1b : Mode::k2b;
+}
 
 /// Most blocks a stack may have (the scene reader and ValidateScene check a scene against it).
 inline constexpr int kMaxBlocks = 64;
@@ -104,7 +116,11 @@ static_assert(static_cast<int>(Contact::kFace) == 0, "a zeroed Configuration is 
 /// (ContactsOf), the interface dropped for one block.
 Configuration ConfigurationOf(Mode mode, int blocks);
 /// The thesis mode of a configuration of 1 or 2 interfaces; nullopt for more.
-std::optional<Mode> ModeOfConfiguration(const Configuration& configuration);
+inline std::optional<Mode> ModeOfConfiguration(const Configuration& configuration) {
+  if (configuration.size() == 1) return ModeOf({configuration[0], Contact::kFace}, false);
+  if (configuration.size() == 2) return ModeOf({configuration[0], configuration[1]}, true);
+  return std::nullopt;
+}
 
 /// The text of a configuration, as histories and events write it: the thesis's mode name for 1
 /// or 2 blocks ("rest", "3a", "1b", ...), else one letter per interface, bottom first: 'f' a

@@ -33,7 +33,7 @@ bool Finite(double v) {
 }
 
 bool HistoryHasNonFinite(const History& h) {
-  const auto all_finite = [](const std::vector<double>& v) {
+  const auto all_finite = [](const BlockValues& v) {
     return std::all_of(v.begin(), v.end(), [](double x) { return Finite(x); });
   };
   for (const Sample& s : h.samples) {
@@ -68,7 +68,7 @@ void CountEvents(const History& h, StressRow* row) {
 }
 
 // The state at an impact of one or two blocks: the angles of `at`, the rates `w`.
-reference::State ImpactState(const Sample& at, const std::vector<double>& w) {
+reference::State ImpactState(const Sample& at, const BlockValues& w) {
   const size_t top = at.theta_rad.size() >= 2 && w.size() >= 2 ? 1 : 0;
   return {at.theta_rad[0], at.theta_rad[top], w[0], w[top]};
 }

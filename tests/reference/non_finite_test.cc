@@ -38,7 +38,7 @@ Scene OneBlockAtRest() {
   return sc;
 }
 
-bool Finite(const std::vector<double>& v) {
+bool Finite(const BlockValues& v) {
   return std::all_of(v.begin(), v.end(), [](double x) { return std::isfinite(x); });
 }
 

@@ -31,7 +31,7 @@ HistoryInterpolator::HistoryInterpolator(const History& history, const std::vect
     n.rate_right[0] = n.rate_left[0] = s.omega_radps[0];
     n.rate_right[1] = n.rate_left[1] = w2;
     if (const auto it = first_event.find(s.t_s); it != first_event.end()) {
-      const std::vector<double>& w = it->second->omega_before_radps;
+      const BlockValues& w = it->second->omega_before_radps;
       n.rate_left[0] = w[0];
       n.rate_left[1] = w.size() > top ? w[top] : w[0];
     }
