@@ -17,8 +17,8 @@ namespace {
 constexpr char kInputMagic[8] = {'R', 'B', 'B', 'I', 'N', 'P', 'U', 'T'};
 constexpr char kOutputMagic[8] = {'R', 'B', 'B', 'O', 'U', 'T', 'P', 'T'};
 // 3: each flag with its onset time; 4: the history, events and outcome of N blocks (rates and
-// configurations per block).
-constexpr std::uint32_t kVersion = 4;
+// configurations per block); 5: the input's N blocks (every block, angle and rate).
+constexpr std::uint32_t kVersion = 5;
 constexpr std::uint64_t kViolationFlagCount = std::size(kViolationFlags);
 
 class Writer {
@@ -123,13 +123,11 @@ std::string SerializeInput(const BulletInput& in) {
   Writer w;
   w.PutRaw(kInputMagic, 8);
   w.Put(kVersion);
-  PutBlock(w, in.block1);
-  w.PutBool(in.block2.has_value());
-  if (in.block2) PutBlock(w, *in.block2);
-  w.Put(in.initial.theta_rad[0]);
-  w.Put(in.initial.theta_rad[1]);
-  w.Put(in.initial.omega_radps[0]);
-  w.Put(in.initial.omega_radps[1]);
+  const int blocks = in.block_count();
+  w.Put<std::int32_t>(blocks);
+  for (const BlockDef& b : in.blocks) PutBlock(w, b);
+  for (int k = 0; k < blocks; ++k) w.Put(in.initial.theta_rad[k]);
+  for (int k = 0; k < blocks; ++k) w.Put(in.initial.omega_radps[k]);
   w.Put(in.run.duration_s);
   w.Put(in.run.output_interval_s);
   w.Put(in.run.gravity_mps2);
@@ -173,12 +171,13 @@ BulletInput ParseInput(const std::string& bytes) {
   Reader r(bytes);
   r.Expect(kInputMagic);
   BulletInput in;
-  in.block1 = GetBlock(r);
-  if (r.GetBool()) in.block2 = GetBlock(r);
-  in.initial.theta_rad[0] = r.Get<double>();
-  in.initial.theta_rad[1] = r.Get<double>();
-  in.initial.omega_radps[0] = r.Get<double>();
-  in.initial.omega_radps[1] = r.Get<double>();
+  const int blocks = r.Get<std::int32_t>();
+  if (blocks < 1 || blocks > kMaxBlocks) {
+    throw std::runtime_error("bullet helper protocol: bad block count");
+  }
+  for (int k = 0; k < blocks; ++k) in.blocks.push_back(GetBlock(r));
+  for (int k = 0; k < blocks; ++k) in.initial.theta_rad[k] = r.Get<double>();
+  for (int k = 0; k < blocks; ++k) in.initial.omega_radps[k] = r.Get<double>();
   in.run.duration_s = r.Get<double>();
   in.run.output_interval_s = r.Get<double>();
   in.run.gravity_mps2 = r.Get<double>();

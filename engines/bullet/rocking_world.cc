@@ -28,6 +28,21 @@ void ReadBody(const btRigidBody& body, BodyReadout* out) {
   out->w_radps = double(body.getAngularVelocity().z());
 }
 
+// The broadphase's pair filter of a stack of three or more blocks: the default group and mask
+// test, then only neighbours meet. Every body's user index is its place in the stack (the
+// ground 0, block k k), so two bodies are neighbours when their indices differ by one.
+struct NeighbourFilter : btOverlapFilterCallback {
+  bool needBroadphaseCollision(btBroadphaseProxy* p0, btBroadphaseProxy* p1) const override {
+    const bool collides = (p0->m_collisionFilterGroup & p1->m_collisionFilterMask) != 0 &&
+                          (p1->m_collisionFilterGroup & p0->m_collisionFilterMask) != 0;
+    if (!collides) return false;
+    const auto* a = static_cast<const btCollisionObject*>(p0->m_clientObject);
+    const auto* b = static_cast<const btCollisionObject*>(p1->m_clientObject);
+    const int gap = a->getUserIndex() - b->getUserIndex();
+    return gap == 1 || gap == -1;
+  }
+};
+
 // Largest out-of-plane rotation component of a basis (0 for a rotation about z alone).
 double OutOfPlaneRotation(const btMatrix3x3& r) {
   return std::max({std::abs(double(r[2][0])), std::abs(double(r[2][1])), std::abs(double(r[0][2])),
@@ -51,6 +66,11 @@ RockingWorld::RockingWorld(const BulletInput& input) : in_(input) {
   solver_ = std::make_unique<btSequentialImpulseConstraintSolver>();
   world_ = std::make_unique<btDiscreteDynamicsWorld>(dispatcher_.get(), broadphase_.get(),
                                                      solver_.get(), collision_config_.get());
+  const int n = in_.block_count();
+  if (n >= 3) {
+    filter_ = std::make_unique<NeighbourFilter>();
+    world_->getPairCache()->setOverlapFilterCallback(filter_.get());
+  }
   btContactSolverInfo& si = world_->getSolverInfo();
   si.m_numIterations = c.solver_iterations;
   si.m_erp = btScalar(c.erp);
@@ -61,16 +81,17 @@ RockingWorld::RockingWorld(const BulletInput& input) : in_(input) {
   si.m_timeStep = btScalar(dt_);
   world_->setGravity(btVector3(0, btScalar(-in_.run.gravity_mps2), 0));
 
-  const double b1 = 0.5 * in_.block1.width_m, h1 = 0.5 * in_.block1.height_m;
-  const double b2 = in_.block2 ? 0.5 * in_.block2->width_m : 0.0;
-  const double h2 = in_.block2 ? 0.5 * in_.block2->height_m : 0.0;
-  const double d1 = in_.block1.depth_m, d2 = in_.block2 ? in_.block2->depth_m : 0.0;
+  // The ground's size: much wider than the largest block (one block: as if block 2 were 0).
+  double size = 0.5, depth = 0.0;
+  for (const BlockDef& def : in_.blocks) {
+    size = std::max({size, 0.5 * def.width_m, 0.5 * def.height_m});
+    depth = std::max(depth, def.depth_m);
+  }
 
   // Ground: a box whose top face is y = 0 in the base frame, much wider than the stack.
-  const double size = std::max({b1, h1, b2, h2, 0.5});
   ground_half_depth_m_ = 0.5 * c.ground_depth_m;
-  ground_shape_ = std::make_unique<btBoxShape>(btVector3(
-      btScalar(40.0 * size), btScalar(ground_half_depth_m_), btScalar(std::max(d1, d2) + 1.0)));
+  ground_shape_ = std::make_unique<btBoxShape>(
+      btVector3(btScalar(40.0 * size), btScalar(ground_half_depth_m_), btScalar(depth + 1.0)));
   ground_shape_->setMargin(btScalar(c.margin_m));
   const double ux0 = kinematic_ ? in_.drive.ux_m.front() : 0.0;
   const double uy0 = kinematic_ ? in_.drive.uy_m.front() : 0.0;
@@ -82,6 +103,7 @@ RockingWorld::RockingWorld(const BulletInput& input) : in_(input) {
     info.m_restitution = btScalar(c.restitution);
     info.m_rollingFriction = btScalar(c.rolling_friction);
     ground_ = std::make_unique<btRigidBody>(info);
+    ground_->setUserIndex(0);
     if (kinematic_) {
       // A mass-0 body is flagged static; a kinematic body must not be (a BT_THREADSAFE solver
       // maps static bodies to a fixed solver body with zero velocity).
@@ -94,10 +116,10 @@ RockingWorld::RockingWorld(const BulletInput& input) : in_(input) {
   }
 
   // Blocks, placed by the pivot chain in the base frame then shifted with the ground.
-  const StackPlacement place = PlaceStack(b1, h1, b2, h2, in_.two_blocks(), in_.initial);
+  const StackPlacement place = PlaceStack(in_.blocks, in_.initial);
   const double gvx = kinematic_ ? in_.drive.ux0_mps : 0.0;
   const double gvy = kinematic_ ? in_.drive.uy0_mps : 0.0;
-  auto make_block = [&](const BlockDef& def, const PlanarPose& pose, double z,
+  auto make_block = [&](const BlockDef& def, const PlanarPose& pose, double z, int index,
                         std::unique_ptr<btBoxShape>* shape) {
     *shape = std::make_unique<btBoxShape>(btVector3(
         btScalar(0.5 * def.width_m), btScalar(0.5 * def.height_m), btScalar(0.5 * def.depth_m)));
@@ -113,6 +135,7 @@ RockingWorld::RockingWorld(const BulletInput& input) : in_(input) {
     info.m_linearDamping = 0;
     info.m_angularDamping = 0;
     auto body = std::make_unique<btRigidBody>(info);
+    body->setUserIndex(index);  // its place in the stack, for NeighbourFilter
     // Planar motion: translation in x-y, rotation about z only.
     body->setLinearFactor(btVector3(1, 1, 0));
     body->setAngularFactor(btVector3(0, 0, 1));
@@ -122,17 +145,16 @@ RockingWorld::RockingWorld(const BulletInput& input) : in_(input) {
     world_->addRigidBody(body.get());
     return body;
   };
-  z1_ = 0.0;
-  block1_ = make_block(in_.block1, place.block1, z1_, &shape1_);
-  if (in_.block2) {
-    z2_ = 0.0;
-    block2_ = make_block(*in_.block2, place.block2, z2_, &shape2_);
+  // Bottom first: the solver's order of bodies, and so of contacts, is the order they are added.
+  z_.assign(static_cast<size_t>(n), 0.0);
+  shapes_.resize(static_cast<size_t>(n));
+  for (int k = 0; k < n; ++k) {
+    blocks_.push_back(make_block(in_.blocks[k], place.blocks[k], z_[k], k + 1, &shapes_[k]));
   }
 }
 
 RockingWorld::~RockingWorld() {
-  if (block2_) world_->removeRigidBody(block2_.get());
-  if (block1_) world_->removeRigidBody(block1_.get());
+  for (auto it = blocks_.rbegin(); it != blocks_.rend(); ++it) world_->removeRigidBody(it->get());
   if (ground_) world_->removeRigidBody(ground_.get());
 }
 
@@ -166,16 +188,17 @@ void RockingWorld::Step() {
 }
 
 StepReadout RockingWorld::Read(std::int64_t n) const {
-  StepReadout s;
+  StepReadout s(static_cast<int>(blocks_.size()));
   s.t_s = static_cast<double>(n) * dt_;
-  ReadBody(*block1_, &s.block1);
-  double oop_m = std::abs(double(block1_->getCenterOfMassTransform().getOrigin().z()) - z1_);
-  double oop_rad = OutOfPlaneRotation(block1_->getCenterOfMassTransform().getBasis());
-  if (block2_) {
-    ReadBody(*block2_, &s.block2);
-    oop_m = std::max(oop_m,
-                     std::abs(double(block2_->getCenterOfMassTransform().getOrigin().z()) - z2_));
-    oop_rad = std::max(oop_rad, OutOfPlaneRotation(block2_->getCenterOfMassTransform().getBasis()));
+  double oop_m = 0.0, oop_rad = 0.0;
+  for (size_t k = 0; k < blocks_.size(); ++k) {
+    const btRigidBody& body = *blocks_[k];
+    ReadBody(body, &s.blocks[k]);
+    const btTransform& t = body.getCenterOfMassTransform();
+    const double dz = std::abs(double(t.getOrigin().z()) - z_[k]);
+    const double tilt = OutOfPlaneRotation(t.getBasis());
+    oop_m = k == 0 ? dz : std::max(oop_m, dz);  // block 1's own value first, as before
+    oop_rad = k == 0 ? tilt : std::max(oop_rad, tilt);
   }
   s.out_of_plane_m = oop_m;
   s.out_of_plane_rad = oop_rad;
@@ -211,6 +234,8 @@ nlohmann::json RockingWorld::Settings() const {
   j["warmstarting_factor"] = double(si.m_warmstartingFactor);
   j["solver_mode"] = si.m_solverMode;
   j["bullet_version"] = btGetVersion();
+  // Three or more blocks: only neighbours collide (one and two blocks: every pair, as before).
+  if (filter_) j["collision_filter"] = "neighbours";
   return j;
 }
 

@@ -1,5 +1,5 @@
 #pragma once
-/// The Bullet scene of the two stacked blocks. This file and rocking_world.cc / bullet_engine.cc
+/// The Bullet scene of the stack of N blocks. This file and rocking_world.cc / bullet_engine.cc
 /// are compiled twice: against bullet-float64 (BT_USE_DOUBLE_PRECISION, library
 /// rockbench_bullet) and against bullet (single precision, library rockbench_bullet_float, only
 /// linked into the helper program rockbench-bullet-float). The two never meet in one binary.
@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <vector>
 
 #include "engines/bullet/bullet_engine.h"
 #include "engines/bullet/bullet_settings.h"
@@ -17,8 +18,12 @@
 namespace rockbench::bullet {
 
 /// A Bullet world holding a static (inertial drive) or kinematic (kinematic drive) ground box
-/// and one or two btBoxShape blocks placed by the pivot chain. Keeps a reference to `input`,
-/// which must outlive it.
+/// and N btBoxShape blocks placed by the pivot chain (scene/stack_pose.h), added bottom first.
+/// Contacts are only between neighbours: block 1 and the ground, block k and block k + 1. With
+/// three or more blocks a broadphase filter (NeighbourFilter in rocking_world.cc) keeps every
+/// other pair out of the collision pipeline; one and two blocks have no filter (their only
+/// other pair, block 2 and the ground, never meets before an overturn ends the run), as before
+/// issue 23. Keeps a reference to `input`, which must outlive it.
 class RockingWorld {
  public:
   explicit RockingWorld(const BulletInput& input);
@@ -39,8 +44,13 @@ class RockingWorld {
   nlohmann::json Settings() const;
 
   btDiscreteDynamicsWorld* world() { return world_.get(); }
-  btRigidBody* block1() { return block1_.get(); }
-  btRigidBody* block2() { return block2_.get(); }  ///< null for a single block
+  /// Block k's body (k = 0: block 1, the lowest), bottom first.
+  btRigidBody* block(int k) { return blocks_.at(static_cast<size_t>(k)).get(); }
+  int block_count() const { return static_cast<int>(blocks_.size()); }
+  btRigidBody* block1() { return blocks_[0].get(); }
+  btRigidBody* block2() {
+    return blocks_.size() >= 2 ? blocks_[1].get() : nullptr;
+  }  ///< null for a single block
   btRigidBody* ground() { return ground_.get(); }
 
  private:
@@ -49,15 +59,19 @@ class RockingWorld {
   const BulletInput& in_;
   double dt_ = 0.0;
   bool kinematic_ = false;
+  // Three or more blocks only; declared first so that it outlives the broadphase's pair cache.
+  std::unique_ptr<btOverlapFilterCallback> filter_;
   std::unique_ptr<btDefaultCollisionConfiguration> collision_config_;
   std::unique_ptr<btCollisionDispatcher> dispatcher_;
   std::unique_ptr<btBroadphaseInterface> broadphase_;
   std::unique_ptr<btSequentialImpulseConstraintSolver> solver_;
   std::unique_ptr<btDiscreteDynamicsWorld> world_;
-  std::unique_ptr<btBoxShape> ground_shape_, shape1_, shape2_;
-  std::unique_ptr<btRigidBody> ground_, block1_, block2_;
+  std::unique_ptr<btBoxShape> ground_shape_;
+  std::vector<std::unique_ptr<btBoxShape>> shapes_;  // per block, bottom first
+  std::unique_ptr<btRigidBody> ground_;
+  std::vector<std::unique_ptr<btRigidBody>> blocks_;  // per block, bottom first
   double ground_half_depth_m_ = 0.0;
-  double z1_ = 0.0, z2_ = 0.0;  // initial out-of-plane positions
+  std::vector<double> z_;  // initial out-of-plane positions, per block
 };
 
 }  // namespace rockbench::bullet

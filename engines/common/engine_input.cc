@@ -17,6 +17,30 @@ constexpr std::int64_t kMaxSteps = 2'000'000'000;
 
 }  // namespace
 
+std::string EngineBlocksRefusal(const std::string& engine, int blocks, int max_blocks) {
+  if (blocks <= max_blocks) return {};
+  std::string allowed = "1";
+  for (int k = 2; k <= max_blocks; ++k) {
+    allowed += k == max_blocks ? " or " : ", ";
+    allowed += std::to_string(k);
+  }
+  std::string out = "engine ";
+  out += engine;
+  out += ": N-block stacks (";
+  out += std::to_string(blocks);
+  out += " blocks) are not built yet (issue 23); ";
+  out += allowed;
+  out += max_blocks == 1 ? " block" : " blocks";
+  return out;
+}
+
+void RequireEngineBlocks(const Scene& scene, const std::string& engine, int max_blocks) {
+  const std::string refusal = EngineBlocksRefusal(engine, scene.block_count(), max_blocks);
+  if (refusal.empty()) return;
+  const std::string where = scene.path.empty() ? std::string("scene") : scene.path.string();
+  throw SceneError(where + ": " + refusal);
+}
+
 void AddTimeStepSetting(EngineSettingsSchema& schema, std::string engine_default, std::string doc) {
   schema.Number("time_step", kDefaultTimeStep_s, SettingRange::kPositive, "s",
                 std::move(engine_default), std::move(doc));
@@ -73,8 +97,6 @@ const char* DriveKindName(DriveKind kind) {
 EngineInput MakeEngineInput(const Scene& scene, const GroundMotion& motion,
                             const std::string& engine, double time_step_s, DriveKind drive,
                             double kinematic_highpass_hz) {
-  // The entry of every fixed-step engine: one or two blocks for now (issue 23).
-  RequireAtMostTwoBlocks(scene, "engine " + engine);
   const double dt = time_step_s;
   const std::string where = scene.path.empty() ? std::string("scene") : scene.path.string();
   if (!(std::isfinite(dt) && dt > 0.0)) {
@@ -86,8 +108,7 @@ EngineInput MakeEngineInput(const Scene& scene, const GroundMotion& motion,
                      "small)");
   }
   EngineInput in;
-  in.block1 = scene.blocks.at(0);
-  if (scene.block_count() == 2) in.block2 = scene.blocks[1];
+  in.blocks = scene.blocks;
   in.initial = scene.initial;
   in.run = scene.run;
   in.time_step_s = dt;

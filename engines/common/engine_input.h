@@ -1,11 +1,10 @@
 #pragma once
-/// What a fixed-step engine simulates, whatever the engine: the scene's blocks, initial state,
+/// What a fixed-step engine simulates, whatever the engine: the scene's N blocks, initial state,
 /// time step and drive, and the base motion sampled on the engine's step grid. Every engine
 /// (and Bullet's single-precision helper program) sees bit-identical excitation.
 #include <cstdint>
 #include <limits>
 #include <nlohmann/json.hpp>
-#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -48,8 +47,9 @@ const char* DriveKindName(DriveKind kind);
 
 /// Everything one engine run needs.
 struct EngineInput {
-  BlockDef block1;
-  std::optional<BlockDef> block2;
+  /// The stack, bottom first: blocks[0] stands on the ground, blocks[k] sits centred on
+  /// blocks[k - 1] (Scene::blocks). 1 to kMaxBlocks blocks.
+  std::vector<BlockDef> blocks;
   InitialState initial;
   RunConfig run;
   double time_step_s = 1e-4;  ///< the engine's fixed step, s
@@ -67,7 +67,8 @@ struct EngineInput {
   double stop_at_rest_after_s = std::numeric_limits<double>::infinity();
   DriveSamples drive;
 
-  bool two_blocks() const { return block2.has_value(); }
+  /// Number of blocks of the stack.
+  int block_count() const { return static_cast<int>(blocks.size()); }
 };
 
 /// Builds the input of a run of step `time_step_s` (s) with `drive`: samples the base motion on
@@ -85,6 +86,14 @@ EngineInput MakeEngineInput(const Scene& scene, const GroundMotion& motion,
 EngineInput MakeEngineInput(const Scene& scene, const GroundMotion& motion,
                             const std::string& engine, const EngineSettings& settings,
                             double stop_at_rest_after_s);
+
+/// An engine that builds stacks of at most `max_blocks` blocks (issue 23 generalises the engines
+/// one by one) refuses a stack of `blocks` blocks with "engine ENGINE: N-block stacks (N blocks)
+/// are not built yet (issue 23); 1 or 2 blocks"; empty when blocks <= max_blocks.
+std::string EngineBlocksRefusal(const std::string& engine, int blocks, int max_blocks);
+/// The entry check of such an engine: throws SceneError "FILE: " + EngineBlocksRefusal(...) for
+/// a scene of more blocks.
+void RequireEngineBlocks(const Scene& scene, const std::string& engine, int max_blocks);
 
 /// The key `time_step` of every engine's table, which MakeEngineInput reads: the fixed step, s,
 /// a positive number, ours 1e-4 s (kDefaultTimeStep_s); `engine_default` is the engine's own

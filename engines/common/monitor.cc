@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstdio>
 #include <numbers>
+#include <stdexcept>
+#include <string>
 
 namespace rockbench {
 
@@ -46,15 +48,16 @@ struct NonFiniteField {
 
 // The first field of a readout that is not finite, named as the thesis's quantities: block 1's
 // rate is omega1 (its CCW angular velocity with the sign turned), its pose and velocity by what
-// they are; then block 2's; then the ground's (kinematic drive).
-NonFiniteField FirstNonFinite(const StepReadout& s, bool two_blocks) {
+// they are; then block 2's, and so on up the stack; then the ground's (kinematic drive).
+NonFiniteField FirstNonFinite(const StepReadout& s) {
   // The common case first, without a string: a sum is finite when every term is (a finite sum
   // that overflows is sorted out below).
   auto sum = [](const BodyReadout& b) {
     return b.x_m + b.y_m + b.cos_phi + b.sin_phi + b.vx_mps + b.vy_mps + b.w_radps;
   };
-  if (std::isfinite(sum(s.block1) + (two_blocks ? sum(s.block2) : 0.0) + s.ground_x_m +
-                    s.ground_y_m + s.ground_vx_mps + s.ground_vy_mps)) {
+  double all = 0.0;
+  for (const BodyReadout& b : s.blocks) all += sum(b);
+  if (std::isfinite(all + s.ground_x_m + s.ground_y_m + s.ground_vx_mps + s.ground_vy_mps)) {
     return {};
   }
   auto body = [](const BodyReadout& b, int k) -> NonFiniteField {
@@ -68,9 +71,8 @@ NonFiniteField FirstNonFinite(const StepReadout& s, bool two_blocks) {
     if (!std::isfinite(b.w_radps)) return {"omega" + std::to_string(k), -b.w_radps};
     return {};
   };
-  if (NonFiniteField f = body(s.block1, 1); !f.name.empty()) return f;
-  if (two_blocks) {
-    if (NonFiniteField f = body(s.block2, 2); !f.name.empty()) return f;
+  for (size_t k = 0; k < s.blocks.size(); ++k) {
+    if (NonFiniteField f = body(s.blocks[k], static_cast<int>(k) + 1); !f.name.empty()) return f;
   }
   const std::pair<const char*, double> ground[] = {{"ground position", s.ground_x_m},
                                                    {"ground position", s.ground_y_m},
@@ -137,8 +139,7 @@ int SideOfContact(Contact c) {
 }  // namespace
 
 Monitor::Monitor(const EngineInput& input, MonitorConfig config) : cfg_(config) {
-  in_meta_.block1 = input.block1;
-  in_meta_.block2 = input.block2;
+  in_meta_.blocks = input.blocks;
   in_meta_.initial = input.initial;
   in_meta_.run = input.run;
   in_meta_.time_step_s = input.time_step_s;
@@ -147,110 +148,132 @@ Monitor::Monitor(const EngineInput& input, MonitorConfig config) : cfg_(config) 
   in_meta_.overturn_rad = input.overturn_rad;
   in_meta_.stop_at_rest_after_s = input.stop_at_rest_after_s;
   in_meta_.steps = input.steps;
-  two_ = input.two_blocks();
-  blocks_ = two_ ? 2 : 1;
+  blocks_ = input.block_count();
+  if (blocks_ < 1 || blocks_ > kMaxBlocks) {
+    throw std::invalid_argument(std::string("Monitor: ") + std::to_string(blocks_) +
+                                " blocks; expected 1 to " + std::to_string(kMaxBlocks));
+  }
+  const size_t n = static_cast<size_t>(blocks_);
   last_ = Sample(blocks_);
   prev_ = Derived(blocks_);
-  b1_ = 0.5 * input.block1.width_m;
-  h1_ = 0.5 * input.block1.height_m;
-  m1_ = input.block1.mass_kg;
-  props1_ = MakeBlockProps(input.block1.width_m, input.block1.height_m, m1_);
-  if (two_) {
-    b2_ = 0.5 * input.block2->width_m;
-    h2_ = 0.5 * input.block2->height_m;
-    m2_ = input.block2->mass_kg;
-    props2_ = MakeBlockProps(input.block2->width_m, input.block2->height_m, m2_);
-  }
   g_ = input.run.gravity_mps2;
   dt_ = input.time_step_s;
   out_dt_ = input.run.output_interval_s;
-  tipping_energy_j_ = m1_ * g_ * (std::hypot(b1_, h1_) - h1_);
-  if (two_) tipping_energy_j_ += m2_ * g_ * (std::hypot(b2_, h2_) - h2_);
-  // alpha B per block: a corner moved by d tilts the block by d / B.
-  significant_m_[0] = cfg_.significant_critical_fraction * props1_.theta_c * 2.0 * b1_;
-  if (two_) significant_m_[1] = cfg_.significant_critical_fraction * props2_.theta_c * 2.0 * b2_;
+  b_.resize(n);
+  h_.resize(n);
+  m_.resize(n);
+  props_.resize(n);
+  significant_m_.assign(n, 0.0);
+  for (size_t k = 0; k < n; ++k) {
+    const BlockDef& def = input.blocks[k];
+    b_[k] = 0.5 * def.width_m;
+    h_[k] = 0.5 * def.height_m;
+    m_[k] = def.mass_kg;
+    props_[k] = MakeBlockProps(def.width_m, def.height_m, m_[k]);
+    const double tipping = m_[k] * g_ * (std::hypot(b_[k], h_[k]) - h_[k]);
+    tipping_energy_j_ = k == 0 ? tipping : tipping_energy_j_ + tipping;
+    // alpha B per block: a corner moved by d tilts the block by d / B.
+    significant_m_[k] = cfg_.significant_critical_fraction * props_[k].theta_c * 2.0 * b_[k];
+  }
+  hysteresis_.assign(n, Side{});
+  phi_.assign(n, 0.0);
+  landings_.assign(n, Landing{});
+  abs_prev_.assign(n, 0.0);
+  side_now_.assign(n, 0);
+  pivot_side_.assign(n, 0);
+  peak_.assign(n, 0.0);
+  peak_t_.assign(n, 0.0);
+  impacts_at_.assign(n, 0);
+  contacts_.assign(n, ContactWatch{});
   history_.blocks = blocks_;
+}
+
+void Monitor::CheckBodies(const StepReadout& s) const {
+  if (s.blocks.size() != static_cast<size_t>(blocks_)) {
+    throw std::invalid_argument(std::string("Monitor: the engine read ") +
+                                std::to_string(s.blocks.size()) + " bodies for a stack of " +
+                                std::to_string(blocks_) + " blocks");
+  }
 }
 
 Monitor::Derived Monitor::Derive(const StepReadout& s) {
   Derived d(blocks_);
-  const BodyReadout& r1 = s.block1;
-  // Unwrapped CCW angles; the thesis's theta is -phi.
-  phi1_ += std::remainder(std::atan2(r1.sin_phi, r1.cos_phi) - phi1_, 2.0 * std::numbers::pi);
   d.sample.t_s = s.t_s;
-  d.sample.theta_rad[0] = -phi1_;
-  d.sample.omega_radps[0] = -r1.w_radps;
-  // Base frame.
-  const double x1 = r1.x_m - s.ground_x_m, y1 = r1.y_m - s.ground_y_m;
-  const double vx1 = r1.vx_mps - s.ground_vx_mps, vy1 = r1.vy_mps - s.ground_vy_mps;
-  const double c1 = r1.cos_phi, s1 = r1.sin_phi;
-  // Lowest corner of block 1 above the ground (bottom corners at local (+-b1, -h1)).
-  // Corner heights: y = y1 + sin(phi) lx + cos(phi) ly for local (lx, ly) = (+-b1, +-h1); the top
-  // corners matter for a block lying on its side.
-  const double yl = y1 - s1 * b1_ - c1 * h1_;
-  const double yr = y1 + s1 * b1_ - c1 * h1_;
-  const double yl_top = y1 - s1 * b1_ + c1 * h1_;
-  const double yr_top = y1 + s1 * b1_ + c1 * h1_;
-  d.gap_ground_m = std::min(std::min(yl, yr), std::min(yl_top, yr_top));
-  d.energy_j = BlockEnergy_j(props1_, g_, {{x1, y1}, {vx1, vy1}, r1.w_radps});
-  if (two_) {
-    const BodyReadout& r2 = s.block2;
-    phi2_ += std::remainder(std::atan2(r2.sin_phi, r2.cos_phi) - phi2_, 2.0 * std::numbers::pi);
-    d.sample.theta_rad[1] = -phi2_;
-    d.sample.omega_radps[1] = -r2.w_radps;
-    const double x2 = r2.x_m - s.ground_x_m, y2 = r2.y_m - s.ground_y_m;
-    const double vx2 = r2.vx_mps - s.ground_vx_mps, vy2 = r2.vy_mps - s.ground_vy_mps;
-    d.energy_j += BlockEnergy_j(props2_, g_, {{x2, y2}, {vx2, vy2}, r2.w_radps});
-    // Block 2's bottom corners in block 1's frame: gap above block 1's top face (y = h1).
-    const double c2 = r2.cos_phi, s2 = r2.sin_phi;
-    double gap = 1e300;
-    for (int k = -1; k <= 1; k += 2) {
-      const double px = x2 + c2 * (k * b2_) + s2 * h2_;  // local (k b2, -h2)
-      const double py = y2 + s2 * (k * b2_) - c2 * h2_;
-      const double dx = px - x1, dy = py - y1;
-      const double ly = -s1 * dx + c1 * dy;
-      gap = std::min(gap, ly - h1_);
+  // The support of the block being read (the block below), in the base frame.
+  double xs = 0.0, ys = 0.0, cs = 1.0, ss = 0.0, hs = 0.0;
+  for (int k = 0; k < blocks_; ++k) {
+    const BodyReadout& r = s.blocks[k];
+    // Unwrapped CCW angles; the thesis's theta is -phi.
+    phi_[k] += std::remainder(std::atan2(r.sin_phi, r.cos_phi) - phi_[k], 2.0 * std::numbers::pi);
+    d.sample.theta_rad[k] = -phi_[k];
+    d.sample.omega_radps[k] = -r.w_radps;
+    // Base frame.
+    const double x = r.x_m - s.ground_x_m, y = r.y_m - s.ground_y_m;
+    const double vx = r.vx_mps - s.ground_vx_mps, vy = r.vy_mps - s.ground_vy_mps;
+    const double c = r.cos_phi, sn = r.sin_phi;
+    const double b = b_[k], h = h_[k];
+    if (k == 0) {
+      // Lowest corner of block 1 above the ground (bottom corners at local (+-b1, -h1)).
+      // Corner heights: y = y1 + sin(phi) lx + cos(phi) ly for local (lx, ly) = (+-b1, +-h1); the
+      // top corners matter for a block lying on its side.
+      const double yl = y - sn * b - c * h;
+      const double yr = y + sn * b - c * h;
+      const double yl_top = y - sn * b + c * h;
+      const double yr_top = y + sn * b + c * h;
+      d.gap_m[0] = std::min(std::min(yl, yr), std::min(yl_top, yr_top));
+      d.energy_j = BlockEnergy_j(props_[0], g_, {{x, y}, {vx, vy}, r.w_radps});
+    } else {
+      d.energy_j += BlockEnergy_j(props_[k], g_, {{x, y}, {vx, vy}, r.w_radps});
+      // Block k's bottom corners in block k - 1's frame: gap above its top face (y = h_(k-1)).
+      double gap = 1e300;
+      for (int j = -1; j <= 1; j += 2) {
+        const double px = x + c * (j * b) + sn * h;  // local (j b, -h)
+        const double py = y + sn * (j * b) - c * h;
+        const double dx = px - xs, dy = py - ys;
+        const double ly = -ss * dx + cs * dy;
+        gap = std::min(gap, ly - hs);
+      }
+      d.gap_m[k] = gap;
     }
-    d.gap_interface_m = gap;
+    xs = x, ys = y, cs = c, ss = sn, hs = h;
   }
   return d;
 }
 
-void Monitor::Pivots(const StepReadout& s, Derived* d, int* side1, int* side2) const {
+void Monitor::Pivots(const StepReadout& s, Derived* d, int* sides) const {
   const Sample& cur = d->sample;
-  const double c1 = s.block1.cos_phi, s1 = s.block1.sin_phi;
-  const double x1 = s.block1.x_m - s.ground_x_m, y1 = s.block1.y_m - s.ground_y_m;
-  int pivot_side2 = 0;
-  TiltSides(cur, side1, &pivot_side2);
-  // Block 1's pivot: bottom corner (side1 b1, -h1) in its frame (bottom centre when flat).
-  d->pivot_ground_x_m = x1 + c1 * (*side1 * b1_) + s1 * h1_;
-  if (!two_) return;
-  *side2 = pivot_side2;
-  // Block 2's pivot (side2 b2, -h2) in its frame, expressed in block 1's frame.
-  const double c2 = s.block2.cos_phi, s2 = s.block2.sin_phi;
-  const double x2 = s.block2.x_m - s.ground_x_m, y2 = s.block2.y_m - s.ground_y_m;
-  const double px = x2 + c2 * (*side2 * b2_) + s2 * h2_;
-  const double py = y2 + s2 * (*side2 * b2_) - c2 * h2_;
-  const double dx = px - x1, dy = py - y1;
-  d->pivot_interface_x_m = c1 * dx + s1 * dy;
-}
-
-void Monitor::TiltSides(const Sample& s, int* side1, int* side2) const {
-  // The reference's rule (scene/mode.h TiltContact), with the angle's side from the
-  // hysteresis and the flat band's rate threshold of MonitorConfig.
-  *side1 = SideOfContact(
-      TiltContact(ContactOfSide(ground_.side), s.omega_radps[0], cfg_.rate_tol_radps));
-  *side2 = 0;
-  if (two_) {
-    *side2 = SideOfContact(TiltContact(ContactOfSide(interface_.side),
-                                       s.omega_radps[1] - s.omega_radps[0], cfg_.rate_tol_radps));
+  double xs = 0.0, ys = 0.0, cs = 1.0, ss = 0.0;  // the support, in the base frame
+  for (int k = 0; k < blocks_; ++k) {
+    const BodyReadout& r = s.blocks[k];
+    const double c = r.cos_phi, sn = r.sin_phi;
+    const double x = r.x_m - s.ground_x_m, y = r.y_m - s.ground_y_m;
+    const int side = TiltSide(cur, k);
+    sides[k] = side;
+    if (k == 0) {
+      // Block 1's pivot: bottom corner (side1 b1, -h1) in its frame (bottom centre when flat).
+      d->pivot_x_m[0] = x + c * (side * b_[0]) + sn * h_[0];
+    } else {
+      // Block k's pivot (side b_k, -h_k) in its frame, expressed in block k - 1's frame.
+      const double px = x + c * (side * b_[k]) + sn * h_[k];
+      const double py = y + sn * (side * b_[k]) - c * h_[k];
+      const double dx = px - xs, dy = py - ys;
+      d->pivot_x_m[k] = cs * dx + ss * dy;
+    }
+    xs = x, ys = y, cs = c, ss = sn;
   }
 }
 
+int Monitor::TiltSide(const Sample& s, int k) const {
+  // The reference's rule (scene/mode.h TiltContact), with the angle's side from the
+  // hysteresis and the flat band's rate threshold of MonitorConfig.
+  const double rate = k == 0 ? s.omega_radps[0] : s.omega_radps[k] - s.omega_radps[k - 1];
+  return SideOfContact(TiltContact(ContactOfSide(hysteresis_[k].side), rate, cfg_.rate_tol_radps));
+}
+
 Configuration Monitor::InferMode(const Sample& s) const {
-  int s1 = 0, s2 = 0;
-  TiltSides(s, &s1, &s2);
-  return ConfigurationOf(ModeOf({ContactOfSide(s1), ContactOfSide(s2)}, two_), blocks_);
+  Configuration c(blocks_);
+  for (int k = 0; k < blocks_; ++k) c.set(k, ContactOfSide(TiltSide(s, k)));
+  return c;
 }
 
 void Monitor::Record(const Sample& s) {
@@ -262,29 +285,27 @@ void Monitor::PushEvent(Event e) {
 }
 
 void Monitor::Start(const StepReadout& s) {
-  if (const NonFiniteField f = FirstNonFinite(s, two_); !f.name.empty()) {
+  CheckBodies(s);
+  if (const NonFiniteField f = FirstNonFinite(s); !f.name.empty()) {
     // Not even the initial state is finite: no sample, and no step will be read.
     last_.t_s = end_t_s_ = s.t_s;
     last_recorded_ = true;
     StopNonFinite(f.name, NonFiniteText(f.value), s.t_s, 0);
     return;
   }
-  const double a1 = std::atan2(s.block1.sin_phi, s.block1.cos_phi);
-  phi1_ = a1;
-  if (two_) phi2_ = std::atan2(s.block2.sin_phi, s.block2.cos_phi);
+  for (int k = 0; k < blocks_; ++k) {
+    phi_[k] = std::atan2(s.blocks[k].sin_phi, s.blocks[k].cos_phi);
+  }
   Derived d = Derive(s);
-  const double theta1 = d.sample.theta_rad[0];
-  ground_.side = std::abs(theta1) > cfg_.angle_enter_rad ? Sign(theta1) : 0;
-  ground_.prev = theta1;
-  if (two_) {
-    const double rel = d.sample.theta_rad[1] - theta1;
-    interface_.side = std::abs(rel) > cfg_.angle_enter_rad ? Sign(rel) : 0;
-    interface_.prev = rel;
+  for (int k = 0; k < blocks_; ++k) {
+    const double rel =
+        k == 0 ? d.sample.theta_rad[0] : d.sample.theta_rad[k] - d.sample.theta_rad[k - 1];
+    hysteresis_[k].side = std::abs(rel) > cfg_.angle_enter_rad ? Sign(rel) : 0;
+    hysteresis_[k].prev = rel;
+    peak_[k] = std::abs(d.sample.theta_rad[k]);
   }
   d.sample.mode = InferMode(d.sample);
-  Pivots(s, &d, &pivot_side1_, &pivot_side2_);
-  peak1_ = std::abs(theta1);
-  peak2_ = two_ ? std::abs(d.sample.theta_rad[1]) : 0.0;
+  Pivots(s, &d, pivot_side_.data());
   prev_ = d;
   last_ = d.sample;
   energy_min_free_j_ = d.energy_j;
@@ -295,12 +316,13 @@ void Monitor::Start(const StepReadout& s) {
 
 bool Monitor::Step(std::int64_t n, const StepReadout& s) {
   if (status_ == RunStatus::kNonFinite) return false;
+  CheckBodies(s);
   steps_done_ = n;
   if (!s.engine_fault.empty()) {
     StopNonFinite("the engine's next state", "not finite", s.t_s, n, s.engine_fault);
     return false;
   }
-  if (const NonFiniteField f = FirstNonFinite(s, two_); !f.name.empty()) {
+  if (const NonFiniteField f = FirstNonFinite(s); !f.name.empty()) {
     StopNonFinite(f.name, NonFiniteText(f.value), s.t_s, n);
     return false;
   }
@@ -311,14 +333,13 @@ bool Monitor::Step(std::int64_t n, const StepReadout& s) {
   }
   Sample& cur = d.sample;
   const double t_prev = prev_.sample.t_s, t = cur.t_s;
-  // |theta| of both blocks before this step (prev_ is overwritten before the overturn check).
-  const double abs1_prev = std::abs(prev_.sample.theta_rad[0]);
-  const double abs2_prev = two_ ? std::abs(prev_.sample.theta_rad[1]) : 0.0;
+  // |theta| of every block before this step (prev_ is overwritten before the overturn check).
+  for (int k = 0; k < blocks_; ++k) abs_prev_[k] = std::abs(prev_.sample.theta_rad[k]);
 
-  const Landings landings = DetectLandings(cur, t_prev);
+  DetectLandings(cur, t_prev);
   cur.mode = InferMode(cur);
-  CompletePendingImpacts(d, landings);
-  OpenImpacts(landings);
+  CompletePendingImpacts(d);
+  OpenImpacts();
   RecordModeChange(d);
 
   MeasureContacts(s, &d);
@@ -330,7 +351,7 @@ bool Monitor::Step(std::int64_t n, const StepReadout& s) {
   end_t_s_ = t;
 
   RecordOutput(cur, t);
-  const bool stopped = Stopped(d, t_prev, abs1_prev, abs2_prev);
+  const bool stopped = Stopped(d, t_prev);
   NoteOnsets(t);
   return !stopped;
 }
@@ -363,25 +384,28 @@ void Monitor::StopNonFinite(const std::string& quantity, const std::string& valu
 }
 
 std::array<bool, std::size(kViolationFlags)> Monitor::Raised() const {
-  const double slip_flag1 = cfg_.slip_flag_rel * 2.0 * b1_;
-  const double slip_flag2 = cfg_.slip_flag_rel * 2.0 * b2_;
-  return {slip_ground_m_ > slip_flag1 || (two_ && slip_interface_m_ > slip_flag2),
-          uplift_ground_episodes_ > 0 || (two_ && uplift_interface_episodes_ > 0),
-          penetration_ground_max_m_ > cfg_.penetration_flag_m ||
-              (two_ && penetration_interface_max_m_ > cfg_.penetration_flag_m),
+  bool slip = false, uplift = false, penetration = false;
+  for (int k = 0; k < blocks_; ++k) {
+    const ContactWatch& c = contacts_[k];
+    slip = slip || c.slip_m > cfg_.slip_flag_rel * 2.0 * b_[k];
+    uplift = uplift || c.uplift_episodes > 0;
+    penetration = penetration || c.penetration_max_m > cfg_.penetration_flag_m;
+  }
+  return {slip, uplift, penetration,
           energy_gain_max_j_ > cfg_.energy_growth_flag_rel * tipping_energy_j_,
           status_ == RunStatus::kBlowUp || status_ == RunStatus::kNonFinite};
 }
 
 std::array<bool, std::size(kViolationFlags)> Monitor::RaisedSignificantly() const {
-  auto over = [&](double ground_m, double interface_m) {
-    return ground_m > significant_m_[0] || (two_ && interface_m > significant_m_[1]);
-  };
+  bool uplift = false, penetration = false;
+  for (int k = 0; k < blocks_; ++k) {
+    uplift = uplift || contacts_[k].uplift_max_m > significant_m_[k];
+    penetration = penetration || contacts_[k].penetration_max_m > significant_m_[k];
+  }
   const auto raised = Raised();
   // Slip is judged as flagged (slip_flag_rel of the width): it tilts nothing, and a converged
   // engine's accumulated contact jitter reaches 0.3 mm over Rinaldi 228 (ODE, MuJoCo).
-  return {raised[0], over(uplift_ground_max_m_, uplift_interface_max_m_),
-          over(penetration_ground_max_m_, penetration_interface_max_m_), raised[3], raised[4]};
+  return {raised[0], uplift, penetration, raised[3], raised[4]};
 }
 
 void Monitor::NoteOnsets(double t_s) {
@@ -393,28 +417,24 @@ void Monitor::NoteOnsets(double t_s) {
   }
 }
 
-Monitor::Landings Monitor::DetectLandings(const Sample& cur, double t_prev) {
-  // Impacts: a tilted block lands.
-  Landings l;
-  l.t_prev = t_prev;
-  l.rel = two_ ? cur.theta_rad[1] - cur.theta_rad[0] : 0.0;
-  l.rel_prev = interface_.prev;
-  l.theta1_prev = ground_.prev;
-  l.side_ground = ground_.side;
-  l.side_interface = interface_.side;
-  l.ground = UpdateSide(&ground_.side, ground_.prev, cur.theta_rad[0], t_prev, cur.t_s,
-                        cfg_.angle_enter_rad, cfg_.angle_leave_rad, &l.t_ground, &l.crossed_ground);
-  ground_.prev = cur.theta_rad[0];
-  if (two_) {
-    l.interface =
-        UpdateSide(&interface_.side, interface_.prev, l.rel, t_prev, cur.t_s, cfg_.angle_enter_rad,
-                   cfg_.angle_leave_rad, &l.t_interface, &l.crossed_interface);
-    interface_.prev = l.rel;
+void Monitor::DetectLandings(const Sample& cur, double t_prev) {
+  // Impacts: a tilted block lands on its support (interface k: block k's angle relative to
+  // block k - 1, block 1's on the ground).
+  landings_t_prev_ = t_prev;
+  for (int k = 0; k < blocks_; ++k) {
+    Landing& l = landings_[k];
+    Side& h = hysteresis_[k];
+    l = Landing{};
+    l.angle = k == 0 ? cur.theta_rad[0] : cur.theta_rad[k] - cur.theta_rad[k - 1];
+    l.angle_prev = h.prev;
+    l.side_before = h.side;
+    l.landed = UpdateSide(&h.side, h.prev, l.angle, t_prev, cur.t_s, cfg_.angle_enter_rad,
+                          cfg_.angle_leave_rad, &l.t_s, &l.crossed);
+    h.prev = l.angle;
   }
-  return l;
 }
 
-void Monitor::CompletePendingImpacts(const Derived& d, const Landings& l) {
+void Monitor::CompletePendingImpacts(const Derived& d) {
   // Pending impacts: Bullet resolves a contact in the step after the one that brought the
   // corner into the support, so an impact is complete one step after its angle crossed zero
   // (or after kImpactWaitSteps steps if it landed without crossing).
@@ -423,14 +443,15 @@ void Monitor::CompletePendingImpacts(const Derived& d, const Landings& l) {
   const Sample& prev = prev_.sample;
   for (size_t k = 0; k < pending_.size();) {
     PendingImpact& p = pending_[k];
-    const double angle = p.interface ? l.rel : cur.theta_rad[0];
-    const double angle_prev = p.interface ? l.rel_prev : l.theta1_prev;
+    const Landing& l = landings_[p.interface];
+    const double angle = l.angle;
+    const double angle_prev = l.angle_prev;
     bool done = false;
     if (p.crossed) {
       done = true;
     } else if (p.side * angle <= 0.0) {
       p.crossed = true;
-      p.event.t_s = CrossingTime(angle_prev, angle, l.t_prev, cur.t_s);
+      p.event.t_s = CrossingTime(angle_prev, angle, landings_t_prev_, cur.t_s);
       p.event.omega_before_radps = prev.omega_radps;
       p.event.energy_before_j = prev_.energy_j;
     } else if (++p.waited >= kImpactWaitSteps) {
@@ -450,15 +471,21 @@ void Monitor::CompletePendingImpacts(const Derived& d, const Landings& l) {
   }
 }
 
-void Monitor::OpenImpacts(const Landings& l) {
+void Monitor::OpenImpacts() {
   const Sample& prev = prev_.sample;
-  auto make_impact = [&](const char* kind, bool interface, int side, double when, bool crossed) {
+  // Interfaces from the bottom: the ground's impact first, as the two-block monitor.
+  for (int k = 0; k < blocks_; ++k) {
+    const Landing& l = landings_[k];
+    if (!l.landed) continue;
+    ++impacts_at_[k];
     PendingImpact p(blocks_);
-    p.interface = interface;
-    p.side = side;
-    p.crossed = crossed;
-    p.event.t_s = when;
-    p.event.kind = kind;
+    p.interface = k;
+    p.side = l.side_before;
+    p.crossed = l.crossed;
+    p.event.t_s = l.t_s;
+    // "ground_impact", "interface_impact" (two blocks), "interface3_impact" (block 3 on
+    // block 2 of three or more): the reference's kinds.
+    p.event.kind = InterfaceName(k, blocks_) + "_impact";
     p.event.mode_before = prev.mode;
     // The state before the crossing step is before the contact impulse: Bullet applies it in
     // the step that crosses (a speculative contact already in the manifold) or in the next one
@@ -466,14 +493,6 @@ void Monitor::OpenImpacts(const Landings& l) {
     p.event.omega_before_radps = prev.omega_radps;
     p.event.energy_before_j = prev_.energy_j;
     pending_.push_back(std::move(p));
-  };
-  if (l.ground) {
-    ++impacts_ground_;
-    make_impact("ground_impact", false, l.side_ground, l.t_ground, l.crossed_ground);
-  }
-  if (l.interface) {
-    ++impacts_interface_;
-    make_impact("interface_impact", true, l.side_interface, l.t_interface, l.crossed_interface);
   }
 }
 
@@ -508,43 +527,27 @@ void Monitor::RecordModeChange(const Derived& d) {
 void Monitor::MeasureContacts(const StepReadout& s, Derived* d_ptr) {
   const Derived& d = *d_ptr;
   // Slip: horizontal motion of the pivot point relative to the support while in contact.
-  {
-    int side1 = 0, side2 = 0;
-    Pivots(s, d_ptr, &side1, &side2);
-    if (side1 == pivot_side1_ && d.gap_ground_m < cfg_.uplift_tol_m) {
-      slip_ground_m_ += std::abs(d.pivot_ground_x_m - prev_.pivot_ground_x_m);
+  Pivots(s, d_ptr, side_now_.data());
+  for (int k = 0; k < blocks_; ++k) {
+    ContactWatch& c = contacts_[k];
+    const int side = side_now_[k];
+    if (side == pivot_side_[k] && d.gap_m[k] < cfg_.uplift_tol_m) {
+      c.slip_m += std::abs(d.pivot_x_m[k] - prev_.pivot_x_m[k]);
     }
-    drift_ground_max_m_ = std::max(drift_ground_max_m_, std::abs(d.pivot_ground_x_m - side1 * b1_));
-    pivot_side1_ = side1;
-    if (two_) {
-      if (side2 == pivot_side2_ && d.gap_interface_m < cfg_.uplift_tol_m) {
-        slip_interface_m_ += std::abs(d.pivot_interface_x_m - prev_.pivot_interface_x_m);
-      }
-      drift_interface_max_m_ =
-          std::max(drift_interface_max_m_, std::abs(d.pivot_interface_x_m - side2 * b2_));
-      pivot_side2_ = side2;
-    }
+    c.drift_max_m = std::max(c.drift_max_m, std::abs(d.pivot_x_m[k] - side * b_[k]));
+    pivot_side_[k] = side;
   }
   // Uplift and penetration.
-  {
-    const bool up = d.gap_ground_m > cfg_.uplift_tol_m;
+  for (int k = 0; k < blocks_; ++k) {
+    ContactWatch& c = contacts_[k];
+    const bool up = d.gap_m[k] > cfg_.uplift_tol_m;
     if (up) {
-      uplift_ground_s_ += dt_;
-      uplift_ground_max_m_ = std::max(uplift_ground_max_m_, d.gap_ground_m);
-      if (!airborne_ground_) ++uplift_ground_episodes_;
+      c.uplift_s += dt_;
+      c.uplift_max_m = std::max(c.uplift_max_m, d.gap_m[k]);
+      if (!c.airborne) ++c.uplift_episodes;
     }
-    airborne_ground_ = up;
-    penetration_ground_max_m_ = std::max(penetration_ground_max_m_, -d.gap_ground_m);
-    if (two_) {
-      const bool up2 = d.gap_interface_m > cfg_.uplift_tol_m;
-      if (up2) {
-        uplift_interface_s_ += dt_;
-        uplift_interface_max_m_ = std::max(uplift_interface_max_m_, d.gap_interface_m);
-        if (!airborne_interface_) ++uplift_interface_episodes_;
-      }
-      airborne_interface_ = up2;
-      penetration_interface_max_m_ = std::max(penetration_interface_max_m_, -d.gap_interface_m);
-    }
+    c.airborne = up;
+    c.penetration_max_m = std::max(c.penetration_max_m, -d.gap_m[k]);
   }
   out_of_plane_m_ = std::max(out_of_plane_m_, s.out_of_plane_m);
   out_of_plane_rad_ = std::max(out_of_plane_rad_, s.out_of_plane_rad);
@@ -554,16 +557,14 @@ void Monitor::MeasurePeaksAndEnergy(const Derived& d, bool base_accelerating) {
   const Sample& cur = d.sample;
   const double t = cur.t_s;
   // Peaks.
-  if (std::abs(cur.theta_rad[0]) > peak1_) {
-    peak1_ = std::abs(cur.theta_rad[0]);
-    peak1_t_ = t;
+  for (int k = 0; k < blocks_; ++k) {
+    const double a = std::abs(cur.theta_rad[k]);
+    if (a > peak_[k]) {
+      peak_[k] = a;
+      peak_t_[k] = t;
+    }
+    max_rate_radps_ = std::max(max_rate_radps_, std::abs(cur.omega_radps[k]));
   }
-  if (two_ && std::abs(cur.theta_rad[1]) > peak2_) {
-    peak2_ = std::abs(cur.theta_rad[1]);
-    peak2_t_ = t;
-  }
-  max_rate_radps_ = std::max(
-      {max_rate_radps_, std::abs(cur.omega_radps[0]), two_ ? std::abs(cur.omega_radps[1]) : 0.0});
 
   // Energy without input must not grow.
   if (base_accelerating) {
@@ -594,14 +595,14 @@ void Monitor::RecordOutput(const Sample& cur, double t) {
   }
 }
 
-bool Monitor::Stopped(const Derived& d, double t_prev, double abs1_prev, double abs2_prev) {
+bool Monitor::Stopped(const Derived& d, double t_prev) {
   const Sample& cur = d.sample;
   const double t = cur.t_s;
   // Stops: overturn, blow-up. A block overturns when |theta| reaches the model's overturn angle
   // (model.overturn_angle, the reference's definition, no slack). The crossing time is
-  // interpolated linearly between the step's two ends, the same way for both blocks: Bullet turns
-  // each body at a constant rate within a step, so this is Bullet's own crossing. If both cross
-  // in one step, the first to cross overturned (ties: block 1, as the reference).
+  // interpolated linearly between the step's two ends, the same way for every block: Bullet turns
+  // each body at a constant rate within a step, so this is Bullet's own crossing. If several
+  // cross in one step, the first to cross overturned (ties: the lowest, as the reference).
   const double over = in_meta_.overturn_rad;
   int over_block = 0;
   double t_over = 0.0;
@@ -613,8 +614,7 @@ bool Monitor::Stopped(const Derived& d, double t_prev, double abs1_prev, double 
       t_over = when;
     }
   };
-  crossed(1, abs1_prev, std::abs(cur.theta_rad[0]));
-  if (two_) crossed(2, abs2_prev, std::abs(cur.theta_rad[1]));
+  for (int k = 0; k < blocks_; ++k) crossed(k + 1, abs_prev_[k], std::abs(cur.theta_rad[k]));
   if (over_block != 0) {
     status_ = RunStatus::kOverturned;
     overturn_block_ = over_block;
@@ -682,12 +682,9 @@ RunOutcome Monitor::Outcome() const {
   o.overturned_block = overturn_block_;
   if (overturn_block_ != 0) o.overturn_t_s = overturn_t_s_;
   o.end_t_s = end_t_s_;
-  o.peak_theta_rad[0] = peak1_, o.peak_theta_t_s[0] = peak1_t_;
-  o.impacts_at[0] = impacts_ground_;
-  if (two_) {
-    o.peak_theta_rad[1] = peak2_, o.peak_theta_t_s[1] = peak2_t_;
-    o.impacts_at[1] = impacts_interface_;
-  }
+  o.peak_theta_rad = peak_;
+  o.peak_theta_t_s = peak_t_;
+  o.impacts_at = impacts_at_;
   // The raised flags with their onsets; a flag first raised by this evaluation (never, in a run
   // that stepped) is dated at the run's end.
   auto list = [this](const auto& raised, const auto& onsets, std::vector<std::string>* names,
@@ -717,12 +714,21 @@ nlohmann::json Monitor::Summary() const {
   }
   j["end_t_s"] = end_t_s_;
   j["steps"] = steps_done_;
-  // Same shape as the reference's part of summary.json (run/summary.cc).
-  j["peaks"]["theta1"] = {{"abs_rad", peak1_}, {"t_s", peak1_t_}};
-  if (two_) j["peaks"]["theta2"] = {{"abs_rad", peak2_}, {"t_s", peak2_t_}};
-  j["impacts"] = {{"total", impacts_ground_ + impacts_interface_},
-                  {"ground", impacts_ground_},
-                  {"interface", impacts_interface_}};
+  // Same shape as the reference's part of summary.json (run/summary.cc): per block theta1 ..
+  // thetaN; per interface "ground", then "interface" (two blocks) or "interface2" ..
+  // "interfaceN" (three or more).
+  int total = 0;
+  for (int k = 0; k < blocks_; ++k) {
+    j["peaks"][std::string("theta") + std::to_string(k + 1)] = {{"abs_rad", peak_[k]},
+                                                                {"t_s", peak_t_[k]}};
+    total += impacts_at_[k];
+  }
+  j["impacts"] = {{"total", total}, {"ground", impacts_at_[0]}};
+  if (blocks_ <= 2) {
+    j["impacts"]["interface"] = blocks_ == 2 ? impacts_at_[1] : 0;
+  } else {
+    for (int k = 1; k < blocks_; ++k) j["impacts"][InterfaceName(k, blocks_)] = impacts_at_[k];
+  }
   j["transitions"] = transitions_;
   j["initiations"] = initiations_;
   j["rests"] = rests_;
@@ -733,29 +739,23 @@ nlohmann::json Monitor::Summary() const {
   }
   json fin;
   fin["t_s"] = last_.t_s;
-  fin["theta1_rad"] = last_.theta_rad[0];
-  fin["omega1_radps"] = last_.omega_radps[0];
-  if (two_) {
-    fin["theta2_rad"] = last_.theta_rad[1];
-    fin["omega2_radps"] = last_.omega_radps[1];
+  for (int k = 0; k < blocks_; ++k) {
+    fin[std::string("theta") + std::to_string(k + 1) + "_rad"] = last_.theta_rad[k];
+    fin[std::string("omega") + std::to_string(k + 1) + "_radps"] = last_.omega_radps[k];
   }
   fin["mode"] = ConfigurationName(last_.mode);
   j["final"] = fin;
 
   json v;
-  v["slip_ground_m"] = slip_ground_m_;
-  v["drift_ground_max_m"] = drift_ground_max_m_;
-  v["uplift_ground_s"] = uplift_ground_s_;
-  v["uplift_ground_max_m"] = uplift_ground_max_m_;
-  v["uplift_ground_episodes"] = uplift_ground_episodes_;
-  v["penetration_ground_max_m"] = penetration_ground_max_m_;
-  if (two_) {
-    v["slip_interface_m"] = slip_interface_m_;
-    v["drift_interface_max_m"] = drift_interface_max_m_;
-    v["uplift_interface_s"] = uplift_interface_s_;
-    v["uplift_interface_max_m"] = uplift_interface_max_m_;
-    v["uplift_interface_episodes"] = uplift_interface_episodes_;
-    v["penetration_interface_max_m"] = penetration_interface_max_m_;
+  for (int k = 0; k < blocks_; ++k) {
+    const ContactWatch& c = contacts_[k];
+    const std::string name = InterfaceName(k, blocks_);
+    v["slip_" + name + "_m"] = c.slip_m;
+    v["drift_" + name + "_max_m"] = c.drift_max_m;
+    v["uplift_" + name + "_s"] = c.uplift_s;
+    v["uplift_" + name + "_max_m"] = c.uplift_max_m;
+    v["uplift_" + name + "_episodes"] = c.uplift_episodes;
+    v["penetration_" + name + "_max_m"] = c.penetration_max_m;
   }
   v["energy_gain_max_j"] = energy_gain_max_j_;
   v["energy_gain_t_s"] = energy_gain_t_s_;
@@ -779,7 +779,12 @@ nlohmann::json Monitor::Summary() const {
     significant[outcome.significant_violations[i]] = outcome.significant_onsets_t_s[i];
   }
   v["significant_onset_t_s"] = significant;
-  v["significant_displacement_m"] = {significant_m_[0], significant_m_[1]};
+  // Per block; one block writes a second entry 0, as it always has.
+  if (blocks_ == 1) {
+    v["significant_displacement_m"] = {significant_m_[0], 0.0};
+  } else {
+    v["significant_displacement_m"] = significant_m_;
+  }
   j["violations"] = v;
 
   json m;

@@ -1,8 +1,11 @@
 #pragma once
-/// Watches an engine's run step by step, whatever the engine: reads the thesis's
-/// angles back from the bodies' poses, infers the mode, detects impacts and mode changes, and
-/// measures what the model forbids (slip at either contact, uplift, penetration, energy growth
-/// without input, blow-up, out-of-plane motion).
+/// Watches an engine's run step by step, whatever the engine and the number of blocks N: reads
+/// the thesis's angles back from the bodies' poses, infers the configuration (one contact per
+/// interface), detects impacts and mode changes per interface, and measures what the model
+/// forbids (slip at any interface, uplift, penetration, energy growth without input, blow-up,
+/// out-of-plane motion). Interface k is block k on its support: the ground for k = 1, block
+/// k - 1 above it; every per-interface quantity is block k's relative to its support, in the
+/// support's frame. For one and two blocks every output is the one the two-block monitor gave.
 #include <array>
 #include <cstdint>
 #include <iterator>
@@ -79,7 +82,9 @@ struct BodyReadout {
 /// The state after a step.
 struct StepReadout {
   double t_s = 0.0;
-  BodyReadout block1, block2;
+  /// Block k's body at index k - 1, bottom first: one per block of the stack (the monitor
+  /// refuses a readout of another size).
+  std::vector<BodyReadout> blocks;
   /// Base frame origin in the world (the ground top's reference point) and its velocity; zero
   /// for the inertial drive.
   double ground_x_m = 0.0, ground_y_m = 0.0, ground_vx_mps = 0.0, ground_vy_mps = 0.0;
@@ -91,6 +96,10 @@ struct StepReadout {
   /// finite (ODE's assertion on a quaternion it cannot normalise), in its words; empty: none.
   /// The monitor ends the run there with status non_finite, as for a pose that is not finite.
   std::string engine_fault;
+
+  StepReadout() = default;
+  /// A readout of `blocks` bodies, each at the origin, upright and still.
+  explicit StepReadout(int blocks) : blocks(static_cast<size_t>(blocks)) {}
 };
 
 /// Fills the base's part of the state after step n from the run input: the ground's position and
@@ -126,45 +135,51 @@ class Monitor {
   const Sample& last() const { return last_; }
 
  private:
-  // Hysteresis side of one tilt (block 1 on the ground, block 2 on block 1).
+  // Hysteresis side of one interface's relative tilt (interface k: block 1's tilt on the
+  // ground, block k's tilt relative to block k - 1).
   struct Side {
     int side = 0;       // armed side: +1 right, -1 left, 0 flat
     double prev = 0.0;  // previous angle
   };
   struct Derived {
-    explicit Derived(int blocks) : sample(blocks) {}
+    explicit Derived(int blocks)
+        : sample(blocks),
+          gap_m(static_cast<size_t>(blocks), 0.0),
+          pivot_x_m(static_cast<size_t>(blocks), 0.0) {}
     Sample sample;
-    double gap_ground_m = 0.0, gap_interface_m = 0.0;  // lowest corner above its support
-    double pivot_ground_x_m = 0.0, pivot_interface_x_m = 0.0;
-    double energy_j = 0.0;  // kinetic (base frame) + m g y_G, J, as the reference
+    // Per interface k (index k - 1): block k's lowest corner above its support (block 1: any
+    // corner above the ground; block k >= 2: a base corner above block k - 1's top face, in
+    // block k - 1's frame), m; and block k's pivot along its support (block 1: x in the base
+    // frame; block k: x in block k - 1's frame), m.
+    std::vector<double> gap_m, pivot_x_m;
+    double energy_j = 0.0;  // kinetic (base frame) + m g y_G of every block, J, as the reference
   };
   Derived Derive(const StepReadout& s);
-  // The landings of one step (a tilted block's angle crossing zero or falling below
-  // angle_leave_rad), from the hysteresis before the step; the angles before it.
-  struct Landings {
-    bool ground = false, interface = false;
-    double t_ground = 0.0, t_interface = 0.0;  // interpolated zero crossings
-    bool crossed_ground = false, crossed_interface = false;
-    int side_ground = 0, side_interface = 0;  // sides before the step
-    double t_prev = 0.0, theta1_prev = 0.0;
-    double rel = 0.0, rel_prev = 0.0;  // theta2 - theta1 after and before the step
+  // The landing of one interface in a step (its tilted block's relative angle crossing zero or
+  // falling below angle_leave_rad), from the hysteresis before the step.
+  struct Landing {
+    bool landed = false, crossed = false;
+    double t_s = 0.0;         // the interpolated zero crossing (or the step's end)
+    int side_before = 0;      // the side before the step
+    double angle = 0.0;       // the interface's relative angle after the step
+    double angle_prev = 0.0;  // and before it
   };
-  // Updates the hysteresis with the step's state and returns its landings.
-  Landings DetectLandings(const Sample& cur, double t_prev);
+  // Updates the hysteresis with the step's state and sets landings_ (t_prev: the step's start).
+  void DetectLandings(const Sample& cur, double t_prev);
   // Completes the pending impacts the step resolves (their post-impact state is `d`).
-  void CompletePendingImpacts(const Derived& d, const Landings& l);
+  void CompletePendingImpacts(const Derived& d);
   // Opens a pending impact per landing, with the state before the step as the pre-impact one.
-  void OpenImpacts(const Landings& l);
+  void OpenImpacts();
   // A mode change without impact: an initiation, a transition or a rest event.
   void RecordModeChange(const Derived& d);
-  // The side each tilt pivots on (+1 right, -1 left, 0 flat): the hysteresis's side, or for a
-  // flat tilt the side of its rate above MonitorConfig::rate_tol_radps.
-  void TiltSides(const Sample& s, int* side1, int* side2) const;
-  // The configuration of those sides (scene/mode.h ModeOf).
+  // The side interface k pivots on (+1 right, -1 left, 0 flat): the hysteresis's side, or for
+  // a flat tilt the side of its relative rate above MonitorConfig::rate_tol_radps.
+  int TiltSide(const Sample& s, int k) const;
+  // The configuration of those sides, one contact per interface.
   Configuration InferMode(const Sample& s) const;
-  // Pivot points and sides of the state (for slip): block 1's on the ground, block 2's on
-  // block 1 (in block 1's frame).
-  void Pivots(const StepReadout& s, Derived* d, int* side1, int* side2) const;
+  // Pivot points of the state (for slip), into d, and the side of each interface, into
+  // sides[0..blocks_).
+  void Pivots(const StepReadout& s, Derived* d, int* sides) const;
   void Record(const Sample& s);
   // Slip, drift, uplift, penetration and out-of-plane motion of the step (sets d's pivots).
   void MeasureContacts(const StepReadout& s, Derived* d);
@@ -173,8 +188,8 @@ class Monitor {
   // Records the step's state if it is the one nearest to the next output time.
   void RecordOutput(const Sample& cur, double t);
   // Whether the run must stop after the step that produced `d` (overturn, settled at rest,
-  // blow-up); sets the status. |theta| of both blocks before the step: abs1_prev, abs2_prev.
-  bool Stopped(const Derived& d, double t_prev, double abs1_prev, double abs2_prev);
+  // blow-up); sets the status. |theta| of every block before the step: abs_prev_.
+  bool Stopped(const Derived& d, double t_prev);
   void PushEvent(Event e);
   // Which flags of kViolationFlags the run has raised so far.
   std::array<bool, std::size(kViolationFlags)> Raised() const;
@@ -186,21 +201,28 @@ class Monitor {
   // "-inf", "not finite") at t_s, in step n; `why`, when not empty, is added to the detail.
   void StopNonFinite(const std::string& quantity, const std::string& value, double t_s,
                      std::int64_t n, const std::string& why = "");
+  // Throws std::invalid_argument when a readout does not hold one body per block.
+  void CheckBodies(const StepReadout& s) const;
 
   EngineInput in_meta_;  // geometry and settings (drive samples not kept)
   MonitorConfig cfg_;
-  bool two_ = false;
-  int blocks_ = 1;  // 1 or 2
-  double b1_ = 0.0, h1_ = 0.0, b2_ = 0.0, h2_ = 0.0, m1_ = 0.0, m2_ = 0.0;
-  BlockProps props1_, props2_;  // for the energy (scene/rigid_block.h)
+  int blocks_ = 1;  // N
+  // Per block (block k at k - 1): half width and height (m), mass (kg), properties for the
+  // energy (scene/rigid_block.h).
+  std::vector<double> b_, h_, m_;
+  std::vector<BlockProps> props_;
   double g_ = 9.81, dt_ = 0.0, out_dt_ = 0.0, tipping_energy_j_ = 0.0;
 
   History history_;
   Sample last_{1};
   Derived prev_{1};
-  Side ground_, interface_;
-  double phi1_ = 0.0, phi2_ = 0.0;  // unwrapped CCW angles
-  std::int64_t next_out_ = 1;       // index of the next output time
+  std::vector<Side> hysteresis_;   // per interface
+  std::vector<double> phi_;        // unwrapped CCW angles, per block
+  std::vector<Landing> landings_;  // per interface, the last step's
+  double landings_t_prev_ = 0.0;   // the start of that step, s
+  std::vector<double> abs_prev_;   // |theta| of every block before the step being read
+  std::vector<int> side_now_;      // scratch: the sides of the step being read
+  std::int64_t next_out_ = 1;      // index of the next output time
   bool last_recorded_ = false;
 
   // Pending impacts: completed with the state one step later (a fixed-step engine such as
@@ -208,28 +230,30 @@ class Monitor {
   struct PendingImpact {
     explicit PendingImpact(int blocks) : event(blocks) {}
     Event event;
-    bool interface = false;  // block 2 on block 1 (else block 1 on the ground)
-    int side = 0;            // side the block was tilted to before it landed
-    bool crossed = false;    // its angle has crossed zero
-    int waited = 0;          // steps waited without crossing
+    int interface = 0;     // the interface that landed (0: block 1 on the ground)
+    int side = 0;          // side its block was tilted to before it landed
+    bool crossed = false;  // its angle has crossed zero
+    int waited = 0;        // steps waited without crossing
   };
   std::vector<PendingImpact> pending_;
-  int pivot_side1_ = 0, pivot_side2_ = 0;  // pivot sides of the last state (for the slip)
+  std::vector<int> pivot_side_;  // pivot side of each interface in the last state (for the slip)
   int suppress_mode_events_ = 0;
   double rest_since_s_ = -1.0;  // start of the current stretch at rest (mode rest); -1: moving
 
-  // Peaks.
-  double peak1_ = 0.0, peak1_t_ = 0.0, peak2_ = 0.0, peak2_t_ = 0.0;
-  // Counts.
-  int impacts_ground_ = 0, impacts_interface_ = 0, transitions_ = 0, initiations_ = 0, rests_ = 0;
-  // Violations.
-  double slip_ground_m_ = 0.0, slip_interface_m_ = 0.0;
-  double drift_ground_max_m_ = 0.0, drift_interface_max_m_ = 0.0;
-  double uplift_ground_s_ = 0.0, uplift_interface_s_ = 0.0;
-  double uplift_ground_max_m_ = 0.0, uplift_interface_max_m_ = 0.0;
-  int uplift_ground_episodes_ = 0, uplift_interface_episodes_ = 0;
-  bool airborne_ground_ = false, airborne_interface_ = false;
-  double penetration_ground_max_m_ = 0.0, penetration_interface_max_m_ = 0.0;
+  // Peaks, per block.
+  std::vector<double> peak_, peak_t_;
+  // Counts: impacts per interface.
+  std::vector<int> impacts_at_;
+  int transitions_ = 0, initiations_ = 0, rests_ = 0;
+  // Violations, per interface.
+  struct ContactWatch {
+    double slip_m = 0.0, drift_max_m = 0.0;
+    double uplift_s = 0.0, uplift_max_m = 0.0;
+    int uplift_episodes = 0;
+    bool airborne = false;
+    double penetration_max_m = 0.0;
+  };
+  std::vector<ContactWatch> contacts_;
   double energy_min_free_j_ = 0.0, energy_gain_max_j_ = 0.0, energy_gain_t_s_ = 0.0;
   bool free_ = false;
   double out_of_plane_m_ = 0.0, out_of_plane_rad_ = 0.0;
@@ -237,7 +261,8 @@ class Monitor {
   // When each flag of kViolationFlags was first raised at the verdict's scale (NaN: not yet).
   std::array<double, std::size(kViolationFlags)> significant_t_s_ = {kNoOnset, kNoOnset, kNoOnset,
                                                                      kNoOnset, kNoOnset};
-  double significant_m_[2] = {0.0, 0.0};  // per block, MonitorConfig::significant_critical_fraction
+  // Per block, MonitorConfig::significant_critical_fraction times alpha B, m.
+  std::vector<double> significant_m_;
   // When each flag of kViolationFlags was first raised (NaN: not yet).
   std::array<double, std::size(kViolationFlags)> onset_t_s_ = {kNoOnset, kNoOnset, kNoOnset,
                                                                kNoOnset, kNoOnset};

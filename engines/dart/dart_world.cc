@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <dart/collision/CollisionFilter.hpp>
 #include <dart/collision/dart/DARTCollisionDetector.hpp>
 #include <dart/collision/fcl/FCLCollisionDetector.hpp>
 #include <dart/config.hpp>
@@ -19,6 +20,7 @@
 #include <mutex>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "scene/stack_pose.h"
 
@@ -133,11 +135,12 @@ struct DartWorld::Impl {
   double dt = 0.0;
   bool kinematic = false;
   dart::simulation::WorldPtr world;
-  dart::dynamics::SkeletonPtr ground_skel, skel1, skel2;
+  dart::dynamics::SkeletonPtr ground_skel;
   dart::dynamics::BodyNode* ground = nullptr;
-  dart::dynamics::BodyNode* block1 = nullptr;
-  dart::dynamics::BodyNode* block2 = nullptr;
-  double z1 = 0.0, z2 = 0.0;
+  // Per block, bottom first: its skeleton, its body and its initial out-of-plane position.
+  std::vector<dart::dynamics::SkeletonPtr> skels;
+  std::vector<dart::dynamics::BodyNode*> blocks;
+  std::vector<double> z;
   bool params_acquired = false;
   // Diagnostics.
   std::int64_t steps = 0, primary_calls = 0, primary_failures = 0, fallback_calls = 0,
@@ -227,16 +230,16 @@ DartWorld::DartWorld(const EngineInput& input, const DartSettings& settings)
   }
   solver->getCollisionOption().maxNumContacts = static_cast<std::size_t>(m.s.max_contacts);
 
-  const double b1 = 0.5 * m.in.block1.width_m, h1 = 0.5 * m.in.block1.height_m;
-  const double b2 = m.in.block2 ? 0.5 * m.in.block2->width_m : 0.0;
-  const double h2 = m.in.block2 ? 0.5 * m.in.block2->height_m : 0.0;
-  const double d1 = m.in.block1.depth_m, d2 = m.in.block2 ? m.in.block2->depth_m : 0.0;
+  double size = 0.5, depth = 0.0;  // the largest half size and depth of a block
+  for (const BlockDef& def : m.in.blocks) {
+    size = std::max({size, 0.5 * def.width_m, 0.5 * def.height_m});
+    depth = std::max(depth, def.depth_m);
+  }
 
   // Ground: a box whose top face is y = 0 in the base frame, much wider than the stack. An
   // immobile skeleton (never integrated, never pushed by contacts) on a 2-D translational joint
   // whose coordinates and rates the kinematic drive sets each step; contacts see its velocity.
   {
-    const double size = std::max({b1, h1, b2, h2, 0.5});
     m.ground_skel = Skeleton::create("ground");
     TranslationalJoint2D::Properties jp;
     jp.mName = "ground_xy";
@@ -244,7 +247,7 @@ DartWorld::DartWorld(const EngineInput& input, const DartSettings& settings)
         m.ground_skel->createJointAndBodyNodePair<TranslationalJoint2D>(nullptr, jp);
     joint->setXYPlane();
     auto shape = std::make_shared<BoxShape>(
-        Eigen::Vector3d(80.0 * size, m.s.ground_depth_m, 2.0 * (std::max(d1, d2) + 1.0)));
+        Eigen::Vector3d(80.0 * size, m.s.ground_depth_m, 2.0 * (depth + 1.0)));
     ShapeNode* node =
         body->createShapeNodeWith<CollisionAspect, DynamicsAspect>(shape, "ground_shape");
     node->getDynamicsAspect()->setFrictionCoeff(m.s.friction);
@@ -263,17 +266,34 @@ DartWorld::DartWorld(const EngineInput& input, const DartSettings& settings)
   }
 
   // Blocks, placed by the pivot chain in the base frame then shifted with the ground.
-  const StackPlacement place = PlaceStack(b1, h1, b2, h2, m.in.two_blocks(), m.in.initial);
+  const StackPlacement place = PlaceStack(m.in.blocks, m.in.initial);
   const double ux0 = m.kinematic ? m.in.drive.ux_m.front() : 0.0;
   const double uy0 = m.kinematic ? m.in.drive.uy_m.front() : 0.0;
   const double gvx = m.kinematic ? m.in.drive.ux0_mps : 0.0;
   const double gvy = m.kinematic ? m.in.drive.uy0_mps : 0.0;
-  m.block1 = m.MakeBlock("block1", m.in.block1, place.block1, ux0, uy0, gvx, gvy, &m.skel1);
-  if (m.in.block2) {
-    m.block2 = m.MakeBlock("block2", *m.in.block2, place.block2, ux0, uy0, gvx, gvy, &m.skel2);
+  const int n = m.in.block_count();
+  m.skels.resize(static_cast<size_t>(n));
+  for (int k = 0; k < n; ++k) {
+    m.blocks.push_back(m.MakeBlock(std::string("block") + std::to_string(k + 1), m.in.blocks[k],
+                                   place.blocks[k], ux0, uy0, gvx, gvy, &m.skels[k]));
+    m.z.push_back(m.blocks[k]->getCOM().z());
   }
-  m.z1 = m.block1->getCOM().z();
-  m.z2 = m.block2 ? m.block2->getCOM().z() : 0.0;
+  if (n >= 3) {
+    // Three or more blocks: contacts between neighbours only (block 1 and the ground, block k
+    // and block k - 1), as the model: every other pair on the collision filter's blacklist. (Two
+    // blocks keep block 2 and the ground, as before issue 23.)
+    auto& option = solver->getCollisionOption();
+    auto filter =
+        std::dynamic_pointer_cast<dart::collision::BodyNodeCollisionFilter>(option.collisionFilter);
+    if (!filter) {
+      filter = std::make_shared<dart::collision::BodyNodeCollisionFilter>();
+      option.collisionFilter = filter;
+    }
+    for (int k = 1; k < n; ++k) filter->addBodyNodePairToBlackList(m.ground, m.blocks[k]);
+    for (int i = 0; i < n; ++i) {
+      for (int j = i + 2; j < n; ++j) filter->addBodyNodePairToBlackList(m.blocks[i], m.blocks[j]);
+    }
+  }
 
   AcquireContactParams({m.s.erp, m.s.error_allowance_m, m.s.max_erv_mps, m.s.cfm});
   m.params_acquired = true;
@@ -315,15 +335,15 @@ void DartWorld::Step() {
 
 StepReadout DartWorld::Read(std::int64_t n) const {
   const Impl& m = *impl_;
-  StepReadout s;
+  StepReadout s(m.in.block_count());
   s.t_s = static_cast<double>(n) * m.dt;
-  ReadBody(*m.block1, &s.block1);
-  double oop_m = std::abs(m.block1->getCOM().z() - m.z1);
-  double oop_rad = OutOfPlaneRotation(m.block1->getWorldTransform().linear());
-  if (m.block2) {
-    ReadBody(*m.block2, &s.block2);
-    oop_m = std::max(oop_m, std::abs(m.block2->getCOM().z() - m.z2));
-    oop_rad = std::max(oop_rad, OutOfPlaneRotation(m.block2->getWorldTransform().linear()));
+  double oop_m = 0.0, oop_rad = 0.0;
+  for (size_t k = 0; k < m.blocks.size(); ++k) {
+    ReadBody(*m.blocks[k], &s.blocks[k]);
+    const double dz = std::abs(m.blocks[k]->getCOM().z() - m.z[k]);
+    const double tilt = OutOfPlaneRotation(m.blocks[k]->getWorldTransform().linear());
+    oop_m = k == 0 ? dz : std::max(oop_m, dz);  // block 1's own value first, as before
+    oop_rad = k == 0 ? tilt : std::max(oop_rad, tilt);
   }
   s.out_of_plane_m = oop_m;
   s.out_of_plane_rad = oop_rad;
@@ -374,6 +394,8 @@ nlohmann::json DartWorld::Settings() const {
   j["ground_depth_m"] = m.s.ground_depth_m;
   j["kinematic_highpass_hz"] = m.in.kinematic_highpass_hz;
   j["joint"] = "PlanarJoint (x-y plane) per block";
+  // Three or more blocks: contacts between neighbours only (two: block 2 and the ground too).
+  if (m.blocks.size() >= 3) j["collision_pairs"] = "neighbours";
   j["integrator"] = "semi-implicit Euler (DART World::step)";
   return j;
 }

@@ -1,5 +1,5 @@
 #pragma once
-/// The DART scene of the two stacked blocks: the same mechanics as Bullet's RockingWorld
+/// The DART scene of the stack of N blocks: the same mechanics as Bullet's RockingWorld
 /// (engines/bullet/rocking_world.h) with DART 6.12's skeletons, boxed-LCP contacts and
 /// collision detectors.
 #include <cstdint>
@@ -13,9 +13,10 @@
 namespace rockbench::dart_engine {
 
 /// A DART world holding a ground box (top face y = 0; an immobile skeleton, moved by hand for
-/// the kinematic drive) and one or two box blocks, each its own skeleton held in the x-y plane
-/// by a PlanarJoint to the world, placed by the pivot chain. Keeps a reference to `input`,
-/// which must outlive it.
+/// the kinematic drive) and N box blocks, each its own skeleton held in the x-y plane by a
+/// PlanarJoint to the world, placed by the pivot chain. With three or more blocks only
+/// neighbours collide (the collision filter's blacklist holds every other pair). Keeps a reference
+/// to `input`, which must outlive it.
 ///
 /// DART's contact parameters (erp, error allowance, max erv, cfm) are static members of
 /// dart::constraint::ContactConstraint, shared by every DART world of the process: the

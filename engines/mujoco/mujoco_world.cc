@@ -110,13 +110,13 @@ void CheckModel(const EngineInput& in, const MujocoSettings& s) {
   auto block_ok = [](const BlockDef& b) {
     return b.width_m > 0.0 && b.height_m > 0.0 && b.depth_m > 0.0 && b.mass_kg > 0.0;
   };
-  Check(block_ok(in.block1) && (!in.block2 || block_ok(*in.block2)),
+  Check(!in.blocks.empty() && std::all_of(in.blocks.begin(), in.blocks.end(), block_ok),
         "blocks need a positive width, height, depth and mass");
 }
 
 // One block: a body at the world origin with slide x, slide y and hinge z joints (qpos = the
 // mass centre's x, y and the CCW angle), a box geom and its exact inertia.
-std::string BlockMjcf(const char* name, const BlockDef& b) {
+std::string BlockMjcf(const std::string& name, const BlockDef& b) {
   const double m = b.mass_kg, w = b.width_m, h = b.height_m, d = b.depth_m;
   const double ixx = m * (h * h + d * d) / 12.0, iyy = m * (w * w + d * d) / 12.0;
   const double izz = m * (w * w + h * h) / 12.0;
@@ -140,8 +140,11 @@ std::string ModelMjcf(const EngineInput& in, const MujocoSettings& s) {
   x += "<mujoco model=\"rockbench\">\n";
   x += "  <compiler angle=\"radian\" inertiafromgeom=\"false\"/>\n";
   // Contacts: at most 4 per block on the plane and 8 between the boxes; 4 rows each (pyramidal
-  // cone, condim 3) or 3 (elliptic).
-  x += "  <size njmax=\"400\" nconmax=\"100\"/>\n";
+  // cone, condim 3) or 3 (elliptic). 100 contacts up to 10 blocks, 10 per block beyond.
+  const int blocks = in.block_count();
+  const int nconmax = std::max(100, 10 * blocks);
+  x += std::string("  <size njmax=\"") + std::to_string(4 * nconmax) + "\" nconmax=\"" +
+       std::to_string(nconmax) + "\"/>\n";
   x += "  <option timestep=\"" + Num(in.time_step_s) + "\" gravity=\"0 " +
        Num(-in.run.gravity_mps2) + " 0\" integrator=\"" + MjcfIntegrator(s.integrator) +
        "\" solver=\"" + MjcfSolver(s.solver) + "\" iterations=\"" + std::to_string(s.iterations) +
@@ -162,11 +165,27 @@ std::string ModelMjcf(const EngineInput& in, const MujocoSettings& s) {
   x += "  <worldbody>\n";
   // The ground: a plane (half-space) whose normal is +y through the origin.
   x += "    <geom name=\"ground\" type=\"plane\" size=\"0 0 1\" zaxis=\"0 1 0\"/>\n";
-  // Both blocks are children of the world body: MuJoCo's parent-child contact filter does not
+  // Every block is a child of the world body: MuJoCo's parent-child contact filter does not
   // apply to them, so block 2 collides with block 1 (and with the ground).
-  x += BlockMjcf("block1", in.block1);
-  if (in.block2) x += BlockMjcf("block2", *in.block2);
+  for (int k = 0; k < blocks; ++k)
+    x += BlockMjcf(std::string("block") + std::to_string(k + 1), in.blocks[k]);
   x += "  </worldbody>\n";
+  if (blocks >= 3) {
+    // Three or more blocks: contacts between neighbours only (block 1 and the ground, block k
+    // and block k - 1), as the model; every other pair excluded. (Two blocks keep block 2 and
+    // the ground, as before issue 23.)
+    x += "  <contact>\n";
+    for (int k = 2; k <= blocks; ++k) {
+      x += std::string("    <exclude body1=\"world\" body2=\"block") + std::to_string(k) + "\"/>\n";
+    }
+    for (int i = 1; i <= blocks; ++i) {
+      for (int j = i + 2; j <= blocks; ++j) {
+        x += std::string("    <exclude body1=\"block") + std::to_string(i) + "\" body2=\"block" +
+             std::to_string(j) + "\"/>\n";
+      }
+    }
+    x += "  </contact>\n";
+  }
   x += "</mujoco>\n";
   return x;
 }
@@ -237,20 +256,20 @@ MujocoWorld::MujocoWorld(const EngineInput& input, const MujocoSettings& setting
     mj_deleteModel(m_);
     throw std::runtime_error("mujoco: mj_makeData failed");
   }
-  // The joints are consecutive: (x, y, phi) at qpos1_ .. qpos1_ + 2.
-  int v = 0;
-  qpos1_ = JointQpos(m_, "block1_x", &qvel1_);
-  if (JointQpos(m_, "block1_phi", &v) != qpos1_ + 2 || v != qvel1_ + 2) {
-    throw std::runtime_error("mujoco: unexpected joint layout");
+  // Each block's joints are consecutive: (x, y, phi) at qpos_[k] .. qpos_[k] + 2.
+  const int n = in_.block_count();
+  qpos_.assign(static_cast<size_t>(n), 0);
+  qvel_.assign(static_cast<size_t>(n), 0);
+  for (int k = 0; k < n; ++k) {
+    const std::string name = std::string("block") + std::to_string(k + 1);
+    int v = 0;
+    qpos_[k] = JointQpos(m_, name + "_x", &qvel_[k]);
+    if (JointQpos(m_, name + "_phi", &v) != qpos_[k] + 2 || v != qvel_[k] + 2) {
+      throw std::runtime_error("mujoco: unexpected joint layout");
+    }
   }
-  if (in_.block2) qpos2_ = JointQpos(m_, "block2_x", &qvel2_);
-
-  const double b1 = 0.5 * in_.block1.width_m, h1 = 0.5 * in_.block1.height_m;
-  const double b2 = in_.block2 ? 0.5 * in_.block2->width_m : 0.0;
-  const double h2 = in_.block2 ? 0.5 * in_.block2->height_m : 0.0;
-  const StackPlacement place = PlaceStack(b1, h1, b2, h2, in_.two_blocks(), in_.initial);
-  SetPose(d_, qpos1_, qvel1_, place.block1);
-  if (in_.block2) SetPose(d_, qpos2_, qvel2_, place.block2);
+  const StackPlacement place = PlaceStack(in_.blocks, in_.initial);
+  for (int k = 0; k < n; ++k) SetPose(d_, qpos_[k], qvel_[k], place.blocks[k]);
   mj_forward(m_, d_);
 }
 
@@ -284,15 +303,13 @@ void MujocoWorld::Step() {
 }
 
 StepReadout MujocoWorld::Read(std::int64_t n) const {
-  StepReadout s;
+  StepReadout s(in_.block_count());
   s.t_s = static_cast<double>(n) * dt_;
   if (blown_up_) {
-    SetNaN(&s.block1);
-    if (in_.block2) SetNaN(&s.block2);
+    for (BodyReadout& b : s.blocks) SetNaN(&b);
     return s;
   }
-  ReadBody(d_, qpos1_, qvel1_, &s.block1);
-  if (in_.block2) ReadBody(d_, qpos2_, qvel2_, &s.block2);
+  for (size_t k = 0; k < qpos_.size(); ++k) ReadBody(d_, qpos_[k], qvel_[k], &s.blocks[k]);
   // The joints hold the plane exactly: no out-of-plane motion to report.
   s.out_of_plane_m = 0.0;
   s.out_of_plane_rad = 0.0;
@@ -331,6 +348,8 @@ nlohmann::json MujocoWorld::Settings() const {
   j["planar_joints"] = "slide x, slide y, hinge z per block";
   j["refsafe"] = (m_->opt.disableflags & mjDSBL_REFSAFE) == 0;
   j["warmstart"] = (m_->opt.disableflags & mjDSBL_WARMSTART) == 0;
+  // Three or more blocks: contacts between neighbours only (two: block 2 and the ground too).
+  if (qpos_.size() >= 3) j["collision_pairs"] = "neighbours";
   return j;
 }
 

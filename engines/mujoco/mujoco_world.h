@@ -16,6 +16,7 @@
 #include <cstdint>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "engines/common/engine_input.h"
 #include "engines/common/monitor.h"
@@ -27,8 +28,10 @@ struct mjData_;
 
 namespace rockbench::mujoco {
 
-/// A MuJoCo world holding a ground plane and one or two box blocks placed by the pivot chain.
-/// Keeps a reference to `input`, which must outlive it.
+/// A MuJoCo world holding a ground plane and N box blocks placed by the pivot chain, children
+/// of the world body. With three or more blocks only neighbours collide (block 1 and the
+/// ground, block k and block k - 1: every other pair is a <contact><exclude>). Keeps a
+/// reference to `input`, which must outlive it.
 class MujocoWorld {
  public:
   /// Builds the model. Throws std::invalid_argument for the kinematic drive (MuJoCo's mocap
@@ -69,7 +72,7 @@ class MujocoWorld {
   std::string xml_;
   mjModel_* m_ = nullptr;
   mjData_* d_ = nullptr;
-  int qpos1_ = 0, qvel1_ = 0, qpos2_ = -1, qvel2_ = -1;  // addresses of (x, y, phi) per block
+  std::vector<int> qpos_, qvel_;  // addresses of (x, y, phi) per block, bottom first
   bool blown_up_ = false;
   int max_contacts_ = 0, max_iterations_ = 0;
 };

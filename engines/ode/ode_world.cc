@@ -135,17 +135,15 @@ OdeWorld::OdeWorld(const EngineInput& input, const OdeSettings& settings)
   dWorldSetAngularDamping(world_, 0);
   contacts_ = dJointGroupCreate(0);
 
-  const double b1 = 0.5 * in_.block1.width_m, h1 = 0.5 * in_.block1.height_m;
-  const double b2 = in_.block2 ? 0.5 * in_.block2->width_m : 0.0;
-  const double h2 = in_.block2 ? 0.5 * in_.block2->height_m : 0.0;
-  const double d1 = in_.block1.depth_m, d2 = in_.block2 ? in_.block2->depth_m : 0.0;
-
   // Ground: a box whose top face is y = 0 in the base frame, much wider than the stack and
   // deeper (z) than the blocks, so that its z faces never give the separating axis.
-  const double size = std::max({b1, h1, b2, h2, 0.5});
+  double size = 0.5, depth = 0.0;
+  for (const BlockDef& def : in_.blocks) {
+    size = std::max({size, 0.5 * def.width_m, 0.5 * def.height_m});
+    depth = std::max(depth, def.depth_m);
+  }
   ground_half_depth_m_ = 0.5 * s_.ground_depth_m;
-  ground_geom_ =
-      dCreateBox(nullptr, 80.0 * size, s_.ground_depth_m, 2.0 * (std::max(d1, d2) + 1.0));
+  ground_geom_ = dCreateBox(nullptr, 80.0 * size, s_.ground_depth_m, 2.0 * (depth + 1.0));
   const double ux0 = kinematic_ ? in_.drive.ux_m.front() : 0.0;
   const double uy0 = kinematic_ ? in_.drive.uy_m.front() : 0.0;
   if (kinematic_) {
@@ -159,7 +157,7 @@ OdeWorld::OdeWorld(const EngineInput& input, const OdeSettings& settings)
   }
 
   // Blocks, placed by the pivot chain in the base frame then shifted with the ground.
-  const StackPlacement place = PlaceStack(b1, h1, b2, h2, in_.two_blocks(), in_.initial);
+  const StackPlacement place = PlaceStack(in_.blocks, in_.initial);
   const double gvx = kinematic_ ? in_.drive.ux0_mps : 0.0;
   const double gvy = kinematic_ ? in_.drive.uy0_mps : 0.0;
   auto make_block = [&](const BlockDef& def, const PlanarPose& pose, dBodyID* body, dGeomID* geom,
@@ -188,14 +186,21 @@ OdeWorld::OdeWorld(const EngineInput& input, const OdeSettings& settings)
     *plane = dJointCreatePlane2D(world_, nullptr);
     dJointAttach(*plane, *body, nullptr);
   };
-  make_block(in_.block1, place.block1, &body1_, &geom1_, &plane1_);
-  if (in_.block2) make_block(*in_.block2, place.block2, &body2_, &geom2_, &plane2_);
+  // Bottom first.
+  const size_t n = in_.blocks.size();
+  bodies_.assign(n, nullptr);
+  geoms_.assign(n, nullptr);
+  planes_.assign(n, nullptr);
+  for (size_t k = 0; k < n; ++k) {
+    make_block(in_.blocks[k], place.blocks[k], &bodies_[k], &geoms_[k], &planes_[k]);
+  }
 }
 
 OdeWorld::~OdeWorld() {
   if (contacts_) dJointGroupDestroy(contacts_);
-  if (geom2_) dGeomDestroy(geom2_);
-  if (geom1_) dGeomDestroy(geom1_);
+  for (auto it = geoms_.rbegin(); it != geoms_.rend(); ++it) {
+    if (*it) dGeomDestroy(*it);
+  }
   if (ground_geom_) dGeomDestroy(ground_geom_);
   // dWorldDestroy destroys the bodies and the (non-group) Plane2D joints.
   if (world_) dWorldDestroy(world_);
@@ -258,16 +263,13 @@ double OdeWorld::StepRotationBound_rad() const {
   dWorldGetGravity(world_, g);
   double speed = Norm2(g) * dt_;  // m/s gained in the step
   if (kinematic_) speed += Norm2(dBodyGetLinearVel(ground_body_));
-  double fastest = 0.0, smallest = std::min(in_.block1.width_m, in_.block1.height_m);
-  auto body = [&](dBodyID b, double width_m, double height_m) {
+  double fastest = 0.0, smallest = std::min(in_.blocks[0].width_m, in_.blocks[0].height_m);
+  for (size_t k = 0; k < bodies_.size(); ++k) {
+    const double width_m = in_.blocks[k].width_m, height_m = in_.blocks[k].height_m;
     const double half_diagonal = 0.5 * std::hypot(width_m, height_m);
-    fastest = std::max(fastest,
-                       Norm2(dBodyGetLinearVel(b)) + Norm2(dBodyGetAngularVel(b)) * half_diagonal);
-  };
-  body(body1_, in_.block1.width_m, in_.block1.height_m);
-  if (body2_) {
-    body(body2_, in_.block2->width_m, in_.block2->height_m);
-    smallest = std::min({smallest, in_.block2->width_m, in_.block2->height_m});
+    fastest = std::max(fastest, Norm2(dBodyGetLinearVel(bodies_[k])) +
+                                    Norm2(dBodyGetAngularVel(bodies_[k])) * half_diagonal);
+    smallest = std::min({smallest, width_m, height_m});
   }
   return (fastest + speed) / (0.5 * smallest) * dt_;
 }
@@ -287,13 +289,17 @@ void OdeWorld::Step() {
     AllocateForThisThread();
     thread_ = std::this_thread::get_id();
   }
-  contacts_ground_ = Collide(geom1_, ground_geom_, body1_, ground_body_);
+  // Neighbours only, bottom first: block 1 on the ground, block k on block k - 1.
+  contacts_ground_ = Collide(geoms_[0], ground_geom_, bodies_[0], ground_body_);
   contacts_interface_ = 0;
   contacts_block2_ground_ = 0;
-  if (body2_) {
-    contacts_interface_ = Collide(geom2_, geom1_, body2_, body1_);
-    // Only after block 2 has fallen off block 1 (as Bullet, which collides every pair).
-    contacts_block2_ground_ = Collide(geom2_, ground_geom_, body2_, ground_body_);
+  for (size_t k = 1; k < bodies_.size(); ++k) {
+    contacts_interface_ += Collide(geoms_[k], geoms_[k - 1], bodies_[k], bodies_[k - 1]);
+  }
+  if (bodies_.size() == 2) {
+    // Two blocks: also block 2 on the ground, once it has fallen off block 1 (as before issue
+    // 23, so that their runs keep their bytes; Bullet's two blocks collide every pair too).
+    contacts_block2_ground_ = Collide(geoms_[1], ground_geom_, bodies_[1], ground_body_);
   }
   int ok = 0;
   if (s_.stepper == OdeStepper::kQuickStep) {
@@ -314,15 +320,15 @@ void OdeWorld::Step() {
 }
 
 StepReadout OdeWorld::Read(std::int64_t n) const {
-  StepReadout s;
+  StepReadout s(in_.block_count());
   s.t_s = static_cast<double>(n) * dt_;
-  ReadBody(body1_, &s.block1);
-  double oop_m = std::abs(dBodyGetPosition(body1_)[2]);
-  double oop_rad = OutOfPlaneRotation(body1_);
-  if (body2_) {
-    ReadBody(body2_, &s.block2);
-    oop_m = std::max(oop_m, std::abs(dBodyGetPosition(body2_)[2]));
-    oop_rad = std::max(oop_rad, OutOfPlaneRotation(body2_));
+  double oop_m = 0.0, oop_rad = 0.0;
+  for (size_t k = 0; k < bodies_.size(); ++k) {
+    ReadBody(bodies_[k], &s.blocks[k]);
+    const double dz = std::abs(dBodyGetPosition(bodies_[k])[2]);
+    const double tilt = OutOfPlaneRotation(bodies_[k]);
+    oop_m = k == 0 ? dz : std::max(oop_m, dz);  // block 1's own value first, as before
+    oop_rad = k == 0 ? tilt : std::max(oop_rad, tilt);
   }
   s.out_of_plane_m = oop_m;
   s.out_of_plane_rad = oop_rad;
@@ -367,6 +373,8 @@ nlohmann::json OdeWorld::Settings() const {
   j["ground_depth_m"] = s_.ground_depth_m;
   j["kinematic_highpass_hz"] = in_.kinematic_highpass_hz;
   j["auto_disable"] = false;
+  // Three or more blocks: contacts between neighbours only (two: block 2 and the ground too).
+  if (bodies_.size() >= 3) j["collision_pairs"] = "neighbours";
   return j;
 }
 

@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "engines/common/engine_input.h"
 #include "engines/common/monitor.h"
@@ -21,10 +22,10 @@ struct dxThreadingImplementation;
 namespace rockbench::ode {
 
 /// An ODE world holding a static (inertial drive) or kinematic (kinematic drive) ground box and
-/// one or two box blocks placed by the pivot chain (PlaceStack), each held in the x-y plane by a
-/// Plane2D joint. Contacts come from dCollide on the box pairs (block 1 - ground, block 2 -
-/// block 1, block 2 - ground) into a joint group emptied after every step. Keeps a reference to
-/// `input`, which must outlive it.
+/// N box blocks placed by the pivot chain (PlaceStack), each held in the x-y plane by a
+/// Plane2D joint. Contacts come from dCollide on the pairs of neighbours (block 1 - ground,
+/// block k - block k - 1; with two blocks also block 2 - ground, as before issue 23) into a
+/// joint group emptied after every step. Keeps a reference to `input`, which must outlive it.
 ///
 /// Threads: ODE 0.16.2 as Debian builds it has no TLS ("ODE_EXT_ou" is missing from
 /// dGetConfiguration()), and its library reference count (dInitODE2/dCloseODE) is a plain
@@ -63,8 +64,8 @@ class OdeWorld {
   /// Settings in use (ours and the ODE values they set) for summary.json.
   nlohmann::json Settings() const;
 
-  /// Contact points created in the last step: block 1 - ground, block 2 - block 1, block 2 -
-  /// ground (the last only once block 2 has fallen off).
+  /// Contact points created in the last step: block 1 - ground, between blocks (every
+  /// interface), block 2 - ground (two blocks only, once block 2 has fallen off).
   int last_contacts_ground() const { return contacts_ground_; }
   int last_contacts_interface() const { return contacts_interface_; }
   int last_contacts_block2_ground() const { return contacts_block2_ground_; }
@@ -87,12 +88,10 @@ class OdeWorld {
   dxJointGroup* contacts_ = nullptr;
   dxBody* ground_body_ = nullptr;  // kinematic drive only
   dxGeom* ground_geom_ = nullptr;
-  dxBody* body1_ = nullptr;
-  dxBody* body2_ = nullptr;  // null for a single block
-  dxGeom* geom1_ = nullptr;
-  dxGeom* geom2_ = nullptr;
-  dxJoint* plane1_ = nullptr;
-  dxJoint* plane2_ = nullptr;
+  // Per block, bottom first.
+  std::vector<dxBody*> bodies_;
+  std::vector<dxGeom*> geoms_;
+  std::vector<dxJoint*> planes_;
   int contacts_ground_ = 0, contacts_interface_ = 0, contacts_block2_ground_ = 0;
   unsigned long rand_seed_ = 0;  // this world's state of ODE's generator (QuickStep's order)
   // Why the last step was not taken (see Step); empty: every step was.

@@ -211,9 +211,7 @@ SiconosSystem::SiconosSystem(const SiconosSystemConfig& config) : impl_(std::mak
   Impl& m = *impl_;
   m.cfg = config;
   const SiconosSystemConfig& c = m.cfg;
-  if (c.blocks.empty() || c.blocks.size() > 2) {
-    throw std::invalid_argument("siconos: one or two blocks");
-  }
+  if (c.blocks.empty()) throw std::invalid_argument("siconos: no block");
   if (!(std::isfinite(c.friction) && c.friction >= 0.0)) {
     throw std::invalid_argument("siconos: friction must be finite in the contact problem");
   }
@@ -260,10 +258,11 @@ SiconosSystem::SiconosSystem(const SiconosSystemConfig& config) : impl_(std::mak
             m.nsds->link(inter, m.blocks[0]);
           }
         } else {
-          const SiconosBlock& a = c.blocks[0];
+          // Block i + 1's corners on block i's top face (the block below).
+          const SiconosBlock& a = c.blocks[i - 1];
           inter = std::make_shared<Interaction>(
               nslaw, std::make_shared<CornerR>(true, side * b.b_m, -b.h_m, a.h_m, a.b_m));
-          m.nsds->link(inter, m.blocks[0], m.blocks[1]);
+          m.nsds->link(inter, m.blocks[i - 1], m.blocks[i]);
         }
       }
     }

@@ -7,7 +7,8 @@
 ///
 /// The model: each block a LagrangianLinearTIDS with q = (x, y, phi) of its centre, mass matrix
 /// diag(m, m, I) and a constant external force set per step; one Interaction per bottom corner
-/// of a block against the face below it (the ground's top face, or block 1's top face), with a
+/// of a block against the face below it (the ground's top face, or the top face of the block
+/// below: only neighbours meet), with a
 /// Lagrangian scleronomous relation h = (normal gap, tangential coordinate) and a
 /// NewtonImpactFrictionNSL(e, 0, mu, 2); a TimeStepping simulation with a MoreauJeanOSI and a
 /// 2-D FrictionContact problem. With the kinematic drive the ground is a third dynamical system
@@ -34,7 +35,7 @@ struct SiconosBlock {
 };
 
 struct SiconosSystemConfig {
-  std::vector<SiconosBlock> blocks;  ///< block 1 (on the ground), then block 2 (on block 1)
+  std::vector<SiconosBlock> blocks;  ///< block 1 (on the ground), then block k on block k - 1
   double time_step_s = 1e-4;
   double theta = 0.5;        ///< Moreau-Jean theta
   double restitution = 0.0;  ///< Newton's normal restitution e

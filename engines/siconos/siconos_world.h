@@ -14,10 +14,11 @@ namespace rockbench::siconos_engine {
 
 class SiconosSystem;
 
-/// The blocks placed by the pivot chain, each a LagrangianLinearTIDS (x, y, phi), with four
-/// corner contacts: block 1's bottom corners on the ground (top face y = 0), block 2's on
-/// block 1's top face. Keeps a reference to `input`, which must outlive it. Throws
-/// std::invalid_argument for settings it cannot take (naming the key).
+/// The blocks placed by the pivot chain, each a LagrangianLinearTIDS (x, y, phi), with two
+/// corner contacts per block: block 1's bottom corners on the ground (top face y = 0), block
+/// k's on block k - 1's top face (only neighbours meet). One or two blocks: a stack of more is
+/// refused (siconos_world.cc says why). Keeps a reference to `input`, which must
+/// outlive it. Throws std::invalid_argument for settings it cannot take (naming the key).
 class SiconosWorld {
  public:
   SiconosWorld(const EngineInput& input, const SiconosSettings& settings);

@@ -1,6 +1,58 @@
 #include "scene/stack_pose.h"
 
+#include <stdexcept>
+#include <string>
+
 namespace rockbench {
+namespace {
+
+// The chain over n blocks of half widths b[k] and half heights h[k].
+//
+// The engines' initial poses come from here: for one and two blocks every operation below is
+// the one engines/common/placement.cc made (the same operations in the same order, with no
+// term added for P_1's velocity, which is zero), so that their histories keep their bits.
+StackPlacement PlaceChain(const double* b, const double* h, int n, const InitialState& s) {
+  if (n < 1 || n > kMaxBlocks) {
+    throw std::invalid_argument(std::string("PlaceStack: ") + std::to_string(n) +
+                                " blocks; expected 1 to " + std::to_string(kMaxBlocks));
+  }
+  StackPlacement out;
+  out.blocks.resize(static_cast<size_t>(n));
+  out.sides.resize(static_cast<size_t>(n));
+  Vec2 p, vp;  // block k's pivot P_k and its velocity (v_P1 = 0: not added)
+  for (int k = 0; k < n; ++k) {
+    const double theta = s.theta_rad[k], omega = s.omega_radps[k];
+    const int side = k == 0 ? PivotSide(theta, omega)
+                            : PivotSide(theta - s.theta_rad[k - 1], omega - s.omega_radps[k - 1]);
+    const double sb = side * b[k];
+    if (k > 0) {
+      // P_(k+1) from block k's pivot: its base corner on block k's top face (2 h_k above
+      // block k's base), carried by block k's turn.
+      const double phi_below = -s.theta_rad[k - 1], w_below = -s.omega_radps[k - 1];
+      const double sb_below = out.sides[k - 1] * b[k - 1];
+      const Vec2 q = p + Rotate(phi_below, Vec2{sb, 2.0 * h[k - 1]} - Vec2{sb_below, 0.0});
+      vp = k == 1 ? Spin(w_below, q - p) : vp + Spin(w_below, q - p);
+      p = q;
+    } else {
+      // Block 1 about its ground pivot P1 (a flat block: any point of the base, take the centre).
+      p = Vec2{sb, 0.0};
+    }
+    const double phi = -theta, w = -omega;
+    const Vec2 g = p + Rotate(phi, Vec2{0.0, h[k]} - Vec2{sb, 0.0});
+    const Vec2 vg = k == 0 ? Spin(w, g - p) : vp + Spin(w, g - p);
+    out.sides[k] = side;
+    out.blocks[k] = {g.x, g.y, phi, vg.x, vg.y, w};
+  }
+  out.block1 = out.blocks[0];
+  out.ground_side = out.sides[0];
+  if (n >= 2) {
+    out.block2 = out.blocks[1];
+    out.interface_side = out.sides[1];
+  }
+  return out;
+}
+
+}  // namespace
 
 int PivotSide(double angle_rad, double rate_radps) {
   if (angle_rad > 0.0) return 1;
@@ -10,42 +62,25 @@ int PivotSide(double angle_rad, double rate_radps) {
   return 0;
 }
 
-// The engines' initial poses come from here: every operation below is kept as it was in
-// engines/common/placement.cc (same operations, same order) so that their histories keep their
-// bits.
-StackPlacement PlaceStack(double b1, double h1, double b2, double h2, bool two_blocks,
-                          const InitialState& s) {
-  StackPlacement out;
-  const double theta1 = s.theta_rad[0], omega1 = s.omega_radps[0];
-  out.ground_side = PivotSide(theta1, omega1);
-  const double phi1 = -theta1, w1 = -omega1;
-  // Block 1 about its ground pivot P1 (a flat block: any point of the base, take the centre).
-  const Vec2 p1{out.ground_side * b1, 0.0};
-  const Vec2 g1 = p1 + Rotate(phi1, Vec2{0.0, h1} - Vec2{out.ground_side * b1, 0.0});
-  const Vec2 vg1 = Spin(w1, g1 - p1);
-  out.block1 = {g1.x, g1.y, phi1, vg1.x, vg1.y, w1};
-  if (!two_blocks) return out;
-
-  const double theta2 = s.theta_rad[1], omega2 = s.omega_radps[1];
-  out.interface_side = PivotSide(theta2 - theta1, omega2 - omega1);
-  const double phi2 = -theta2, w2 = -omega2;
-  const double s2b2 = out.interface_side * b2;
-  // Block 2's pivot Q2: its base corner on block 1's top face (2 h1 above block 1's base).
-  const Vec2 q2 = p1 + Rotate(phi1, Vec2{s2b2, 2.0 * h1} - Vec2{out.ground_side * b1, 0.0});
-  const Vec2 g2 = q2 + Rotate(phi2, Vec2{0.0, h2} - Vec2{s2b2, 0.0});
-  const Vec2 vq2 = Spin(w1, q2 - p1);
-  const Vec2 vg2 = vq2 + Spin(w2, g2 - q2);
-  out.block2 = {g2.x, g2.y, phi2, vg2.x, vg2.y, w2};
-  return out;
+StackPlacement PlaceStack(const std::vector<BlockDef>& blocks, const InitialState& state) {
+  const int n = static_cast<int>(blocks.size());
+  if (n < 1 || n > kMaxBlocks) return PlaceChain(nullptr, nullptr, n, state);  // throws
+  std::array<double, kMaxBlocks> b{}, h{};
+  for (int k = 0; k < n; ++k) {
+    b[k] = 0.5 * blocks[k].width_m;
+    h[k] = 0.5 * blocks[k].height_m;
+  }
+  return PlaceChain(b.data(), h.data(), n, state);
 }
 
 StackPlacement PlaceStack(const Scene& scene, const InitialState& state) {
-  RequireAtMostTwoBlocks(scene, "stack placement");
-  const bool two = scene.block_count() == 2;
-  const double b1 = 0.5 * scene.blocks.at(0).width_m, h1 = 0.5 * scene.blocks.at(0).height_m;
-  const double b2 = two ? 0.5 * scene.blocks[1].width_m : 0.0;
-  const double h2 = two ? 0.5 * scene.blocks[1].height_m : 0.0;
-  return PlaceStack(b1, h1, b2, h2, two, state);
+  return PlaceStack(scene.blocks, state);
+}
+
+StackPlacement PlaceStack(double b1, double h1, double b2, double h2, bool two_blocks,
+                          const InitialState& state) {
+  const double b[2] = {b1, b2}, h[2] = {h1, h2};
+  return PlaceChain(b, h, two_blocks ? 2 : 1, state);
 }
 
 BlockCorners Corners(const PlanarPose& pose, double b, double h) {
@@ -57,12 +92,15 @@ BlockCorners Corners(const PlanarPose& pose, double b, double h) {
 StackCorners StackCornersAt(const Scene& scene, const InitialState& state) {
   const StackPlacement place = PlaceStack(scene, state);
   StackCorners out;
-  const BlockDef& b1 = scene.blocks[0];
-  out.block1 = Corners(place.block1, 0.5 * b1.width_m, 0.5 * b1.height_m);
-  if (scene.block_count() == 2) {
-    const BlockDef& b2 = scene.blocks[1];
+  out.blocks.reserve(place.blocks.size());
+  for (size_t k = 0; k < place.blocks.size(); ++k) {
+    const BlockDef& def = scene.blocks[k];
+    out.blocks.push_back(Corners(place.blocks[k], 0.5 * def.width_m, 0.5 * def.height_m));
+  }
+  out.block1 = out.blocks[0];
+  if (out.blocks.size() >= 2) {
     out.has_block2 = true;
-    out.block2 = Corners(place.block2, 0.5 * b2.width_m, 0.5 * b2.height_m);
+    out.block2 = out.blocks[1];
   }
   return out;
 }

@@ -1,12 +1,14 @@
 #pragma once
-/// Where the blocks of the stack are for a state (angles and rates): the pivot chain, defined
-/// once for every engine (initial poses, engines/) and the renders (the corners of a frame,
-/// renders/). Block 1 turns by theta1 about its base corner on the side of the tilt; block 2,
-/// centred on block 1 at rest, sits on block 1's top face at its own pivot corner and turns by
-/// theta2 about it (by theta2 - theta1 relative to block 1). Coordinates are the base frame:
-/// origin at block 1's base centre at rest, x right, y up, m; phi = -theta is the
-/// counter-clockwise angle about +z the engines use (theta > 0 tilts right, clockwise).
+/// Where the blocks of the stack are for a state (angles and rates): the pivot chain of N blocks
+/// (docs/n-blocks.md), defined once for every engine (initial poses, engines/) and the renders
+/// (the corners of a frame, renders/). Block 1 turns by theta1 about its base corner on the side
+/// of its tilt; block k + 1, centred on block k at rest, sits on block k's top face at its own
+/// pivot corner and turns by theta_(k+1) about it (by theta_(k+1) - theta_k relative to block
+/// k). Coordinates are the base frame: origin at block 1's base centre at rest, x right, y up,
+/// m; phi = -theta is the counter-clockwise angle about +z the engines use (theta > 0 tilts
+/// right, clockwise).
 #include <array>
+#include <vector>
 
 #include "scene/scene.h"
 #include "scene/vec2.h"
@@ -22,6 +24,14 @@ struct PlanarPose {
 
 /// The poses of the stack's blocks and the pivots the chain chose.
 struct StackPlacement {
+  /// Block k's pose at index k - 1, bottom first: one per block.
+  std::vector<PlanarPose> blocks;
+  /// Interface k's pivot at index k - 1 (block 1 on the ground, block k on block k - 1):
+  /// +1 block k's right base corner, -1 its left one, 0 flat (on its face).
+  std::vector<int> sides;
+
+  /// The names of one and two blocks, kept for code written for them (renders/, tests): copies
+  /// of blocks[0], blocks[1], sides[0] and sides[1], zero where the stack has no such block.
   PlanarPose block1, block2;  ///< block2 is zero for a single block
   int ground_side = 0;        ///< block 1's pivot: +1 right corner, -1 left, 0 flat
   int interface_side = 0;     ///< block 2's pivot on block 1: +1 right, -1 left, 0 flat
@@ -33,16 +43,25 @@ struct StackPlacement {
 /// velocities only.
 int PivotSide(double angle_rad, double rate_radps);
 
-/// Places the stack (half widths b, half heights h in m; b2 <= b1, as the scene reader
-/// requires). Block 1's pivot side is PivotSide(theta1, omega1); block 2's is
-/// PivotSide(theta2 - theta1, omega2 - omega1). Velocities follow the chain:
-/// v_G1 = w1 x (G1 - P1), v_G2 = w1 x (Q2 - P1) + w2 x (G2 - Q2).
+/// Places a stack of N = blocks.size() blocks (1..kMaxBlocks; each no wider than the one below,
+/// as the scene reader requires; b = width / 2, h = height / 2). Interface k's pivot side is
+/// PivotSide(theta_k - theta_(k-1), omega_k - omega_(k-1)) (theta_0 = omega_0 = 0: the
+/// ground). With s_k that side and phi_k = -theta_k:
+///   P_1 = (s_1 b_1, 0),
+///   P_(k+1) = P_k + R(phi_k) ((s_(k+1) b_(k+1), 2 h_k) - (s_k b_k, 0)),
+///   G_k = P_k + R(phi_k) ((0, h_k) - (s_k b_k, 0)),
+///   v_P(k+1) = v_Pk + w_k x (P_(k+1) - P_k),  v_Gk = v_Pk + w_k x (G_k - P_k),  v_P1 = 0,
+/// with w_k = -omega_k. A flat interface (side 0) puts block k's pivot at the middle of its
+/// base. Throws std::invalid_argument for no block or more than kMaxBlocks.
+StackPlacement PlaceStack(const std::vector<BlockDef>& blocks, const InitialState& state);
+
+/// The same for a scene's blocks.
+StackPlacement PlaceStack(const Scene& scene, const InitialState& state);
+
+/// One or two blocks by their half widths b and half heights h (m; b2 <= b1): block 2 when
+/// two_blocks. The same poses as the vector form (kept for code written for two blocks).
 StackPlacement PlaceStack(double b1_m, double h1_m, double b2_m, double h2_m, bool two_blocks,
                           const InitialState& state);
-
-/// The same for a scene's blocks (b = width / 2, h = height / 2; two blocks when the scene has
-/// block 2).
-StackPlacement PlaceStack(const Scene& scene, const InitialState& state);
 
 /// The corners of a block counter-clockwise from the bottom-left in its own frame:
 /// bottom-left, bottom-right, top-right, top-left, m.
@@ -53,12 +72,17 @@ BlockCorners Corners(const PlanarPose& pose, double b_m, double h_m);
 
 /// The corners of the stack's blocks for a state, in the base frame, m.
 struct StackCorners {
+  /// Block k's corners at index k - 1, bottom first: one per block.
+  std::vector<BlockCorners> blocks;
+
+  /// The names of one and two blocks, kept for code written for them (renders/): copies of
+  /// blocks[0] and blocks[1] (has_block2: the stack has a second block).
   BlockCorners block1{};
   bool has_block2 = false;
   BlockCorners block2{};  ///< valid when has_block2
 };
 
-/// The corners of a scene's blocks at `state`, placed by PlaceStack.
+/// The corners of a scene's blocks at `state`, placed by PlaceStack (every block of the scene).
 StackCorners StackCornersAt(const Scene& scene, const InitialState& state);
 
 }  // namespace rockbench

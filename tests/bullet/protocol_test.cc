@@ -19,8 +19,7 @@ using testing_util::MakeSample;
 
 BulletInput SomeInput() {
   BulletInput in;
-  in.block1 = {1.25, 1.25, 0.7, 3906.25, 2500.0};
-  in.block2 = BlockDef{1.0, 2.5, 1.1, 6250.0, 0.0};
+  in.blocks = {{1.25, 1.25, 0.7, 3906.25, 2500.0}, {1.0, 2.5, 1.1, 6250.0, 0.0}};
   in.initial = testing_util::Initial(0.1, 0.2, -0.3, 1.0 / 3.0);
   in.run = {20.0, 0.01, 9.80665};
   in.time_step_s = 1.0 / 60.0;
@@ -66,7 +65,7 @@ TEST(ProtocolTest, InputRoundTripIsBitExact) {
   const std::string bytes = SerializeInput(a);
   const BulletInput b = ParseInput(bytes);
   EXPECT_EQ(SerializeInput(b), bytes);  // every field, every bit
-  EXPECT_EQ(b.block2->depth_m, 1.1);
+  EXPECT_EQ(b.blocks[1].depth_m, 1.1);
   EXPECT_EQ(b.initial.omega_radps[1], 1.0 / 3.0);
   EXPECT_EQ(b.config.precision, BulletPrecision::kFloat);
   EXPECT_EQ(b.drive_kind, DriveKind::kKinematic);
@@ -76,10 +75,36 @@ TEST(ProtocolTest, InputRoundTripIsBitExact) {
   EXPECT_EQ(b.steps, 1200);
   // A single block and empty drive arrays survive too.
   BulletInput one;
-  one.block1 = {1.0, 4.0, 1.0, 1e4, 0.0};
+  one.blocks = {{1.0, 4.0, 1.0, 1e4, 0.0}};
   const BulletInput c = ParseInput(SerializeInput(one));
-  EXPECT_FALSE(c.block2.has_value());
+  EXPECT_EQ(c.block_count(), 1);
   EXPECT_TRUE(c.drive.ax_mps2.empty());
+}
+
+TEST(ProtocolTest, AnNBlockInputCarriesEveryBlockAngleAndRate) {
+  BulletInput in = SomeInput();
+  in.blocks.clear();
+  for (int k = 0; k < 5; ++k) {
+    in.blocks.push_back(BlockDef{0.9 - 0.01 * k, 0.85, 0.9, 2000.0 + k / 3.0, 2700.0});
+    in.initial.theta_rad[k] = 0.05 + k / 7.0;
+    in.initial.omega_radps[k] = -k / 11.0;
+  }
+  const std::string bytes = SerializeInput(in);
+  const BulletInput b = ParseInput(bytes);
+  EXPECT_EQ(SerializeInput(b), bytes);
+  ASSERT_EQ(b.block_count(), 5);
+  for (int k = 0; k < 5; ++k) {
+    EXPECT_EQ(b.blocks[k].width_m, in.blocks[k].width_m);
+    EXPECT_EQ(b.blocks[k].mass_kg, in.blocks[k].mass_kg);
+    EXPECT_EQ(b.initial.theta_rad[k], in.initial.theta_rad[k]);
+    EXPECT_EQ(b.initial.omega_radps[k], in.initial.omega_radps[k]);
+  }
+  EXPECT_EQ(b.initial.theta_rad[5], 0.0);
+  // A block count out of range is refused.
+  std::string bad = bytes;
+  const std::int32_t none = 0;
+  std::memcpy(&bad[12], &none, sizeof none);  // after the magic (8) and the version (4)
+  EXPECT_THROW(ParseInput(bad), std::runtime_error);
 }
 
 TEST(ProtocolTest, OutputRoundTripIsBitExact) {

@@ -166,8 +166,8 @@ TEST(RockingWorldTest, SingleBlockPlacementAndReadBack) {
   }
   // Read back in the thesis's convention: theta = -(rotation about +z).
   const StepReadout r = world.Read(0);
-  EXPECT_NEAR(-std::atan2(r.block1.sin_phi, r.block1.cos_phi), -0.1, 1e-15);
-  EXPECT_NEAR(-r.block1.w_radps, 0.25, 1e-15);
+  EXPECT_NEAR(-std::atan2(r.blocks[0].sin_phi, r.blocks[0].cos_phi), -0.1, 1e-15);
+  EXPECT_NEAR(-r.blocks[0].w_radps, 0.25, 1e-15);
   EXPECT_EQ(r.t_s, 0.0);
 }
 

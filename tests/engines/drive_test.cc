@@ -148,11 +148,47 @@ TEST(EngineDrive, InitialPosesAreThePivotChains) {
   const EngineInput in =
       MakeEngineInput(s, GroundMotion(), "test", 1e-3, DriveKind::kInertial, 0.0);
   const StackPlacement a = PlaceStack(s, in.initial);
-  const StackPlacement b = PlaceStack(0.5, 2.0, 0.3, 1.0, in.two_blocks(), in.initial);
+  const StackPlacement b = PlaceStack(0.5, 2.0, 0.3, 1.0, in.block_count() == 2, in.initial);
+  const StackPlacement c = PlaceStack(in.blocks, in.initial);
   EXPECT_EQ(a.block1.x_m, b.block1.x_m);
   EXPECT_EQ(a.block2.y_m, b.block2.y_m);
   EXPECT_EQ(a.block2.vx_mps, b.block2.vx_mps);
   EXPECT_EQ(a.interface_side, 1);
+  ASSERT_EQ(c.blocks.size(), 2u);
+  EXPECT_EQ(c.blocks[1].vx_mps, b.block2.vx_mps);
+  EXPECT_EQ(c.sides[1], 1);
+}
+
+TEST(EngineDrive, TheInputCarriesEveryBlockOfAnNBlockStack) {
+  // Six drums: the input holds the scene's blocks and state, bottom first.
+  Scene s = OneBlock();
+  s.blocks.assign(6, BlockDef{0.9, 0.85, 0.9, 0.9 * 0.85 * 0.9 * 2700.0, 2700.0});
+  for (int k = 0; k < 6; ++k) s.initial.theta_rad[k] = 0.05;
+  s.initial.omega_radps[5] = -0.1;
+  const EngineInput in =
+      MakeEngineInput(s, GroundMotion(), "test", 1e-3, DriveKind::kInertial, 0.0);
+  ASSERT_EQ(in.block_count(), 6);
+  EXPECT_EQ(in.blocks[5].mass_kg, s.blocks[5].mass_kg);
+  EXPECT_EQ(in.initial.theta_rad[5], 0.05);
+  EXPECT_EQ(in.initial.omega_radps[5], -0.1);
+}
+
+TEST(EngineDrive, AnEngineOfTwoBlocksRefusesAStackOfMoreByName) {
+  Scene s = OneBlock();
+  s.path = "scenes/three.toml";
+  s.blocks.assign(3, s.blocks[0]);
+  EXPECT_EQ(EngineBlocksRefusal("ode", 2, 2), "");
+  EXPECT_EQ(EngineBlocksRefusal("ode", 3, 2),
+            "engine ode: N-block stacks (3 blocks) are not built yet (issue 23); 1 or 2 blocks");
+  try {
+    RequireEngineBlocks(s, "ode", 2);
+    ADD_FAILURE() << "accepted 3 blocks";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "scenes/three.toml: engine ode: N-block stacks (3 blocks) "
+              "are not built yet (issue 23); 1 or 2 blocks");
+  }
+  EXPECT_NO_THROW(RequireEngineBlocks(s, "bullet", kMaxBlocks));
 }
 
 }  // namespace

@@ -8,7 +8,9 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "scene/stack_pose.h"
 #include "tests/common/initial_state.h"
@@ -20,10 +22,9 @@ namespace {
 EngineInput Input(bool two, double dt = 1e-3, double out = 1e-3) {
   EngineInput in;
   if (two) {
-    in.block1 = {1.25, 1.25, 1.0, 3906.25, 0.0};
-    in.block2 = BlockDef{1.0, 2.5, 1.0, 6250.0, 0.0};
+    in.blocks = {{1.25, 1.25, 1.0, 3906.25, 0.0}, {1.0, 2.5, 1.0, 6250.0, 0.0}};
   } else {
-    in.block1 = {1.0, 4.0, 1.0, 10000.0, 0.0};
+    in.blocks = {{1.0, 4.0, 1.0, 10000.0, 0.0}};
   }
   in.time_step_s = dt;
   in.run.output_interval_s = out;
@@ -39,15 +40,10 @@ BodyReadout ToReadout(const PlanarPose& p) {
 // The readout of an exact pivot-chain state (what an ideal engine would produce).
 StepReadout At(const EngineInput& in, double t, double th1, double w1, double th2 = 0.0,
                double w2 = 0.0) {
-  const double b1 = 0.5 * in.block1.width_m, h1 = 0.5 * in.block1.height_m;
-  const double b2 = in.block2 ? 0.5 * in.block2->width_m : 0.0;
-  const double h2 = in.block2 ? 0.5 * in.block2->height_m : 0.0;
-  const StackPlacement p =
-      PlaceStack(b1, h1, b2, h2, in.two_blocks(), testing_util::Initial(th1, th2, w1, w2));
-  StepReadout r;
+  const StackPlacement p = PlaceStack(in.blocks, testing_util::Initial(th1, th2, w1, w2));
+  StepReadout r(in.block_count());
   r.t_s = t;
-  r.block1 = ToReadout(p.block1);
-  r.block2 = ToReadout(p.block2);
+  for (int k = 0; k < in.block_count(); ++k) r.blocks[k] = ToReadout(p.blocks[k]);
   return r;
 }
 
@@ -177,8 +173,8 @@ TEST(MonitorTest, MeasuresSlipUpliftAndPenetration) {
     m.Start(At(in, 0.0, 0.0, 0.0));
     for (int n = 1; n <= 20; ++n) {
       StepReadout r = At(in, n * 1e-3, 0.0, 0.0);
-      r.block1.x_m += n * 1e-4;
-      r.block2.x_m += n * 1e-4;
+      r.blocks[0].x_m += n * 1e-4;
+      r.blocks[1].x_m += n * 1e-4;
       m.Step(n, r);
     }
     const auto v = m.Summary()["violations"];
@@ -195,10 +191,10 @@ TEST(MonitorTest, MeasuresSlipUpliftAndPenetration) {
     for (int n = 1; n <= 10; ++n) {
       StepReadout r = At(in, n * 1e-3, 0.0, 0.0);
       if (n <= 5) {
-        r.block1.y_m += 1e-3;
-        r.block2.y_m += 1e-3;
+        r.blocks[0].y_m += 1e-3;
+        r.blocks[1].y_m += 1e-3;
       } else {
-        r.block2.y_m -= 2e-4;
+        r.blocks[1].y_m -= 2e-4;
       }
       m.Step(n, r);
     }
@@ -243,7 +239,7 @@ TEST(MonitorTest, NonFiniteStateStopsTheRunWithoutThrowing) {
   m.Start(At(in, 0.0, 0.01, 0.0, 0.01, 0.0));
   EXPECT_TRUE(m.Step(1, At(in, 1e-3, 0.01, 0.0, 0.01, 0.0)));
   StepReadout r = At(in, 2e-3, 0.01, 0.0, 0.01, 0.0);
-  r.block2.w_radps = std::numeric_limits<double>::quiet_NaN();
+  r.blocks[1].w_radps = std::numeric_limits<double>::quiet_NaN();
   EXPECT_FALSE(m.Step(2, r));
   EXPECT_FALSE(m.Step(3, At(in, 3e-3, 0.01, 0.0, 0.01, 0.0)));  // stopped: no more steps
   m.Finish();
@@ -275,7 +271,7 @@ TEST(MonitorTest, AnEnergyThatOverflowsOrAnEngineFaultStopsTheRun) {
     Monitor m(in);
     m.Start(At(in, 0.0, 0.01, 0.0));
     StepReadout r = At(in, 1e-3, 0.01, 0.0);
-    r.block1.vx_mps = 1e160;
+    r.blocks[0].vx_mps = 1e160;
     EXPECT_FALSE(m.Step(1, r));
     m.Finish();
     EXPECT_EQ(m.status(), RunStatus::kNonFinite);
@@ -339,6 +335,224 @@ TEST(MonitorTest, OverturnOfTwoBlocksInOneStepIsTheFirstCrossing) {
   EXPECT_EQ(s["overturn"]["block"], 2);
   EXPECT_NEAR(s["overturn"]["t_s"].get<double>(), 1.1e-3, 1e-15);
   EXPECT_EQ(m.history().events.back().note, "block 2");
+}
+
+// ---------------------------------------------------------------------------------------------
+// Three blocks: every per-interface quantity is block k's relative to its support, in the
+// support's frame.
+
+// Three drums 0.9 m wide and 0.85 m tall, 2700 kg/m^3, 1 m deep.
+EngineInput ThreeDrums(double dt = 1e-3) {
+  EngineInput in = Input(false, dt, dt);
+  in.blocks.assign(3, BlockDef{0.9, 0.85, 1.0, 0.9 * 0.85 * 2700.0, 2700.0});
+  return in;
+}
+
+// The readout of an exact pivot-chain state of N blocks.
+StepReadout AtN(const EngineInput& in, double t, const std::vector<double>& theta,
+                const std::vector<double>& omega) {
+  InitialState state;
+  for (size_t k = 0; k < theta.size(); ++k) {
+    state.theta_rad[k] = theta[k];
+    state.omega_radps[k] = omega[k];
+  }
+  const StackPlacement p = PlaceStack(in.blocks, state);
+  StepReadout r(in.block_count());
+  r.t_s = t;
+  for (int k = 0; k < in.block_count(); ++k) r.blocks[k] = ToReadout(p.blocks[k]);
+  return r;
+}
+
+TEST(MonitorNBlocks, InfersEveryInterfaceSideOfThreeBlocks) {
+  struct Case {
+    std::vector<double> theta, omega;
+    const char* name;
+  };
+  // The side of interface k is that of theta_k - theta_(k-1) (its rate when flat): r, l or f.
+  const Case cases[] = {
+      {{0.1, 0.15, 0.2}, {0, 0, 0}, "rrr"},   {{0.1, 0.1, 0.05}, {0, 0, 0}, "rfl"},
+      {{0.0, 0.0, 0.1}, {0, 0, 0}, "ffr"},    {{-0.1, -0.05, -0.05}, {0, 0, 0}, "lrf"},
+      {{0.0, 0.0, 0.0}, {0, 0, 0}, "fff"},    {{0.1, 0.1, 0.1}, {0.5, 0.5, 0.5}, "rff"},
+      {{0.0, 0.0, 0.0}, {0, 0, -0.5}, "ffl"}, {{0.0, 0.0, 0.0}, {0.5, 0.5, 1.0}, "rfr"},
+      {{-0.2, 0.1, -0.1}, {0, 0, 0}, "lrl"},  {{2e-6, 2e-6, 2e-6}, {1e-3, 1e-3, 1e-3}, "fff"},
+  };
+  const EngineInput in = ThreeDrums();
+  for (const Case& c : cases) {
+    Monitor m(in);
+    m.Start(AtN(in, 0.0, c.theta, c.omega));
+    EXPECT_EQ(ConfigurationName(m.last().mode), c.name)
+        << c.theta[0] << " " << c.theta[1] << " " << c.theta[2];
+    EXPECT_EQ(m.last().theta_rad.size(), 3u);
+    EXPECT_NEAR(m.last().theta_rad[2], c.theta[2], 1e-15);
+  }
+}
+
+TEST(MonitorNBlocks, ImpactOfTheTopBlockOnTheMiddleOne) {
+  // Blocks 1 and 2 tilted together at 0.05 rad (interface 2 closed), block 3 rocking back onto
+  // block 2: its relative angle 2e-4, 1e-4, -1e-4 rad at 0, 1, 2 ms crosses zero at 1.5 ms.
+  const EngineInput in = ThreeDrums();
+  const double th = 0.05;
+  Monitor m(in);
+  m.Start(AtN(in, 0.0, {th, th, th + 2e-4}, {0.0, 0.0, -0.1}));
+  EXPECT_EQ(ConfigurationName(m.last().mode), "rfr");
+  m.Step(1, AtN(in, 1e-3, {th, th, th + 1e-4}, {0.0, 0.0, -0.1}));
+  m.Step(2, AtN(in, 2e-3, {th, th, th - 1e-4}, {0.0, 0.0, -0.1}));
+  m.Step(3, AtN(in, 3e-3, {th, th, th - 2e-4}, {0.0, 0.0, -0.08}));
+  m.Finish();
+  ASSERT_EQ(m.history().events.size(), 1u);
+  const Event& e = m.history().events[0];
+  EXPECT_EQ(e.kind, "interface3_impact");
+  EXPECT_NEAR(e.t_s, 1.5e-3, 1e-12);
+  EXPECT_EQ(ConfigurationName(e.mode_before), "rfr");
+  EXPECT_EQ(ConfigurationName(e.mode_after), "rfl");
+  ASSERT_EQ(e.omega_before_radps.size(), 3u);
+  EXPECT_DOUBLE_EQ(e.omega_before_radps[2], -0.1);
+  EXPECT_DOUBLE_EQ(e.omega_after_radps[2], -0.08);
+  // The energy is every block's: m g y_G + kinetic, of the state before the crossing step.
+  InitialState before;
+  for (int k = 0; k < 3; ++k) before.theta_rad[k] = th;
+  before.theta_rad[2] = th + 1e-4;
+  before.omega_radps[2] = -0.1;
+  const StackPlacement p = PlaceStack(in.blocks, before);
+  double energy = 0.0;
+  for (int k = 0; k < 3; ++k) {
+    const PlanarPose& q = p.blocks[k];
+    const double mass = in.blocks[k].mass_kg, b = 0.45, h = 0.425;
+    energy += mass * 9.81 * q.y_m + 0.5 * mass * (q.vx_mps * q.vx_mps + q.vy_mps * q.vy_mps) +
+              0.5 * mass * (b * b + h * h) / 3.0 * q.w_radps * q.w_radps;
+  }
+  EXPECT_NEAR(e.energy_before_j, energy, 1e-12 * energy);
+  // Counted at interface 3 (block 3 on block 2) only.
+  const RunOutcome o = m.Outcome();
+  EXPECT_EQ(o.impacts_at, (std::vector<int>{0, 0, 1}));
+  const nlohmann::json s = m.Summary();
+  EXPECT_EQ(s["impacts"]["total"], 1);
+  EXPECT_EQ(s["impacts"]["ground"], 0);
+  EXPECT_EQ(s["impacts"]["interface2"], 0);
+  EXPECT_EQ(s["impacts"]["interface3"], 1);
+  EXPECT_FALSE(s["impacts"].contains("interface"));
+}
+
+TEST(MonitorNBlocks, ImpactsAtTwoInterfacesInOneStepAreBothCounted) {
+  // Block 1 tilted at 0.05 on the ground; blocks 2 and 3 each 1e-4 rad to the right of the
+  // block below, then 1e-4 rad to its left: both interfaces land at 0.5 ms, each its impact.
+  const EngineInput in = ThreeDrums();
+  const double th = 0.05;
+  Monitor m(in);
+  m.Start(AtN(in, 0.0, {th, th + 1e-4, th + 2e-4}, {0.0, -0.2, -0.4}));
+  EXPECT_EQ(ConfigurationName(m.last().mode), "rrr");
+  m.Step(1, AtN(in, 1e-3, {th, th - 1e-4, th - 2e-4}, {0.0, -0.2, -0.4}));
+  m.Step(2, AtN(in, 2e-3, {th, th - 2e-4, th - 4e-4}, {0.0, -0.1, -0.2}));
+  m.Finish();
+  ASSERT_EQ(m.history().events.size(), 2u);
+  EXPECT_EQ(m.history().events[0].kind, "interface2_impact");
+  EXPECT_EQ(m.history().events[1].kind, "interface3_impact");
+  for (const Event& e : m.history().events) {
+    EXPECT_NEAR(e.t_s, 0.5e-3, 1e-12) << e.kind;
+    EXPECT_EQ(ConfigurationName(e.mode_before), "rrr") << e.kind;
+    EXPECT_EQ(ConfigurationName(e.mode_after), "rll") << e.kind;
+  }
+  EXPECT_EQ(m.Outcome().impacts_at, (std::vector<int>{0, 1, 1}));
+  EXPECT_EQ(m.Summary()["impacts"]["total"], 2);
+}
+
+TEST(MonitorNBlocks, SlipUpliftAndPenetrationOfTheTopBlockAreMeasuredOnItsSupport) {
+  // The column tilted as one at 0.1 rad. Block 3 is moved along block 2's top face (block 2's
+  // own x axis, not the ground's): slip at interface 3 only.
+  const EngineInput in = ThreeDrums();
+  const std::vector<double> tilt = {0.1, 0.1, 0.1}, still = {0.0, 0.0, 0.0};
+  const double phi = -0.1;
+  const Vec2 along{std::cos(phi), std::sin(phi)}, normal{-std::sin(phi), std::cos(phi)};
+  {
+    Monitor m(in);
+    m.Start(AtN(in, 0.0, tilt, still));
+    for (int n = 1; n <= 20; ++n) {
+      StepReadout r = AtN(in, n * 1e-3, tilt, still);
+      r.blocks[2].x_m += n * 1e-4 * along.x;
+      r.blocks[2].y_m += n * 1e-4 * along.y;
+      m.Step(n, r);
+    }
+    const auto v = m.Summary()["violations"];
+    EXPECT_NEAR(v["slip_interface3_m"].get<double>(), 2e-3, 1e-12);
+    EXPECT_NEAR(v["drift_interface3_max_m"].get<double>(), 2e-3, 1e-12);
+    EXPECT_NEAR(v["slip_interface2_m"].get<double>(), 0.0, 1e-14);
+    EXPECT_NEAR(v["slip_ground_m"].get<double>(), 0.0, 1e-14);
+    EXPECT_FALSE(v.contains("slip_interface_m"));
+    EXPECT_TRUE(v["sliding"].get<bool>());  // 2 mm > 1e-3 of the 0.9 m width
+    EXPECT_FALSE(v["uplift"].get<bool>());
+    EXPECT_LT(v["penetration_interface3_max_m"].get<double>(), 1e-14);
+  }
+  {
+    // Block 3 lifts 1 mm off block 2 (along block 2's normal) for 5 steps, then sinks 0.2 mm.
+    Monitor m(in);
+    m.Start(AtN(in, 0.0, tilt, still));
+    for (int n = 1; n <= 10; ++n) {
+      StepReadout r = AtN(in, n * 1e-3, tilt, still);
+      const double d = n <= 5 ? 1e-3 : -2e-4;
+      r.blocks[2].x_m += d * normal.x;
+      r.blocks[2].y_m += d * normal.y;
+      m.Step(n, r);
+    }
+    const auto v = m.Summary()["violations"];
+    EXPECT_EQ(v["uplift_interface3_episodes"], 1);
+    EXPECT_NEAR(v["uplift_interface3_max_m"].get<double>(), 1e-3, 1e-12);
+    EXPECT_NEAR(v["uplift_interface3_s"].get<double>(), 5e-3, 1e-12);
+    EXPECT_NEAR(v["penetration_interface3_max_m"].get<double>(), 2e-4, 1e-12);
+    EXPECT_EQ(v["uplift_interface2_episodes"], 0);
+    EXPECT_EQ(v["uplift_ground_episodes"], 0);
+    EXPECT_TRUE(v["uplift"].get<bool>());
+    EXPECT_TRUE(v["penetration"].get<bool>());
+  }
+}
+
+TEST(MonitorNBlocks, TheFirstBlockToReachTheOverturnAngleOverturns) {
+  const double half_pi = std::numbers::pi / 2;
+  EngineInput in = ThreeDrums();
+  in.overturn_rad = half_pi;
+  Monitor m(in);
+  m.Start(AtN(in, 0.0, {1.2, 1.2, 1.3}, {2.0, 2.0, 2.0}));
+  EXPECT_TRUE(
+      m.Step(1, AtN(in, 1e-3, {half_pi - 0.01, half_pi - 0.01, half_pi - 0.002}, {2.0, 2.0, 2.0})));
+  // Blocks 1 and 2 cross 0.8 into the step, block 3 0.1 into it: block 3, at 1.1 ms.
+  EXPECT_FALSE(m.Step(
+      2, AtN(in, 2e-3, {half_pi + 0.0025, half_pi + 0.0025, half_pi + 0.018}, {2.0, 2.0, 2.0})));
+  m.Finish();
+  const auto s = m.Summary();
+  EXPECT_EQ(s["overturn"]["block"], 3);
+  EXPECT_NEAR(s["overturn"]["t_s"].get<double>(), 1.1e-3, 1e-15);
+  EXPECT_EQ(m.Outcome().overturned_block, 3);
+  EXPECT_EQ(m.history().events.back().note, "block 3");
+}
+
+TEST(MonitorNBlocks, SummaryKeysGoOnByBlockAndInterface) {
+  const EngineInput in = ThreeDrums();
+  Monitor m(in);
+  m.Start(AtN(in, 0.0, {0.02, 0.03, 0.05}, {0.0, 0.0, 0.0}));
+  m.Step(1, AtN(in, 1e-3, {0.02, 0.03, 0.06}, {0.0, 0.0, 1.0}));
+  m.Finish();
+  const nlohmann::json s = m.Summary();
+  EXPECT_NEAR(s["peaks"]["theta3"]["abs_rad"].get<double>(), 0.06, 1e-15);
+  EXPECT_EQ(s["peaks"]["theta3"]["t_s"].get<double>(), 1e-3);
+  EXPECT_NEAR(s["final"]["theta3_rad"].get<double>(), 0.06, 1e-15);
+  EXPECT_NEAR(s["final"]["omega3_radps"].get<double>(), 1.0, 1e-15);
+  EXPECT_EQ(s["final"]["mode"], "rrr");
+  EXPECT_EQ(s["violations"]["significant_displacement_m"].size(), 3u);
+  for (const char* k : {"slip_interface2_m", "uplift_interface3_s", "penetration_ground_max_m",
+                        "drift_interface2_max_m"}) {
+    EXPECT_TRUE(s["violations"].contains(k)) << k;
+  }
+  const RunOutcome o = m.Outcome();
+  EXPECT_EQ(o.blocks(), 3);
+  EXPECT_EQ(m.history().blocks, 3);
+  for (const Sample& x : m.history().samples) EXPECT_EQ(x.blocks(), 3);
+}
+
+TEST(MonitorNBlocks, AReadoutOfAnotherNumberOfBodiesIsRefused) {
+  const EngineInput in = ThreeDrums();
+  Monitor m(in);
+  EXPECT_THROW(m.Start(StepReadout(2)), std::invalid_argument);
+  m.Start(AtN(in, 0.0, {0.0, 0.0, 0.0}, {0.0, 0.0, 0.0}));
+  EXPECT_THROW(m.Step(1, StepReadout(4)), std::invalid_argument);
 }
 
 }  // namespace

@@ -7,6 +7,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <stdexcept>
+#include <tuple>
+#include <utility>
+#include <vector>
 
 #include "tests/common/initial_state.h"
 
@@ -165,6 +169,178 @@ TEST(StackCornersAt, AtRestBlock2IsCentredOnBlock1) {
   ExpectNear(c.block2[2], {b2, 2.0 * (h1 + h2)}, "block 2 top-right");
   scene.blocks.resize(1);
   EXPECT_FALSE(StackCornersAt(scene, testing_util::Initial(0.1, 0.0, 0.0, 0.0)).has_block2);
+}
+
+// ---------------------------------------------------------------------------------------------
+// N blocks (issue 23): the chain P_(k+1) = P_k + R(phi_k)((s_(k+1) b_(k+1), 2 h_k) - (s_k b_k, 0)).
+
+// A stack of n blocks, each no wider than the one below (tapering drums and a slender top).
+std::vector<BlockDef> Stack(int n) {
+  std::vector<BlockDef> blocks;
+  for (int k = 0; k < n; ++k) {
+    const double width = 1.2 - 0.07 * k, height = 0.6 + 0.23 * ((k * 5) % 3);
+    blocks.push_back(BlockDef{.width_m = width, .height_m = height, .mass_kg = 100.0 + k});
+  }
+  return blocks;
+}
+
+InitialState State(const std::vector<double>& theta, const std::vector<double>& omega) {
+  InitialState s;
+  for (size_t k = 0; k < theta.size(); ++k) {
+    s.theta_rad[k] = theta[k];
+    s.omega_radps[k] = omega[k];
+  }
+  return s;
+}
+
+// A point of the base frame in a block's own frame (its centre, its axes).
+Vec2 InFrameOf(const PlanarPose& pose, Vec2 p) {
+  return Rotate(-pose.phi_rad, p - Centre(pose));
+}
+
+TEST(PlaceStackN, ALockedColumnTurnsAsOneBodyAboutBlock1sCorner) {
+  // Every block at the same angle and rate: the column is one rigid body turned clockwise by
+  // theta about block 1's base corner P1 = (+-b1, 0); each block's corners are its rest corners
+  // turned so, its centre moves with omega x (G - P1).
+  for (int n = 3; n <= 6; ++n) {
+    for (const double th : {0.13, -0.21}) {
+      SCOPED_TRACE(testing::Message() << n << " blocks, theta " << th);
+      const std::vector<BlockDef> blocks = Stack(n);
+      const double om = -0.7;
+      const StackPlacement p =
+          PlaceStack(blocks, State(std::vector<double>(n, th), std::vector<double>(n, om)));
+      ASSERT_EQ(p.blocks.size(), static_cast<size_t>(n));
+      ASSERT_EQ(p.sides.size(), static_cast<size_t>(n));
+      const int s1 = th > 0.0 ? 1 : -1;
+      EXPECT_EQ(p.sides[0], s1);
+      for (int k = 1; k < n; ++k) EXPECT_EQ(p.sides[k], 0) << "interface " << k + 1;
+      const Vec2 p1{s1 * 0.5 * blocks[0].width_m, 0.0};
+      double base = 0.0;  // block k's base height at rest
+      for (int k = 0; k < n; ++k) {
+        const double b = 0.5 * blocks[k].width_m, h = 0.5 * blocks[k].height_m;
+        const BlockCorners c = Corners(p.blocks[k], b, h);
+        const Vec2 rest[4] = {{-b, base}, {b, base}, {b, base + 2.0 * h}, {-b, base + 2.0 * h}};
+        for (int i = 0; i < 4; ++i) ExpectNear(c[i], p1 + Clockwise(th, rest[i] - p1), "corner");
+        const Vec2 r = Centre(p.blocks[k]) - p1;
+        ExpectNear(Velocity(p.blocks[k]), {om * r.y, -om * r.x}, "vG");
+        EXPECT_EQ(p.blocks[k].phi_rad, -th);
+        EXPECT_EQ(p.blocks[k].w_radps, -om);
+        base += 2.0 * h;
+      }
+    }
+  }
+}
+
+TEST(PlaceStackN, EveryBlocksBaseCornersRestOnTheTopFaceOfTheBlockBelow) {
+  // Relative angles of both signs: block k's pivot corner (on the side of theta_k -
+  // theta_(k-1)) is on block k - 1's top face at (s_k b_k, h_(k-1)) in block k - 1's frame; its
+  // other base corner is 2 b_k sin|theta_k - theta_(k-1)| above that face. Block 1 likewise on
+  // the ground.
+  const std::vector<double> theta = {0.08, 0.19, 0.11, -0.05, -0.02, 0.3};
+  const std::vector<double> omega = {0.4, -1.0, 0.2, 0.0, 0.6, -0.3};
+  for (int n = 3; n <= 6; ++n) {
+    SCOPED_TRACE(testing::Message() << n << " blocks");
+    const std::vector<BlockDef> blocks = Stack(n);
+    const StackPlacement p = PlaceStack(blocks, State(theta, omega));
+    {
+      const double b = 0.5 * blocks[0].width_m, h = 0.5 * blocks[0].height_m;
+      const BlockCorners c = Corners(p.blocks[0], b, h);
+      EXPECT_EQ(p.sides[0], 1);
+      ExpectNear(c[1], {b, 0.0}, "block 1's pivot corner");
+      EXPECT_NEAR(c[0].y, 2.0 * b * std::sin(theta[0]), kTol);
+    }
+    for (int k = 1; k < n; ++k) {
+      const double rel = theta[k] - theta[k - 1];
+      const int side = rel > 0.0 ? 1 : -1;
+      EXPECT_EQ(p.sides[k], side) << "interface " << k + 1;
+      const double b = 0.5 * blocks[k].width_m, h = 0.5 * blocks[k].height_m;
+      const double h_below = 0.5 * blocks[k - 1].height_m;
+      const BlockCorners c = Corners(p.blocks[k], b, h);
+      const Vec2 pivot = InFrameOf(p.blocks[k - 1], c[side > 0 ? 1 : 0]);
+      const Vec2 other = InFrameOf(p.blocks[k - 1], c[side > 0 ? 0 : 1]);
+      ExpectNear(pivot, {side * b, h_below}, "pivot corner on the face below");
+      EXPECT_NEAR(other.y - h_below, 2.0 * b * std::sin(std::abs(rel)), kTol) << k + 1;
+      EXPECT_NEAR(other.x, side * b * (1.0 - 2.0 * std::cos(rel)), kTol) << k + 1;
+    }
+  }
+}
+
+TEST(PlaceStackN, VelocitiesAreTheTimeDerivativesOfThePositions) {
+  // Along theta_i(t) = theta_i + omega_i t, no relative angle crossing zero within +-dt: the
+  // central differences of the centres and angles are the velocities (1e-8 m/s, as for two).
+  const std::vector<double> theta = {0.08, 0.19, 0.11, -0.05, -0.02, 0.3};
+  const std::vector<double> omega = {0.4, -1.0, 0.2, 0.0, 0.6, -0.3};
+  const double dt = 1e-5;
+  for (int n = 3; n <= 6; ++n) {
+    SCOPED_TRACE(testing::Message() << n << " blocks");
+    const std::vector<BlockDef> blocks = Stack(n);
+    auto at = [&](double t) {
+      std::vector<double> th(theta.begin(), theta.begin() + n);
+      for (int k = 0; k < n; ++k) th[k] += omega[k] * t;
+      return PlaceStack(blocks, State(th, omega));
+    };
+    const StackPlacement p = at(0.0), a = at(-dt), b = at(dt);
+    EXPECT_EQ(a.sides, p.sides);
+    EXPECT_EQ(b.sides, p.sides);
+    for (int k = 0; k < n; ++k) {
+      EXPECT_NEAR(p.blocks[k].vx_mps, (b.blocks[k].x_m - a.blocks[k].x_m) / (2.0 * dt), 1e-8) << k;
+      EXPECT_NEAR(p.blocks[k].vy_mps, (b.blocks[k].y_m - a.blocks[k].y_m) / (2.0 * dt), 1e-8) << k;
+      EXPECT_NEAR(p.blocks[k].w_radps, (b.blocks[k].phi_rad - a.blocks[k].phi_rad) / (2.0 * dt),
+                  1e-8)
+          << k;
+    }
+  }
+}
+
+TEST(PlaceStackN, TwoBlocksAreBitForBitTheTwoBlockForm) {
+  // The engines' initial poses keep their bits: the vector form of two blocks is the same
+  // arithmetic as the (b1, h1, b2, h2) form, and the two-block names are copies.
+  const std::vector<BlockDef> blocks = {
+      BlockDef{.width_m = 2.0 * b1, .height_m = 2.0 * h1, .mass_kg = 1.0},
+      BlockDef{.width_m = 2.0 * b2, .height_m = 2.0 * h2, .mass_kg = 1.0}};
+  for (const InitialState& st :
+       {testing_util::Initial(0.2, 0.45, -0.7, 1.1), testing_util::Initial(-0.1, 0.3, 0.0, 0.0),
+        testing_util::Initial(0.0, 0.0, 0.5, -0.5), testing_util::Initial(0.12, 0.12, 0.8, 0.2)}) {
+    const StackPlacement v = PlaceStack(blocks, st);
+    const StackPlacement l = PlaceStack(b1, h1, b2, h2, true, st);
+    for (const auto& [x, y] : {std::pair{v.blocks[0], l.block1}, std::pair{v.blocks[1], l.block2},
+                               std::pair{v.block1, l.block1}, std::pair{v.block2, l.block2}}) {
+      EXPECT_EQ(x.x_m, y.x_m);
+      EXPECT_EQ(x.y_m, y.y_m);
+      EXPECT_EQ(x.phi_rad, y.phi_rad);
+      EXPECT_EQ(x.vx_mps, y.vx_mps);
+      EXPECT_EQ(x.vy_mps, y.vy_mps);
+      EXPECT_EQ(x.w_radps, y.w_radps);
+    }
+    EXPECT_EQ(v.sides, (std::vector<int>{l.ground_side, l.interface_side}));
+  }
+  // One block: no block 2, interface side 0.
+  const StackPlacement one =
+      PlaceStack(b1, h1, 0.0, 0.0, false, testing_util::Initial(0.1, 0, 0, 0));
+  EXPECT_EQ(one.blocks.size(), 1u);
+  EXPECT_EQ(one.block2.y_m, 0.0);
+  EXPECT_EQ(one.interface_side, 0);
+  EXPECT_THROW(PlaceStack(std::vector<BlockDef>{}, InitialState()), std::invalid_argument);
+}
+
+TEST(StackCornersAt, AtRestEveryBlockIsCentredOnTheOneBelow) {
+  Scene scene;
+  scene.blocks = Stack(5);
+  const StackCorners c = StackCornersAt(scene, {});
+  ASSERT_EQ(c.blocks.size(), 5u);
+  double base = 0.0;
+  for (int k = 0; k < 5; ++k) {
+    const double b = 0.5 * scene.blocks[k].width_m, h = 0.5 * scene.blocks[k].height_m;
+    ExpectNear(c.blocks[k][0], {-b, base}, "bottom-left");
+    ExpectNear(c.blocks[k][2], {b, base + 2.0 * h}, "top-right");
+    base += 2.0 * h;
+  }
+  // The two-block names: copies of the first two.
+  ASSERT_TRUE(c.has_block2);
+  for (int i = 0; i < 4; ++i) {
+    EXPECT_EQ(c.block1[i].x, c.blocks[0][i].x);
+    EXPECT_EQ(c.block2[i].y, c.blocks[1][i].y);
+  }
 }
 
 }  // namespace
