@@ -80,7 +80,7 @@ void Execute(const CompareCliOptions& opt) {
   const std::filesystem::path out(opt.out);
   std::filesystem::create_directories(out);
   const bool two = scene.block_count() == 2;
-  const int nb = two ? 2 : 1;
+  const int nb = scene.block_count();
   CompareRunOptions run_options;
   run_options.jobs = opt.jobs;
   run_options.log = [](const std::string& line) {
@@ -93,10 +93,10 @@ void Execute(const CompareCliOptions& opt) {
   WriteEngineFiles(run.reference_run, out);
   if (run.perturbation_members) {
     WriteFileAtomic(out / "reference" / "ensemble_band.csv",
-                    PerturbationBandCsv(*run.perturbation_members, two));
+                    PerturbationBandCsv(*run.perturbation_members));
     WriteFileAtomic(out / "reference" / "ensemble.csv",
                     OutcomesCsv(run.perturbation_members->outcomes,
-                                run.perturbation_members->perturbations, two));
+                                run.perturbation_members->perturbations, nb));
   }
   nlohmann::json summary;
   summary["scene"] = {{"path", std::filesystem::absolute(opt.scene).lexically_normal().string()},
@@ -112,7 +112,7 @@ void Execute(const CompareCliOptions& opt) {
     if (!run.engine_outcomes[k].empty()) {
       WriteFileAtomic(
           out / engines[k] / "ensemble.csv",
-          OutcomesCsv(run.engine_outcomes[k], run.perturbation_members->perturbations, two));
+          OutcomesCsv(run.engine_outcomes[k], run.perturbation_members->perturbations, nb));
     }
   }
   WriteFileAtomic(out / "comparison.json", run.comparison.dump(2) + "\n");
@@ -122,7 +122,7 @@ void Execute(const CompareCliOptions& opt) {
   const std::vector<EngineAgreement>& agreements = run.agreements;
   for (const EngineAgreement& a : agreements) {
     for (int b = 1; b <= nb; ++b) {
-      const AngleAgreement& g = b == 1 ? a.theta1 : *a.theta2;
+      const AngleAgreement& g = a.angle(b);
       std::printf(
           "  %s theta%d: max error %.3g rad (%.3g where the reference is predictable: %.3g x the "
           "local tolerance), RMS %.3g rad, within the local tolerance until %.3f s, peak "

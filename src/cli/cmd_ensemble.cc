@@ -103,6 +103,8 @@ void WriteStudyJson(const StudyDef& study, const std::filesystem::path& dir, int
                       {"wall_s", wall_s},
                       {"serial_s", serial_s},
                       {"rows_resumed", resumed_rows}};
+  // N >= 3 blocks: how many (members.csv has their columns); one and two blocks: no key.
+  if (study.blocks >= 3) j["blocks"] = study.blocks;
   for (const StudyAxis& a : study.axes) {
     nlohmann::json values = nlohmann::json::array();
     for (const AxisValue& v : a.values) values.push_back(v.text);

@@ -33,18 +33,43 @@ struct SweepCliOptions {
   LimitOptions limits;
 };
 
+// The engines of --engines, without "reference" (always swept); `reference_only` when the list
+// names the reference alone (`--engines reference`: a stack the engines do not simulate yet).
+std::vector<std::string> SweptEngines(const std::string& requested, bool* reference_only) {
+  std::string list;
+  bool reference = false;
+  for (size_t start = 0; start <= requested.size();) {
+    const size_t comma = requested.find(',', start);
+    const std::string name =
+        requested.substr(start, comma == std::string::npos ? comma : comma - start);
+    if (IsReference(name)) {
+      reference = true;
+    } else {
+      list += (list.empty() ? "" : ",") + name;
+    }
+    if (comma == std::string::npos) break;
+    start = comma + 1;
+  }
+  *reference_only = reference && list.empty();
+  return *reference_only ? std::vector<std::string>{} : ParseEngineList(list);
+}
+
 void Execute(const SweepCliOptions& opt) {
   const ResourceBudget budget = StartLimits(opt.limits, opt.out, "sweep");
   const Scene scene = LoadScene(opt.scene, opt.overrides);
   CheckEngineTables(scene);
+  bool reference_only = false;
+  const std::vector<std::string> engines = SweptEngines(opt.engines, &reference_only);
   // The scene's own settings; the grid's finer steps are held by the wall-clock limit.
-  CheckRunEstimate(EstimateRun(scene, ParseEngineList(opt.engines), 0, 0, 1), budget, opt.scene);
+  CheckRunEstimate(EstimateRun(scene, engines, 0, 0, 1), budget, opt.scene);
   const GroundMotion motion = GroundMotion::FromScene(scene);
   SweepOptions so;
   so.quick = opt.quick;
   so.repeat = opt.repeat;
   so.threads = opt.threads;
-  so.engines = ParseEngineList(opt.engines);
+  so.engines = engines;
+  // No engine: the reference's own grid (an empty list would mean every built engine).
+  if (reference_only) so.points = SweepGrid(opt.quick, {});
   const std::filesystem::path out(opt.out);
   std::filesystem::create_directories(out);
 
@@ -53,7 +78,7 @@ void Execute(const SweepCliOptions& opt) {
   auto progress = [&](int done, int total, const SweepPoint&) { line.Update(done, total); };
   SweepBaseline baseline;
   const std::vector<SweepRow> rows = RunSweep(scene, motion, so, progress, &baseline);
-  WriteFileAtomic(out / "sweep.csv", SweepCsv(rows));
+  WriteFileAtomic(out / "sweep.csv", SweepCsv(rows, scene.block_count()));
   WriteFileAtomic(out / "sweep.json",
                   SweepJson(scene, opt.overrides, so, baseline, rows).dump(2) + "\n");
   int failed = 0;
@@ -72,7 +97,8 @@ void RegisterSweep(CLI::App& app) {
   cmd->add_option("scene", opt->scene, "Scene file (TOML)")->required();
   cmd->add_option("--out,-o", opt->out, "Output folder")->capture_default_str();
   cmd->add_option("--engines,-e", opt->engines,
-                  "Engines to sweep beside the reference: a comma-separated list, or all")
+                  "Engines to sweep beside the reference: a comma-separated list, or all "
+                  "(reference: the reference's grid alone)")
       ->capture_default_str();
   cmd->add_flag("--quick", opt->quick, "Small grid (a few minutes on the shipped scenes)");
   cmd->add_option("--repeat", opt->repeat, "Repetitions per run; the wall time is their minimum")

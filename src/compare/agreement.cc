@@ -1,8 +1,10 @@
 #include "compare/agreement.h"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <string_view>
 
 #include "run/tolerance.h"
 #include "util/format.h"
@@ -10,14 +12,36 @@
 namespace rockbench {
 namespace {
 
+// The interface of an impact event (0: block 1 on the ground; k: block k + 1 on block k), -1
+// for any other event. One or two blocks: "ground_impact", "interface_impact"; N >= 3 blocks:
+// "ground_impact", "interface2_impact" ... "interfaceN_impact" (InterfaceName).
+int ImpactInterface(const Event& e) {
+  if (e.kind == "ground_impact") return 0;
+  if (e.kind == "interface_impact") return 1;
+  constexpr std::string_view kHead = "interface", kTail = "_impact";
+  const std::string_view k = e.kind;
+  if (k.size() <= kHead.size() + kTail.size() || k.substr(0, kHead.size()) != kHead ||
+      k.substr(k.size() - kTail.size()) != kTail) {
+    return -1;
+  }
+  const std::string_view digits = k.substr(kHead.size(), k.size() - kHead.size() - kTail.size());
+  int block = 0;
+  const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), block);
+  if (ec != std::errc() || end != digits.data() + digits.size() || block < 2) return -1;
+  return block - 1;
+}
+
 bool IsImpact(const Event& e) {
-  return e.kind == "ground_impact" || e.kind == "interface_impact";
+  return ImpactInterface(e) >= 0;
 }
 
 // Landing rate of an impact: the rate of the block that lands, relative to its support.
 double LandingRate(const Event& e) {
   const BlockValues& w = e.omega_before_radps;
-  return e.kind == "ground_impact" || w.size() < 2 ? std::abs(w[0]) : std::abs(w[1] - w[0]);
+  const int k = ImpactInterface(e);
+  if (k <= 0 || w.size() < 2) return std::abs(w[0]);
+  const size_t i = std::min(static_cast<size_t>(k), w.size() - 1);
+  return std::abs(w[i] - w[i - 1]);
 }
 
 std::vector<const Event*> Impacts(const History& h, double min_rate, int* all) {
@@ -168,7 +192,7 @@ EngineAgreement CompareWithReference(const Scene& scene, const reference::Result
       a.non_finite_t_s = nf->value("t_s", 0.0);
     }
   }
-  const bool two = scene.block_count() == 2;
+  const int nb = scene.block_count();
   const reference::Summary& rs = ref.summary;
   a.flags = run.outcome.violations;
   a.flag_onsets_t_s = run.outcome.violation_onsets_t_s;
@@ -195,31 +219,31 @@ EngineAgreement CompareWithReference(const Scene& scene, const reference::Result
   }
   a.compared_until_s = until;
 
-  // Tolerances: scene [compare] tolerance, else 10% of the reference's peak |theta|.
-  const double peak_ref[2] = {rs.peak_theta_rad[0], two ? rs.peak_theta_rad[1] : 0.0};
-  const double peak_ref_t[2] = {rs.peak_theta_t_s[0], two ? rs.peak_theta_t_s[1] : 0.0};
-  AngleAgreement ang[2];
-  ToleranceProfile profile[2];
-  for (int b = 0; b < 2; ++b) {
+  // Per block, block b + 1 at b. Tolerances: scene [compare] tolerance, else 10% of the
+  // reference's peak |theta|.
+  std::vector<double> peak_ref(nb, 0.0), peak_ref_t(nb, 0.0);
+  for (int b = 0; b < nb; ++b) {
+    peak_ref[b] = rs.peak_theta_rad[b];
+    peak_ref_t[b] = rs.peak_theta_t_s[b];
+  }
+  std::vector<AngleAgreement> ang(nb);
+  std::vector<ToleranceProfile> profile(nb);
+  for (int b = 0; b < nb; ++b) {
     ang[b].tolerance_rad = AngleTolerance_rad(scene, b + 1, peak_ref[b]);
     ang[b].horizon_s = until;
     ang[b].predictability_horizon_s = options.predictability_horizon_s[b];
-    if (b == 0 || two) {
-      profile[b] = LocalTolerance(scene, b + 1, ref.history);
-      ang[b].tolerance_min_rad = profile[b].Min();
-    }
+    profile[b] = LocalTolerance(scene, b + 1, ref.history);
+    ang[b].tolerance_min_rad = profile[b].Min();
   }
-  double sum2[2] = {0, 0}, sum2_h[2] = {0, 0}, sum2_p[2] = {0, 0}, sum2_b[2] = {0, 0};
-  int n_h[2] = {0, 0}, n_p[2] = {0, 0};
+  std::vector<double> sum2(nb, 0.0), sum2_h(nb, 0.0), sum2_p(nb, 0.0), sum2_b(nb, 0.0);
+  std::vector<int> n_h(nb, 0), n_p(nb, 0);
   int n = 0;
   for (const Sample& s : run.history.samples) {
     if (s.t_s > until + 1e-12) break;
     const Sample r = ref.trajectory.At(s.t_s);
-    const double err[2] = {s.theta_rad[0] - r.theta_rad[0],
-                           two ? s.theta_rad[1] - r.theta_rad[1] : 0.0};
     ++n;
-    for (int b = 0; b < (two ? 2 : 1); ++b) {
-      const double e = std::abs(err[b]);
+    for (int b = 0; b < nb; ++b) {
+      const double e = std::abs(s.theta_rad[b] - r.theta_rad[b]);
       AngleAgreement& g = ang[b];
       g.max_abs_error_rad = std::max(g.max_abs_error_rad, e);
       sum2[b] += e * e;
@@ -255,7 +279,7 @@ EngineAgreement CompareWithReference(const Scene& scene, const reference::Result
     }
   }
   a.samples_compared = n;
-  for (int b = 0; b < (two ? 2 : 1); ++b) {
+  for (int b = 0; b < nb; ++b) {
     AngleAgreement& g = ang[b];
     g.rms_error_rad = n > 0 ? std::sqrt(sum2[b] / n) : 0.0;
     g.rms_error_horizon_rad = n_h[b] > 0 ? std::sqrt(sum2_h[b] / n_h[b]) : 0.0;
@@ -268,7 +292,8 @@ EngineAgreement CompareWithReference(const Scene& scene, const reference::Result
     g.peak_time_error_s = g.peak_engine_t_s - peak_ref_t[b];
   }
   a.theta1 = ang[0];
-  if (two) a.theta2 = ang[1];
+  if (nb >= 2) a.theta2 = ang[1];
+  if (nb >= 3) a.theta_from3.assign(ang.begin() + 2, ang.end());
 
   a.impacts = MatchImpacts(ref.history, run.history, until, options.min_impact_rate_radps);
 
@@ -282,7 +307,8 @@ EngineAgreement CompareWithReference(const Scene& scene, const reference::Result
   }
   a.overturn_agree = a.overturn_block_reference == a.overturn_block_engine;
 
-  // Final state at the end of the common grid.
+  // Final state at the end of the common grid: the same family, and every block's angle within
+  // its tolerance.
   if (!run.history.samples.empty()) {
     const Sample* last = &run.history.samples.front();
     for (const Sample& s : run.history.samples) {
@@ -292,10 +318,16 @@ EngineAgreement CompareWithReference(const Scene& scene, const reference::Result
     a.final_mode_reference = Family(r.mode, rs.overturn_block.has_value());
     a.final_mode_engine = Family(last->mode, a.overturn_block_engine.has_value());
     a.final_theta1_error_rad = last->theta_rad[0] - r.theta_rad[0];
-    a.final_theta2_error_rad = two ? last->theta_rad[1] - r.theta_rad[1] : 0.0;
-    a.final_agree = a.final_mode_reference == a.final_mode_engine &&
-                    std::abs(a.final_theta1_error_rad) <= ang[0].tolerance_rad &&
-                    (!two || std::abs(a.final_theta2_error_rad) <= ang[1].tolerance_rad);
+    a.final_theta2_error_rad = nb >= 2 ? last->theta_rad[1] - r.theta_rad[1] : 0.0;
+    a.final_theta_from3_error_rad.clear();
+    for (int b = 2; b < nb; ++b) {
+      a.final_theta_from3_error_rad.push_back(last->theta_rad[b] - r.theta_rad[b]);
+    }
+    a.final_agree = a.final_mode_reference == a.final_mode_engine;
+    for (int b = 1; b <= nb; ++b) {
+      a.final_agree =
+          a.final_agree && std::abs(a.final_theta_error_rad(b)) <= ang[b - 1].tolerance_rad;
+    }
   }
   return a;
 }
@@ -309,6 +341,7 @@ nlohmann::json AgreementJson(const EngineAgreement& a) {
   j["samples_compared"] = a.samples_compared;
   j["theta1"] = AngleJson(a.theta1);
   if (a.theta2) j["theta2"] = AngleJson(*a.theta2);
+  for (int b = 3; b <= a.blocks(); ++b) j[Numbered("theta", b)] = AngleJson(a.angle(b));
   j["impacts_matched"] = a.impacts.matched;
   j["impacts_reference"] = a.impacts.reference_impacts;
   j["impacts_engine"] = a.impacts.engine_impacts;
@@ -332,6 +365,9 @@ nlohmann::json AgreementJson(const EngineAgreement& a) {
                 {"engine", a.final_mode_engine},
                 {"theta1_error_rad", a.final_theta1_error_rad}};
   if (a.theta2) j["final"]["theta2_error_rad"] = a.final_theta2_error_rad;
+  for (int b = 3; b <= a.blocks(); ++b) {
+    j["final"][Numbered("theta", b) + "_error_rad"] = a.final_theta_error_rad(b);
+  }
   j["violations"] = a.violations;
   if (!a.verdict_kind.empty()) {
     j["verdict"] = a.verdict;
@@ -350,6 +386,8 @@ nlohmann::json ComparisonJson(const Scene& scene, const reference::Result& ref,
   const bool two = scene.block_count() == 2;
   nlohmann::json j;
   j["scene"] = {{"path", scene.path.string()}, {"title", scene.title}, {"two_blocks", two}};
+  // N >= 3 blocks: how many (one and two blocks say it by two_blocks alone, as they always did).
+  if (scene.block_count() >= 3) j["scene"]["blocks"] = scene.block_count();
   const reference::Summary& rs = ref.summary;
   j["reference"] = {{"status", StatusText(rs.status)},
                     {"wall_s", reference_wall_s},
@@ -383,8 +421,8 @@ std::string ComparisonCsv(const std::vector<EngineAgreement>& engines) {
       "verdict_kind\n";
   char line[1024];
   for (const EngineAgreement& a : engines) {
-    for (int b = 1; b <= (a.theta2 ? 2 : 1); ++b) {
-      const AngleAgreement& g = b == 1 ? a.theta1 : *a.theta2;
+    for (int b = 1; b <= a.blocks(); ++b) {
+      const AngleAgreement& g = a.angle(b);
       std::snprintf(line, sizeof line,
                     "%s,%d,%.9e,%.9e,%.9g,%d,%.9e,%.9e,%.9e,%.9e,%.9e,%.9e,%.9e,%d,%d,%d,%.9e,%d,"
                     "%d,%s,%.6g,%s,%.9e,%.9e,%s\n",

@@ -3,6 +3,7 @@
 /// (the engine's sample times, the reference evaluated there by its dense output), agreement
 /// horizon, peaks, impact sequence, overturning and final state. Writes comparison.json and
 /// comparison.csv.
+#include <array>
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -16,7 +17,7 @@
 
 namespace rockbench {
 
-/// Agreement of one block's angle (theta1 or theta2) with the reference.
+/// Agreement of one block's angle (theta1, theta2, ..., thetaN) with the reference.
 struct AngleAgreement {
   /// The tolerance at the reference's peak (AngleTolerance_rad): the scale of the run's
   /// largest motion. The horizon uses the local tolerance (run/tolerance.h).
@@ -66,12 +67,18 @@ struct ImpactAgreement {
   std::string first_mismatch;         ///< empty when every impact of both runs matched
 };
 
+/// kMaxBlocks times +inf.
+inline constexpr std::array<double, kMaxBlocks> EveryBlockInfinite() {
+  std::array<double, kMaxBlocks> a{};
+  for (double& v : a) v = std::numeric_limits<double>::infinity();
+  return a;
+}
+
 /// Options of the comparison.
 struct CompareOptions {
-  /// Per block, the reference's predictability horizon (s): errors are also reported
-  /// separately before it and after it. +inf: the reference is predictable to the end.
-  double predictability_horizon_s[2] = {std::numeric_limits<double>::infinity(),
-                                        std::numeric_limits<double>::infinity()};
+  /// Per block (block k at k - 1), the reference's predictability horizon (s): errors are also
+  /// reported separately before it and after it. +inf: the reference is predictable to the end.
+  std::array<double, kMaxBlocks> predictability_horizon_s = EveryBlockInfinite();
   /// Impacts whose landing rate (|omega1| before a ground impact, |omega2 - omega1| before an
   /// interface impact) is below this are not compared, in either run: they are the tails of
   /// the cascades with which a rocking block settles, and an engine monitor that sees a tilt
@@ -92,7 +99,9 @@ struct EngineAgreement {
   double compared_until_s = 0.0;  ///< end of the common grid
   int samples_compared = 0;
   AngleAgreement theta1;
-  std::optional<AngleAgreement> theta2;  ///< two-block scenes only
+  std::optional<AngleAgreement> theta2;  ///< scenes of two blocks or more
+  /// Blocks 3..N of a stack of N >= 3 blocks (theta3 at index 0); empty for one or two blocks.
+  std::vector<AngleAgreement> theta_from3;
   ImpactAgreement impacts;
   /// Overturning: both or neither, and the same block.
   bool overturn_agree = true;
@@ -103,6 +112,8 @@ struct EngineAgreement {
   bool final_agree = true;
   std::string final_mode_reference, final_mode_engine;
   double final_theta1_error_rad = 0.0, final_theta2_error_rad = 0.0;
+  /// Blocks 3..N (theta3 at index 0): final angle error, rad; empty for one or two blocks.
+  std::vector<double> final_theta_from3_error_rad;
   nlohmann::json violations;  ///< the engine's summary "violations" (null when it has none)
   /// The engine's monitor flags (kViolationFlags) and when each was first raised, s.
   std::vector<std::string> flags;
@@ -125,10 +136,27 @@ struct EngineAgreement {
   std::string verdict_decided_by;  ///< the quantity that decided the verdict, with its value
   nlohmann::json seeds;            ///< the seeds' decisions when the verdict was re-seeded
   nlohmann::json statistics;
+
+  /// Blocks compared: 1, 2 or N.
+  int blocks() const { return theta2 ? 2 + static_cast<int>(theta_from3.size()) : 1; }
+  /// Block `block`'s agreement (1..blocks()).
+  const AngleAgreement& angle(int block) const {
+    return block == 1 ? theta1 : block == 2 ? *theta2 : theta_from3.at(block - 3);
+  }
+  AngleAgreement& angle(int block) {
+    return block == 1 ? theta1 : block == 2 ? *theta2 : theta_from3.at(block - 3);
+  }
+  /// Block `block`'s final angle error, rad (1..blocks()).
+  double final_theta_error_rad(int block) const {
+    return block == 1   ? final_theta1_error_rad
+           : block == 2 ? final_theta2_error_rad
+                        : final_theta_from3_error_rad.at(block - 3);
+  }
 };
 
-/// Impacts of a history whose landing rate (|omega1| before a ground impact, |omega2 - omega1|
-/// before an interface impact) is at least `min_rate_radps`: the impacts a comparison counts.
+/// Impacts of a history whose landing rate (|omega1| before a ground impact, |omega_k -
+/// omega_(k-1)| before an interface impact of block k) is at least `min_rate_radps`: the impacts a
+/// comparison counts.
 int CountComparedImpacts(const History& history, double min_rate_radps);
 
 /// Compares an engine's run with the reference's result on the same scene.
@@ -137,8 +165,8 @@ EngineAgreement CompareWithReference(const Scene& scene, const reference::Result
 
 /// comparison.json: {"scene": ..., "reference": {...}, "engines": {name: {...}}}. Keys read by
 /// other tools: engines.<name>.wall_s, engines.<name>.impacts_matched and, under
-/// engines.<name>.theta1 / theta2: max_abs_error_rad, rms_error_rad, peak_rel_error,
-/// peak_time_error_s, horizon_s.
+/// engines.<name>.theta1 / theta2 (/ theta3 ... thetaN for N >= 3 blocks): max_abs_error_rad,
+/// rms_error_rad, peak_rel_error, peak_time_error_s, horizon_s.
 nlohmann::json ComparisonJson(const Scene& scene, const reference::Result& reference,
                               double reference_wall_s, const std::vector<EngineAgreement>& engines,
                               const CompareOptions& options = {});

@@ -5,6 +5,7 @@
 
 #include "run/reference_engine.h"
 #include "run/summary.h"
+#include "util/format.h"
 
 namespace rockbench {
 namespace {
@@ -45,7 +46,6 @@ SeedCheck RecheckWithSeeds(
     std::vector<std::optional<ReferencePerturbationMembers>>* extra_ensembles) {
   const reference::Result& ref = out.reference().used();
   const CompareOptions base;
-  const bool two = scene.block_count() == 2;
   SeedCheck c;
   c.seeds.push_back(
       {{"seed", scene.compare.seed}, {"verdict_kind", first.kind}, {"smallest_p_holm", first_p}});
@@ -61,12 +61,12 @@ SeedCheck RecheckWithSeeds(
     }
     Horizons h;
     CompareOptions o = base;
-    TakeHorizons(*e, two ? 2 : 1, &h, &o);
+    TakeHorizons(*e, scene.block_count(), &h, &o);
     const EngineAgreement ak = CompareWithReference(seeded, ref, run, o);
     const std::vector<MemberOutcome> ok = RunEnginePerturbationMembers(
         name, seeded, motion, engine_members, jobs, base.min_impact_rate_radps);
-    const StatisticalComparison sk = ComparePerturbationMembers(
-        e->outcomes, ok, two, out.tolerance_rad, scene.run.output_interval_s);
+    const StatisticalComparison sk =
+        ComparePerturbationMembers(e->outcomes, ok, out.tolerance_rad, scene.run.output_interval_s);
     const Verdict vk = MakeVerdict(seeded, ak, h, sk);
     c.same = c.same && vk.agrees == first.agrees;
     c.seeds.push_back({{"seed", seeded.compare.seed},
@@ -96,12 +96,9 @@ CompareRun RunCompare(const Scene& scene, const GroundMotion& motion,
     if (options.log) options.log(line);
   };
   char buf[512];
-  // The entry of a comparison: one or two blocks for now (issue 23).
-  RequireAtMostTwoBlocks(scene, "compare");
   CompareRun out;
   const CompareOptions base;
-  const bool two = scene.block_count() == 2;
-  const int nb = two ? 2 : 1;
+  const int nb = scene.block_count();
 
   // 1. The reference and its witness; comparisons use the witness when the default is not
   //    converged.
@@ -118,8 +115,10 @@ CompareRun RunCompare(const Scene& scene, const GroundMotion& motion,
   if (!check.converged) log("  WARNING: " + ConvergenceWarning(check));
 
   // 2. The reference's perturbation members: the predictability horizon.
-  out.tolerance_rad[0] = AngleTolerance_rad(scene, 1, ref.summary.peak_theta_rad[0]);
-  out.tolerance_rad[1] = two ? AngleTolerance_rad(scene, 2, ref.summary.peak_theta_rad[1]) : 0.0;
+  out.tolerance_rad.resize(nb);
+  for (int b = 0; b < nb; ++b) {
+    out.tolerance_rad[b] = AngleTolerance_rad(scene, b + 1, ref.summary.peak_theta_rad[b]);
+  }
   std::optional<Horizons> horizons;
   CompareOptions compare_options = base;
   // A reference that failed (non_finite) leaves nothing to compare with: no ensemble, and every
@@ -139,13 +138,18 @@ CompareRun RunCompare(const Scene& scene, const GroundMotion& motion,
                   scene.compare.amplitude_rel, scene.compare.sample_precision,
                   scene.compare.initial_rel);
     line += buf + HorizonText(out.perturbation_members->horizon_s[0]);
-    if (two) line += ", theta2 horizon " + HorizonText(out.perturbation_members->horizon_s[1]);
+    for (int b = 1; b < nb; ++b) {
+      line += ", " + Numbered("theta", b + 1) + " horizon " +
+              HorizonText(out.perturbation_members->horizon_s[b]);
+    }
     std::snprintf(buf, sizeof buf, " (ensemble wall time %.2f s)",
                   out.perturbation_members->wall_s);
     log(line + buf);
   }
-  const bool horizon_within_run =
-      horizons && (horizons->horizon_s[0] || (two && horizons->horizon_s[1]));
+  bool horizon_within_run = false;
+  for (int b = 0; b < nb && horizons; ++b) {
+    horizon_within_run = horizon_within_run || horizons->horizon_s[b].has_value();
+  }
 
   // 3. Each engine: its nominal run, and its perturbation members when the reference's horizon
   // falls inside
@@ -167,7 +171,7 @@ CompareRun RunCompare(const Scene& scene, const GroundMotion& motion,
       if (engine_members > 0) {
         outcomes = RunEnginePerturbationMembers(name, scene, motion, engine_members, options.jobs,
                                                 base.min_impact_rate_radps);
-        statistics = ComparePerturbationMembers(out.perturbation_members->outcomes, outcomes, two,
+        statistics = ComparePerturbationMembers(out.perturbation_members->outcomes, outcomes,
                                                 out.tolerance_rad, scene.run.output_interval_s);
       }
       v = MakeVerdict(scene, a, horizons, statistics);

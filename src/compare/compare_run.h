@@ -28,8 +28,8 @@ struct CompareRun {
   const CheckedReference& reference() const {
     return *ReferenceResultOf(reference_run.extension.get());
   }
-  Scene reference_scene;  ///< the scene with the model settings of the solution used
-  double tolerance_rad[2] = {0, 0};
+  Scene reference_scene;              ///< the scene with the model settings of the solution used
+  std::vector<double> tolerance_rad;  ///< per block (AngleTolerance_rad of the reference)
   std::optional<ReferencePerturbationMembers>
       perturbation_members;            ///< none with compare.members = 0
   std::vector<EngineRun> engine_runs;  ///< nominal runs, in the order asked

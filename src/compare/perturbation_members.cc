@@ -4,9 +4,12 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <stdexcept>
 
 #include "compare/agreement.h"
 #include "reference/geometry.h"
+#include "reference/mechanics.h"
+#include "reference/stack_contacts.h"
 #include "reference/transitions.h"
 #include "run/parallel.h"
 #include "run/summary.h"
@@ -32,8 +35,11 @@ double Uniform(uint64_t seed, uint64_t member, uint64_t slot) {
   return 2.0 * (static_cast<double>(x >> 11) * 0x1.0p-53) - 1.0;
 }
 
-// Slots: amplitude of each component, initial state, then each record sample.
-constexpr uint64_t kSlotAmplitude = 1, kSlotInitial = 8, kSlotSamples = 1ull << 32;
+// Slots: amplitude of each component, initial state, then each record sample. The initial state
+// of one or two blocks takes kSlotInitial .. kSlotInitial + 3; of N >= 3 blocks also
+// kSlotInitialFrom3 + 2 (k - 3) (block k's relative angle) and + 1 (its relative rate).
+constexpr uint64_t kSlotAmplitude = 1, kSlotInitial = 8, kSlotInitialFrom3 = 12,
+                   kSlotSamples = 1ull << 32;
 
 MotionComponent PerturbedComponent(const MotionComponent& c, double factor, double precision,
                                    uint64_t seed, uint64_t member, uint64_t component,
@@ -89,11 +95,29 @@ MemberInput PerturbedInput(const Scene& scene, const GroundMotion& motion, int m
   for (int k = 0; k < 4; ++k) {
     p.initial_factor[k] = 1.0 + Uniform(cfg.seed, m, kSlotInitial + k) * cfg.initial_rel;
   }
+  // N >= 3: every block's angle and rate relative to the block below, likewise.
+  const int nb = scene.block_count();
+  std::vector<double> rel_theta_from3, rel_omega_from3;
+  for (int k = 2; k < nb; ++k) {
+    rel_theta_from3.push_back(s.theta_rad[k] - s.theta_rad[k - 1]);
+    rel_omega_from3.push_back(s.omega_radps[k] - s.omega_radps[k - 1]);
+    for (uint64_t j = 0; j < 2; ++j) {
+      p.initial_factor_from3.push_back(
+          1.0 + Uniform(cfg.seed, m, kSlotInitialFrom3 + 2 * static_cast<uint64_t>(k - 2) + j) *
+                    cfg.initial_rel);
+    }
+  }
   s.theta_rad[0] *= p.initial_factor[0];
   s.omega_radps[0] *= p.initial_factor[2];
-  if (scene.block_count() == 2) {
+  if (nb >= 2) {
     s.theta_rad[1] = s.theta_rad[0] + rel_theta * p.initial_factor[1];
     s.omega_radps[1] = s.omega_radps[0] + rel_omega * p.initial_factor[3];
+  }
+  for (int k = 2; k < nb; ++k) {
+    const size_t i = static_cast<size_t>(k - 2);
+    s.theta_rad[k] = s.theta_rad[k - 1] + rel_theta_from3[i] * p.initial_factor_from3[2 * i];
+    s.omega_radps[k] =
+        s.omega_radps[k - 1] + rel_omega_from3[i] * p.initial_factor_from3[2 * i + 1];
   }
   return in;
 }
@@ -102,14 +126,29 @@ double SettledAfter_s(const Scene& scene, const GroundMotion& motion, double saf
   const double end_s = motion.end_s();
   if (!(end_s > 0.0)) return 0.0;
   if (!std::isfinite(end_s)) return end_s;
-  const reference::Geometry geo = reference::MakeGeometry(scene);
+  // The rest reactions: the thesis's (one or two blocks), or the pivot chain's (N >= 3).
+  const int nb = scene.block_count();
+  std::optional<reference::Geometry> geo;
+  std::optional<reference::StackContacts> chain;
+  std::vector<double> zeros(static_cast<size_t>(nb), 0.0), acc(static_cast<size_t>(nb), 0.0);
+  const Configuration rest(nb);
+  if (nb <= 2) {
+    geo = reference::MakeGeometry(scene);
+  } else {
+    chain.emplace(reference::StackGeometryOf(scene));
+  }
   // Whether safety times the base acceleration at t opens a face of the stack at rest.
   auto opens = [&](double t) {
     const double xg = safety * motion.xg_mps2(t);
     const double yg = motion.yg_mps2(t);
     const double yg_worst = yg - (safety - 1.0) * std::abs(yg);
+    if (chain) {
+      const reference::StackMargins m =
+          chain->Evaluate(rest, zeros.data(), zeros.data(), xg, yg_worst, acc.data());
+      return !(m.face > 0.0);
+    }
     const reference::ContactMargins m = reference::EvaluateContacts(
-        geo, Mode::kRest, reference::State{}, xg, yg_worst, scene.model.equations);
+        *geo, Mode::kRest, reference::State{}, xg, yg_worst, scene.model.equations);
     return !(m.face > 0.0);
   };
   auto analytic = [](const std::optional<MotionComponent>& c) {
@@ -132,7 +171,8 @@ double SettledAfter_s(const Scene& scene, const GroundMotion& motion, double saf
 }
 
 MemberOutcome OutcomeOf(const EngineRun& run, const Scene& scene, double min_impact_rate_radps) {
-  const bool two_blocks = scene.block_count() == 2 && run.outcome.blocks() == 2;
+  // The blocks both the scene and the run have (a run of another stack compares block 1).
+  const int nb = scene.block_count() == run.outcome.blocks() ? scene.block_count() : 1;
   MemberOutcome o;
   const RunOutcome& s = run.outcome;
   o.status = s.status;
@@ -142,16 +182,17 @@ MemberOutcome OutcomeOf(const EngineRun& run, const Scene& scene, double min_imp
     o.overturned_block = s.overturned_block;
     o.overturn_t_s = s.overturn_t_s;
   }
-  if (s.blocks() >= 1) o.peak_rad[0] = s.peak_theta_rad[0], o.peak_t_s[0] = s.peak_theta_t_s[0];
-  if (two_blocks) o.peak_rad[1] = s.peak_theta_rad[1], o.peak_t_s[1] = s.peak_theta_t_s[1];
+  for (int b = 0; b < std::min(nb, s.blocks()); ++b) {
+    o.peak_rad[b] = s.peak_theta_rad[b];
+    o.peak_t_s[b] = s.peak_theta_t_s[b];
+  }
   if (!run.history.samples.empty()) {
     const Sample& last = run.history.samples.back();
-    o.residual_rad[0] = last.theta_rad[0];
-    o.residual_rad[1] = two_blocks ? last.theta_rad[1] : 0.0;
+    for (int b = 0; b < std::min(nb, last.blocks()); ++b) o.residual_rad[b] = last.theta_rad[b];
   }
   // An overturned block's peak and residual are the overturn angle, whatever sample an engine
   // stopped on after crossing it (Bullet's last step ends past the crossing).
-  if (o.overturned_block != 0) {
+  if (o.overturned_block >= 1 && o.overturned_block <= kMaxBlocks) {
     const int b = o.overturned_block - 1;
     const double sign = o.residual_rad[b] < 0.0 ? -1.0 : 1.0;
     o.peak_rad[b] = scene.model.overturn_rad;
@@ -163,7 +204,7 @@ MemberOutcome OutcomeOf(const EngineRun& run, const Scene& scene, double min_imp
   const double t_end = o.overturned_block != 0       ? o.overturn_t_s
                        : run.history.samples.empty() ? 0.0
                                                      : run.history.samples.back().t_s;
-  for (int b = 0; b < (two_blocks ? 2 : 1); ++b) {
+  for (int b = 0; b < nb; ++b) {
     double integral = 0.0;
     for (size_t k = 1; k < run.history.samples.size(); ++k) {
       const Sample& a = run.history.samples[k - 1];
@@ -181,44 +222,56 @@ MemberOutcome OutcomeOf(const EngineRun& run, const Scene& scene, double min_imp
 
 ReferencePerturbationMembers RunReferencePerturbationMembers(
     const Scene& nominal_scene, const GroundMotion& motion, const reference::Result& nominal,
-    int members, const double tolerance_rad[2], int threads, double min_impact_rate_radps) {
+    int members, std::span<const double> tolerance_rad, int threads, double min_impact_rate_radps) {
   const auto start = std::chrono::steady_clock::now();
-  const bool two = nominal_scene.block_count() == 2;
+  const int nb = nominal_scene.block_count();
+  const auto nbs = static_cast<size_t>(nb);
+  if (tolerance_rad.size() < nbs) {
+    throw std::invalid_argument(
+        "RunReferencePerturbationMembers: " + std::to_string(tolerance_rad.size()) +
+        " tolerances for " + std::to_string(nb) + " blocks");
+  }
   ReferencePerturbationMembers e;
   e.members = members;
-  e.tolerance_rad[0] = tolerance_rad[0];
-  e.tolerance_rad[1] = tolerance_rad[1];
+  e.blocks = nb;
+  e.tolerance_rad.assign(tolerance_rad.begin(), tolerance_rad.begin() + nb);
+  e.horizon_s.assign(nbs, std::nullopt);
+  e.max_spread_rad.assign(nbs, 0.0);
+  e.lo_rad.resize(nbs);
+  e.hi_rad.resize(nbs);
+  e.spread_rad.resize(nbs);
+  e.local_tolerance_rad.resize(nbs);
   const double dt = nominal_scene.run.output_interval_s;
   const auto n_grid = static_cast<size_t>(std::floor(nominal_scene.run.duration_s / dt + 1e-9)) + 1;
   e.t_s.resize(n_grid);
   for (size_t k = 0; k < n_grid; ++k) e.t_s[k] = RoundTime_s(static_cast<double>(k) * dt);
-  // A run on the grid. Beyond the end of a run stopped by a violated assumption, or ended at
-  // its last finite state, there is nothing to compare (NaN); beyond an overturn, the
-  // overturned block stays at its overturn angle (a lasting outcome that other members may not
-  // share) and the other block's angle is undefined (NaN: the model ends there).
-  auto on_grid = [&](const reference::Result& r, std::vector<double>* th) {
+  // A run on the grid, one vector per block. Beyond the end of a run stopped by a violated
+  // assumption, or ended at its last finite state, there is nothing to compare (NaN); beyond an
+  // overturn, the overturned block stays at its overturn angle (a lasting outcome that other
+  // members may not share) and the other blocks' angles are undefined (NaN: the model ends
+  // there).
+  auto on_grid = [&](const reference::Result& r, std::vector<std::vector<double>>* th) {
     const bool stopped =
         r.summary.status == RunStatus::kAssumptionViolated || IsNonFinite(r.summary.status);
     const int overturned = r.summary.overturn_block.value_or(0);
     const double end = r.trajectory.end_s();
-    th[0].assign(n_grid, std::nan(""));
-    th[1].assign(n_grid, std::nan(""));
+    th->assign(nbs, std::vector<double>(n_grid, std::nan("")));
     for (size_t k = 0; k < n_grid; ++k) {
       const bool after_end = e.t_s[k] > end;
       if (stopped && after_end) break;
       const Sample s = r.trajectory.At(e.t_s[k]);
-      if (!after_end || overturned == 1) th[0][k] = s.theta_rad[0];
-      if (!after_end || overturned == 2) th[1][k] = two ? s.theta_rad[1] : 0.0;
+      for (int b = 0; b < nb; ++b) {
+        if (!after_end || overturned == b + 1) (*th)[b][k] = s.theta_rad[b];
+      }
     }
   };
-  std::vector<double> nominal_grid[2];
-  on_grid(nominal, nominal_grid);
+  std::vector<std::vector<double>> nominal_grid;
+  on_grid(nominal, &nominal_grid);
 
   e.perturbations.resize(members);
   e.outcomes.resize(members);
-  std::vector<std::vector<double>> grids[2];
-  grids[0].resize(members);
-  grids[1].resize(members);
+  // grids[i][b]: member i's block b on the grid.
+  std::vector<std::vector<std::vector<double>>> grids(members);
   ProgressLine progress("reference ensemble");
   ParallelFor(
       members, threads,
@@ -231,10 +284,7 @@ ReferencePerturbationMembers RunReferencePerturbationMembers(
         run.wall_s = SecondsSince(t0);
         run.summary = ReferenceSummaryJson(in.scene, r, run.wall_s);
         run.outcome = ReferenceOutcome(r);
-        std::vector<double> th[2];
-        on_grid(r, th);
-        grids[0][i] = std::move(th[0]);
-        grids[1][i] = std::move(th[1]);
+        on_grid(r, &grids[i]);
         run.history = std::move(r.history);
         e.perturbations[i] = in.perturbation;
         e.outcomes[i] = OutcomeOf(run, in.scene, min_impact_rate_radps);
@@ -242,7 +292,7 @@ ReferencePerturbationMembers RunReferencePerturbationMembers(
       },
       [&](int done, int total) { progress.Update(done, total); });
 
-  for (int b = 0; b < (two ? 2 : 1); ++b) {
+  for (int b = 0; b < nb; ++b) {
     // The local tolerance, for the band file (the report draws it); the horizon is judged on
     // the scale of the whole run (docs/verdicts.md, "The error scale").
     const ToleranceProfile profile = LocalTolerance(nominal_scene, b + 1, nominal.history);
@@ -255,7 +305,7 @@ ReferencePerturbationMembers RunReferencePerturbationMembers(
       const double nom = nominal_grid[b][k];
       if (std::isnan(nom)) continue;
       for (int i = 0; i < members; ++i) {
-        const double v = grids[b][i][k];
+        const double v = grids[i][b][k];
         if (std::isnan(v)) continue;
         e.lo_rad[b][k] = std::min(e.lo_rad[b][k], v);
         e.hi_rad[b][k] = std::max(e.hi_rad[b][k], v);
@@ -290,7 +340,7 @@ std::vector<MemberOutcome> RunEnginePerturbationMembers(const std::string& name,
 }
 
 nlohmann::json PredictabilityJson(const Scene& scene, const ReferencePerturbationMembers& e) {
-  const bool two = scene.block_count() == 2;
+  const int nb = std::min(scene.block_count(), static_cast<int>(e.horizon_s.size()));
   const CompareConfig& c = scene.compare;
   nlohmann::json j;
   j["members"] = e.members;
@@ -306,13 +356,14 @@ nlohmann::json PredictabilityJson(const Scene& scene, const ReferencePerturbatio
   auto opt = [](const std::optional<double>& v) {
     return v ? nlohmann::json(*v) : nlohmann::json(nullptr);
   };
-  j["horizon_s"] = {{"theta1", opt(e.horizon_s[0])}};
-  j["spread_rad"] = {{"theta1", e.max_spread_rad[0]}};
-  j["tolerance_rad"] = {{"theta1", e.tolerance_rad[0]}};
-  if (two) {
-    j["horizon_s"]["theta2"] = opt(e.horizon_s[1]);
-    j["spread_rad"]["theta2"] = e.max_spread_rad[1];
-    j["tolerance_rad"]["theta2"] = e.tolerance_rad[1];
+  j["horizon_s"] = nlohmann::json::object();
+  j["spread_rad"] = nlohmann::json::object();
+  j["tolerance_rad"] = nlohmann::json::object();
+  for (int b = 0; b < nb; ++b) {
+    const std::string th = Numbered("theta", b + 1);
+    j["horizon_s"][th] = opt(e.horizon_s[b]);
+    j["spread_rad"][th] = e.max_spread_rad[b];
+    j["tolerance_rad"][th] = e.tolerance_rad[b];
   }
   nlohmann::json statuses = nlohmann::json::object();
   for (const MemberOutcome& o : e.outcomes) {
@@ -324,15 +375,21 @@ nlohmann::json PredictabilityJson(const Scene& scene, const ReferencePerturbatio
   return j;
 }
 
-std::string PerturbationBandCsv(const ReferencePerturbationMembers& e, bool two) {
-  std::string out = two ? "t,theta1_lo,theta1_hi,theta1_spread,theta1_tol,theta2_lo,theta2_hi,"
-                          "theta2_spread,theta2_tol\n"
-                        : "t,theta1_lo,theta1_hi,theta1_spread,theta1_tol\n";
+std::string PerturbationBandCsv(const ReferencePerturbationMembers& e) {
+  const int nb = std::min(e.blocks, static_cast<int>(e.lo_rad.size()));
+  std::string out = "t";
+  for (int b = 1; b <= nb; ++b) {
+    const std::string th = Numbered("theta", b);
+    for (const char* col : {"_lo", "_hi", "_spread", "_tol"}) out.append(",").append(th + col);
+  }
+  out += "\n";
   for (size_t k = 0; k < e.t_s.size(); ++k) {
     // The band ends with the nominal run (a block's angle is undefined after it).
-    if (std::isnan(e.lo_rad[0][k]) || (two && std::isnan(e.lo_rad[1][k]))) break;
+    bool ended = false;
+    for (int b = 0; b < nb; ++b) ended = ended || std::isnan(e.lo_rad[b][k]);
+    if (ended) break;
     out += Num(e.t_s[k]);
-    for (int b = 0; b < (two ? 2 : 1); ++b) {
+    for (int b = 0; b < nb; ++b) {
       for (double v :
            {e.lo_rad[b][k], e.hi_rad[b][k], e.spread_rad[b][k], e.local_tolerance_rad[b][k]}) {
         out.append(",").append(Num(v));
@@ -344,13 +401,18 @@ std::string PerturbationBandCsv(const ReferencePerturbationMembers& e, bool two)
 }
 
 std::string OutcomesCsv(const std::vector<MemberOutcome>& outcomes,
-                        const std::vector<MemberPerturbation>& perturbations, bool two) {
+                        const std::vector<MemberPerturbation>& perturbations, int blocks) {
+  const int nb = std::clamp(blocks, 1, kMaxBlocks);
   std::string out =
       "member,horizontal_factor,vertical_factor,initial_factor_theta1,status,overturned_block,"
       "overturn_t_s,peak_theta1_rad,peak_theta1_t_s,residual_theta1_rad,";
-  out += two ? "peak_theta2_rad,peak_theta2_t_s,residual_theta2_rad,rms_theta1_rad,rms_theta2_rad,"
-               "impacts\n"
-             : "rms_theta1_rad,impacts\n";
+  for (int b = 2; b <= nb; ++b) {
+    const std::string th = Numbered("theta", b);
+    out.append("peak_").append(th).append("_rad,peak_").append(th).append("_t_s,residual_");
+    out.append(th).append("_rad,");
+  }
+  for (int b = 1; b <= nb; ++b) out.append("rms_theta").append(std::to_string(b)).append("_rad,");
+  out += "impacts\n";
   for (const MemberOutcome& o : outcomes) {
     const MemberPerturbation p = o.member >= 0 && o.member < static_cast<int>(perturbations.size())
                                      ? perturbations[o.member]
@@ -364,12 +426,12 @@ std::string OutcomesCsv(const std::vector<MemberOutcome>& outcomes,
     if (o.overturned_block) out.append(std::to_string(o.overturned_block));
     out.append(",");
     if (o.overturned_block) out.append(Num(o.overturn_t_s));
-    for (int b = 0; b < (two ? 2 : 1); ++b) {
+    for (int b = 0; b < nb; ++b) {
       out.append(",").append(Num(o.peak_rad[b]));
       out.append(",").append(Num(o.peak_t_s[b]));
       out.append(",").append(Num(o.residual_rad[b]));
     }
-    for (int b = 0; b < (two ? 2 : 1); ++b) out.append(",").append(Num(o.rms_rad[b]));
+    for (int b = 0; b < nb; ++b) out.append(",").append(Num(o.rms_rad[b]));
     out.append(",").append(std::to_string(o.impacts)).append("\n");
   }
   return out;

@@ -8,8 +8,10 @@
 ///   members spread from the nominal run by more than the comparison tolerance.
 /// - Member outcomes (peaks, overturning, time of the largest excursion, impacts, residual
 ///   angle) are what the statistical comparison beyond the horizon is made of.
+#include <array>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -29,6 +31,9 @@ struct MemberPerturbation {
   double horizontal_max_sample_move_mps2 = 0.0, vertical_max_sample_move_mps2 = 0.0;
   /// Factors of theta1, theta2 - theta1, omega1, omega2 - omega1.
   double initial_factor[4] = {1, 1, 1, 1};
+  /// N >= 3 blocks: the factors of theta_k - theta_(k-1) and omega_k - omega_(k-1) of every block
+  /// k = 3..N, in that order (theta3's, omega3's, theta4's, ...); empty for one or two blocks.
+  std::vector<double> initial_factor_from3;
 };
 
 /// A member's scene and base motion.
@@ -48,16 +53,17 @@ struct MemberOutcome {
   int member = -1;
   RunStatus status = RunStatus::kCompleted;  ///< as in summary.json
   std::string detail;                        ///< summary.json's status_detail (why it ended so)
-  int overturned_block = 0;                  ///< 0: none, 1 or 2
+  int overturned_block = 0;                  ///< 0: none, 1..N
   double overturn_t_s = 0.0;                 ///< when overturned_block != 0
-  double peak_rad[2] = {0, 0};               ///< peak |theta1|, |theta2|
-  double peak_t_s[2] = {0, 0};               ///< their times (the time of the largest excursion)
-  int impacts = 0;                           ///< impacts at or above the comparison's minimum rate
-  double residual_rad[2] = {0, 0};           ///< theta1, theta2 at the end of the run
-  /// The root mean square of theta1, theta2 over the scene's duration (sqrt of the integral of
+  /// Per block (block k at k - 1; the entries beyond the scene's blocks are zero):
+  std::array<double, kMaxBlocks> peak_rad{};  ///< peak |theta_k|
+  std::array<double, kMaxBlocks> peak_t_s{};  ///< their times (the time of the largest excursion)
+  int impacts = 0;                            ///< impacts at or above the comparison's minimum rate
+  std::array<double, kMaxBlocks> residual_rad{};  ///< theta_k at the end of the run
+  /// The root mean square of theta_k over the scene's duration (sqrt of the integral of
   /// theta^2 to the run's end, or to an overturn, over run.duration): the intensity of the
   /// whole response, which counts nothing and so has no counting threshold.
-  double rms_rad[2] = {0, 0};
+  std::array<double, kMaxBlocks> rms_rad{};
   double wall_s = 0.0;
   /// A run that stopped because the model's assumptions failed, or that ended non_finite
   /// (run/engine_run.h), has no outcome to compare.
@@ -71,36 +77,40 @@ struct MemberOutcome {
 MemberOutcome OutcomeOf(const EngineRun& run, const Scene& scene, double min_impact_rate_radps);
 
 /// The reference's perturbation members and what it says about predictability.
+/// Per block, block k at k - 1: one entry per block of the scene.
 struct ReferencePerturbationMembers {
   int members = 0;
+  int blocks = 1;  ///< blocks of the scene
   std::vector<MemberPerturbation> perturbations;
   std::vector<MemberOutcome> outcomes;
   /// On the grid t_k = k * run.output_interval (to the end of the run): the band every member
   /// and the nominal run span, and the largest |member - nominal|.
   std::vector<double> t_s;
-  std::vector<double> lo_rad[2], hi_rad[2], spread_rad[2];
+  std::vector<std::vector<double>> lo_rad, hi_rad, spread_rad;
   /// The local tolerance of each block on the grid (run/tolerance.h), which judges an
   /// engine's error before the horizon.
-  std::vector<double> local_tolerance_rad[2];
+  std::vector<std::vector<double>> local_tolerance_rad;
   /// The tolerance at the scale of the nominal run's peak (AngleTolerance_rad): the horizon is
   /// the first t_k at which spread_rad exceeds it; the statistics' margins are 10% of it.
-  double tolerance_rad[2] = {0, 0};
-  std::optional<double> horizon_s[2];  ///< nullopt: within the tolerance for the whole run
-  double max_spread_rad[2] = {0, 0};
+  std::vector<double> tolerance_rad;
+  std::vector<std::optional<double>> horizon_s;  ///< nullopt: within the tolerance throughout
+  std::vector<double> max_spread_rad;
   double wall_s = 0.0;  ///< wall-clock time of all the members
 };
 
 /// Runs `members` reference members with the model settings of `nominal_scene` (pass the scene
 /// whose model produced `nominal`, e.g. the witness's when the default was not converged) and
-/// measures their spread around `nominal`. `tolerance_rad`: per block.
+/// measures their spread around `nominal`. `tolerance_rad`: per block, at least one entry per
+/// block of the scene.
 ReferencePerturbationMembers RunReferencePerturbationMembers(
     const Scene& nominal_scene, const GroundMotion& motion, const reference::Result& nominal,
-    int members, const double tolerance_rad[2], int threads, double min_impact_rate_radps);
+    int members, std::span<const double> tolerance_rad, int threads, double min_impact_rate_radps);
 
 /// The time (s) after which the base motion can no longer start rocking from rest: the last time
 /// at which `safety` times the base acceleration (the vertical part taken at its worst sign)
-/// would open a face of the stack at rest (a corner force of block 1 on the ground or of block 2
-/// on block 1 turning tensile). Records are piecewise linear and the rest reactions linear in
+/// would open a face of the stack at rest (a corner force of block 1 on the ground or of a
+/// block on the one below turning tensile; N >= 3 blocks: the pivot chain's rest reactions,
+/// reference/stack_contacts.h). Records are piecewise linear and the rest reactions linear in
 /// the accelerations, so their sample times decide (a face open at one sample may be open
 /// until the next: that is the bound); analytic motions are scanned every 1e-3 s. 0: never;
 /// infinity for an endless motion. An engine member at rest after this time
@@ -116,11 +126,15 @@ std::vector<MemberOutcome> RunEnginePerturbationMembers(const std::string& name,
 /// comparison.json "predictability".
 nlohmann::json PredictabilityJson(const Scene& scene, const ReferencePerturbationMembers& e);
 
-/// reference/ensemble_band.csv: t,theta1_lo,theta1_hi,theta1_spread[,theta2_lo,...] (rad).
-std::string PerturbationBandCsv(const ReferencePerturbationMembers& e, bool two_blocks);
+/// reference/ensemble_band.csv: t,theta1_lo,theta1_hi,theta1_spread,theta1_tol[,theta2_lo,...,
+/// thetaN_tol] (rad), every block of e.blocks.
+std::string PerturbationBandCsv(const ReferencePerturbationMembers& e);
 
-/// <engine>/ensemble.csv: one row per member with its perturbation and outcome.
+/// <engine>/ensemble.csv: one row per member with its perturbation and outcome, `blocks` blocks.
 std::string OutcomesCsv(const std::vector<MemberOutcome>& outcomes,
-                        const std::vector<MemberPerturbation>& perturbations, bool two_blocks);
+                        const std::vector<MemberPerturbation>& perturbations, int blocks);
+/// (A bool here was "two blocks": give the number of blocks.)
+std::string OutcomesCsv(const std::vector<MemberOutcome>&, const std::vector<MemberPerturbation>&,
+                        bool) = delete;
 
 }  // namespace rockbench

@@ -45,8 +45,19 @@ StatisticalComparison ComparePerturbationMembers(const std::vector<MemberOutcome
                                                  const std::vector<MemberOutcome>& engine,
                                                  bool two_blocks, const double tolerance_rad[2],
                                                  double time_margin_s, double alpha) {
+  return ComparePerturbationMembers(reference, engine,
+                                    std::span<const double>(tolerance_rad, two_blocks ? 2 : 1),
+                                    time_margin_s, alpha);
+}
+
+StatisticalComparison ComparePerturbationMembers(const std::vector<MemberOutcome>& reference,
+                                                 const std::vector<MemberOutcome>& engine,
+                                                 std::span<const double> tolerance_rad,
+                                                 double time_margin_s, double alpha) {
   StatisticalComparison s;
   s.alpha = alpha;
+  const int nb = std::clamp(static_cast<int>(tolerance_rad.size()), 1, kMaxBlocks);
+  s.blocks = nb;
   // Members whose reference run stopped on a violated assumption have no reference outcome;
   // the engine's run on the same inputs is left out with them.
   std::vector<const MemberOutcome*> ref, eng;
@@ -97,9 +108,8 @@ StatisticalComparison ComparePerturbationMembers(const std::vector<MemberOutcome
     q.ad = stats::AndersonDarlingTest(q.reference, q.engine);
     s.quantities.push_back(std::move(q));
   };
-  const int nb = two_blocks ? 2 : 1;
   for (int b = 0; b < nb; ++b) {
-    const std::string th = b == 0 ? "theta1" : "theta2";
+    const std::string th = Numbered("theta", b + 1);
     const double tol = tolerance_rad[b];
     add(
         "peak_" + th + "_rad", "peak |" + th + "|", "rad", 0.1 * tol,
@@ -107,7 +117,7 @@ StatisticalComparison ComparePerturbationMembers(const std::vector<MemberOutcome
         [](const MemberOutcome&) { return true; });
   }
   for (int b = 0; b < nb; ++b) {
-    const std::string th = b == 0 ? "theta1" : "theta2";
+    const std::string th = Numbered("theta", b + 1);
     const double tol = tolerance_rad[b];
     // The time of the largest excursion means something only for a block that moved.
     add(
@@ -116,7 +126,7 @@ StatisticalComparison ComparePerturbationMembers(const std::vector<MemberOutcome
         [b, tol](const MemberOutcome& o) { return o.peak_rad[b] > tol; });
   }
   for (int b = 0; b < nb; ++b) {
-    const std::string th = b == 0 ? "theta1" : "theta2";
+    const std::string th = Numbered("theta", b + 1);
     add(
         "rms_" + th + "_rad", "RMS " + th, "rad", 0.1 * tolerance_rad[b],
         [b](const MemberOutcome& o) { return o.rms_rad[b]; },
@@ -128,17 +138,23 @@ StatisticalComparison ComparePerturbationMembers(const std::vector<MemberOutcome
       [](const MemberOutcome&) { return true; });
   s.quantities.back().in_family = false;
   for (int b = 0; b < nb; ++b) {
-    const std::string th = b == 0 ? "theta1" : "theta2";
+    const std::string th = Numbered("theta", b + 1);
     add(
         "residual_" + th + "_rad", "residual " + th, "rad", 0.1 * tolerance_rad[b],
         [b](const MemberOutcome& o) { return o.residual_rad[b]; },
         [](const MemberOutcome&) { return true; });
   }
-  for (const MemberOutcome* o : ref) ++s.overturn_reference[std::clamp(o->overturned_block, 0, 2)];
-  for (const MemberOutcome* o : eng) ++s.overturn_engine[std::clamp(o->overturned_block, 0, 2)];
+  // Categories: none, block 1 .. block N (one or two blocks: none, block 1, block 2).
+  const int categories = std::max(nb, 2) + 1;
+  for (const MemberOutcome* o : ref) {
+    ++s.overturn_reference[std::clamp(o->overturned_block, 0, categories - 1)];
+  }
+  for (const MemberOutcome* o : eng) {
+    ++s.overturn_engine[std::clamp(o->overturned_block, 0, categories - 1)];
+  }
   // Categories that occur in neither ensemble are dropped (a column of zeros has no table).
   std::vector<int> row_r, row_e;
-  for (int c = 0; c < 3; ++c) {
+  for (int c = 0; c < categories; ++c) {
     if (s.overturn_reference[c] + s.overturn_engine[c] == 0) continue;
     row_r.push_back(s.overturn_reference[c]);
     row_e.push_back(s.overturn_engine[c]);
@@ -179,8 +195,9 @@ StatisticalComparison ComparePerturbationMembers(const std::vector<MemberOutcome
 
 namespace {
 
-const char* th(int b) {
-  return b == 0 ? "theta1" : "theta2";
+// "theta1", "theta2", ... for block b + 1.
+std::string th(int b) {
+  return Numbered("theta", b + 1);
 }
 
 // A flag in words: what the engine did.
@@ -213,7 +230,7 @@ std::string FlagsText(const EngineAgreement& a, double from_s, double to_s,
 
 // The block with the largest error ratio, in words: before the horizons (`predictable`), or
 // over the whole comparison.
-std::string RatioText(const AngleAgreement* ang[2], int nb, bool predictable) {
+std::string RatioText(const std::vector<const AngleAgreement*>& ang, int nb, bool predictable) {
   auto ratio = [predictable](const AngleAgreement* g) {
     return predictable ? g->max_error_ratio_predictable : g->max_error_ratio;
   };
@@ -221,8 +238,7 @@ std::string RatioText(const AngleAgreement* ang[2], int nb, bool predictable) {
   for (int b = 1; b < nb; ++b) {
     if (ratio(ang[b]) > ratio(ang[w])) w = b;
   }
-  return std::string(th(w)) + " error at most " + Format("%.3g", ratio(ang[w])) +
-         " x the local tolerance" +
+  return th(w) + " error at most " + Format("%.3g", ratio(ang[w])) + " x the local tolerance" +
          (predictable ? " where the reference is predictable" : std::string());
 }
 
@@ -240,8 +256,9 @@ Verdict MakeVerdict(const Scene& scene, const EngineAgreement& a,
                     const std::optional<Horizons>& predictability,
                     const std::optional<StatisticalComparison>& statistics) {
   Verdict v;
-  const int nb = a.theta2 ? 2 : 1;
-  const AngleAgreement* ang[2] = {&a.theta1, a.theta2 ? &*a.theta2 : nullptr};
+  const int nb = a.blocks();
+  std::vector<const AngleAgreement*> ang;
+  for (int b = 1; b <= nb; ++b) ang.push_back(&a.angle(b));
   const double slack_s = scene.run.output_interval_s;
   const double inf = std::numeric_limits<double>::infinity();
   // Where the reference's model holds: to its end when it stopped on a violated assumption.
@@ -323,7 +340,7 @@ Verdict MakeVerdict(const Scene& scene, const EngineAgreement& a,
     for (int b = 0; b < nb; ++b) {
       if (ang[b]->within_tolerance) continue;
       all_within = false;
-      out += (out.empty() ? "" : "; ") + std::string(th(b)) + " leaves the local tolerance (" +
+      out += (out.empty() ? "" : "; ") + th(b) + " leaves the local tolerance (" +
              Format("%.3g", ang[b]->tolerance_at_horizon_rad) + " rad there) at " +
              Format("%.3f", ang[b]->horizon_s) + " s";
     }
@@ -350,14 +367,14 @@ Verdict MakeVerdict(const Scene& scene, const EngineAgreement& a,
     const bool ok = g.within_tolerance || (hp && g.horizon_s >= *hp - slack_s);
     const std::string hp_text = hp ? Format("%.2f s", *hp) : "the end of the run";
     if (!ok) {
-      before += (before.empty() ? "" : "; ") + std::string(th(b)) +
-                " leaves the local tolerance (" + Format("%.3g", g.tolerance_at_horizon_rad) +
-                " rad there) at " + Format("%.2f", g.horizon_s) +
-                " s while the reference is predictable until " + hp_text + " (max error there " +
-                Format("%.3g", g.max_abs_error_predictable_rad) + " rad, " +
-                Format("%.3g", g.max_error_ratio_predictable) + " x the local tolerance)";
+      before += (before.empty() ? "" : "; ") + th(b) + " leaves the local tolerance (" +
+                Format("%.3g", g.tolerance_at_horizon_rad) + " rad there) at " +
+                Format("%.2f", g.horizon_s) + " s while the reference is predictable until " +
+                hp_text + " (max error there " + Format("%.3g", g.max_abs_error_predictable_rad) +
+                " rad, " + Format("%.3g", g.max_error_ratio_predictable) +
+                " x the local tolerance)";
     } else {
-      agree_part += (agree_part.empty() ? "" : "; ") + std::string(th(b)) + " " +
+      agree_part += (agree_part.empty() ? "" : "; ") + th(b) + " " +
                     (g.within_tolerance ? "within the local tolerance for the whole comparison"
                                         : "until " + Format("%.2f", g.horizon_s) + " s") +
                     (hp ? " (the reference's own horizon is " + hp_text + ")"
@@ -486,11 +503,15 @@ Verdict MakeVerdict(const Scene& scene, const EngineAgreement& a,
              PText(q.p_holm) + ")";
   }
   if (std::find(s.rejected.begin(), s.rejected.end(), "overturn") != s.rejected.end()) {
+    int engine_over = 0, reference_over = 0;
+    for (int b = 1; b <= kMaxBlocks; ++b) {
+      engine_over += s.overturn_engine[b];
+      reference_over += s.overturn_reference[b];
+    }
     diffs += std::string(diffs.empty() ? "" : "; ") + "overturning (engine " +
-             std::to_string(s.overturn_engine[1] + s.overturn_engine[2]) + " of " +
-             std::to_string(s.engine_members) + " against " +
-             std::to_string(s.overturn_reference[1] + s.overturn_reference[2]) + " of " +
-             std::to_string(s.reference_members) + ", Fisher " + PText(s.overturn.p_value) + ")";
+             std::to_string(engine_over) + " of " + std::to_string(s.engine_members) + " against " +
+             std::to_string(reference_over) + " of " + std::to_string(s.reference_members) +
+             ", Fisher " + PText(s.overturn.p_value) + ")";
   }
   v.text += "; beyond it, the engine's ensemble differs from the reference's: " + diffs;
   return v;
@@ -536,12 +557,13 @@ nlohmann::json StatisticsJson(const StatisticalComparison& s) {
   nlohmann::json ov = TestJson(s.overturn);
   ov["p_holm"] =
       std::isnan(s.overturn_p_holm) ? nlohmann::json(nullptr) : nlohmann::json(s.overturn_p_holm);
-  ov["reference"] = {{"none", s.overturn_reference[0]},
-                     {"block1", s.overturn_reference[1]},
-                     {"block2", s.overturn_reference[2]}};
-  ov["engine"] = {{"none", s.overturn_engine[0]},
-                  {"block1", s.overturn_engine[1]},
-                  {"block2", s.overturn_engine[2]}};
+  // none, block1, block2 (one and two blocks alike), then block3 .. blockN.
+  ov["reference"] = {{"none", s.overturn_reference[0]}};
+  ov["engine"] = {{"none", s.overturn_engine[0]}};
+  for (int b = 1; b <= std::max(s.blocks, 2); ++b) {
+    ov["reference"][Numbered("block", b)] = s.overturn_reference[b];
+    ov["engine"][Numbered("block", b)] = s.overturn_engine[b];
+  }
   tests["overturn"] = ov;
   j["tests"] = tests;
   j["consistent"] = s.consistent;

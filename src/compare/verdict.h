@@ -9,8 +9,10 @@
 ///    (the same perturbed inputs) is compared with the reference's by two-sample tests on what a
 ///    user cares about (peaks, time of the largest excursion, impacts, residual angle,
 ///    overturning), Holm- adjusted as one family at alpha = 0.05.
+#include <array>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -51,9 +53,11 @@ struct StatisticalComparison {
   std::string engine_non_finite_detail;
   double alpha = 0.05;
   std::vector<QuantityComparison> quantities;
-  /// Overturning: counts of none / block 1 / block 2 in each set of perturbation members,
-  /// Fisher-Freeman-Halton.
-  int overturn_reference[3] = {0, 0, 0}, overturn_engine[3] = {0, 0, 0};
+  /// Blocks compared (the per-block quantities and the overturning categories).
+  int blocks = 1;
+  /// Overturning: counts of none / block 1 / block 2 / ... / block N (at index N) in each set
+  /// of perturbation members, Fisher-Freeman-Halton.
+  std::array<int, kMaxBlocks + 1> overturn_reference{}, overturn_engine{};
   stats::TestResult overturn;
   double overturn_p_holm = 1.0;
   bool consistent = true;             ///< no Holm-adjusted p-value at or below alpha
@@ -61,8 +65,16 @@ struct StatisticalComparison {
 };
 
 /// Compares the engine's member outcomes with the reference's. `tolerance_rad`: the comparison
-/// tolerances per block (they set the angle margins: 10% of them); `time_margin_s`: the margin
-/// of times (the scene's output interval).
+/// tolerances, one per block of the stack (they set the angle margins: 10% of them; their
+/// number is the number of blocks compared); `time_margin_s`: the margin of times (the scene's
+/// output interval). Per block k (thetak): peak_thetak_rad, peak_thetak_t_s, rms_thetak_rad,
+/// residual_thetak_rad, in that order of quantities, then the overturning (none or which
+/// block), one Holm family.
+StatisticalComparison ComparePerturbationMembers(const std::vector<MemberOutcome>& reference,
+                                                 const std::vector<MemberOutcome>& engine,
+                                                 std::span<const double> tolerance_rad,
+                                                 double time_margin_s, double alpha = 0.05);
+/// The same for one or two blocks (`two_blocks`), `tolerance_rad` holding two entries.
 StatisticalComparison ComparePerturbationMembers(const std::vector<MemberOutcome>& reference,
                                                  const std::vector<MemberOutcome>& engine,
                                                  bool two_blocks, const double tolerance_rad[2],
@@ -106,10 +118,10 @@ inline bool InMarginalBand(double p) {
   return p >= kMarginalLowP && p <= kMarginalHighP;
 }
 
-/// Horizons per block: nullopt inside means "predictable for the whole run"; an absent
-/// `predictability` means no perturbation members were run.
+/// Horizons per block (block k at k - 1): nullopt inside means "predictable for the whole run";
+/// an absent `predictability` means no perturbation members were run.
 struct Horizons {
-  std::optional<double> horizon_s[2];
+  std::array<std::optional<double>, kMaxBlocks> horizon_s{};
   /// Reference members that ended non_finite (run/engine_run.h), and the first one's
   /// "member i: detail": the horizon measured without them is not the reference's, and the
   /// verdict is reference_failed.

@@ -27,12 +27,12 @@ double MinHolm(const StatisticalComparison& s) {
 PowerEstimate EstimateVerdictPower(const Scene& scene, const GroundMotion& motion,
                                    const PowerConfig& config) {
   const CompareOptions compare_options;
-  const bool two = scene.block_count() == 2;
-  // The scene's tolerances, from its nominal run.
+  // The scene's tolerances, one per block, from its nominal run.
   const reference::Result nominal = reference::Simulate(scene, motion);
-  const double tolerance[2] = {
-      AngleTolerance_rad(scene, 1, nominal.summary.peak_theta_rad[0]),
-      two ? AngleTolerance_rad(scene, 2, nominal.summary.peak_theta_rad[1]) : 0.0};
+  std::vector<double> tolerance;
+  for (int b = 0; b < scene.block_count(); ++b) {
+    tolerance.push_back(AngleTolerance_rad(scene, b + 1, nominal.summary.peak_theta_rad[b]));
+  }
   const int n = config.reference_members, m = config.engine_members;
   PowerEstimate est;
   est.trials = config.trials;
@@ -61,9 +61,9 @@ PowerEstimate EstimateVerdictPower(const Scene& scene, const GroundMotion& motio
       for (double& p : o.peak_rad) p *= 1.0 + config.bias;
     }
     const StatisticalComparison sb =
-        ComparePerturbationMembers(reference, biased, two, tolerance, scene.run.output_interval_s);
-    const StatisticalComparison su = ComparePerturbationMembers(reference, unbiased, two, tolerance,
-                                                                scene.run.output_interval_s);
+        ComparePerturbationMembers(reference, biased, tolerance, scene.run.output_interval_s);
+    const StatisticalComparison su =
+        ComparePerturbationMembers(reference, unbiased, tolerance, scene.run.output_interval_s);
     if (sb.available && !sb.consistent) ++est.detected_biased;
     if (su.available && !su.consistent) ++est.flagged_unbiased;
     est.min_p_biased.push_back(MinHolm(sb));

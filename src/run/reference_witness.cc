@@ -9,6 +9,7 @@
 #include "run/summary.h"
 #include "run/wall_clock.h"
 #include "scene/limits.h"
+#include "util/format.h"
 
 namespace rockbench {
 namespace {
@@ -42,9 +43,13 @@ ConvergenceCheck CompareWithWitness(const Scene& scene, const reference::Result&
                                     const reference::Result& witness) {
   ConvergenceCheck c;
   c.witness = WitnessModel(scene.model);
-  const bool two = scene.block_count() == 2;
-  c.tolerance_rad[0] = AngleTolerance_rad(scene, 1, nominal.summary.peak_theta_rad[0]);
-  c.tolerance_rad[1] = two ? AngleTolerance_rad(scene, 2, nominal.summary.peak_theta_rad[1]) : 0.0;
+  const int nb = scene.block_count();
+  // One entry per block, at least two (one block's second is 0, as it always was).
+  c.tolerance_rad.assign(std::max(nb, 2), 0.0);
+  c.max_abs_diff_rad.assign(std::max(nb, 2), 0.0);
+  for (int b = 0; b < nb; ++b) {
+    c.tolerance_rad[b] = AngleTolerance_rad(scene, b + 1, nominal.summary.peak_theta_rad[b]);
+  }
   // A run that stops on a violated assumption has no solution after its end: compare up to the
   // earlier end. An overturned run stays overturned (Trajectory::At clamps to its end).
   double until = scene.run.duration_s;
@@ -61,11 +66,10 @@ ConvergenceCheck CompareWithWitness(const Scene& scene, const reference::Result&
   grid.erase(std::unique(grid.begin(), grid.end()), grid.end());
   for (double t : grid) {
     const Sample a = nominal.trajectory.At(t), b = witness.trajectory.At(t);
-    const double d[2] = {std::abs(a.theta_rad[0] - b.theta_rad[0]),
-                         two ? std::abs(a.theta_rad[1] - b.theta_rad[1]) : 0.0};
-    for (int k = 0; k < 2; ++k) {
-      c.max_abs_diff_rad[k] = std::max(c.max_abs_diff_rad[k], d[k]);
-      if (!c.diverges_at_s && d[k] > c.tolerance_rad[k] && (k == 0 || two)) c.diverges_at_s = t;
+    for (int k = 0; k < nb; ++k) {
+      const double d = std::abs(a.theta_rad[k] - b.theta_rad[k]);
+      c.max_abs_diff_rad[k] = std::max(c.max_abs_diff_rad[k], d);
+      if (!c.diverges_at_s && d > c.tolerance_rad[k]) c.diverges_at_s = t;
     }
   }
   c.same_status = nominal.summary.status == witness.summary.status &&
@@ -97,11 +101,13 @@ nlohmann::json ConvergenceJson(const Scene& scene, const ConvergenceCheck& c) {
   nlohmann::json j;
   j["witness"] = ModelOptionsJson(c.witness);
   j["max_abs_diff_rad"] = c.max_abs_diff();
-  j["max_abs_diff_rad_per_block"] = {{"theta1", c.max_abs_diff_rad[0]}};
-  j["tolerance_rad"] = {{"theta1", c.tolerance_rad[0]}};
-  if (scene.block_count() == 2) {
-    j["max_abs_diff_rad_per_block"]["theta2"] = c.max_abs_diff_rad[1];
-    j["tolerance_rad"]["theta2"] = c.tolerance_rad[1];
+  j["max_abs_diff_rad_per_block"] = nlohmann::json::object();
+  j["tolerance_rad"] = nlohmann::json::object();
+  const int nb = std::min(scene.block_count(), static_cast<int>(c.tolerance_rad.size()));
+  for (int b = 0; b < nb; ++b) {
+    const std::string th = Numbered("theta", b + 1);
+    j["max_abs_diff_rad_per_block"][th] = c.max_abs_diff_rad[b];
+    j["tolerance_rad"][th] = c.tolerance_rad[b];
   }
   j["converged"] = c.converged;
   j["diverges_at_s"] = c.diverges_at_s ? nlohmann::json(*c.diverges_at_s) : nullptr;

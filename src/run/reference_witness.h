@@ -2,8 +2,10 @@
 /// The reference's own convergence: every reference run is checked against a witness, the same
 /// model at a tighter tolerance. When the two differ by more than the comparison tolerance the
 /// reference is not converged, the run says so, and comparisons use the witness instead.
+#include <algorithm>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <vector>
 
 #include "reference/simulate.h"
 #include "run/engine_run.h"
@@ -24,10 +26,12 @@ ModelConfig WitnessModel(const ModelConfig& model);
 
 /// Difference between a reference run and its witness.
 struct ConvergenceCheck {
-  ModelConfig witness;                  ///< the witness's model settings
-  double tolerance_rad[2] = {0, 0};     ///< per block (AngleTolerance_rad of the nominal run)
-  double max_abs_diff_rad[2] = {0, 0};  ///< per block, over the run
-  /// First time either block's difference exceeds its tolerance; nullopt: never.
+  ModelConfig witness;  ///< the witness's model settings
+  /// Per block, block k at k - 1 (one entry per block of the scene; at least two, as one block
+  /// always had: its second is 0):
+  std::vector<double> tolerance_rad = {0, 0};     ///< AngleTolerance_rad of the nominal run
+  std::vector<double> max_abs_diff_rad = {0, 0};  ///< the largest difference over the run
+  /// First time any block's difference exceeds its tolerance; nullopt: never.
   std::optional<double> diverges_at_s;
   bool same_status = true;  ///< both runs end the same way (status and overturned block)
   bool converged = true;    ///< never diverges and ends the same way
@@ -36,7 +40,11 @@ struct ConvergenceCheck {
   /// the other run.
   bool nominal_non_finite = false, witness_non_finite = false;
   double witness_wall_s = 0.0;
-  double max_abs_diff() const { return std::max(max_abs_diff_rad[0], max_abs_diff_rad[1]); }
+  double max_abs_diff() const {
+    double m = 0.0;
+    for (const double d : max_abs_diff_rad) m = std::max(m, d);
+    return m;
+  }
   /// Whether comparisons use the witness: the nominal run when it failed, else the witness when
   /// it failed or the nominal run is not converged.
   bool use_witness() const {
@@ -46,7 +54,7 @@ struct ConvergenceCheck {
 };
 
 /// Compares two runs of the same scene (nominal and witness) on the union of their sample
-/// times. `two_blocks`: compare theta2 as well.
+/// times, every block's angle.
 ConvergenceCheck CompareWithWitness(const Scene& scene, const reference::Result& nominal,
                                     const reference::Result& witness);
 
@@ -68,7 +76,8 @@ CheckedReference RunCheckedReference(const Scene& scene, const GroundMotion& mot
                                      bool with_witness = true);
 
 /// summary.json "convergence": {"witness": {...settings}, "max_abs_diff_rad": x,
-/// "max_abs_diff_rad_per_block": {...}, "tolerance_rad": {...}, "converged": bool,
+/// "max_abs_diff_rad_per_block": {"theta1": x, ..., "thetaN": x}, "tolerance_rad": {...},
+/// "converged": bool,
 /// "diverges_at_s": null | t, "same_status": bool, "used": "nominal" | "witness" (use_witness),
 /// "witness_wall_s": s}.
 nlohmann::json ConvergenceJson(const Scene& scene, const ConvergenceCheck& check);

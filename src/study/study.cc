@@ -396,8 +396,6 @@ Scene BuildScene(const StudyDef& study, const std::vector<int>& idx, size_t set_
     if (!a.derived) overrides.push_back(a.key + "=" + a.values[idx[k]].toml);
   }
   Scene scene = LoadScene(study.scene_path, overrides);
-  // The entry of a study's member: one or two blocks for now (issue 23).
-  RequireAtMostTwoBlocks(scene, "study");
   // Derived axes in their fixed order: geometry first, then what depends on it.
   for (const std::string& key : DerivedKeys()) {
     for (size_t k = 0; k < axis_count; ++k) {
@@ -546,7 +544,7 @@ StudyDef ParseStudy(const std::string& text, const std::filesystem::path& path, 
   }
   // Every axis key, and with kEveryValue every value, is checked by building the members that
   // hold them: member 0, and the members that differ from it on one axis (zip: every member).
-  MemberScene(s, 0);
+  s.blocks = MemberScene(s, 0).block_count();
   if (check == StudyCheck::kEveryValue) {
     if (s.combine == StudyCombine::kZip) {
       for (int64_t m = 1; m < s.member_count(); ++m) MemberScene(s, m);

@@ -67,6 +67,8 @@ struct StudyDef {
   int set_line = 0;             ///< the line of `set` (messages)
   /// Impacts slower than this are not counted (CompareOptions::min_impact_rate_radps).
   double min_impact_rate_radps = 0.02;
+  /// Blocks of every member's stack (member 0's: no key an axis or `set` takes changes it).
+  int blocks = 1;
 
   int64_t member_count() const;
   /// Member i's value index on every axis.

@@ -23,12 +23,16 @@ struct MemberRow {
   std::string detail;  ///< why, for error, crash and wall_limit rows (one line)
   /// Block geometry of the member: p = sqrt(3 g / 4 R) (rad/s) and alpha = atan(B / H) (rad).
   double p1_radps = 0.0, alpha1_rad = 0.0;
-  std::optional<double> p2_radps, alpha2_rad;  ///< two-block members
+  std::optional<double> p2_radps, alpha2_rad;  ///< members of two blocks or more
+  /// N >= 3 blocks: p and alpha of blocks 3..N (block 3 at index 0); empty otherwise.
+  std::vector<double> p_from3_radps, alpha_from3_rad;
   /// Intensity measures of the horizontal base motion over the run (none without one).
   std::optional<double> pga_g, pgv_mps, pgd_m, arias_mps, d5_95_s, pulse_period_s;
-  int overturned_block = 0;  ///< 0: none (printed empty), 1 or 2
+  int overturned_block = 0;  ///< 0: none (printed empty), 1..N
   double overturn_t_s = 0.0;
   double peak_theta1_rad = 0.0, peak_theta2_rad = 0.0;
+  /// N >= 3 blocks: peak |theta_k| of blocks 3..N (block 3 at index 0); empty otherwise.
+  std::vector<double> peak_theta_from3_rad;
   int impacts = 0;  ///< impacts at or above the study's min_impact_rate
   double wall_s = 0.0;
   bool has_result = false;  ///< the run gave an outcome (false for crash, wall_limit, error)
@@ -38,11 +42,13 @@ struct MemberRow {
   struct Agreement {
     double theta1_max_abs_error_rad = 0.0, theta1_horizon_s = 0.0;
     std::optional<double> theta2_max_abs_error_rad, theta2_horizon_s;
+    /// N >= 3 blocks: the same of blocks 3..N (block 3 at index 0); empty otherwise.
+    std::vector<double> theta_from3_max_abs_error_rad, theta_from3_horizon_s;
     int impacts_matched = 0, reference_impacts = 0;
     /// Both runs overturn the same block or neither does; none when the reference's model
     /// stopped (assumption_violated: it has no outcome to agree with).
     std::optional<bool> overturn_agree;
-    std::optional<int> reference_overturned_block;  ///< 0, 1 or 2 (as overturn_agree)
+    std::optional<int> reference_overturned_block;  ///< 0, 1..N (as overturn_agree)
   };
   std::optional<Agreement> agreement;
 };
@@ -62,7 +68,10 @@ nlohmann::json MemberRowToJson(const MemberRow& row);
 MemberRow MemberRowFromJson(const nlohmann::json& j);
 
 /// members.csv's header: member, one column per axis (named by its key), the member's geometry
-/// and intensity measures, then the run's columns (docs/ensemble.md lists them).
+/// and intensity measures, then the run's columns (docs/ensemble.md lists them). A study of
+/// N >= 3 blocks (study.blocks) has the per-block columns of every block: p3_radps,alpha3_rad,
+/// ... after alpha2_rad; peak_theta3_rad, ... after peak_theta2_rad; theta3_max_abs_error_rad,
+/// ... after theta2_max_abs_error_rad; theta3_horizon_s, ... after theta2_horizon_s.
 std::string MembersCsvHeader(const StudyDef& study);
 /// One line of members.csv (with its newline).
 std::string MembersCsvLine(const StudyDef& study, const MemberRow& row);

@@ -16,6 +16,7 @@
 #include "run/engine_registry.h"
 #include "run/engine_run.h"
 #include "run/wall_clock.h"
+#include "util/format.h"
 
 namespace rockbench {
 
@@ -80,8 +81,6 @@ Scene SceneForPoint(const Scene& base, const SweepPoint& p) {
 std::vector<SweepRow> RunSweep(const Scene& scene, const GroundMotion& motion,
                                const SweepOptions& options, const SweepProgress& progress,
                                SweepBaseline* baseline_out) {
-  // The entry of a sweep: one or two blocks for now (issue 23).
-  RequireAtMostTwoBlocks(scene, "sweep");
   if (options.repeat < 1) throw SceneError("--repeat: expected a positive integer");
   if (options.threads < 0) throw SceneError("--threads: expected a non-negative integer");
   const std::vector<SweepPoint> grid =
@@ -107,6 +106,13 @@ std::vector<SweepRow> RunSweep(const Scene& scene, const GroundMotion& motion,
     baseline_out->overturn_block = baseline.summary.overturn_block.value_or(0);
     baseline_out->overturn_t_s = baseline.summary.overturn_t_s;
     baseline_out->two_blocks = scene.block_count() == 2;
+    baseline_out->blocks = scene.block_count();
+    baseline_out->peak_theta_from3_rad.clear();
+    baseline_out->peak_theta_from3_t_s.clear();
+    for (int b = 2; b < bs.blocks(); ++b) {
+      baseline_out->peak_theta_from3_rad.push_back(bs.peak_theta_rad[b]);
+      baseline_out->peak_theta_from3_t_s.push_back(bs.peak_theta_t_s[b]);
+    }
   }
 
   std::vector<SweepRow> rows(grid.size());
@@ -151,12 +157,21 @@ std::vector<SweepRow> RunSweep(const Scene& scene, const GroundMotion& motion,
   return rows;
 }
 
-std::string SweepCsv(const std::vector<SweepRow>& rows) {
+std::string SweepCsv(const std::vector<SweepRow>& rows, int blocks) {
+  // The theta columns of blocks 1 and 2 always (one block's theta2 columns empty), and of
+  // blocks 3..N when the stack has them.
+  const int theta_blocks = std::clamp(blocks, 2, kMaxBlocks);
   std::string out =
       "engine,family,setting,time_step_s,settings,integrator,rtol,atol,rk4_step_s,status,"
-      "wall_s,theta1_max_abs_error_rad,theta1_rms_error_rad,theta1_horizon_s,"
-      "theta1_peak_rel_error,theta1_peak_time_error_s,theta2_max_abs_error_rad,"
-      "theta2_rms_error_rad,theta2_horizon_s,theta2_peak_rel_error,theta2_peak_time_error_s,"
+      "wall_s,";
+  for (int b = 1; b <= theta_blocks; ++b) {
+    const std::string th = Numbered("theta", b);
+    for (const char* col : {"_max_abs_error_rad,", "_rms_error_rad,", "_horizon_s,",
+                            "_peak_rel_error,", "_peak_time_error_s,"}) {
+      out.append(th).append(col);
+    }
+  }
+  out +=
       "impacts_reference,impacts_engine,impacts_matched,max_abs_impact_time_error_s,"
       "overturn_agree,final_agree,error\n";
   char buf[1024];
@@ -187,7 +202,9 @@ std::string SweepCsv(const std::vector<SweepRow>& rows) {
       std::string msg = r.error;
       std::replace(msg.begin(), msg.end(), ',', ';');
       std::replace(msg.begin(), msg.end(), '\n', ' ');
-      out += "error" + std::string(18, ',') + msg + "\n";
+      // The status, wall time and error columns before the message: 18 for one or two blocks.
+      out.append("error").append(static_cast<size_t>(18 + 5 * (theta_blocks - 2)), ',');
+      out.append(msg).append("\n");
       continue;
     }
     const EngineAgreement& a = r.agreement;
@@ -196,13 +213,15 @@ std::string SweepCsv(const std::vector<SweepRow>& rows) {
                   r.wall_s, t1.max_abs_error_rad, t1.rms_error_rad, t1.horizon_s, t1.peak_rel_error,
                   t1.peak_time_error_s);
     out += buf;
-    if (a.theta2) {
-      const AngleAgreement& t2 = *a.theta2;
-      std::snprintf(buf, sizeof buf, "%.6e,%.6e,%.9g,%.6e,%.6e,", t2.max_abs_error_rad,
-                    t2.rms_error_rad, t2.horizon_s, t2.peak_rel_error, t2.peak_time_error_s);
-      out += buf;
-    } else {
-      out += ",,,,,";
+    for (int b = 2; b <= theta_blocks; ++b) {
+      if (b <= a.blocks()) {
+        const AngleAgreement& t = a.angle(b);
+        std::snprintf(buf, sizeof buf, "%.6e,%.6e,%.9g,%.6e,%.6e,", t.max_abs_error_rad,
+                      t.rms_error_rad, t.horizon_s, t.peak_rel_error, t.peak_time_error_s);
+        out += buf;
+      } else {
+        out += ",,,,,";
+      }
     }
     std::snprintf(buf, sizeof buf, "%d,%d,%d,%.6e,%d,%d,\n", a.impacts.reference_impacts,
                   a.impacts.engine_impacts, a.impacts.matched, a.impacts.max_abs_time_error_s,
@@ -238,6 +257,8 @@ nlohmann::json SweepJson(const Scene& scene, const std::vector<std::string>& ove
   j["scene"]["overrides"] = overrides;
   j["simulated_duration_s"] = scene.run.duration_s;
   j["two_blocks"] = scene.block_count() == 2;
+  // N >= 3 blocks: how many (one and two blocks say it by two_blocks alone).
+  if (scene.block_count() >= 3) j["blocks"] = scene.block_count();
   j["options"]["quick"] = options.quick;
   j["options"]["repeat"] = options.repeat;
   j["options"]["threads"] = options.threads;
@@ -250,6 +271,11 @@ nlohmann::json SweepJson(const Scene& scene, const std::vector<std::string>& ove
   j["tight_reference"]["peak_theta1_t_s"] = baseline.peak_theta1_t_s;
   j["tight_reference"]["peak_theta2_rad"] = baseline.peak_theta2_rad;
   j["tight_reference"]["peak_theta2_t_s"] = baseline.peak_theta2_t_s;
+  for (size_t k = 0; k < baseline.peak_theta_from3_rad.size(); ++k) {
+    const std::string th = Numbered("peak_theta", static_cast<int>(k) + 3);
+    j["tight_reference"][th + "_rad"] = baseline.peak_theta_from3_rad[k];
+    j["tight_reference"][th + "_t_s"] = baseline.peak_theta_from3_t_s[k];
+  }
   if (baseline.overturn_block > 0) {
     j["tight_reference"]["overturn_block"] = baseline.overturn_block;
     j["tight_reference"]["overturn_t_s"] = baseline.overturn_t_s;

@@ -57,9 +57,12 @@ struct SweepBaseline {
   double peak_theta1_t_s = 0.0;              ///< its time, s (0: the release angle is the peak)
   double peak_theta2_rad = 0.0;              ///< peak |theta2|, rad (0 for one block)
   double peak_theta2_t_s = 0.0;
-  int overturn_block = 0;  ///< 1 or 2 when a block overturned, else 0
+  int overturn_block = 0;  ///< 1..N when a block overturned, else 0
   double overturn_t_s = 0.0;
   bool two_blocks = false;
+  int blocks = 1;  ///< blocks of the scene
+  /// N >= 3 blocks: peak |theta_k| and its time of blocks k = 3..N (theta3 at index 0).
+  std::vector<double> peak_theta_from3_rad, peak_theta_from3_t_s;
 };
 
 /// One row of sweep.csv.
@@ -80,8 +83,11 @@ std::vector<SweepRow> RunSweep(const Scene& scene, const GroundMotion& motion,
                                const SweepOptions& options, const SweepProgress& progress = {},
                                SweepBaseline* baseline = nullptr);
 
-/// sweep.csv text: header and one row per grid point, in grid order.
-std::string SweepCsv(const std::vector<SweepRow>& rows);
+/// sweep.csv text: header and one row per grid point, in grid order. A stack of `blocks` >= 3
+/// blocks has the five theta columns of every block k = 3..N after theta2's (thetak_max_abs_
+/// error_rad, thetak_rms_error_rad, thetak_horizon_s, thetak_peak_rel_error,
+/// thetak_peak_time_error_s); one or two blocks, the columns of theta1 and theta2.
+std::string SweepCsv(const std::vector<SweepRow>& rows, int blocks = 2);
 
 /// The machine, without dates or names: "CPU model, N hardware threads, Linux x86_64".
 std::string MachineDescription();
@@ -90,8 +96,9 @@ std::string MachineDescription();
 /// scene.path, scene.title, scene.overrides (as given), simulated_duration_s (the scene's
 /// run.duration, the real-time mark), two_blocks, options.quick / repeat / threads,
 /// tight_reference.rtol / atol / wall_s / status / peak_theta1_rad / peak_theta1_t_s /
-/// peak_theta2_rad / peak_theta2_t_s / overturn_block (null or 1, 2) / overturn_t_s, runs,
-/// failed, machine. No dates; only the wall times change from run to run.
+/// peak_theta2_rad / peak_theta2_t_s / overturn_block (null or 1..N) / overturn_t_s, runs,
+/// failed, machine; N >= 3 blocks also blocks (N) and tight_reference.peak_thetak_rad /
+/// peak_thetak_t_s of k = 3..N. No dates; only the wall times change from run to run.
 nlohmann::json SweepJson(const Scene& scene, const std::vector<std::string>& overrides,
                          const SweepOptions& options, const SweepBaseline& baseline,
                          const std::vector<SweepRow>& rows);

@@ -115,7 +115,7 @@ TEST(ReferencePerturbationMembers, NothingIsComparedAfterTheNominalRunEnds) {
       EXPECT_LE(*e.horizon_s[b], end_s) << "theta" << b + 1;
     }
   }
-  const std::string band = PerturbationBandCsv(e, true);
+  const std::string band = PerturbationBandCsv(e);
   const std::string last_line = band.substr(band.rfind('\n', band.size() - 2) + 1);
   EXPECT_LE(std::stod(last_line), end_s) << last_line;
   EXPECT_GT(std::stod(last_line), end_s - 2.0 * s.run.output_interval_s) << last_line;
@@ -160,9 +160,9 @@ TEST(ReferencePerturbationMembers, TheSameBytesWhateverTheThreadCount) {
   Scene s = Rinaldi();
   const GroundMotion m = GroundMotion::FromScene(s);
   const ReferencePerturbationMembers one = Ensemble(s, m, 6, 1), three = Ensemble(s, m, 6, 3);
-  EXPECT_EQ(PerturbationBandCsv(one, true), PerturbationBandCsv(three, true));
-  EXPECT_EQ(OutcomesCsv(one.outcomes, one.perturbations, true),
-            OutcomesCsv(three.outcomes, three.perturbations, true));
+  EXPECT_EQ(PerturbationBandCsv(one), PerturbationBandCsv(three));
+  EXPECT_EQ(OutcomesCsv(one.outcomes, one.perturbations, 2),
+            OutcomesCsv(three.outcomes, three.perturbations, 2));
 }
 
 TEST(MemberOutcome, ReadsTheRunsSummaryAndHistory) {

@@ -93,5 +93,56 @@ TEST(Convergence, RunsWithoutTheWitnessWhenNotAsked) {
   EXPECT_FALSE(run.summary.contains("convergence"));
 }
 
+// N >= 3 blocks (issue 23): two squat, heavy drums that never lift and a slender block 3 rocking
+// on them from theta3 = `theta3` (rad).
+Scene TopBlockRocks(double theta3) {
+  Scene s;
+  s.blocks = {BlockDef{3.0, 0.5, 1.0, 3750.0, 2500.0}, BlockDef{3.0, 0.5, 1.0, 3750.0, 2500.0},
+              BlockDef{0.4, 1.2, 1.0, 1200.0, 2500.0}};
+  s.initial.theta_rad[2] = theta3;
+  s.run.duration_s = 2.0;
+  return s;
+}
+
+// Every block is compared with its witness: a run against itself differs by exactly nothing on
+// any block; against a run whose block 3 starts 0.02 rad further (blocks 1 and 2 stay exactly at
+// rest in both), block 3 alone differs, by 0.02 rad at t = 0 (more than its tolerance, 10% of
+// its 0.1 rad peak), and the check diverges there. summary.json's convergence names theta3.
+TEST(Convergence, EveryBlockOfAStackIsCompared) {
+  const Scene s = TopBlockRocks(0.1);
+  const reference::Result nominal = reference::Simulate(s, GroundMotion());
+  ASSERT_EQ(nominal.summary.peak_theta_rad[0], 0.0);
+  const ConvergenceCheck same = CompareWithWitness(s, nominal, nominal);
+  ASSERT_EQ(same.max_abs_diff_rad.size(), 3u);
+  ASSERT_EQ(same.tolerance_rad.size(), 3u);
+  for (int b = 0; b < 3; ++b) EXPECT_EQ(same.max_abs_diff_rad[b], 0.0) << b;
+  EXPECT_TRUE(same.converged);
+  EXPECT_DOUBLE_EQ(same.tolerance_rad[2], 0.1 * 0.1);
+
+  const reference::Result other = reference::Simulate(TopBlockRocks(0.12), GroundMotion());
+  const ConvergenceCheck c = CompareWithWitness(s, nominal, other);
+  EXPECT_EQ(c.max_abs_diff_rad[0], 0.0);
+  EXPECT_EQ(c.max_abs_diff_rad[1], 0.0);
+  // At least the initial 0.02 rad (the two rock apart afterwards, by up to their peaks).
+  EXPECT_GE(c.max_abs_diff_rad[2], 0.02 - 1e-15);
+  EXPECT_LE(c.max_abs_diff_rad[2], 0.25);
+  EXPECT_EQ(c.max_abs_diff(), c.max_abs_diff_rad[2]);
+  ASSERT_TRUE(c.diverges_at_s.has_value());
+  EXPECT_EQ(*c.diverges_at_s, 0.0);
+  EXPECT_FALSE(c.converged);
+  const nlohmann::json j = ConvergenceJson(s, c);
+  for (const char* th : {"theta1", "theta2", "theta3"}) {
+    EXPECT_TRUE(j["max_abs_diff_rad_per_block"][th].is_number()) << th;
+    EXPECT_TRUE(j["tolerance_rad"][th].is_number()) << th;
+  }
+  EXPECT_EQ(j["max_abs_diff_rad_per_block"]["theta3"], c.max_abs_diff_rad[2]);
+  EXPECT_FALSE(j["max_abs_diff_rad_per_block"].contains("theta4"));
+  // One and two blocks keep their keys: theta1 (and theta2) only.
+  const Scene housner = testing_util::HousnerHalfAngleRelease(1.0);
+  const reference::Result h = reference::Simulate(housner, GroundMotion());
+  const nlohmann::json jh = ConvergenceJson(housner, CompareWithWitness(housner, h, h));
+  EXPECT_EQ(jh["max_abs_diff_rad_per_block"].size(), 1u);
+}
+
 }  // namespace
 }  // namespace rockbench

@@ -651,5 +651,31 @@ TEST(Summary, MeanMedianQuantile) {
   EXPECT_THROW(Median(Sample{1, NAN}), std::invalid_argument);
 }
 
+// The verdict's family grows with the stack (issue 23): per block a peak, its time, an RMS and a
+// residual, then the overturning: 4 N + 1 hypotheses (25 at N = 6, 257 at N = 64). Holm over
+// them multiplies the smallest p-value by the family's size, and the others by their rank's
+// complement, never above 1 (exactly: products of small integers and decimal p-values, to
+// rounding 1e-15).
+TEST(Holm, FamilyOfAStackOfSixBlocks) {
+  for (const int blocks : {3, 6, 64}) {
+    const int m = 4 * blocks + 1;
+    std::vector<double> p(m, 0.5);
+    p[m / 2] = 0.001;  // one quantity of one block differs
+    p[0] = 0.01;
+    const std::vector<double> adjusted = HolmAdjust(p);
+    ASSERT_EQ(static_cast<int>(adjusted.size()), m);
+    EXPECT_NEAR(adjusted[m / 2], std::min(1.0, m * 0.001), 1e-15) << blocks;
+    EXPECT_NEAR(adjusted[0], std::min(1.0, (m - 1) * 0.01), 1e-15) << blocks;
+    for (int k = 1; k < m; ++k) {
+      if (k != m / 2) {
+        EXPECT_EQ(adjusted[k], 1.0) << blocks << " " << k;
+      }
+    }
+    // At alpha = 0.05 one differing quantity in 3 blocks' family (13) is found, in 6 blocks'
+    // (25) too, in 64 blocks' (257) not: the price of testing every block.
+    EXPECT_EQ(adjusted[m / 2] <= 0.05, blocks <= 6) << blocks;
+  }
+}
+
 }  // namespace
 }  // namespace rockbench::stats

@@ -15,6 +15,7 @@
 
 #include "common/scratch_dir_test.h"
 #include "common/shell_test.h"
+#include "common/stack_scene.h"
 #include "scene/ground_motion.h"
 #include "scene/intensity.h"
 #include "scene/limits.h"
@@ -466,6 +467,50 @@ TEST(ShippedStudies, EveryMembersSceneAndMotionLoad) {
     }
   }
   EXPECT_GE(studies, 6);
+}
+
+// N >= 3 blocks (issue 23): a study over block3.width of a 3-block stack runs. Every member
+// has the study's three blocks, its row has the per-block columns of the header (p3, alpha3,
+// peak_theta3, theta3's error and horizon), survives JSON, and the journal's key reader finds
+// its engine column.
+TEST_F(StudyTest, AStudyOverBlock3WidthRuns) {
+  Write("stack.toml", testing_util::StackSceneToml(3, 0.5));
+  const StudyDef s = LoadStudy(Write("study.toml",
+                                     "scene = \"stack.toml\"\n"
+                                     "[[axis]]\nkey = \"block3.width\"\nvalues = [0.5, 0.7]\n"));
+  ASSERT_EQ(s.blocks, 3);
+  ASSERT_EQ(s.member_count(), 2);
+  EXPECT_DOUBLE_EQ(MemberScene(s, 1).blocks[2].width_m, 0.7);
+  const std::string header = MembersCsvHeader(s);
+  for (const char* column : {",p3_radps,alpha3_rad,", ",peak_theta2_rad,peak_theta3_rad,impacts,",
+                             ",theta2_max_abs_error_rad,theta3_max_abs_error_rad,theta1_horizon_s,",
+                             ",theta2_horizon_s,theta3_horizon_s,impacts_matched,"}) {
+    EXPECT_NE(header.find(column), std::string::npos) << column << " in " << header;
+  }
+  const auto cells = [](const std::string& line) {
+    return std::count(line.begin(), line.end(), ',') + 1;
+  };
+  for (int64_t m = 0; m < 2; ++m) {
+    const MemberRow row = RunMemberHere(s, m, "reference");
+    ASSERT_TRUE(row.has_result) << row.status << ": " << row.detail;
+    ASSERT_EQ(row.p_from3_radps.size(), 1u);
+    ASSERT_EQ(row.peak_theta_from3_rad.size(), 1u);
+    // Block 3's alpha is its own: atan(B3 / H3) with the member's width.
+    EXPECT_DOUBLE_EQ(row.alpha_from3_rad[0], std::atan2(m == 0 ? 0.5 : 0.7, 1.8));
+    EXPECT_GT(row.peak_theta_from3_rad[0], 0.0);
+    const std::string line = MembersCsvLine(s, row);
+    EXPECT_EQ(cells(line), cells(header)) << line;
+    const std::optional<RowKey> key = MembersCsvKey(s, line);
+    ASSERT_TRUE(key.has_value()) << line;
+    EXPECT_EQ(key->member, m);
+    EXPECT_EQ(key->engine, "reference");
+    const MemberRow back = MemberRowFromJson(MemberRowToJson(row));
+    EXPECT_EQ(MembersCsvLine(s, back), line);
+  }
+  // A row without a result keeps the row's shape.
+  const std::string failed = MembersCsvLine(s, FailedRow(1, "reference", "error", "x"));
+  EXPECT_EQ(cells(failed), cells(header));
+  ASSERT_TRUE(MembersCsvKey(s, failed).has_value());
 }
 
 }  // namespace

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "common/stack_scene.h"
 #include "run/engine_registry.h"
 #include "run/engine_run.h"
 #include "tests/common/housner_scene.h"
@@ -285,6 +286,57 @@ TEST(SweepTest, RejectsBadOptions) {
   o.repeat = 1;
   o.threads = -1;
   EXPECT_THROW(RunSweep(ShortHousner(), GroundMotion(), o), SceneError);
+}
+
+// N >= 3 blocks (issue 23): a sweep of a 3-block stack (the reference's points; the engines
+// refuse N >= 3 until they are generalised, which is a row's error). Every row compares every
+// block, sweep.csv has theta3's five columns after theta2's on every row (an error row too),
+// and sweep.json says the stack's blocks and block 3's peak.
+TEST(SweepTest, AStackOfThreeBlocksHasEveryBlocksColumns) {
+  const Scene s = testing_util::StackScene(3, 0.6);
+  SweepOptions o;
+  o.threads = 2;
+  for (double h : {1e-2, 5e-3}) {
+    SweepPoint p;
+    p.engine = "reference";
+    p.integrator = Integrator::kRk4;
+    p.rk4_step_s = h;
+    o.points.push_back(p);
+  }
+  SweepBaseline baseline;
+  std::vector<SweepRow> rows = RunSweep(s, GroundMotion(), o, {}, &baseline);
+  ASSERT_EQ(rows.size(), 2u);
+  for (const SweepRow& r : rows) {
+    ASSERT_TRUE(r.error.empty()) << r.error;
+    ASSERT_EQ(r.agreement.blocks(), 3);
+    EXPECT_GT(r.agreement.angle(3).max_abs_error_rad, 0.0);
+  }
+  // RK4 is fourth order: halving the step divides block 3's error too (by about 16).
+  EXPECT_GT(
+      rows[0].agreement.angle(3).max_abs_error_rad / rows[1].agreement.angle(3).max_abs_error_rad,
+      8.0);
+  EXPECT_EQ(baseline.blocks, 3);
+  ASSERT_EQ(baseline.peak_theta_from3_rad.size(), 1u);
+  EXPECT_DOUBLE_EQ(baseline.peak_theta_from3_rad[0], s.initial.theta_rad[2]);
+  SweepRow failed;
+  failed.point.engine = "bullet";
+  failed.error = "engine bullet: N-block scenes (3 blocks) are not simulated yet";
+  rows.push_back(failed);
+  const std::vector<std::string> lines = Lines(SweepCsv(rows, 3));
+  ASSERT_EQ(lines.size(), 4u);
+  EXPECT_NE(lines[0].find("theta2_peak_time_error_s,theta3_max_abs_error_rad,theta3_rms_error_rad,"
+                          "theta3_horizon_s,theta3_peak_rel_error,theta3_peak_time_error_s,"
+                          "impacts_reference"),
+            std::string::npos)
+      << lines[0];
+  const auto fields = [](const std::string& x) { return std::count(x.begin(), x.end(), ',') + 1; };
+  for (const std::string& line : lines) EXPECT_EQ(fields(line), fields(lines[0])) << line;
+  // One and two blocks: the columns they always had.
+  EXPECT_EQ(Lines(SweepCsv({}, 1))[0], Lines(SweepCsv({}))[0]);
+  EXPECT_EQ(Lines(SweepCsv({}))[0].find("theta3"), std::string::npos);
+  const nlohmann::json j = SweepJson(s, {}, o, baseline, rows);
+  EXPECT_EQ(j["blocks"], 3);
+  EXPECT_EQ(j["tight_reference"]["peak_theta3_rad"], s.initial.theta_rad[2]);
 }
 
 }  // namespace

@@ -10,39 +10,39 @@ HistoryInterpolator::HistoryInterpolator(const History& history, const std::vect
   // Pre-event rates by event time: the first event at a time holds the rates before them all.
   std::map<double, const Event*> first_event;
   for (const Event& e : events) first_event.emplace(e.t_s, &e);
-  // One block or two: a single block's "block 2" is the block itself.
-  const size_t top = history.blocks == 2 ? 1 : 0;
+  // One block or two: a single block's "block 2" is the block itself. N >= 3: every block.
+  width_ = std::max(history.blocks, 2);
+  const auto block = [&](int k) {
+    return history.blocks == 1 ? size_t{0} : static_cast<size_t>(k);
+  };
+  const auto fill = [&](std::vector<double>& out, const std::vector<double>& v) {
+    out.resize(static_cast<size_t>(width_));
+    for (int k = 0; k < width_; ++k) out[k] = v[std::min(block(k), v.size() - 1)];
+  };
   for (const Sample& s : history.samples) {
-    const double th2 = s.theta_rad[top];
-    const double w2 = s.omega_radps[top];
     if (!nodes_.empty() && s.t_s <= nodes_.back().t) {
       // Several samples at one instant (a cascade of events): keep the last state after it.
       Node& n = nodes_.back();
-      n.theta[0] = s.theta_rad[0];
-      n.theta[1] = th2;
-      n.rate_right[0] = s.omega_radps[0];
-      n.rate_right[1] = w2;
+      fill(n.theta, s.theta_rad);
+      fill(n.rate_right, s.omega_radps);
       continue;
     }
     Node n;
     n.t = s.t_s;
-    n.theta[0] = s.theta_rad[0];
-    n.theta[1] = th2;
-    n.rate_right[0] = n.rate_left[0] = s.omega_radps[0];
-    n.rate_right[1] = n.rate_left[1] = w2;
+    fill(n.theta, s.theta_rad);
+    fill(n.rate_right, s.omega_radps);
+    n.rate_left = n.rate_right;
     if (const auto it = first_event.find(s.t_s); it != first_event.end()) {
-      const BlockValues& w = it->second->omega_before_radps;
-      n.rate_left[0] = w[0];
-      n.rate_left[1] = w.size() > top ? w[top] : w[0];
+      fill(n.rate_left, it->second->omega_before_radps);
     }
-    nodes_.push_back(n);
+    nodes_.push_back(std::move(n));
   }
   if (nodes_.empty()) throw std::invalid_argument("HistoryInterpolator: empty history");
 }
 
-std::array<double, 2> HistoryInterpolator::Angles(double t) const {
-  if (t <= nodes_.front().t) return {nodes_.front().theta[0], nodes_.front().theta[1]};
-  if (t >= nodes_.back().t) return {nodes_.back().theta[0], nodes_.back().theta[1]};
+std::vector<double> HistoryInterpolator::Angles(double t) const {
+  if (t <= nodes_.front().t) return nodes_.front().theta;
+  if (t >= nodes_.back().t) return nodes_.back().theta;
   const auto it = std::upper_bound(nodes_.begin(), nodes_.end(), t,
                                    [](double v, const Node& n) { return v < n.t; });
   const Node& b = *it;
@@ -53,8 +53,8 @@ std::array<double, 2> HistoryInterpolator::Angles(double t) const {
   const double h10 = s * (1.0 - s) * (1.0 - s);
   const double h01 = s * s * (3.0 - 2.0 * s);
   const double h11 = s * s * (s - 1.0);
-  std::array<double, 2> out{};
-  for (int k = 0; k < 2; ++k) {
+  std::vector<double> out(static_cast<size_t>(width_));
+  for (int k = 0; k < width_; ++k) {
     out[k] =
         h00 * a.theta[k] + h10 * h * a.rate_right[k] + h01 * b.theta[k] + h11 * h * b.rate_left[k];
   }

@@ -1,7 +1,6 @@
 #pragma once
 /// The reference's angles at any time from its history: what the run report's error figure
 /// compares each engine's samples with.
-#include <array>
 #include <vector>
 
 #include "scene/history.h"
@@ -14,17 +13,19 @@ namespace rockbench::report {
 class HistoryInterpolator {
  public:
   HistoryInterpolator(const History& history, const std::vector<Event>& events);
-  /// (theta1, theta2) at t, rad.
-  std::array<double, 2> Angles(double t_s) const;
+  /// Every block's angle at t, rad: (theta1, theta2) for one or two blocks (a single block's
+  /// "block 2" is the block itself), (theta1, ..., thetaN) for N >= 3.
+  std::vector<double> Angles(double t_s) const;
   double end_s() const;
 
  private:
   struct Node {
     double t = 0.0;
-    double theta[2] = {0, 0};
-    double rate_right[2] = {0, 0};  ///< rates just after t
-    double rate_left[2] = {0, 0};   ///< rates just before t (differ at an impact)
+    std::vector<double> theta;
+    std::vector<double> rate_right;  ///< rates just after t
+    std::vector<double> rate_left;   ///< rates just before t (differ at an impact)
   };
+  int width_ = 2;  ///< angles per node
   std::vector<Node> nodes_;
 };
 

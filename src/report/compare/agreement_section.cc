@@ -8,6 +8,7 @@
 #include "report/common/number_text.h"
 #include "run/engine_registry.h"
 #include "run/tolerance.h"
+#include "util/format.h"
 
 namespace rockbench::report {
 namespace {
@@ -15,9 +16,10 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
+// Per sample time, every block's |error| (block b + 1 at b).
 struct EngineErrors {
-  std::vector<double> t, e1, e2;
-  double max1 = 0.0, max2 = 0.0;
+  std::vector<double> t;
+  std::vector<std::vector<double>> e;
 };
 
 EngineErrors AngleErrors(const RunData& run, const EngineData& e, const HistoryInterpolator& ref) {
@@ -28,14 +30,13 @@ EngineErrors AngleErrors(const RunData& run, const EngineData& e, const HistoryI
         OptNumber(*run.comparison, "engines." + e.name + ".compared_until_s", run.comparison_path);
     if (!std::isnan(c)) until = std::min(until, c);
   }
+  const int nb = run.scene.block_count();
+  out.e.resize(nb);
   for (const Sample& s : e.history.samples) {
     if (s.t_s > until + 1e-12) break;
     const auto a = ref.Angles(s.t_s);
     out.t.push_back(s.t_s);
-    out.e1.push_back(std::abs(s.theta_rad[0] - a[0]));
-    out.e2.push_back(run.scene.block_count() == 2 ? std::abs(s.theta_rad[1] - a[1]) : 0.0);
-    out.max1 = std::max(out.max1, out.e1.back());
-    out.max2 = std::max(out.max2, out.e2.back());
+    for (int b = 0; b < nb; ++b) out.e[b].push_back(std::abs(s.theta_rad[b] - a[b]));
   }
   return out;
 }
@@ -49,8 +50,8 @@ void MetricsTable(const RunData& run, Page& page) {
     if (IsReference(e.name)) continue;
     const std::string k = "engines." + e.name;
     if (Find(c, k) == nullptr) continue;
-    for (int b = 1; b <= (run.scene.block_count() == 2 ? 2 : 1); ++b) {
-      const std::string kb = k + ".theta" + std::to_string(b);
+    for (int b = 1; b <= run.scene.block_count(); ++b) {
+      const std::string kb = k + "." + Numbered("theta", b);
       const bool within = OptBool(c, kb + ".within_tolerance", file);
       rows.push_back({e.name, "theta" + std::to_string(b),
                       Num(NeedNumber(c, kb + ".max_abs_error_rad", file), 3),
@@ -107,10 +108,13 @@ std::string ErrorPanel(const RunData& run, int block) {
   std::string s =
       "set ylabel " +
       Quote("|θ_" + std::to_string(block) + " - θ_" + std::to_string(block) + "^{ref}| (rad)") +
-      "\nset title " + Quote(block == 1 ? "block 1 (lower)" : "block 2 (upper)") +
+      "\nset title " + Quote(BlockTitle(block, run.scene.block_count())) +
       "\nunset arrow\nunset label\n" + HorizonMark(run, block, 0.97);
   std::string plot = "plot ";
-  double tol = run.predictability ? run.predictability->tolerance_rad[block - 1] : kNaN;
+  double tol =
+      run.predictability && block <= static_cast<int>(run.predictability->tolerance_rad.size())
+          ? run.predictability->tolerance_rad[block - 1]
+          : kNaN;
   for (size_t i = 1; i < run.engines.size(); ++i) {
     const EngineData& e = run.engines[i];
     const std::string key = "engines." + e.name + ".theta" + std::to_string(block);
@@ -173,21 +177,26 @@ std::string ErrorCaption(const RunData& run, const RunReportOptions& options) {
 void ErrorFigure(const RunData& run, const RunReportOptions& options, Figures& fig) {
   const EngineData& ref = run.engines.front();
   const HistoryInterpolator interp(ref.history, ref.events);
-  const bool two = run.scene.block_count() == 2;
+  const int nb = run.scene.block_count();
+  // "# t_s <stem>theta1<tail> ... <stem>thetaN<tail>\n"
+  const auto header = [nb](const char* stem, const char* tail) {
+    std::string h = "# t_s";
+    for (int b = 1; b <= nb; ++b)
+      h.append(" ").append(stem).append(Numbered("theta", b)).append(tail);
+    return h + "\n";
+  };
   GnuplotFigure f;
   f.name = "angle_error";
-  f.height_px = two ? 720 : 420;
+  f.height_px = PanelsHeight_px(nb);
   for (size_t i = 1; i < run.engines.size(); ++i) {
     const EngineData& e = run.engines[i];
     const EngineErrors err = AngleErrors(run, e, interp);
-    std::string dat = two ? "# t_s err_theta1_rad err_theta2_rad\n" : "# t_s err_theta1_rad\n";
+    std::string dat = header("err_", "_rad");
     for (size_t k = 0; k < err.t.size(); ++k) {
       AppendDat(dat, err.t[k]);
-      dat += ' ';
-      AppendDat(dat, std::max(err.e1[k], options.error_floor_rad));
-      if (two) {
+      for (int b = 0; b < nb; ++b) {
         dat += ' ';
-        AppendDat(dat, std::max(err.e2[k], options.error_floor_rad));
+        AppendDat(dat, std::max(err.e[b][k], options.error_floor_rad));
       }
       dat += '\n';
     }
@@ -195,31 +204,28 @@ void ErrorFigure(const RunData& run, const RunReportOptions& options, Figures& f
   }
   if (run.band) {
     const EnsembleBand& b = *run.band;
+    std::vector<const std::vector<double>*> columns;
+    for (int k = 0; k < nb; ++k) columns.push_back(&b.spread_rad[k]);
     f.data_files.push_back(
         {"angle_error.ensemble_spread.dat",
-         two ? BandDat(run, "# t_s theta1_spread_rad theta2_spread_rad\n",
-                       {&b.spread_rad[0], &b.spread_rad[1]}, options.error_floor_rad)
-             : BandDat(run, "# t_s theta1_spread_rad\n", {&b.spread_rad[0]},
-                       options.error_floor_rad)});
+         BandDat(run, header("", "_spread_rad"), columns, options.error_floor_rad)});
   }
   // The local tolerance of each block from the reference's history, as compare computed it.
   {
-    const ToleranceProfile p1 = LocalTolerance(run.scene, 1, ref.history);
-    const ToleranceProfile p2 = two ? LocalTolerance(run.scene, 2, ref.history) : p1;
-    std::string dat = two ? "# t_s tol_theta1_rad tol_theta2_rad\n" : "# t_s tol_theta1_rad\n";
+    std::vector<ToleranceProfile> p;
+    for (int b = 1; b <= nb; ++b) p.push_back(LocalTolerance(run.scene, b, ref.history));
+    std::string dat = header("tol_", "_rad");
     // On the profile's grid; a constant ([compare] tolerance) at the two ends of the run.
     std::vector<double> times = {0.0, run.t_end_s};
-    if (p1.tol_rad.size() >= 2) {
-      times.resize(p1.tol_rad.size());
-      for (size_t k = 0; k < times.size(); ++k) times[k] = static_cast<double>(k) * p1.grid_dt_s;
+    if (p[0].tol_rad.size() >= 2) {
+      times.resize(p[0].tol_rad.size());
+      for (size_t k = 0; k < times.size(); ++k) times[k] = static_cast<double>(k) * p[0].grid_dt_s;
     }
     for (const double t : times) {
       AppendDat(dat, t);
-      dat += ' ';
-      AppendDat(dat, p1.At(t));
-      if (two) {
+      for (int b = 0; b < nb; ++b) {
         dat += ' ';
-        AppendDat(dat, p2.At(t));
+        AppendDat(dat, p[b].At(t));
       }
       dat += '\n';
     }
@@ -227,9 +233,10 @@ void ErrorFigure(const RunData& run, const RunReportOptions& options, Figures& f
   }
   f.script = CommonAxes(run.t_end_s) +
              "set logscale y\nset format y '10^{%L}'\nset key bottom right box opaque\n";
-  if (two) {
-    f.script += "set multiplot layout 2,1\n" + ErrorPanel(run, 1) + ErrorPanel(run, 2) +
-                "unset multiplot\n";
+  if (nb >= 2) {
+    f.script += "set multiplot layout " + std::to_string(nb) + ",1\n";
+    for (int b = 1; b <= nb; ++b) f.script += ErrorPanel(run, b);
+    f.script += "unset multiplot\n";
   } else {
     f.script += ErrorPanel(run, 1);
   }

@@ -1,5 +1,6 @@
 #include "report/compare/predictability.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
@@ -8,6 +9,8 @@
 
 #include "report/common/json_keys.h"
 #include "scene/history.h"
+#include "scene/mode.h"
+#include "util/format.h"
 
 namespace rockbench::report {
 namespace {
@@ -40,7 +43,7 @@ double ParseCell(const std::string& cell, const fs::path& csv, int line, const s
 }  // namespace
 
 std::optional<Predictability> ReadPredictability(const json& comparison, const fs::path& file,
-                                                 bool two_blocks) {
+                                                 int blocks) {
   const json* p = Find(comparison, "predictability");
   if (p == nullptr || p->is_null()) return std::nullopt;
   if (!p->is_object()) {
@@ -55,8 +58,12 @@ std::optional<Predictability> ReadPredictability(const json& comparison, const f
   out.initial_rel = OptNumber(*p, "perturbation.initial_rel", file);
   out.seed = OptNumber(*p, "perturbation.seed", file);
   out.rule = OptString(*p, "perturbation.rule", file);
-  for (int b = 0; b < (two_blocks ? 2 : 1); ++b) {
-    const std::string th = "theta" + std::to_string(b + 1);
+  const int nb = std::max(blocks, 1);
+  out.horizon_s.assign(std::max(nb, 2), std::nullopt);
+  out.tolerance_rad.assign(std::max(nb, 2), Predictability::kNaN);
+  out.spread_rad.assign(std::max(nb, 2), Predictability::kNaN);
+  for (int b = 0; b < nb; ++b) {
+    const std::string th = Numbered("theta", b + 1);
     const double h = OptNumber(*p, "horizon_s." + th, file);
     if (!std::isnan(h)) out.horizon_s[b] = h;
     out.tolerance_rad[b] = OptNumber(*p, "tolerance_rad." + th, file);
@@ -84,12 +91,25 @@ std::optional<EnsembleBand> ReadEnsembleBand(const fs::path& csv) {
     return -1;
   };
   EnsembleBand band;
-  band.two_blocks = column("theta2_lo") >= 0;
-  int cols[7] = {column("t")};
-  const char* names[7] = {"t",         "theta1_lo", "theta1_hi",    "theta1_spread",
-                          "theta2_lo", "theta2_hi", "theta2_spread"};
-  const int needed = band.two_blocks ? 7 : 4;
-  for (int k = 0; k < needed; ++k) {
+  // Blocks 1, 2, ... as long as their columns are there (theta1's are required).
+  std::vector<std::string> names = {"t"};
+  std::vector<std::vector<double>*> targets = {&band.t_s};
+  int nb = 0;
+  while (nb < kMaxBlocks && (nb == 0 || column(Numbered("theta", nb + 1) + "_lo") >= 0)) ++nb;
+  band.blocks = nb;
+  band.two_blocks = nb == 2;
+  band.lo_rad.resize(std::max(nb, 2));
+  band.hi_rad.resize(std::max(nb, 2));
+  band.spread_rad.resize(std::max(nb, 2));
+  for (int b = 0; b < nb; ++b) {
+    const std::string th = Numbered("theta", b + 1);
+    for (const char* tail : {"_lo", "_hi", "_spread"}) names.push_back(th + tail);
+    targets.push_back(&band.lo_rad[b]);
+    targets.push_back(&band.hi_rad[b]);
+    targets.push_back(&band.spread_rad[b]);
+  }
+  std::vector<int> cols(names.size());
+  for (size_t k = 0; k < names.size(); ++k) {
     cols[k] = column(names[k]);
     if (cols[k] < 0) {
       throw std::runtime_error(csv.string() + ": line 1: no column '" + names[k] +
@@ -97,9 +117,6 @@ std::optional<EnsembleBand> ReadEnsembleBand(const fs::path& csv) {
                                "theta2_hi,theta2_spread])");
     }
   }
-  std::vector<double>* targets[7] = {&band.t_s,           &band.lo_rad[0], &band.hi_rad[0],
-                                     &band.spread_rad[0], &band.lo_rad[1], &band.hi_rad[1],
-                                     &band.spread_rad[1]};
   for (int n = 2; std::getline(text, line); ++n) {
     if (line.empty() || line == "\r") continue;
     const std::vector<std::string> cells = SplitCsvLine(line);
@@ -108,7 +125,7 @@ std::optional<EnsembleBand> ReadEnsembleBand(const fs::path& csv) {
                                std::to_string(cells.size()) + " cells, the header has " +
                                std::to_string(header.size()));
     }
-    for (int k = 0; k < needed; ++k) {
+    for (size_t k = 0; k < names.size(); ++k) {
       targets[k]->push_back(ParseCell(cells[cols[k]], csv, n, names[k]));
     }
   }

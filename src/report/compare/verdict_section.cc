@@ -7,6 +7,8 @@
 #include "compare/verdict.h"
 #include "report/common/json_keys.h"
 #include "report/common/number_text.h"
+#include "scene/mode.h"
+#include "util/format.h"
 
 namespace rockbench::report {
 namespace {
@@ -15,17 +17,21 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 std::string Theta(int b) {
-  return "theta" + std::to_string(b + 1);
+  return Numbered("theta", b + 1);
+}
+
+int Blocks(const VerdictInput& in) {
+  return in.blocks > 0 ? in.blocks : in.two_blocks ? 2 : 1;
 }
 
 std::string Rad(double v) {
   return Num(v, 3) + " rad";
 }
 
-// "theta1 X rad, theta2 Y rad" from an object {"theta1": x, "theta2": y}.
-std::string PerBlock(const json& root, const std::string& key, const fs::path& file, bool two) {
+// "theta1 X rad, theta2 Y rad, ..." from an object {"theta1": x, "theta2": y, ...}, blocks 1..nb.
+std::string PerBlock(const json& root, const std::string& key, const fs::path& file, int nb) {
   std::string out;
-  for (int b = 0; b < (two ? 2 : 1); ++b) {
+  for (int b = 0; b < nb; ++b) {
     const double v = OptNumber(root, key + "." + Theta(b), file);
     if (std::isnan(v)) continue;
     out += (out.empty() ? "" : ", ") + Theta(b) + " " + Rad(v);
@@ -145,15 +151,14 @@ std::string WitnessSettings(const json& w, const fs::path& file) {
 }
 
 // The convergence check in plain words; `warning` is set when the reference is not converged.
-std::string ConvergenceText(const json& conv, const fs::path& file, bool two,
-                            std::string& warning) {
+std::string ConvergenceText(const json& conv, const fs::path& file, int nb, std::string& warning) {
   const json* w = Find(conv, "witness");
   const std::string witness = w != nullptr ? WitnessSettings(*w, file) : "settings not recorded";
   const double diff = OptNumber(conv, "max_abs_diff_rad", file);
-  const std::string per_block = PerBlock(conv, "max_abs_diff_rad_per_block", file, two);
+  const std::string per_block = PerBlock(conv, "max_abs_diff_rad_per_block", file, nb);
   const std::string diff_text =
-      Rad(diff) + (two && !per_block.empty() ? " (" + per_block + ")" : "");
-  const std::string tol = PerBlock(conv, "tolerance_rad", file, two);
+      Rad(diff) + (nb >= 2 && !per_block.empty() ? " (" + per_block + ")" : "");
+  const std::string tol = PerBlock(conv, "tolerance_rad", file, nb);
   const std::string tol_text = tol.empty() ? "" : " (" + tol + ")";
   if (OptBool(conv, "converged", file)) {
     return "The reference is converged: its witness (the same model at tighter settings: " +
@@ -199,7 +204,7 @@ std::vector<std::string> ConvergencePart(const VerdictInput& in, Page& page) {
     return {};
   }
   std::string warning;
-  page.Paragraph(ConvergenceText(*conv, file, in.two_blocks, warning));
+  page.Paragraph(ConvergenceText(*conv, file, Blocks(in), warning));
   if (warning.empty()) return {};
   return {warning};
 }
@@ -233,7 +238,7 @@ void PredictabilityPart(const VerdictInput& in, Page& page) {
                  (statuses.empty() ? "" : " Members' outcomes: " + statuses + ".") +
                  (std::isnan(p.wall_s) ? "" : " Wall time " + Num(p.wall_s, 3) + " s."));
   std::vector<std::vector<std::string>> rows;
-  for (int b = 0; b < (in.two_blocks ? 2 : 1); ++b) {
+  for (int b = 0; b < std::min(Blocks(in), static_cast<int>(p.horizon_s.size())); ++b) {
     const std::optional<double>& h = p.horizon_s[b];
     rows.push_back(
         {Theta(b), h ? Num(*h, 6) + " s" : "none", Rad(p.tolerance_rad[b]), Rad(p.spread_rad[b]),
@@ -256,26 +261,49 @@ void PredictabilityPart(const VerdictInput& in, Page& page) {
 
 // ---- Statistics ----
 
-// Display order of the tested quantities; others follow in comparison.json's order.
-int QuantityRank(const std::string& key) {
-  static const char* kOrder[] = {"peak_theta1_rad",     "peak_theta2_rad", "peak_theta1_t_s",
-                                 "peak_theta2_t_s",     "impacts",         "residual_theta1_rad",
-                                 "residual_theta2_rad", "overturn"};
-  for (size_t k = 0; k < std::size(kOrder); ++k) {
-    if (key == kOrder[k]) return static_cast<int>(k);
+// The block of a per-block quantity's key ("peak_theta3_rad" -> 3; `prefix` "peak_theta",
+// `suffix` "_rad"), 0 when the key is not of that form.
+int KeyBlock(const std::string& key, const std::string& prefix, const std::string& suffix) {
+  if (key.size() <= prefix.size() + suffix.size() || key.compare(0, prefix.size(), prefix) != 0 ||
+      key.compare(key.size() - suffix.size(), suffix.size(), suffix) != 0) {
+    return 0;
   }
-  return static_cast<int>(std::size(kOrder));
+  const std::string digits = key.substr(prefix.size(), key.size() - prefix.size() - suffix.size());
+  if (digits.empty() || digits.size() > 2 ||
+      !std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; })) {
+    return 0;
+  }
+  return std::stoi(digits);
 }
 
-std::string QuantityLabel(const std::string& key) {
-  for (int b = 0; b < 2; ++b) {
+// Display order of the tested quantities: the peaks of every block, the times of the peaks,
+// the impacts, the residual angles, the overturning; others (the RMS angles) follow in
+// comparison.json's order.
+int QuantityRank(const std::string& key) {
+  constexpr int kGroup = kMaxBlocks + 1;
+  if (const int b = KeyBlock(key, "peak_theta", "_rad")) return 0 * kGroup + b;
+  if (const int b = KeyBlock(key, "peak_theta", "_t_s")) return 1 * kGroup + b;
+  if (key == "impacts") return 2 * kGroup;
+  if (const int b = KeyBlock(key, "residual_theta", "_rad")) return 3 * kGroup + b;
+  if (key == "overturn") return 4 * kGroup;
+  return 5 * kGroup;
+}
+
+// "block 1, block 2" (one or two blocks), "block 1, ..., block N".
+std::string BlockList(int nb) {
+  if (nb <= 2) return "block 1, block 2";
+  return nb == 3 ? "block 1, block 2, block 3" : "block 1, ..., block " + std::to_string(nb);
+}
+
+std::string QuantityLabel(const std::string& key, int nb) {
+  for (int b = 0; b < std::max(nb, 2); ++b) {
     const std::string th = Theta(b);
     if (key == "peak_" + th + "_rad") return "peak |" + th + "|";
     if (key == "peak_" + th + "_t_s") return "time of the largest |" + th + "|";
     if (key == "residual_" + th + "_rad") return "residual " + th + " (end of the run)";
   }
   if (key == "impacts") return "impacts";
-  if (key == "overturn") return "overturning (none, block 1, block 2)";
+  if (key == "overturn") return "overturning (none, " + BlockList(nb) + ")";
   return key;
 }
 
@@ -284,15 +312,21 @@ std::string Spread(const json& t, const std::string& side, const fs::path& file)
   const json* s = Find(t, side);
   if (s == nullptr || s->is_null()) return "no members";
   if (Find(*s, "median") == nullptr) {
-    return "none " + Num(OptNumber(*s, "none", file)) + ", block 1 " +
-           Num(OptNumber(*s, "block1", file)) + ", block 2 " + Num(OptNumber(*s, "block2", file));
+    // none, block 1, block 2 always; block 3 ... as long as the counts have them.
+    std::string out = "none " + Num(OptNumber(*s, "none", file));
+    for (int b = 1; b <= kMaxBlocks; ++b) {
+      const std::string key = Numbered("block", b);
+      if (b > 2 && Find(*s, key) == nullptr) break;
+      out += ", block " + std::to_string(b) + " " + Num(OptNumber(*s, key, file));
+    }
+    return out;
   }
   const std::string unit = OptString(t, "unit", file);
   return Num(OptNumber(*s, "median", file)) + " [" + Num(OptNumber(*s, "q05", file)) + ", " +
          Num(OptNumber(*s, "q95", file)) + "]" + (unit.empty() ? "" : " " + unit);
 }
 
-std::vector<std::vector<std::string>> TestRows(const json& st, const fs::path& file) {
+std::vector<std::vector<std::string>> TestRows(const json& st, const fs::path& file, int nb) {
   const json* tests = Find(st, "tests");
   if (tests == nullptr || !tests->is_object()) return {};
   std::vector<std::string> keys;
@@ -317,7 +351,7 @@ std::vector<std::vector<std::string>> TestRows(const json& st, const fs::path& f
     }
     const double ad = OptNumber(t, "anderson_darling.p_value", file);
     const bool flagged = std::find(rejected.begin(), rejected.end(), key) != rejected.end();
-    rows.push_back({QuantityLabel(key), Spread(t, "reference", file), Spread(t, "engine", file),
+    rows.push_back({QuantityLabel(key, nb), Spread(t, "reference", file), Spread(t, "engine", file),
                     test, Num(OptNumber(t, "statistic", file), 3),
                     Num(OptNumber(t, "p_value", file), 3), Num(OptNumber(t, "p_holm", file), 3),
                     std::isnan(ad) ? "" : Num(ad, 3), flagged ? "DIFFERS" : "no"});
@@ -328,7 +362,10 @@ std::vector<std::vector<std::string>> TestRows(const json& st, const fs::path& f
 // Why an engine has no statistical comparison in comparison.json.
 std::string NoStatisticsReason(const VerdictInput& in, const std::string& name) {
   const Predictability& p = *in.predictability;
-  const bool any_horizon = p.horizon_s[0] || (in.two_blocks && p.horizon_s[1]);
+  bool any_horizon = false;
+  for (int b = 0; b < std::min(Blocks(in), static_cast<int>(p.horizon_s.size())); ++b) {
+    any_horizon = any_horizon || p.horizon_s[b].has_value();
+  }
   if (!any_horizon) {
     return "the reference is predictable for the whole run, so the pointwise comparison is the "
            "verdict and no engine ensemble was run";
@@ -372,7 +409,7 @@ bool EngineStatistics(const VerdictInput& in, const std::string& name, Page& pag
   page.Table(
       {"quantity", "reference median [5%, 95%]", "engine median [5%, 95%]", "test (the verdict's)",
        "statistic", "p", "Holm-adjusted p", "Anderson-Darling p (no margin)", "flagged"},
-      TestRows(*st, file));
+      TestRows(*st, file, Blocks(in)));
   return true;
 }
 
@@ -403,7 +440,7 @@ void SplitErrorsPart(const VerdictInput& in, Page& page) {
   const fs::path& file = in.comparison_path;
   std::vector<std::vector<std::string>> rows;
   for (const std::string& name : in.engines) {
-    for (int b = 0; b < (in.two_blocks ? 2 : 1); ++b) {
+    for (int b = 0; b < Blocks(in); ++b) {
       const std::string k = "engines." + name + "." + Theta(b);
       if (Find(c, k + ".max_abs_error_predictable_rad") == nullptr) continue;
       const double h = OptNumber(c, k + ".predictability_horizon_s", file);
@@ -446,7 +483,8 @@ std::vector<EngineRank> RankEngines(const json& comparison, const std::vector<st
     r.agreement_horizon_s = r.compared_until_s;
     r.ranked_horizon_s = r.compared_until_s;
     bool all_within = true;
-    for (int b = 0; b < 2; ++b) {
+    // Every block comparison.json has: theta1, theta2, ..., thetaN.
+    for (int b = 0; b < kMaxBlocks; ++b) {
       const std::string kb = k + "." + Theta(b);
       if (Find(comparison, kb) == nullptr) continue;
       const bool within = OptBool(comparison, kb + ".within_tolerance", file);

@@ -25,6 +25,8 @@ struct VerdictInput {
   std::filesystem::path summary_path;
   std::vector<std::string> engines;  ///< the compared engines, in page order
   bool two_blocks = false;
+  /// The stack's blocks; 0: from two_blocks (two or one).
+  int blocks = 0;
   std::optional<Predictability> predictability;  ///< nullopt: no reference ensemble was run
 };
 
@@ -36,7 +38,7 @@ struct EngineRank {
   /// The earliest time at which a block leaves the comparison tolerance of the reference
   /// (comparison.json theta_i.horizon_s); the end of the comparison when none does, s.
   double agreement_horizon_s = 0.0;
-  std::string first_block;  ///< "theta2": the block that leaves first; empty when none does
+  std::string first_block;  ///< "theta2", "theta5": the block that leaves first; empty: none
   /// What ranks: per block the agreement horizon capped at the reference's predictability
   /// horizon (beyond it two correct runs differ too, so a later departure ranks nothing); the
   /// earliest of the blocks, s.

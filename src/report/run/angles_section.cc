@@ -1,6 +1,7 @@
 #include "report/run/angles_section.h"
 
 #include "report/common/number_text.h"
+#include "util/format.h"
 
 namespace rockbench::report {
 namespace {
@@ -24,21 +25,22 @@ std::string AnglesCaption(const RunData& run) {
 
 }  // namespace
 
-// theta1 and theta2 against time, every run on shared axes, the reference ensemble's band behind.
+// theta1 .. thetaN against time (one panel per block), every run on shared axes, the reference
+// ensemble's band behind.
 void AnglesFigure(const RunData& run, Figures& fig) {
-  const bool two = run.scene.block_count() == 2;
+  const int nb = run.scene.block_count();
   GnuplotFigure f;
   f.name = "angles";
-  f.height_px = two ? 720 : 420;
+  f.height_px = PanelsHeight_px(nb);
   for (const EngineData& e : run.engines) {
-    std::string dat = two ? "# t_s theta1_rad theta2_rad\n" : "# t_s theta1_rad\n";
+    std::string dat = "# t_s";
+    for (int b = 1; b <= nb; ++b) dat.append(" ").append(Numbered("theta", b)).append("_rad");
+    dat += "\n";
     for (const Sample& s : e.history.samples) {
       AppendDat(dat, s.t_s);
-      dat += ' ';
-      AppendDat(dat, s.theta_rad[0]);
-      if (two) {
+      for (int b = 0; b < nb; ++b) {
         dat += ' ';
-        AppendDat(dat, s.theta_rad[1]);
+        AppendDat(dat, s.theta_rad[b]);
       }
       dat += '\n';
     }
@@ -46,18 +48,21 @@ void AnglesFigure(const RunData& run, Figures& fig) {
   }
   if (run.band) {
     const EnsembleBand& b = *run.band;
-    f.data_files.push_back(
-        {"angles.band.dat",
-         two ? BandDat(run, "# t_s theta1_lo_rad theta1_hi_rad theta2_lo_rad theta2_hi_rad\n",
-                       {&b.lo_rad[0], &b.hi_rad[0], &b.lo_rad[1], &b.hi_rad[1]}, -kInf)
-             : BandDat(run, "# t_s theta1_lo_rad theta1_hi_rad\n", {&b.lo_rad[0], &b.hi_rad[0]},
-                       -kInf)});
+    std::string header = "# t_s";
+    std::vector<const std::vector<double>*> columns;
+    for (int k = 0; k < nb; ++k) {
+      const std::string th = Numbered("theta", k + 1);
+      header.append(" ").append(th).append("_lo_rad ").append(th).append("_hi_rad");
+      columns.push_back(&b.lo_rad[k]);
+      columns.push_back(&b.hi_rad[k]);
+    }
+    f.data_files.push_back({"angles.band.dat", BandDat(run, header + "\n", columns, -kInf)});
   }
   const auto panel = [&](int block) {
     std::string s = "unset arrow\nunset label\n" + OverturnMarks(run) +
                     HorizonMark(run, block, 0.62) + "set ylabel " +
                     Quote("θ_" + std::to_string(block) + " (rad)") + "\n";
-    s += "set title " + Quote(block == 1 ? "block 1 (lower)" : "block 2 (upper)") + "\n";
+    s += "set title " + Quote(BlockTitle(block, nb)) + "\n";
     std::string plot = "plot ";
     if (run.band) {
       plot += Quote("angles.band.dat") + " using 1:" + std::to_string(2 * block) + ":" +
@@ -74,8 +79,10 @@ void AnglesFigure(const RunData& run, Figures& fig) {
     return s + plot + "\n";
   };
   f.script = CommonAxes(run.t_end_s);
-  if (two) {
-    f.script += "set multiplot layout 2,1\n" + panel(1) + panel(2) + "unset multiplot\n";
+  if (nb >= 2) {
+    f.script += "set multiplot layout " + std::to_string(nb) + ",1\n";
+    for (int b = 1; b <= nb; ++b) f.script += panel(b);
+    f.script += "unset multiplot\n";
   } else {
     f.script += panel(1);
   }

@@ -2,12 +2,11 @@
 
 #include <algorithm>
 
-#include "reference/observables.h"
 #include "report/common/number_text.h"
 
 namespace rockbench::report {
 
-void EnergySection(const RunData& run, const reference::Geometry& geo, Figures& fig) {
+void EnergySection(const RunData& run, const StackModel& model, Figures& fig) {
   Page& page = *fig.page;
   page.Heading("Energy");
   GnuplotFigure f;
@@ -17,7 +16,7 @@ void EnergySection(const RunData& run, const reference::Geometry& geo, Figures& 
   std::vector<std::vector<double>> values(run.engines.size());
   for (size_t i = 0; i < run.engines.size(); ++i) {
     for (const Sample& s : run.engines[i].history.samples) {
-      values[i].push_back(reference::EnergyAboveRest_j(geo, reference::StateOf(s, geo.two_blocks)));
+      values[i].push_back(model.EnergyAboveRest_j(s));
       span.Add(values[i].back());
     }
   }
@@ -51,7 +50,11 @@ void EnergySection(const RunData& run, const reference::Geometry& geo, Figures& 
                      "energy above the rest position (J)") +
              (log ? ", log scale (values below 1e-9 of the largest, such as rest, are gaps)" : "") +
              ". Every run's energy, engines included, is evaluated from its angles and rates "
-             "with the rigid-block model (reference/kinematics.h), not read from the engine.");
+             "with the rigid-block model (reference/kinematics.h" +
+             std::string(model.blocks() >= 3 ? "; N blocks: the pivot chain, "
+                                               "reference/stack_chain.h"
+                                             : "") +
+             "), not read from the engine.");
   std::vector<std::vector<std::string>> rows;
   for (size_t i = 0; i < run.engines.size(); ++i) {
     rows.push_back({run.engines[i].name, Num(values[i].front(), 6) + " J",

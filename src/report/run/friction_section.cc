@@ -3,53 +3,52 @@
 #include <algorithm>
 #include <cmath>
 
-#include "reference/observables.h"
 #include "report/common/json_keys.h"
 #include "report/common/number_text.h"
+#include "scene/outcome.h"
 
 namespace rockbench::report {
 
 using nlohmann::json;
 
+namespace {
+
+// The contact of interface k in words: "ground (block 1 on the ground)", "interface (block 2 on
+// block 1)"; N >= 3 blocks: "interface3 (block 3 on block 2)".
+std::string ContactText(int k, int blocks) {
+  if (k == 0) return "ground (block 1 on the ground)";
+  return InterfaceName(k, blocks) + " (block " + std::to_string(k + 1) + " on block " +
+         std::to_string(k) + ")";
+}
+
+}  // namespace
+
 // |T|/N along the reference's samples, left out where the normal force nearly vanishes.
-FrictionFacts ComputeFriction(const RunData& run, const reference::Geometry& geo,
+FrictionFacts ComputeFriction(const RunData& run, const StackModel& model,
                               const GroundMotion& motion, const RunReportOptions& options) {
-  const bool two = run.scene.block_count() == 2;
+  const int nc = model.blocks();
   const EngineData& ref = run.engines.front();
-  const double W = geo.M * geo.g;
-  const double n_min = options.friction_min_normal_fraction * W;
+  const double n_min = options.friction_min_normal_fraction * model.weight_n();
   FrictionFacts facts;
-  auto& rows = facts.rows;
-  Span& span = facts.span;
+  facts.max_mu.assign(nc, 0.0);
+  facts.min_N.assign(nc, std::numeric_limits<double>::infinity());
+  facts.min_N_t.assign(nc, 0.0);
   for (const Sample& s : ref.history.samples) {
-    const reference::ContactDemand c =
-        reference::ContactReactions(geo, ModeOfConfiguration(s.mode).value_or(Mode::kRest),
-                                    reference::StateOf(s, geo.two_blocks), motion.xg_mps2(s.t_s),
-                                    motion.yg_mps2(s.t_s), run.scene.model.equations);
-    const reference::Reactions& d = c.reactions;
-    if (d.N_ground < facts.min_N_ground)
-      facts.min_N_ground = d.N_ground, facts.min_N_ground_t = s.t_s;
-    double mg = kNaN, mi = kNaN;
-    if (d.N_ground >= n_min) {
-      mg = c.mu_ground;
-      facts.max_ground = std::max(facts.max_ground, mg);
-      span.Add(mg);
-    } else {
-      ++facts.left_out;
-    }
-    if (two) {
-      if (d.N_interface < facts.min_N_interface) {
-        facts.min_N_interface = d.N_interface, facts.min_N_interface_t = s.t_s;
-      }
-      if (d.N_interface >= n_min) {
-        mi = c.mu_interface;
-        facts.max_interface = std::max(facts.max_interface, mi);
-        span.Add(mi);
+    const StackModel::Contacts c = model.Reactions(s, motion.xg_mps2(s.t_s), motion.yg_mps2(s.t_s));
+    std::vector<double> row = {s.t_s};
+    for (int k = 0; k < nc; ++k) {
+      if (c.normal_n[k] < facts.min_N[k]) facts.min_N[k] = c.normal_n[k], facts.min_N_t[k] = s.t_s;
+      double mu = kNaN;
+      if (c.normal_n[k] >= n_min) {
+        mu = c.mu[k];
+        facts.max_mu[k] = std::max(facts.max_mu[k], mu);
+        facts.span.Add(mu);
       } else {
         ++facts.left_out;
       }
+      row.push_back(mu);
     }
-    rows.push_back({s.t_s, mg, mi});
+    facts.rows.push_back(std::move(row));
   }
   return facts;
 }
@@ -72,20 +71,19 @@ std::optional<std::pair<double, std::string>> EngineFriction(const RunData& run)
   return out;
 }
 
-void FrictionWarnings(const RunData& run, const reference::Geometry& geo,
-                      const FrictionFacts& facts, std::vector<std::string>& warnings) {
+void FrictionWarnings(const RunData& run, const StackModel& model, const FrictionFacts& facts,
+                      std::vector<std::string>& warnings) {
+  const int nc = static_cast<int>(facts.max_mu.size());
   // Friction: the largest |T|/N where the contact carries at least the option's share of the
   // weight (near N = 0, as at an uplift, the ratio grows without bound and says nothing).
   const auto engine_mu = EngineFriction(run);
-  for (const char* contact : {"ground", "interface"}) {
-    if (!engine_mu) break;
-    if (std::string(contact) == "interface" && run.scene.block_count() != 2) continue;
-    const double need = std::string(contact) == "ground" ? facts.max_ground : facts.max_interface;
+  for (int k = 0; k < nc && engine_mu; ++k) {
+    const double need = facts.max_mu[k];
     if (need > engine_mu->first) {
+      // One or two blocks: "the ground (block 1 on the ground)", "the interface (block 2 on
+      // block 1)".
       warnings.push_back(
-          std::string("Sliding would occur at the ") + contact +
-          (std::string(contact) == "ground" ? " (block 1 on the ground)"
-                                            : " (block 2 on block 1)") +
+          "Sliding would occur at the " + ContactText(k, nc) +
           ": the rigid-block model needs a friction coefficient of " + Num(need, 3) +
           ", more than " + engine_mu->second + "'s " + Num(engine_mu->first, 3) +
           " (between two bodies, its summary's settings.friction_combined). The model assumes "
@@ -94,15 +92,15 @@ void FrictionWarnings(const RunData& run, const reference::Geometry& geo,
   }
   // Tension: a normal force below zero by more than the located event's round-off (1e-6 of the
   // weight; at an uplift the run stops where N crosses zero, and that sample is N = 0 to 1e-9).
-  const double tension_n = -1e-6 * geo.M * geo.g;
-  if (facts.min_N_ground < tension_n ||
-      (run.scene.block_count() == 2 && facts.min_N_interface < tension_n)) {
-    const bool ground = facts.min_N_ground < tension_n;
-    warnings.push_back(std::string("Tension: the reference's normal force at the ") +
-                       (ground ? "ground" : "interface") + " is negative (" +
-                       Num(ground ? facts.min_N_ground : facts.min_N_interface, 4) + " N at t = " +
-                       Fixed(ground ? facts.min_N_ground_t : facts.min_N_interface_t, 4) +
+  // The first contact (from the ground up) that pulls is named.
+  const double tension_n = -1e-6 * model.weight_n();
+  for (int k = 0; k < nc; ++k) {
+    if (!(facts.min_N[k] < tension_n)) continue;
+    const std::string where = k == 0 ? "ground" : InterfaceName(k, nc);
+    warnings.push_back("Tension: the reference's normal force at the " + where + " is negative (" +
+                       Num(facts.min_N[k], 4) + " N at t = " + Fixed(facts.min_N_t[k], 4) +
                        " s): the contact would have to pull, so the block would lift off there.");
+    break;
   }
 }
 
@@ -110,23 +108,28 @@ void FrictionSection(const RunData& run, const FrictionFacts& facts,
                      const RunReportOptions& options, Figures& fig) {
   Page& page = *fig.page;
   page.Heading("Friction needed");
-  const bool two = run.scene.block_count() == 2;
+  const int nc = static_cast<int>(facts.max_mu.size());
   Span span = facts.span;
   const auto& rows = facts.rows;
   const auto engine_mu = EngineFriction(run);
   if (engine_mu) span.Add(engine_mu->first);
   const bool log = span.Decades();
   const double floor_mu = span.hi * 1e-6;
-  std::string dat = two ? "# t_s mu_ground mu_interface (NaN: normal force below the limit)\n"
-                        : "# t_s mu_ground (NaN: normal force below the limit)\n";
+  std::string dat = "# t_s mu_ground";
+  for (int k = 1; k < nc; ++k) dat.append(" mu_").append(InterfaceName(k, nc));
+  dat += " (NaN: normal force below the limit)\n";
   for (const auto& r : rows) {
     AppendDat(dat, r[0]);
-    for (int k = 1; k <= (two ? 2 : 1); ++k) {
+    for (int k = 1; k <= nc; ++k) {
       dat += ' ';
       AppendDat(dat, log && r[k] < floor_mu ? kNaN : r[k]);
     }
     dat += '\n';
   }
+  // One colour per contact: the ground and the first interface as they always were, then a
+  // palette for the interfaces of N >= 3 blocks.
+  static const char* kColours[] = {"#1f4e9a", "#d95f02", "#1b9e77", "#7570b3",
+                                   "#e7298a", "#66a61e", "#a6761d", "#666666"};
   GnuplotFigure f;
   f.name = "friction";
   f.height_px = 480;
@@ -136,10 +139,10 @@ void FrictionSection(const RunData& run, const FrictionFacts& facts,
   f.script +=
       "plot 'friction.dat' using 1:2 with lines lw 1.6 lc rgb '#1f4e9a' title "
       "'ground (block 1 on the ground)'";
-  if (two) {
-    f.script +=
-        ", '' using 1:3 with lines lw 1.6 lc rgb '#d95f02' title "
-        "'interface (block 2 on block 1)'";
+  for (int k = 1; k < nc; ++k) {
+    f.script.append(", '' using 1:").append(std::to_string(k + 2));
+    f.script.append(" with lines lw 1.6 lc rgb '").append(kColours[k % std::size(kColours)]);
+    f.script.append("' title '").append(ContactText(k, nc)).append("'");
   }
   if (engine_mu) {
     f.script +=
@@ -159,17 +162,14 @@ void FrictionSection(const RunData& run, const FrictionFacts& facts,
               "friction coefficient of the run's engines.");
   const std::string engine_mu_text =
       engine_mu ? Num(engine_mu->first) + " (" + engine_mu->second + ")" : std::string("-");
-  const double sum_g = OptNumber(run.summary, "friction_required.ground", run.summary_path);
-  const double sum_i = OptNumber(run.summary, "friction_required.interface", run.summary_path);
   std::vector<std::vector<std::string>> table;
-  table.push_back({"ground", Num(sum_g), Num(facts.max_ground),
-                   Num(facts.min_N_ground, 6) + " N at " + Fixed(facts.min_N_ground_t, 3) + " s",
-                   engine_mu_text});
-  if (two) {
-    table.push_back(
-        {"interface", Num(sum_i), Num(facts.max_interface),
-         Num(facts.min_N_interface, 6) + " N at " + Fixed(facts.min_N_interface_t, 3) + " s",
-         engine_mu_text});
+  for (int k = 0; k < nc; ++k) {
+    // summary.json friction_required.ground, .interface (two blocks), .interface2 ... (N >= 3).
+    const std::string name = k == 0 ? "ground" : InterfaceName(k, nc);
+    const double sum = OptNumber(run.summary, "friction_required." + name, run.summary_path);
+    table.push_back({name, Num(sum), Num(facts.max_mu[k]),
+                     Num(facts.min_N[k], 6) + " N at " + Fixed(facts.min_N_t[k], 3) + " s",
+                     engine_mu_text});
   }
   page.Table({"contact", "largest |T|/N (reference run, every step, N -> 0 included)",
               "largest |T|/N (samples plotted)", "smallest normal force", "engine friction"},

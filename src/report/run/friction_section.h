@@ -8,26 +8,26 @@
 #include <utility>
 #include <vector>
 
-#include "reference/geometry.h"
 #include "report/run/run_figures.h"
 #include "report/run/run_report.h"
+#include "report/run/stack_model.h"
 #include "scene/ground_motion.h"
 
 namespace rockbench::report {
 
-/// |T|/N and the normal forces along the reference's samples.
+/// |T|/N and the normal forces along the reference's samples, per interface (0: block 1 on the
+/// ground; k: block k + 1 on block k).
 struct FrictionFacts {
-  double max_ground = 0.0, max_interface = 0.0;                      ///< over the plotted samples
-  double min_N_ground = std::numeric_limits<double>::infinity();     ///< N
-  double min_N_interface = std::numeric_limits<double>::infinity();  ///< N
-  double min_N_ground_t = 0.0, min_N_interface_t = 0.0;              ///< s
+  std::vector<double> max_mu;   ///< over the plotted samples
+  std::vector<double> min_N;    ///< N
+  std::vector<double> min_N_t;  ///< s
   int left_out = 0;  ///< samples left out (normal force below the option's share of the weight)
-  std::vector<std::array<double, 3>> rows;  ///< t, mu ground, mu interface (NaN: left out)
-  Span span;                                ///< of the values kept
+  std::vector<std::vector<double>> rows;  ///< t, mu of each interface (NaN: left out)
+  Span span;                              ///< of the values kept
 };
 
 /// |T|/N along the reference's samples, left out where the normal force nearly vanishes.
-FrictionFacts ComputeFriction(const RunData& run, const reference::Geometry& geo,
+FrictionFacts ComputeFriction(const RunData& run, const StackModel& model,
                               const GroundMotion& motion, const RunReportOptions& options);
 
 /// The smallest friction coefficient between the blocks (and the ground) among the run's
@@ -37,8 +37,8 @@ std::optional<std::pair<double, std::string>> EngineFriction(const RunData& run)
 
 /// Appends the warnings of the friction facts: sliding would occur at a contact (the model
 /// needs more friction than an engine has), tension (a negative normal force).
-void FrictionWarnings(const RunData& run, const reference::Geometry& geo,
-                      const FrictionFacts& facts, std::vector<std::string>& warnings);
+void FrictionWarnings(const RunData& run, const StackModel& model, const FrictionFacts& facts,
+                      std::vector<std::string>& warnings);
 
 void FrictionSection(const RunData& run, const FrictionFacts& facts,
                      const RunReportOptions& options, Figures& fig);

@@ -9,7 +9,11 @@ namespace {
 
 int EventCode(const std::string& kind) {
   if (kind == "ground_impact") return 1;
-  if (kind == "interface_impact") return 2;
+  // Two blocks: "interface_impact"; N >= 3 blocks: "interface2_impact" ... "interfaceN_impact".
+  if (kind.rfind("interface", 0) == 0 && kind.size() >= 16 &&
+      kind.compare(kind.size() - 7, 7, "_impact") == 0) {
+    return 2;
+  }
   if (kind == "transition" || kind == "initiation") return 3;
   if (kind == "overturn" || kind == "assumption_violated") return 4;
   return 0;  // rest and anything else: not drawn
@@ -58,9 +62,12 @@ void ImpactsSection(const RunData& run, Figures& fig) {
              ":-0.6]\nset key outside top center horizontal\nset grid noytics\n";
   static const char* kStyle[] = {"", "pt 7 ps 1.1 lc rgb '#1f4e9a'", "pt 5 ps 0.9 lc rgb '#d95f02'",
                                  "pt 2 ps 1.2 lc rgb '#444444'", "pt 9 ps 1.8 lc rgb '#b00000'"};
-  static const char* kTitle[] = {
-      "", "ground impact (block 1 lands)", "interface impact (block 2 lands on block 1)",
-      "transition or initiation (no impact)", "overturn or assumption violated"};
+  const bool many = run.scene.block_count() >= 3;
+  const char* kTitle[] = {"", "ground impact (block 1 lands)",
+                          many ? "interface impact (a block lands on the one below)"
+                               : "interface impact (block 2 lands on block 1)",
+                          "transition or initiation (no impact)",
+                          "overturn or assumption violated"};
   std::string plot = "plot ";
   bool first = true;
   for (int code : codes) {

@@ -56,7 +56,7 @@ std::vector<Keyframe> KeyframeTimes(const RunData& run, int max_frames) {
     }
   };
   const EngineData& ref = run.engines.front();
-  for (int b = 1; b <= (run.scene.block_count() == 2 ? 2 : 1); ++b) {
+  for (int b = 1; b <= run.scene.block_count(); ++b) {
     const std::string key = "peaks.theta" + std::to_string(b) + ".t_s";
     add(OptNumber(ref.summary, key, run.summary_path),
         "peak |theta" + std::to_string(b) + "| of the reference");
@@ -66,7 +66,10 @@ std::vector<Keyframe> KeyframeTimes(const RunData& run, int max_frames) {
   }
   int impact = 0;
   for (const Event& ev : ref.events) {
-    if (ev.kind != "ground_impact" && ev.kind != "interface_impact") continue;
+    // "interface_impact" (two blocks), "interface2_impact" ... (N >= 3 blocks).
+    const bool interface_impact = ev.kind.rfind("interface", 0) == 0 && ev.kind.size() >= 16 &&
+                                  ev.kind.compare(ev.kind.size() - 7, 7, "_impact") == 0;
+    if (ev.kind != "ground_impact" && !interface_impact) continue;
     ++impact;
     add(ev.t_s, "", impact);
   }

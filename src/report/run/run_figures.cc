@@ -63,7 +63,9 @@ std::string OverturnMarks(const RunData& run) {
 }
 
 std::string HorizonMark(const RunData& run, int block, double label_y_graph) {
-  if (!run.predictability) return "";
+  if (!run.predictability || block > static_cast<int>(run.predictability->horizon_s.size())) {
+    return "";
+  }
   const std::optional<double>& h = run.predictability->horizon_s[block - 1];
   if (!h || *h > run.t_end_s) return "";
   return VerticalMark(*h, run.t_end_s, kHorizonColour,
@@ -71,8 +73,22 @@ std::string HorizonMark(const RunData& run, int block, double label_y_graph) {
 }
 
 bool AnyHorizonMark(const RunData& run) {
-  return !HorizonMark(run, 1, 0.5).empty() ||
-         (run.scene.block_count() == 2 && !HorizonMark(run, 2, 0.5).empty());
+  for (int b = 1; b <= run.scene.block_count(); ++b) {
+    if (!HorizonMark(run, b, 0.5).empty()) return true;
+  }
+  return false;
+}
+
+std::string BlockTitle(int block, int blocks) {
+  if (blocks <= 2) return block == 1 ? "block 1 (lower)" : "block 2 (upper)";
+  std::string t = "block " + std::to_string(block);
+  if (block == 1) t += " (bottom)";
+  if (block == blocks) t += " (top)";
+  return t;
+}
+
+int PanelsHeight_px(int blocks) {
+  return blocks <= 1 ? 420 : blocks == 2 ? 720 : 240 * blocks;
 }
 
 // "t v1 v2 ..." rows of ensemble_band.csv's `columns` (each at least `floor`) up to the axis end,

@@ -68,6 +68,13 @@ std::string BandDat(const RunData& run, const std::string& header,
 /// "reference ensemble (N members)".
 std::string BandTitle(const RunData& run);
 
+/// The title of block `block`'s panel in a stack of `blocks`: "block 1 (lower)", "block 2
+/// (upper)" for two blocks; "block 1 (bottom)", "block 2", ..., "block N (top)" for N >= 3.
+std::string BlockTitle(int block, int blocks);
+/// The height of a figure of one panel per block: 420 px for one, 720 for two, 240 px a panel
+/// beyond (N = 8: 1920 px).
+int PanelsHeight_px(int blocks);
+
 /// The page and its figures folder: Add renders a figure and puts it on the page.
 struct Figures {
   std::filesystem::path page_dir;

@@ -23,17 +23,19 @@ std::string BlocksText(int n, bool count_only = false) {
 
 // The reference ensemble of a compare folder, when it has one.
 void ReadReferenceEnsemble(RunData& run) {
+  const int nb = run.scene.block_count();
   if (run.comparison) {
-    run.predictability =
-        ReadPredictability(*run.comparison, run.comparison_path, run.scene.block_count() == 2);
+    run.predictability = ReadPredictability(*run.comparison, run.comparison_path, nb);
   }
   const fs::path csv = run.dir / "reference" / "ensemble_band.csv";
   run.band = ReadEnsembleBand(csv);
-  if (run.band && run.band->two_blocks != (run.scene.block_count() == 2)) {
-    throw std::runtime_error(csv.string() + ": has " +
-                             (run.band->two_blocks ? "two blocks" : "one block") +
+  // One block or two: the file's theta2 columns say two. N >= 3: every block's columns.
+  const bool band_differs =
+      run.band && (nb <= 2 ? run.band->two_blocks != (nb == 2) : run.band->blocks != nb);
+  if (band_differs) {
+    throw std::runtime_error(csv.string() + ": has " + BlocksText(run.band->blocks) +
                              " but the scene " + run.scene.path.string() + " has " +
-                             BlocksText(run.scene.block_count(), true));
+                             BlocksText(nb, true));
   }
 }
 
@@ -80,8 +82,6 @@ void ReadSummaryAndScene(const fs::path& run_dir, RunData& run) {
                              "and friction");
   }
   run.scene = LoadScene(scene_path, run.overrides);
-  // The entry of a report: one or two blocks for now (issue 23).
-  RequireAtMostTwoBlocks(run.scene, "report");
 }
 
 // The reference's and every engine's history.csv and events.csv, with colour and label.

@@ -2,7 +2,6 @@
 
 #include <stdexcept>
 
-#include "reference/geometry.h"
 #include "report/common/page.h"
 #include "report/compare/agreement_section.h"
 #include "report/run/angles_section.h"
@@ -14,6 +13,7 @@
 #include "report/run/run_figures.h"
 #include "report/run/run_readers.h"
 #include "report/run/scene_section.h"
+#include "report/run/stack_model.h"
 #include "scene/ground_motion.h"
 
 namespace rockbench::report {
@@ -41,7 +41,7 @@ RunReportResult WriteRunReport(const fs::path& run_dir, const fs::path& out_dir,
     }
   }();
   const GroundMotion motion = GroundMotion::FromScene(run.scene);
-  const reference::Geometry geo = reference::MakeGeometry(run.scene);
+  const StackModel model(run.scene);
   RunReportResult result;
   result.name = fs::absolute(run_dir).lexically_normal().filename().string();
   if (result.name.empty())
@@ -60,8 +60,8 @@ RunReportResult WriteRunReport(const fs::path& run_dir, const fs::path& out_dir,
 
   // Outcome in words; the warnings go to the top of the page.
   std::string outcome = ReferenceOutcome(run, result.warnings);
-  const FrictionFacts ff = ComputeFriction(run, geo, motion, options);
-  FrictionWarnings(run, geo, ff, result.warnings);
+  const FrictionFacts ff = ComputeFriction(run, model, motion, options);
+  FrictionWarnings(run, model, ff, result.warnings);
   outcome += EnginesOutcome(run, result.warnings);
   result.outcome = outcome;
 
@@ -73,7 +73,7 @@ RunReportResult WriteRunReport(const fs::path& run_dir, const fs::path& out_dir,
   AnglesFigure(run, fig);
   AgreementSection(run, options, fig);
   ImpactsSection(run, fig);
-  EnergySection(run, geo, fig);
+  EnergySection(run, model, fig);
   FrictionSection(run, ff, options, fig);
   PicturesSection(run, motion, options, fig, result);
   if (!result.left_out.empty()) {

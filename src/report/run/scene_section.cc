@@ -8,6 +8,8 @@
 #include "report/common/json_keys.h"
 #include "report/common/number_text.h"
 #include "run/engine_registry.h"
+#include "scene/rigid_block.h"
+#include "util/format.h"
 
 namespace rockbench::report {
 namespace {
@@ -144,7 +146,6 @@ void BaseMotionSection(const RunData& run, const GroundMotion& motion, Figures& 
 void SceneSection(const RunData& run, const GroundMotion& motion, Figures& fig) {
   Page& page = *fig.page;
   const Scene& s = run.scene;
-  const reference::Geometry geo = reference::MakeGeometry(s);
   page.Heading("Scene");
   std::string where = "Scene file " + s.path.string();
   if (!run.overrides.empty()) {
@@ -153,26 +154,59 @@ void SceneSection(const RunData& run, const GroundMotion& motion, Figures& fig) 
   }
   page.Paragraph(where + ".");
   std::vector<std::vector<std::string>> rows;
-  const BlockDef& b1 = s.blocks.at(0);
-  rows.push_back({"block 1 (lower)", BlockDescription(b1),
-                  "H/B = " + Num(b1.height_m / b1.width_m) + ", slenderness " +
-                      Num(geo.block1.theta_c) + " rad"});
-  const bool two = s.block_count() == 2;
-  if (two) {
-    const BlockDef& b2 = s.blocks[1];
-    rows.push_back({"block 2 (upper)", BlockDescription(b2),
-                    "H/B = " + Num(b2.height_m / b2.width_m) + ", slenderness " +
-                        Num(geo.block2.theta_c) + " rad"});
-    rows.push_back({"stack", "mass " + Num(geo.M, 6) + " kg",
-                    "slenderness of the stack " + Num(geo.theta_c) + " rad"});
+  const int nb = s.block_count();
+  if (nb <= 2) {
+    const reference::Geometry geo = reference::MakeGeometry(s);
+    const BlockDef& b1 = s.blocks.at(0);
+    rows.push_back({"block 1 (lower)", BlockDescription(b1),
+                    "H/B = " + Num(b1.height_m / b1.width_m) + ", slenderness " +
+                        Num(geo.block1.theta_c) + " rad"});
+    const bool two = nb == 2;
+    if (two) {
+      const BlockDef& b2 = s.blocks[1];
+      rows.push_back({"block 2 (upper)", BlockDescription(b2),
+                      "H/B = " + Num(b2.height_m / b2.width_m) + ", slenderness " +
+                          Num(geo.block2.theta_c) + " rad"});
+      rows.push_back({"stack", "mass " + Num(geo.M, 6) + " kg",
+                      "slenderness of the stack " + Num(geo.theta_c) + " rad"});
+    }
+    rows.push_back({"initial state",
+                    "theta1 = " + Num(s.initial.theta_rad[0]) +
+                        " rad, omega1 = " + Num(s.initial.omega_radps[0]) + " rad/s" +
+                        (two ? ", theta2 = " + Num(s.initial.theta_rad[1]) +
+                                   " rad, omega2 = " + Num(s.initial.omega_radps[1]) + " rad/s"
+                             : ""),
+                    "theta > 0: tilted to the right"});
+  } else {
+    // N >= 3 blocks: one row per block, bottom first, then the stack and the initial state of
+    // every block (one row per block: readable at 6 to 8 blocks).
+    double mass_kg = 0.0, moment_kgm = 0.0, base_m = 0.0;
+    for (int k = 0; k < nb; ++k) {
+      const BlockDef& b = s.blocks[k];
+      const BlockProps p = MakeBlockProps(b.width_m, b.height_m, b.mass_kg);
+      const std::string name = "block " + std::to_string(k + 1) +
+                               (k == 0        ? " (bottom)"
+                                : k == nb - 1 ? " (top)"
+                                              : "");
+      rows.push_back(
+          {name, BlockDescription(b),
+           "H/B = " + Num(b.height_m / b.width_m) + ", slenderness " + Num(p.theta_c) + " rad"});
+      mass_kg += b.mass_kg;
+      moment_kgm += b.mass_kg * (base_m + 0.5 * b.height_m);
+      base_m += b.height_m;
+    }
+    const double h_stack = moment_kgm / mass_kg;
+    rows.push_back({"stack", "mass " + Num(mass_kg, 6) + " kg, " + std::to_string(nb) + " blocks",
+                    "slenderness of the stack " +
+                        Num(std::atan2(0.5 * s.blocks[0].width_m, h_stack)) + " rad"});
+    for (int k = 0; k < nb; ++k) {
+      rows.push_back({"initial state, block " + std::to_string(k + 1),
+                      Numbered("theta", k + 1) + " = " + Num(s.initial.theta_rad[k]) + " rad, " +
+                          Numbered("omega", k + 1) + " = " + Num(s.initial.omega_radps[k]) +
+                          " rad/s",
+                      k == 0 ? "theta > 0: tilted to the right" : ""});
+    }
   }
-  rows.push_back({"initial state",
-                  "theta1 = " + Num(s.initial.theta_rad[0]) +
-                      " rad, omega1 = " + Num(s.initial.omega_radps[0]) + " rad/s" +
-                      (two ? ", theta2 = " + Num(s.initial.theta_rad[1]) +
-                                 " rad, omega2 = " + Num(s.initial.omega_radps[1]) + " rad/s"
-                           : ""),
-                  "theta > 0: tilted to the right"});
   rows.push_back({"run",
                   "duration " + Num(s.run.duration_s) + " s, output every " +
                       Num(s.run.output_interval_s) + " s",

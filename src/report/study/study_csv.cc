@@ -7,6 +7,8 @@
 
 #include "report/run/run_report.h"
 #include "scene/history.h"
+#include "scene/mode.h"
+#include "util/format.h"
 
 namespace rockbench::report {
 namespace {
@@ -80,6 +82,10 @@ EnsembleData ReadEnsemble(const std::filesystem::path& dir) {
   for (const std::string& a : d.axes) {
     if (!col.count(a)) throw ReportInputError(csv.string() + ":1: no column for axis " + a);
   }
+  // N >= 3 blocks: peak_theta3_rad, ... as long as the header has them.
+  while (d.blocks < kMaxBlocks && col.count(Numbered("peak_theta", d.blocks + 1) + "_rad")) {
+    ++d.blocks;
+  }
   for (int n = 2; std::getline(in, line); ++n) {
     const std::string where = csv.string() + ":" + std::to_string(n);
     const std::vector<std::string> c = SplitCsv(line);
@@ -102,6 +108,11 @@ EnsembleData ReadEnsemble(const std::filesystem::path& dir) {
     r.has_result = peak1.has_value();
     r.peak_theta1_rad = peak1.value_or(0.0);
     r.peak_theta2_rad = Number(c[col["peak_theta2_rad"]], where).value_or(0.0);
+    r.peak_theta_rad = {r.peak_theta1_rad, r.peak_theta2_rad};
+    for (int b = 3; b <= d.blocks; ++b) {
+      r.peak_theta_rad.push_back(
+          Number(c[col[Numbered("peak_theta", b) + "_rad"]], where).value_or(0.0));
+    }
     r.overturned_block = static_cast<int>(Number(c[col["overturned_block"]], where).value_or(0));
     r.wall_s = Number(c[col["wall_s"]], where).value_or(0.0);
     r.impacts = static_cast<int>(Number(c[col["impacts"]], where).value_or(0));

@@ -19,6 +19,9 @@ struct EnsembleRecord {
   std::optional<double> pga_g, pgv_mps, pulse_period_s, p1_radps, alpha1_rad;
   int overturned_block = 0;  ///< 0: none
   double peak_theta1_rad = 0.0, peak_theta2_rad = 0.0, wall_s = 0.0;
+  /// Every block's peak |theta| (block k at k - 1; one entry per block of the study, at least
+  /// two: peak_theta1_rad, peak_theta2_rad, then peak_theta3_rad ... of N >= 3 blocks).
+  std::vector<double> peak_theta_rad;
   int impacts = 0;
   bool has_result = false;  ///< the run gave an outcome (not crash, wall_limit, error)
   /// The run's outcome can be used: it has a result, the model's assumptions held and its state
@@ -33,6 +36,9 @@ struct EnsembleData {
   std::vector<std::string> axes;     ///< axis keys, in order
   std::vector<std::string> engines;  ///< "reference" first when run
   long long members = 0;
+  /// Blocks of the study's stack: 2 for a file of one or two blocks (its columns are the
+  /// same), N for one with the peak_theta3_rad ... peak_thetaN_rad columns.
+  int blocks = 2;
   int ranks = 1, jobs = 1;
   double wall_s = 0.0, serial_s = 0.0;
   std::vector<EnsembleRecord> records;  ///< in file order (member, then engine)

@@ -1,6 +1,7 @@
 // The ensemble report: assembles the study's sections (ensemble_sections.h) into one page.
 #include "report/study/study_report.h"
 
+#include <algorithm>
 #include <map>
 
 #include "report/common/number_text.h"
@@ -8,6 +9,7 @@
 #include "report/study/study_csv.h"
 #include "report/study/study_sections.h"
 #include "scene/history.h"
+#include "statistics/statistics.h"
 
 namespace rockbench::report {
 namespace {
@@ -43,6 +45,53 @@ void StudySection(const EnsembleData& d, Page& page) {
   page.Table({"run", "runs", "statuses", "mean wall time per run"}, rows);
 }
 
+}  // namespace
+
+void BlocksSection(const EnsembleData& d, Page& page, std::vector<std::string>& findings) {
+  if (d.blocks < 3) return;
+  page.Heading("By block");
+  page.Paragraph(
+      "A stack of " + std::to_string(d.blocks) +
+      " blocks: per run and block, the members in which that block overturned first (block 1 "
+      "takes the stack with it; block k > 1 fell off block k - 1) and the peak |theta_k| over "
+      "the members with a usable outcome (the median, and the largest; an overturned block's "
+      "peak is its overturn angle).");
+  std::vector<std::vector<std::string>> rows;
+  for (const std::string& e : d.engines) {
+    std::vector<int> overturned(static_cast<size_t>(d.blocks) + 1, 0);
+    std::vector<std::vector<double>> peaks(static_cast<size_t>(d.blocks));
+    int usable = 0;
+    for (const EnsembleRecord& r : d.records) {
+      if (r.engine != e || !r.usable()) continue;
+      ++usable;
+      if (r.overturned_block >= 1 && r.overturned_block <= d.blocks) {
+        ++overturned[r.overturned_block];
+      }
+      for (int b = 0; b < d.blocks && b < static_cast<int>(r.peak_theta_rad.size()); ++b) {
+        peaks[b].push_back(r.peak_theta_rad[b]);
+      }
+    }
+    int most = 0;
+    for (int b = 1; b <= d.blocks; ++b) {
+      if (overturned[b] > overturned[most]) most = b;
+      const std::vector<double>& p = peaks[b - 1];
+      rows.push_back({e, "block " + std::to_string(b),
+                      std::to_string(overturned[b]) + " of " + std::to_string(usable),
+                      p.empty() ? "" : Num(stats::Median(p), 4) + " rad",
+                      p.empty() ? "" : Num(*std::max_element(p.begin(), p.end()), 4) + " rad"});
+    }
+    if (most > 0) {
+      findings.push_back(e + ": block " + std::to_string(most) + " overturns first most often (" +
+                         std::to_string(overturned[most]) + " of " + std::to_string(usable) +
+                         " members with an outcome).");
+    }
+  }
+  page.Table({"run", "block", "overturned first", "median peak |theta|", "largest peak |theta|"},
+             rows);
+}
+
+namespace {
+
 std::string FolderName(const std::filesystem::path& dir) {
   const std::filesystem::path p = dir.lexically_normal();
   std::string name = (p.has_filename() ? p.filename() : p.parent_path().filename()).string();
@@ -62,6 +111,7 @@ std::filesystem::path WriteEnsembleReport(const std::filesystem::path& ensemble_
   // The sections first (they collect the findings), the findings above them.
   Page body("");
   StudySection(d, body);
+  BlocksSection(d, body, findings);
   if (HasSpectrumAxes(d)) SpectraSection(d, fig_dir, body, findings);
   if (HasMotionSuite(d)) {
     FragilitySection(d, fig_dir, body, findings);

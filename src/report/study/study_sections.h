@@ -16,14 +16,20 @@ namespace rockbench::report {
 
 /// How a run ended, as the maps colour it.
 enum class OverturnClass {
-  kNone,     ///< no block overturned
-  kBlock1,   ///< block 1 overturned (and with it the stack)
-  kBlock2,   ///< block 2 fell off block 1
-  kStopped,  ///< the reference's model stopped (assumption_violated: uplift, sliding)
-  kFailed,   ///< no result (crash, wall_limit, error) or an engine's blow-up
+  kNone,        ///< no block overturned
+  kBlock1,      ///< block 1 overturned (and with it the stack)
+  kBlock2,      ///< block 2 fell off block 1
+  kUpperBlock,  ///< N >= 3 blocks: block 3 or one above it fell (EnsembleRecord says which)
+  kStopped,     ///< the reference's model stopped (assumption_violated: uplift, sliding)
+  kFailed,      ///< no result (crash, wall_limit, error) or an engine's blow-up
 };
 OverturnClass ClassOf(const EnsembleRecord& r);
 std::string ClassName(OverturnClass c);
+
+/// N >= 3 blocks: per run and block, how often that block overturned first and its peak angle
+/// over the members (one row per block and run: readable at 6 to 8 blocks). Nothing for one or
+/// two blocks.
+void BlocksSection(const EnsembleData& d, Page& page, std::vector<std::string>& findings);
 
 /// Whether the study is a pulse spectrum: numeric frequency and amplitude axes
 /// (pulse.frequency_ratio and pulse.amplitude_ratio, or base.horizontal.frequency_hz and

@@ -34,9 +34,16 @@ SpectrumAxes FindAxes(const EnsembleData& d) {
   return a;
 }
 
-// RGB as an integer (gnuplot's "lc rgb variable" reads it from the data).
-long ClassColour(OverturnClass c) {
+// RGB as an integer (gnuplot's "lc rgb variable" reads it from the data). Blocks 3 and up
+// (kUpperBlock) have a colour each, from `kUpperColours` by block.
+constexpr long kUpperColours[] = {0x38761d, 0x93c47d, 0x8e7cc3, 0xc27ba0, 0xe69138, 0x76a5af};
+constexpr const char* kUpperColourNames[] = {"dark green", "light green", "purple",
+                                             "pink",       "orange",      "teal"};
+
+long ClassColour(OverturnClass c, int block) {
   switch (c) {
+    case OverturnClass::kUpperBlock:
+      return kUpperColours[static_cast<size_t>(std::max(block - 3, 0)) % std::size(kUpperColours)];
     case OverturnClass::kNone:
       return 0xd9d9d9;
     case OverturnClass::kBlock1:
@@ -55,8 +62,14 @@ long ClassColour(OverturnClass c) {
 struct Cell {
   double x = 0.0, y = 0.0;
   std::map<std::string, OverturnClass> by_engine;
+  std::map<std::string, int> block;  ///< the overturned block (0: none)
   std::map<std::string, int> impacts;
 };
+
+bool Overturned(OverturnClass c) {
+  return c == OverturnClass::kBlock1 || c == OverturnClass::kBlock2 ||
+         c == OverturnClass::kUpperBlock;
+}
 
 // The reference's two overturning modes: overturning without an impact and after one or more,
 // and frequencies at which a safe amplitude lies above an overturning one.
@@ -66,7 +79,7 @@ std::string ReferenceModes(const std::vector<Cell>& cells, const std::string& gr
   for (const Cell& c : cells) {
     const auto it = c.by_engine.find("reference");
     if (it == c.by_engine.end()) continue;
-    if (it->second == OverturnClass::kBlock1 || it->second == OverturnClass::kBlock2) {
+    if (Overturned(it->second)) {
       (c.impacts.at("reference") == 0 ? without : after)++;
     }
     columns[c.x].push_back({c.y, it->second});
@@ -77,7 +90,7 @@ std::string ReferenceModes(const std::vector<Cell>& cells, const std::string& gr
               [](const auto& a, const auto& b) { return a.first < b.first; });
     bool overturned_below = false;
     for (const auto& [y, cls] : col) {
-      const bool over = cls == OverturnClass::kBlock1 || cls == OverturnClass::kBlock2;
+      const bool over = Overturned(cls);
       if (over) overturned_below = true;
       if (overturned_below && cls == OverturnClass::kNone) {
         ++safe_above;
@@ -104,6 +117,7 @@ OverturnClass ClassOf(const EnsembleRecord& r) {
   if (r.status == "assumption_violated") return OverturnClass::kStopped;
   if (r.overturned_block == 1) return OverturnClass::kBlock1;
   if (r.overturned_block == 2) return OverturnClass::kBlock2;
+  if (r.overturned_block >= 3) return OverturnClass::kUpperBlock;
   return OverturnClass::kNone;
 }
 
@@ -115,6 +129,8 @@ std::string ClassName(OverturnClass c) {
       return "block 1 (the stack)";
     case OverturnClass::kBlock2:
       return "block 2";
+    case OverturnClass::kUpperBlock:
+      return "block 3 or above";
     case OverturnClass::kStopped:
       return "model stopped";
     case OverturnClass::kFailed:
@@ -141,6 +157,18 @@ void SpectraSection(const EnsembleData& d, const std::filesystem::path& fig_dir,
                     std::vector<std::string>& findings) {
   const SpectrumAxes ax = FindAxes(d);
   page.Heading("Overturning spectra");
+  std::string upper;
+  if (d.blocks >= 3) {
+    // N >= 3 blocks: a colour for each block from the third up.
+    upper = " Blocks 3 and up (each fell off the block below):";
+    for (int b = 3; b <= d.blocks; ++b) {
+      upper += std::string(b == 3 ? " " : ", ") + "block " + std::to_string(b) + " " +
+               kUpperColourNames[static_cast<size_t>(b - 3) % std::size(kUpperColourNames)];
+    }
+    upper +=
+        "; a member where a different block overturns in the engine's run than in the "
+        "reference's differs.";
+  }
   page.Paragraph(
       "Each map shows how every member ended, over the pulse's frequency and amplitude (" +
       ax.x_label + " against " + ax.y_label +
@@ -148,7 +176,8 @@ void SpectraSection(const EnsembleData& d, const std::filesystem::path& fig_dir,
       "stack); light blue: block 2 fell off block 1; yellow: the reference's model stopped "
       "(the block was thrown off its pivot or would slide: outside the rocking model's "
       "assumptions); red: no result. A red cross on an engine's panel marks a member whose "
-      "outcome differs from the reference's where the reference's model holds.");
+      "outcome differs from the reference's where the reference's model holds." +
+      upper);
   // Group the members by the other axes.
   std::map<std::string, std::map<long long, Cell>> groups;
   std::vector<std::string> order;
@@ -159,6 +188,7 @@ void SpectraSection(const EnsembleData& d, const std::filesystem::path& fig_dir,
     c.x = std::stod(r.axis_values[ax.x]);
     c.y = std::stod(r.axis_values[ax.y]);
     c.by_engine[r.engine] = ClassOf(r);
+    c.block[r.engine] = r.overturned_block;
     c.impacts[r.engine] = r.impacts;
   }
   std::vector<std::vector<std::string>> table;
@@ -188,15 +218,16 @@ void SpectraSection(const EnsembleData& d, const std::filesystem::path& fig_dir,
       for (const Cell& c : cells) {
         const auto it = c.by_engine.find(e);
         if (it == c.by_engine.end()) continue;
-        data += Num(c.x, 10) + " " + Num(c.y, 10) + " " + std::to_string(ClassColour(it->second)) +
-                "\n";
+        data += Num(c.x, 10) + " " + Num(c.y, 10) + " " +
+                std::to_string(ClassColour(it->second, c.block.at(e))) + "\n";
         const auto ref = c.by_engine.find("reference");
         if (IsReference(e) || ref == c.by_engine.end()) continue;
         if (ref->second == OverturnClass::kStopped || ref->second == OverturnClass::kFailed) {
           ++stopped;
           continue;
         }
-        if (it->second == ref->second) {
+        // The same class, and for blocks 3 and up the same block.
+        if (it->second == ref->second && c.block.at(e) == c.block.at("reference")) {
           ++agree;
         } else {
           ++disagree;

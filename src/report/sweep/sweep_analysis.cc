@@ -51,28 +51,41 @@ std::optional<double> ObservedOrder(const SweepRecord& coarse, const SweepRecord
   return std::log(ec / ef) / std::log(sc / sf);
 }
 
-AgreementCriterion PeakAgreement(double tolerance, bool two_blocks) {
+AgreementCriterion PeakAgreement(double tolerance, bool two_blocks, int blocks) {
   AgreementCriterion c;
   c.name = Format("%g", tolerance * 100.0) + "% peak-angle agreement";
-  c.definition = "|peak relative error| <= " + Format("%g", tolerance * 100.0) + "% for theta1" +
-                 (two_blocks ? " and theta2" : "") +
+  const std::string which =
+      blocks >= 3  ? std::string(" for every block (theta1 to ") + Numbered("theta", blocks) + ")"
+      : two_blocks ? " for theta1 and theta2"
+                   : " for theta1";
+  c.definition = "|peak relative error| <= " + Format("%g", tolerance * 100.0) + "%" + which +
                  ", and the same overturn outcome as the reference";
   c.reaches = [tolerance](const SweepRecord& r) { return ReachesPeakAgreement(r, tolerance); };
   return c;
 }
 
-AgreementCriterion HistoryAgreement(double fraction, double peak_theta1_rad,
-                                    double peak_theta2_rad) {
+AgreementCriterion HistoryAgreement(double fraction, double peak_theta1_rad, double peak_theta2_rad,
+                                    const std::vector<double>& peaks_from3_rad) {
   AgreementCriterion c;
   const double bound1 = fraction * peak_theta1_rad, bound2 = fraction * peak_theta2_rad;
+  std::vector<double> bounds_from3;
+  std::string from3_text;
+  for (size_t k = 0; k < peaks_from3_rad.size(); ++k) {
+    bounds_from3.push_back(fraction * peaks_from3_rad[k]);
+    from3_text += ", " + Format("%.3g", bounds_from3.back()) + " rad for " +
+                  Numbered("theta", static_cast<int>(k) + 3);
+  }
   c.name = Format("%g", fraction * 100.0) + "% history agreement";
   c.definition = "max |angle error| over the whole run <= " + Format("%g", fraction * 100.0) +
                  "% of the reference's peak angle: " + Format("%.3g", bound1) + " rad for theta1" +
                  (peak_theta2_rad > 0.0 ? ", " + Format("%.3g", bound2) + " rad for theta2" : "") +
-                 "; and the same overturn outcome";
-  c.reaches = [bound1, bound2, two = peak_theta2_rad > 0.0](const SweepRecord& r) {
+                 from3_text + "; and the same overturn outcome";
+  c.reaches = [bound1, bound2, two = peak_theta2_rad > 0.0, bounds_from3](const SweepRecord& r) {
     if (!r.failure.empty() || !r.overturn_agree) return false;
     if (r.theta1_max_abs_error_rad > bound1) return false;
+    for (size_t k = 0; k < bounds_from3.size() && k < r.theta_from3_max_abs_error_rad.size(); ++k) {
+      if (r.theta_from3_max_abs_error_rad[k] > bounds_from3[k]) return false;
+    }
     return !two || !r.has_theta2 || r.theta2_max_abs_error_rad <= bound2;
   };
   return c;
@@ -80,10 +93,18 @@ AgreementCriterion HistoryAgreement(double fraction, double peak_theta1_rad,
 
 CheapestSetting FindCheapestSetting(const std::vector<SweepRecord>& rows, double peak_tolerance,
                                     const std::string& engine) {
+  int blocks = 0;
+  for (const SweepRecord& r : rows) {
+    if (!r.theta_from3_max_abs_error_rad.empty()) {
+      blocks = std::max(blocks, 2 + static_cast<int>(r.theta_from3_max_abs_error_rad.size()));
+    }
+  }
   return FindCheapestSetting(
       rows,
-      PeakAgreement(peak_tolerance, std::any_of(rows.begin(), rows.end(),
-                                                [](const SweepRecord& r) { return r.has_theta2; })),
+      PeakAgreement(
+          peak_tolerance,
+          std::any_of(rows.begin(), rows.end(), [](const SweepRecord& r) { return r.has_theta2; }),
+          blocks),
       engine);
 }
 
@@ -147,10 +168,13 @@ CheapestSetting FindCheapestSetting(const std::vector<SweepRecord>& rows,
     out.statement +=
         " The reference reaches the same or better accuracy (max angle error, the "
         "max |error| over the run" +
-        std::string(b.has_theta2 ? " (the larger of theta1's and theta2's)" : "") + ", <= the " +
-        engine + " run's, and the same criterion) with " + SweepSettingDescription(r) + " at " +
-        Format("%.3g", r.wall_s) + " s wall (max angle error " + Format("%.2e", MaxAngleError(r)) +
-        " rad), " + Format("%.3g", b.wall_s / r.wall_s) + " times cheaper.";
+        std::string(!b.theta_from3_max_abs_error_rad.empty() ? " (the largest of every block's)"
+                    : b.has_theta2 ? " (the larger of theta1's and theta2's)"
+                                   : "") +
+        ", <= the " + engine + " run's, and the same criterion) with " +
+        SweepSettingDescription(r) + " at " + Format("%.3g", r.wall_s) +
+        " s wall (max angle error " + Format("%.2e", MaxAngleError(r)) + " rad), " +
+        Format("%.3g", b.wall_s / r.wall_s) + " times cheaper.";
   } else {
     out.statement +=
         " No reference setting in this sweep reaches the same or better accuracy "

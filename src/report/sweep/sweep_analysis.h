@@ -23,13 +23,15 @@ struct AgreementCriterion {
   std::function<bool(const SweepRecord&)> reaches;
 };
 
-/// The criterion: ReachesPeakAgreement(r, tolerance).
-AgreementCriterion PeakAgreement(double tolerance, bool two_blocks);
+/// The criterion: ReachesPeakAgreement(r, tolerance). `blocks` >= 3: the definition
+/// names every block (theta1 .. thetaN); else `two_blocks` says one or two.
+AgreementCriterion PeakAgreement(double tolerance, bool two_blocks, int blocks = 0);
 /// A stricter one on the whole history: max |theta_i error| over the run <= fraction x the
 /// reference's peak |theta_i| for each block (peak_theta2_rad 0: one block), and the same
 /// overturn outcome.
-AgreementCriterion HistoryAgreement(double fraction, double peak_theta1_rad,
-                                    double peak_theta2_rad);
+/// `peaks_from3_rad`: N >= 3 blocks, the peaks of blocks 3..N (their bounds likewise).
+AgreementCriterion HistoryAgreement(double fraction, double peak_theta1_rad, double peak_theta2_rad,
+                                    const std::vector<double>& peaks_from3_rad = {});
 
 /// The cheapest setting of one engine reaching a criterion, and the cheapest reference setting
 /// with the same or better accuracy: max angle error <= the engine run's, and it reaches the

@@ -7,6 +7,8 @@
 #include <stdexcept>
 
 #include "run/engine_registry.h"
+#include "scene/mode.h"
+#include "util/format.h"
 
 namespace rockbench::report {
 namespace {
@@ -66,6 +68,7 @@ class RowReader {
       : path_(path), line_(line), index_(index), fields_(fields) {}
 
   const std::string& Text(const std::string& column) const { return fields_.at(index_.at(column)); }
+  bool Has(const std::string& column) const { return index_.count(column) != 0; }
   [[noreturn]] void Fail(const std::string& column, const std::string& what) const {
     throw std::runtime_error(path_.string() + ":" + std::to_string(line_) + ": column '" + column +
                              "': " + what);
@@ -192,6 +195,15 @@ void ReadRunResults(const RowReader& rd, SweepRecord& r) {
   if (r.has_theta2) {
     for (const NumberColumn& c : theta2) *c.value = rd.Number(c.name);
   }
+  // N >= 3 blocks: theta3_*, theta4_*, ... as long as the file has them.
+  std::vector<std::string> from3_names;
+  for (int b = 3; b <= kMaxBlocks && rd.Has(Numbered("theta", b) + "_max_abs_error_rad"); ++b) {
+    const std::string th = Numbered("theta", b);
+    r.theta_from3_max_abs_error_rad.push_back(rd.Number(th + "_max_abs_error_rad"));
+    r.theta_from3_peak_rel_error.push_back(rd.Number(th + "_peak_rel_error"));
+    from3_names.push_back(th + "_max_abs_error_rad");
+    from3_names.push_back(th + "_peak_rel_error");
+  }
   r.impacts_reference = rd.Integer("impacts_reference", 0);
   r.impacts_engine = rd.Integer("impacts_engine", 0);
   r.impacts_matched = rd.Integer("impacts_matched", 0);
@@ -204,6 +216,13 @@ void ReadRunResults(const RowReader& rd, SweepRecord& r) {
     if (!std::isfinite(*c.value)) {
       r.failure = std::string("non-finite ") + c.name + " (" + rd.Text(c.name) + ")";
       break;
+    }
+  }
+  for (size_t k = 0; k < from3_names.size() && r.failure.empty(); ++k) {
+    const double v =
+        k % 2 == 0 ? r.theta_from3_max_abs_error_rad[k / 2] : r.theta_from3_peak_rel_error[k / 2];
+    if (!std::isfinite(v)) {
+      r.failure = "non-finite " + from3_names[k] + " (" + rd.Text(from3_names[k]) + ")";
     }
   }
   if (r.failure.empty() && !(r.wall_s > 0.0)) r.failure = "wall_s is not positive";
@@ -258,13 +277,17 @@ std::string SweepSettingLabel(const SweepRecord& r) {
 }
 
 double MaxAngleError(const SweepRecord& r) {
-  return r.has_theta2 ? std::max(r.theta1_max_abs_error_rad, r.theta2_max_abs_error_rad)
-                      : r.theta1_max_abs_error_rad;
+  double e = r.has_theta2 ? std::max(r.theta1_max_abs_error_rad, r.theta2_max_abs_error_rad)
+                          : r.theta1_max_abs_error_rad;
+  for (const double v : r.theta_from3_max_abs_error_rad) e = std::max(e, v);
+  return e;
 }
 
 double MaxPeakRelError(const SweepRecord& r) {
   const double a = std::fabs(r.theta1_peak_rel_error);
-  return r.has_theta2 ? std::max(a, std::fabs(r.theta2_peak_rel_error)) : a;
+  double e = r.has_theta2 ? std::max(a, std::fabs(r.theta2_peak_rel_error)) : a;
+  for (const double v : r.theta_from3_peak_rel_error) e = std::max(e, std::fabs(v));
+  return e;
 }
 
 std::string SweepSettingDescription(const SweepRecord& r) {

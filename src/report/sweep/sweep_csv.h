@@ -25,6 +25,9 @@ struct SweepRecord {
   bool has_theta2 = false;  ///< two-block scene (the theta2 columns are filled)
   double theta2_max_abs_error_rad = 0.0, theta2_rms_error_rad = 0.0, theta2_horizon_s = 0.0;
   double theta2_peak_rel_error = 0.0, theta2_peak_time_error_s = 0.0;
+  /// N >= 3 blocks (the file has theta3_* ... thetaN_* columns): blocks 3..N's max |angle error|
+  /// and peak relative error (block 3 at index 0); empty for one or two blocks.
+  std::vector<double> theta_from3_max_abs_error_rad, theta_from3_peak_rel_error;
   int impacts_reference = 0, impacts_engine = 0, impacts_matched = 0;
   double max_abs_impact_time_error_s = 0.0;
   bool overturn_agree = false, final_agree = false;
@@ -48,9 +51,9 @@ std::string SweepFamily(const SweepRecord& r);
 std::string SweepSettingLabel(const SweepRecord& r);
 /// The varying setting's value (time step s, rtol, or step s): smaller is finer.
 double SweepSettingValue(const SweepRecord& r);
-/// Max over theta1 (and theta2) of the max |angle error| over the run, rad.
+/// Max over theta1 (and theta2, ..., thetaN) of the max |angle error| over the run, rad.
 double MaxAngleError(const SweepRecord& r);
-/// Max over theta1 (and theta2) of |peak relative error|.
+/// Max over theta1 (and theta2, ..., thetaN) of |peak relative error|.
 double MaxPeakRelError(const SweepRecord& r);
 /// A record's setting in words: "Bullet double (50 iterations), time step 1e-3 s", "reference
 /// dopri5, rtol 1e-8", "reference RK4, step 1e-3 s".

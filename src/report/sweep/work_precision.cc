@@ -13,6 +13,7 @@
 #include "report/common/page.h"
 #include "run/engine_registry.h"
 #include "scene/history.h"
+#include "scene/mode.h"
 #include "util/format.h"
 
 namespace rockbench::report {
@@ -65,7 +66,9 @@ struct SweepInfo {
   std::string tight_status;
   double tight_peak1 = 0.0, tight_peak2 = 0.0;        // rad
   double tight_peak1_t = -1.0, tight_peak2_t = -1.0;  // s; -1: not recorded
-  int overturn_block = 0;                             // 1, 2; 0: none
+  int overturn_block = 0;                             // 1..N; 0: none
+  // N >= 3 blocks: the tight reference's peaks of blocks 3..N (block 3 at index 0), rad.
+  std::vector<double> tight_peak_from3;
   double overturn_t_s = 0.0;
   // The simulated span a run covers: runs stop when a block overturns (the reference's
   // overturn time stands for every run's), else the scene's duration. The real-time mark.
@@ -75,6 +78,16 @@ struct SweepInfo {
   }
   std::string machine;
 };
+
+// ", peak |theta3| X rad, ..." of the tight reference's blocks 3..N; empty for one or two.
+std::string PeaksFrom3Text(const SweepInfo& info) {
+  std::string out;
+  for (size_t k = 0; k < info.tight_peak_from3.size(); ++k) {
+    out.append(", peak |").append(Numbered("theta", static_cast<int>(k) + 3)).append("| ");
+    out.append(Format("%.4g", info.tight_peak_from3[k])).append(" rad");
+  }
+  return out;
+}
 
 SweepInfo ReadSweepInfo(const fs::path& path) {
   SweepInfo info;
@@ -96,6 +109,9 @@ SweepInfo ReadSweepInfo(const fs::path& path) {
     info.tight_peak2 = t.value("peak_theta2_rad", 0.0);
     info.tight_peak1_t = t.value("peak_theta1_t_s", -1.0);
     info.tight_peak2_t = t.value("peak_theta2_t_s", -1.0);
+    for (int b = 3; b <= kMaxBlocks && t.contains(Numbered("peak_theta", b) + "_rad"); ++b) {
+      info.tight_peak_from3.push_back(t.value(Numbered("peak_theta", b) + "_rad", 0.0));
+    }
     if (t.contains("overturn_block") && t.at("overturn_block").is_number_integer()) {
       info.overturn_block = t.at("overturn_block").get<int>();
       info.overturn_t_s = t.value("overturn_t_s", 0.0);
@@ -261,6 +277,7 @@ void SweepSection(const fs::path& sweep_dir, const std::vector<SweepRecord>& row
         info.tight_status + ", peak |theta1| " + Format("%.4g", info.tight_peak1) + " rad" +
         (info.tight_peak2 > 0.0 ? ", peak |theta2| " + Format("%.4g", info.tight_peak2) + " rad"
                                 : std::string()) +
+        PeaksFrom3Text(info) +
         (info.overturn_block > 0
              ? ", block " + std::to_string(info.overturn_block) + " overturns at " +
                    Format("%.4g", info.overturn_t_s) + " s, where every run that overturns stops"
@@ -311,8 +328,10 @@ void StatementSection(const std::vector<SweepRecord>& rows, const SweepInfo& inf
       page.Paragraph("A stricter criterion, on the whole history:");
     }
     for (const std::string& engine : SweepEngines(rows)) {
-      page.Paragraph(FindCheapestSetting(
-                         rows, HistoryAgreement(0.01, info.tight_peak1, info.tight_peak2), engine)
+      page.Paragraph(FindCheapestSetting(rows,
+                                         HistoryAgreement(0.01, info.tight_peak1, info.tight_peak2,
+                                                          info.tight_peak_from3),
+                                         engine)
                          .statement);
     }
   }
@@ -329,7 +348,8 @@ void RankingSection(const std::vector<SweepRecord>& rows, const SweepInfo& info,
   const std::vector<double> fractions = {0.1, 0.01, 0.001};
   std::vector<AgreementCriterion> levels;
   for (double f : fractions) {
-    levels.push_back(HistoryAgreement(f, info.tight_peak1, info.tight_peak2));
+    levels.push_back(
+        HistoryAgreement(f, info.tight_peak1, info.tight_peak2, info.tight_peak_from3));
   }
   const std::vector<EngineAtLevels> ranked = RankAtEqualAccuracy(rows, levels, 1);
   if (ranked.empty()) return;
@@ -433,12 +453,32 @@ void FiguresSection(const std::vector<SweepRecord>& rows, const SweepInfo& info,
   }
 }
 
+// The largest |value| of blocks 3..N of a row, "%.2e (θk)"; empty for one or two blocks.
+std::string LargestFrom3(const std::vector<double>& values) {
+  if (values.empty()) return "";
+  size_t w = 0;
+  for (size_t k = 1; k < values.size(); ++k) {
+    if (std::fabs(values[k]) > std::fabs(values[w])) w = k;
+  }
+  return Format("%.2e", values[w]) + " (θ" + std::to_string(w + 3) + ")";
+}
+
 // Every usable run by family, with the observed order of convergence.
 void RunsSection(const std::vector<SweepRecord>& rows, double duration, Page& page) {
+  // N >= 3 blocks: blocks 3..N in two more columns, the largest of them each (one row per
+  // run stays readable at 6 to 8 blocks).
+  int blocks = 2;
+  for (const SweepRecord& r : rows) {
+    blocks = std::max(blocks, 2 + static_cast<int>(r.theta_from3_max_abs_error_rad.size()));
+  }
+  const bool many = blocks >= 3;
   page.Heading("All runs by family");
   page.Paragraph(
-      "Max angle error: the max over the run of |theta_engine - theta_reference|, the "
-      "larger of theta1's and theta2's. Order: the observed order of convergence "
+      std::string("Max angle error: the max over the run of |theta_engine - theta_reference|, ") +
+      (many ? "per block (blocks 3 to " + std::to_string(blocks) +
+                  ": the largest of them, and which)"
+            : "the larger of theta1's and theta2's") +
+      ". Order: the observed order of convergence "
       "from the previous (coarser) setting of the family, log(e_coarse/e_fine) / "
       "log(s_coarse/s_fine). Real-time factor: simulated time / wall time (the simulated "
       "time ends where the reference overturns, if it does).");
@@ -448,22 +488,38 @@ void RunsSection(const std::vector<SweepRecord>& rows, double duration, Page& pa
       const SweepRecord& r = rows[indices[k]];
       std::optional<double> order;
       if (k > 0) order = ObservedOrder(rows[indices[k - 1]], r);
-      table.push_back(
-          {family, SweepSettingLabel(r), Format("%.3g", r.wall_s),
-           duration > 0.0 ? Format("%.3g", duration / r.wall_s) : "",
-           Format("%.2e", r.theta1_max_abs_error_rad),
-           r.has_theta2 ? Format("%.2e", r.theta2_max_abs_error_rad) : "",
-           Format("%.2e", r.theta1_peak_rel_error),
-           r.has_theta2 ? Format("%.2e", r.theta2_peak_rel_error) : "",
-           std::to_string(r.impacts_matched) + "/" + std::to_string(r.impacts_reference),
-           r.overturn_agree ? "yes" : "no", ReachesPeakAgreement(r, 0.01) ? "yes" : "no",
-           order ? Format("%.2f", *order) : "", r.status});
+      std::vector<std::string> cells = {
+          family,
+          SweepSettingLabel(r),
+          Format("%.3g", r.wall_s),
+          duration > 0.0 ? Format("%.3g", duration / r.wall_s) : "",
+          Format("%.2e", r.theta1_max_abs_error_rad),
+          r.has_theta2 ? Format("%.2e", r.theta2_max_abs_error_rad) : ""};
+      if (many) cells.push_back(LargestFrom3(r.theta_from3_max_abs_error_rad));
+      cells.push_back(Format("%.2e", r.theta1_peak_rel_error));
+      cells.push_back(r.has_theta2 ? Format("%.2e", r.theta2_peak_rel_error) : "");
+      if (many) cells.push_back(LargestFrom3(r.theta_from3_peak_rel_error));
+      for (std::string c :
+           {std::to_string(r.impacts_matched) + "/" + std::to_string(r.impacts_reference),
+            std::string(r.overturn_agree ? "yes" : "no"),
+            std::string(ReachesPeakAgreement(r, 0.01) ? "yes" : "no"),
+            order ? Format("%.2f", *order) : std::string(), r.status}) {
+        cells.push_back(std::move(c));
+      }
+      table.push_back(std::move(cells));
     }
   }
-  page.Table({"family", "setting", "wall (s)", "x real time", "max err θ1 (rad)",
-              "max err θ2 (rad)", "peak rel err θ1", "peak rel err θ2", "impacts matched",
-              "same overturn", "1% peak", "order", "status"},
-             table);
+  std::vector<std::string> header = {"family",      "setting",          "wall (s)",
+                                     "x real time", "max err θ1 (rad)", "max err θ2 (rad)"};
+  const std::string range = blocks == 3 ? std::string("θ3") : "θ3-θ" + std::to_string(blocks);
+  if (many) header.push_back("max err " + range + " (largest, rad)");
+  header.push_back("peak rel err θ1");
+  header.push_back("peak rel err θ2");
+  if (many) header.push_back("peak rel err " + range + " (largest)");
+  for (const char* h : {"impacts matched", "same overturn", "1% peak", "order", "status"}) {
+    header.push_back(h);
+  }
+  page.Table(header, table);
 }
 
 // The failed rows with their sweep.csv line.

@@ -1,0 +1,168 @@
+// Reports of N >= 3 blocks (issue 23), on folders made by the real `rockbench` program with the
+// reference (the engines refuse N >= 3 until they are generalised): a run page names every
+// block's angle, draws one panel per block and one friction curve per interface, its energy is
+// the chain's potential energy at the release; a study's page has its table by block; a sweep's
+// records and page carry block 3. Keyframes and the animation are left out (renders have their
+// own N-block tests).
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "common/stack_scene.h"
+#include "report/common/interpolation.h"
+#include "report/run/run_report.h"
+#include "report/run_folder.h"
+#include "report/study/study_report.h"
+#include "report/sweep/sweep_csv.h"
+#include "report/sweep/work_precision.h"
+#include "scene/history.h"
+
+namespace rockbench::report {
+namespace {
+
+namespace fs = std::filesystem;
+using testing_util::RockbenchOk;
+using testing_util::Slurp;
+
+void WriteText(const fs::path& p, const std::string& text) {
+  WriteFileAtomic(p, text);
+}
+
+class StackReportTest : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    base_ = fs::temp_directory_path() / ("rockbench_n_blocks_report_" + std::to_string(getpid()));
+    fs::remove_all(base_);
+    fs::create_directories(base_);
+    WriteText(base_ / "three.toml", testing_util::StackSceneToml(3, 1.0));
+    WriteText(base_ / "six.toml", testing_util::StackSceneToml(6, 0.5));
+    // A comparison with the reference alone: its witness, its perturbation members (4).
+    RockbenchOk({"compare", (base_ / "three.toml").string(), "--engines", "reference", "--members",
+                 "4", "--jobs", "2", "--out", (base_ / "three").string()});
+    RockbenchOk({"run", (base_ / "six.toml").string(), "--out", (base_ / "six").string()});
+  }
+  static void TearDownTestSuite() { fs::remove_all(base_); }
+  static RunReportOptions Options() {
+    RunReportOptions o;
+    o.keyframes = false;
+    o.animation = false;
+    return o;
+  }
+  static fs::path base_;
+};
+fs::path StackReportTest::base_;
+
+TEST_F(StackReportTest, ARunPageOfThreeBlocksNamesTheta3) {
+  const RunReportResult r = WriteRunReport(base_ / "three", base_ / "out", Options());
+  const std::string md = Slurp(r.page_dir / "report.md");
+  // The predictability table has a row per block; the scene table a row per block.
+  for (const char* text : {"| theta1 |", "| theta2 |", "| theta3 |", "| block 3 (top) |",
+                           "| initial state, block 3 |", "| interface3 |"}) {
+    EXPECT_NE(md.find(text), std::string::npos) << text;
+  }
+  // The angles: every block's column, one panel per block.
+  const std::string dat = Slurp(r.page_dir / "figures" / "angles.reference.dat");
+  EXPECT_EQ(dat.substr(0, dat.find('\n')), "# t_s theta1_rad theta2_rad theta3_rad");
+  const std::string gp = Slurp(r.page_dir / "figures" / "angles.gp");
+  EXPECT_NE(gp.find("set multiplot layout 3,1"), std::string::npos);
+  EXPECT_NE(gp.find("block 3 (top)"), std::string::npos);
+  // The band of the 4 members behind every block: t and (lo, hi) of each.
+  const std::string band = Slurp(r.page_dir / "figures" / "angles.band.dat");
+  EXPECT_EQ(band.substr(0, band.find('\n')),
+            "# t_s theta1_lo_rad theta1_hi_rad theta2_lo_rad theta2_hi_rad theta3_lo_rad "
+            "theta3_hi_rad");
+  // Friction: the ground and both interfaces.
+  const std::string friction = Slurp(r.page_dir / "figures" / "friction.dat");
+  EXPECT_EQ(friction.substr(0, friction.find('\n')),
+            "# t_s mu_ground mu_interface2 mu_interface3 (NaN: normal force below the limit)");
+  EXPECT_TRUE(r.left_out.size() >= 1u);  // keyframes and animation, on request
+}
+
+// The energy figure of a 6-block run: at the release every block is still, so the energy above
+// rest is the potential energy of the tilted chain, computed here independently from the
+// pivots' heights (docs/n-blocks.md): with every interface on its right corner, block k's mass
+// centre is at y_k = P_k + b_k sin(theta_k) + h_k cos(theta_k) and the next pivot at P_(k+1) =
+// P_k - (b_(k+1) - b_k) sin(theta_k) + 2 h_k cos(theta_k). Tolerance: the data file's 9
+// significant digits (5e-9 relative) on a sum of six O(100 J) terms.
+TEST_F(StackReportTest, TheEnergyOfASixBlockRunIsTheChainsPotentialEnergy) {
+  const RunReportResult r = WriteRunReport(base_ / "six", base_ / "out", Options());
+  const Scene s = testing_util::StackScene(6, 0.5);
+  double pivot = 0.0, rest_base = 0.0, energy = 0.0;
+  for (int k = 0; k < 6; ++k) {
+    const double b = 0.5 * s.blocks[k].width_m, h = 0.5 * s.blocks[k].height_m;
+    const double th = s.initial.theta_rad[k];
+    const double y = pivot + b * std::sin(th) + h * std::cos(th);
+    energy += s.blocks[k].mass_kg * s.run.gravity_mps2 * (y - (rest_base + h));
+    rest_base += 2.0 * h;
+    const double b_next = k + 1 < 6 ? 0.5 * s.blocks[k + 1].width_m : b;
+    pivot += -(b_next - b) * std::sin(th) + 2.0 * h * std::cos(th);
+  }
+  std::istringstream dat(Slurp(r.page_dir / "figures" / "energy.reference.dat"));
+  std::string header;
+  std::getline(dat, header);
+  double t = -1.0, e = 0.0;
+  dat >> t >> e;
+  EXPECT_EQ(t, 0.0);
+  EXPECT_NEAR(e, energy, 5e-9 * energy);
+  const std::string md = Slurp(r.page_dir / "report.md");
+  for (int b = 1; b <= 6; ++b) {
+    EXPECT_NE(md.find("| block " + std::to_string(b)), std::string::npos) << b;
+  }
+  EXPECT_NE(Slurp(r.page_dir / "figures" / "angles.gp").find("set multiplot layout 6,1"),
+            std::string::npos);
+}
+
+// The interpolator of a 3-block history: every block, at sample times exactly.
+TEST_F(StackReportTest, TheInterpolatorHasEveryBlock) {
+  const History h = ReadHistoryCsv(base_ / "three" / "reference" / "history.csv");
+  ASSERT_EQ(h.blocks, 3);
+  const HistoryInterpolator interp(h,
+                                   ReadEventsCsv(base_ / "three" / "reference" / "events.csv", 3));
+  const Sample& s = h.samples[h.samples.size() / 2];
+  const std::vector<double> a = interp.Angles(s.t_s);
+  ASSERT_EQ(a.size(), 3u);
+  for (int b = 0; b < 3; ++b) EXPECT_EQ(a[b], s.theta_rad[b]) << b;
+}
+
+// A study over block3.width (the reference): the page's table by block.
+TEST_F(StackReportTest, AStudyPageHasItsTableByBlock) {
+  WriteText(base_ / "study.toml",
+            "scene = \"three.toml\"\nset = [\"run.duration=0.4\"]\n"
+            "[[axis]]\nkey = \"block3.width\"\nvalues = [0.5, 0.8]\n");
+  RockbenchOk({"ensemble", (base_ / "study.toml").string(), "--jobs", "1", "--out",
+               (base_ / "study").string()});
+  const fs::path page = WriteEnsembleReport(base_ / "study", base_ / "out");
+  const std::string md = Slurp(page / "report.md");
+  EXPECT_NE(md.find("## By block"), std::string::npos) << md;
+  for (int b = 1; b <= 3; ++b) {
+    EXPECT_NE(md.find("| reference | block " + std::to_string(b) + " | 0 of 2 |"),
+              std::string::npos)
+        << b << "\n"
+        << md;
+  }
+}
+
+// A sweep of three blocks: its records carry block 3, the largest error is over every block,
+// and the page's table has block 3's columns.
+TEST_F(StackReportTest, ASweepOfThreeBlocksCarriesBlock3) {
+  RockbenchOk({"sweep", (base_ / "three.toml").string(), "--engines", "reference", "--quick",
+               "--threads", "2", "--out", (base_ / "sweep").string()});
+  const std::vector<SweepRecord> rows =
+      ParseSweepCsv(Slurp(base_ / "sweep" / "sweep.csv"), base_ / "sweep" / "sweep.csv");
+  ASSERT_FALSE(rows.empty());
+  for (const SweepRecord& r : rows) {
+    ASSERT_EQ(r.theta_from3_max_abs_error_rad.size(), 1u) << r.line;
+    EXPECT_GE(MaxAngleError(r), r.theta_from3_max_abs_error_rad[0]);
+    EXPECT_GE(MaxAngleError(r), r.theta1_max_abs_error_rad);
+  }
+  const fs::path page = WriteSweepReport(base_ / "sweep", base_ / "out");
+  EXPECT_NE(Slurp(page / "report.md").find("max err θ3 (largest, rad)"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace rockbench::report
