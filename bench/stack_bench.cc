@@ -1,14 +1,21 @@
-// Cost of the N-block reference (issue 23): one right-hand side of the pivot chain's equations
-// of motion (reference/stack_chain.h, the articulated-body recursion) for N = 1 to 20 blocks,
-// every interface open (the most work) and the stack locked on one pivot, with and without the
-// interface loads. The growth with N is the recursion's: linear. Results: docs/performance-
-// reference.md, "N blocks".
+// Cost of the N-block reference (issue 23), for N = 1 to 20 blocks:
+// - one right-hand side of the pivot chain's equations of motion (reference/stack_chain.h, the
+//   articulated-body recursion), every interface open (the most work) and the stack locked on
+//   one pivot, with and without the interface loads: the recursion's growth, linear;
+// - whole runs (reference::Simulate, the chain formulation, default tolerances) of a column of N
+//   equal drums in free rocking and under a shipped record, reported per simulated second;
+// - the six-drum column of issue 23 (tapering drums), 20 s of record.
+// Results: docs/performance-reference.md, "N blocks".
 #include <benchmark/benchmark.h>
 
 #include <random>
+#include <string>
 #include <vector>
 
+#include "reference/simulate.h"
 #include "reference/stack_chain.h"
+#include "scene/ground_motion.h"
+#include "scene/scene.h"
 
 namespace {
 
@@ -70,6 +77,82 @@ void BM_RhsLocked(benchmark::State& state) {
 BENCHMARK(BM_RhsAllOpen)->Arg(1)->Arg(2)->Arg(3)->Arg(5)->Arg(10)->Arg(20);
 BENCHMARK(BM_RhsAllOpenWithLoads)->Arg(1)->Arg(2)->Arg(3)->Arg(5)->Arg(10)->Arg(20);
 BENCHMARK(BM_RhsLocked)->Arg(1)->Arg(2)->Arg(3)->Arg(5)->Arg(10)->Arg(20);
+
+// A column of n drums 0.85 m tall (marble), the chain formulation: equal drums 0.9 m wide and
+// deep, or tapering from 0.96 m by 0.02 m a drum (the six-drum column of issue 23). Free
+// rocking: released tilted together by 0.04 rad, the top drum by 0.045 (the drums rock on each
+// other after the first impacts), 10 s. Record: Northridge 1994 Sylmar Converter Sta 142 at
+// 0.35 of its amplitude, 20 s (a run that stops early, its assumptions ended, reports how far
+// it got in simulated_s).
+rockbench::Scene ColumnScene(int n, bool record, bool taper = false) {
+  std::string toml;
+  for (int k = 0; k < n; ++k) {
+    const std::string width = taper ? std::to_string(0.96 - 0.02 * k) : "0.9";
+    toml += "[[block]]\nwidth = ";
+    toml += width;
+    toml += "\nheight = 0.85\ndensity = 2700.0\ndepth = ";
+    toml += width;
+    toml += "\n";
+  }
+  toml += "[model]\nformulation = \"chain\"\n";
+  if (record) {
+    toml += "[base.horizontal]\n";
+    toml += "file = \"../records/northridge1994_sylmar_converter_sta_142.AT2\"\n";
+    toml += "scale = 0.35\n[run]\nduration = 20.0\n";
+  } else {
+    toml += "[initial]\ntheta = [";
+    for (int k = 0; k < n; ++k) toml += k + 1 < n ? "0.04, " : "0.045]\n";
+    toml += "[run]\nduration = 10.0\n";
+  }
+  return rockbench::ParseScene(toml, ROCKBENCH_SOURCE_DIR "/scenes/column_bench.toml");
+}
+
+// One whole run a timed iteration; counters: simulated seconds, events, and the cost per
+// simulated second.
+void RunScene(benchmark::State& state, const rockbench::Scene& scene) {
+  const rockbench::GroundMotion motion = rockbench::GroundMotion::FromScene(scene);
+  double simulated_s = 0.0;
+  size_t events = 0;
+  for (auto _ : state) {
+    const reference::Result r = reference::Simulate(scene, motion);
+    simulated_s = r.history.samples.empty() ? 0.0 : r.history.samples.back().t_s;
+    events = r.history.events.size();
+    benchmark::DoNotOptimize(r.summary.peak_theta_rad.data());
+  }
+  state.counters["simulated_s"] = simulated_s;
+  state.counters["events"] = static_cast<double>(events);
+  state.counters["s_per_simulated_s"] =
+      benchmark::Counter(static_cast<double>(state.iterations()) * simulated_s,
+                         benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+}
+
+void BM_ColumnFreeRocking(benchmark::State& state) {
+  RunScene(state, ColumnScene(static_cast<int>(state.range(0)), false));
+}
+void BM_ColumnUnderRecord(benchmark::State& state) {
+  RunScene(state, ColumnScene(static_cast<int>(state.range(0)), true));
+}
+void BM_SixTaperingDrumsUnderRecord(benchmark::State& state) {
+  RunScene(state, ColumnScene(6, true, true));
+}
+
+BENCHMARK(BM_ColumnFreeRocking)
+    ->Arg(1)
+    ->Arg(2)
+    ->Arg(3)
+    ->Arg(5)
+    ->Arg(10)
+    ->Arg(20)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_ColumnUnderRecord)
+    ->Arg(1)
+    ->Arg(2)
+    ->Arg(3)
+    ->Arg(5)
+    ->Arg(10)
+    ->Arg(20)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_SixTaperingDrumsUnderRecord)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 
