@@ -15,7 +15,7 @@ HistoryInterpolator::HistoryInterpolator(const History& history, const std::vect
   const auto block = [&](int k) {
     return history.blocks == 1 ? size_t{0} : static_cast<size_t>(k);
   };
-  const auto fill = [&](std::vector<double>& out, const std::vector<double>& v) {
+  const auto fill = [&](std::vector<double>& out, const BlockValues& v) {
     out.resize(static_cast<size_t>(width_));
     for (int k = 0; k < width_; ++k) out[k] = v[std::min(block(k), v.size() - 1)];
   };
