@@ -134,9 +134,11 @@ using StepResult = StepResultN<4>;
 /// One Dormand-Prince 5(4) step. f0 = f(t, y). rhs(t, y) -> VecN<D>. The error norm is the
 /// root mean square over `active` components (D by default; a state padded with zeros beyond
 /// its active components passes their count: the padding adds nothing to the sum).
+// Out of line: a step is a loop of its own, compiled (and vectorised) apart from its caller's.
 template <class Rhs, size_t D>
-StepResultN<D> Dopri5Step(const Rhs& rhs, double t, const VecN<D>& y, const VecN<D>& f0, double h,
-                          double rtol, double atol, int active = static_cast<int>(D)) {
+[[gnu::noinline]] StepResultN<D> Dopri5Step(const Rhs& rhs, double t, const VecN<D>& y,
+                                            const VecN<D>& f0, double h, double rtol, double atol,
+                                            int active = static_cast<int>(D)) {
   using Vec = VecN<D>;
   constexpr double c2 = 1.0 / 5, c3 = 3.0 / 10, c4 = 4.0 / 5, c5 = 8.0 / 9;
   constexpr double a21 = 1.0 / 5, a31 = 3.0 / 40, a32 = 9.0 / 40, a41 = 44.0 / 45, a42 = -56.0 / 15,
@@ -200,9 +202,11 @@ StepResultN<D> Dopri5Step(const Rhs& rhs, double t, const VecN<D>& y, const VecN
 /// f(t + h, y1) and 3 for the 7th-order dense output. The error is dop853.f's: the 5th-order
 /// estimate damped by the 3rd-order one, err = |h| e5^2 / sqrt(n (e5^2 + 0.01 e3^2)) with e5, e3
 /// the scaled norms (<= 1 accepts).
+// Out of line: a step is a loop of its own, compiled (and vectorised) apart from its caller's.
 template <class Rhs, size_t D>
-StepResultN<D> Dop853Step(const Rhs& rhs, double t, const VecN<D>& y, const VecN<D>& f0, double h,
-                          double rtol, double atol, int active = static_cast<int>(D)) {
+[[gnu::noinline]] StepResultN<D> Dop853Step(const Rhs& rhs, double t, const VecN<D>& y,
+                                            const VecN<D>& f0, double h, double rtol, double atol,
+                                            int active = static_cast<int>(D)) {
   using namespace dop853;
   using Vec = VecN<D>;
   std::array<Vec, 16> k;
@@ -260,8 +264,10 @@ StepResultN<D> Dop853Step(const Rhs& rhs, double t, const VecN<D>& y, const VecN
 }
 
 /// One classical RK4 step (thesis eq. 6.2). f0 = f(t, y). Dense output: cubic Hermite.
+// Out of line: a step is a loop of its own, compiled (and vectorised) apart from its caller's.
 template <class Rhs, size_t D>
-StepResultN<D> Rk4Step(const Rhs& rhs, double t, const VecN<D>& y, const VecN<D>& f0, double h) {
+[[gnu::noinline]] StepResultN<D> Rk4Step(const Rhs& rhs, double t, const VecN<D>& y,
+                                         const VecN<D>& f0, double h) {
   using Vec = VecN<D>;
   Vec yt;
   const Vec& k1 = f0;

@@ -38,37 +38,6 @@ ThesisMechanics::Y ThesisMechanics::Initial(const InitialState& in) const {
   return {in.theta_rad[0], in.theta_rad[top], in.omega_radps[0], in.omega_radps[top]};
 }
 
-ThesisMechanics::Y ThesisMechanics::Rhs(const Configuration& c, const Y& y, double xg,
-                                        double yg) const {
-  const auto acc = ModeAccelerations(geo_, *ModeOfConfiguration(c), ToState(y), xg, yg, equations_);
-  return {y[2], y[3], acc[0], acc[1]};
-}
-
-ThesisMechanics::Y ThesisMechanics::Project(const Configuration& c, const Y& y) const {
-  Y p = y;
-  if (!geo_.two_blocks || c[1] == Contact::kFace) {
-    p[1] = p[0];
-    p[3] = p[2];
-  }
-  if (c[0] == Contact::kFace) {
-    p[0] = 0.0;
-    p[2] = 0.0;
-  }
-  return p;
-}
-
-ThesisMechanics::Y ThesisMechanics::Land(const Configuration& c, Y y, int interface) const {
-  const bool ground_moves = c[0] != Contact::kFace;
-  const bool interface_moves = geo_.two_blocks && c[1] != Contact::kFace;
-  if (interface == 0) {
-    y[0] = 0.0;
-    if (!interface_moves) y[1] = 0.0;
-  } else {
-    y[1] = ground_moves ? y[0] : 0.0;
-  }
-  return y;
-}
-
 namespace {
 ThesisMechanics::Margins MarginsOf(const ContactMargins& cm) {
   ThesisMechanics::Margins m;
@@ -82,13 +51,18 @@ ThesisMechanics::Margins MarginsOf(const ContactMargins& cm) {
 
 ThesisMechanics::Margins ThesisMechanics::Evaluate(const Configuration& c, const Y& y, double xg,
                                                    double yg) const {
-  return MarginsOf(EvaluateContacts(geo_, *ModeOfConfiguration(c), ToState(y), xg, yg, equations_));
+  // EvaluateContacts(geo_, mode, state, xg, yg, equations_), with the tilts from the memo.
+  const Mode mode = *ModeOfConfiguration(c);
+  const State s = ToState(y);
+  const Tilts tilts = TiltsAt(y);
+  const auto acc = ModeAccelerations(geo_, mode, s, tilts, xg, yg, equations_);
+  return MarginsOf(EvaluateContacts(geo_, mode, s, tilts, acc, xg, yg));
 }
 
 ThesisMechanics::Margins ThesisMechanics::EvaluateWithRhs(const Configuration& c, const Y& y,
                                                           const Y& f, double xg, double yg) const {
-  return MarginsOf(
-      EvaluateContacts(geo_, *ModeOfConfiguration(c), ToState(y), {f[2], f[3]}, xg, yg));
+  return MarginsOf(EvaluateContacts(geo_, *ModeOfConfiguration(c), ToState(y), TiltsAt(y),
+                                    {f[2], f[3]}, xg, yg));
 }
 
 Selection ThesisMechanics::Select(const Y& y, double xg, double yg) const {

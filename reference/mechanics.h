@@ -12,11 +12,17 @@
 /// The driver asks each the same questions: the accelerations of a configuration, its contact
 /// margins, the configuration a state must move in, what an impact leaves, the energy.
 #include <array>
+#include <bit>
+#include <cmath>
 #include <cstddef>
+#include <cstdint>
+#include <limits>
 #include <string>
 
 #include "reference/geometry.h"
 #include "reference/integrator.h"
+#include "reference/kinematics.h"
+#include "reference/modes.h"
 #include "reference/stack_contacts.h"
 #include "scene/mode.h"
 #include "scene/scene.h"
@@ -70,14 +76,42 @@ class ThesisMechanics {
   /// The state of the scene's [initial].
   Y Initial(const InitialState& in) const;
 
+  // Rhs, Project and Land are inline: the driver's inner loops call them at every stage and
+  // every dense-output evaluation.
   /// (omega, theta'') of configuration c at y under (xg'', yg'').
-  Y Rhs(const Configuration& c, const Y& y, double xg, double yg) const;
+  Y Rhs(const Configuration& c, const Y& y, double xg, double yg) const {
+    const Mode mode = *ModeOfConfiguration(c);
+    const auto acc = ModeAccelerations(geo_, mode, {y[0], y[1], y[2], y[3]}, UsedTilts(mode, y), xg,
+                                       yg, equations_);
+    return {y[2], y[3], acc[0], acc[1]};
+  }
   /// y on c's constraints (a closed interface's block takes its support's angle and rate; one
   /// block's mirror).
-  Y Project(const Configuration& c, const Y& y) const;
+  Y Project(const Configuration& c, const Y& y) const {
+    Y p = y;
+    if (!geo_.two_blocks || c[1] == Contact::kFace) {
+      p[1] = p[0];
+      p[3] = p[2];
+    }
+    if (c[0] == Contact::kFace) {
+      p[0] = 0.0;
+      p[2] = 0.0;
+    }
+    return p;
+  }
   /// y with interface k's gap closed exactly (it lands), the blocks resting on faces above it
   /// landing with it.
-  Y Land(const Configuration& c, Y y, int interface) const;
+  Y Land(const Configuration& c, Y y, int interface) const {
+    const bool ground_moves = c[0] != Contact::kFace;
+    const bool interface_moves = geo_.two_blocks && c[1] != Contact::kFace;
+    if (interface == 0) {
+      y[0] = 0.0;
+      if (!interface_moves) y[1] = 0.0;
+    } else {
+      y[1] = ground_moves ? y[0] : 0.0;
+    }
+    return y;
+  }
   Margins Evaluate(const Configuration& c, const Y& y, double xg, double yg) const;
   /// The same from c's accelerations at y already computed (an integrator's last stage f).
   Margins EvaluateWithRhs(const Configuration& c, const Y& y, const Y& f, double xg,
@@ -90,8 +124,60 @@ class ThesisMechanics {
   double Energy(const Configuration& c, const Y& y) const;
 
  private:
+  // sin and cos of an angle. The right-hand side takes them and keeps the last two (it is rarely
+  // asked twice at one state); the contact forces look there first (bit for bit: the driver asks
+  // for them at a state whose right-hand side it just took, a step's end, and a closed
+  // interface's two angles are equal).
+  struct SinCos1 {
+    double sin = 0.0, cos = 1.0;
+  };
+  SinCos1 SinCosKept(double theta) const {
+    const SinCos1 sc{std::sin(theta), std::cos(theta)};
+    memo_bits_[memo_next_] = std::bit_cast<uint64_t>(theta);
+    memo_[memo_next_] = sc;
+    memo_next_ ^= 1;
+    return sc;
+  }
+  SinCos1 SinCosOf(double theta) const {
+    const uint64_t bits = std::bit_cast<uint64_t>(theta);
+    if (memo_bits_[0] == bits) return memo_[0];
+    if (memo_bits_[1] == bits) return memo_[1];
+    return SinCosKept(theta);
+  }
+  // Both angles' tilts.
+  Tilts TiltsAt(const Y& y) const {
+    const SinCos1 a = SinCosOf(y[0]), b = SinCosOf(y[1]);
+    return {a.sin, a.cos, b.sin, b.cos};
+  }
+  // The tilts the mode's equations use (as ModeAccelerations without tilts takes them: mode 3
+  // theta1's, mode 4 theta2's, none for the linearized equations); the others stay at zero.
+  Tilts UsedTilts(Mode mode, const Y& y) const {
+    Tilts tl;
+    if (equations_ == Equations::kLinearized) return tl;
+    const Contacts c = ContactsOf(mode);
+    if (c.ground != Contact::kFace) {
+      const SinCos1 a = SinCosKept(y[0]);
+      tl.sin1 = a.sin;
+      tl.cos1 = a.cos;
+    }
+    if (c.interface != Contact::kFace && geo_.two_blocks) {
+      const SinCos1 b = SinCosKept(y[1]);
+      tl.sin2 = b.sin;
+      tl.cos2 = b.cos;
+    }
+    return tl;
+  }
+
   Geometry geo_;
   Equations equations_;
+  // The memo's angles, as bits; at first a NaN's, which no memo lookup trusts (SinCosOf of
+  // that NaN gives the NaN's sin and cos, as computing them would).
+  mutable std::array<uint64_t, 2> memo_bits_{kNoAngle, kNoAngle};
+  mutable std::array<SinCos1, 2> memo_{SinCos1{kNoAngleValue, kNoAngleValue},
+                                       SinCos1{kNoAngleValue, kNoAngleValue}};
+  mutable int memo_next_ = 0;
+  static constexpr uint64_t kNoAngle = 0x7ff8dead0000beefull;
+  static constexpr double kNoAngleValue = std::numeric_limits<double>::quiet_NaN();
 };
 
 /// The N-block chain, up to Cap blocks.

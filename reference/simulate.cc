@@ -173,9 +173,15 @@ double Side(Contact c) {
 class MotionCursor {
  public:
   explicit MotionCursor(const std::optional<MotionComponent>& c) : c_(c ? &*c : nullptr) {}
-  double At(double t_s) const {
+  // The common cases inline (no component, the same piece as last time), the rest out of line.
+  [[gnu::always_inline]] double At(double t_s) const {
     if (!c_) return 0.0;
     if (piece_.Holds(t_s)) return piece_.At(t_s);
+    return Seek(t_s);
+  }
+
+ private:
+  [[gnu::noinline]] double Seek(double t_s) const {
     if (c_->kind() == MotionKind::kFile) {
       piece_ = c_->piece_at(t_s);
       if (piece_.Holds(t_s)) return piece_.At(t_s);
@@ -183,7 +189,6 @@ class MotionCursor {
     return c_->accel_mps2(t_s);
   }
 
- private:
   const MotionComponent* c_;
   mutable MotionComponent::LinearPiece piece_;
 };
@@ -223,6 +228,7 @@ class Simulator {
     rest_scan_ = kRestScanMotion * t_motion;
     h_ = std::min(kFirstStepRel * t_geo, max_step_);
     fig_.min_normal_n.fill(kInf);
+    for (int k = 0; k < n_; ++k) impact_kinds_.push_back(InterfaceName(k, n_) + "_impact");
   }
 
   Result Run();
@@ -231,7 +237,7 @@ class Simulator {
   // Base accelerations (m/s^2) at t.
   double Xg(double t) const { return xg_.At(t); }
   double Yg(double t) const { return yg_.At(t); }
-  Y Rhs(double t, const Y& y) const {
+  [[gnu::always_inline]] Y Rhs(double t, const Y& y) const {
     const Y f = mech_.Rhs(config_, y, Xg(t), Yg(t));
     ++rhs_count_;
     return f;
@@ -262,7 +268,7 @@ class Simulator {
   [[gnu::noinline]] void EmitSamples(double t_end, bool inclusive);
   // Out of line, as every path that records events or samples: rare work, kept out of the
   // integration loop's inlining.
-  [[gnu::noinline]] void AddEvent(Event ev) { result_.history.events.push_back(std::move(ev)); }
+  [[gnu::noinline]] void AddEvent(Event&& ev) { result_.history.events.push_back(std::move(ev)); }
   // An event at t from `before` (rates of `pre`) to `after` (rates of `post`).
   [[gnu::noinline]] Event NewEvent(double t, const char* kind, const Configuration& before,
                                    const Configuration& after, const Y& pre, const Y& post) const {
@@ -391,7 +397,6 @@ class Simulator {
   [[gnu::cold]] void StopNonFinite(const NonFinite& nf, double t_bad, const Y& last);
   // After a stop at t_: the trajectory ends at t_ in y_, and the samples up to t_ are emitted.
   void EndTrajectory();
-  double Gap(const Y& y, int k) const { return Side(config_[k]) * Rel(y, k); }
   Margins EvaluateAt(double t, const Y& y) const {
     return mech_.Evaluate(config_, y, Xg(t), Yg(t));
   }
@@ -447,6 +452,7 @@ class Simulator {
     std::array<int, kCap> impacts_at{};
     std::array<double, kCap> friction_required{}, min_normal_n{};
   } fig_;
+  std::vector<std::string> impact_kinds_;  // an impact's event kind, per interface
   Configuration config_;
   double t_ = 0.0;
   Y y_{};
@@ -459,6 +465,8 @@ class Simulator {
   double min_step_ = 0.0;         // s, see kMinStepRel
   double rest_scan_ = kInf;       // s, see kRestScanMotion
   double h_ = 0.0;                // the next trial step, s
+  double break_from_ = kInf;      // s: motion_.next_breakpoint_after(t) is break_at_ for t in
+  double break_at_ = kInf;        //    [break_from_, break_at_) (AdvanceOneStep)
   Margins cm0_;                   // the margins at the step start (when cm0_valid_)
   bool cm0_valid_ = false;
   mutable long rhs_count_ = 0;
@@ -519,15 +527,14 @@ void Simulator<Mech>::DoImpact(double t, const Y& pre, int interface) {
   for (const double e : {ir.energy_before_j, ir.energy_after_j}) {
     if (!nf.found() && !std::isfinite(e)) nf = {"energy", e};
   }
-  const std::string where = InterfaceName(interface, n_);
   if (nf.found()) {
-    nf.quantity += " after a" + std::string(interface == 0 ? " " : "n ") + where + " impact";
+    nf.quantity += " after a" + std::string(interface == 0 ? " " : "n ") +
+                   InterfaceName(interface, n_) + " impact";
     StopNonFinite(nf, t, pre);
     return;
   }
   Summary& sum = result_.summary;
-  const std::string kind = where + "_impact";
-  Event ev = NewEvent(t, kind.c_str(), before, ir.config, pre, ir.y);
+  Event ev = NewEvent(t, impact_kinds_[interface].c_str(), before, ir.config, pre, ir.y);
   ev.energy_before_j = ir.energy_before_j;
   ev.energy_after_j = ir.energy_after_j;
   ev.note = ir.note;
@@ -636,27 +643,34 @@ template <class Mech>
 typename Simulator<Mech>::Step Simulator<Mech>::AdvanceOneStep(bool rk4, const Y& f0,
                                                                double* h_taken) {
   Summary& sum = result_.summary;
-  const double t_break = motion_.next_breakpoint_after(t_);
+  // The next breakpoint of the base motion: the same until t_ reaches it.
+  if (!(t_ >= break_from_ && t_ < break_at_)) {
+    break_at_ = motion_.next_breakpoint_after(t_);
+    break_from_ = t_;
+  }
+  const double t_break = break_at_;
   double h = rk4 ? cfg_.step_s : std::min(h_, max_step_);
   h = std::min({h, t_break - t_, t_end_ - t_});
   if (h <= 0.0) h = std::max(t_end_ - t_, 0.0);
-  Step st;
   const auto rhs = [this](double t, const Y& y) { return Rhs(t, y); };
-  if (rk4) {
-    st = Rk4Step(rhs, t_, y_, f0, h);
-  } else {
+  const bool dop853 = cfg_.integrator == Integrator::kDop853;
+  const int active = mech_.active();
+  // One attempt of step hh (built in place: a step's result is some fifty numbers).
+  auto attempt = [&](double hh) {
+    return rk4      ? Rk4Step(rhs, t_, y_, f0, hh)
+           : dop853 ? Dop853Step(rhs, t_, y_, f0, hh, cfg_.rtol, cfg_.atol, active)
+                    : Dopri5Step(rhs, t_, y_, f0, hh, cfg_.rtol, cfg_.atol, active);
+  };
+  Step st = attempt(h);
+  if (!rk4) {
     // Step-size control as in dopri5.f and dop853.f: the error scales as h^(q + 1) with q the
     // order of the estimate the controller trusts (4 and 7), within their bounds on the ratio.
-    const bool dop853 = cfg_.integrator == Integrator::kDop853;
     const double expo = dop853 ? -1.0 / 8.0 : -0.2;
     const double fac_min = dop853 ? 1.0 / 3.0 : 0.2, fac_max = dop853 ? 6.0 : 5.0;
-    const int active = mech_.active();
-    while (true) {
-      st = dop853 ? Dop853Step(rhs, t_, y_, f0, h, cfg_.rtol, cfg_.atol, active)
-                  : Dopri5Step(rhs, t_, y_, f0, h, cfg_.rtol, cfg_.atol, active);
-      if (st.err <= 1.0 || h < min_step_) break;
+    while (!(st.err <= 1.0 || h < min_step_)) {
       ++sum.steps_rejected;
       h *= std::max(fac_min, 0.9 * std::pow(st.err, expo));
+      st = attempt(h);
     }
     const double fac = st.err > 0 ? std::min(fac_max, 0.9 * std::pow(st.err, expo)) : fac_max;
     h_ = h * fac;
@@ -746,7 +760,7 @@ typename Simulator<Mech>::LocatedEvent Simulator<Mech>::FindEvent(const StepDens
     const double lower = k == 0 ? (side > 0.0 ? at.lo[0] : -at.hi[0])
                                 : (side > 0.0 ? at.lo[k] - at.hi[k - 1] : at.lo[k - 1] - at.hi[k]);
     ConsiderCheap(
-        StepEvent::kImpact, k, [&](const Y& y) { return Gap(y, k); },
+        StepEvent::kImpact, k, [&](const Y& y) { return side * Rel(y, k); },
         [&](const Y& y) { return side * RelRate(y, k); }, lower, at, t1, thesis_events, &ev);
   }
   // Overturning: each block's |theta| reaching overturn_angle.

@@ -2,6 +2,7 @@
 /// The reference model: the thesis's two-block rocking model (Roussis 1999), event-accurate.
 #include <algorithm>
 #include <cstdint>
+#include <cstring>
 #include <limits>
 #include <memory>
 #include <optional>
@@ -79,9 +80,18 @@ class Trajectory {
                       static_cast<uint32_t>(used_)});
     double* out = chunks_.back().data() + used_;
     used_ += need;
-    for (size_t j = 0; j < need / (2 * n); ++j, out += 2 * n) {
-      std::copy_n(dense.c[j].data(), n, out);
-      std::copy_n(dense.c[j].data() + cap, n, out + n);
+    const size_t coefficients = need / (2 * n);
+    if (n == cap && 2 * cap == D) {
+      // The stack fills the state: each coefficient's angles and rates are already in place.
+      // (A copy of a constant size, which the compiler writes inline.)
+      for (size_t j = 0; j < coefficients; ++j, out += D) {
+        std::memcpy(out, dense.c[j].data(), sizeof(double) * D);
+      }
+    } else {
+      for (size_t j = 0; j < coefficients; ++j, out += 2 * n) {
+        std::copy_n(dense.c[j].data(), n, out);
+        std::copy_n(dense.c[j].data() + cap, n, out + n);
+      }
     }
   }
 

@@ -46,6 +46,11 @@ ContactMargins EvaluateContacts(const Geometry& geo, Mode mode, const State& s,
   return MarginsOf(geo, mode, ContactReactions(geo, mode, s, TiltsOf(s), acc, xg, yg));
 }
 
+ContactMargins EvaluateContacts(const Geometry& geo, Mode mode, const State& s, const Tilts& tilts,
+                                const std::array<double, 2>& acc, double xg, double yg) {
+  return MarginsOf(geo, mode, ContactReactions(geo, mode, s, tilts, acc, xg, yg));
+}
+
 ModeSelection SelectMode(const Geometry& geo, const State& s, double xg, double yg,
                          Equations equations) {
   const bool ground_closed = s.theta1 == 0.0 && s.omega1 == 0.0;

@@ -47,6 +47,9 @@ ContactMargins EvaluateContacts(const Geometry& geo, Mode mode, const State& s, 
 /// The same from the mode's accelerations already computed at this state and base motion.
 ContactMargins EvaluateContacts(const Geometry& geo, Mode mode, const State& s,
                                 const std::array<double, 2>& acc, double xg_mps2, double yg_mps2);
+/// The same with the state's tilts already taken (TiltsOf(s)).
+ContactMargins EvaluateContacts(const Geometry& geo, Mode mode, const State& s, const Tilts& tilts,
+                                const std::array<double, 2>& acc, double xg_mps2, double yg_mps2);
 
 /// The thesis's initiation criteria from rest (eqs. 4.1 to 4.4; 4.4, missing from the text,
 /// mirrors 4.3): the mode motion starts in, or rest. For cross-checking SelectMode.

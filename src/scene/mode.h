@@ -116,10 +116,16 @@ static_assert(static_cast<int>(Contact::kFace) == 0, "a zeroed Configuration is 
 /// (ContactsOf), the interface dropped for one block.
 Configuration ConfigurationOf(Mode mode, int blocks);
 /// The thesis mode of a configuration of 1 or 2 interfaces; nullopt for more.
+/// Inline, by table (ModeOf's answers): the thesis's equations ask for it at every evaluation.
 inline std::optional<Mode> ModeOfConfiguration(const Configuration& configuration) {
-  if (configuration.size() == 1) return ModeOf({configuration[0], Contact::kFace}, false);
-  if (configuration.size() == 2) return ModeOf({configuration[0], configuration[1]}, true);
-  return std::nullopt;
+  // [ground][interface], by Contact's values (face, right, left).
+  static constexpr Mode kModes[3][3] = {{Mode::kRest, Mode::k4a, Mode::k4b},
+                                        {Mode::k3a, Mode::k1a, Mode::k2a},
+                                        {Mode::k3b, Mode::k2b, Mode::k1b}};
+  const int size = configuration.size();
+  if (size != 1 && size != 2) return std::nullopt;
+  const int ground = static_cast<int>(configuration[0]);
+  return kModes[ground][size == 2 ? static_cast<int>(configuration[1]) : 0];
 }
 
 /// The text of a configuration, as histories and events write it: the thesis's mode name for 1
