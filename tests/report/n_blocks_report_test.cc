@@ -161,7 +161,16 @@ TEST_F(StackReportTest, ASweepOfThreeBlocksCarriesBlock3) {
     EXPECT_GE(MaxAngleError(r), r.theta1_max_abs_error_rad);
   }
   const fs::path page = WriteSweepReport(base_ / "sweep", base_ / "out");
-  EXPECT_NE(Slurp(page / "report.md").find("max err θ3 (largest, rad)"), std::string::npos);
+  const std::string md = Slurp(page / "report.md");
+  EXPECT_NE(md.find("max err θ3 (largest, rad)"), std::string::npos);
+  // The figures' captions and axes name the three blocks, not blocks 1 and 2.
+  EXPECT_NE(md.find("|Peak relative error| (the largest of theta1's to theta3's)"),
+            std::string::npos)
+      << md;
+  EXPECT_EQ(md.find("theta1's and theta2's"), std::string::npos) << md;
+  EXPECT_NE(Slurp(page / "figures" / "work_precision.gp").find("max of θ_1 to θ_3 (rad)"),
+            std::string::npos);
+  EXPECT_NE(Slurp(page / "figures" / "peak_error.gp").find("max of θ_1 to θ_3"), std::string::npos);
 }
 
 }  // namespace
