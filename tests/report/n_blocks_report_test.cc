@@ -9,12 +9,14 @@
 
 #include <cmath>
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "common/stack_scene.h"
 #include "report/common/interpolation.h"
+#include "report/run/outcome_section.h"
 #include "report/run/run_report.h"
 #include "report/run_folder.h"
 #include "report/study/study_report.h"
@@ -127,6 +129,44 @@ TEST_F(StackReportTest, TheInterpolatorHasEveryBlock) {
   const std::vector<double> a = interp.Angles(s.t_s);
   ASSERT_EQ(a.size(), 3u);
   for (int b = 0; b < 3; ++b) EXPECT_EQ(a[b], s.theta_rad[b]) << b;
+}
+
+// An engine's warnings on a stack of three blocks name every contact the monitor writes
+// (ground, interface2, interface3: engines/common/monitor.cc), not the two-block keys (which a
+// three-block summary does not have: their figures would read "nan").
+TEST(StackWarnings, AnEnginesWarningsNameEveryInterface) {
+  RunData run;
+  run.scene = testing_util::StackScene(3, 1.0);
+  EngineData ref, engine;
+  ref.name = "reference";
+  engine.name = "bullet";
+  engine.history.blocks = 3;
+  engine.summary["status"] = "completed";
+  nlohmann::json& v = engine.summary["violations"];
+  v["sliding"] = v["uplift"] = v["penetration"] = true;
+  v["slip_ground_m"] = 0.001;
+  v["slip_interface2_m"] = 0.002;
+  v["slip_interface3_m"] = 0.003;
+  v["uplift_ground_episodes"] = 0;
+  v["uplift_interface3_episodes"] = 2;
+  v["uplift_interface3_max_m"] = 0.004;
+  v["penetration_ground_max_m"] = 0.0001;
+  v["penetration_interface2_max_m"] = 0.005;
+  v["penetration_interface3_max_m"] = 0.0002;
+  run.engines = {ref, engine};
+  std::vector<std::string> warnings;
+  EnginesOutcome(run, warnings);
+  std::string all;
+  for (const std::string& w : warnings) all += w + "\n";
+  EXPECT_NE(all.find("slipped 1 mm at the ground, 2 mm at interface 2 (block 2 on block 1) and "
+                     "3 mm at interface 3 (block 3 on block 2)."),
+            std::string::npos)
+      << all;
+  EXPECT_NE(all.find("lifted off: 2 time(s) at interface 3 (block 3 on block 2) (up to 4 mm)."),
+            std::string::npos)
+      << all;
+  EXPECT_NE(all.find("sink into each other or the ground by up to 5 mm"), std::string::npos) << all;
+  EXPECT_EQ(all.find("nan"), std::string::npos) << all;
 }
 
 // A study over block3.width (the reference): the page's table by block.
