@@ -10,6 +10,7 @@
 #include <mutex>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace rockbench::reference::benchmarks {
 namespace {
@@ -103,6 +104,34 @@ RockingBody LockedStack(const BlockProps& lower, const BlockProps& upper, double
   // squared distance from the corner to G2 = (0, y2).
   const double I_O = lower.I_O + upper.I_G + upper.m * (lower.b * lower.b + y2 * y2);
   return {m, lower.b, (lower.m * lower.h + upper.m * y2) / m, I_O, g_mps2};
+}
+
+RockingBody LockedColumn(std::span<const BlockProps> blocks, double g_mps2) {
+  Require(!blocks.empty(), "LockedColumn", "needs at least one block");
+  const double b1 = blocks[0].b;
+  double m = 0.0, moment = 0.0, I_O = 0.0, base = 0.0;  // base: block k's base above the ground
+  for (size_t k = 0; k < blocks.size(); ++k) {
+    const BlockProps& p = blocks[k];
+    Require(p.m > 0.0 && p.b > 0.0 && p.h > 0.0, "LockedColumn",
+            "every block needs positive m, b and h");
+    Require(k == 0 || p.b <= blocks[k - 1].b, "LockedColumn",
+            "a block wider than the one below it is outside the model");
+    const double y = base + p.h;  // its mass centre, at x = 0 above block 1's base centre
+    m += p.m;
+    moment += p.m * y;
+    I_O += p.I_G + p.m * (b1 * b1 + y * y);  // about block 1's corner (b1, 0)
+    base += 2.0 * p.h;
+  }
+  return {m, b1, moment / m, I_O, g_mps2};
+}
+
+RockingBody LockedColumn(const Scene& scene) {
+  std::vector<BlockProps> props;
+  props.reserve(scene.blocks.size());
+  for (const BlockDef& d : scene.blocks) {
+    props.push_back(MakeBlockProps(d.width_m, d.height_m, d.mass_kg));
+  }
+  return LockedColumn(props, scene.run.gravity_mps2);
 }
 
 // 1 -------------------------------------------------------------------------------------------

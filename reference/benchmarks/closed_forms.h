@@ -17,7 +17,10 @@
 /// nothing (free rocking is symmetric). Every function throws std::domain_error for arguments
 /// outside the form's validity (stated in its comment) rather than return a number that means
 /// nothing.
+#include <span>
+
 #include "scene/rigid_block.h"
+#include "scene/scene.h"
 
 namespace rockbench::reference::benchmarks {
 
@@ -49,6 +52,17 @@ RockingBody RectangularBlock(const BlockProps& block, double g_mps2);
 /// corner of block 1: m = m1 + m2, b = b1, h = (m1 h1 + m2 (2 h1 + h2)) / m,
 /// I_O = I_O1 + I_G2 + m2 (b1^2 + (2 h1 + h2)^2) (parallel axes; the thesis's I_O of eq. 5.18).
 RockingBody LockedStack(const BlockProps& lower, const BlockProps& upper, double g_mps2);
+/// A column of blocks (bottom first, each centred on the one below and no wider than it)
+/// locked together, every interface above the ground closed ("rff..."), rocking about a base
+/// corner of block 1: m = sum m_k, b = b_1, h = sum m_k y_k / m and I_O = sum (I_G,k + m_k
+/// (b_1^2 + y_k^2)) (parallel axes), y_k = 2 (h_1 + ... + h_(k-1)) + h_k block k's mass centre
+/// above the ground. One block is RectangularBlock, two LockedStack; N equal blocks are one
+/// block N times as tall. An N-block stack tilted as one rocks as this body (FirstImpactTime_s,
+/// FreeRockingImpactRate_radps, ... of it) until its first impact, as long as every closed
+/// face's corners stay compressive. Throws for no block or a block wider than the one below.
+RockingBody LockedColumn(std::span<const BlockProps> blocks, double g_mps2);
+/// The same for a scene's blocks and gravity.
+RockingBody LockedColumn(const Scene& scene);
 
 // ---------------------------------------------------------------------------------------------
 // 1. The impact of a rocking body on its other corner (Housner 1963; thesis eqs. 3.8, 3.9).

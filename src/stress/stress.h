@@ -93,6 +93,8 @@ struct StressRow {
   double min_event_gap_s = -1.0;
   double wall_s = 0.0;  ///< the engine's simulation wall time (process time if it failed), s
   double peak_theta1_rad = 0.0, peak_theta2_rad = 0.0;
+  /// N >= 3 blocks: peak |theta_k| of blocks 3..N (block 3 at index 0); empty otherwise.
+  std::vector<double> peak_theta_from3_rad;
   // Engine rows: settings.
   bool has_settings = false;
   double dt_s = 0.0;     ///< the engine's time step, s
@@ -103,7 +105,12 @@ struct StressRow {
   bool has_agreement = false;
   double theta1_max_abs_error_rad = 0.0, theta1_peak_rel_error = 0.0;
   double theta2_max_abs_error_rad = 0.0, theta2_peak_rel_error = 0.0;
+  /// N >= 3 blocks: the same of blocks 3..N (block 3 at index 0); empty otherwise.
+  std::vector<double> theta_from3_max_abs_error_rad, theta_from3_peak_rel_error;
   int impacts_matched = 0, reference_impacts = 0;
+  /// Blocks of the case's stack as the columns count them: 2 for one or two blocks (their
+  /// columns are the same), N for N >= 3.
+  int column_blocks() const { return 2 + static_cast<int>(peak_theta_from3_rad.size()); }
 };
 
 /// Runs one engine on one case in this process (what the child does). Never throws for
@@ -134,6 +141,10 @@ std::vector<StressRow> RunStress(const std::vector<StressCase>& cases,
                                  const StressProgress& progress = {});
 
 /// stress.csv: header and one line per row. Only wall_s depends on the machine and the run.
+/// With a row of N >= 3 blocks, the columns of blocks 3..N of the largest such stack follow
+/// those of block 2 (peak_theta3_rad, ... after peak_theta2_rad; theta3_max_abs_error_rad,
+/// theta3_peak_rel_error, ... after theta2_peak_rel_error), empty in a row of fewer blocks;
+/// without one the columns are those of one and two blocks.
 std::string StressCsv(const std::vector<StressRow>& rows);
 
 }  // namespace rockbench

@@ -1,6 +1,9 @@
 // A stress row as the child prints it (one line of JSON) and as stress.csv holds it.
+#include <algorithm>
+#include <cmath>
 #include <limits>
 #include <optional>
+#include <vector>
 
 #include "run/engine_run.h"
 #include "stress/stress.h"
@@ -16,6 +19,21 @@ std::string Clean(std::string s) {
     if (ch == '\n' || ch == '\r' || ch == '"') ch = ' ';
   }
   return s;
+}
+
+// A list of numbers (NaN as null) and back.
+nlohmann::json NumList(const std::vector<double>& v) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const double x : v) out.push_back(std::isfinite(x) ? nlohmann::json(x) : nlohmann::json());
+  return out;
+}
+std::vector<double> NumListFrom(const nlohmann::json& j, const char* key) {
+  std::vector<double> out;
+  if (!j.contains(key)) return out;
+  for (const nlohmann::json& v : j.at(key)) {
+    out.push_back(v.is_null() ? std::numeric_limits<double>::quiet_NaN() : v.get<double>());
+  }
+  return out;
 }
 
 }  // namespace
@@ -49,6 +67,12 @@ nlohmann::json StressRowToJson(const StressRow& r) {
   j["theta2_peak_rel_error"] = num(r.theta2_peak_rel_error);
   j["impacts_matched"] = r.impacts_matched;
   j["reference_impacts"] = r.reference_impacts;
+  // N >= 3 blocks only: a row of one or two blocks is the same line as before.
+  if (!r.peak_theta_from3_rad.empty()) {
+    j["peak_theta_from3_rad"] = NumList(r.peak_theta_from3_rad);
+    j["theta_from3_max_abs_error_rad"] = NumList(r.theta_from3_max_abs_error_rad);
+    j["theta_from3_peak_rel_error"] = NumList(r.theta_from3_peak_rel_error);
+  }
   return j;
 }
 
@@ -83,16 +107,38 @@ StressRow StressRowFromJson(const nlohmann::json& j) {
   r.theta2_peak_rel_error = num("theta2_peak_rel_error");
   r.impacts_matched = j.at("impacts_matched").get<int>();
   r.reference_impacts = j.at("reference_impacts").get<int>();
+  r.peak_theta_from3_rad = NumListFrom(j, "peak_theta_from3_rad");
+  r.theta_from3_max_abs_error_rad = NumListFrom(j, "theta_from3_max_abs_error_rad");
+  r.theta_from3_peak_rel_error = NumListFrom(j, "theta_from3_peak_rel_error");
   return r;
 }
 
 std::string StressCsv(const std::vector<StressRow>& rows) {
+  int blocks = 2;
+  for (const StressRow& r : rows) blocks = std::max(blocks, r.column_blocks());
+  std::string peaks_from3, errors_from3;
+  for (int b = 3; b <= blocks; ++b) {
+    peaks_from3.append(",").append(Numbered("peak_theta", b)).append("_rad");
+    errors_from3.append(",").append(Numbered("theta", b)).append("_max_abs_error_rad,");
+    errors_from3.append(Numbered("theta", b)).append("_peak_rel_error");
+  }
   std::string out =
       "case,engine,finished,status,nan,max_energy_gain_rel,energy_impacts,events,impacts,"
-      "min_event_gap_s,wall_s,peak_theta1_rad,peak_theta2_rad,dt_s,settings,"
-      "violations,theta1_max_abs_error_rad,theta1_peak_rel_error,theta2_max_abs_error_rad,"
-      "theta2_peak_rel_error,impacts_matched,reference_impacts,detail\n";
+      "min_event_gap_s,wall_s,peak_theta1_rad,peak_theta2_rad";
+  out += peaks_from3;
+  out +=
+      ",dt_s,settings,violations,theta1_max_abs_error_rad,theta1_peak_rel_error,"
+      "theta2_max_abs_error_rad,theta2_peak_rel_error";
+  out += errors_from3;
+  out += ",impacts_matched,reference_impacts,detail\n";
   auto g = [](double v) { return Format("%.6g", v); };
+  // Appends block k's cell (k = 3..blocks) of a list of blocks 3..N, after its comma: empty
+  // beyond the row's stack.
+  const auto from3 = [&](const std::vector<double>& v, int k, bool filled) {
+    const size_t i = static_cast<size_t>(k - 3);
+    out += ',';
+    if (filled && i < v.size()) out += g(v[i]);
+  };
   for (const StressRow& r : rows) {
     // Peaks of a run that stopped early are those of its computed part.
     const std::optional<RunStatus> status = ParseRunStatus(r.status);
@@ -105,17 +151,26 @@ std::string StressCsv(const std::vector<StressRow>& rows) {
     out += std::to_string(r.events) + "," + std::to_string(r.impacts) + ",";
     out += (r.min_event_gap_s >= 0.0 ? Format("%.6e", r.min_event_gap_s) : "") + ",";
     out += Format("%.4f", r.wall_s) + ",";
-    out += (ran ? g(r.peak_theta1_rad) : "") + "," + (ran ? g(r.peak_theta2_rad) : "") + ",";
+    out += (ran ? g(r.peak_theta1_rad) : "") + "," + (ran ? g(r.peak_theta2_rad) : "");
+    for (int b = 3; b <= blocks; ++b) from3(r.peak_theta_from3_rad, b, ran);
+    out += ",";
     out += (r.has_settings
                 ? Format("%.6g", r.dt_s) + "," + Clean(r.settings) + "," + Clean(r.violations)
                 : ",,") +
            ",";
     if (r.has_agreement) {
       out += g(r.theta1_max_abs_error_rad) + "," + g(r.theta1_peak_rel_error) + "," +
-             g(r.theta2_max_abs_error_rad) + "," + g(r.theta2_peak_rel_error) + "," +
-             std::to_string(r.impacts_matched) + "," + std::to_string(r.reference_impacts);
+             g(r.theta2_max_abs_error_rad) + "," + g(r.theta2_peak_rel_error);
+      for (int b = 3; b <= blocks; ++b) {
+        from3(r.theta_from3_max_abs_error_rad, b, true);
+        from3(r.theta_from3_peak_rel_error, b, true);
+      }
+      out += ',';
+      out += std::to_string(r.impacts_matched) + "," + std::to_string(r.reference_impacts);
     } else {
-      out += ",,,,,";
+      out += ",,,";
+      for (int b = 3; b <= blocks; ++b) out += ",,";
+      out += ",,";
     }
     out += ',';
     out += Clean(r.detail);

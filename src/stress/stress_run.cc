@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <limits>
 #include <mutex>
+#include <optional>
 #include <thread>
 
 #include "compare/agreement.h"
@@ -17,6 +18,7 @@
 #include "reference/geometry.h"
 #include "reference/kinematics.h"
 #include "reference/simulate.h"
+#include "reference/stack_chain.h"
 #include "run/engine_registry.h"
 #include "run/engine_run.h"
 #include "run/wall_clock.h"
@@ -92,6 +94,62 @@ double KineticEnergy(const reference::Geometry& geo, const Configuration& c, ref
   return ke;
 }
 
+// The kinetic energy (base frame) of the case's stack at an impact, J: KineticEnergy for one
+// and two blocks; for N >= 3 blocks the same sum from every block's motion along the pivot
+// chain (reference::StackChain::Body), the interface's closed faces taken from the
+// configuration.
+class ImpactKinetics {
+ public:
+  explicit ImpactKinetics(const Scene& scene) : blocks_(scene.block_count()) {
+    if (blocks_ <= 2) {
+      geo_ = reference::MakeGeometry(scene);
+      mass_kg_ = geo_.M;
+    } else {
+      std::vector<reference::BlockSize> sizes;
+      for (const BlockDef& b : scene.blocks) {
+        sizes.push_back({b.width_m, b.height_m, b.mass_kg});
+        mass_kg_ += b.mass_kg;
+      }
+      chain_.emplace(reference::MakeStackGeometry(sizes, scene.run.gravity_mps2));
+    }
+    g_mps2_ = scene.run.gravity_mps2;
+    b1_m_ = 0.5 * scene.blocks.at(0).width_m;
+  }
+  /// At the angles of `at`, the rates `w`, in configuration `c`.
+  double operator()(const Configuration& c, const Sample& at, const BlockValues& w) {
+    if (blocks_ <= 2) return KineticEnergy(geo_, c, ImpactState(at, w));
+    const std::vector<double> theta(at.theta_rad.begin(), at.theta_rad.end());
+    const std::vector<double> omega(w.begin(), w.end());
+    chain_->Place(c, theta.data(), omega.data());
+    double ke = 0.0;
+    for (int b = 0; b < blocks_; ++b) {
+      const BodyMotion m = chain_->Body(b);
+      const BlockProps& p = chain_->geometry().blocks[static_cast<size_t>(b)];
+      ke += 0.5 * p.m * reference::Dot(m.vG, m.vG) + 0.5 * p.I_G * m.w_radps * m.w_radps;
+    }
+    return ke;
+  }
+  /// The potential energy of the whole stack tilted by `tilt_rad` about block 1's corner, to
+  /// first order: M g b1 tilt, J (geo.M g b1 tilt for one and two blocks, as before).
+  double TiltEnergy_j(double tilt_rad) const {
+    return blocks_ <= 2 ? geo_.M * geo_.g * geo_.block1.b * tilt_rad
+                        : mass_kg_ * g_mps2_ * b1_m_ * tilt_rad;
+  }
+
+ private:
+  int blocks_ = 0;
+  reference::Geometry geo_;
+  std::optional<reference::StackChain> chain_;
+  double mass_kg_ = 0.0, g_mps2_ = 0.0, b1_m_ = 0.0;
+};
+
+// Peaks of every block into the row: theta1, theta2 (0 for one block) and blocks 3..N.
+void SetPeaks(const std::vector<double>& peaks, StressRow* row) {
+  row->peak_theta1_rad = !peaks.empty() ? peaks[0] : 0.0;
+  row->peak_theta2_rad = peaks.size() >= 2 ? peaks[1] : 0.0;
+  row->peak_theta_from3_rad.assign(peaks.begin() + std::min<size_t>(peaks.size(), 2), peaks.end());
+}
+
 // Linear interpolation of a history's angles at t (clamped to its ends).
 Sample AnglesAt(const History& h, double t) {
   if (h.samples.empty()) return Sample(h.blocks);
@@ -128,21 +186,19 @@ StressRow RunReference(const StressCase& c, StressRow row) {
   row.detail = s.status_detail;
   // A run that ended non_finite failed (its figures are those of its finite part).
   row.finished = !IsNonFinite(s.status);
-  row.peak_theta1_rad = s.peak_theta_rad[0];
-  row.peak_theta2_rad = s.blocks() == 2 ? s.peak_theta_rad[1] : 0.0;
+  SetPeaks(s.peak_theta_rad, &row);
   row.nan = IsNonFinite(s.status) || HistoryHasNonFinite(r.history) ||
-            !Finite(row.peak_theta1_rad) || !Finite(row.peak_theta2_rad);
+            !std::all_of(s.peak_theta_rad.begin(), s.peak_theta_rad.end(), Finite);
   CountEvents(r.history, &row);
   // Energy across each impact: the configuration does not jump, so E_after - E_before is the
   // change of kinetic energy, computed directly at the impact's angles (the post-event state of
   // the dense solution) with the rates the event records before and after.
-  const reference::Geometry geo = reference::MakeGeometry(c.scene);
+  ImpactKinetics kinetic(c.scene);
   for (const Event& e : r.history.events) {
     if (!IsImpact(e)) continue;
     const Sample at = r.trajectory.At(e.t_s);
-    const double ke_before =
-        KineticEnergy(geo, e.mode_before, ImpactState(at, e.omega_before_radps));
-    const double ke_after = KineticEnergy(geo, e.mode_after, ImpactState(at, e.omega_after_radps));
+    const double ke_before = kinetic(e.mode_before, at, e.omega_before_radps);
+    const double ke_after = kinetic(e.mode_after, at, e.omega_after_radps);
     if (!(ke_before > 0.0)) continue;
     RecordGain((ke_after - ke_before) / ke_before, &row);
   }
@@ -167,8 +223,7 @@ StressRow RunEngineCase(const StressCase& c, const std::string& engine, StressRo
   row.detail = run.summary.value("status_detail", "");
   row.finished = o.status == RunStatus::kCompleted || o.status == RunStatus::kOverturned ||
                  o.status == RunStatus::kAtRest || o.status == RunStatus::kAssumptionViolated;
-  row.peak_theta1_rad = o.blocks() >= 1 ? o.peak_theta_rad[0] : 0.0;
-  row.peak_theta2_rad = o.blocks() == 2 ? o.peak_theta_rad[1] : 0.0;
+  SetPeaks(o.peak_theta_rad, &row);
   row.nan = IsNonFinite(o.status) || HistoryHasNonFinite(run.history);
   CountEvents(run.history, &row);
   std::string flags;
@@ -177,13 +232,12 @@ StressRow RunEngineCase(const StressCase& c, const std::string& engine, StressRo
   // Energy across each impact: the monitor records E = kinetic (base frame) + potential one
   // step before the crossing step and one step after it; the scale is the kinetic energy
   // before, from the recorded rates at the impact's angles (history interpolated).
-  const reference::Geometry geo = reference::MakeGeometry(c.scene);
-  const double floor_j = geo.M * geo.g * geo.block1.b * kEngineResolvedTilt_rad;
+  ImpactKinetics kinetic(c.scene);
+  const double floor_j = kinetic.TiltEnergy_j(kEngineResolvedTilt_rad);
   for (const Event& e : run.history.events) {
     if (!IsImpact(e)) continue;
     const Sample at = AnglesAt(run.history, e.t_s);
-    const double ke_before =
-        KineticEnergy(geo, e.mode_before, ImpactState(at, e.omega_before_radps));
+    const double ke_before = kinetic(e.mode_before, at, e.omega_before_radps);
     if (!(ke_before > floor_j)) continue;
     RecordGain((e.energy_after_j - e.energy_before_j) / ke_before, &row);
   }
@@ -196,6 +250,10 @@ StressRow RunEngineCase(const StressCase& c, const std::string& engine, StressRo
   if (a.theta2) {
     row.theta2_max_abs_error_rad = a.theta2->max_abs_error_rad;
     row.theta2_peak_rel_error = a.theta2->peak_rel_error;
+  }
+  for (const AngleAgreement& k : a.theta_from3) {
+    row.theta_from3_max_abs_error_rad.push_back(k.max_abs_error_rad);
+    row.theta_from3_peak_rel_error.push_back(k.peak_rel_error);
   }
   row.impacts_matched = a.impacts.matched;
   row.reference_impacts = a.impacts.reference_impacts;

@@ -52,14 +52,16 @@ std::vector<SweepPoint> SweepGrid(bool quick, const std::vector<std::string>& en
   }
   const std::vector<double> rk4 =
       quick ? std::vector<double>{1e-3} : std::vector<double>{1e-2, 1e-3, 1e-4};
-  for (double h : rk4) {
-    SweepPoint s;
-    s.engine = "reference";
-    s.integrator = Integrator::kRk4;
-    s.rk4_step_s = h;
-    grid.push_back(s);
-  }
+  for (double h : rk4) grid.push_back(ReferenceRk4Point(h));
   return grid;
+}
+
+SweepPoint ReferenceRk4Point(double step_s) {
+  SweepPoint s;
+  s.engine = "reference";
+  s.integrator = Integrator::kRk4;
+  s.rk4_step_s = step_s;
+  return s;
 }
 
 Scene SceneForPoint(const Scene& base, const SweepPoint& p) {

@@ -31,6 +31,8 @@ struct SweepPoint {
 /// then the reference: full, dopri5 rtol 1e-4 ... 1e-12 (atol = rtol / 100) and RK4 steps
 /// 1e-2, 1e-3, 1e-4 s; quick, dopri5 rtol 1e-4, 1e-6, 1e-8 and RK4 1e-3 s.
 std::vector<SweepPoint> SweepGrid(bool quick, const std::vector<std::string>& engines);
+/// The reference's fixed-step RK4 at `step_s` (s): a point of the grid, or a chosen one.
+SweepPoint ReferenceRk4Point(double step_s);
 
 /// The scene of a grid point: `base` with the point's settings.
 Scene SceneForPoint(const Scene& base, const SweepPoint& point);

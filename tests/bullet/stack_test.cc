@@ -37,25 +37,6 @@ Scene Column(int n, double theta0_rad, double duration_s) {
   return s;
 }
 
-// The column locked as one rigid body rocking about block 1's base corner: m = n m_d, b = b_1,
-// h = the column's mass centre above its base, I_O = sum of the drums' I_G + m_d (b^2 + y_k^2)
-// (parallel axes), y_k = (2k - 1) h_d.
-bm::RockingBody ColumnBody(const Scene& s) {
-  bm::RockingBody body;
-  body.g_mps2 = s.run.gravity_mps2;
-  body.b_m = 0.5 * s.blocks[0].width_m;
-  double base = 0.0, moment = 0.0;
-  for (const BlockDef& d : s.blocks) {
-    const double b = 0.5 * d.width_m, h = 0.5 * d.height_m, y = base + h;
-    body.m_kg += d.mass_kg;
-    moment += d.mass_kg * y;
-    body.I_O_kgm2 += d.mass_kg * (b * b + h * h) / 3.0 + d.mass_kg * (body.b_m * body.b_m + y * y);
-    base += 2.0 * h;
-  }
-  body.h_m = moment / body.m_kg;
-  return body;
-}
-
 const Event* FirstGroundImpact(const History& h) {
   for (const Event& e : h.events) {
     if (e.kind == "ground_impact") return &e;
@@ -70,7 +51,7 @@ const Event* FirstGroundImpact(const History& h) {
 void ExpectColumnLandsOnTime(int n, const char* precision) {
   SCOPED_TRACE(testing::Message() << n << " blocks, " << precision);
   Scene probe = Column(n, 0.0, 1.0);
-  const bm::RockingBody body = ColumnBody(probe);
+  const bm::RockingBody body = bm::LockedColumn(probe);
   const double theta0 = 0.5 * body.alpha_rad();
   const double t_closed = bm::FirstImpactTime_s(body, theta0);
   Scene s = Column(n, theta0, t_closed + 0.05);

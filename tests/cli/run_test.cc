@@ -1,43 +1,23 @@
 // `rockbench run` as a user meets it: outputs, summary keys other tools read, determinism,
 // atomic writes, and clear errors with a non-zero exit for bad input.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
-#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
-#include <sstream>
 #include <string>
+
+#include "common/shell_test.h"
 
 namespace fs = std::filesystem;
 
 namespace {
 
-struct Outcome {
-  int exit_code = -1;
-  std::string output;  // stdout + stderr
-};
-
-Outcome Rockbench(const std::string& args) {
-  const std::string cmd = std::string(ROCKBENCH_EXE) + " " + args + " 2>&1";
-  Outcome out;
-  FILE* p = popen(cmd.c_str(), "r");
-  char buf[4096];
-  while (size_t n = fread(buf, 1, sizeof buf, p)) out.output.append(buf, n);
-  const int status = pclose(p);
-  out.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return out;
-}
-
-std::string Slurp(const fs::path& p) {
-  std::ifstream f(p, std::ios::binary);
-  std::ostringstream s;
-  s << f.rdbuf();
-  return s.str();
-}
+using rockbench::testing_util::ReadFile;
+using rockbench::testing_util::Rockbench;
+using rockbench::testing_util::ShellRun;
 
 fs::path TempDir(const std::string& name) {
   const fs::path d =
@@ -51,14 +31,14 @@ const std::string kSrc = ROCKBENCH_SOURCE_DIR;
 
 TEST(CliRunTest, WritesHistoryEventsAndSummary) {
   const fs::path out = TempDir("ok");
-  const Outcome r =
+  const ShellRun r =
       Rockbench("run " + kSrc + "/scenes/thesis_free_rocking.toml --out " + out.string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("outputs in"), std::string::npos);
-  const std::string hist = Slurp(out / "reference/history.csv");
+  const std::string hist = ReadFile(out / "reference/history.csv");
   EXPECT_EQ(hist.substr(0, hist.find('\n')), "t,theta1,theta2,omega1,omega2,mode");
   EXPECT_TRUE(fs::exists(out / "reference/events.csv"));
-  const auto j = nlohmann::json::parse(Slurp(out / "summary.json"));
+  const auto j = nlohmann::json::parse(ReadFile(out / "summary.json"));
   for (const char* key :
        {"status", "wall_s", "peaks", "impacts", "overturn", "friction_required"}) {
     EXPECT_TRUE(j.contains(key)) << key;
@@ -78,10 +58,10 @@ TEST(CliRunTest, WritesHistoryEventsAndSummary) {
 
 TEST(CliRunTest, SingleBlockHistoryColumns) {
   const fs::path out = TempDir("one");
-  const Outcome r =
+  const ShellRun r =
       Rockbench("run " + kSrc + "/scenes/housner_free_rocking.toml --out " + out.string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  const std::string hist = Slurp(out / "reference/history.csv");
+  const std::string hist = ReadFile(out / "reference/history.csv");
   EXPECT_EQ(hist.substr(0, hist.find('\n')), "t,theta1,omega1,mode");
   fs::remove_all(out);
 }
@@ -91,9 +71,9 @@ TEST(CliRunTest, SameInputSameBytes) {
   const std::string scene = kSrc + "/scenes/thesis_rinaldi228.toml";
   ASSERT_EQ(Rockbench("run " + scene + " --out " + a.string()).exit_code, 0);
   ASSERT_EQ(Rockbench("run " + scene + " --out " + b.string()).exit_code, 0);
-  EXPECT_EQ(Slurp(a / "reference/history.csv"), Slurp(b / "reference/history.csv"));
-  EXPECT_EQ(Slurp(a / "reference/events.csv"), Slurp(b / "reference/events.csv"));
-  const auto ja = nlohmann::json::parse(Slurp(a / "summary.json"));
+  EXPECT_EQ(ReadFile(a / "reference/history.csv"), ReadFile(b / "reference/history.csv"));
+  EXPECT_EQ(ReadFile(a / "reference/events.csv"), ReadFile(b / "reference/events.csv"));
+  const auto ja = nlohmann::json::parse(ReadFile(a / "summary.json"));
   EXPECT_EQ(ja["base"]["horizontal"]["npts"], 1991);
   EXPECT_NEAR(ja["base"]["horizontal"]["peak_g"].get<double>(), 0.8741, 5e-5);
   fs::remove_all(a);
@@ -102,11 +82,11 @@ TEST(CliRunTest, SameInputSameBytes) {
 
 TEST(CliRunTest, SetOverridesASceneValue) {
   const fs::path out = TempDir("set");
-  const Outcome r =
+  const ShellRun r =
       Rockbench("run " + kSrc + "/scenes/thesis_free_rocking.toml --set run.duration=0.5 --out " +
                 out.string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  const std::string hist = Slurp(out / "reference/history.csv");
+  const std::string hist = ReadFile(out / "reference/history.csv");
   EXPECT_NE(hist.find("\n0.500000000,"), std::string::npos);
   EXPECT_EQ(hist.find("\n0.505000000,"), std::string::npos);
   fs::remove_all(out);
@@ -121,9 +101,9 @@ TEST(CliRunTest, AThreeBlockSceneRunsOnTheReference) {
                           "[[block]]\nwidth = 1.0\nheight = 1.0\ndensity = 2500.0\n"
                           "[[block]]\nwidth = 0.5\nheight = 1.0\ndensity = 2500.0\n"
                           "[initial]\ntheta = [0.05, 0.05, 0.05]\n[run]\nduration = 1.0\n";
-  const Outcome r = Rockbench("run " + scene.string() + " --out " + (dir / "out").string());
+  const ShellRun r = Rockbench("run " + scene.string() + " --out " + (dir / "out").string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  const std::string hist = Slurp(dir / "out" / "reference" / "history.csv");
+  const std::string hist = ReadFile(dir / "out" / "reference" / "history.csv");
   EXPECT_EQ(hist.substr(0, hist.find('\n')), "t,theta1,theta2,theta3,omega1,omega2,omega3,mode");
   // Released tilted to the right: block 1 rocks on its right corner from t = 0, and the
   // configuration has a letter per interface ("r" then two of "frl").
@@ -133,7 +113,7 @@ TEST(CliRunTest, AThreeBlockSceneRunsOnTheReference) {
   ASSERT_EQ(config.size(), 3u) << first;
   EXPECT_EQ(config[0], 'r') << first;
   EXPECT_EQ(config.find_first_not_of("frl"), std::string::npos) << first;
-  const auto summary = nlohmann::json::parse(Slurp(dir / "out" / "summary.json"));
+  const auto summary = nlohmann::json::parse(ReadFile(dir / "out" / "summary.json"));
   EXPECT_NE(summary.dump().find("\"theta3\":{\"abs_rad\""), std::string::npos) << summary.dump();
   fs::remove_all(dir);
 }
@@ -155,18 +135,18 @@ TEST(CliRunTest, TwoBlocksWrittenEitherWayGiveTheSameOutputs) {
                                         "[initial]\ntheta = [0.05, 0.08]\nomega = [0.0, -0.1]\n"
                                      << rest;
   for (const char* name : {"legacy", "tables"}) {
-    const Outcome r = Rockbench("run " + (dir / (std::string(name) + ".toml")).string() +
-                                " --out " + (dir / name).string());
+    const ShellRun r = Rockbench("run " + (dir / (std::string(name) + ".toml")).string() +
+                                 " --out " + (dir / name).string());
     ASSERT_EQ(r.exit_code, 0) << name << "\n" << r.output;
   }
   for (const char* file : {"reference/history.csv", "reference/events.csv"}) {
-    const std::string a = Slurp(dir / "legacy" / file);
+    const std::string a = ReadFile(dir / "legacy" / file);
     EXPECT_FALSE(a.empty()) << file;
-    EXPECT_EQ(a, Slurp(dir / "tables" / file)) << file;
+    EXPECT_EQ(a, ReadFile(dir / "tables" / file)) << file;
   }
   // summary.json: every key the same but the wall times and the scene file's path.
   auto summary = [&](const char* name) {
-    nlohmann::json j = nlohmann::json::parse(Slurp(dir / name / "summary.json"));
+    nlohmann::json j = nlohmann::json::parse(ReadFile(dir / name / "summary.json"));
     j.erase("wall_s");
     j["scene"].erase("path");
     if (j.contains("convergence")) j["convergence"].erase("witness_wall_s");
@@ -184,7 +164,7 @@ TEST(CliRunTest, BadInputFailsClearlyAndKeepsOutputs) {
   ASSERT_EQ(
       Rockbench("run " + kSrc + "/scenes/thesis_free_rocking.toml --out " + out.string()).exit_code,
       0);
-  const std::string before = Slurp(out / "reference/history.csv");
+  const std::string before = ReadFile(out / "reference/history.csv");
   auto write = [&](const std::string& name, const std::string& text) {
     std::ofstream(dir / name) << text;
     return (dir / name).string();
@@ -213,11 +193,11 @@ TEST(CliRunTest, BadInputFailsClearlyAndKeepsOutputs) {
       << "PEER NGA STRONG MOTION DATABASE RECORD\nx\nACCELERATION TIME "
          "SERIES IN UNITS OF G\nNPTS=   10, DT=   .0100 SEC,\n0.1 0.2 0.3\n";
   for (const Case& c : cases) {
-    const Outcome r = Rockbench(c.args + " --out " + out.string());
+    const ShellRun r = Rockbench(c.args + " --out " + out.string());
     EXPECT_EQ(r.exit_code, 2) << c.args << "\n" << r.output;
     EXPECT_NE(r.output.find(c.expect), std::string::npos) << c.args << "\n" << r.output;
   }
-  EXPECT_EQ(Slurp(out / "reference/history.csv"), before);
+  EXPECT_EQ(ReadFile(out / "reference/history.csv"), before);
   fs::remove_all(dir);
 }
 

@@ -1,6 +1,7 @@
 #pragma once
 // Runs a shell command for the tests of rockbench as a program: its exit code and what it
-// printed (standard output and error together), and a file's bytes.
+// printed (standard output and error together), the rockbench program itself, and a file's
+// bytes.
 #include <sys/wait.h>
 
 #include <cstdio>
@@ -27,6 +28,14 @@ inline ShellRun Shell(const std::string& command) {
   r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return r;
 }
+
+#ifdef ROCKBENCH_EXE
+/// Runs the rockbench program under test (ROCKBENCH_EXE, which the test programs that run it
+/// define: rockbench_test's PROGRAM) with `args`, as a shell would split them.
+inline ShellRun Rockbench(const std::string& args) {
+  return Shell(std::string(ROCKBENCH_EXE) + " " + args);
+}
+#endif
 
 inline std::string ReadFile(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);

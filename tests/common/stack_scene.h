@@ -14,6 +14,16 @@
 
 namespace rockbench::testing_util {
 
+/// Two blocks (full widths and heights, m; masses, kg), block 2 on block 1, and nothing else
+/// set: the stack of the tests that place or draw blocks without running them.
+inline Scene TwoBlockScene(double width1_m, double height1_m, double mass1_kg, double width2_m,
+                           double height2_m, double mass2_kg) {
+  Scene s;
+  s.blocks = {BlockDef{.width_m = width1_m, .height_m = height1_m, .mass_kg = mass1_kg},
+              BlockDef{.width_m = width2_m, .height_m = height2_m, .mass_kg = mass2_kg}};
+  return s;
+}
+
 inline double StackTiltStep(int blocks) {
   return blocks <= 3 ? 0.004 : 0.0;
 }

@@ -421,23 +421,6 @@ Scene Drums(int n, double theta0_rad, double duration_s) {
   return s;
 }
 
-// The drums locked as one column rocking about block 1's corner (parallel axes).
-bm::RockingBody LockedColumn(const Scene& s) {
-  bm::RockingBody body;
-  body.g_mps2 = s.run.gravity_mps2;
-  body.b_m = 0.5 * s.blocks[0].width_m;
-  double base = 0.0, moment = 0.0;
-  for (const BlockDef& d : s.blocks) {
-    const double b = 0.5 * d.width_m, h = 0.5 * d.height_m, y = base + h;
-    body.m_kg += d.mass_kg;
-    moment += d.mass_kg * y;
-    body.I_O_kgm2 += d.mass_kg * ((b * b + h * h) / 3.0 + body.b_m * body.b_m + y * y);
-    base += 2.0 * h;
-  }
-  body.h_m = moment / body.m_kg;
-  return body;
-}
-
 // The refusal an engine that builds one or two blocks only must give a stack of n (3 or more).
 std::string NBlockRefusal(const std::string& engine, int n) {
   return std::string("drums.toml: engine ") + engine + ": N-block stacks (" + std::to_string(n) +
@@ -450,7 +433,7 @@ TEST_P(EngineConformance, ColumnOfDrumsLandsWhenTheLockedColumnDoes) {
   // lands when the closed form of the locked column says, within a few steps.
   for (const int n : {3, 5}) {
     SCOPED_TRACE(testing::Message() << n << " drums");
-    const bm::RockingBody body = LockedColumn(Drums(n, 0.0, 1.0));
+    const bm::RockingBody body = bm::LockedColumn(Drums(n, 0.0, 1.0));
     const double theta0 = 0.5 * body.alpha_rad();
     const double t_closed = bm::FirstImpactTime_s(body, theta0);
     const Scene s = Drums(n, theta0, t_closed + 0.02);

@@ -1,6 +1,7 @@
 // The closed forms of reference/benchmarks, each against an independent check: a second
 // derivation (the elliptic integral against the quadrature, Housner's e against the angular
-// momentum of a general body, a stack of two equal blocks against one tall block), a limit
+// momentum of a general body, a stack of two equal blocks or a column of N against one tall
+// block, a column of one or two blocks against Housner's block and the locked stack), a limit
 // (small angles, a vanishing upper block), or the reference's own runs and impact laws (event
 // times, rates and thresholds, which the reference computes by other means: integration of
 // the equations of motion, generalized momenta in the base frame). Every bound is derived in
@@ -346,6 +347,49 @@ TEST(ClosedFormsTest, LockedStackOfEqualWidthsIsOneTallBlock) {
   }
 }
 
+// The locked column of N blocks against independent forms of the same body. One block is
+// Housner's (RectangularBlock: I_O = (4/3) m R^2 in one product, the column's I_G + m R^2 in
+// two), two of different widths are the thesis's LockedStack (the same terms grouped another
+// way: block 2's parallel axis about block 1's corner), both to a few roundings: 4 eps
+// relative. N equal blocks are one block N times as tall: the column's I_O
+// sums N terms of size up to m (2N h)^2 against one product, so (N + 3) roundings: 8 N eps
+// relative bounds them. Their first-impact times (GSL quadrature to 1e-13 relative) then agree
+// to the quadrature's tolerance, which 1e-12 relative holds with room.
+TEST(ClosedFormsTest, LockedColumnIsHousnersBlockTheLockedStackAndOneTallBlock) {
+  auto expect_same_body = [](const bm::RockingBody& a, const bm::RockingBody& b, double rel) {
+    EXPECT_NEAR(a.m_kg / b.m_kg, 1.0, rel);
+    EXPECT_NEAR(a.b_m / b.b_m, 1.0, rel);
+    EXPECT_NEAR(a.h_m / b.h_m, 1.0, rel);
+    EXPECT_NEAR(a.I_O_kgm2 / b.I_O_kgm2, 1.0, rel);
+    EXPECT_EQ(a.g_mps2, b.g_mps2);
+    const double theta0 = 0.5 * b.alpha_rad();
+    EXPECT_NEAR(bm::FirstImpactTime_s(a, theta0) / bm::FirstImpactTime_s(b, theta0), 1.0, 1e-12);
+  };
+  for (const auto& [B, H] : {std::pair{1.0, 4.0}, std::pair{0.9, 0.85}, std::pair{0.2, 3.0}}) {
+    SCOPED_TRACE(testing::Message() << "B " << B << ", H " << H);
+    const BlockProps p = MakeBlockProps(B, H, 2500.0 * B * H);
+    const bm::RockingBody housner = bm::RectangularBlock(B, H, 2500.0 * B * H, 9.81);
+    expect_same_body(bm::LockedColumn(std::vector<BlockProps>{p}, 9.81), housner, 4 * kEps);
+    // The same through the scene: a one-block scene is Housner's block.
+    Scene sc;
+    sc.blocks.push_back(BlockDef{B, H, 1.0, 2500.0 * B * H, 2500.0});
+    expect_same_body(bm::LockedColumn(sc), housner, 4 * kEps);
+    for (const int n : {2, 3, 6, 10}) {
+      SCOPED_TRACE(testing::Message() << n << " equal blocks");
+      const bm::RockingBody column = bm::LockedColumn(std::vector<BlockProps>(n, p), 9.81);
+      const bm::RockingBody tall = bm::RectangularBlock(B, n * H, n * 2500.0 * B * H, 9.81);
+      expect_same_body(column, tall, 8 * n * kEps);
+    }
+  }
+  for (const auto& [B1, H1, B2, H2] :
+       {std::tuple{1.25, 1.25, 1.0, 2.5}, std::tuple{1.0, 3.0, 0.5, 1.0}}) {
+    const BlockProps p1 = MakeBlockProps(B1, H1, 2500.0 * B1 * H1),
+                     p2 = MakeBlockProps(B2, H2, 2500.0 * B2 * H2);
+    expect_same_body(bm::LockedColumn(std::vector<BlockProps>{p1, p2}, 9.81),
+                     bm::LockedStack(p1, p2, 9.81), 4 * kEps);
+  }
+}
+
 // As block 2's mass vanishes (m2 / m1 = mu), block 1 lands as if alone (3a -> 1b: theta1'+ /
 // theta1'- -> Housner's e of block 1), and block 2 alone on a block 1 that cannot be moved
 // (4a -> 1b) leaves it still (theta1'+ -> 0) and rocks on with its own e (theta2'+ / theta2'-
@@ -467,6 +511,12 @@ TEST(ClosedFormsTest, ArgumentsOutsideTheFormsThrow) {
   EXPECT_THROW(bm::RectangularPulseOverturningAcceleration_mps2(body, 0.0), std::domain_error);
   EXPECT_THROW(bm::LockedStack(MakeBlockProps(1.0, 1.0, 1.0), MakeBlockProps(2.0, 1.0, 1.0), 9.81),
                std::domain_error);
+  EXPECT_THROW(bm::LockedColumn(std::vector<BlockProps>{}, 9.81), std::domain_error);
+  EXPECT_THROW(bm::LockedColumn(std::vector<BlockProps>{MakeBlockProps(1.0, 1.0, 1.0),
+                                                        MakeBlockProps(0.5, 1.0, 1.0),
+                                                        MakeBlockProps(0.6, 1.0, 1.0)},
+                                9.81),
+               std::domain_error);  // block 3 wider than block 2
   EXPECT_THROW(
       bm::FreeRockingAmplitudeAfterImpacts_rad(bm::RectangularBlock(1.0, 0.5, 1.0, 9.81), 0.1, 1),
       std::domain_error);  // squat: e < 0

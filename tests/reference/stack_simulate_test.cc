@@ -34,27 +34,6 @@ Scene Column(int n, double duration_s = 4.0) {
   return Stack(std::vector<std::array<double, 3>>(n, {0.9, 0.85, 2700.0}), duration_s);
 }
 
-// The locked column as one rocking body (closed_forms.h): mass, half width, mass-centre height,
-// inertia about a base corner of block 1.
-benchmarks::RockingBody LockedColumn(const Scene& sc) {
-  benchmarks::RockingBody body;
-  body.g_mps2 = sc.run.gravity_mps2;
-  body.b_m = 0.5 * sc.blocks[0].width_m;
-  double y = 0.0, m = 0.0, moment = 0.0, I_O = 0.0;
-  for (const BlockDef& b : sc.blocks) {
-    const BlockProps p = MakeBlockProps(b.width_m, b.height_m, b.mass_kg);
-    const double yc = y + p.h;
-    m += p.m;
-    moment += p.m * yc;
-    I_O += p.I_G + p.m * (body.b_m * body.b_m + yc * yc);
-    y += 2.0 * p.h;
-  }
-  body.m_kg = m;
-  body.h_m = moment / m;
-  body.I_O_kgm2 = I_O;
-  return body;
-}
-
 Result RunOn(Scene sc, const char* formulation) {
   sc.model.formulation = ParseFormulation(formulation).value();
   return Simulate(sc, GroundMotion::FromScene(sc));
@@ -89,7 +68,7 @@ TEST(StackSimulateTest, OneBlockOnTheChainIsHousnersBlock) {
   Scene sc = Stack({{0.5, 2.0, 2000.0}}, 3.0);
   sc.initial.theta_rad[0] = 0.1;
   const Result r = RunOn(sc, "chain");
-  const benchmarks::RockingBody body = LockedColumn(sc);
+  const benchmarks::RockingBody body = benchmarks::LockedColumn(sc);
   ASSERT_FALSE(r.history.events.empty());
   const Event& first = r.history.events[0];
   EXPECT_EQ(first.kind, "ground_impact");
@@ -106,7 +85,7 @@ TEST(StackSimulateTest, ALockedColumnRocksAsOneBodyUntilItsFirstImpact) {
   // every N.
   for (const int n : {1, 2, 3, 6, 10}) {
     Scene sc = Column(n, 3.0);
-    const benchmarks::RockingBody body = LockedColumn(sc);
+    const benchmarks::RockingBody body = benchmarks::LockedColumn(sc);
     const double theta0 = 0.5 * body.alpha_rad();
     for (int i = 0; i < n; ++i) sc.initial.theta_rad[i] = theta0;
     const Result r = RunOn(sc, "chain");

@@ -7,10 +7,12 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <iterator>
 #include <map>
 #include <string>
 
 #include "tests/common/sample.h"
+#include "tests/common/stack_scene.h"
 
 // Everything here draws frames: built only with OSMesa (tests/renders/CMakeLists.txt).
 namespace rockbench::renders {
@@ -20,11 +22,12 @@ using testing_util::MakeSample;
 namespace fs = std::filesystem;
 
 Scene Stack() {
-  Scene s;
-  s.blocks = {{.width_m = 1.0, .height_m = 1.5, .mass_kg = 100.0}};
-  s.blocks.resize(1);
-  s.blocks.push_back(BlockDef{.width_m = 0.6, .height_m = 1.0, .mass_kg = 30.0});
-  return s;
+  return testing_util::TwoBlockScene(1.0, 1.5, 100.0, 0.6, 1.0, 30.0);
+}
+
+// The number of entries of folder `dir`.
+long FileCount(const fs::path& dir) {
+  return std::distance(fs::directory_iterator(dir), fs::directory_iterator());
 }
 
 History Rocking() {
@@ -125,12 +128,7 @@ TEST(ExportAnimation, FramesArePngsOfTheRenderedImages) {
   WritePng(Image(4, 4), cfg.out_dir / "frames" / "frame_00099.png");
   const AnimationResult r = ExportAnimation(renderer, cfg);
   ASSERT_EQ(r.frame_count, 5);
-  int files = 0;
-  for (const auto& e : fs::directory_iterator(cfg.out_dir / "frames")) {
-    (void)e;
-    ++files;
-  }
-  EXPECT_EQ(files, 5);
+  EXPECT_EQ(FileCount(cfg.out_dir / "frames"), 5);
   // Frame 3 is the picture at t = 3 / 5 s.
   const Image frame3 = ReadPng(cfg.out_dir / "frames" / "frame_00003.png");
   EXPECT_NEAR(r.frame_times_s[3], 0.6, 1e-12);
@@ -172,12 +170,7 @@ TEST(ExportAnimation, AThreeBlockRunHasItsFrames) {
   const AnimationResult r = ExportAnimation(renderer, cfg);
   EXPECT_TRUE(r.problems.empty());
   ASSERT_EQ(r.frame_count, 12);
-  int files = 0;
-  for (const auto& e : fs::directory_iterator(cfg.out_dir / "frames")) {
-    (void)e;
-    ++files;
-  }
-  EXPECT_EQ(files, 12);
+  EXPECT_EQ(FileCount(cfg.out_dir / "frames"), 12);
   EXPECT_NEAR(r.frame_times_s[7], 0.35, 1e-12);
   EXPECT_EQ(ReadPng(cfg.out_dir / "frames" / "frame_00007.png").rgb,
             renderer.Render(r.frame_times_s[7]).rgb);

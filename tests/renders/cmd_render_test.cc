@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <string>
 #include <thread>
 #include <vector>
@@ -20,6 +21,7 @@
 #include "scene/history.h"
 #include "scene/scene.h"
 #include "tests/common/sample.h"
+#include "tests/common/shell_test.h"
 
 extern char** environ;
 
@@ -31,22 +33,11 @@ namespace fs = std::filesystem;
 
 const fs::path kSource = ROCKBENCH_SOURCE_DIR;
 
-struct Result {
-  int status = -1;
-  std::string output;  // standard output and error
-};
+using Result = testing_util::ShellRun;
 
+// `rockbench render ARGS`: its exit status and what it printed.
 Result RunCli(const std::string& args) {
-  Result r;
-  const std::string cmd = std::string(ROCKBENCH_CLI) + " render " + args + " 2>&1";
-  FILE* p = popen(cmd.c_str(), "r");
-  if (!p) return r;
-  char buf[4096];
-  size_t n;
-  while ((n = std::fread(buf, 1, sizeof buf, p)) > 0) r.output.append(buf, n);
-  const int st = pclose(p);
-  r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-  return r;
+  return testing_util::Shell(std::string(ROCKBENCH_CLI) + " render " + args);
 }
 
 fs::path Folder(const std::string& name) {
@@ -64,11 +55,28 @@ int CountFiles(const fs::path& dir) {
   return n;
 }
 
+// What `rockbench render DIR --size 320x240` draws of run folder DIR, drawn in process: its
+// scene.toml and the histories of the runs named, at the same size, layout and title.
+std::unique_ptr<FrameRenderer> DirectRenderer(const fs::path& dir,
+                                              const std::vector<std::string>& runs, Layout layout) {
+  const Scene scene = LoadScene(dir / "scene.toml");
+  RenderConfig cfg;
+  cfg.width_px = 320;
+  cfg.height_px = 240;
+  cfg.layout = layout;
+  cfg.title = scene.title;
+  std::vector<Track> tracks;
+  for (const std::string& run : runs) {
+    tracks.push_back({run, ReadHistoryCsv(dir / run / "history.csv")});
+  }
+  return std::make_unique<FrameRenderer>(scene, std::move(tracks), BaseDisplacement{}, cfg);
+}
+
 TEST(CmdRender, SceneFileIsSimulatedThenDrawn) {
   const fs::path out = Folder("scene");
   const Result r = RunCli((kSource / "scenes/thesis_free_rocking.toml").string() + " --out " +
                           out.string() + " --frames --size 160x120 --to 0.5 --fps 10");
-  ASSERT_EQ(r.status, 0) << r.output;
+  ASSERT_EQ(r.exit_code, 0) << r.output;
   // The reference model ran (its one-line summary is printed).
   EXPECT_NE(r.output.find("reference:"), std::string::npos) << r.output;
   EXPECT_EQ(CountFiles(out / "frames"), 5);
@@ -94,21 +102,12 @@ TEST(CmdRender, RunFolderIsDrawnFromItsHistories) {
   const fs::path out = dir / "pictures";
   const Result r = RunCli(dir.string() + " --out " + out.string() +
                           " --frames --size 320x240 --fps 10 --layout side");
-  ASSERT_EQ(r.status, 0) << r.output;
+  ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_EQ(r.output.find("reference:"), std::string::npos) << "simulated again:\n" << r.output;
   ASSERT_EQ(CountFiles(out / "frames"), 10);
   // The same frame drawn directly from the same files.
-  const Scene scene = LoadScene(dir / "scene.toml");
-  RenderConfig cfg;
-  cfg.width_px = 320;
-  cfg.height_px = 240;
-  cfg.layout = Layout::kSide;
-  cfg.title = scene.title;
-  FrameRenderer direct(scene,
-                       {{"reference", ReadHistoryCsv(dir / "reference" / "history.csv")},
-                        {"other", ReadHistoryCsv(dir / "other" / "history.csv")}},
-                       {}, cfg);
-  EXPECT_EQ(ReadPng(out / "frames" / "frame_00004.png").rgb, direct.Render(0.4).rgb);
+  const auto direct = DirectRenderer(dir, {"reference", "other"}, Layout::kSide);
+  EXPECT_EQ(ReadPng(out / "frames" / "frame_00004.png").rgb, direct->Render(0.4).rgb);
   fs::remove_all(dir);
 }
 
@@ -135,18 +134,12 @@ TEST(CmdRender, AStackOfThreeBlocksIsDrawnFromItsRunFolder) {
   const fs::path out = dir / "pictures";
   const Result r =
       RunCli(dir.string() + " --out " + out.string() + " --frames --size 320x240 --fps 10");
-  ASSERT_EQ(r.status, 0) << r.output;
+  ASSERT_EQ(r.exit_code, 0) << r.output;
   ASSERT_EQ(CountFiles(out / "frames"), 5);
-  const Scene scene = LoadScene(dir / "scene.toml");
-  ASSERT_EQ(scene.block_count(), 3);
-  RenderConfig cfg;
-  cfg.width_px = 320;
-  cfg.height_px = 240;
-  cfg.title = scene.title;
-  FrameRenderer direct(scene, {{"reference", ReadHistoryCsv(dir / "reference" / "history.csv")}},
-                       {}, cfg);
-  EXPECT_EQ(direct.layout().chart_panels.size(), 3u);
-  EXPECT_EQ(ReadPng(out / "frames" / "frame_00003.png").rgb, direct.Render(0.3).rgb);
+  ASSERT_EQ(LoadScene(dir / "scene.toml").block_count(), 3);
+  const auto direct = DirectRenderer(dir, {"reference"}, Layout::kOverlay);
+  EXPECT_EQ(direct->layout().chart_panels.size(), 3u);
+  EXPECT_EQ(ReadPng(out / "frames" / "frame_00003.png").rgb, direct->Render(0.3).rgb);
   fs::remove_all(dir);
 }
 
@@ -156,7 +149,7 @@ TEST(CmdRender, SaysThisBuildHasNoOsmesa) {
   const fs::path out = Folder("no_osmesa");
   const Result r = RunCli((kSource / "scenes/thesis_free_rocking.toml").string() + " --out " +
                           out.string() + " --frames --size 160x120 --to 0.5");
-  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_EQ(r.exit_code, 1) << r.output;
   EXPECT_NE(r.output.find("no OSMesa"), std::string::npos) << r.output;
   // Said before any work: the reference model did not run.
   EXPECT_EQ(r.output.find("reference:"), std::string::npos) << r.output;
@@ -247,7 +240,7 @@ TEST(CmdRender, WallLimitStopsTheExportWithoutPartialOutput) {
              "--wall-limit 2");
   const double took_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  EXPECT_EQ(r.status, 3) << r.output;
+  EXPECT_EQ(r.exit_code, 3) << r.output;
   EXPECT_NE(r.output.find("rockbench render: error: wall-clock limit of 2 s reached "
                           "(--wall-limit); no output written for what was unfinished"),
             std::string::npos)
@@ -304,7 +297,7 @@ TEST(CmdRender, AKilledRenderLeavesNoPartialOutput) {
   // The next render removes the dead process's folder and replaces the older frames.
   const Result r = RunCli((kSource / "scenes/thesis_free_rocking.toml").string() + " --out " +
                           out.string() + " --frames --size 160x120 --to 0.5 --fps 10");
-  ASSERT_EQ(r.status, 0) << r.output;
+  ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_FALSE(fs::exists(tmp));
   EXPECT_EQ(CountFiles(out / "frames"), 5);
   EXPECT_FALSE(fs::exists(out / "frames" / "frame_99999.png"));
@@ -351,7 +344,7 @@ TEST(CmdRender, LimitsAreCheckedBeforeAnyWork) {
   };
   for (const Case& c : cases) {
     const Result r = RunCli(scene + " --out " + out.string() + " --frames " + c.args);
-    EXPECT_EQ(r.status, 2) << c.args << "\n" << r.output;
+    EXPECT_EQ(r.exit_code, 2) << c.args << "\n" << r.output;
     EXPECT_NE(r.output.find(c.expected), std::string::npos) << c.args << "\n" << r.output;
     EXPECT_EQ(r.output.find("reference:"), std::string::npos) << "simulated: " << c.args;
     EXPECT_LT(r.output.size(), 1000u) << c.args;
@@ -359,7 +352,7 @@ TEST(CmdRender, LimitsAreCheckedBeforeAnyWork) {
   EXPECT_FALSE(fs::exists(out));
   const Result long_out =
       RunCli(scene + " --out " + out.string() + "/" + std::string(300, 'o') + " --frames");
-  EXPECT_EQ(long_out.status, 2) << long_out.output;
+  EXPECT_EQ(long_out.exit_code, 2) << long_out.output;
   EXPECT_NE(long_out.output.find("expected a printable folder path of at most 4095 bytes, each "
                                  "name at most 255"),
             std::string::npos)
@@ -375,20 +368,20 @@ TEST(CmdRender, TheRunsWindowAndTheMemoryAreCheckedBeforeDrawing) {
   const std::string scene = (kSource / "scenes/thesis_free_rocking.toml").string();
   const fs::path out = Folder("budget");
   Result r = RunCli(scene + " --out " + out.string() + " --frames --fps 240 --speed 0.001");
-  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(r.output.find("the run's end (6 s, no --to given): the animation would have 1.44e+06 "
                           "frames"),
             std::string::npos)
       << r.output;
   r = RunCli(scene + " --out " + out.string() + " --frames --size 8192x8192");
-  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(r.output.find("thesis_free_rocking.toml: --size 8192x8192 --supersample 2: needs an "
                           "estimated"),
             std::string::npos)
       << r.output;
   EXPECT_NE(r.output.find("more than the memory budget of 2 GiB"), std::string::npos) << r.output;
   r = RunCli(scene + " --out " + out.string() + " --frames --memory-budget 0.05");
-  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(r.output.find("more than the memory budget of 51.2 MiB"), std::string::npos)
       << r.output;
   EXPECT_FALSE(fs::exists(out));
@@ -400,7 +393,7 @@ TEST(CmdRender, AskingForNoPicturesIsAnErrorBeforeAnyWork) {
   const fs::path out = Folder("nothing");
   const Result r =
       RunCli((kSource / "scenes/thesis_free_rocking.toml").string() + " --out " + out.string());
-  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(r.output.find("nothing to make"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(out));
 }
@@ -409,16 +402,16 @@ TEST(CmdRender, BadOptionsNameTheOption) {
   const std::string scene = (kSource / "scenes/thesis_free_rocking.toml").string();
   const fs::path out = Folder("bad");
   Result r = RunCli(scene + " --out " + out.string() + " --frames --size 640by480");
-  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.output.find("--size"), std::string::npos) << r.output;
   r = RunCli(scene + " --out " + out.string() + " --mp4 --size 641x480");
-  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.output.find("even"), std::string::npos) << r.output;
   r = RunCli(scene + " --out " + out.string() + " --frames --layout stacked");
-  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.output.find("--layout"), std::string::npos) << r.output;
   r = RunCli(out.string() + "/missing --out " + out.string() + " --frames");
-  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.output.find("no such scene file or run folder"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(out));
 }

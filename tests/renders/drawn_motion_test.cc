@@ -16,6 +16,7 @@
 #include "scene/stack_pose.h"
 #include "tests/common/initial_state.h"
 #include "tests/common/sample.h"
+#include "tests/common/stack_scene.h"
 
 namespace rockbench::renders {
 namespace {
@@ -27,11 +28,7 @@ using testing_util::MakeSample;
 constexpr double kTolM = 1e-12;
 
 Scene TwoBlocks(double b1_w = 1.0, double h1 = 1.5, double b2_w = 0.6, double h2 = 1.2) {
-  Scene s;
-  s.blocks = {{.width_m = b1_w, .height_m = h1, .mass_kg = 100.0}};
-  s.blocks.resize(1);
-  s.blocks.push_back(BlockDef{.width_m = b2_w, .height_m = h2, .mass_kg = 30.0});
-  return s;
+  return testing_util::TwoBlockScene(b1_w, h1, 100.0, b2_w, h2, 30.0);
 }
 
 double Dist(Vec2 a, Vec2 b) {

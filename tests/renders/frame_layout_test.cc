@@ -7,6 +7,7 @@
 
 #include "renders/renderer.h"
 #include "tests/common/sample.h"
+#include "tests/common/stack_scene.h"
 
 namespace rockbench::renders {
 namespace {
@@ -14,11 +15,7 @@ namespace {
 using testing_util::MakeSample;
 
 Scene Stack() {
-  Scene s;
-  s.blocks = {{.width_m = 1.25, .height_m = 1.25, .mass_kg = 3906.0}};
-  s.blocks.resize(1);
-  s.blocks.push_back(BlockDef{.width_m = 1.0, .height_m = 2.5, .mass_kg = 6250.0});
-  return s;
+  return testing_util::TwoBlockScene(1.25, 1.25, 3906.0, 1.0, 2.5, 6250.0);
 }
 
 History Wobble(double amp_rad, double t_end_s = 4.0) {

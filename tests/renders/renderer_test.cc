@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "tests/common/sample.h"
+#include "tests/common/stack_scene.h"
 
 namespace rockbench::renders {
 namespace {
@@ -19,11 +20,7 @@ namespace {
 using testing_util::MakeSample;
 
 Scene Stack() {
-  Scene s;
-  s.blocks = {{.width_m = 1.25, .height_m = 1.25, .mass_kg = 3906.0}};
-  s.blocks.resize(1);
-  s.blocks.push_back(BlockDef{.width_m = 0.5, .height_m = 1.5, .mass_kg = 1875.0});
-  return s;
+  return testing_util::TwoBlockScene(1.25, 1.25, 3906.0, 0.5, 1.5, 1875.0);
 }
 
 // Block 2 tilted by 0.2 rad on block 1 at rest (mode 4a), held for one second.

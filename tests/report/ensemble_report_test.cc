@@ -5,6 +5,7 @@
 // contains zero; a malformed members.csv is an error naming its line.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -143,6 +144,65 @@ TEST_F(EnsembleReportTest, FragilitySaysWhetherTheMediansDiffer) {
   EXPECT_NE(md.find("contains zero"), std::string::npos) << md;
   EXPECT_TRUE(std::filesystem::exists(same / "figures" / "fragility_0.svg"));
   EXPECT_TRUE(std::filesystem::exists(same / "figures" / "peak_theta1_vs_pga.svg"));
+}
+
+// A motion suite over a stack of three blocks: the fragility of each block's overturning
+// (block 1 takes the whole stack down, block 3 falls off block 2; block 2 never overturns
+// first), and the peak-angle scatter has a series per block in the renders' trace colours.
+TEST_F(EnsembleReportTest, AThreeBlockSuiteHasAFragilityPerBlockAndEveryBlocksPeaks) {
+  StudyDef s;
+  s.engines = {"reference"};
+  s.blocks = 3;
+  const std::vector<double> pgas = {0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.8, 1.0, 1.2, 1.5};
+  s.axes = {Axis("base.horizontal.seed", {1, 2, 3, 4, 5, 6, 7, 8, 9, 10}),
+            Axis("base.horizontal.pga_g", pgas)};
+  std::vector<MemberRow> rows;
+  int failures[4] = {0, 0, 0, 0};  // by the block that overturned (0: none)
+  const auto phi = [](double x, double median) {
+    return 0.5 * std::erfc(-std::log(x / median) / (0.4 * std::sqrt(2.0)));
+  };
+  for (int seed = 0; seed < 10; ++seed) {
+    for (size_t j = 0; j < pgas.size(); ++j) {
+      // Seed k at PGA x: block 1 (median 0.8 g) when k < 10 Phi, else block 3 (median 0.3 g).
+      const int block = seed < std::lround(10 * phi(pgas[j], 0.8))   ? 1
+                        : seed < std::lround(10 * phi(pgas[j], 0.3)) ? 3
+                                                                     : 0;
+      ++failures[block];
+      MemberRow r =
+          Row(seed * static_cast<long long>(pgas.size()) + j, "reference", block, pgas[j]);
+      r.p2_radps = 2.0;
+      r.alpha2_rad = 0.3;
+      r.p_from3_radps = {2.1};
+      r.alpha_from3_rad = {0.35};
+      r.peak_theta2_rad = 0.06;
+      r.peak_theta_from3_rad = {block == 3 ? 1.3 : 0.07};
+      rows.push_back(r);
+    }
+  }
+  ASSERT_GT(failures[1], 0);
+  ASSERT_GT(failures[3], 0);
+  const auto page = WriteEnsembleReport(WriteEnsemble("three", s, rows), dir_ / "out");
+  const std::string md = ReadFile(page / "report.md");
+  EXPECT_NE(md.find("By the block that overturns"), std::string::npos) << md;
+  for (int b : {1, 2, 3}) {
+    const std::string row = std::string("| all | reference | block ") + std::to_string(b) +
+                            " (blocks " + std::to_string(b) + "-3) | 100 | " +
+                            std::to_string(failures[b]) + " | ";
+    EXPECT_NE(md.find(row), std::string::npos) << row << "\n" << md;
+  }
+  EXPECT_NE(md.find("block 2 (blocks 2-3) | 100 | 0 | no fit"), std::string::npos) << md;
+  // Every block's peaks, one series each (every member rocked: 100 points), in the trace
+  // colours of renders::Palette (block 3: wine, 130 40 90).
+  for (int b : {1, 2, 3}) {
+    const std::string dat =
+        ReadFile(page / "figures" /
+                 (std::string("peak_theta_vs_pga_reference_block") + std::to_string(b) + ".dat"));
+    EXPECT_EQ(std::count(dat.begin(), dat.end(), '\n'), 100) << b;
+  }
+  const std::string gp = ReadFile(page / "figures" / "peak_theta_vs_pga_reference.gp");
+  EXPECT_NE(gp.find("lc rgb \"#82285a\" title \"block 3\""), std::string::npos) << gp;
+  EXPECT_TRUE(std::filesystem::exists(page / "figures" / "peak_theta_vs_pga_reference.svg"));
+  EXPECT_FALSE(std::filesystem::exists(page / "figures" / "peak_theta1_vs_pga.svg"));
 }
 
 TEST_F(EnsembleReportTest, AMalformedRowNamesItsLine) {

@@ -2,19 +2,24 @@
 // reference (the engines refuse N >= 3 until they are generalised): a run page names every
 // block's angle, draws one panel per block and one friction curve per interface, its energy is
 // the chain's potential energy at the release; a study's page has its table by block; a sweep's
-// records and page carry block 3. Keyframes and the animation are left out (renders have their
-// own N-block tests).
+// records and page carry block 3, its figures name every block. An engine's warnings name
+// every interface; keyframes of 8 and 10 blocks are fair across the blocks. Keyframes and the
+// animation are left out of the pages (renders have their own N-block tests).
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "common/stack_scene.h"
 #include "report/common/interpolation.h"
+#include "report/run/outcome_section.h"
+#include "report/run/pictures_section.h"
 #include "report/run/run_report.h"
 #include "report/run_folder.h"
 #include "report/study/study_report.h"
@@ -129,6 +134,112 @@ TEST_F(StackReportTest, TheInterpolatorHasEveryBlock) {
   for (int b = 0; b < 3; ++b) EXPECT_EQ(a[b], s.theta_rad[b]) << b;
 }
 
+// An engine's warnings on a stack of three blocks name every contact the monitor writes
+// (ground, interface2, interface3: engines/common/monitor.cc), not the two-block keys (which a
+// three-block summary does not have: their figures would read "nan").
+TEST(StackWarnings, AnEnginesWarningsNameEveryInterface) {
+  RunData run;
+  run.scene = testing_util::StackScene(3, 1.0);
+  EngineData ref, engine;
+  ref.name = "reference";
+  engine.name = "bullet";
+  engine.history.blocks = 3;
+  engine.summary["status"] = "completed";
+  nlohmann::json& v = engine.summary["violations"];
+  v["sliding"] = v["uplift"] = v["penetration"] = true;
+  v["slip_ground_m"] = 0.001;
+  v["slip_interface2_m"] = 0.002;
+  v["slip_interface3_m"] = 0.003;
+  v["uplift_ground_episodes"] = 0;
+  v["uplift_interface3_episodes"] = 2;
+  v["uplift_interface3_max_m"] = 0.004;
+  v["penetration_ground_max_m"] = 0.0001;
+  v["penetration_interface2_max_m"] = 0.005;
+  v["penetration_interface3_max_m"] = 0.0002;
+  run.engines = {ref, engine};
+  std::vector<std::string> warnings;
+  EnginesOutcome(run, warnings);
+  std::string all;
+  for (const std::string& w : warnings) all += w + "\n";
+  EXPECT_NE(all.find("slipped 1 mm at the ground, 2 mm at interface 2 (block 2 on block 1) and "
+                     "3 mm at interface 3 (block 3 on block 2)."),
+            std::string::npos)
+      << all;
+  EXPECT_NE(all.find("lifted off: 2 time(s) at interface 3 (block 3 on block 2) (up to 4 mm)."),
+            std::string::npos)
+      << all;
+  EXPECT_NE(all.find("sink into each other or the ground by up to 5 mm"), std::string::npos) << all;
+  EXPECT_EQ(all.find("nan"), std::string::npos) << all;
+}
+
+// A run folder's data made by hand: a stack of `blocks`, the reference's summary (its peaks'
+// times, an overturn) and impact events (kind, time).
+RunData KeyframeRun(int blocks, const std::vector<double>& peak_t_s, double overturn_t_s,
+                    const std::vector<std::pair<std::string, double>>& impacts) {
+  RunData run;
+  run.scene = testing_util::StackScene(blocks, 2.0);
+  EngineData ref;
+  ref.name = "reference";
+  for (int b = 1; b <= blocks; ++b) {
+    ref.summary["peaks"][std::string("theta") + std::to_string(b)]["t_s"] = peak_t_s[b - 1];
+  }
+  if (overturn_t_s > 0.0) ref.summary["overturn"]["t_s"] = overturn_t_s;
+  for (const auto& [kind, t] : impacts) {
+    Event e(blocks);
+    e.kind = kind;
+    e.t_s = t;
+    ref.events.push_back(e);
+  }
+  run.engines.push_back(ref);
+  return run;
+}
+
+bool HasFrameAt(const std::vector<Keyframe>& frames, double t_s) {
+  return std::any_of(frames.begin(), frames.end(),
+                     [&](const Keyframe& k) { return std::abs(k.t_s - t_s) < 1e-9; });
+}
+
+// Keyframes of 8 and 10 blocks are fair across the blocks. A column released as one peaks
+// everywhere at t = 0 (one frame) and its top interface chatters (ten impacts 0.1 s apart)
+// before the ground's first impact and interface 3's: in time order the chatter would take
+// all 7 frames left; in rounds the ground and interface 3 have theirs. Ten blocks peaking at
+// ten different times with an overturn at 2 s: blocks 1 to 8 would take the 8 frames and the
+// overturn none; the overturn goes first and the peaks spread from block 1 to block 10.
+TEST(StackKeyframes, NoBlocksEventsTakeEveryFrame) {
+  std::vector<std::pair<std::string, double>> impacts;
+  for (int i = 1; i <= 10; ++i) impacts.push_back({"interface8_impact", 0.1 * i});
+  impacts.push_back({"ground_impact", 1.15});
+  impacts.push_back({"interface3_impact", 1.35});
+  impacts.push_back({"ground_impact", 1.55});
+  const std::vector<Keyframe> column =
+      KeyframeTimes(KeyframeRun(8, std::vector<double>(8, 0.0), 0.0, impacts), /*max_frames=*/8);
+  ASSERT_EQ(column.size(), 8u);
+  EXPECT_EQ(column[0].t_s, 0.0);
+  EXPECT_EQ(column[0].why.size(), 8u);    // every block's peak in the first frame
+  EXPECT_TRUE(HasFrameAt(column, 1.15));  // impact 11: the ground's first
+  EXPECT_TRUE(HasFrameAt(column, 1.35));  // impact 12: interface 3's first
+  EXPECT_TRUE(HasFrameAt(column, 1.55));  // the ground's second, in round 2
+  // The chatter keeps the rest: the first four of interface 8 (rounds 1 to 4).
+  for (double t : {0.1, 0.2, 0.3, 0.4}) EXPECT_TRUE(HasFrameAt(column, t)) << t;
+  EXPECT_EQ(column[5].Caption(), "impact 11 of the reference");
+
+  std::vector<double> peaks;
+  for (int b = 1; b <= 10; ++b) peaks.push_back(0.1 * b);
+  const std::vector<Keyframe> tall = KeyframeTimes(KeyframeRun(10, peaks, 2.0, {}), 8);
+  ASSERT_EQ(tall.size(), 8u);
+  EXPECT_EQ(tall.back().t_s, 2.0);
+  EXPECT_EQ(tall.back().Caption(), "overturn (reference)");
+  // A frame's text lists its peaks by block, then the overturn (claimed first).
+  const std::vector<Keyframe> falls = KeyframeTimes(KeyframeRun(3, {0.0, 0.0, 1.2}, 1.2, {}), 8);
+  ASSERT_EQ(falls.size(), 2u);
+  EXPECT_EQ(falls[0].Caption(), "peak |theta1| of the reference; peak |theta2| of the reference");
+  EXPECT_EQ(falls[1].Caption(), "peak |theta3| of the reference; overturn (reference)");
+  // Blocks 1, 3, 4, 6, 7, 9 and 10: i 9 / 6 rounded, i = 0..6, from block 1.
+  for (int b : {1, 3, 4, 6, 7, 9, 10}) {
+    EXPECT_TRUE(HasFrameAt(tall, 0.1 * b)) << "block " << b;
+  }
+}
+
 // A study over block3.width (the reference): the page's table by block.
 TEST_F(StackReportTest, AStudyPageHasItsTableByBlock) {
   WriteText(base_ / "study.toml",
@@ -161,7 +272,16 @@ TEST_F(StackReportTest, ASweepOfThreeBlocksCarriesBlock3) {
     EXPECT_GE(MaxAngleError(r), r.theta1_max_abs_error_rad);
   }
   const fs::path page = WriteSweepReport(base_ / "sweep", base_ / "out");
-  EXPECT_NE(Slurp(page / "report.md").find("max err θ3 (largest, rad)"), std::string::npos);
+  const std::string md = Slurp(page / "report.md");
+  EXPECT_NE(md.find("max err θ3 (largest, rad)"), std::string::npos);
+  // The figures' captions and axes name the three blocks, not blocks 1 and 2.
+  EXPECT_NE(md.find("|Peak relative error| (the largest of theta1's to theta3's)"),
+            std::string::npos)
+      << md;
+  EXPECT_EQ(md.find("theta1's and theta2's"), std::string::npos) << md;
+  EXPECT_NE(Slurp(page / "figures" / "work_precision.gp").find("max of θ_1 to θ_3 (rad)"),
+            std::string::npos);
+  EXPECT_NE(Slurp(page / "figures" / "peak_error.gp").find("max of θ_1 to θ_3"), std::string::npos);
 }
 
 }  // namespace

@@ -22,9 +22,7 @@ namespace {
 using testing_util::ReadFile;
 using CliRun = testing_util::ShellRun;
 
-CliRun Rockbench(const std::string& args) {
-  return testing_util::Shell(std::string(ROCKBENCH_EXE) + " " + args);
-}
+using testing_util::Rockbench;
 
 using Row = std::map<std::string, std::string>;
 

@@ -16,11 +16,13 @@
 #include <string>
 #include <vector>
 
+#include "common/stack_scene.h"
 #include "reference/benchmarks/closed_forms.h"
 #include "reference/geometry.h"
 #include "reference/simulate.h"
 #include "reference/transitions.h"
 #include "scene/ground_motion.h"
+#include "util/format.h"
 
 namespace rockbench {
 namespace {
@@ -406,6 +408,90 @@ TEST(StressTest, RowRoundTripsThroughJsonAndCsvHasFixedColumns) {
   }
   EXPECT_EQ(rows, 2);
   EXPECT_NE(csv.find("x; y"), std::string::npos);  // commas in free text become ';'
+}
+
+// A stack of three blocks (issue 23): the reference's and Bullet's rows carry block 3 (its
+// peak, and Bullet's errors on it), the reference's impacts dissipate (the energy computed
+// along the pivot chain), and stress.csv has block 3's columns after block 2's, empty in the
+// row of a two-block case; without a stack of three the header is the one it always was.
+TEST(StressTest, AStackOfThreeBlocksHasEveryBlocksColumns) {
+  StressCase c;
+  c.name = "stack3/free_rocking";
+  c.scene = testing_util::StackScene(3, 1.0);
+  const reference::Result ref = RunReference(c);
+  ASSERT_EQ(ref.summary.peak_theta_rad.size(), 3u);
+  const StressRow r = RunStressCaseHere(c, "reference");
+  EXPECT_TRUE(r.finished) << r.status << ": " << r.detail;
+  EXPECT_FALSE(r.nan);
+  EXPECT_EQ(r.peak_theta2_rad, ref.summary.peak_theta_rad[1]);
+  ASSERT_EQ(r.peak_theta_from3_rad.size(), 1u);
+  EXPECT_EQ(r.peak_theta_from3_rad[0], ref.summary.peak_theta_rad[2]);
+  // Every impact of the chain's plastic impacts loses kinetic energy; rounding of a direct sum
+  // of the blocks' kinetic energies is ~1e-15 of it, so 1e-9 is the bound the other reference
+  // cases meet (ReferenceFinishesEveryQuickCaseWithoutNanOrEnergyGain).
+  ASSERT_GT(r.impacts, 0);
+  EXPECT_EQ(r.energy_impacts, r.impacts);
+  EXPECT_LT(r.max_energy_gain_rel, 1e-9);
+  const StressRow b = RunStressCaseHere(c, "bullet");
+  EXPECT_TRUE(b.finished) << b.status << ": " << b.detail;
+  ASSERT_TRUE(b.has_agreement);
+  ASSERT_EQ(b.peak_theta_from3_rad.size(), 1u);
+  ASSERT_EQ(b.theta_from3_max_abs_error_rad.size(), 1u);
+  ASSERT_EQ(b.theta_from3_peak_rel_error.size(), 1u);
+  EXPECT_TRUE(std::isfinite(b.theta_from3_max_abs_error_rad[0]));
+  EXPECT_GT(b.theta_from3_max_abs_error_rad[0], 0.0);
+  std::printf(
+      "3 blocks: reference %d impacts, largest energy change %.3g of the kinetic energy; "
+      "bullet theta3 max error %.3g rad, peak %+.3g\n",
+      r.impacts, r.max_energy_gain_rel, b.theta_from3_max_abs_error_rad[0],
+      b.theta_from3_peak_rel_error[0]);
+  // The child's JSON carries them.
+  const StressRow back = StressRowFromJson(nlohmann::json::parse(StressRowToJson(b).dump()));
+  EXPECT_EQ(back.peak_theta_from3_rad, b.peak_theta_from3_rad);
+  EXPECT_EQ(back.theta_from3_max_abs_error_rad, b.theta_from3_max_abs_error_rad);
+  EXPECT_EQ(back.theta_from3_peak_rel_error, b.theta_from3_peak_rel_error);
+  // stress.csv: block 3's columns, every line as many fields as the header.
+  const StressRow two =
+      RunStressCaseHere(Find(StressCatalogue(), "uplift/top/above_1pct"), "reference");
+  const std::string csv = StressCsv({r, b, two});
+  std::istringstream in(csv);
+  std::string header, line;
+  std::getline(in, header);
+  EXPECT_NE(header.find(",peak_theta2_rad,peak_theta3_rad,dt_s,"), std::string::npos) << header;
+  EXPECT_NE(header.find(",theta2_peak_rel_error,theta3_max_abs_error_rad,theta3_peak_rel_error,"
+                        "impacts_matched,"),
+            std::string::npos)
+      << header;
+  std::vector<std::vector<std::string>> cells;
+  while (std::getline(in, line)) {
+    cells.emplace_back();
+    std::stringstream ss(line);
+    for (std::string x; std::getline(ss, x, ',');) cells.back().push_back(x);
+    if (line.back() == ',') cells.back().push_back("");
+  }
+  ASSERT_EQ(cells.size(), 3u);
+  const auto column = [&](const std::string& name) {
+    std::stringstream ss(header);
+    int i = 0;
+    for (std::string x; std::getline(ss, x, ','); ++i) {
+      if (x == name) return i;
+    }
+    return -1;
+  };
+  for (const auto& row : cells) EXPECT_EQ(row.size(), cells[0].size());
+  EXPECT_EQ(cells[0][column("peak_theta3_rad")], Format("%.6g", r.peak_theta_from3_rad[0]));
+  EXPECT_EQ(cells[1][column("theta3_max_abs_error_rad")],
+            Format("%.6g", b.theta_from3_max_abs_error_rad[0]));
+  EXPECT_EQ(cells[2][column("peak_theta3_rad")], "");
+  EXPECT_EQ(cells[2][column("peak_theta2_rad")], Format("%.6g", two.peak_theta2_rad));
+  // One and two blocks: the header they always had.
+  std::istringstream two_only(StressCsv({two}));
+  std::getline(two_only, header);
+  EXPECT_EQ(header,
+            "case,engine,finished,status,nan,max_energy_gain_rel,energy_impacts,events,impacts,"
+            "min_event_gap_s,wall_s,peak_theta1_rad,peak_theta2_rad,dt_s,settings,violations,"
+            "theta1_max_abs_error_rad,theta1_peak_rel_error,theta2_max_abs_error_rad,"
+            "theta2_peak_rel_error,impacts_matched,reference_impacts,detail");
 }
 
 }  // namespace

@@ -30,9 +30,7 @@ using testing_util::ReadFile;
 using testing_util::Shell;
 using CliRun = testing_util::ShellRun;
 
-CliRun Rockbench(const std::string& args) {
-  return Shell(std::string(ROCKBENCH_EXE) + " " + args);
-}
+using testing_util::Rockbench;
 
 // members.csv with its wall_s column emptied (the one column that depends on the run).
 std::string WithoutWallTimes(const std::string& csv) {

@@ -33,6 +33,11 @@ std::vector<std::string> Lines(const std::string& text) {
   return out;
 }
 
+// The number of comma-separated fields of a CSV line (no field of these holds a comma).
+long Fields(const std::string& line) {
+  return std::count(line.begin(), line.end(), ',') + 1;
+}
+
 // The CSV with the wall-time column (10th) blanked.
 std::string WithoutWallTimes(const std::string& csv) {
   std::string out;
@@ -202,8 +207,7 @@ TEST(SweepTest, CsvHasOneRowPerRunAndAFixedWidth) {
   bad.error = "failed, badly\nsecond line";
   const std::vector<std::string> lines = Lines(SweepCsv({ok, ref, bad}));
   ASSERT_EQ(lines.size(), 4u);
-  auto fields = [](const std::string& s) { return std::count(s.begin(), s.end(), ',') + 1; };
-  for (const std::string& l : lines) EXPECT_EQ(fields(l), fields(lines[0])) << l;
+  for (const std::string& l : lines) EXPECT_EQ(Fields(l), Fields(lines[0])) << l;
   EXPECT_EQ(lines[1].rfind("bullet,Bullet double (10 iterations),1e-3,0.001,precision=double;"
                            "solver_iterations=10,,,,,",
                            0),
@@ -216,13 +220,7 @@ TEST(SweepTest, CsvHasOneRowPerRunAndAFixedWidth) {
 
 TEST(SweepTest, ChosenPointsReplaceTheGrid) {
   SweepOptions o;
-  for (double h : {1e-2, 5e-3}) {
-    SweepPoint p;
-    p.engine = "reference";
-    p.integrator = Integrator::kRk4;
-    p.rk4_step_s = h;
-    o.points.push_back(p);
-  }
+  o.points = {ReferenceRk4Point(1e-2), ReferenceRk4Point(5e-3)};
   SweepBaseline baseline;
   const std::vector<SweepRow> rows = RunSweep(ShortHousner(), GroundMotion(), o, {}, &baseline);
   ASSERT_EQ(rows.size(), 2u);
@@ -296,13 +294,7 @@ TEST(SweepTest, AStackOfThreeBlocksHasEveryBlocksColumns) {
   const Scene s = testing_util::StackScene(3, 0.6);
   SweepOptions o;
   o.threads = 2;
-  for (double h : {1e-2, 5e-3}) {
-    SweepPoint p;
-    p.engine = "reference";
-    p.integrator = Integrator::kRk4;
-    p.rk4_step_s = h;
-    o.points.push_back(p);
-  }
+  o.points = {ReferenceRk4Point(1e-2), ReferenceRk4Point(5e-3)};
   SweepBaseline baseline;
   std::vector<SweepRow> rows = RunSweep(s, GroundMotion(), o, {}, &baseline);
   ASSERT_EQ(rows.size(), 2u);
@@ -329,8 +321,7 @@ TEST(SweepTest, AStackOfThreeBlocksHasEveryBlocksColumns) {
                           "impacts_reference"),
             std::string::npos)
       << lines[0];
-  const auto fields = [](const std::string& x) { return std::count(x.begin(), x.end(), ',') + 1; };
-  for (const std::string& line : lines) EXPECT_EQ(fields(line), fields(lines[0])) << line;
+  for (const std::string& line : lines) EXPECT_EQ(Fields(line), Fields(lines[0])) << line;
   // One and two blocks: the columns they always had.
   EXPECT_EQ(Lines(SweepCsv({}, 1))[0], Lines(SweepCsv({}))[0]);
   EXPECT_EQ(Lines(SweepCsv({}))[0].find("theta3"), std::string::npos);

@@ -2,11 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "report/common/json_keys.h"
 #include "report/common/number_text.h"
 #include "report/compare/verdict_section.h"
 #include "report/run/run_figures.h"
+#include "scene/outcome.h"
 
 namespace rockbench::report {
 namespace {
@@ -24,30 +26,53 @@ std::string EngineWarnings(const EngineData& e, std::vector<std::string>& out) {
     return v->contains(k) && (*v)[k].is_number() ? (*v)[k].get<double>() : kNaN;
   };
   const std::string who = "The " + e.name + " run";
+  // The monitor's contacts: "ground" and "interface" for one and two blocks (as the page has
+  // always named them), "ground", "interface2" ... "interfaceN" for N >= 3 blocks.
+  // Each contact's key and its words.
+  const int blocks = e.history.blocks;
+  std::vector<std::pair<std::string, std::string>> contacts = {{"ground", "the ground"},
+                                                               {"interface", "the interface"}};
+  if (blocks >= 3) {
+    contacts.resize(1);
+    for (int k = 1; k < blocks; ++k) {
+      const std::string upper = std::to_string(k + 1), lower = std::to_string(k);
+      contacts.push_back({InterfaceName(k, blocks), std::string("interface ") + upper + " (block " +
+                                                        upper + " on block " + lower + ")"});
+    }
+  }
+  const auto key = [](const std::string& what, const std::string& contact,
+                      const std::string& tail) { return what + "_" + contact + tail; };
   if (flag("sliding")) {
-    out.push_back(who + " slid: the blocks slipped " + Num(1e3 * num("slip_ground_m"), 3) +
-                  " mm at the ground and " + Num(1e3 * num("slip_interface_m"), 3) +
-                  " mm at the interface. The rigid-block model assumes no sliding, so the two "
-                  "are not simulating the same system.");
+    std::string where;
+    for (size_t k = 0; k < contacts.size(); ++k) {
+      where += std::string(k == 0                     ? ""
+                           : k + 1 == contacts.size() ? " and "
+                                                      : ", ") +
+               Num(1e3 * num(key("slip", contacts[k].first, "_m").c_str()), 3) + " mm at " +
+               contacts[k].second;
+    }
+    out.push_back(who + " slid: the blocks slipped " + where +
+                  ". The rigid-block model assumes no sliding, so the two are not simulating "
+                  "the same system.");
   }
   if (flag("uplift")) {
     std::string where;
-    for (const char* c : {"ground", "interface"}) {
-      const double n = num((std::string("uplift_") + c + "_episodes").c_str());
+    for (const auto& [c, words] : contacts) {
+      const double n = num(key("uplift", c, "_episodes").c_str());
       if (!(n > 0)) continue;
-      where += std::string(where.empty() ? "" : " and ") + Num(n) + " time(s) at the " + c +
-               " (up to " + Num(1e3 * num((std::string("uplift_") + c + "_max_m").c_str()), 3) +
-               " mm)";
+      where += std::string(where.empty() ? "" : " and ") + Num(n) + " time(s) at " + words +
+               " (up to " + Num(1e3 * num(key("uplift", c, "_max_m").c_str()), 3) + " mm)";
     }
     out.push_back(who + " lifted off" + (where.empty() ? "" : ": " + where) +
                   ". The model assumes the pivots stay in contact (no bouncing or jumping).");
   }
   if (flag("penetration")) {
-    out.push_back(
-        who + " let the blocks sink into each other or the ground by up to " +
-        Num(1e3 * std::max(num("penetration_ground_max_m"), num("penetration_interface_max_m")),
-            3) +
-        " mm: its contacts are soft at this time step.");
+    double depth = num(key("penetration", contacts[0].first, "_max_m").c_str());
+    for (size_t k = 1; k < contacts.size(); ++k) {
+      depth = std::max(depth, num(key("penetration", contacts[k].first, "_max_m").c_str()));
+    }
+    out.push_back(who + " let the blocks sink into each other or the ground by up to " +
+                  Num(1e3 * depth, 3) + " mm: its contacts are soft at this time step.");
   }
   if (flag("energy_growth")) {
     out.push_back(who + " gained energy without input: up to " + Num(num("energy_gain_max_j")) +

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <map>
+#include <utility>
 
 #include "renders/animation.h"
 #include "renders/drawn_motion.h"
@@ -12,28 +14,52 @@
 #include "report/common/number_text.h"
 
 namespace rockbench::report {
-namespace {
 
 namespace fs = std::filesystem;
 
-// Keyframe times: peaks of every angle, overturning, then the reference's first impacts.
-struct Keyframe {
-  double t_s = 0.0;
-  std::vector<std::string> why;
-  std::vector<int> impacts;  // numbers of the reference's impacts at this time
-  std::string Caption() const {
-    std::string out;
-    for (const std::string& w : why) out += (out.empty() ? "" : "; ") + w;
-    if (!impacts.empty()) {
-      out += out.empty() ? "" : "; ";
-      out += impacts.size() == 1 ? "impact " + std::to_string(impacts.front())
-                                 : "impacts " + std::to_string(impacts.front()) + " to " +
-                                       std::to_string(impacts.back());
-      out += " of the reference";
-    }
-    return out;
+std::string Keyframe::Caption() const {
+  std::string out;
+  for (const std::string& w : why) out += (out.empty() ? "" : "; ") + w;
+  if (!impacts.empty()) {
+    out += out.empty() ? "" : "; ";
+    out += impacts.size() == 1 ? std::string("impact ") + std::to_string(impacts.front())
+                               : std::string("impacts ") + std::to_string(impacts.front()) +
+                                     " to " + std::to_string(impacts.back());
+    out += " of the reference";
   }
-};
+  return out;
+}
+
+namespace {
+
+// "ground_impact", "interface_impact" (two blocks), "interface2_impact" ... (N >= 3 blocks).
+bool IsImpact(const Event& ev) {
+  const bool interface_impact = ev.kind.rfind("interface", 0) == 0 && ev.kind.size() >= 16 &&
+                                ev.kind.compare(ev.kind.size() - 7, 7, "_impact") == 0;
+  return ev.kind == "ground_impact" || interface_impact;
+}
+
+// The blocks 1..n in the order their peaks claim frames: in order when the frames suffice;
+// else `frames` blocks spread evenly from the bottom to the top first (1 and n among them), then
+// the rest, so that a tall stack's frames do not all go to its lower blocks.
+std::vector<int> PeakOrder(int n, int frames) {
+  std::vector<int> order;
+  std::vector<bool> taken(static_cast<size_t>(n) + 1, false);
+  if (n > frames && frames >= 2) {
+    for (int i = 0; i < frames; ++i) {
+      const int b =
+          1 + static_cast<int>(std::lround(static_cast<double>(i) * (n - 1) / (frames - 1)));
+      if (!taken[b]) order.push_back(b);
+      taken[b] = true;
+    }
+  }
+  for (int b = 1; b <= n; ++b) {
+    if (!taken[b]) order.push_back(b);
+  }
+  return order;
+}
+
+}  // namespace
 
 std::vector<Keyframe> KeyframeTimes(const RunData& run, int max_frames) {
   std::vector<Keyframe> chosen;
@@ -56,29 +82,60 @@ std::vector<Keyframe> KeyframeTimes(const RunData& run, int max_frames) {
     }
   };
   const EngineData& ref = run.engines.front();
-  for (int b = 1; b <= run.scene.block_count(); ++b) {
+  const int blocks = run.scene.block_count();
+  const auto add_peak = [&](int b) {
     const std::string key = "peaks.theta" + std::to_string(b) + ".t_s";
     add(OptNumber(ref.summary, key, run.summary_path),
         "peak |theta" + std::to_string(b) + "| of the reference");
-  }
-  for (const EngineData& e : run.engines) {
-    add(OptNumber(e.summary, "overturn.t_s", run.summary_path), "overturn (" + e.name + ")");
-  }
-  int impact = 0;
-  for (const Event& ev : ref.events) {
-    // "interface_impact" (two blocks), "interface2_impact" ... (N >= 3 blocks).
-    const bool interface_impact = ev.kind.rfind("interface", 0) == 0 && ev.kind.size() >= 16 &&
-                                  ev.kind.compare(ev.kind.size() - 7, 7, "_impact") == 0;
-    if (ev.kind != "ground_impact" && !interface_impact) continue;
-    ++impact;
-    add(ev.t_s, "", impact);
+  };
+  const auto add_overturns = [&] {
+    for (const EngineData& e : run.engines) {
+      add(OptNumber(e.summary, "overturn.t_s", run.summary_path), "overturn (" + e.name + ")");
+    }
+  };
+  if (blocks <= 2) {
+    // One and two blocks: the peaks, the overturns, then the reference's impacts in time order.
+    for (int b = 1; b <= blocks; ++b) add_peak(b);
+    add_overturns();
+    int impact = 0;
+    for (const Event& ev : ref.events) {
+      if (IsImpact(ev)) add(ev.t_s, "", ++impact);
+    }
+  } else {
+    // N >= 3 blocks: fair across the blocks. The overturns first (more peaks than frames would
+    // crowd them out), the peaks spread over the stack, then the impacts in rounds: every
+    // interface's first impact (in time order), then every interface's second, ..., so that
+    // the chatter of one interface cannot take every frame left.
+    add_overturns();
+    for (const int b : PeakOrder(blocks, max_frames - static_cast<int>(chosen.size()))) {
+      add_peak(b);
+    }
+    std::vector<std::pair<int, int>> rounds;  // (rank within its interface, impact number)
+    std::map<std::string, int> seen;          // impacts so far per interface (event kind)
+    std::vector<double> times;
+    for (const Event& ev : ref.events) {
+      if (!IsImpact(ev)) continue;
+      times.push_back(ev.t_s);
+      rounds.push_back({seen[ev.kind]++, static_cast<int>(times.size())});
+    }
+    std::sort(rounds.begin(), rounds.end());
+    for (const auto& r : rounds) add(times[r.second - 1], "", r.second);
+    // Each frame's text as in time order: its peaks by block, then the overturns.
+    const auto rank = [](const std::string& why) {
+      const std::string peak = "peak |theta";
+      return why.rfind(peak, 0) == 0 ? std::stoi(why.substr(peak.size())) : kMaxBlocks + 1;
+    };
+    for (Keyframe& k : chosen) {
+      std::sort(k.impacts.begin(), k.impacts.end());
+      std::stable_sort(k.why.begin(), k.why.end(), [&](const std::string& a, const std::string& b) {
+        return rank(a) < rank(b);
+      });
+    }
   }
   std::sort(chosen.begin(), chosen.end(),
             [](const Keyframe& a, const Keyframe& b) { return a.t_s < b.t_s; });
   return chosen;
 }
-
-}  // namespace
 
 void PicturesSection(const RunData& run, const GroundMotion& motion,
                      const RunReportOptions& options, Figures& fig, RunReportResult& result) {

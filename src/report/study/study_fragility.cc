@@ -3,8 +3,10 @@
 // scatter.
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <map>
 
+#include "renders/renderer.h"
 #include "report/common/gnuplot.h"
 #include "report/common/number_text.h"
 #include "report/study/study_sections.h"
@@ -24,9 +26,11 @@ const std::vector<std::string>& MotionAxes() {
   return keys;
 }
 
-// Members of one group: member -> (PGA, failed) per engine, usable runs only.
+// Members of one group: member -> (PGA, failed) per engine, usable runs only; and per engine
+// each usable run's (PGA, the block that overturned first, 0 for none).
 struct GroupData {
   PointsByMember<stats::FragilityPoint> members;
+  std::map<std::string, std::vector<std::pair<double, int>>> overturned_block;
 };
 
 // The paired bootstrap of median(engine) - median(reference): members drawn with replacement,
@@ -71,6 +75,42 @@ std::string FitText(const stats::LognormalFragility& f) {
   return Num(f.median, 3) + " g [" + Num(f.median_lo, 3) + ", " + Num(f.median_hi, 3) + "]";
 }
 
+// N >= 3 blocks: the fragility of each block's overturning, per group and run. Block k
+// overturns when it and the blocks above it (the sub-stack k..N) fall off block k - 1 (the
+// ground for k = 1) before any other block overturns: that member is a failure of block k's
+// fit and a survival of every other block's.
+void BlockFragilityTable(const EnsembleData& d, const std::vector<std::string>& order,
+                         const std::map<std::string, GroupData>& groups, Page& page) {
+  std::vector<std::vector<std::string>> table;
+  for (const std::string& g : order) {
+    for (const std::string& e : d.engines) {
+      const auto it = groups.at(g).overturned_block.find(e);
+      if (it == groups.at(g).overturned_block.end()) continue;
+      for (int b = 1; b <= d.blocks; ++b) {
+        std::vector<stats::FragilityPoint> points;
+        for (const auto& [pga, block] : it->second) points.push_back({pga, block == b});
+        const stats::LognormalFragility fit = stats::FitLognormalFragility(points, 1000);
+        table.push_back({g.empty() ? "all" : g, e,
+                         std::string("block ") + std::to_string(b) + " (blocks " +
+                             std::to_string(b) + "-" + std::to_string(d.blocks) + ")",
+                         std::to_string(fit.n), std::to_string(fit.failures), FitText(fit),
+                         fit.available ? Num(fit.beta, 3) : ""});
+      }
+    }
+  }
+  page.Paragraph(
+      "By the block that overturns: the same lognormal fit, per block, of P(block k overturns | "
+      "PGA): block k falls off block k - 1 (block 1: off the ground) and takes the blocks above "
+      "it (the sub-stack k to " +
+      std::to_string(d.blocks) +
+      ") before any other block overturns; a member where another block overturned counts as a "
+      "survival of block k. Medians with the 95% percentile bootstrap interval of 1000 "
+      "resamples.");
+  page.Table({"group", "run", "overturning block (sub-stack)", "members", "overturned",
+              "median PGA [95%]", "beta"},
+             table);
+}
+
 }  // namespace
 
 std::vector<int> MotionAxisColumns(const EnsembleData& d) {
@@ -109,6 +149,7 @@ void FragilitySection(const EnsembleData& d, const std::filesystem::path& fig_di
       continue;
     }
     groups[g].members[r.member][r.engine] = {*r.pga_g, r.overturned_block != 0};
+    groups[g].overturned_block[r.engine].push_back({*r.pga_g, r.overturned_block});
   }
   std::vector<std::vector<std::string>> table;
   int index = 0;
@@ -212,6 +253,7 @@ void FragilitySection(const EnsembleData& d, const std::filesystem::path& fig_di
   page.Table({"group", "run", "members", "overturned", "median PGA [95%]", "beta",
               "median - reference's [95%, paired]"},
              table);
+  if (d.blocks >= 3) BlockFragilityTable(d, order, groups, page);
   std::string out;
   for (const auto& [e, n] : left_out) {
     out += (out.empty() ? "" : "; ") + e + " " + std::to_string(n);
@@ -222,8 +264,73 @@ void FragilitySection(const EnsembleData& d, const std::filesystem::path& fig_di
   }
 }
 
+namespace {
+
+// Draws a figure of peak angles (log y, `ylabel`) against PGA from its `plots` and puts it on
+// the page with its caption.
+void DrawScatter(GnuplotFigure& fig, const std::string& plots, const std::string& ylabel,
+                 const std::string& caption, const std::filesystem::path& fig_dir, Page& page) {
+  fig.script = "set logscale y\nset xlabel \"PGA (g)\"\nset ylabel \"";
+  fig.script += ylabel + "\"\nset key left top\nplot " + plots + "\n";
+  RenderGnuplot(fig_dir, fig);
+  page.Figure(std::filesystem::path("figures") / (fig.name + ".svg"), caption);
+}
+
+// A colour of the renders' palette as gnuplot reads it: "#284882".
+std::string HexColour(renders::Rgb c) {
+  char out[8];
+  std::snprintf(out, sizeof out, "#%02x%02x%02x", static_cast<unsigned>(c.r),
+                static_cast<unsigned>(c.g), static_cast<unsigned>(c.b));
+  return out;
+}
+
+// N >= 3 blocks: a figure per run, one series per block (its peak |theta_k| against the PGA),
+// in the colours the renders give the blocks' traces.
+void BlocksScatter(const EnsembleData& d, const std::filesystem::path& fig_dir, Page& page) {
+  const renders::Palette palette;
+  bool any = false;
+  for (const std::string& e : d.engines) {
+    GnuplotFigure fig;
+    fig.name = "peak_theta_vs_pga_" + e;
+    std::string plots;
+    for (int b = 1; b <= d.blocks; ++b) {
+      std::string data;
+      for (const EnsembleRecord& r : d.records) {
+        if (r.engine != e || !r.usable() || !r.pga_g) continue;
+        if (static_cast<int>(r.peak_theta_rad.size()) < b || !(r.peak_theta_rad[b - 1] > 0.0)) {
+          continue;
+        }
+        data += Num(*r.pga_g, 10) + " " + Num(r.peak_theta_rad[b - 1], 10) + "\n";
+      }
+      if (data.empty()) continue;
+      const std::string f = fig.name + "_block" + std::to_string(b) + ".dat";
+      fig.data_files.push_back({f, data});
+      plots += (plots.empty() ? "" : ", ") + GnuplotQuote(f) +
+               " using 1:2 with points pt 7 lc rgb " +
+               GnuplotQuote(HexColour(palette.chart_theta(b - 1))) + " title " +
+               GnuplotQuote(std::string("block ") + std::to_string(b));
+    }
+    if (plots.empty()) continue;
+    any = true;
+    DrawScatter(fig, plots, "peak |theta_k| (rad)",
+                e + ": the peak |theta_k| of every block (block 1 the bottom, block " +
+                    std::to_string(d.blocks) +
+                    " the top) in each run that rocked against the PGA of its motion (an "
+                    "overturned block at its overturn angle); blocks at rest are left out of the "
+                    "log axis.",
+                fig_dir, page);
+  }
+  if (!any) page.Paragraph("No run rocked: nothing to draw.");
+}
+
+}  // namespace
+
 void ScatterSection(const EnsembleData& d, const std::filesystem::path& fig_dir, Page& page) {
   page.Heading("Peak angle against PGA");
+  if (d.blocks >= 3) {
+    BlocksScatter(d, fig_dir, page);
+    return;
+  }
   GnuplotFigure fig;
   fig.name = "peak_theta1_vs_pga";
   std::string plots;
@@ -246,15 +353,11 @@ void ScatterSection(const EnsembleData& d, const std::filesystem::path& fig_dir,
     page.Paragraph("No run rocked: nothing to draw.");
     return;
   }
-  fig.script =
-      "set logscale y\nset xlabel \"PGA (g)\"\nset ylabel \"peak |theta1| (rad)\"\n"
-      "set key left top\nplot " +
-      plots + "\n";
-  RenderGnuplot(fig_dir, fig);
-  page.Figure(std::filesystem::path("figures") / (fig.name + ".svg"),
+  DrawScatter(fig, plots, "peak |theta1| (rad)",
               "Peak |theta1| of every run that rocked against the PGA of its motion (an "
               "overturned block at its overturn angle); runs at rest are left out of the log "
-              "axis.");
+              "axis.",
+              fig_dir, page);
 }
 
 }  // namespace rockbench::report

@@ -71,7 +71,8 @@ void FragilitySection(const EnsembleData& d, const std::filesystem::path& fig_di
 void FragilitySurfaceSection(const EnsembleData& d, const std::filesystem::path& fig_dir,
                              Page& page, std::vector<std::string>& findings);
 
-/// Peak |theta1| against PGA, one series per engine.
+/// Peak |theta1| against PGA, one series per engine; N >= 3 blocks: a figure per run, one
+/// series per block in the renders' trace colours (renders::Palette::chart_theta).
 void ScatterSection(const EnsembleData& d, const std::filesystem::path& fig_dir, Page& page);
 
 /// The values of every axis but `except`, as one label ("kind=sine_pulse, size_factor=2"),

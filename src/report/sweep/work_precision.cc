@@ -403,13 +403,27 @@ void RankingSection(const std::vector<SweepRecord>& rows, const SweepInfo& info,
       "with the figure and the order column of the table of all runs.");
 }
 
+// The blocks of the sweep's stack: 2 for one or two blocks (their columns are the same), N
+// for a row with blocks 3..N's errors.
+int SweepBlocks(const std::vector<SweepRecord>& rows) {
+  int blocks = 2;
+  for (const SweepRecord& r : rows) {
+    blocks = std::max(blocks, 2 + static_cast<int>(r.theta_from3_max_abs_error_rad.size()));
+  }
+  return blocks;
+}
+
 // The two figures against wall time, and the rows a log axis cannot draw.
 void FiguresSection(const std::vector<SweepRecord>& rows, const SweepInfo& info,
                     const fs::path& fig_dir, Page& page) {
+  // The angles whose largest error the figures draw: "θ_1, θ_2", or every block's.
+  const int blocks = SweepBlocks(rows);
+  const std::string angles =
+      blocks >= 3 ? std::string("θ_1 to θ_") + std::to_string(blocks) : std::string("θ_1, θ_2");
   std::vector<std::string> not_drawn_error, not_drawn_peak;
   FigureSpec error_spec;
   error_spec.name = "work_precision";
-  error_spec.ylabel = "max |angle error| over the run, max of θ_1, θ_2 (rad)";
+  error_spec.ylabel = "max |angle error| over the run, max of " + angles + " (rad)";
   error_spec.value = &MaxAngleError;
   const double duration = info.present ? info.span_s() : 0.0;
   std::string real_time_label = "real time (" + Format("%.3g", duration) + " s simulated";
@@ -421,7 +435,7 @@ void FiguresSection(const std::vector<SweepRecord>& rows, const SweepInfo& info,
                 BuildFigure(rows, error_spec, duration, real_time_label, &not_drawn_error));
   FigureSpec peak_spec;
   peak_spec.name = "peak_error";
-  peak_spec.ylabel = "|peak angle relative error|, max of θ_1, θ_2";
+  peak_spec.ylabel = "|peak angle relative error|, max of " + angles;
   peak_spec.value = &MaxPeakRelError;
   peak_spec.hline = 0.01;
   peak_spec.hline_label = "1% peak-angle agreement";
@@ -444,8 +458,11 @@ void FiguresSection(const std::vector<SweepRecord>& rows, const SweepInfo& info,
     page.Paragraph(s + ".");
   }
   page.Figure("figures/peak_error.svg",
-              "|Peak relative error| (the larger of theta1's and theta2's) against wall time; the "
-              "red line is the 1% criterion.");
+              "|Peak relative error| (" +
+                  (blocks >= 3 ? std::string("the largest of theta1's to theta") +
+                                     std::to_string(blocks) + "'s"
+                               : std::string("the larger of theta1's and theta2's")) +
+                  ") against wall time; the red line is the 1% criterion.");
   if (!not_drawn_peak.empty()) {
     std::string s = "Not drawn (zero peak error): ";
     for (size_t i = 0; i < not_drawn_peak.size(); ++i) s += (i ? "; " : "") + not_drawn_peak[i];
@@ -467,10 +484,7 @@ std::string LargestFrom3(const std::vector<double>& values) {
 void RunsSection(const std::vector<SweepRecord>& rows, double duration, Page& page) {
   // N >= 3 blocks: blocks 3..N in two more columns, the largest of them each (one row per
   // run stays readable at 6 to 8 blocks).
-  int blocks = 2;
-  for (const SweepRecord& r : rows) {
-    blocks = std::max(blocks, 2 + static_cast<int>(r.theta_from3_max_abs_error_rad.size()));
-  }
+  const int blocks = SweepBlocks(rows);
   const bool many = blocks >= 3;
   page.Heading("All runs by family");
   page.Paragraph(
