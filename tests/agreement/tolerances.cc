@@ -177,7 +177,7 @@ std::vector<Bound> ParseTolerances(std::string_view text, const std::string& fil
                          ": bound: expected [[bound]] tables, got " + Kind(*list));
   }
   // Scenes loaded once per (scene, settings): the loads check the settings.
-  std::map<std::string, bool> two_blocks;
+  std::map<std::string, int> block_count;
   std::set<std::string> seen;
   int index = 0;
   for (const toml::node& node : *list->as_array()) {
@@ -294,22 +294,30 @@ std::vector<Bound> ParseTolerances(std::string_view text, const std::string& fil
     ref_settings.insert(ref_settings.end(), b.reference_settings.begin(),
                         b.reference_settings.end());
     const std::string load_key = b.scene + "\n" + Join(b.settings, "\t");
-    if (!two_blocks.count(load_key)) {
-      two_blocks[load_key] = LoadFor(b, b.settings, "settings").block_count() == 2;
+    if (!block_count.count(load_key)) {
+      block_count[load_key] = LoadFor(b, b.settings, "settings").block_count();
     }
     if (!b.reference_settings.empty()) LoadFor(b, ref_settings, "reference_settings");
+    // The keys of this scene's comparison: theta1..thetaN and their final errors.
+    const int blocks = block_count[load_key];
     EngineAgreement shape;
-    if (two_blocks[load_key]) shape.theta2 = AngleAgreement();
+    if (blocks >= 2) shape.theta2 = AngleAgreement();
+    if (blocks >= 3) {
+      shape.theta_from3.resize(blocks - 2);
+      shape.final_theta_from3_error_rad.resize(blocks - 2);
+    }
     shape.verdict_kind = "agrees";  // the verdict's keys are written when a verdict is made
     nlohmann::json shape_json = AgreementJson(shape);
     shape_json["statistics"] = nullptr;  // its shape depends on the run (null: any key below)
+    shape_json[kRefusalMetric] = "";     // an engine's refusal (RunComparison): a string
     const nlohmann::json* leaf = Resolve(shape_json, b.metric_path);
     if (leaf == nullptr || leaf->is_object() || leaf->is_array()) {
       std::vector<std::string> keys;
       Leaves(shape_json, "", &keys);
-      throw fail("metric", "unknown metric '" + b.metric_path + "' for this scene (" +
-                               (two_blocks[load_key] ? "two blocks" : "one block") +
-                               "); expected one of: " + Join(keys));
+      throw fail("metric",
+                 "unknown metric '" + b.metric_path + "' for this scene (" +
+                     (blocks == 1 ? std::string("one block") : std::to_string(blocks) + " blocks") +
+                     "); expected one of: " + Join(keys));
     }
     // Wall times depend on the machine: they belong in benchmarks, not in a test's bounds.
     if (b.metric_path == "wall_s") {
@@ -398,9 +406,19 @@ nlohmann::json RunComparison(const BoundGroup& group) {
   const Scene ref_scene = LoadScene(group.scene_path, ref_settings);
   const GroundMotion motion = GroundMotion::FromScene(scene);
   if (group.engine != "reference") {
-    // The comparison `rockbench compare` makes: witness, ensembles, statistics, verdict.
-    const CompareRun run = RunCompare(scene, motion, {group.engine});
-    return run.comparison["engines"][group.engine];
+    // The comparison `rockbench compare` makes: witness, ensembles, statistics, verdict. An
+    // engine that refuses the scene (a SceneError from its run: Siconos and three or more
+    // blocks) leaves only its words, which a bound on kRefusalMetric pins; every other bound of
+    // the group then fails, naming the refusal.
+    try {
+      const CompareRun run = RunCompare(scene, motion, {group.engine});
+      return run.comparison["engines"][group.engine];
+    } catch (const SceneError& e) {
+      std::string words = e.what();
+      const std::string where = scene.path.string() + ": ";
+      if (words.rfind(where, 0) == 0) words.erase(0, where.size());
+      return nlohmann::json{{kRefusalMetric, words}};
+    }
   }
   const reference::Result reference = reference::Simulate(ref_scene, motion);
   const EngineRun run = RunEngine(group.engine, scene, motion, {.check_convergence = false});
@@ -412,6 +430,21 @@ Verdict CheckBound(const Bound& b, const nlohmann::json& agreement) {
   const nlohmann::json* x = Resolve(agreement, b.metric_path);
   const std::string head = b.metric + " (" + b.Describe() + ")";
   const std::string tail = "\n    why: " + b.why + "\n    at " + b.Name();
+  const nlohmann::json* refusal = Resolve(agreement, kRefusalMetric);
+  if (b.metric_path != kRefusalMetric && refusal != nullptr && refusal->is_string()) {
+    v.measured = "refused";
+    v.message =
+        head + ": FAILED, the engine refused the scene: " + refusal->get<std::string>() + tail;
+    return v;
+  }
+  if (b.metric_path == kRefusalMetric && x == nullptr) {
+    v.measured = "ran";
+    v.message = head +
+                ": FAILED, the engine ran the scene (it no longer refuses it): bound what it "
+                "does instead (docs/agreement.md)" +
+                tail;
+    return v;
+  }
   if (x == nullptr || x->is_null()) {
     v.measured = x == nullptr ? "missing" : "null";
     v.message = head + ": FAILED, the comparison has " +
