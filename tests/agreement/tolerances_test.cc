@@ -27,10 +27,11 @@ std::string Entry(const std::string& extra = "",
          metric + "\"\n" + bound + "\nwhy = \"measured 6.0e-4 rad; 2x margin\"\n" + extra;
 }
 
-// The message of the ToleranceError that parsing `text` throws ("" if none).
-std::string Error(const std::string& text) {
+// The message of the ToleranceError that parsing `text` throws ("" if none), its scenes in
+// `scenes` (the shipped ones by default).
+std::string Error(const std::string& text, const std::filesystem::path& scenes = kScenes) {
   try {
-    ParseTolerances(text, kFile, kScenes);
+    ParseTolerances(text, kFile, scenes);
   } catch (const ToleranceError& e) {
     return e.what();
   }
@@ -234,12 +235,7 @@ class ThreeBlocksTest : public testing_util::ScratchDirTest {
   std::string ErrorOn(const std::string& metric, const std::string& bound) {
     std::string text = Entry("", metric, bound);
     text.replace(text.find("thesis_free_rocking"), 19, "stack3");
-    try {
-      ParseTolerances(text, kFile, dir_);
-    } catch (const ToleranceError& e) {
-      return e.what();
-    }
-    return "";
+    return Error(text, dir_);
   }
 };
 
