@@ -15,6 +15,22 @@
 
 namespace rockbench::reference {
 
+/// Uniqueness. Take the bodies' velocities v (3 per block) with the mass matrix M, at every
+/// contact corner of the impact instant a normal velocity g = G_n^T v, and at every interface the
+/// no-slip condition G_t^T v = 0 (at a zero gap it is the same condition at either corner of the
+/// face, since the corners lie on the tangent). An outcome that passes both checks satisfies
+/// M (v+ - v-) = G_t mu + G_n lambda, G_t^T v+ = 0, lambda >= 0, g+ >= 0, lambda g+ = 0:
+/// the optimality conditions of min (v - v-)^T M (v - v-) / 2 subject to G_t^T v = 0,
+/// G_n^T v >= 0, a strictly convex problem (M positive definite) with a single minimiser. So at
+/// most one post-impact motion is admissible; the model's "no admissible outcome" is the case
+/// where that minimiser lifts an interface off entirely (beyond the model: issue 24). Two outcomes
+/// that pass the checks only within their tolerances (impulses >= -1e-9 p, rates >= -1e-12 w)
+/// differ, by the same conditions, by (v1 - v2)^T M (v1 - v2) <= sum(eps_g |lambda| + eps_lambda
+/// |g|), about 1e-9 of twice the kinetic energy: rates within sqrt(1e-9) ~ 3e-5 of their scale. Two
+/// admissible outcomes whose rates differ by more than kSameImpactMotion of the sum of |omega-| are
+/// two motions: the impact is reported ambiguous (which the argument above says is a defect).
+inline constexpr double kSameImpactMotion = 1e-4;
+
 enum class ImpactKind {
   kGround,     ///< block 1 (or the stack) reaches theta1 = 0
   kInterface,  ///< block 2 reaches theta2 = theta1 (mode 1, 2) or theta2 = 0 (mode 4)
@@ -35,6 +51,11 @@ struct ImpactResult {
   std::vector<ImpactOutcome> candidates;  ///< in order of preference (thesis's first)
   bool admissible = true;                 ///< false: no candidate passed both checks (see note)
   bool settled = false;                   ///< the rest rule closed a contact (see RestRate)
+  /// Different motions among the candidates admissible in velocities and impulses, each taken
+  /// after the rest rule (two that leave the same rates are one). More than one: the impact is
+  /// ambiguous, the model does not say which follows; the first in the order is chosen and the
+  /// note says so.
+  int admissible_outcomes = 0;
   double energy_before_j = 0.0;
   std::string note;
 };

@@ -96,6 +96,7 @@ ThesisMechanics::Impact ThesisMechanics::ResolveImpact(const Configuration& c, c
   out.config = ConfigurationOf(ir.chosen.mode, blocks());
   out.y = ToVec(ir.chosen.state);
   out.admissible = ir.admissible;
+  out.admissible_outcomes = ir.admissible_outcomes;
   out.settled = ir.settled;
   out.energy_before_j = ir.energy_before_j;
   out.energy_after_j = ir.chosen.energy_after_j;
@@ -240,6 +241,7 @@ typename ChainMechanics<Cap>::Impact ChainMechanics<Cap>::ResolveImpact(const Co
   out.y = y;
   for (int i = 0; i < n_; ++i) out.y[Cap + i] = si.chosen.omega_radps[i];
   out.admissible = si.admissible;
+  out.admissible_outcomes = si.admissible_outcomes;
   out.settled = si.settled;
   out.energy_before_j = si.energy_before_j;
   out.energy_after_j = si.chosen.energy_after_j;

@@ -53,6 +53,7 @@ struct ImpactN {
   Configuration config;
   VecN<D> y{};  ///< the state after (angles unchanged)
   bool admissible = true;
+  int admissible_outcomes = 1;  ///< different admissible motions; > 1: ambiguous
   bool settled = false;
   double energy_before_j = 0.0, energy_after_j = 0.0;
   std::string note;

@@ -546,6 +546,15 @@ void Simulator<Mech>::DoImpact(double t, const Y& pre, int interface) {
     ev.note += std::string(ev.note.empty() ? "" : " ") + "ENERGY GAIN";
   }
   if (!ir.admissible) ++sum.impacts_inadmissible;
+  if (ir.admissible_outcomes > 1) ++sum.impacts_ambiguous;
+  // From the first impact whose outcome the model does not decide, its history is one choice.
+  if ((!ir.admissible || ir.admissible_outcomes > 1) && !sum.undetermined_from_s) {
+    sum.undetermined_from_s = t;
+    sum.undetermined_detail =
+        "the " + InterfaceName(interface, n_) + " impact at t = " + TimeText(t) + " s has " +
+        (ir.admissible ? std::to_string(ir.admissible_outcomes) + " admissible outcomes"
+                       : std::string("no admissible outcome"));
+  }
   ++fig_.impacts_at[interface];
   AddEvent(std::move(ev));
   config_ = ir.config;

@@ -136,9 +136,18 @@ struct Summary {
   std::vector<double> friction_required;
   std::vector<double> min_normal_n;
   int impacts_inadmissible = 0;  ///< no thesis outcome was admissible (see README)
-  int impacts_energy_gain = 0;   ///< impacts that would add energy (must stay 0)
-  int transitions = 0;           ///< mode changes without impact
-  int initiations = 0;           ///< starts from rest
+  /// Impacts where several different motions were admissible: none, by impact.h's uniqueness
+  /// argument, unless something is wrong. Counted where the rule evaluates every candidate (one
+  /// or two blocks); the N-block search stops at the first admissible outcome.
+  int impacts_ambiguous = 0;
+  /// The first impact with no admissible outcome or several, s: from there the model does not
+  /// decide the motion, and the history follows the outcome the rule chose (none: every impact
+  /// had exactly one). Its detail says which impact and why.
+  std::optional<double> undetermined_from_s;
+  std::string undetermined_detail;
+  int impacts_energy_gain = 0;  ///< impacts that would add energy (must stay 0)
+  int transitions = 0;          ///< mode changes without impact
+  int initiations = 0;          ///< starts from rest
   long steps_accepted = 0, steps_rejected = 0, rhs_evaluations = 0;
 
   /// No blocks (fill it, or build it for a number of blocks).

@@ -5,6 +5,8 @@
 #include <functional>
 #include <utility>
 
+#include "reference/impact.h"
+
 namespace rockbench::reference {
 namespace {
 
@@ -203,20 +205,62 @@ StackImpact StackContacts::ResolveImpact(const Configuration& before, const doub
   };
   bool have_pick = false, have_velocity = false, have_fallback = false;
   StackImpactOutcome pick, first_velocity, fallback;
+  // The rest rule: an interface that opens from a zero gap too slowly stays closed.
+  auto settle = [&](const StackImpactOutcome& o) -> Configuration {
+    Configuration settled = o.config;
+    for (int k = 0; k < n; ++k) {
+      if (settled[k] == Contact::kFace || RelativeAngle(theta, k) != 0.0) continue;
+      if (std::abs(RelativeRate(o.omega_radps.data(), k)) < RestRate(k, rest_rate_rel)) {
+        settled.set(k, Contact::kFace);
+      }
+    }
+    return settled;
+  };
+  // The different motions (rates after the rest rule) of the admissible outcomes found.
+  double rate_scale = 1e-300;
+  for (int i = 0; i < n; ++i) rate_scale += std::abs(omega_minus[i]);
+  std::vector<std::vector<double>> motions;
+  std::string names;
+  auto add_motion = [&](const StackImpactOutcome& o) {
+    const Configuration s = settle(o);
+    const std::vector<double> w =
+        s == o.config ? o.omega_radps : EvaluateImpact(before, s, theta, omega_minus).omega_radps;
+    for (const auto& m : motions) {
+      bool same = true;
+      for (int i = 0; i < n && same; ++i)
+        same = std::abs(m[i] - w[i]) <= kSameImpactMotion * rate_scale;
+      if (same) return;
+    }
+    motions.push_back(w);
+    if (!names.empty()) names += ' ';
+    names += ConfigurationName(o.config);
+  };
   Configuration c = base;
   bool capped = false;
+  // Returns true to stop: the search's cap without an admissible outcome, or the uniqueness
+  // check's budget after one.
   std::function<bool(int, int)> search = [&](int pos, int left) -> bool {
     if (pos == nfree) {
       if (left != 0) return false;
-      if (++res.candidates_tried > kMaxCandidates) {
-        capped = true;
-        return false;
+      ++res.candidates_tried;
+      if (!have_pick && res.candidates_tried > kMaxCandidates) return capped = true;
+      if (have_pick && res.candidates_tried > kMaxCandidates) {
+        res.uniqueness_checked = false;
+        return true;
       }
       StackImpactOutcome o = EvaluateImpact(before, c, theta, omega_minus);
       if (o.velocity_admissible && o.impulse_admissible) {
-        pick = std::move(o);
-        return have_pick = true;
+        add_motion(o);
+        if (!have_pick) {
+          pick = std::move(o);
+          have_pick = true;
+          // At most one motion is admissible (StackContacts::set_exhaustive).
+          res.uniqueness_checked = exhaustive_;
+          return !exhaustive_;
+        }
+        return false;
       }
+      if (have_pick) return false;
       if (o.velocity_admissible && !have_velocity) {
         first_velocity = o;
         have_velocity = true;
@@ -234,33 +278,36 @@ StackImpact StackContacts::ResolveImpact(const Configuration& before, const doub
       const int m = changes(k, opts);
       for (int i = 0; i < m; ++i) {
         c.set(k, opts[i]);
-        if (search(pos + 1, left - 1) || capped) return !capped;
+        if (search(pos + 1, left - 1)) return true;
       }
     }
     if (nfree - pos > left) {
       c.set(k, base[k]);
-      if (search(pos + 1, left) || capped) return !capped;
+      if (search(pos + 1, left)) return true;
     }
     return false;
   };
-  for (int d = 0; d <= nfree && !have_pick && !capped; ++d) search(0, d);
+  for (int d = 0; d <= nfree; ++d) {
+    if (search(0, d)) break;
+  }
   std::string note;
+  res.admissible_outcomes = static_cast<int>(motions.size());
   if (!have_pick) {
     res.admissible = false;
     note = capped ? "inadmissible: no admissible outcome among the first " +
                         std::to_string(kMaxCandidates) + " (search stopped)"
                   : "inadmissible: no outcome both separates and pushes";
     pick = have_velocity ? first_velocity : fallback;
+  } else if (motions.size() > 1) {
+    note = "ambiguous: " + std::to_string(motions.size()) + " admissible outcomes (" + names +
+           "); chose " + ConfigurationName(pick.config);
+  }
+  if (exhaustive_ && have_pick && !res.uniqueness_checked) {
+    note += std::string(note.empty() ? "" : "; ") + "uniqueness checked on the first " +
+            std::to_string(kMaxCandidates) + " candidates only";
   }
   res.chosen = std::move(pick);
-  // The rest rule: an interface that opens from a zero gap too slowly stays closed.
-  Configuration settled = res.chosen.config;
-  for (int k = 0; k < n; ++k) {
-    if (settled[k] == Contact::kFace || RelativeAngle(theta, k) != 0.0) continue;
-    if (std::abs(RelativeRate(res.chosen.omega_radps.data(), k)) < RestRate(k, rest_rate_rel)) {
-      settled.set(k, Contact::kFace);
-    }
-  }
+  const Configuration settled = settle(res.chosen);
   if (settled != res.chosen.config) {
     res.settled = true;
     res.chosen = EvaluateImpact(before, settled, theta, omega_minus);

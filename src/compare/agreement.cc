@@ -203,6 +203,8 @@ EngineAgreement CompareWithReference(const Scene& scene, const reference::Result
   a.reference_status = rs.status;
   a.reference_status_detail = rs.status_detail;
   a.reference_end_s = ref.trajectory.end_s();
+  a.reference_undetermined_s = rs.undetermined_from_s;
+  a.reference_undetermined_detail = rs.undetermined_detail;
   if (IsNonFinite(rs.status)) {
     a.reference_non_finite_what = rs.non_finite_quantity + " is " + rs.non_finite_value;
     a.reference_non_finite_t_s = rs.non_finite_t_s;
@@ -217,6 +219,8 @@ EngineAgreement CompareWithReference(const Scene& scene, const reference::Result
       IsNonFinite(rs.status)) {
     until = std::min(until, ref.trajectory.end_s());
   }
+  // Past an impact the model leaves undecided, the reference's motion is its rule's choice.
+  if (rs.undetermined_from_s) until = std::min(until, *rs.undetermined_from_s);
   a.compared_until_s = until;
 
   // Per block, block b + 1 at b. Tolerances: scene [compare] tolerance, else 10% of the

@@ -126,6 +126,10 @@ struct EngineAgreement {
   RunStatus reference_status = RunStatus::kCompleted;
   std::string reference_status_detail;
   double reference_end_s = 0.0;
+  /// The reference's first impact with no admissible outcome or several (Summary::
+  /// undetermined_from_s): from there its motion is a choice of the rule, not the model's.
+  std::optional<double> reference_undetermined_s;
+  std::string reference_undetermined_detail;
   /// Reference status non_finite: what stopped being finite and when, s.
   std::string reference_non_finite_what;
   double reference_non_finite_t_s = 0.0;

@@ -261,9 +261,19 @@ Verdict MakeVerdict(const Scene& scene, const EngineAgreement& a,
   for (int b = 1; b <= nb; ++b) ang.push_back(&a.angle(b));
   const double slack_s = scene.run.output_interval_s;
   const double inf = std::numeric_limits<double>::infinity();
-  // Where the reference's model holds: to its end when it stopped on a violated assumption.
-  const bool model_ends = a.reference_status == RunStatus::kAssumptionViolated;
-  const double model_end_s = model_ends ? a.reference_end_s : inf;
+  // Where the reference's model holds: to its end when it stopped on a violated assumption, or
+  // to its first impact that the model leaves undecided (no admissible outcome or several),
+  // whichever comes first.
+  const bool stopped = a.reference_status == RunStatus::kAssumptionViolated;
+  const bool undetermined =
+      a.reference_undetermined_s && (!stopped || *a.reference_undetermined_s < a.reference_end_s);
+  const bool model_ends = stopped || undetermined;
+  const double model_end_s =
+      undetermined ? *a.reference_undetermined_s : (stopped ? a.reference_end_s : inf);
+  const std::string model_end_why =
+      undetermined ? a.reference_undetermined_detail
+                   : (a.reference_status_detail.empty() ? std::string("assumption violated")
+                                                        : a.reference_status_detail);
 
   // A run that is not finite failed: never an agreement. The engine's failure is its own,
   // whatever the reference did; a reference that failed leaves nothing to compare with.
@@ -420,9 +430,7 @@ Verdict MakeVerdict(const Scene& scene, const EngineAgreement& a,
   };
   if (model_ends) {
     outside("the reference's model ends at " + Format("%.2f", model_end_s) + " s (" +
-                (a.reference_status_detail.empty() ? std::string("assumption violated")
-                                                   : a.reference_status_detail) +
-                ")",
+                model_end_why + ")",
             model_end_s);
     return v;
   }

@@ -61,7 +61,15 @@ nlohmann::json ReferenceSummaryJson(const Scene& scene, const reference::Result&
   j["impacts"] = {{"total", s.impacts()},
                   {"ground", s.impacts_ground()},
                   {"inadmissible", s.impacts_inadmissible},
+                  {"ambiguous", s.impacts_ambiguous},
                   {"energy_gain", s.impacts_energy_gain}};
+  // Where the model stops deciding the motion: the first impact with no admissible outcome or
+  // several (null: every impact had exactly one).
+  if (s.undetermined_from_s) {
+    j["undetermined"] = {{"t_s", *s.undetermined_from_s}, {"detail", s.undetermined_detail}};
+  } else {
+    j["undetermined"] = nullptr;
+  }
   // Per interface: "interface" for one block (0) or two; "interface2", ... beyond.
   if (n <= 2) {
     j["impacts"]["interface"] = s.impacts_interface();

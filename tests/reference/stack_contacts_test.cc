@@ -1,7 +1,8 @@
 // The N-block contact problem (reference/stack_contacts.h): for two blocks the same choices
 // as the thesis's model (transitions.cc SelectMode, impact.cc ResolveImpact); for any N the
-// static tipping thresholds in closed form, the uniqueness of the consistent configuration,
-// Housner's impact for one block, and no energy gained at any impact.
+// static tipping thresholds in closed form, the uniqueness of the consistent configuration and
+// of the admissible impact outcome, Housner's impact for one block, and no energy gained at any
+// impact.
 #include "reference/stack_contacts.h"
 
 #include <gtest/gtest.h>
@@ -218,6 +219,9 @@ TEST(StackContactsTest, TwoBlockImpactsChooseWhatTheThesisModelChooses) {
         << "trial " << trial << ": " << ModeName(before) << (ground ? " ground" : " interface")
         << " thesis note '" << want.note << "', ours '" << got.note << "'";
     EXPECT_EQ(got.admissible, want.admissible) << trial;
+    // impact.h's uniqueness: the thesis's rule evaluates every candidate, and at most one
+    // motion passes.
+    EXPECT_EQ(want.admissible_outcomes, want.admissible ? 1 : 0) << trial << ": " << want.note;
     EXPECT_EQ(got.settled, want.settled) << trial;
     const double scale = std::abs(pre.omega1) + std::abs(pre.omega2);
     EXPECT_NEAR(got.chosen.omega_radps[0], want.chosen.state.omega1, 1e-12 * scale) << trial;
@@ -254,44 +258,92 @@ TEST(StackContactsTest, OneBlockRocksOnOrComesToRestAsHousnersBlockDoes) {
   }
 }
 
+// A random impact of a random state: interface k lands (its gap closed, the blocks above
+// turned with it, with a closing rate); returns k and the configuration before.
+int RandomImpact(int n, double p_closed, std::mt19937_64& rng, std::vector<double>* theta_out,
+                 std::vector<double>* omega_out, Configuration* before) {
+  std::uniform_real_distribution<double> unit(0, 1), rate(0.2, 3.0);
+  std::vector<double>& theta = *theta_out;
+  std::vector<double>& omega = *omega_out;
+  RandomState(n, p_closed, rng, &theta, &omega);
+  const int k = static_cast<int>(rng() % n);
+  const double shift = (k == 0 ? 0.0 : theta[k - 1]) - theta[k];
+  for (int i = k + 1; i < n; ++i) theta[i] += shift;
+  // Exactly zero, as the driver lands it.
+  theta[k] = k == 0 ? 0.0 : theta[k - 1];
+  const Contact side = unit(rng) < 0.5 ? Contact::kRight : Contact::kLeft;
+  const double closing = (side == Contact::kRight ? -1 : 1) * rate(rng);
+  const double below = k == 0 ? 0.0 : omega[k - 1];
+  const double add = below + closing - omega[k];
+  for (int i = k; i < n; ++i) omega[i] += add;
+  *before = Configuration(n);
+  for (int j = 0; j < n; ++j) {
+    const double gap = j == 0 ? theta[0] : theta[j] - theta[j - 1];
+    if (j == k) {
+      before->set(j, side);
+    } else if (gap != 0.0) {
+      before->set(j, gap > 0 ? Contact::kRight : Contact::kLeft);
+    }
+  }
+  // Closed interfaces above carry their support's rate.
+  for (int j = 1; j < n; ++j) {
+    if ((*before)[j] == Contact::kFace) omega[j] = omega[j - 1];
+  }
+  if ((*before)[0] == Contact::kFace) omega[0] = 0.0;
+  return k;
+}
+
 TEST(StackContactsTest, NoImpactAddsEnergy) {
   std::mt19937_64 rng(12);
-  std::uniform_real_distribution<double> unit(0, 1), rate(0.2, 3.0);
   for (int n = 1; n <= 10; ++n) {
     for (int trial = 0; trial < 30; ++trial) {
       const StackGeometry geo = RandomStack(n, rng);
       StackContacts contacts(geo);
       std::vector<double> theta, omega;
-      RandomState(n, 0.5, rng, &theta, &omega);
-      // Land interface k: close its gap (the blocks above turn with it) with a closing rate.
-      const int k = static_cast<int>(rng() % n);
-      const double shift = (k == 0 ? 0.0 : theta[k - 1]) - theta[k];
-      for (int i = k; i < n; ++i) theta[i] += shift;
-      const Contact side = unit(rng) < 0.5 ? Contact::kRight : Contact::kLeft;
-      const double closing = (side == Contact::kRight ? -1 : 1) * rate(rng);
-      const double below = k == 0 ? 0.0 : omega[k - 1];
-      const double add = below + closing - omega[k];
-      for (int i = k; i < n; ++i) omega[i] += add;
-      Configuration before(n);
-      for (int j = 0; j < n; ++j) {
-        const double gap = j == 0 ? theta[0] : theta[j] - theta[j - 1];
-        if (j == k) {
-          before.set(j, side);
-        } else if (gap != 0.0) {
-          before.set(j, gap > 0 ? Contact::kRight : Contact::kLeft);
-        }
-      }
-      // Closed interfaces above carry their support's rate.
-      for (int j = 1; j < n; ++j) {
-        if (before[j] == Contact::kFace) omega[j] = omega[j - 1];
-      }
-      if (before[0] == Contact::kFace) omega[0] = 0.0;
+      Configuration before;
+      const int k = RandomImpact(n, 0.5, rng, &theta, &omega, &before);
       const StackImpact imp = contacts.ResolveImpact(before, theta.data(), omega.data(), k, 1e-7);
       EXPECT_LE(imp.chosen.energy_after_j,
                 imp.energy_before_j + 1e-12 * std::abs(imp.energy_before_j))
           << n << " blocks, " << imp.note;
     }
   }
+}
+
+// impact.h's uniqueness argument: at most one motion passes both checks. Every candidate of
+// random impacts of random stacks of 1 to 7 blocks (most interfaces closed, so that many
+// candidates are in play), and the choice is the one the first-admissible search makes.
+TEST(StackContactsTest, AtMostOneImpactMotionIsAdmissible) {
+  std::mt19937_64 rng(23);
+  int impacts = 0, with_outcome = 0, candidates = 0;
+  for (int n = 1; n <= 7; ++n) {
+    for (int trial = 0; trial < 150; ++trial) {
+      const StackGeometry geo = RandomStack(n, rng);
+      StackContacts first(geo), every(geo);
+      every.set_exhaustive(true);
+      std::vector<double> theta, omega;
+      Configuration before;
+      const int k = RandomImpact(n, trial % 2 ? 0.8 : 0.5, rng, &theta, &omega, &before);
+      const double rest_rel = trial % 3 == 0 ? 0.3 : 1e-7;
+      const StackImpact a = first.ResolveImpact(before, theta.data(), omega.data(), k, rest_rel);
+      const StackImpact b = every.ResolveImpact(before, theta.data(), omega.data(), k, rest_rel);
+      ++impacts;
+      with_outcome += b.admissible;
+      candidates += b.candidates_tried;
+      EXPECT_LE(b.admissible_outcomes, 1) << n << " blocks, trial " << trial << ": " << b.note;
+      EXPECT_EQ(b.admissible_outcomes, b.admissible ? 1 : 0) << n << " blocks: " << b.note;
+      EXPECT_TRUE(!b.admissible || b.uniqueness_checked);
+      EXPECT_FALSE(a.uniqueness_checked);
+      EXPECT_EQ(a.admissible, b.admissible);
+      EXPECT_EQ(ConfigurationName(a.chosen.config), ConfigurationName(b.chosen.config));
+      for (int i = 0; i < n; ++i) EXPECT_EQ(a.chosen.omega_radps[i], b.chosen.omega_radps[i]);
+    }
+  }
+  std::printf("%d impacts, %d with an admissible outcome, %d candidates evaluated\n", impacts,
+              with_outcome, candidates);
+  // The check has something to find: most impacts have an outcome, among many candidates.
+  EXPECT_GT(with_outcome, impacts / 2);
+  EXPECT_GT(candidates, 20 * impacts);
 }
 
 }  // namespace
