@@ -210,6 +210,28 @@ TEST(MakeVerdict, WhereTheReferenceStopsTheVerdictIsOutsideTheModel) {
   EXPECT_EQ(MakeVerdict(s, a, h, std::nullopt).kind, "differs_before_horizon");
 }
 
+TEST(MakeVerdict, FromAnImpactTheModelLeavesUndecidedTheVerdictIsOutsideTheModel) {
+  // The reference runs on (completed) past an impact with no admissible outcome: its motion
+  // after it is its rule's choice, so the model ends there as at a stop.
+  Scene s;
+  Horizons h;
+  EngineAgreement a = Agreement(30.0, 30.0, true, true);
+  EXPECT_EQ(MakeVerdict(s, a, h, std::nullopt).kind, "agrees");
+  a.reference_undetermined_s = 2.5;
+  a.reference_undetermined_detail = "the interface2 impact at t = 2.5 s has no admissible outcome";
+  Verdict v = MakeVerdict(s, a, h, std::nullopt);
+  EXPECT_EQ(v.kind, "outside_model");
+  EXPECT_FALSE(v.agrees);
+  EXPECT_NE(v.text.find("ends at 2.50 s (the interface2 impact"), std::string::npos) << v.text;
+  // A stop before the undecided impact ends the model first, with its own reason.
+  a.reference_status = RunStatus::kAssumptionViolated;
+  a.reference_status_detail = "block 2 lifts off";
+  a.reference_end_s = 2.0;
+  v = MakeVerdict(s, a, h, std::nullopt);
+  EXPECT_EQ(v.kind, "outside_model");
+  EXPECT_NE(v.text.find("ends at 2.00 s (block 2 lifts off)"), std::string::npos) << v.text;
+}
+
 TEST(MakeVerdict, NoValidReferenceMemberBeyondTheHorizonIsOutsideTheModel) {
   Scene s;
   Horizons h;
