@@ -17,30 +17,6 @@ constexpr std::int64_t kMaxSteps = 2'000'000'000;
 
 }  // namespace
 
-std::string EngineBlocksRefusal(const std::string& engine, int blocks, int max_blocks) {
-  if (blocks <= max_blocks) return {};
-  std::string allowed = "1";
-  for (int k = 2; k <= max_blocks; ++k) {
-    allowed += k == max_blocks ? " or " : ", ";
-    allowed += std::to_string(k);
-  }
-  std::string out = "engine ";
-  out += engine;
-  out += ": N-block stacks (";
-  out += std::to_string(blocks);
-  out += " blocks) are not built yet (issue 23); ";
-  out += allowed;
-  out += max_blocks == 1 ? " block" : " blocks";
-  return out;
-}
-
-void RequireEngineBlocks(const Scene& scene, const std::string& engine, int max_blocks) {
-  const std::string refusal = EngineBlocksRefusal(engine, scene.block_count(), max_blocks);
-  if (refusal.empty()) return;
-  const std::string where = scene.path.empty() ? std::string("scene") : scene.path.string();
-  throw SceneError(where + ": " + refusal);
-}
-
 void AddTimeStepSetting(EngineSettingsSchema& schema, std::string engine_default, std::string doc) {
   schema.Number("time_step", kDefaultTimeStep_s, SettingRange::kPositive, "s",
                 std::move(engine_default), std::move(doc));

@@ -87,14 +87,6 @@ EngineInput MakeEngineInput(const Scene& scene, const GroundMotion& motion,
                             const std::string& engine, const EngineSettings& settings,
                             double stop_at_rest_after_s);
 
-/// An engine that builds stacks of at most `max_blocks` blocks (issue 23 generalises the engines
-/// one by one) refuses a stack of `blocks` blocks with "engine ENGINE: N-block stacks (N blocks)
-/// are not built yet (issue 23); 1 or 2 blocks"; empty when blocks <= max_blocks.
-std::string EngineBlocksRefusal(const std::string& engine, int blocks, int max_blocks);
-/// The entry check of such an engine: throws SceneError "FILE: " + EngineBlocksRefusal(...) for
-/// a scene of more blocks.
-void RequireEngineBlocks(const Scene& scene, const std::string& engine, int max_blocks);
-
 /// The key `time_step` of every engine's table, which MakeEngineInput reads: the fixed step, s,
 /// a positive number, ours 1e-4 s (kDefaultTimeStep_s); `engine_default` is the engine's own
 /// default as text ("1/60 s"), `doc` one line on it.

@@ -38,7 +38,6 @@ class SiconosEngine final : public Engine {
 
   EngineResult Simulate(const Scene& scene, const GroundMotion& motion,
                         const SimulateOptions& options) const override {
-    RequireEngineBlocks(scene, "siconos", 2);  // issue 23: N blocks not built yet (world)
     const SiconosRun run = MakeSiconosRun(scene, motion, options.stop_at_rest_after_s);
     EngineResult out = SimulateWorld<SiconosWorld>("siconos", scene, run.input, run.settings);
     char line[160];

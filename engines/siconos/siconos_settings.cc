@@ -32,6 +32,8 @@ const EngineSettingsSchema& SiconosSettingsSchema() {
            "a step NSGS does not converge on is solved again by Lemke");
     s.Choice("newton", d.newton_linear ? "linear" : "nonlinear", {"linear", "nonlinear"},
              "nonlinear", "TimeStepping's Newton loop; both make one iteration here");
+    s.Number("activation_threshold", d.activation_threshold_m, R::kNonNegative, "m", "0",
+             "MoreauJeanOSI's constraint activation threshold (predicted gap)");
     AddKinematicHighpassSetting(s);
     return s;
   }();
@@ -55,6 +57,7 @@ SiconosRun MakeSiconosRun(const Scene& scene, const GroundMotion& motion,
   s.solver_max_iterations = static_cast<int>(set.Integer("solver_max_iterations"));
   s.lemke_fallback = set.Flag("lemke_fallback");
   s.newton_linear = set.Choice("newton") == "linear";
+  s.activation_threshold_m = set.Number("activation_threshold");
   return run;
 }
 

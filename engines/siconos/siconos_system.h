@@ -46,6 +46,8 @@ struct SiconosSystemConfig {
   /// Whether a step whose iterative solver (NSGS) did not converge is solved again by Lemke.
   bool lemke_fallback = true;
   bool newton_linear = true;  ///< SICONOS_TS_LINEAR (else SICONOS_TS_NONLINEAR, the default)
+  /// MoreauJeanOSI's constraint activation threshold, m (Siconos's default 0).
+  double activation_threshold_m = 0.0;
   /// The ground a moving body (kinematic drive): its initial position and velocity (m, m/s).
   bool moving_ground = false;
   double ground_x_m = 0.0, ground_y_m = 0.0, ground_vx_mps = 0.0, ground_vy_mps = 0.0;

@@ -43,14 +43,6 @@ void ReadBody(const SiconosBodyState& st, BodyReadout* out) {
 
 SiconosWorld::SiconosWorld(const EngineInput& input, const SiconosSettings& settings)
     : in_(input), s_(settings) {
-  // One or two blocks. The system below builds N, but a column of drums needs MoreauJeanOSI's
-  // activation threshold above its default 0 (a resting corner placed 1e-16 m above its face is
-  // left out of the first step), a column of 5 still opens at 1e-12 m, and five equal boxes at
-  // rest need 100000 NSGS iterations a step: Lemke's fallback on that degenerate problem starts
-  // them rocking (measured; docs/engines.md, N blocks). Not built until that is settled.
-  if (const std::string no = EngineBlocksRefusal("siconos", input.block_count(), 2); !no.empty()) {
-    throw std::invalid_argument(no);
-  }
   // The settings' ranges are the [siconos] schema's (siconos_settings.cc), checked when the
   // table was resolved; the step is the input's, checked by MakeEngineInput.
   kinematic_ = in_.drive_kind == DriveKind::kKinematic;
@@ -77,6 +69,7 @@ SiconosWorld::SiconosWorld(const EngineInput& input, const SiconosSettings& sett
   c.solver_max_iterations = s_.solver_max_iterations;
   c.lemke_fallback = s_.lemke_fallback;
   c.newton_linear = s_.newton_linear;
+  c.activation_threshold_m = s_.activation_threshold_m;
   c.moving_ground = kinematic_;
   c.ground_x_m = ux0;
   c.ground_y_m = uy0;

@@ -309,7 +309,6 @@ std::vector<Bound> ParseTolerances(std::string_view text, const std::string& fil
     shape.verdict_kind = "agrees";  // the verdict's keys are written when a verdict is made
     nlohmann::json shape_json = AgreementJson(shape);
     shape_json["statistics"] = nullptr;  // its shape depends on the run (null: any key below)
-    shape_json[kRefusalMetric] = "";     // an engine's refusal (RunComparison): a string
     const nlohmann::json* leaf = Resolve(shape_json, b.metric_path);
     if (leaf == nullptr || leaf->is_object() || leaf->is_array()) {
       std::vector<std::string> keys;
@@ -406,19 +405,9 @@ nlohmann::json RunComparison(const BoundGroup& group) {
   const Scene ref_scene = LoadScene(group.scene_path, ref_settings);
   const GroundMotion motion = GroundMotion::FromScene(scene);
   if (group.engine != "reference") {
-    // The comparison `rockbench compare` makes: witness, ensembles, statistics, verdict. An
-    // engine that refuses the scene (a SceneError from its run: Siconos and three or more
-    // blocks) leaves only its words, which a bound on kRefusalMetric pins; every other bound of
-    // the group then fails, naming the refusal.
-    try {
-      const CompareRun run = RunCompare(scene, motion, {group.engine});
-      return run.comparison["engines"][group.engine];
-    } catch (const SceneError& e) {
-      std::string words = e.what();
-      const std::string where = scene.path.string() + ": ";
-      if (words.rfind(where, 0) == 0) words.erase(0, where.size());
-      return nlohmann::json{{kRefusalMetric, words}};
-    }
+    // The comparison `rockbench compare` makes: witness, ensembles, statistics, verdict.
+    const CompareRun run = RunCompare(scene, motion, {group.engine});
+    return run.comparison["engines"][group.engine];
   }
   const reference::Result reference = reference::Simulate(ref_scene, motion);
   const EngineRun run = RunEngine(group.engine, scene, motion, {.check_convergence = false});
@@ -430,21 +419,6 @@ Verdict CheckBound(const Bound& b, const nlohmann::json& agreement) {
   const nlohmann::json* x = Resolve(agreement, b.metric_path);
   const std::string head = b.metric + " (" + b.Describe() + ")";
   const std::string tail = "\n    why: " + b.why + "\n    at " + b.Name();
-  const nlohmann::json* refusal = Resolve(agreement, kRefusalMetric);
-  if (b.metric_path != kRefusalMetric && refusal != nullptr && refusal->is_string()) {
-    v.measured = "refused";
-    v.message =
-        head + ": FAILED, the engine refused the scene: " + refusal->get<std::string>() + tail;
-    return v;
-  }
-  if (b.metric_path == kRefusalMetric && x == nullptr) {
-    v.measured = "ran";
-    v.message = head +
-                ": FAILED, the engine ran the scene (it no longer refuses it): bound what it "
-                "does instead (docs/agreement.md)" +
-                tail;
-    return v;
-  }
   if (x == nullptr || x->is_null()) {
     v.measured = x == nullptr ? "missing" : "null";
     v.message = head + ": FAILED, the comparison has " +

@@ -65,8 +65,8 @@ const std::vector<std::string>& KnownEngines();
 /// Parses and checks tolerance-file text: only [[bound]] tables; in each, only the keys above;
 /// scene, engine, metric and a non-empty why required; exactly one of max, min, equals; the
 /// scene file exists in `scenes_dir` and loads with the settings; the metric is a key of the
-/// comparison JSON for that scene (theta2..thetaN only for N blocks; `refusal`, a string, for
-/// any) and its kind matches the bound
+/// comparison JSON for that scene (theta2..thetaN only for N blocks) and its kind matches the
+/// bound
 /// (numbers: max/min, booleans and strings: equals); no entry repeats another's bound. Throws
 /// ToleranceError naming `file`, the line and the entry.
 std::vector<Bound> ParseTolerances(std::string_view text, const std::string& file,
@@ -79,18 +79,10 @@ std::vector<Bound> LoadTolerances(const std::filesystem::path& file,
 /// Groups bounds by comparison, in order of first appearance; test names are made unique.
 std::vector<BoundGroup> GroupBounds(const std::vector<Bound>& bounds);
 
-/// The metric of an engine that refuses a scene before running it (Siconos and three or more
-/// blocks): its words (the SceneError's message, the scene's path left out), bounded with
-/// `equals`. A run that refused has no other key, and every other bound of its group fails
-/// naming the refusal; a run that ran has no such key, so the bound fails once the engine
-/// builds the scene (then its real bounds replace it).
-inline constexpr const char* kRefusalMetric = "refusal";
-
 /// Runs a group's comparison in process (an engine's: RunCompare, as `rockbench compare`; the
 /// reference against itself: reference::Simulate -> RunEngine -> CompareWithReference) and
-/// returns AgreementJson of it: the object comparison.json holds under engines.<engine>. An
-/// engine that refuses the scene (SceneError from RunCompare) gives {"refusal": its words}.
-/// Throws SceneError on bad settings of the reference against itself.
+/// returns AgreementJson of it: the object comparison.json holds under engines.<engine>. Throws
+/// SceneError on bad settings of the reference against itself.
 nlohmann::json RunComparison(const BoundGroup& group);
 
 /// The outcome of one bound against a measured agreement.

@@ -252,51 +252,6 @@ TEST_F(ThreeBlocksTest, AStackOfNBlocksHasTheMetricsOfEachBlock) {
   EXPECT_NE(msg.find("theta3.max_abs_error_rad"), std::string::npos) << msg;
 }
 
-TEST(TolerancesTest, AnEngineThatRefusesASceneIsBoundedByItsWords) {
-  // `refusal` is a string: bounded with equals only.
-  EXPECT_EQ(Error(Entry("", "refusal", "equals = \"engine x: no\"")), "");
-  EXPECT_NE(Error(Entry("", "refusal", "max = 1")).find("is a string: bound it with equals"),
-            std::string::npos);
-  const nlohmann::json refused = {{"refusal", "engine x: N-block stacks are not built yet"}};
-  // The words pass their bound, other words fail it.
-  EXPECT_TRUE(CheckBound(One("refusal",
-                             "equals = \"engine x: N-block stacks are not built "
-                             "yet\""),
-                         refused)
-                  .pass);
-  EXPECT_FALSE(CheckBound(One("refusal", "equals = \"engine x: no\""), refused).pass);
-  // Any other bound of a refused run fails, naming the refusal.
-  Verdict v = CheckBound(One("theta2.max_abs_error_rad", "max = 1"), refused);
-  EXPECT_FALSE(v.pass);
-  EXPECT_NE(v.message.find("the engine refused the scene: engine x: N-block stacks"),
-            std::string::npos)
-      << v.message;
-  // An engine that ran fails its refusal bound: its real bounds must replace it.
-  nlohmann::json ran;
-  ran["theta1"]["max_abs_error_rad"] = 1e-4;
-  v = CheckBound(One("refusal", "equals = \"engine x: no\""), ran);
-  EXPECT_FALSE(v.pass);
-  EXPECT_NE(v.message.find("no longer refuses"), std::string::npos) << v.message;
-}
-
-TEST_F(ThreeBlocksTest, RunComparisonReturnsTheWordsOfAnEngineThatRefuses) {
-  // Siconos builds one or two blocks and refuses three (engines/common/engine_input.h).
-  const std::vector<std::string> available = AvailableEngines();
-  if (std::find(available.begin(), available.end(), "siconos") == available.end()) {
-    GTEST_SKIP() << "siconos is not in this build";
-  }
-  BoundGroup g;
-  g.scene = "stack3.toml";
-  g.scene_path = dir_ / g.scene;
-  g.engine = "siconos";
-  g.settings = {"compare.members=2"};
-  const nlohmann::json j = RunComparison(g);
-  EXPECT_EQ(j, (nlohmann::json{{"refusal",
-                                "engine siconos: N-block stacks (3 blocks) are not built yet "
-                                "(issue 23); 1 or 2 blocks"}}))
-      << j.dump();
-}
-
 class UnguardedScenesTest : public testing_util::ScratchDirTest {};
 
 TEST_F(UnguardedScenesTest, ASceneWithoutAnEngineBoundIsReported) {

@@ -62,16 +62,6 @@ class EngineConformance : public testing_util::ScratchDirTest,
     SetEngineSetting(s, GetParam(), "time_step", kStep_s);
     return engine().Simulate(s, m, SimulateOptions{});
   }
-  // The same for a stack the engine may refuse (a SceneError): nullopt, its message in *refusal.
-  std::optional<EngineResult> RunOrRefusal(const Scene& s, const GroundMotion& m,
-                                           std::string* refusal) const {
-    try {
-      return Run(s, m);
-    } catch (const SceneError& e) {
-      *refusal = e.what();
-      return std::nullopt;
-    }
-  }
 };
 
 using testing_util::ErrorOf;
@@ -400,9 +390,8 @@ TEST_P(EngineConformance, StackCarriedByAKinematicGroundStaysAtRest) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Stacks of N >= 3 blocks (issue 23): an engine builds them, or refuses them at its entry with a
-// message that says so ("engine ode: N-block stacks (3 blocks) are not built yet (issue 23); 1 or
-// 2 blocks"); it never simulates a stack of fewer blocks than the scene has.
+// Stacks of N >= 3 blocks (issue 23): every engine builds them, and never simulates a stack of
+// fewer blocks than the scene has.
 
 // n drums 0.85 m tall, 1 m deep, 2700 kg/m^3, tapering from 0.96 m wide by 0.02 m a drum (as
 // a classical column; equal widths would put every upper block's side faces flush with the
@@ -421,12 +410,6 @@ Scene Drums(int n, double theta0_rad, double duration_s) {
   return s;
 }
 
-// The refusal an engine that builds one or two blocks only must give a stack of n (3 or more).
-std::string NBlockRefusal(const std::string& engine, int n) {
-  return std::string("drums.toml: engine ") + engine + ": N-block stacks (" + std::to_string(n) +
-         " blocks) are not built yet (issue 23); 1 or 2 blocks";
-}
-
 TEST_P(EngineConformance, ColumnOfDrumsLandsWhenTheLockedColumnDoes) {
   // Released from half its critical angle, the column rocks back as one body (the faces' loads
   // keep both corners of every interface compressive, by at least 4% of the normal force) and
@@ -437,13 +420,7 @@ TEST_P(EngineConformance, ColumnOfDrumsLandsWhenTheLockedColumnDoes) {
     const double theta0 = 0.5 * body.alpha_rad();
     const double t_closed = bm::FirstImpactTime_s(body, theta0);
     const Scene s = Drums(n, theta0, t_closed + 0.02);
-    std::string refusal;
-    const std::optional<EngineResult> run = RunOrRefusal(s, GroundMotion(), &refusal);
-    if (!run) {
-      ASSERT_EQ(refusal, NBlockRefusal(GetParam(), n));
-      GTEST_SKIP() << refusal;
-    }
-    const EngineResult& out = *run;
+    const EngineResult out = Run(s, GroundMotion());
     ASSERT_EQ(out.history.blocks, n);
     const std::vector<Event> imp = GroundImpacts(out.history);
     ASSERT_FALSE(imp.empty());
@@ -476,13 +453,7 @@ TEST_P(EngineConformance, ColumnOfDrumsLandsWhenTheLockedColumnDoes) {
 TEST_P(EngineConformance, FiveDrumsAtRestStayAtRest) {
   // The engine developers' stacking test: five boxes on the ground, no base motion, 2 s.
   const Scene scene = Drums(5, 0.0, 2.0);
-  std::string refusal;
-  const std::optional<EngineResult> run = RunOrRefusal(scene, GroundMotion(), &refusal);
-  if (!run) {
-    ASSERT_EQ(refusal, NBlockRefusal(GetParam(), 5));
-    GTEST_SKIP() << refusal;
-  }
-  const EngineResult& out = *run;
+  const EngineResult out = Run(scene, GroundMotion());
   ASSERT_EQ(out.outcome.peak_theta_rad.size(), 5u);
   for (int k = 0; k < 5; ++k) EXPECT_LT(out.outcome.peak_theta_rad[k], 1e-5) << "block " << k + 1;
   EXPECT_TRUE(out.history.events.empty());

@@ -173,23 +173,5 @@ TEST(EngineDrive, TheInputCarriesEveryBlockOfAnNBlockStack) {
   EXPECT_EQ(in.initial.omega_radps[5], -0.1);
 }
 
-TEST(EngineDrive, AnEngineOfTwoBlocksRefusesAStackOfMoreByName) {
-  Scene s = OneBlock();
-  s.path = "scenes/three.toml";
-  s.blocks.assign(3, s.blocks[0]);
-  EXPECT_EQ(EngineBlocksRefusal("ode", 2, 2), "");
-  EXPECT_EQ(EngineBlocksRefusal("ode", 3, 2),
-            "engine ode: N-block stacks (3 blocks) are not built yet (issue 23); 1 or 2 blocks");
-  try {
-    RequireEngineBlocks(s, "ode", 2);
-    ADD_FAILURE() << "accepted 3 blocks";
-  } catch (const SceneError& e) {
-    EXPECT_EQ(std::string(e.what()),
-              "scenes/three.toml: engine ode: N-block stacks (3 blocks) "
-              "are not built yet (issue 23); 1 or 2 blocks");
-  }
-  EXPECT_NO_THROW(RequireEngineBlocks(s, "bullet", kMaxBlocks));
-}
-
 }  // namespace
 }  // namespace rockbench
