@@ -14,6 +14,8 @@
 #include "reference/simulate.h"
 #include "reference/stack_chain.h"
 #include "scene/ground_motion.h"
+#include "scene/mode.h"
+#include "scene/outcome.h"
 
 namespace rockbench::reference {
 namespace {
@@ -155,6 +157,50 @@ TEST(StackSimulateTest, FreeRockingConservesEnergyBetweenImpactsAndLosesItAtEach
         << n << ": " << StatusText(r.summary.status);
     EXPECT_EQ(r.summary.impacts_inadmissible, 0) << n;
     EXPECT_NEAR(r.history.samples.back().t_s, 4.0, 1e-12) << n;
+  }
+}
+
+TEST(StackSimulateTest, AnImpactWhoseSearchReachesItsCapIsReportedAndEndsTheModel) {
+  // A column at rest whose top drum, released from 0.02 rad, lands on it. Its landing opens
+  // the interfaces below (docs/n-blocks.md, "Where the model ends"): the admissible outcome is
+  // one with many changes, which the search (fewest changes first) reaches last. With
+  // 10 drums every candidate is within the cap (2 x 3^9 = 39,366 of 59,049) and the landing is
+  // admissible. With 20 (2 x 3^19) the search stops at the cap, and the run says so: the note,
+  // the inadmissible count and `undetermined` at that impact.
+  for (const int n : {10, 20}) {
+    Scene sc = Column(n, 0.2);
+    sc.initial.theta_rad[n - 1] = 0.02;
+    const Result r = RunOn(sc, "chain");
+    const Event* landing = nullptr;
+    for (const Event& ev : r.history.events) {
+      if (ev.kind.find("impact") != std::string::npos) {
+        landing = &ev;
+        break;
+      }
+    }
+    ASSERT_NE(landing, nullptr) << n;
+    EXPECT_EQ(landing->kind, InterfaceName(n - 1, n) + "_impact") << n;
+    if (n == 10) {
+      EXPECT_EQ(landing->note.find("inadmissible"), std::string::npos) << landing->note;
+      // The interfaces below open: measured fllllllllf, the landing one closing and the ground
+      // kept closed by the rest rule (the note says "settled"). Eight changes from the
+      // baseline: the search's last depths.
+      EXPECT_GE(landing->mode_after.open_count(), n - 2) << ConfigurationName(landing->mode_after);
+      ASSERT_TRUE(r.summary.undetermined_from_s.has_value());
+      EXPECT_GT(*r.summary.undetermined_from_s, landing->t_s);
+    } else {
+      EXPECT_NE(landing->note.find("no admissible outcome among the first 59049 (search stopped)"),
+                std::string::npos)
+          << landing->note;
+      EXPECT_GE(r.summary.impacts_inadmissible, 1);
+      ASSERT_TRUE(r.summary.undetermined_from_s.has_value());
+      EXPECT_EQ(*r.summary.undetermined_from_s, landing->t_s);
+      EXPECT_NE(r.summary.undetermined_detail.find("no admissible outcome"), std::string::npos)
+          << r.summary.undetermined_detail;
+    }
+    std::printf("%d drums: landing at %.4f s (%s), %d impacts, %d inadmissible, status %s\n", n,
+                landing->t_s, landing->note.c_str(), r.summary.impacts(),
+                r.summary.impacts_inadmissible, StatusText(r.summary.status));
   }
 }
 
