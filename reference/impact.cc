@@ -190,30 +190,41 @@ ImpactResult ResolveImpact(const Geometry& geo, Mode before, const State& pre, I
   // The note is built only when there is something to say (most impacts have none).
   std::string note;
   if (pick) {
-    // The different motions the admissible candidates leave, each after the rest rule.
-    const double rate_scale = std::abs(pre.omega1) + std::abs(pre.omega2) + 1e-300;
-    // (At most one candidate per mode: nine.)
-    std::array<std::pair<double, double>, 9> motions;
-    size_t count = 0;
-    std::string names;
-    for (const auto& c : res.candidates) {
-      if (!c.velocity_admissible || !c.impulse_admissible) continue;
-      const Mode m = Settle(geo, c.mode, pre, c.state, rest_rate_rel);
-      const State after = m == c.mode ? c.state : Evaluate(geo, pre, tilts, vm, m).state;
-      bool same = false;
-      for (size_t i = 0; i < count && !same; ++i) {
-        same = std::abs(motions[i].first - after.omega1) <= kSameImpactMotion * rate_scale &&
-               std::abs(motions[i].second - after.omega2) <= kSameImpactMotion * rate_scale;
+    // The different motions the admissible candidates leave, each after the rest rule (most
+    // impacts have one admissible candidate: nothing to compare).
+    int admissible = 0;
+    for (const auto& c : res.candidates)
+      admissible += c.velocity_admissible && c.impulse_admissible;
+    res.admissible_outcomes = admissible;
+    if (admissible > 1) {
+      const double rate_scale = std::abs(pre.omega1) + std::abs(pre.omega2) + 1e-300;
+      // (At most one candidate per mode: nine.)
+      std::array<std::pair<double, double>, 9> motions;
+      std::array<Mode, 9> modes;
+      size_t count = 0;
+      for (const auto& c : res.candidates) {
+        if (!c.velocity_admissible || !c.impulse_admissible) continue;
+        const Mode m = Settle(geo, c.mode, pre, c.state, rest_rate_rel);
+        const State after = m == c.mode ? c.state : Evaluate(geo, pre, tilts, vm, m).state;
+        bool same = false;
+        for (size_t i = 0; i < count && !same; ++i) {
+          same = std::abs(motions[i].first - after.omega1) <= kSameImpactMotion * rate_scale &&
+                 std::abs(motions[i].second - after.omega2) <= kSameImpactMotion * rate_scale;
+        }
+        if (same || count == motions.size()) continue;
+        modes[count] = c.mode;
+        motions[count++] = {after.omega1, after.omega2};
       }
-      if (same || count == motions.size()) continue;
-      motions[count++] = {after.omega1, after.omega2};
-      if (!names.empty()) names += ' ';
-      names += ModeName(c.mode);
-    }
-    res.admissible_outcomes = static_cast<int>(count);
-    if (count > 1) {
-      note = "ambiguous: " + std::to_string(count) + " admissible outcomes (" + names +
-             "); chose " + std::string(ModeName(pick->mode));
+      res.admissible_outcomes = static_cast<int>(count);
+      if (count > 1) {
+        std::string names;
+        for (size_t i = 0; i < count; ++i) {
+          if (i > 0) names += ' ';
+          names += ModeName(modes[i]);
+        }
+        note = "ambiguous: " + std::to_string(count) + " admissible outcomes (" + names +
+               "); chose " + std::string(ModeName(pick->mode));
+      }
     }
   }
   if (!pick) {
