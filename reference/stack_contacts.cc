@@ -216,7 +216,8 @@ StackImpact StackContacts::ResolveImpact(const Configuration& before, const doub
     }
     return settled;
   };
-  // The different motions (rates after the rest rule) of the admissible outcomes found.
+  // The different motions (rates after the rest rule) of the admissible outcomes found, when
+  // the search is exhaustive.
   double rate_scale = 1e-300;
   for (int i = 0; i < n; ++i) rate_scale += std::abs(omega_minus[i]);
   std::vector<std::vector<double>> motions;
@@ -250,7 +251,7 @@ StackImpact StackContacts::ResolveImpact(const Configuration& before, const doub
       }
       StackImpactOutcome o = EvaluateImpact(before, c, theta, omega_minus);
       if (o.velocity_admissible && o.impulse_admissible) {
-        add_motion(o);
+        if (exhaustive_) add_motion(o);
         if (!have_pick) {
           pick = std::move(o);
           have_pick = true;
@@ -291,7 +292,7 @@ StackImpact StackContacts::ResolveImpact(const Configuration& before, const doub
     if (search(0, d)) break;
   }
   std::string note;
-  res.admissible_outcomes = static_cast<int>(motions.size());
+  res.admissible_outcomes = exhaustive_ ? static_cast<int>(motions.size()) : have_pick ? 1 : 0;
   if (!have_pick) {
     res.admissible = false;
     note = capped ? "inadmissible: no admissible outcome among the first " +
