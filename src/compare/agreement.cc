@@ -1,7 +1,6 @@
 #include "compare/agreement.h"
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <string_view>
@@ -13,22 +12,9 @@ namespace rockbench {
 namespace {
 
 // The interface of an impact event (0: block 1 on the ground; k: block k + 1 on block k), -1
-// for any other event. One or two blocks: "ground_impact", "interface_impact"; N >= 3 blocks:
-// "ground_impact", "interface2_impact" ... "interfaceN_impact" (InterfaceName).
+// for any other event.
 int ImpactInterface(const Event& e) {
-  if (e.kind == "ground_impact") return 0;
-  if (e.kind == "interface_impact") return 1;
-  constexpr std::string_view kHead = "interface", kTail = "_impact";
-  const std::string_view k = e.kind;
-  if (k.size() <= kHead.size() + kTail.size() || k.substr(0, kHead.size()) != kHead ||
-      k.substr(k.size() - kTail.size()) != kTail) {
-    return -1;
-  }
-  const std::string_view digits = k.substr(kHead.size(), k.size() - kHead.size() - kTail.size());
-  int block = 0;
-  const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), block);
-  if (ec != std::errc() || end != digits.data() + digits.size() || block < 2) return -1;
-  return block - 1;
+  return ::rockbench::ImpactInterface(e.kind);
 }
 
 bool IsImpact(const Event& e) {

@@ -89,4 +89,9 @@ struct RunOutcome {
 /// stack of three or more ("interface3": block 3 on block 2; docs/outputs.md).
 std::string InterfaceName(int k, int blocks);
 
+/// The interface of an impact event's kind, InterfaceName(k, blocks) + "_impact": 0 for
+/// "ground_impact", 1 for "interface_impact" (two blocks), k for "interface<k + 1>_impact"
+/// (three or more); -1 for any other kind (a transition, "interface1_impact", ...).
+int ImpactInterface(std::string_view kind);
+
 }  // namespace rockbench

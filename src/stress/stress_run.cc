@@ -23,6 +23,7 @@
 #include "run/engine_run.h"
 #include "run/wall_clock.h"
 #include "scene/ground_motion.h"
+#include "scene/outcome.h"
 #include "stress/stress.h"
 #include "util/format.h"
 #include "util/subprocess.h"
@@ -50,8 +51,9 @@ bool HistoryHasNonFinite(const History& h) {
   return false;
 }
 
+// Any impact: "ground_impact", "interface_impact", "interface2_impact" ... (N >= 3 blocks).
 bool IsImpact(const Event& e) {
-  return e.kind == "ground_impact" || e.kind == "interface_impact";
+  return ImpactInterface(e.kind) >= 0;
 }
 
 // Event count, impact count and the smallest time between consecutive impacts.

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "scene/outcome.h"
 #include "tests/common/scratch_dir_test.h"
 
 namespace rockbench {
@@ -391,6 +392,21 @@ TEST_F(HistoryTest, WriteFileAtomicReplacesAndLeavesNoTemporary) {
   // A folder in the way of the file: an error naming the path.
   fs::create_directories(dir_ / "dir_target");
   EXPECT_THROW(WriteFileAtomic(dir_ / "dir_target", "x"), std::runtime_error);
+}
+
+// An impact event's kind names its interface (InterfaceName + "_impact"), for every stack
+// height; other kinds, and names no stack writes, are no impact.
+TEST(ImpactInterface, IsTheInverseOfTheImpactKindsNames) {
+  for (const int blocks : {1, 2, 3, 10, 64}) {
+    for (int k = 0; k < blocks; ++k) {
+      EXPECT_EQ(ImpactInterface(InterfaceName(k, blocks) + "_impact"), k) << blocks << " " << k;
+    }
+  }
+  for (const char* kind : {"transition", "initiation", "rest", "overturn", "interface1_impact",
+                           "interface0_impact", "interface_2_impact", "interfacex_impact",
+                           "interface2", "ground", "_impact", "interface2_impactx"}) {
+    EXPECT_EQ(ImpactInterface(kind), -1) << kind;
+  }
 }
 
 }  // namespace

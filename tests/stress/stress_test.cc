@@ -430,6 +430,9 @@ TEST(StressTest, AStackOfThreeBlocksHasEveryBlocksColumns) {
   // of the blocks' kinetic energies is ~1e-15 of it, so 1e-9 is the bound the other reference
   // cases meet (ReferenceFinishesEveryQuickCaseWithoutNanOrEnergyGain).
   ASSERT_GT(r.impacts, 0);
+  // Every impact counts, those between blocks ("interface2_impact", ...) as the ground's.
+  EXPECT_EQ(r.impacts, ref.summary.impacts());
+  EXPECT_GT(ref.summary.impacts_interface(), 0);
   EXPECT_EQ(r.energy_impacts, r.impacts);
   EXPECT_LT(r.max_energy_gain_rel, 1e-9);
   const StressRow b = RunStressCaseHere(c, "bullet");

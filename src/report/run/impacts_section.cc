@@ -3,17 +3,15 @@
 #include <set>
 
 #include "report/common/number_text.h"
+#include "scene/outcome.h"
 
 namespace rockbench::report {
 namespace {
 
 int EventCode(const std::string& kind) {
-  if (kind == "ground_impact") return 1;
   // Two blocks: "interface_impact"; N >= 3 blocks: "interface2_impact" ... "interfaceN_impact".
-  if (kind.rfind("interface", 0) == 0 && kind.size() >= 16 &&
-      kind.compare(kind.size() - 7, 7, "_impact") == 0) {
-    return 2;
-  }
+  const int interface = ImpactInterface(kind);
+  if (interface >= 0) return interface == 0 ? 1 : 2;
   if (kind == "transition" || kind == "initiation") return 3;
   if (kind == "overturn" || kind == "assumption_violated") return 4;
   return 0;  // rest and anything else: not drawn

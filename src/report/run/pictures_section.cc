@@ -12,6 +12,7 @@
 #include "renders/renderer.h"
 #include "report/common/json_keys.h"
 #include "report/common/number_text.h"
+#include "scene/outcome.h"
 
 namespace rockbench::report {
 
@@ -34,9 +35,7 @@ namespace {
 
 // "ground_impact", "interface_impact" (two blocks), "interface2_impact" ... (N >= 3 blocks).
 bool IsImpact(const Event& ev) {
-  const bool interface_impact = ev.kind.rfind("interface", 0) == 0 && ev.kind.size() >= 16 &&
-                                ev.kind.compare(ev.kind.size() - 7, 7, "_impact") == 0;
-  return ev.kind == "ground_impact" || interface_impact;
+  return ImpactInterface(ev.kind) >= 0;
 }
 
 // The blocks 1..n in the order their peaks claim frames: in order when the frames suffice;
