@@ -199,21 +199,21 @@ ImpactResult ResolveImpact(const Geometry& geo, Mode before, const State& pre, I
     if (admissible > 1) {
       const double rate_scale = std::abs(pre.omega1) + std::abs(pre.omega2) + 1e-300;
       // (At most one candidate per mode: nine.)
-      std::array<std::pair<double, double>, 9> motions;
+      std::array<std::array<double, 2>, 9> motions;
       std::array<Mode, 9> modes;
       size_t count = 0;
       for (const auto& c : res.candidates) {
         if (!c.velocity_admissible || !c.impulse_admissible) continue;
         const Mode m = Settle(geo, c.mode, pre, c.state, rest_rate_rel);
         const State after = m == c.mode ? c.state : Evaluate(geo, pre, tilts, vm, m).state;
+        const std::array<double, 2> w{after.omega1, after.omega2};
         bool same = false;
         for (size_t i = 0; i < count && !same; ++i) {
-          same = std::abs(motions[i].first - after.omega1) <= kSameImpactMotion * rate_scale &&
-                 std::abs(motions[i].second - after.omega2) <= kSameImpactMotion * rate_scale;
+          same = SameImpactMotion(motions[i].data(), w.data(), 2, rate_scale);
         }
         if (same || count == motions.size()) continue;
         modes[count] = c.mode;
-        motions[count++] = {after.omega1, after.omega2};
+        motions[count++] = w;
       }
       res.admissible_outcomes = static_cast<int>(count);
       if (count > 1) {

@@ -6,6 +6,7 @@
 /// the pair of laws chapter 5 writes for each case (system about the new ground pivot, block 2
 /// about its pivot), e.g. eq. 5.12 + 5.13 for 1a -> 2b, and reduces to 5.31, 5.36 and Housner's
 /// e = 1 - 1.5 sin^2(theta_c) in the one-degree-of-freedom cases.
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -30,6 +31,14 @@ namespace rockbench::reference {
 /// admissible outcomes whose rates differ by more than kSameImpactMotion of the sum of |omega-| are
 /// two motions: the impact is reported ambiguous (which the argument above says is a defect).
 inline constexpr double kSameImpactMotion = 1e-4;
+/// Whether two outcomes' rates (n of each, rad/s) are one motion: each pair within
+/// kSameImpactMotion of rate_scale (the sum of |omega-|).
+inline bool SameImpactMotion(const double* a, const double* b, int n, double rate_scale) {
+  for (int i = 0; i < n; ++i) {
+    if (!(std::abs(a[i] - b[i]) <= kSameImpactMotion * rate_scale)) return false;
+  }
+  return true;
+}
 
 enum class ImpactKind {
   kGround,     ///< block 1 (or the stack) reaches theta1 = 0

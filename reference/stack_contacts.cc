@@ -227,10 +227,7 @@ StackImpact StackContacts::ResolveImpact(const Configuration& before, const doub
     const std::vector<double> w =
         s == o.config ? o.omega_radps : EvaluateImpact(before, s, theta, omega_minus).omega_radps;
     for (const auto& m : motions) {
-      bool same = true;
-      for (int i = 0; i < n && same; ++i)
-        same = std::abs(m[i] - w[i]) <= kSameImpactMotion * rate_scale;
-      if (same) return;
+      if (SameImpactMotion(m.data(), w.data(), n, rate_scale)) return;
     }
     motions.push_back(w);
     if (!names.empty()) names += ' ';
@@ -243,10 +240,13 @@ StackImpact StackContacts::ResolveImpact(const Configuration& before, const doub
   std::function<bool(int, int)> search = [&](int pos, int left) -> bool {
     if (pos == nfree) {
       if (left != 0) return false;
-      ++res.candidates_tried;
-      if (!have_pick && res.candidates_tried > kMaxCandidates) return capped = true;
-      if (have_pick && res.candidates_tried > kMaxCandidates) {
-        res.uniqueness_checked = false;
+      if (++res.candidates_tried > kMaxCandidates) {
+        // Without an outcome the search is capped; with one, its uniqueness check stops.
+        if (have_pick) {
+          res.uniqueness_checked = false;
+        } else {
+          capped = true;
+        }
         return true;
       }
       StackImpactOutcome o = EvaluateImpact(before, c, theta, omega_minus);

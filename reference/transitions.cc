@@ -43,7 +43,7 @@ ContactMargins EvaluateContacts(const Geometry& geo, Mode mode, const State& s, 
 
 ContactMargins EvaluateContacts(const Geometry& geo, Mode mode, const State& s,
                                 const std::array<double, 2>& acc, double xg, double yg) {
-  return MarginsOf(geo, mode, ContactReactions(geo, mode, s, TiltsOf(s), acc, xg, yg));
+  return EvaluateContacts(geo, mode, s, TiltsOf(s), acc, xg, yg);
 }
 
 ContactMargins EvaluateContacts(const Geometry& geo, Mode mode, const State& s, const Tilts& tilts,

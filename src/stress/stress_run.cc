@@ -132,11 +132,8 @@ class ImpactKinetics {
     return ke;
   }
   /// The potential energy of the whole stack tilted by `tilt_rad` about block 1's corner, to
-  /// first order: M g b1 tilt, J (geo.M g b1 tilt for one and two blocks, as before).
-  double TiltEnergy_j(double tilt_rad) const {
-    return blocks_ <= 2 ? geo_.M * geo_.g * geo_.block1.b * tilt_rad
-                        : mass_kg_ * g_mps2_ * b1_m_ * tilt_rad;
-  }
+  /// first order: M g b1 tilt, J.
+  double TiltEnergy_j(double tilt_rad) const { return mass_kg_ * g_mps2_ * b1_m_ * tilt_rad; }
 
  private:
   int blocks_ = 0;
