@@ -16,6 +16,7 @@
 #include <utility>
 
 #include "reference/mechanics.h"
+#include "reference/unilateral_run.h"
 
 namespace rockbench::reference {
 namespace {
@@ -216,7 +217,16 @@ class Simulator {
         config_(n_) {
     result_.summary = Summary(n_);
     result_.history.blocks = n_;
-    result_.trajectory = Trajectory(n_);
+    result_.history.slip_and_lift = scene.tracks_slip_and_lift();
+    result_.trajectory = Trajectory(n_, scene.tracks_slip_and_lift());
+    unilateral_ = UnilateralApplies(scene, &unilateral_why_);
+    double mass = 0.0;
+    for (int k = 0; k < n_; ++k) {
+      friction_[k] = scene.blocks[k].friction;
+      finite_friction_ = finite_friction_ || std::isfinite(friction_[k]);
+      mass += scene.blocks[k].mass_kg;
+    }
+    weight_n_ = mass * scene.run.gravity_mps2;
     for (const auto* c : {&motion.horizontal(), &motion.vertical()}) {
       if (*c && (*c)->samples_mps2().empty()) analytic_motion_ = true;
     }
@@ -257,6 +267,29 @@ class Simulator {
     }
     return true;
   }
+
+  // The smallest friction margin (mu N - |T|) / (M g) over the interfaces of finite friction
+  // that carry a compressive normal force; 1 when there is none.
+  double SlipMargin(const Margins& cm) const {
+    double m = 1.0;
+    if (!finite_friction_) return m;
+    for (int k = 0; k < n_; ++k) {
+      if (std::isfinite(friction_[k]) && cm.normal_n[k] > 0.0) {
+        m = std::min(m, cm.normal_n[k] * (friction_[k] - cm.mu[k]) / weight_n_);
+      }
+    }
+    return m;
+  }
+  // The first interface whose friction margin is negative (-1: none).
+  int SlippingInterface(const Margins& cm) const {
+    for (int k = 0; k < n_ && finite_friction_; ++k) {
+      if (std::isfinite(friction_[k]) && cm.normal_n[k] > 0.0 && cm.mu[k] > friction_[k]) return k;
+    }
+    return -1;
+  }
+  // Hands the run over to the unilateral model at (t, y) (unilateral_run.h): it runs to the
+  // end.
+  void HandOver(double t, const Y& y, const std::string& reason);
 
   // Records the samples of the output times up to t_end (inclusive or not): most calls have
   // none to record, and return at once.
@@ -424,7 +457,7 @@ class Simulator {
   // The result's summary gets the per-block figures.
   Result TakeResult() {
     Summary& sum = result_.summary;
-    for (int i = 0; i < n_; ++i) {
+    for (int i = 0; i < n_ && !handed_over_; ++i) {
       sum.peak_theta_rad[i] = fig_.peak_theta_rad[i];
       sum.peak_theta_t_s[i] = fig_.peak_theta_t_s[i];
       sum.impacts_at[i] = fig_.impacts_at[i];
@@ -432,6 +465,11 @@ class Simulator {
       sum.min_normal_n[i] = fig_.min_normal_n[i];
     }
     return std::move(result_);
+  }
+  bool HandOverOrStop(double t, const Y& y, const std::string& reason) {
+    if (!unilateral_) return false;
+    HandOver(t, y, reason);
+    return true;
   }
   void Finish(RunStatus status) {
     if (result_.summary.status == RunStatus::kCompleted) result_.summary.status = status;
@@ -470,6 +508,15 @@ class Simulator {
   Margins cm0_;                   // the margins at the step start (when cm0_valid_)
   bool cm0_valid_ = false;
   mutable long rhs_count_ = 0;
+  // The unilateral model (sliding and lift-off): whether it can take over, why not, each
+  // block's friction, the total weight (N), and whether it took over and how it ended.
+  bool unilateral_ = false;
+  std::string unilateral_why_;
+  std::array<double, kCap> friction_{};
+  bool finite_friction_ = false;
+  double weight_n_ = 1.0;
+  bool handed_over_ = false;
+  bool unilateral_at_rest_ = false;
   int same_time_events_ = 0;
   double last_event_t_ = -1.0;
 };
@@ -492,6 +539,14 @@ template <class Mech>
 bool Simulator<Mech>::StartMode(double t, const Y& y, const char* kind, const Configuration& before,
                                 const std::string& note) {
   const Selection sel = mech_.Select(y, Xg(t), Yg(t));
+  if (sel.consistent && finite_friction_) {
+    // The configuration the thesis's contact conditions choose must also hold by friction.
+    const int k = SlippingInterface(mech_.Evaluate(sel.config, y, Xg(t), Yg(t)));
+    if (k >= 0 && HandOverOrStop(t, y, "block " + std::to_string(k + 1) + " slips")) {
+      return false;
+    }
+  }
+  if (!sel.consistent && HandOverOrStop(t, y, "a contact would pull (lift-off)")) return false;
   if (sel.consistent && sel.config == before) {
     config_ = sel.config;  // no event to record
     return true;
@@ -502,6 +557,7 @@ bool Simulator<Mech>::StartMode(double t, const Y& y, const char* kind, const Co
     ev.kind = "assumption_violated";
     ev.note = std::string("no ") + (n_ <= 2 ? "mode" : "configuration") +
               " satisfies the contact conditions (tensile normal force: uplift)";
+    if (!unilateral_why_.empty()) ev.note += "; " + unilateral_why_;
     if (!sel.note.empty()) ev.note += "; " + sel.note;
     result_.summary.status_detail = ev.note;
     AddEvent(std::move(ev));
@@ -579,7 +635,9 @@ void Simulator<Mech>::RunRest() {
     for (const auto& [tm, m] : memo) {
       if (tm == t) return m;
     }
-    const Margins cm = mech_.Evaluate(rest_, still, Xg(t), Yg(t));
+    Margins cm = mech_.Evaluate(rest_, still, Xg(t), Yg(t));
+    // Sliding from rest: the friction margin too (concave as the face's between samples).
+    cm.face = std::min(cm.face, SlipMargin(cm));
     if (!std::isfinite(cm.face)) {
       if (bad_t < 0.0) {
         bad_t = t;
@@ -785,7 +843,8 @@ typename Simulator<Mech>::LocatedEvent Simulator<Mech>::FindEvent(const StepDens
   // parabola through the values when it lies inside the step and near zero.
   if (!cm0_valid_) cm0_ = EvaluateAt(t_, at(t_));
   auto margin_of = [&](const Margins& cm) {
-    return cfg_.check_transitions ? std::min(cm.face, cm.point) : cm.point;
+    const double m = cfg_.check_transitions ? std::min(cm.face, cm.point) : cm.point;
+    return std::min(m, SlipMargin(cm));
   };
   {
     auto fn = [&](double t) { return margin_of(EvaluateAt(t, at(t))); };
@@ -867,14 +926,25 @@ void Simulator<Mech>::HandleEvent(const LocatedEvent& ev, const StepDense& at, d
     case StepEvent::kMargin: {
       // Just past the located root: the smaller of the two margins is the one that crossed.
       const Margins cmh = EvaluateAt(ev.t_hi, at(ev.t_hi));
-      if (cfg_.check_transitions && cmh.face <= cmh.point) {
+      const double slip = SlipMargin(cmh);
+      if (slip < 0.0 && slip <= cmh.point && (!cfg_.check_transitions || slip <= cmh.face)) {
+        // A contact's friction is exhausted: the unilateral model goes on from just past it.
+        t_ = ev.t_hi;
+        y_ = at(ev.t_hi);
+        const int k = std::max(0, SlippingInterface(cmh));
+        HandOver(t_, y_, "block " + std::to_string(k + 1) + " slips");
+      } else if (cfg_.check_transitions && cmh.face <= cmh.point) {
         // A face force has turned tensile: the face opens.
         t_ = SwitchTime(ev.t_hi, t1, config_, [&](double t) { return at(t); });
         const Y yh = at(t_);
         y_ = yh;
         StartMode(t_, yh, "transition", config_, "face opens");
+      } else if (unilateral_) {
+        t_ = ev.t_hi;
+        y_ = at(ev.t_hi);
+        HandOver(t_, y_, "a pivot would pull (lift-off)");
       } else {
-        sum.status_detail = "tensile normal force at a pivot (uplift)";
+        sum.status_detail = "tensile normal force at a pivot (uplift); " + unilateral_why_;
         StopWith("assumption_violated", y, sum.status_detail, RunStatus::kAssumptionViolated);
       }
       break;
@@ -882,7 +952,38 @@ void Simulator<Mech>::HandleEvent(const LocatedEvent& ev, const StepDense& at, d
     case StepEvent::kNone:
       break;
   }
-  if (done_) EndTrajectory();
+  if (done_ && !handed_over_) EndTrajectory();
+}
+
+template <class Mech>
+void Simulator<Mech>::HandOver(double t, const Y& y, const std::string& reason) {
+  // The chain's figures go to the summary, which the unilateral model carries on.
+  Summary& sum = result_.summary;
+  for (int i = 0; i < n_; ++i) {
+    sum.peak_theta_rad[i] = fig_.peak_theta_rad[i];
+    sum.peak_theta_t_s[i] = fig_.peak_theta_t_s[i];
+    sum.impacts_at[i] = fig_.impacts_at[i];
+    sum.friction_required[i] = fig_.friction_required[i];
+    sum.min_normal_n[i] = fig_.min_normal_n[i];
+  }
+  handed_over_ = true;
+  sum.rhs_evaluations += rhs_count_;
+  rhs_count_ = 0;
+  UnilateralStart start;
+  start.t_s = t;
+  start.config = config_;
+  start.reason = reason;
+  for (int i = 0; i < n_; ++i) {
+    start.theta_rad.push_back(y[i]);
+    start.omega_radps.push_back(y[kCap + i]);
+  }
+  const UnilateralSteps steps{t_end_, max_step_, min_step_, std::min(h_, max_step_), event_tol_};
+  const UnilateralEnd end =
+      ContinueUnilateral(scene_, motion_, start, steps, &result_, &next_sample_);
+  config_ = end.config;
+  unilateral_at_rest_ = end.at_rest;
+  t_ = std::max(t_, result_.trajectory.end_s());
+  done_ = true;
 }
 
 template <class Mech>
@@ -1015,7 +1116,10 @@ Result Simulator<Mech>::Run() {
     // No configuration is consistent: an uplift, unless some contact forces are not finite
     // (an absurd base acceleration at t = 0, for which no comparison of forces holds).
     double bad_value = 0.0;
-    if (!mech_.NonFiniteForces(y, xg0, yg0, &bad_value)) {
+    const bool finite = !mech_.NonFiniteForces(y, xg0, yg0, &bad_value);
+    if (finite && unilateral_) {
+      HandOver(0.0, y, "the initial state satisfies no contact conditions of rocking");
+    } else if (finite) {
       result_.summary.status = RunStatus::kAssumptionViolated;
       result_.summary.status_detail = std::string("the initial state satisfies no ") +
                                       (n_ <= 2 ? "mode's" : "configuration's") +
@@ -1028,10 +1132,21 @@ Result Simulator<Mech>::Run() {
       EmitSamplesUntil(0.0, true);
       return TakeResult();
     }
-    StopNonFinite({"contact force", bad_value}, 0.0, y);
-    EndTrajectory();
+    if (!finite) {
+      StopNonFinite({"contact force", bad_value}, 0.0, y);
+      EndTrajectory();
+    }
   } else {
     config_ = sel.config;
+    if (finite_friction_) {
+      const int k = SlippingInterface(mech_.Evaluate(config_, y, xg0, yg0));
+      if (k >= 0) HandOverOrStop(0.0, y, "block " + std::to_string(k + 1) + " slips");
+    }
+  }
+  if (!done_ && cfg_.formulation == Formulation::kUnilateral) {
+    if (!unilateral_)
+      throw SceneError(scene_.path.string() + ": model.formulation: " + unilateral_why_);
+    HandOver(0.0, y, "model.formulation = unilateral");
   }
   if (!done_ && !config_.at_rest() && AtRestState(y)) {
     // Motion starts at t = 0 from rest.
@@ -1061,11 +1176,11 @@ Result Simulator<Mech>::Run() {
   }
   while (k < samples.size()) merged.push_back(std::move(samples[k++]));
   samples = std::move(merged);
-  if (result_.summary.status == RunStatus::kCompleted && config_.at_rest() &&
-      t_ >= motion_.end_s()) {
+  if (result_.summary.status == RunStatus::kCompleted &&
+      (handed_over_ ? unilateral_at_rest_ : config_.at_rest()) && t_ >= motion_.end_s()) {
     result_.summary.status = RunStatus::kAtRest;
   }
-  result_.summary.rhs_evaluations = rhs_count_;
+  result_.summary.rhs_evaluations += rhs_count_;
   return TakeResult();
 }
 
@@ -1086,6 +1201,13 @@ Result Simulate(const Scene& scene, const GroundMotion& motion) {
   // The scene's rules first (the same for every engine): its messages name the key and limit.
   ValidateScene(scene);
   const int n = scene.block_count();
+  if (scene.has_finite_friction()) {
+    std::string why;
+    if (!UnilateralApplies(scene, &why)) {
+      throw SceneError(scene.path.string() + ": block" + std::to_string(n) +
+                       ".friction: a finite friction needs the unilateral model, but " + why);
+    }
+  }
   if (UsesThesisEquations(scene)) return Run<ThesisMechanics>(scene, motion);
   // The chain's state holds the smallest power of two of blocks that fits the stack.
   if (n <= 2) return Run<ChainMechanics<2>>(scene, motion);

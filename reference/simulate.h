@@ -40,14 +40,50 @@ struct UninitialisedAllocator : std::allocator<T> {
   }
 };
 
+/// How a trajectory segment's state of another layout than the chain's (angles, then rates)
+/// becomes a sample: the unilateral model's maximal coordinates (unilateral_run.h).
+class StateView {
+ public:
+  virtual ~StateView() = default;
+  /// Components of the state.
+  virtual int components() const = 0;
+  /// Fills the sample's angles, rates, slip and lift from a state (the mode is the segment's).
+  virtual void Fill(const double* state, Sample* out) const = 0;
+};
+
 /// Continuous solution: piecewise dense-output segments between events. Evaluating at an event
 /// time returns the post-event state. Each segment keeps only the stack's own components (its
-/// blocks' angles and rates), whatever the size of the state the driver integrates.
+/// blocks' angles and rates, or the unilateral model's state), whatever the size of the state
+/// the driver integrates.
 class Trajectory {
  public:
-  /// A trajectory of `blocks` blocks (1..kMaxBlocks).
-  explicit Trajectory(int blocks = 2) : blocks_(blocks) {}
+  /// A trajectory of `blocks` blocks (1..kMaxBlocks); with slip and lift, its samples carry
+  /// them (zero on the chain's segments: no slip, every pivot on its support).
+  explicit Trajectory(int blocks = 2, bool slip_and_lift = false)
+      : blocks_(blocks), slip_and_lift_(slip_and_lift) {}
   int blocks() const { return blocks_; }
+
+  /// Segments appended from here with AppendState hold states that `view` reads.
+  void SetStateView(std::shared_ptr<const StateView> view) { view_ = std::move(view); }
+  /// Appends the step `dense` on [t0, t1] of a state whose components are those of the view
+  /// (set first): its first view->components() / 2 at index 0 on, the rest at index `second`
+  /// on.
+  template <size_t D>
+  void AppendState(double t0, double t1, const Configuration& mode, const DenseStepN<D>& dense,
+                   size_t second) {
+    segments_.push_back({t0, t1, mode});
+    const size_t half = static_cast<size_t>(view_->components()) / 2;
+    const size_t need = 2 * half * static_cast<size_t>(DenseKinds::Coefficients(dense.kind));
+    double* out = Reserve(need);
+    steps_.push_back({dense.kind, dense.t0, dense.h, static_cast<uint32_t>(chunks_.size() - 1),
+                      static_cast<uint32_t>(used_), true});
+    used_ += need;
+    const size_t coefficients = need / (2 * half);
+    for (size_t j = 0; j < coefficients; ++j, out += 2 * half) {
+      std::copy_n(dense.c[j].data(), half, out);
+      std::copy_n(dense.c[j].data() + second, half, out + half);
+    }
+  }
 
   /// State at t (clamped to [0, end]); interpolated with the integrator's dense output.
   Sample At(double t_s) const;
@@ -69,16 +105,9 @@ class Trajectory {
     segments_.push_back({t0, t1, mode});
     const size_t n = static_cast<size_t>(blocks_);
     const size_t need = 2 * n * static_cast<size_t>(DenseKinds::Coefficients(dense.kind));
-    // A step's coefficients never straddle two chunks; a full chunk is never moved.
-    if (chunks_.empty() || chunks_.back().size() - used_ < need) {
-      const size_t size =
-          chunks_.empty() ? kFirstChunkDoubles : std::min(2 * chunks_.back().size(), kChunkDoubles);
-      chunks_.emplace_back(std::max(size, need));
-      used_ = 0;
-    }
+    double* out = Reserve(need);
     steps_.push_back({dense.kind, dense.t0, dense.h, static_cast<uint32_t>(chunks_.size() - 1),
                       static_cast<uint32_t>(used_)});
-    double* out = chunks_.back().data() + used_;
     used_ += need;
     const size_t coefficients = need / (2 * n);
     if (n == cap && 2 * cap == D) {
@@ -96,6 +125,17 @@ class Trajectory {
   }
 
  private:
+  // Room for `need` doubles at the end of the last chunk (a step's coefficients never straddle
+  // two chunks; a full chunk is never moved).
+  double* Reserve(size_t need) {
+    if (chunks_.empty() || chunks_.back().size() - used_ < need) {
+      const size_t size =
+          chunks_.empty() ? kFirstChunkDoubles : std::min(2 * chunks_.back().size(), kChunkDoubles);
+      chunks_.emplace_back(std::max(size, need));
+      used_ = 0;
+    }
+    return chunks_.back().data() + used_;
+  }
   // Coefficients are kept in chunks, the first of kFirstChunkDoubles doubles, each next one
   // twice the last up to kChunkDoubles (128 KiB), so that a long run's trajectory grows without
   // copying what it holds, and a short one holds little.
@@ -106,8 +146,11 @@ class Trajectory {
     DenseKinds::Kind kind = DenseKinds::kConstant;
     double t0 = 0.0, h = 0.0;
     uint32_t chunk = 0, pos = 0;
+    bool state = false;  // the view's layout (AppendState), else angles then rates
   };
   int blocks_ = 2;
+  bool slip_and_lift_ = false;
+  std::shared_ptr<const StateView> view_;
   std::vector<Segment> segments_;
   std::vector<Step> steps_;
   std::vector<std::vector<double, UninitialisedAllocator<double>>> chunks_;
@@ -146,8 +189,16 @@ struct Summary {
   std::optional<double> undetermined_from_s;
   std::string undetermined_detail;
   int impacts_energy_gain = 0;  ///< impacts that would add energy (must stay 0)
-  int transitions = 0;          ///< mode changes without impact
-  int initiations = 0;          ///< starts from rest
+  /// When the stack left the thesis's assumptions (a block slipped or lifted off) and the
+  /// unilateral model took over (docs/sliding.md), s, and why; none: it never did.
+  std::optional<double> unilateral_from_s;
+  std::string unilateral_reason;
+  int slip_starts = 0;  ///< an interface starting to slip (without impact)
+  int lift_offs = 0;    ///< an interface opening entirely (the block above it flies)
+  /// Energy the friction dissipated while interfaces slipped, J (>= 0).
+  double friction_work_j = 0.0;
+  int transitions = 0;  ///< mode changes without impact
+  int initiations = 0;  ///< starts from rest
   long steps_accepted = 0, steps_rejected = 0, rhs_evaluations = 0;
 
   /// No blocks (fill it, or build it for a number of blocks).

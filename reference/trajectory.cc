@@ -1,4 +1,5 @@
 #include <algorithm>
+#include <array>
 #include <iterator>
 
 #include "reference/simulate.h"
@@ -14,7 +15,7 @@ double Trajectory::end_s() const {
 }
 
 Sample Trajectory::At(double t_s) const {
-  Sample out(blocks_);
+  Sample out(blocks_, slip_and_lift_);
   if (segments_.empty()) return out;
   t_s = std::clamp(t_s, segments_.front().t0, segments_.back().t1);
   // The last segment starting at or before t (post-event state at an event time): the last
@@ -35,9 +36,21 @@ Sample Trajectory::At(double t_s) const {
   auto value = [&](size_t i) {
     return constant ? c[i] : DenseKinds::Component(step.kind, s, c + i, stride);
   };
-  for (int i = 0; i < blocks_; ++i) {
-    out.theta_rad[i] = value(static_cast<size_t>(i));
-    out.omega_radps[i] = value(static_cast<size_t>(blocks_ + i));
+  if (step.state) {
+    // The view's state: its components one after the other.
+    const size_t m = static_cast<size_t>(view_->components());
+    std::array<double, 64> buffer{};
+    const double* cs = c;
+    auto state_value = [&](size_t i) {
+      return constant ? cs[i] : DenseKinds::Component(step.kind, s, cs + i, m);
+    };
+    for (size_t i = 0; i < m; ++i) buffer[i] = state_value(i);
+    view_->Fill(buffer.data(), &out);
+  } else {
+    for (int i = 0; i < blocks_; ++i) {
+      out.theta_rad[i] = value(static_cast<size_t>(i));
+      out.omega_radps[i] = value(static_cast<size_t>(blocks_ + i));
+    }
   }
   out.t_s = t_s;
   out.mode = it->mode;

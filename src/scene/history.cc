@@ -93,18 +93,26 @@ void AppendConfiguration(std::string& out, const Configuration& c) {
 
 }  // namespace
 
-std::string HistoryCsvHeader(int blocks) {
+std::string HistoryCsvHeader(int blocks, bool slip_and_lift) {
   std::string out = "t";
   for (const char* q : {",theta", ",omega"}) {
     for (int k = 1; k <= blocks; ++k) out += q + std::to_string(k);
   }
-  return out + ",mode";
+  out += ",mode";
+  if (slip_and_lift) {
+    for (const char* q : {",u", ",z"}) {
+      for (int k = 1; k <= blocks; ++k) out += q + std::to_string(k);
+    }
+  }
+  return out;
 }
 
 std::string HistoryToCsv(const History& history) {
   const int n = history.blocks;
-  std::string out = HistoryCsvHeader(n) + "\n";
-  out.reserve(out.size() + history.samples.size() * (30 + 40 * static_cast<size_t>(n)));
+  const bool slip = history.slip_and_lift;
+  std::string out = HistoryCsvHeader(n, slip) + "\n";
+  out.reserve(out.size() +
+              history.samples.size() * (30 + (slip ? 80 : 40) * static_cast<size_t>(n)));
   for (const Sample& s : history.samples) {
     if (s.blocks() != n || static_cast<int>(s.omega_radps.size()) != n) {
       Inconsistent("history: a sample", s.t_s, s.blocks(), n);
@@ -118,6 +126,15 @@ std::string HistoryToCsv(const History& history) {
     }
     out += ',';
     AppendConfiguration(out, s.mode);
+    if (slip) {
+      for (const BlockValues* v : {&s.u_m, &s.z_m}) {
+        // A sample without them (an engine that does not report them) writes zeros.
+        for (int k = 0; k < n; ++k) {
+          out += ',';
+          AppendValue(out, static_cast<int>(v->size()) == n ? (*v)[k] : 0.0);
+        }
+      }
+    }
     out += '\n';
   }
   return out;
@@ -170,14 +187,23 @@ History ReadHistoryCsv(const std::filesystem::path& path) {
     ++number;
     if (!line.empty() && line.back() == '\r') line.pop_back();
     if (!header_seen) {
-      // "t", N angles, N rates, "mode": the columns give N, the header must then be its own.
+      // "t", N angles, N rates, "mode" (and N slips, N lifts): the columns give N, the header
+      // must then be its own.
       const size_t columns = SplitCommas(line).size();
       const int n = columns >= 4 && columns % 2 == 0 ? static_cast<int>((columns - 2) / 2) : 0;
-      if (n < 1 || n > kMaxBlocks || line != HistoryCsvHeader(n)) {
+      const int n_slip =
+          columns >= 6 && (columns - 2) % 4 == 0 ? static_cast<int>((columns - 2) / 4) : 0;
+      if (n_slip >= 1 && n_slip <= kMaxBlocks && line == HistoryCsvHeader(n_slip, true)) {
+        h.slip_and_lift = true;
+        h.blocks = n_slip;
+      } else if (n < 1 || n > kMaxBlocks || line != HistoryCsvHeader(n)) {
         fail("expected the header '" + HistoryCsvHeader(2) + "' or '" + HistoryCsvHeader(1) +
-             "' (or t,theta1,...,thetaN,omega1,...,omegaN,mode for N blocks), got '" + line + "'");
+             "' (or t,theta1,...,thetaN,omega1,...,omegaN,mode for N blocks, and u1,...,uN,"
+             "z1,...,zN after it with slip and lift), got '" +
+             line + "'");
+      } else {
+        h.blocks = n;
       }
-      h.blocks = n;
       want = columns;
       header_seen = true;
       continue;
@@ -187,28 +213,35 @@ History ReadHistoryCsv(const std::filesystem::path& path) {
     if (cells.size() != want) {
       fail("expected " + std::to_string(want) + " columns, got " + std::to_string(cells.size()));
     }
-    Sample s(h.blocks);
-    for (size_t i = 0; i + 1 < want; ++i) {
+    Sample s(h.blocks, h.slip_and_lift);
+    const size_t n = static_cast<size_t>(h.blocks);
+    // The mode's column: the last one, or before the 2 N slip and lift columns.
+    const size_t mode_col = h.slip_and_lift ? 1 + 2 * n : want - 1;
+    for (size_t i = 0; i < want; ++i) {
+      if (i == mode_col) continue;
       const std::optional<double> x = ParseNumberCell(cells[i]);
       if (!x) {
         fail("column " + std::to_string(i + 1) + ": expected a number, got '" +
              std::string(cells[i]) + "'");
       }
-      const size_t n = static_cast<size_t>(h.blocks);
       if (i == 0) {
         s.t_s = *x;
       } else if (i <= n) {
         s.theta_rad[i - 1] = *x;
-      } else {
+      } else if (i <= 2 * n) {
         s.omega_radps[i - 1 - n] = *x;
+      } else if (i <= 3 * n + 1) {
+        s.u_m[i - 2 - 2 * n] = *x;
+      } else {
+        s.z_m[i - 2 - 3 * n] = *x;
       }
     }
-    const std::optional<Configuration> mode = ParseConfiguration(cells[want - 1], h.blocks);
+    const std::optional<Configuration> mode = ParseConfiguration(cells[mode_col], h.blocks);
     if (!mode) {
       fail(h.blocks <= 2 ? "expected a mode name (rest, 1a, ..., 4b), got '" +
-                               std::string(cells[want - 1]) + "'"
+                               std::string(cells[mode_col]) + "'"
                          : "expected a configuration (one letter f, r or l per block), got '" +
-                               std::string(cells[want - 1]) + "'");
+                               std::string(cells[mode_col]) + "'");
     }
     s.mode = *mode;
     h.samples.push_back(std::move(s));

@@ -17,12 +17,19 @@ struct Sample {
   BlockValues theta_rad;    ///< rad, one per block
   BlockValues omega_radps;  ///< rad/s, one per block
   Configuration mode;       ///< one contact per interface (block)
+  /// Slip and lift (docs/sliding.md), one per block when the history tracks them (History::
+  /// slip_and_lift), else empty: block k's base-centre slip relative to its support, m (> 0:
+  /// to the right), and the height of its lowest base corner above its support's top, m (0 in
+  /// contact).
+  BlockValues u_m, z_m;
 
-  /// A sample of `blocks` blocks at t = 0, at rest.
-  explicit Sample(int blocks)
+  /// A sample of `blocks` blocks at t = 0, at rest (with slip and lift: `slip_and_lift`).
+  explicit Sample(int blocks, bool slip_and_lift = false)
       : theta_rad(static_cast<size_t>(blocks)),
         omega_radps(static_cast<size_t>(blocks)),
-        mode(blocks) {}
+        mode(blocks),
+        u_m(slip_and_lift ? static_cast<size_t>(blocks) : 0),
+        z_m(slip_and_lift ? static_cast<size_t>(blocks) : 0) {}
   int blocks() const { return static_cast<int>(theta_rad.size()); }
 };
 
@@ -50,11 +57,15 @@ struct History {
   int blocks = 2;  ///< blocks of the stack: every sample and event has this many
   std::vector<Sample> samples;
   std::vector<Event> events;
+  /// Whether samples carry slip and lift (u1..uN, z1..zN after the mode column): a scene with
+  /// a finite friction or a vertical motion (Scene::tracks_slip_and_lift).
+  bool slip_and_lift = false;
 };
 
 /// CSV header of history.csv: "t,theta1,omega1,mode" (one block), "t,theta1,theta2,omega1,
-/// omega2,mode" (two), "t,theta1,...,thetaN,omega1,...,omegaN,mode" (N).
-std::string HistoryCsvHeader(int blocks);
+/// omega2,mode" (two), "t,theta1,...,thetaN,omega1,...,omegaN,mode" (N); with slip and lift,
+/// ",u1,...,uN,z1,...,zN" after those.
+std::string HistoryCsvHeader(int blocks, bool slip_and_lift = false);
 /// The history as CSV text (deterministic formatting: "%.9f" for times, "%.12e" for angles and
 /// rates, the mode by ConfigurationName: the thesis's names for one or two blocks, the letters
 /// beyond).

@@ -85,7 +85,14 @@ std::string LimitText(const Limit& lim) {
 }
 
 // What a number must be; the message text names it and the unit.
-enum class Rule { kFinite, kPositive, kNonNegative, kFraction, kUnitInterval };
+enum class Rule {
+  kFinite,
+  kPositive,
+  kNonNegative,
+  kNonNegativeOrInfinite,
+  kFraction,
+  kUnitInterval
+};
 
 std::string Expectation(Rule rule, std::string_view unit) {
   std::string what;
@@ -99,6 +106,9 @@ std::string Expectation(Rule rule, std::string_view unit) {
     case Rule::kNonNegative:
       what = "a number >= 0";
       break;
+    case Rule::kNonNegativeOrInfinite:
+      what = "a number >= 0 or inf";
+      break;
     case Rule::kFraction:
       what = "a number in (0, 1]";
       break;
@@ -111,6 +121,7 @@ std::string Expectation(Rule rule, std::string_view unit) {
 }
 
 bool Satisfies(double v, Rule rule) {
+  if (rule == Rule::kNonNegativeOrInfinite) return v >= 0.0;  // NaN fails
   if (!std::isfinite(v)) return false;
   switch (rule) {
     case Rule::kFinite:
@@ -118,6 +129,7 @@ bool Satisfies(double v, Rule rule) {
     case Rule::kPositive:
       return v > 0.0;
     case Rule::kNonNegative:
+    case Rule::kNonNegativeOrInfinite:
       return v >= 0.0;
     case Rule::kFraction:
       return v > 0.0 && v <= 1.0;
@@ -155,8 +167,8 @@ constexpr std::array<const char*, 12> kSyntheticOnlyKeys = {
 // Allowed keys of every table; a key listed with `true` is a sub-table.
 using KeyList = std::vector<std::pair<std::string_view, bool>>;
 const std::map<std::string, KeyList, std::less<>>& Schema() {
-  static const KeyList kBlock = {
-      {"width", false}, {"height", false}, {"density", false}, {"mass", false}, {"depth", false}};
+  static const KeyList kBlock = {{"width", false}, {"height", false}, {"density", false},
+                                 {"mass", false},  {"depth", false},  {"friction", false}};
   static const KeyList kMotion = {{"file", false},
                                   {"kind", false},
                                   {"units", false},
@@ -499,6 +511,8 @@ class Reader {
     b.width_m = RequiredNumber(t, prefix, "width", Rule::kPositive, "m", &kLengthLimit);
     b.height_m = RequiredNumber(t, prefix, "height", Rule::kPositive, "m", &kLengthLimit);
     b.depth_m = Number(t, prefix, "depth", Rule::kPositive, "m", &kLengthLimit).value_or(1.0);
+    b.friction = Number(t, prefix, "friction", Rule::kNonNegativeOrInfinite, "")
+                     .value_or(std::numeric_limits<double>::infinity());
     auto density = Number(t, prefix, "density", Rule::kPositive, "kg/m^3", &kDensityLimit);
     auto mass = Number(t, prefix, "mass", Rule::kPositive, "kg", &kMassLimit);
     if (density && mass) {
@@ -848,10 +862,11 @@ class Reader {
     m.rest_rate_rel =
         Number(model, "model", "rest_rate_rel", Rule::kNonNegative, "").value_or(m.rest_rate_rel);
     m.check_transitions = Bool(model, "model", "check_transitions").value_or(m.check_transitions);
-    m.formulation =
-        Enum(model, "model", "formulation",
-             Choices<Formulation>{{"thesis", Formulation::kThesis}, {"chain", Formulation::kChain}})
-            .value_or(m.formulation);
+    m.formulation = Enum(model, "model", "formulation",
+                         Choices<Formulation>{{"thesis", Formulation::kThesis},
+                                              {"chain", Formulation::kChain},
+                                              {"unilateral", Formulation::kUnilateral}})
+                        .value_or(m.formulation);
     return m;
   }
 
@@ -1082,6 +1097,7 @@ SyntheticMotionDef MotionDef::SyntheticProcess() const {
 std::optional<Formulation> ParseFormulation(std::string_view text) {
   if (text == "thesis") return Formulation::kThesis;
   if (text == "chain") return Formulation::kChain;
+  if (text == "unilateral") return Formulation::kUnilateral;
   return std::nullopt;
 }
 
@@ -1139,6 +1155,13 @@ double AccelUnitsToMps2(AccelUnits units) {
       return 0.01;
   }
   return 1.0;
+}
+
+bool Scene::has_finite_friction() const {
+  for (const BlockDef& b : blocks) {
+    if (std::isfinite(b.friction)) return true;
+  }
+  return false;
 }
 
 Scene ParseScene(std::string_view toml_text, const std::filesystem::path& path,
@@ -1206,6 +1229,7 @@ void ValidateScene(const Scene& scene) {
     limit(p + ".depth", b.depth_m, kLengthLimit, Rule::kPositive, "m");
     limit(p + ".mass", b.mass_kg, kMassLimit, Rule::kPositive, "kg");
     check(p + ".density", b.density_kgpm3, Rule::kNonNegative, "kg/m^3");
+    check(p + ".friction", b.friction, Rule::kNonNegativeOrInfinite, "");
     if (b.density_kgpm3 != 0.0) {
       limit(p + ".density", b.density_kgpm3, kDensityLimit, Rule::kPositive, "kg/m^3");
     }

@@ -25,6 +25,10 @@ struct BlockDef {
   double depth_m = 1.0;        ///< out-of-plane depth, m (used with density, and for 3-D engines)
   double mass_kg = 0.0;        ///< mass, kg (given, or density * width * height * depth)
   double density_kgpm3 = 0.0;  ///< density, kg/m^3 (0 when the scene gave the mass)
+  /// Coulomb friction coefficient between this block's base and its support (the ground for
+  /// block 1, the block below otherwise), dimensionless, >= 0; infinity (the default, the key
+  /// absent): no sliding, the thesis's assumption (docs/sliding.md).
+  double friction = std::numeric_limits<double>::infinity();
 };
 
 /// Initial state, thesis sign convention (theta > 0 tilts right about the right-hand corner):
@@ -88,7 +92,9 @@ enum class EventScheme { kLocated, kThesis };
 enum class Equations { kNonlinear, kLinearized };
 /// Which equations the reference runs on (mechanics.h): the thesis's explicit ones (one or two
 /// blocks) or the N-block pivot chain (any N). kAuto: the thesis's for one or two blocks.
-enum class Formulation { kAuto, kThesis, kChain };
+/// kUnilateral: the unilateral model (sliding and lift-off, docs/sliding.md) from t = 0, which
+/// otherwise takes over only where a block slips or lifts off (a cross-check of the two).
+enum class Formulation { kAuto, kThesis, kChain, kUnilateral };
 
 /// Options of the reference model ([model] table).
 struct ModelConfig {
@@ -154,6 +160,11 @@ struct Scene {
 
   /// Number of blocks of the stack.
   int block_count() const { return static_cast<int>(blocks.size()); }
+  /// Whether some interface has a finite friction coefficient.
+  bool has_finite_friction() const;
+  /// Whether the motion may leave the thesis's assumptions: a finite friction somewhere or a
+  /// vertical base motion. Histories then carry each block's slip and lift (u1..uN, z1..zN).
+  bool tracks_slip_and_lift() const { return has_finite_friction() || vertical.has_value(); }
 };
 
 /// A scene error: names the file, line and key and what was expected.

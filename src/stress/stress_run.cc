@@ -195,6 +195,13 @@ StressRow RunReference(const StressCase& c, StressRow row) {
   ImpactKinetics kinetic(c.scene);
   for (const Event& e : r.history.events) {
     if (!IsImpact(e)) continue;
+    if (s.unilateral_from_s && e.t_s >= *s.unilateral_from_s) {
+      // The unilateral model's impacts (sliding and flying blocks: the rates alone do not give
+      // the kinetic energy) carry the stack's energy before and after, which only the kinetic
+      // part changes: the gain relative to that energy.
+      RecordGain((e.energy_after_j - e.energy_before_j) / std::abs(e.energy_before_j), &row);
+      continue;
+    }
     const Sample at = r.trajectory.At(e.t_s);
     const double ke_before = kinetic(e.mode_before, at, e.omega_before_radps);
     const double ke_after = kinetic(e.mode_after, at, e.omega_after_radps);

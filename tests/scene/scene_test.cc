@@ -696,7 +696,7 @@ TEST(BlockTables, AnErrorNamesTheBlockByItsIndex) {
   EXPECT_CONTAINS(ErrorOf(BlockTables(2) + "[[block]]\nwidth = 1\nheight = 1\n"),
                   "block3: missing density (kg/m^3) or mass (kg)");
   EXPECT_CONTAINS(ErrorOf(BlockTables(2) + "[[block]]\nwidth = 1\nheight = 1\nmass = 1\nfoo = 2\n"),
-                  "block3.foo: unknown key (expected one of: width, height, density, mass, depth)");
+                  "block3.foo: unknown key (expected one of: width, height, density, mass, depth, friction)");
 }
 
 TEST(BlockTables, EveryBlockIsNoWiderThanTheOneBelow) {

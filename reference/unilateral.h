@@ -1,0 +1,194 @@
+#pragma once
+/// The stack beyond the thesis's assumptions (issue 24, docs/sliding.md): N rigid blocks with
+/// unilateral contact and Coulomb friction at every interface, so that a block may rest, rock,
+/// slide, slide and rock, or fly, over the ground or over the block below. For one block these
+/// are the five modes of the thesis's chapter 3 (after Shenton & Jones 1991 and Ishiyama 1982).
+///
+/// Coordinates are maximal: block i's mass centre (x_i, y_i) (m) and its angle theta_i (rad,
+/// the thesis's convention: > 0 tilted right, clockwise) at q[3i..3i+2], their rates at
+/// v[3i..3i+2], in the base frame (translating with the ground, origin at block 1's base centre
+/// at rest, x right, y up). The base's acceleration enters as the effective gravity (-xg'',
+/// -(g + yg'')).
+///
+/// Contacts. Interface k is block k on its support (the ground for k = 0). It has two contact
+/// slots, right (0) and left (1). A slot's point is the upper block's base corner on that side
+/// while the corner lies over the support's top face; past the face's edge it is the support's
+/// top corner on that side, on the upper block's base face; past both, the slot is empty. A
+/// slot is closed (gap zero, its normal force a multiplier) or open. An interface with a closed
+/// slot sticks (no relative tangential motion; its tangential force a multiplier, within the
+/// cone |T| <= mu N of the interface's total normal force) or slips to the right or left (the
+/// upper block relative to its support; T = -/+ mu N at each closed slot). Both closed slots of
+/// a face share one tangential state: at a zero gap the two corners' tangential velocities are
+/// equal.
+///
+/// Transitions without impact: the contact forces and the accelerations at an instant solve a
+/// linear complementarity problem (LCP): every closed contact compressive, every opening one
+/// accelerating apart, a sticking interface inside its cone, a slipping one's friction opposing
+/// its slip (and, from a zero slip rate, its slip accelerating that way). It is solved exactly by
+/// enumeration of the contact states (Solve): with Coulomb friction the LCP's matrix need not be
+/// positive definite, and a state can have no solution or several (Painleve's paradoxes, Pfeiffer
+/// & Glocker 1996, "Multibody Dynamics with Unilateral Contacts", ch. 5). Small problems are
+/// enumerated to the end and their solutions counted: none, or two different motions, is a
+/// stated status, never a silent choice.
+///
+/// Impacts: perfectly plastic in the normal direction and Coulomb in the tangential one (the
+/// impact law with normal and tangential restitution zero of Glocker's set-valued force laws,
+/// Pfeiffer & Glocker 1996 ch. 7; Moreau's velocity-level contact law). The impulses solve the
+/// same complementarity problem at the velocity level: every contact at a zero gap either ends
+/// with a zero normal velocity and a compressive impulse, or separates with none; an interface
+/// either sticks after the impact within the impulse cone |P_T| <= mu P_N, or slips with P_T =
+/// -/+ mu P_N against its slip after the impact. With mu infinite this is the thesis model's
+/// impact (impact.h "Uniqueness"): the post-impact motion is the one that conserves the
+/// generalized momenta of the configuration after it. Energy is never gained (an impact is the
+/// projection of the velocities in the kinetic-energy metric, with friction dissipating only).
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "scene/mode.h"
+#include "scene/scene.h"
+#include "scene/vec2.h"
+
+namespace rockbench::reference {
+
+/// The most blocks the unilateral model takes.
+constexpr int kUnilateralMaxBlocks = 8;
+
+/// An interface's tangential state: the upper block sticks on its support, or slips to the
+/// right (+1) or the left (-1) relative to it.
+enum class Slip : int8_t { kLeft = -1, kStick = 0, kRight = 1 };
+
+/// One block: half width b, half height h (m), mass (kg), central inertia (kg m^2), and the
+/// friction coefficient of its base on its support (infinity: never slips).
+struct UnilateralBlock {
+  double b_m = 0.0, h_m = 0.0, mass_kg = 0.0, inertia_kgm2 = 0.0;
+  double friction = 0.0;
+};
+
+/// The contact state of the whole stack: per interface, which slots are closed and its
+/// tangential state (meaningful while a slot is closed).
+struct ContactMode {
+  std::vector<std::array<bool, 2>> closed;  ///< [interface][slot]: right 0, left 1
+  std::vector<Slip> slip;                   ///< [interface]
+  explicit ContactMode(int interfaces = 0)
+      : closed(static_cast<size_t>(interfaces), {false, false}),
+        slip(static_cast<size_t>(interfaces), Slip::kStick) {}
+  bool operator==(const ContactMode&) const = default;
+  bool any_closed(int k) const { return closed[k][0] || closed[k][1]; }
+};
+
+/// One contact slot at a state: where it is and how it moves.
+struct SlotKinematics {
+  bool exists = false;         ///< the slot has a point (a corner over a face)
+  bool upper_corner = true;    ///< the upper block's corner on its support's face (else the
+                               ///< support's corner on the upper block's base)
+  double gap_m = 0.0;          ///< normal gap (< 0: penetration)
+  double gap_rate_mps = 0.0;   ///< its rate
+  double slip_rate_mps = 0.0;  ///< the upper block's tangential velocity relative to the support
+  double xi_m = 0.0;           ///< where the point is along its face, from the face's middle
+  double extent_m = 0.0;       ///< the face's half length (infinity: the ground)
+  /// Where the upper block's corner is along the support's face, and the support's corner
+  /// along the upper block's base, from each face's middle, m (whichever the point is: the
+  /// edges a sliding block passes).
+  double xi_upper_corner_m = 0.0, xi_support_corner_m = 0.0;
+  // Generalized directions of the normal and tangential force at the point on the upper block
+  // (first three) and the support (last three; none for the ground), and the velocity-product
+  // terms of the normal and tangential relative accelerations.
+  std::array<double, 6> wn{}, wt{};
+  double kappa_n = 0.0, kappa_t = 0.0;
+};
+
+/// What a complementarity problem gave.
+struct ModeSolution {
+  bool found = false;
+  ContactMode mode;
+  /// Accelerations (Solve: m/s^2, rad/s^2) or velocities after the impact (SolveImpact), per
+  /// coordinate (3 per block).
+  std::vector<double> result;
+  /// Per interface: total normal force (N) or impulse (N s), and tangential one.
+  std::vector<double> normal, tangential;
+  /// Per slot [interface][slot]: normal force or impulse (0 when open).
+  std::vector<std::array<double, 2>> slot_normal;
+  /// Different motions found (enumerated: 0, 1 or more; first-found: 1).
+  int solutions = 0;
+  bool exhaustive = false;  ///< every contact state was tried
+  long candidates = 0;      ///< contact states tried
+  std::string note;
+};
+
+/// The stack's mechanics in maximal coordinates.
+class UnilateralStack {
+ public:
+  /// blocks bottom first (1..kUnilateralMaxBlocks), gravity g (m/s^2).
+  UnilateralStack(std::vector<UnilateralBlock> blocks, double g_mps2);
+  /// The scene's blocks and gravity.
+  static UnilateralStack OfScene(const Scene& scene);
+
+  int size() const { return n_; }
+  int coordinates() const { return 3 * n_; }
+  const UnilateralBlock& block(int i) const { return blocks_[i]; }
+  double g_mps2() const { return g_; }
+  /// Total weight M g, N.
+  double weight_n() const { return weight_; }
+  /// A length scale (the largest block half-diagonal), m, and a time scale sqrt(L / g), s.
+  double length_scale_m() const { return length_; }
+
+  /// The slots of interface k at (q, v): [0] right, [1] left.
+  std::array<SlotKinematics, 2> Slots(int k, const double* q, const double* v) const;
+
+  /// The contact forces and accelerations of `mode` at (q, v) under the base acceleration (xg'',
+  /// yg''), without checking any condition: accel (3N), per interface normal and tangential
+  /// totals, per slot normal forces. False when its equations are singular.
+  bool Accelerations(const ContactMode& mode, const double* q, const double* v, double xg_mps2,
+                     double yg_mps2, double* accel, ModeSolution* forces = nullptr) const;
+
+  /// The contact state at (q, v): the LCP over the slots at a zero gap (|gap| <= gap_tol_m)
+  /// with a zero normal rate (<= rate_tol_mps), the others open. `hint` (a mode, or empty):
+  /// tried first, then states by the number of interfaces that differ from it. Problems of at
+  /// most `exhaustive_limit` states are enumerated to the end (solutions counted).
+  ModeSolution Solve(const double* q, const double* v, double xg_mps2, double yg_mps2,
+                     const ContactMode& hint, double gap_tol_m, double rate_tol_mps,
+                     long exhaustive_limit = 4096) const;
+
+  /// A plastic impact with Coulomb friction at (q, v_minus): the velocities after it (result),
+  /// over every slot at a zero gap. `rest_rate_mps`: a slot that would separate slower than
+  /// this stays closed (the rest rule). Enumerated as Solve.
+  ModeSolution SolveImpact(const double* q, const double* v_minus, const ContactMode& hint,
+                           double gap_tol_m, double rest_rate_mps,
+                           long exhaustive_limit = 4096) const;
+
+  /// Puts (q, v) back on the constraints of `mode` (the drift of an integration that holds them
+  /// at the acceleration level): the closed slots' gaps to zero (one Gauss-Newton step, in the
+  /// mass metric), then their normal rates and the sticking interfaces' slip rates to zero (the
+  /// velocities' projection in the kinetic-energy metric).
+  void Project(const ContactMode& mode, double* q, double* v) const;
+
+  /// Kinetic energy in the base frame plus m g y of every block, J.
+  double Energy(const double* q, const double* v) const;
+
+  /// Places the stack from the pivot chain's state: absolute angles theta and rates omega (N
+  /// each) and configuration c (the chain's pivots), into q and v (3N each).
+  void FromChain(const Configuration& c, const double* theta_rad, const double* omega_radps,
+                 double* q, double* v) const;
+
+  /// Interface k's slip u (the displacement along the support's face of the upper block's base
+  /// corner on the side of its tilt, from where it stood at rest, m) and lift z (the height of
+  /// the upper block's lowest base corner above the support's top-face line, m).
+  void SlipAndLift(int k, const double* q, double* u_m, double* z_m) const;
+
+  /// The chain's configuration letter of each interface for a mode at q: f both slots closed,
+  /// r or l one, and an open interface by the sign of its relative tilt.
+  Configuration ConfigurationOf(const ContactMode& mode, const double* q) const;
+
+ private:
+  // The candidate's equations solved: false when singular.
+  bool SolveCandidate(const ContactMode& mode, const std::vector<std::array<SlotKinematics, 2>>& s,
+                      const double* rhs_base, bool impact, ModeSolution* out) const;
+
+  std::vector<UnilateralBlock> blocks_;
+  int n_ = 0;
+  double g_ = 9.81, weight_ = 0.0, length_ = 1.0;
+};
+
+}  // namespace rockbench::reference

@@ -1,0 +1,620 @@
+#include "reference/unilateral_run.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <memory>
+
+#include "reference/integrator.h"
+#include "reference/unilateral.h"
+#include "scene/outcome.h"
+
+namespace rockbench::reference {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+// The state: q (3 per block) from 0, v from kSecond, padded with zeros to kState.
+constexpr size_t kSecond = 3 * static_cast<size_t>(kUnilateralMaxBlocks);
+constexpr size_t kState = 2 * kSecond;
+using Y = VecN<kState>;
+using Dense = DenseStepN<kState>;
+using Step = StepResultN<kState>;
+
+// Relative tolerances of the contact conditions and events: forces to 1e-9 of the weight,
+// gaps to 1e-10 of the largest half-diagonal, rates to 1e-9 of sqrt(g L).
+constexpr double kForceTolRel = 1e-9;
+constexpr double kGapTolRel = 1e-10;
+constexpr double kRateTolRel = 1e-9;
+
+// A trajectory segment's state read as a sample.
+class View : public StateView {
+ public:
+  explicit View(const UnilateralStack& stack) : stack_(stack) {}
+  int components() const override { return 6 * stack_.size(); }
+  void Fill(const double* state, Sample* out) const override {
+    const int n = stack_.size();
+    const double* q = state;
+    const double* v = state + 3 * n;
+    for (int i = 0; i < n; ++i) {
+      out->theta_rad[i] = q[3 * i + 2];
+      out->omega_radps[i] = v[3 * i + 2];
+      if (out->u_m.size() == static_cast<size_t>(n)) {
+        double u = 0.0, z = 0.0;
+        stack_.SlipAndLift(i, q, &u, &z);
+        out->u_m[i] = u;
+        out->z_m[i] = z;
+      }
+    }
+  }
+
+ private:
+  UnilateralStack stack_;
+};
+
+const char* SlipText(Slip s) {
+  return s == Slip::kStick ? "sticks" : s == Slip::kRight ? "slips right" : "slips left";
+}
+
+// One interface's contact state in words: "sticks on its face", "slips right on its right
+// corner", "flies".
+std::string StateText(const ContactMode& m, int k) {
+  if (!m.any_closed(k)) return "flies";
+  const char* where = m.closed[k][0] && m.closed[k][1] ? "its face"
+                      : m.closed[k][0]                 ? "its right corner"
+                                                       : "its left corner";
+  return std::string(SlipText(m.slip[k])) + " on " + where;
+}
+
+class Runner {
+ public:
+  Runner(const Scene& scene, const GroundMotion& motion, const UnilateralStart& start,
+         const UnilateralSteps& steps, Result* result, long* next_sample)
+      : scene_(scene),
+        motion_(motion),
+        stack_(UnilateralStack::OfScene(scene)),
+        n_(stack_.size()),
+        steps_(steps),
+        r_(result),
+        next_sample_(next_sample),
+        mode_(n_) {
+    const double L = stack_.length_scale_m();
+    gap_tol_ = kGapTolRel * L;
+    rate_tol_ = kRateTolRel * std::sqrt(stack_.g_mps2() * L);
+    force_tol_ = kForceTolRel * stack_.weight_n();
+    rest_rate_ = scene.model.rest_rate_rel * std::sqrt(stack_.g_mps2() * L);
+    t_ = start.t_s;
+    stack_.FromChain(start.config, start.theta_rad.data(), start.omega_radps.data(), y_.data(),
+                     y_.data() + kSecond);
+    view_ = std::make_shared<View>(stack_);
+    r_->trajectory.SetStateView(view_);
+    config_ = start.config;
+    h_ = steps.first_step_s;
+  }
+
+  UnilateralEnd Go(const std::string& reason);
+
+ private:
+  const double* Q(const Y& y) const { return y.data(); }
+  const double* V(const Y& y) const { return y.data() + kSecond; }
+  double Xg(double t) const { return motion_.xg_mps2(t); }
+  double Yg(double t) const { return motion_.yg_mps2(t); }
+
+  Y Rhs(double t, const Y& y) const {
+    Y f{};
+    std::array<double, kSecond> acc{};
+    if (!stack_.Accelerations(mode_, Q(y), V(y), Xg(t), Yg(t), acc.data())) {
+      acc.fill(std::numeric_limits<double>::quiet_NaN());
+    }
+    for (int i = 0; i < 3 * n_; ++i) {
+      f[i] = y[kSecond + i];
+      f[kSecond + i] = acc[i];
+    }
+    ++r_->summary.rhs_evaluations;
+    return f;
+  }
+
+  // Event functions, positive while nothing happens (each with its tolerance added, so that a
+  // located root is just past the condition's own tolerance).
+  enum class Kind { kLanding, kLift, kCone, kSlipStop, kEdge, kOverturn };
+  struct EventFn {
+    Kind kind;
+    int k = 0, j = 0;
+  };
+  double Value(const EventFn& e, double t, const Y& y) const;
+  std::vector<EventFn> Functions() const;
+
+  // The contact state from (t, y) on, from its complementarity problem; false: none (the run
+  // stops, stated).
+  bool NewMode(double t, const Y& y, const char* kind, const std::string& why);
+  void AddEvent(double t, const std::string& kind, const Configuration& before,
+                const Configuration& after, const Y& pre, const Y& post, const std::string& note);
+  void Stop(double t, const Y& y, RunStatus status, const std::string& kind,
+            const std::string& detail);
+  void Emit(double t_end, bool inclusive);
+  void Track(double t, const Y& y);
+  void NoteForces(const Y& y, double t);
+  std::string Changes(const ContactMode& before, const ContactMode& after) const;
+  double FrictionPower(double t, const Y& y) const;
+  bool HasClosed() const {
+    for (int k = 0; k < n_; ++k) {
+      if (mode_.any_closed(k)) return true;
+    }
+    return false;
+  }
+
+  const Scene& scene_;
+  const GroundMotion& motion_;
+  const UnilateralStack stack_;
+  const int n_;
+  UnilateralSteps steps_;
+  Result* r_;
+  long* next_sample_;
+  std::shared_ptr<View> view_;
+  ContactMode mode_;
+  Configuration config_;
+  double t_ = 0.0, h_ = 0.0;
+  Y y_{};
+  double gap_tol_ = 0.0, rate_tol_ = 0.0, force_tol_ = 0.0, rest_rate_ = 0.0;
+  bool done_ = false;
+  int same_time_events_ = 0;
+  double last_event_t_ = -1.0;
+};
+
+std::vector<Runner::EventFn> Runner::Functions() const {
+  std::vector<EventFn> out;
+  for (int k = 0; k < n_; ++k) {
+    const bool closed = mode_.any_closed(k);
+    for (int j = 0; j < 2; ++j) {
+      if (mode_.closed[k][j]) {
+        out.push_back({Kind::kLift, k, j});
+        if (k > 0) out.push_back({Kind::kEdge, k, j});
+      } else {
+        out.push_back({Kind::kLanding, k, j});
+      }
+    }
+    const double mu = stack_.block(k).friction;
+    if (closed && mu > 0.0 && std::isfinite(mu)) {
+      out.push_back({mode_.slip[k] == Slip::kStick ? Kind::kCone : Kind::kSlipStop, k, 0});
+    }
+  }
+  for (int i = 0; i < n_; ++i) out.push_back({Kind::kOverturn, i, 0});
+  return out;
+}
+
+double Runner::Value(const EventFn& e, double t, const Y& y) const {
+  const double L = stack_.length_scale_m();
+  switch (e.kind) {
+    case Kind::kOverturn:
+      return scene_.model.overturn_rad - std::abs(y[3 * e.k + 2]);
+    case Kind::kLanding: {
+      const SlotKinematics s = stack_.Slots(e.k, Q(y), V(y))[e.j];
+      // An empty slot cannot land; its value stays positive.
+      // Root at half the gap tolerance below zero: inside the impact's zero gaps, and past
+      // the rounding of a slot that has just opened.
+      if (!s.exists) return 1.0;
+      // A corner below that tolerance but moving out again grazed its face (its lowest point
+      // within the tolerance of the event's location): no landing.
+      if (s.gap_m < -0.5 * gap_tol_ && s.gap_rate_mps >= 0.0) return gap_tol_ / L;
+      return (s.gap_m + 0.5 * gap_tol_) / L;
+    }
+    case Kind::kEdge: {
+      const SlotKinematics s = stack_.Slots(e.k, Q(y), V(y))[e.j];
+      // The closed point's face ends under it (a corner passes its support's edge, or the
+      // support's corner leaves the block's base).
+      const double bL = stack_.block(e.k - 1).b_m, bU = stack_.block(e.k).b_m;
+      if (!s.exists) return -1.0;
+      return s.upper_corner ? (bL * (1.0 + 1e-9) - std::abs(s.xi_upper_corner_m)) / L
+                            : std::min(bU - std::abs(s.xi_support_corner_m),
+                                       std::abs(s.xi_upper_corner_m) - bL) /
+                                  L;
+    }
+    case Kind::kLift:
+    case Kind::kCone: {
+      std::array<double, kSecond> acc{};
+      ModeSolution f;
+      if (!stack_.Accelerations(mode_, Q(y), V(y), Xg(t), Yg(t), acc.data(), &f)) return -1.0;
+      // Roots at twice the contact conditions' tolerance: past them, so that the mode that
+      // ends is no longer consistent where the next is sought.
+      if (e.kind == Kind::kLift) {
+        return (f.slot_normal[e.k][e.j] + 2.0 * force_tol_) / stack_.weight_n();
+      }
+      const double mu = stack_.block(e.k).friction;
+      return (mu * f.normal[e.k] - std::abs(f.tangential[e.k]) + 2.0 * force_tol_) /
+             stack_.weight_n();
+    }
+    case Kind::kSlipStop: {
+      const auto s = stack_.Slots(e.k, Q(y), V(y));
+      const SlotKinematics& ref = mode_.closed[e.k][0] ? s[0] : s[1];
+      return static_cast<int>(mode_.slip[e.k]) * ref.slip_rate_mps / std::sqrt(stack_.g_mps2() * L);
+    }
+  }
+  return 1.0;
+}
+
+double Runner::FrictionPower(double t, const Y& y) const {
+  double p = 0.0;
+  bool any = false;
+  for (int k = 0; k < n_; ++k) any = any || (mode_.any_closed(k) && mode_.slip[k] != Slip::kStick);
+  if (!any) return 0.0;
+  std::array<double, kSecond> acc{};
+  ModeSolution f;
+  if (!stack_.Accelerations(mode_, Q(y), V(y), Xg(t), Yg(t), acc.data(), &f)) return 0.0;
+  for (int k = 0; k < n_; ++k) {
+    if (!mode_.any_closed(k) || mode_.slip[k] == Slip::kStick) continue;
+    const auto s = stack_.Slots(k, Q(y), V(y));
+    const SlotKinematics& ref = mode_.closed[k][0] ? s[0] : s[1];
+    // The friction force times the slip rate: -T v_t >= 0 when T opposes the slip.
+    p += -f.tangential[k] * ref.slip_rate_mps;
+  }
+  return p;
+}
+
+void Runner::Track(double t, const Y& y) {
+  Summary& sum = r_->summary;
+  for (int i = 0; i < n_; ++i) {
+    const double a = std::abs(y[3 * i + 2]);
+    if (a > sum.peak_theta_rad[i]) {
+      sum.peak_theta_rad[i] = a;
+      sum.peak_theta_t_s[i] = t;
+    }
+  }
+}
+
+void Runner::NoteForces(const Y& y, double t) {
+  std::array<double, kSecond> acc{};
+  ModeSolution f;
+  if (!stack_.Accelerations(mode_, Q(y), V(y), Xg(t), Yg(t), acc.data(), &f)) return;
+  Summary& sum = r_->summary;
+  for (int k = 0; k < n_; ++k) {
+    if (!mode_.any_closed(k)) continue;
+    sum.min_normal_n[k] = std::min(sum.min_normal_n[k], f.normal[k]);
+    if (mode_.slip[k] == Slip::kStick && f.normal[k] > 0.0) {
+      sum.friction_required[k] =
+          std::max(sum.friction_required[k], std::abs(f.tangential[k]) / f.normal[k]);
+    }
+  }
+}
+
+void Runner::Emit(double t_end, bool inclusive) {
+  const double dt = scene_.run.output_interval_s;
+  while (true) {
+    const double ts = static_cast<double>(*next_sample_) * dt;
+    if (ts > steps_.t_end_s + 1e-12 * steps_.t_end_s) break;
+    if (inclusive ? ts > t_end : ts >= t_end) break;
+    Sample s = r_->trajectory.At(ts);
+    s.t_s = ts;
+    r_->history.samples.push_back(std::move(s));
+    ++*next_sample_;
+  }
+}
+
+void Runner::AddEvent(double t, const std::string& kind, const Configuration& before,
+                      const Configuration& after, const Y& pre, const Y& post,
+                      const std::string& note) {
+  Event ev(n_);
+  ev.t_s = t;
+  ev.kind = kind;
+  ev.mode_before = before;
+  ev.mode_after = after;
+  for (int i = 0; i < n_; ++i) {
+    ev.omega_before_radps[i] = pre[kSecond + 3 * i + 2];
+    ev.omega_after_radps[i] = post[kSecond + 3 * i + 2];
+  }
+  ev.energy_before_j = stack_.Energy(Q(pre), V(pre));
+  ev.energy_after_j = stack_.Energy(Q(post), V(post));
+  ev.note = note;
+  r_->history.events.push_back(std::move(ev));
+}
+
+void Runner::Stop(double t, const Y& y, RunStatus status, const std::string& kind,
+                  const std::string& detail) {
+  AddEvent(t, kind, config_, config_, y, y, detail);
+  Summary& sum = r_->summary;
+  if (sum.status == RunStatus::kCompleted) sum.status = status;
+  if (status != RunStatus::kOverturned) sum.status_detail = detail;
+  Dense last;
+  last.c[0] = y;
+  r_->trajectory.AppendState(t, t, config_, last, kSecond);
+  Emit(t, true);
+  t_ = t;
+  y_ = y;
+  done_ = true;
+}
+
+std::string Runner::Changes(const ContactMode& before, const ContactMode& after) const {
+  std::string out;
+  for (int k = 0; k < n_; ++k) {
+    const std::string a = StateText(before, k), b = StateText(after, k);
+    if (a == b) continue;
+    if (!out.empty()) out += "; ";
+    out += "block " + std::to_string(k + 1) + " " + a + " -> " + b;
+  }
+  return out;
+}
+
+bool Runner::NewMode(double t, const Y& y, const char* kind, const std::string& why) {
+  const ModeSolution sol = stack_.Solve(Q(y), V(y), Xg(t), Yg(t), mode_, gap_tol_, rate_tol_);
+  Summary& sum = r_->summary;
+  if (!sol.found) {
+    config_ = stack_.ConfigurationOf(mode_, Q(y));
+    Stop(t, y, RunStatus::kAssumptionViolated, "assumption_violated",
+         "no contact state at t = " + std::to_string(t) + " s: " + sol.note);
+    return false;
+  }
+  if (sol.solutions > 1 && !sum.undetermined_from_s) {
+    sum.undetermined_from_s = t;
+    sum.undetermined_detail = "the contact state at t = " + std::to_string(t) + " s: " + sol.note;
+  }
+  const ContactMode before = mode_;
+  const Configuration config_before = config_;
+  mode_ = sol.mode;
+  config_ = stack_.ConfigurationOf(mode_, Q(y));
+  if (kind[0] == '\0' || before == mode_) return true;
+  for (int k = 0; k < n_; ++k) {
+    if (before.any_closed(k) && !mode_.any_closed(k)) ++sum.lift_offs;
+    if (mode_.any_closed(k) && mode_.slip[k] != Slip::kStick &&
+        (!before.any_closed(k) || before.slip[k] == Slip::kStick)) {
+      ++sum.slip_starts;
+    }
+  }
+  {
+    std::string note = Changes(before, mode_);
+    if (!why.empty()) note = why + (note.empty() ? "" : ": " + note);
+    if (sol.solutions > 1) note += " (" + sol.note + ")";
+    AddEvent(t, kind, config_before, config_, y, y, note);
+    ++sum.transitions;
+  }
+  return true;
+}
+
+UnilateralEnd Runner::Go(const std::string& reason) {
+  Summary& sum = r_->summary;
+  sum.unilateral_from_s = t_;
+  sum.unilateral_reason = reason;
+  // The contact state at the hand-over: every slot at a zero gap may close.
+  {
+    ContactMode hint(n_);
+    for (int k = 0; k < n_; ++k) {
+      hint.closed[k] = {config_[k] != Contact::kLeft, config_[k] != Contact::kRight};
+    }
+    mode_ = hint;
+    const ContactMode chain = hint;
+    if (!NewMode(t_, y_, "", "")) return {config_, false};
+    std::string note = "unilateral model from here: " + reason;
+    const std::string ch = Changes(chain, mode_);
+    if (!ch.empty()) note += ": " + ch;
+    AddEvent(t_, "transition", config_, config_, y_, y_, note);
+    ++sum.transitions;
+    for (int k = 0; k < n_; ++k) {
+      if (mode_.any_closed(k) && mode_.slip[k] != Slip::kStick) ++sum.slip_starts;
+      if (!mode_.any_closed(k)) ++sum.lift_offs;
+    }
+  }
+  const bool dop853 = scene_.model.integrator == Integrator::kDop853;
+  const double rtol = scene_.model.rtol, atol = scene_.model.atol;
+  const int active = 6 * n_;
+  Y f0 = Rhs(t_, y_);
+  while (!done_ && t_ < steps_.t_end_s) {
+    // One accepted step, cut at the base motion's next kink.
+    const double t_break = std::min(motion_.next_breakpoint_after(t_), steps_.t_end_s);
+    Step st;
+    double h = 0.0;
+    while (true) {
+      h = std::min({h_, steps_.max_step_s, t_break - t_});
+      if (t_break - t_ - h < steps_.min_step_s) h = t_break - t_;
+      auto rhs = [&](double t, const Y& y) { return Rhs(t, y); };
+      st = dop853 ? Dop853Step(rhs, t_, y_, f0, h, rtol, atol, active)
+                  : Dopri5Step(rhs, t_, y_, f0, h, rtol, atol, active);
+      const double err = std::isfinite(st.err) ? st.err : 1e10;
+      const double order = dop853 ? 8.0 : 5.0;
+      const double grow =
+          err == 0.0 ? 5.0 : std::clamp(0.9 * std::pow(err, -1.0 / order), 0.2, 5.0);
+      if (err <= 1.0) {
+        ++sum.steps_accepted;
+        h_ = h * grow;
+        break;
+      }
+      ++sum.steps_rejected;
+      h_ = h * grow;
+      if (h_ < steps_.min_step_s) {
+        Stop(t_, y_, RunStatus::kAssumptionViolated, "assumption_violated",
+             "the unilateral model's step fell below its smallest at t = " + std::to_string(t_) +
+                 " s");
+        return {config_, false};
+      }
+    }
+    const double t1 = t_ + h;
+    const Dense& dense = st.dense;
+    auto at = [&](double t) { return t == t_ ? y_ : dense.At(t); };
+    for (size_t i = 0; i < kState; ++i) {
+      if (!std::isfinite(st.y1[i])) {
+        sum.non_finite_quantity = "state";
+        sum.non_finite_value = std::isnan(st.y1[i]) ? "NaN" : st.y1[i] > 0 ? "+inf" : "-inf";
+        sum.non_finite_t_s = t1;
+        sum.non_finite_last_t_s = t_;
+        Stop(t_, y_, RunStatus::kNonFinite, "non_finite",
+             "the unilateral model's state is not finite at t = " + std::to_string(t1) + " s");
+        return {config_, false};
+      }
+    }
+    // The earliest event in the step: every function at the step end, the landings also at
+    // its middle (a corner that touches and leaves within one step).
+    const std::vector<EventFn> fns = Functions();
+    double t_ev = kInf, t_lo = kInf;
+    int which = -1;
+    const Y y_mid = at(0.5 * (t_ + t1));
+    for (int e = 0; e < static_cast<int>(fns.size()); ++e) {
+      auto fn = [&](double t) { return Value(fns[e], t, at(t)); };
+      double t_neg = t1, f_neg = fn(t1);
+      if (!(f_neg < 0.0) && fns[e].kind == Kind::kLanding) {
+        const double fm = Value(fns[e], 0.5 * (t_ + t1), y_mid);
+        if (fm < 0.0) {
+          t_neg = 0.5 * (t_ + t1);
+          f_neg = fm;
+        }
+      }
+      if (!(f_neg < 0.0)) continue;
+      double f_a = fn(t_);
+      if (!(f_a >= 0.0)) {
+        // Already past its tolerance at the step's start: at once.
+        if (t_ < t_lo) {
+          t_lo = t_;
+          t_ev = t_;
+          which = e;
+        }
+        continue;
+      }
+      const auto br = BrentBracket(fn, t_, t_neg, f_a, f_neg, steps_.event_tol_s);
+      if (br.first < t_lo) {
+        t_lo = br.first;
+        t_ev = br.second;
+        which = e;
+      }
+    }
+    const bool none = which < 0;
+    const double t_seg = none ? t1 : t_ev;
+    const Y y_end = none ? st.y1 : at(t_seg);
+    // Friction's work over the segment (Simpson's rule).
+    {
+      const double tm = 0.5 * (t_ + t_seg);
+      const double p =
+          (FrictionPower(t_, y_) + 4.0 * FrictionPower(tm, at(tm)) + FrictionPower(t_seg, y_end)) /
+          6.0;
+      sum.friction_work_j += std::max(0.0, p * (t_seg - t_));
+    }
+    r_->trajectory.AppendState(t_, t_seg, config_, dense, kSecond);
+    Emit(t_seg, false);
+    // Peaks: the extremes of each angle inside the segment, and its end.
+    for (int i = 0; i < n_; ++i) {
+      auto rate = [&](double t) { return at(t)[kSecond + 3 * i + 2]; };
+      const double ra = rate(t_), rb = rate(t_seg);
+      if (ra * rb < 0.0) {
+        const auto br = BrentBracket(rate, t_, t_seg, ra, rb, steps_.event_tol_s);
+        Track(br.first, at(br.first));
+      }
+    }
+    Track(t_seg, y_end);
+    NoteForces(y_end, t_seg);
+    if (none) {
+      t_ = t1;
+      y_ = st.y1;
+      f0 = st.f1;
+      if (HasClosed()) {
+        // Back on the constraints (the drift of one step), and the next step's first stage there.
+        stack_.Project(mode_, y_.data(), y_.data() + kSecond);
+        f0 = Rhs(t_, y_);
+      }
+      continue;
+    }
+    // The event.
+    if (std::abs(t_seg - last_event_t_) <= steps_.event_tol_s) {
+      if (++same_time_events_ > 20) {
+        Stop(t_seg, y_end, RunStatus::kAssumptionViolated, "assumption_violated",
+             "event cascade at one instant (unilateral model)");
+        return {config_, false};
+      }
+    } else {
+      same_time_events_ = 0;
+    }
+    last_event_t_ = t_seg;
+    t_ = t_seg;
+    y_ = y_end;
+    const EventFn& e = fns[which];
+    switch (e.kind) {
+      case Kind::kOverturn:
+        config_ = stack_.ConfigurationOf(mode_, Q(y_));
+        sum.overturn_block = e.k + 1;
+        sum.overturn_t_s = t_;
+        Stop(t_, y_, RunStatus::kOverturned, "overturn", "block " + std::to_string(e.k + 1));
+        return {config_, false};
+      case Kind::kLanding: {
+        const ModeSolution imp = stack_.SolveImpact(Q(y_), V(y_), mode_, gap_tol_, rest_rate_);
+        Y post = y_;
+        for (int i = 0; i < 3 * n_; ++i) post[kSecond + i] = imp.result[i];
+        if ((!imp.found || imp.solutions > 1) && !sum.undetermined_from_s) {
+          sum.undetermined_from_s = t_;
+          sum.undetermined_detail = "the " + InterfaceName(e.k, n_) +
+                                    " impact at t = " + std::to_string(t_) + " s: " + imp.note;
+        }
+        if (!imp.found) ++sum.impacts_inadmissible;
+        if (imp.solutions > 1) ++sum.impacts_ambiguous;
+        const Configuration before = config_;
+        const ContactMode mode_before = mode_;
+        if (imp.found) mode_ = imp.mode;
+        config_ = stack_.ConfigurationOf(mode_, Q(post));
+        std::string note = Changes(mode_before, mode_);
+        if (!imp.note.empty()) note += (note.empty() ? "" : "; ") + imp.note;
+        const double e0 = stack_.Energy(Q(y_), V(y_)), e1 = stack_.Energy(Q(post), V(post));
+        if (e1 - e0 > 1e-9 * std::abs(e0) + 1e-12) {
+          ++sum.impacts_energy_gain;
+          note += " ENERGY GAIN";
+        }
+        AddEvent(t_, InterfaceName(e.k, n_) + "_impact", before, config_, y_, post, note);
+        ++sum.impacts_at[e.k];
+        y_ = post;
+        if (!NewMode(t_, y_, "transition", "after impact")) return {config_, false};
+        break;
+      }
+      case Kind::kEdge:
+        if (!stack_.Slots(e.k, Q(y_), V(y_))[e.j].exists) {
+          // Past both edges: the block has left its support.
+          config_ = stack_.ConfigurationOf(mode_, Q(y_));
+          sum.overturn_block = e.k + 1;
+          sum.overturn_t_s = t_;
+          Stop(t_, y_, RunStatus::kOverturned, "overturn",
+               "block " + std::to_string(e.k + 1) + " slid off its support");
+          return {config_, false};
+        }
+        if (!NewMode(t_, y_, "transition", "edge")) return {config_, false};
+        break;
+      case Kind::kLift:
+        if (!NewMode(t_, y_, "transition", "contact opens")) return {config_, false};
+        break;
+      case Kind::kCone:
+        if (!NewMode(t_, y_, "transition", "friction cone reached")) return {config_, false};
+        break;
+      case Kind::kSlipStop:
+        if (!NewMode(t_, y_, "transition", "slip stops")) return {config_, false};
+        break;
+    }
+    f0 = Rhs(t_, y_);
+  }
+  if (!done_) {
+    Dense last;
+    last.c[0] = y_;
+    r_->trajectory.AppendState(t_, t_, config_, last, kSecond);
+    Emit(steps_.t_end_s, true);
+  }
+  UnilateralEnd end{config_, false};
+  bool still = true;
+  for (int k = 0; k < n_ && still; ++k) {
+    still = mode_.closed[k][0] && mode_.closed[k][1] && mode_.slip[k] == Slip::kStick;
+  }
+  for (int i = 0; i < 3 * n_ && still; ++i) still = std::abs(y_[kSecond + i]) <= rate_tol_;
+  end.at_rest = still && !done_;
+  return end;
+}
+
+}  // namespace
+
+bool UnilateralApplies(const Scene& scene, std::string* why) {
+  std::string w;
+  if (scene.block_count() > kUnilateralMaxBlocks) {
+    w = "the unilateral model takes at most " + std::to_string(kUnilateralMaxBlocks) + " blocks";
+  } else if (scene.model.equations != Equations::kNonlinear) {
+    w = "the unilateral model runs on the nonlinear equations only";
+  } else if (scene.model.events != EventScheme::kLocated) {
+    w = "the unilateral model locates its events (model.events = \"located\")";
+  }
+  if (why != nullptr) *why = w;
+  return w.empty();
+}
+
+UnilateralEnd ContinueUnilateral(const Scene& scene, const GroundMotion& motion,
+                                 const UnilateralStart& start, const UnilateralSteps& steps,
+                                 Result* result, long* next_sample) {
+  Runner run(scene, motion, start, steps, result, next_sample);
+  return run.Go(start.reason);
+}
+
+}  // namespace rockbench::reference

@@ -1,0 +1,52 @@
+#pragma once
+/// The reference run beyond the thesis's assumptions: from the instant an interface of the
+/// stack would slip (its friction needs more than its coefficient) or lift off (a pivot or a
+/// face would pull), the driver (simulate.cc) hands the run over to the unilateral model
+/// (unilateral.h), which follows it to its end: event-driven, exact in the same sense as the
+/// pivot chain (every slip start and stop, lift-off, landing and impact located on the
+/// integrator's dense output, every mode the solution of its complementarity problem).
+/// docs/sliding.md explains the model, its events and its sources.
+#include <string>
+#include <vector>
+
+#include "reference/simulate.h"
+#include "scene/ground_motion.h"
+#include "scene/mode.h"
+#include "scene/scene.h"
+
+namespace rockbench::reference {
+
+/// Where the unilateral model takes over: the chain's state (absolute angles and rates, its
+/// configuration) at t, and why.
+struct UnilateralStart {
+  double t_s = 0.0;
+  Configuration config;
+  std::vector<double> theta_rad, omega_radps;
+  std::string reason;
+};
+
+/// The driver's step and event scales, s (the chain's: simulate.cc).
+struct UnilateralSteps {
+  double t_end_s = 0.0;
+  double max_step_s = 0.0, min_step_s = 0.0, first_step_s = 0.0, event_tol_s = 0.0;
+};
+
+/// How the unilateral run ended: its last configuration, and whether the stack then stood at
+/// rest (every interface closed and sticking, every rate zero).
+struct UnilateralEnd {
+  Configuration config;
+  bool at_rest = false;
+};
+
+/// Whether the unilateral model can continue a scene's run (at most kUnilateralMaxBlocks
+/// blocks, nonlinear equations, located events), and if not why.
+bool UnilateralApplies(const Scene& scene, std::string* why = nullptr);
+
+/// Continues `result` (its history, trajectory and summary, the samples up to next_sample
+/// emitted) from `start` to the end of the run. The summary's status, peaks, impacts and
+/// contact figures go on from where the chain left them.
+UnilateralEnd ContinueUnilateral(const Scene& scene, const GroundMotion& motion,
+                                 const UnilateralStart& start, const UnilateralSteps& steps,
+                                 Result* result, long* next_sample);
+
+}  // namespace rockbench::reference

@@ -1,0 +1,171 @@
+// The unilateral model (reference/unilateral.h, unilateral_run.h; issue 24): sliding, lift-off
+// and their transitions against closed forms, the complementarity solver's statements, energy,
+// and the pivot chain where both models hold.
+#include "reference/unilateral.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <random>
+#include <string>
+
+#include "reference/benchmarks/sliding_forms.h"
+#include "reference/simulate.h"
+#include "scene/ground_motion.h"
+#include "scene/scene.h"
+
+namespace rockbench::reference {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kG = kStandardGravity_mps2;
+
+// One block of width B, height H and 1000 kg, friction mu, on a base with the given horizontal
+// rectangular pulse (amplitude a_g in g, from t0 for pulse_s).
+Scene BlockUnderPulse(double B, double H, double mu, double a_g, double t0, double pulse_s,
+                      double duration_s) {
+  Scene s;
+  BlockDef b;
+  b.width_m = B;
+  b.height_m = H;
+  b.mass_kg = 1000.0;
+  b.friction = mu;
+  s.blocks = {b};
+  s.run.duration_s = duration_s;
+  s.run.gravity_mps2 = kG;
+  s.compare.members = 0;
+  MotionDef d;
+  d.key = "base.horizontal";
+  d.kind = MotionKind::kRectangularPulse;
+  d.amplitude_g = a_g;
+  d.start_s = t0;
+  d.duration_s = pulse_s;
+  s.horizontal = d;
+  return s;
+}
+
+bool HasNote(const History& h, const std::string& text) {
+  for (const Event& e : h.events) {
+    if (e.note.find(text) != std::string::npos) return true;
+  }
+  return false;
+}
+
+// From rest under a step of acceleration a (a rectangular pulse): nothing below min(mu, B/H) g;
+// above it the block slides when mu < B/H (a > mu g) and rocks when B/H < mu (a > (B/H) g)
+// (thesis ch. 3 after Shenton 1996: at the onset of sliding the corner forces stay compressive
+// exactly when mu < b/h; at the onset of rocking the pivot needs a friction coefficient a/g =
+// b/h). Checked 1% each side of the threshold over a grid of slenderness and friction.
+TEST(UnilateralRun, SlideOrRockFromRestFollowsTheClosedCriteria) {
+  const double t0 = 0.1;
+  for (const double ratio : {0.25, 0.5, 1.0, 2.0}) {  // B/H
+    for (const double mu : {0.1, 0.3, 0.6, 1.2}) {
+      const double threshold_g = std::min(mu, ratio);
+      for (const double f : {0.99, 1.01}) {
+        const Scene s = BlockUnderPulse(ratio, 1.0, mu, f * threshold_g, t0, 0.05, 0.2);
+        const Result r = Simulate(s, GroundMotion::FromScene(s));
+        const Summary& sum = r.summary;
+        SCOPED_TRACE("B/H " + std::to_string(ratio) + " mu " + std::to_string(mu) + " a/g " +
+                     std::to_string(f * threshold_g));
+        if (f < 1.0) {
+          EXPECT_FALSE(sum.unilateral_from_s.has_value());
+          EXPECT_EQ(sum.initiations, 0);
+          EXPECT_EQ(sum.peak_theta_rad[0], 0.0);
+          continue;
+        }
+        if (mu < ratio) {
+          // Slides at the pulse's start, on its face.
+          ASSERT_TRUE(sum.unilateral_from_s.has_value());
+          EXPECT_NEAR(*sum.unilateral_from_s, t0, 1e-12);
+          EXPECT_TRUE(HasNote(r.history, "block 1 sticks on its face -> slips left on its face"));
+          EXPECT_EQ(sum.initiations, 0);
+        } else {
+          // Rocks (the chain's initiation at the pulse's start) and does not slide then.
+          EXPECT_EQ(sum.initiations, 1);
+          ASSERT_FALSE(r.history.events.empty());
+          EXPECT_EQ(r.history.events[0].kind, "initiation");
+          EXPECT_NEAR(r.history.events[0].t_s, t0, 1e-12);
+          EXPECT_TRUE(!sum.unilateral_from_s || *sum.unilateral_from_s > t0);
+        }
+      }
+    }
+  }
+}
+
+// Newmark's sliding block: a squat block (B/H = 2 > mu) under a rectangular pulse slides and
+// sticks again when and where the rigid-plastic closed form says. The stick time is an event
+// located to 1e-12 sqrt(R/g); the slip is integrated by dopri5 at rtol 1e-12: measured 2.0e-10
+// relative (2.0e-11 at rtol 1e-13 and with dop853: the integration's error, converging), so
+// 1e-9. Friction's work is mu m g |u| (one direction of slip; Simpson's rule per step, exact
+// for the piecewise-linear slip rate: the same 1e-9).
+TEST(UnilateralRun, NewmarkSlidingBlockUnderAPulse) {
+  const double mu = 0.2, a_g = 0.5, t0 = 0.1, pulse = 0.4;
+  const Scene s = BlockUnderPulse(2.0, 1.0, mu, a_g, t0, pulse, 2.0);
+  const Result r = Simulate(s, GroundMotion::FromScene(s));
+  const benchmarks::SlidingPulse cf = benchmarks::SlidingBlockUnderPulse(a_g * kG, pulse, mu, kG);
+  double stick_t = -1.0;
+  for (const Event& e : r.history.events) {
+    if (e.note.find("slip stops") != std::string::npos) stick_t = e.t_s;
+  }
+  EXPECT_NEAR(stick_t - t0, cf.stick_t_s, 1e-9);
+  ASSERT_TRUE(r.history.slip_and_lift);
+  const Sample& last = r.history.samples.back();
+  EXPECT_NEAR(last.u_m[0], cf.slip_m, 1e-9 * std::abs(cf.slip_m));
+  EXPECT_EQ(last.z_m[0], 0.0);
+  EXPECT_EQ(r.summary.status, RunStatus::kAtRest);
+  EXPECT_NEAR(r.summary.friction_work_j, mu * 1000.0 * kG * std::abs(cf.slip_m),
+              1e-9 * mu * 1000.0 * kG * std::abs(cf.slip_m));
+  // The peak slip rate, at the pulse's end: the slope of u there (u is quadratic on each side,
+  // so the centred difference over +-1 ms carries an error of the rate's jump in slope times
+  // 1e-3 / 2 = 4.9e-3 m/s at most; one-sided differences of 1e-6 s: 5e-6 m/s).
+  const double h = 1e-6;
+  const double rate =
+      (r.trajectory.At(t0 + pulse).u_m[0] - r.trajectory.At(t0 + pulse - h).u_m[0]) / h;
+  EXPECT_NEAR(rate, cf.peak_slip_rate_mps, 1e-5);
+}
+
+// Lift-off under a vertical sine of amplitude (1 + eps) g: the block leaves the base at the
+// first instant the base falls faster than gravity, flies, and lands at the closed form's time
+// (both corners at once: the plastic impact stops it). Times are events located to
+// 1e-12 sqrt(R/g) on a flight integrated at rtol 1e-12: 1e-9 s.
+TEST(UnilateralRun, LiftOffUnderAVerticalSine) {
+  const double eps = 0.2, f_hz = 2.0;
+  Scene s;
+  BlockDef b;
+  b.width_m = 1.0;
+  b.height_m = 1.0;
+  b.mass_kg = 1000.0;
+  s.blocks = {b};
+  s.run.duration_s = 0.45;
+  s.run.gravity_mps2 = kG;
+  s.compare.members = 0;
+  MotionDef d;
+  d.key = "base.vertical";
+  d.kind = MotionKind::kHarmonic;
+  d.amplitude_g = 1.0 + eps;
+  d.scale = -1.0;
+  d.frequency_hz = f_hz;
+  s.vertical = d;
+  const Result r = Simulate(s, GroundMotion::FromScene(s));
+  const benchmarks::LiftOff cf = benchmarks::LiftOffUnderVerticalSine(eps, 2 * M_PI * f_hz, kG);
+  ASSERT_TRUE(r.summary.unilateral_from_s.has_value());
+  EXPECT_NEAR(*r.summary.unilateral_from_s, cf.off_t_s, 1e-9);
+  double land_t = -1.0;
+  for (const Event& e : r.history.events) {
+    if (e.kind == "ground_impact" && land_t < 0.0) land_t = e.t_s;
+  }
+  EXPECT_NEAR(land_t, cf.land_t_s, 1e-9);
+  // The height in flight: z1 along the trajectory against the closed form.
+  for (int i = 1; i < 10; ++i) {
+    const double t = cf.off_t_s + (cf.land_t_s - cf.off_t_s) * i / 10.0;
+    EXPECT_NEAR(r.trajectory.At(t).z_m[0], benchmarks::FlightHeight_m(t, eps, 2 * M_PI * f_hz, kG),
+                1e-10)
+        << t;
+  }
+  EXPECT_EQ(r.summary.lift_offs, 1);
+  EXPECT_EQ(r.summary.impacts_energy_gain, 0);
+}
+
+}  // namespace
+}  // namespace rockbench::reference
