@@ -90,8 +90,8 @@ UnilateralStack UnilateralStack::OfScene(const Scene& scene) {
   return UnilateralStack(std::move(blocks), scene.run.gravity_mps2);
 }
 
-std::array<SlotKinematics, 2> UnilateralStack::Slots(int k, const double* q,
-                                                     const double* v) const {
+std::array<SlotKinematics, 2> UnilateralStack::Slots(int k, const double* q, const double* v,
+                                                     const ContactMode* mode) const {
   std::array<SlotKinematics, 2> out;
   const UnilateralBlock& U = blocks_[k];
   const Vec2 GU{q[3 * k], q[3 * k + 1]};
@@ -126,7 +126,11 @@ std::array<SlotKinematics, 2> UnilateralStack::Slots(int k, const double* q,
     if (!ground) {
       s.xi_support_corner_m = Dot(GL + Turn(cL, sL, {side * bL, hL}) - base, tU);
     }
-    if (ground || std::abs(xi_a) <= bL * (1.0 + 1e-9)) {
+    // The mode's point for a closed slot; else the corner over a face.
+    const bool fixed = mode != nullptr && mode->closed[k][j];
+    const bool use_upper =
+        ground || (fixed ? !mode->support_corner[k][j] : std::abs(xi_a) <= bL * (1.0 + 1e-9));
+    if (use_upper) {
       // The upper block's corner over the support's face.
       s.upper_corner = true;
       point = corner_u;
@@ -136,10 +140,12 @@ std::array<SlotKinematics, 2> UnilateralStack::Slots(int k, const double* q,
       s.gap_m = Dot(corner_u - top, nL);
       s.xi_m = xi_a;
       s.extent_m = bL;
+      s.exists = ground || std::abs(xi_a) <= bL * (1.0 + 1e-9);
     } else {
       const Vec2 corner_l = GL + Turn(cL, sL, {side * bL, hL});
       const double xi_b = s.xi_support_corner_m;
-      if (!(std::abs(xi_b) < U.b_m)) continue;  // past both: the slot is empty
+      s.exists = std::abs(xi_b) < U.b_m;
+      if (!s.exists && !fixed) continue;  // past both: the slot is empty
       s.upper_corner = false;
       point = corner_l;
       n = nU;
@@ -149,7 +155,6 @@ std::array<SlotKinematics, 2> UnilateralStack::Slots(int k, const double* q,
       s.xi_m = xi_b;
       s.extent_m = U.b_m;
     }
-    s.exists = true;
     const Vec2 dU = point - GU, dL = point - GL;
     const Vec2 v_rel = (vU + wU * J(dU)) - (vL + wL * J(dL));
     s.gap_rate_mps = Dot(v_rel, n);
@@ -190,7 +195,6 @@ bool UnilateralStack::SolveCandidate(const ContactMode& mode,
     for (int j = 0; j < 2; ++j) {
       if (!mode.closed[k][j]) continue;
       const SlotKinematics& s = slots[k][j];
-      if (!s.exists) return false;
       if (ref < 0) ref = j;
       Column c{k, s.wn, s.wn, s.kappa_n};
       if (slip != Slip::kStick && mu > 0.0) {
@@ -270,7 +274,7 @@ bool UnilateralStack::Accelerations(const ContactMode& mode, const double* q, co
                                     ModeSolution* forces) const {
   std::vector<std::array<SlotKinematics, 2>> slots(static_cast<size_t>(n_));
   for (int k = 0; k < n_; ++k) {
-    if (mode.any_closed(k)) slots[k] = Slots(k, q, v);
+    if (mode.any_closed(k)) slots[k] = Slots(k, q, v, &mode);
   }
   // M^-1 f: the effective gravity.
   std::vector<double> free(static_cast<size_t>(3 * n_), 0.0);
@@ -427,6 +431,7 @@ ModeSolution UnilateralStack::Solve(const double* q, const double* v, double xg_
       const Option& o = options[k][pick[k]];
       mode.closed[k] = o.closed;
       mode.slip[k] = o.slip;
+      mode.support_corner[k] = {!slots[k][0].upper_corner, !slots[k][1].upper_corner};
     }
     ModeSolution sol;
     if (!SolveCandidate(mode, slots, free.data(), false, &sol)) return false;
@@ -524,6 +529,7 @@ ModeSolution UnilateralStack::SolveImpact(const double* q, const double* v_minus
       const Option& o = options[k][pick[k]];
       mode.closed[k] = o.closed;
       mode.slip[k] = o.slip;
+      mode.support_corner[k] = {!slots[k][0].upper_corner, !slots[k][1].upper_corner};
     }
     ModeSolution sol;
     if (!SolveCandidate(mode, slots, v_minus, true, &sol)) return false;
@@ -641,19 +647,19 @@ void UnilateralStack::Project(const ContactMode& mode, double* q, double* v) con
   std::vector<Row> rows;
   for (int k = 0; k < n_; ++k) {
     if (!mode.any_closed(k)) continue;
-    const auto s = Slots(k, q, v);
+    const auto s = Slots(k, q, v, &mode);
     for (int j = 0; j < 2; ++j) {
-      if (mode.closed[k][j] && s[j].exists) rows.push_back({k, s[j].wn, s[j].gap_m});
+      if (mode.closed[k][j]) rows.push_back({k, s[j].wn, s[j].gap_m});
     }
   }
   correct(rows, q);
   rows.clear();
   for (int k = 0; k < n_; ++k) {
     if (!mode.any_closed(k)) continue;
-    const auto s = Slots(k, q, v);
+    const auto s = Slots(k, q, v, &mode);
     int ref = -1;
     for (int j = 0; j < 2; ++j) {
-      if (!mode.closed[k][j] || !s[j].exists) continue;
+      if (!mode.closed[k][j]) continue;
       if (ref < 0) ref = j;
       rows.push_back({k, s[j].wn, s[j].gap_rate_mps});
     }

@@ -52,9 +52,6 @@
 
 namespace rockbench::reference {
 
-/// The most blocks the unilateral model takes.
-constexpr int kUnilateralMaxBlocks = 8;
-
 /// An interface's tangential state: the upper block sticks on its support, or slips to the
 /// right (+1) or the left (-1) relative to it.
 enum class Slip : int8_t { kLeft = -1, kStick = 0, kRight = 1 };
@@ -71,9 +68,14 @@ struct UnilateralBlock {
 struct ContactMode {
   std::vector<std::array<bool, 2>> closed;  ///< [interface][slot]: right 0, left 1
   std::vector<Slip> slip;                   ///< [interface]
+  /// [interface][slot]: a closed slot's point is the support's corner (else the upper block's
+  /// corner), fixed for the mode's life: its constraint continues smoothly past the face's edge
+  /// (where an event ends the mode), so that a step's right-hand side never switches points.
+  std::vector<std::array<bool, 2>> support_corner;
   explicit ContactMode(int interfaces = 0)
       : closed(static_cast<size_t>(interfaces), {false, false}),
-        slip(static_cast<size_t>(interfaces), Slip::kStick) {}
+        slip(static_cast<size_t>(interfaces), Slip::kStick),
+        support_corner(static_cast<size_t>(interfaces), {false, false}) {}
   bool operator==(const ContactMode&) const = default;
   bool any_closed(int k) const { return closed[k][0] || closed[k][1]; }
 };
@@ -134,8 +136,11 @@ class UnilateralStack {
   /// A length scale (the largest block half-diagonal), m, and a time scale sqrt(L / g), s.
   double length_scale_m() const { return length_; }
 
-  /// The slots of interface k at (q, v): [0] right, [1] left.
-  std::array<SlotKinematics, 2> Slots(int k, const double* q, const double* v) const;
+  /// The slots of interface k at (q, v): [0] right, [1] left. With `mode`, its closed slots
+  /// keep the mode's points (ContactMode::support_corner) wherever they are, `exists` saying
+  /// whether the point still lies on its face; the others are chosen by where they are.
+  std::array<SlotKinematics, 2> Slots(int k, const double* q, const double* v,
+                                      const ContactMode* mode = nullptr) const;
 
   /// The contact forces and accelerations of `mode` at (q, v) under the base acceleration (xg'',
   /// yg''), without checking any condition: accel (3N), per interface normal and tangential

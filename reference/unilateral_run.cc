@@ -198,14 +198,14 @@ double Runner::Value(const EventFn& e, double t, const Y& y) const {
       return (s.gap_m + 0.5 * gap_tol_) / L;
     }
     case Kind::kEdge: {
-      const SlotKinematics s = stack_.Slots(e.k, Q(y), V(y))[e.j];
-      // The closed point's face ends under it (a corner passes its support's edge, or the
-      // support's corner leaves the block's base).
-      const double bL = stack_.block(e.k - 1).b_m, bU = stack_.block(e.k).b_m;
-      if (!s.exists) return -1.0;
-      return s.upper_corner ? (bL * (1.0 + 1e-9) - std::abs(s.xi_upper_corner_m)) / L
+      // The closed point's face ends under it: the block's corner passes its support's edge,
+      // or (the support's corner) leaves the block's base or comes back under the block's
+      // corner. Continuous: the mode keeps its point past the edge.
+      const SlotKinematics s = stack_.Slots(e.k, Q(y), V(y), &mode_)[e.j];
+      const double edge = stack_.block(e.k - 1).b_m * (1.0 + 1e-9), bU = stack_.block(e.k).b_m;
+      return s.upper_corner ? (edge - std::abs(s.xi_upper_corner_m)) / L
                             : std::min(bU - std::abs(s.xi_support_corner_m),
-                                       std::abs(s.xi_upper_corner_m) - bL) /
+                                       std::abs(s.xi_upper_corner_m) - edge) /
                                   L;
     }
     case Kind::kLift:
@@ -223,7 +223,7 @@ double Runner::Value(const EventFn& e, double t, const Y& y) const {
              stack_.weight_n();
     }
     case Kind::kSlipStop: {
-      const auto s = stack_.Slots(e.k, Q(y), V(y));
+      const auto s = stack_.Slots(e.k, Q(y), V(y), &mode_);
       const SlotKinematics& ref = mode_.closed[e.k][0] ? s[0] : s[1];
       return static_cast<int>(mode_.slip[e.k]) * ref.slip_rate_mps / std::sqrt(stack_.g_mps2() * L);
     }
@@ -241,7 +241,7 @@ double Runner::FrictionPower(double t, const Y& y) const {
   if (!stack_.Accelerations(mode_, Q(y), V(y), Xg(t), Yg(t), acc.data(), &f)) return 0.0;
   for (int k = 0; k < n_; ++k) {
     if (!mode_.any_closed(k) || mode_.slip[k] == Slip::kStick) continue;
-    const auto s = stack_.Slots(k, Q(y), V(y));
+    const auto s = stack_.Slots(k, Q(y), V(y), &mode_);
     const SlotKinematics& ref = mode_.closed[k][0] ? s[0] : s[1];
     // The friction force times the slip rate: -T v_t >= 0 when T opposes the slip.
     p += -f.tangential[k] * ref.slip_rate_mps;
@@ -349,7 +349,10 @@ bool Runner::NewMode(double t, const Y& y, const char* kind, const std::string& 
   const Configuration config_before = config_;
   mode_ = sol.mode;
   config_ = stack_.ConfigurationOf(mode_, Q(y));
-  if (kind[0] == '\0' || before == mode_) return true;
+  if (kind[0] == '\0' || (before == mode_ && why.find("edge") == std::string::npos &&
+                          why.find("base end") == std::string::npos)) {
+    return true;
+  }
   for (int k = 0; k < n_; ++k) {
     if (before.any_closed(k) && !mode_.any_closed(k)) ++sum.lift_offs;
     if (mode_.any_closed(k) && mode_.slip[k] != Slip::kStick &&
@@ -405,7 +408,10 @@ UnilateralEnd Runner::Go(const std::string& reason) {
       auto rhs = [&](double t, const Y& y) { return Rhs(t, y); };
       st = dop853 ? Dop853Step(rhs, t_, y_, f0, h, rtol, atol, active)
                   : Dopri5Step(rhs, t_, y_, f0, h, rtol, atol, active);
-      const double err = std::isfinite(st.err) ? st.err : 1e10;
+      // A step whose error or end state is not finite is rejected (and shrunk).
+      bool finite = std::isfinite(st.err);
+      for (size_t i = 0; i < kState && finite; ++i) finite = std::isfinite(st.y1[i]);
+      const double err = finite ? st.err : 1e10;
       const double order = dop853 ? 8.0 : 5.0;
       const double grow =
           err == 0.0 ? 5.0 : std::clamp(0.9 * std::pow(err, -1.0 / order), 0.2, 5.0);
@@ -555,7 +561,13 @@ UnilateralEnd Runner::Go(const std::string& reason) {
         if (!NewMode(t_, y_, "transition", "after impact")) return {config_, false};
         break;
       }
-      case Kind::kEdge:
+      case Kind::kEdge: {
+        const bool upper = !mode_.support_corner[e.k][e.j];
+        const std::string corner = e.j == 0 ? "right" : "left";
+        const std::string what = upper ? "block " + std::to_string(e.k + 1) + "'s " + corner +
+                                             " corner passes its support's edge"
+                                       : "its support's " + corner + " corner reaches block " +
+                                             std::to_string(e.k + 1) + "'s base end";
         if (!stack_.Slots(e.k, Q(y_), V(y_))[e.j].exists) {
           // Past both edges: the block has left its support.
           config_ = stack_.ConfigurationOf(mode_, Q(y_));
@@ -565,8 +577,9 @@ UnilateralEnd Runner::Go(const std::string& reason) {
                "block " + std::to_string(e.k + 1) + " slid off its support");
           return {config_, false};
         }
-        if (!NewMode(t_, y_, "transition", "edge")) return {config_, false};
+        if (!NewMode(t_, y_, "transition", what)) return {config_, false};
         break;
+      }
       case Kind::kLift:
         if (!NewMode(t_, y_, "transition", "contact opens")) return {config_, false};
         break;

@@ -76,6 +76,17 @@ nlohmann::json ReferenceSummaryJson(const Scene& scene, const reference::Result&
   } else {
     for (int k = 1; k < n; ++k) j["impacts"][InterfaceName(k, n)] = s.impacts_at[k];
   }
+  // Where the stack left the thesis's assumptions (a block slipped or lifted off) and the
+  // unilateral model took over (null: never; docs/sliding.md).
+  if (s.unilateral_from_s) {
+    j["unilateral"] = {{"from_t_s", *s.unilateral_from_s},
+                       {"reason", s.unilateral_reason},
+                       {"slip_starts", s.slip_starts},
+                       {"lift_offs", s.lift_offs},
+                       {"friction_work_j", s.friction_work_j}};
+  } else {
+    j["unilateral"] = nullptr;
+  }
   j["transitions"] = s.transitions;
   j["initiations"] = s.initiations;
   if (s.overturn_block) {

@@ -1260,6 +1260,29 @@ void ValidateScene(const Scene& scene) {
          "scene has " +
              std::to_string(n) + " (use \"chain\", or leave the key out)");
   }
+  // Sliding and lift-off: the unilateral model's reach (docs/sliding.md).
+  for (int k = 1; k <= n; ++k) {
+    if (std::isfinite(scene.blocks[k - 1].friction) && n > kUnilateralMaxBlocks) {
+      fail("block" + std::to_string(k) + ".friction",
+           "a finite friction needs the unilateral model (sliding), which takes at most " +
+               std::to_string(kUnilateralMaxBlocks) + " blocks; this stack has " +
+               std::to_string(n) + " (leave the key out: no sliding)");
+    }
+  }
+  if (scene.model.formulation == Formulation::kUnilateral) {
+    if (n > kUnilateralMaxBlocks) {
+      fail("model.formulation", "\"unilateral\" takes at most " +
+                                    std::to_string(kUnilateralMaxBlocks) +
+                                    " blocks; this stack has " + std::to_string(n));
+    }
+    if (scene.model.equations == Equations::kLinearized) {
+      fail("model.equations",
+           "the unilateral model solves the nonlinear equations (use \"nonlinear\")");
+    }
+    if (scene.model.events == EventScheme::kThesis) {
+      fail("model.events", "the unilateral model locates its events (use \"located\")");
+    }
+  }
   if (scene.model.equations == Equations::kLinearized &&
       (n > 2 || scene.model.formulation == Formulation::kChain)) {
     fail("model.equations",
