@@ -391,7 +391,9 @@ ModeSolution UnilateralStack::Solve(const double* q, const double* v, double xg_
     slots[k] = Slots(k, q, v);
     for (int j = 0; j < 2; ++j) {
       const SlotKinematics& s = slots[k][j];
-      zero[k][j] = s.exists && std::abs(s.gap_m) <= gap_tol_m && s.gap_rate_mps <= rate_tol_mps;
+      // In contact: at a zero gap, or past it (a projection onto other constraints may push an
+      // open corner a little into its face).
+      zero[k][j] = s.exists && s.gap_m <= gap_tol_m && std::abs(s.gap_rate_mps) <= rate_tol_mps;
     }
     // The slip rate of the interface: at its first zero slot.
     double rate = 0.0;
@@ -499,7 +501,7 @@ ModeSolution UnilateralStack::SolveImpact(const double* q, const double* v_minus
   for (int k = 0; k < n_; ++k) {
     slots[k] = Slots(k, q, v_minus);
     for (int j = 0; j < 2; ++j) {
-      zero[k][j] = slots[k][j].exists && std::abs(slots[k][j].gap_m) <= gap_tol_m;
+      zero[k][j] = slots[k][j].exists && slots[k][j].gap_m <= gap_tol_m;
     }
     // After an impact any tangential state may follow (the impulses decide).
     options[k] = OptionsOf(slots[k], zero[k], blocks_[k].friction, false, 0.0);

@@ -148,8 +148,9 @@ class UnilateralStack {
   bool Accelerations(const ContactMode& mode, const double* q, const double* v, double xg_mps2,
                      double yg_mps2, double* accel, ModeSolution* forces = nullptr) const;
 
-  /// The contact state at (q, v): the LCP over the slots at a zero gap (|gap| <= gap_tol_m)
-  /// with a zero normal rate (<= rate_tol_mps), the others open. `hint` (a mode, or empty):
+  /// The contact state at (q, v): the LCP over the slots in contact (gap <= gap_tol_m: at a
+  /// zero gap, or a little past it) with a zero normal rate (|rate| <= rate_tol_mps), the
+  /// others open. `hint` (a mode, or empty):
   /// tried first, then states by the number of interfaces that differ from it. Problems of at
   /// most `exhaustive_limit` states are enumerated to the end (solutions counted).
   ModeSolution Solve(const double* q, const double* v, double xg_mps2, double yg_mps2,
@@ -157,8 +158,8 @@ class UnilateralStack {
                      long exhaustive_limit = 4096) const;
 
   /// A plastic impact with Coulomb friction at (q, v_minus): the velocities after it (result),
-  /// over every slot at a zero gap. `rest_rate_mps`: a slot that would separate slower than
-  /// this stays closed (the rest rule). Enumerated as Solve.
+  /// over every slot in contact (gap <= gap_tol_m). `rest_rate_mps`: a slot that would separate
+  /// slower than this stays closed (the rest rule). Enumerated as Solve.
   ModeSolution SolveImpact(const double* q, const double* v_minus, const ContactMode& hint,
                            double gap_tol_m, double rest_rate_mps,
                            long exhaustive_limit = 4096) const;
