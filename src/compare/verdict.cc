@@ -322,10 +322,14 @@ Verdict MakeVerdict(const Scene& scene, const EngineAgreement& a,
 
   // 0. The engine's own integrity: a blow-up or energy gained without input decides, whatever
   //    the angles; sliding, uplift and penetration decide where the reference's model holds.
+  //    With a finite friction the reference's model slides and lifts off (its unilateral model,
+  //    docs/sliding.md): there only penetration is forbidden, and the angles judge the rest.
   {
     const std::string failure = FlagsText(a, -inf, inf, {"blow_up", "energy_growth"}, true);
-    const std::string forbidden =
-        FlagsText(a, -inf, model_end_s, {"sliding", "uplift", "penetration"}, true);
+    const std::vector<std::string> excluded =
+        scene.has_finite_friction() ? std::vector<std::string>{"penetration"}
+                                    : std::vector<std::string>{"sliding", "uplift", "penetration"};
+    const std::string forbidden = FlagsText(a, -inf, model_end_s, excluded, true);
     if (!failure.empty() || !forbidden.empty() || a.status == RunStatus::kBlowUp) {
       v.kind = "violates_model";
       v.agrees = false;
@@ -334,8 +338,10 @@ Verdict MakeVerdict(const Scene& scene, const EngineAgreement& a,
         what += (what.empty() ? "" : "; ") + forbidden +
                 (model_ends ? ", before the reference's model ends at " +
                                   Format("%.2f", model_end_s) + " s"
-                            : ", while the reference's model (no sliding, no uplift, rigid "
-                              "contact) holds throughout");
+                 : scene.has_finite_friction()
+                     ? ", while the reference's model (rigid contact) holds throughout"
+                     : ", while the reference's model (no sliding, no uplift, rigid "
+                       "contact) holds throughout");
       }
       if (what.empty()) what = "the run ended in a blow-up";
       v.text = "the engine does what the model forbids: " + what;

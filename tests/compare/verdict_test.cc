@@ -177,6 +177,26 @@ TEST(MakeVerdict, AnEngineThatDoesWhatTheModelForbidsDoesNotAgree) {
   EXPECT_EQ(MakeVerdict(s, a, std::nullopt, std::nullopt).kind, "violates_model");
 }
 
+// With a finite friction the reference's model slides and lifts off (issue 24): an engine that
+// slides or lifts there is judged by its angles, and only penetration is forbidden.
+TEST(MakeVerdict, WithFiniteFrictionSlidingAndLiftOffAreInTheModel) {
+  Scene s;
+  s.blocks.resize(2);
+  Horizons h;
+  EngineAgreement a = Agreement(30.0, 30.0, true, true);
+  a.reference_status = RunStatus::kCompleted;
+  a.flags = a.significant_flags = {"sliding", "uplift"};
+  a.flag_onsets_t_s = a.significant_onsets_t_s = {1.25, 2.5};
+  EXPECT_EQ(MakeVerdict(s, a, h, std::nullopt).kind, "violates_model");
+  s.blocks[1].friction = 0.6;
+  EXPECT_EQ(MakeVerdict(s, a, h, std::nullopt).kind, "agrees");
+  a.flags = a.significant_flags = {"penetration"};
+  a.flag_onsets_t_s = a.significant_onsets_t_s = {1.0};
+  const Verdict v = MakeVerdict(s, a, h, std::nullopt);
+  EXPECT_EQ(v.kind, "violates_model");
+  EXPECT_NE(v.text.find("rigid contact"), std::string::npos) << v.text;
+}
+
 TEST(MakeVerdict, WhereTheReferenceStopsTheVerdictIsOutsideTheModel) {
   Scene s;
   Horizons h;
