@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <memory>
 
@@ -134,7 +135,10 @@ class Runner {
   void Track(double t, const Y& y);
   void NoteForces(const Y& y, double t);
   std::string Changes(const ContactMode& before, const ContactMode& after) const;
-  double FrictionPower(double t, const Y& y) const;
+  std::string EpisodeAudit(const ContactMode& before);
+  // Friction's power, W (>= 0), and per interface (with `per`).
+  double FrictionPower(double t, const Y& y,
+                       std::array<double, kUnilateralMaxBlocks>* per = nullptr) const;
   bool HasClosed() const {
     for (int k = 0; k < n_; ++k) {
       if (mode_.any_closed(k)) return true;
@@ -156,6 +160,8 @@ class Runner {
   Y y_{};
   double gap_tol_ = 0.0, rate_tol_ = 0.0, force_tol_ = 0.0, rest_rate_ = 0.0;
   bool done_ = false;
+  // Friction's work at each interface since its slip began, J (the episode's energy audit).
+  std::array<double, kUnilateralMaxBlocks> episode_work_j_{};
   int same_time_events_ = 0;
   double last_event_t_ = -1.0;
 };
@@ -231,8 +237,10 @@ double Runner::Value(const EventFn& e, double t, const Y& y) const {
   return 1.0;
 }
 
-double Runner::FrictionPower(double t, const Y& y) const {
+double Runner::FrictionPower(double t, const Y& y,
+                             std::array<double, kUnilateralMaxBlocks>* per) const {
   double p = 0.0;
+  if (per != nullptr) per->fill(0.0);
   bool any = false;
   for (int k = 0; k < n_; ++k) any = any || (mode_.any_closed(k) && mode_.slip[k] != Slip::kStick);
   if (!any) return 0.0;
@@ -244,7 +252,9 @@ double Runner::FrictionPower(double t, const Y& y) const {
     const auto s = stack_.Slots(k, Q(y), V(y), &mode_);
     const SlotKinematics& ref = mode_.closed[k][0] ? s[0] : s[1];
     // The friction force times the slip rate: -T v_t >= 0 when T opposes the slip.
-    p += -f.tangential[k] * ref.slip_rate_mps;
+    const double pk = -f.tangential[k] * ref.slip_rate_mps;
+    p += pk;
+    if (per != nullptr) (*per)[k] = pk;
   }
   return p;
 }
@@ -321,6 +331,22 @@ void Runner::Stop(double t, const Y& y, RunStatus status, const std::string& kin
   done_ = true;
 }
 
+std::string Runner::EpisodeAudit(const ContactMode& before) {
+  // Each interface whose slip ends here: the energy friction dissipated over the episode.
+  std::string out;
+  for (int k = 0; k < n_; ++k) {
+    const bool slipped = before.any_closed(k) && before.slip[k] != Slip::kStick;
+    const bool slips = mode_.any_closed(k) && mode_.slip[k] == before.slip[k];
+    if (!slipped || slips) continue;
+    char buf[96];
+    std::snprintf(buf, sizeof buf, "; block %d's slip dissipated %.6g J", k + 1,
+                  episode_work_j_[k]);
+    out += buf;
+    episode_work_j_[k] = 0.0;
+  }
+  return out;
+}
+
 std::string Runner::Changes(const ContactMode& before, const ContactMode& after) const {
   std::string out;
   for (int k = 0; k < n_; ++k) {
@@ -363,6 +389,7 @@ bool Runner::NewMode(double t, const Y& y, const char* kind, const std::string& 
   {
     std::string note = Changes(before, mode_);
     if (!why.empty()) note = why + (note.empty() ? "" : ": " + note);
+    note += EpisodeAudit(before);
     if (sol.solutions > 1) note += " (" + sol.note + ")";
     AddEvent(t, kind, config_before, config_, y, y, note);
     ++sum.transitions;
@@ -483,10 +510,14 @@ UnilateralEnd Runner::Go(const std::string& reason) {
     // Friction's work over the segment (Simpson's rule).
     {
       const double tm = 0.5 * (t_ + t_seg);
-      const double p =
-          (FrictionPower(t_, y_) + 4.0 * FrictionPower(tm, at(tm)) + FrictionPower(t_seg, y_end)) /
-          6.0;
+      std::array<double, kUnilateralMaxBlocks> p0{}, pm{}, p1{};
+      const double p = (FrictionPower(t_, y_, &p0) + 4.0 * FrictionPower(tm, at(tm), &pm) +
+                        FrictionPower(t_seg, y_end, &p1)) /
+                       6.0;
       sum.friction_work_j += std::max(0.0, p * (t_seg - t_));
+      for (int k = 0; k < n_; ++k) {
+        episode_work_j_[k] += std::max(0.0, (p0[k] + 4.0 * pm[k] + p1[k]) / 6.0 * (t_seg - t_));
+      }
     }
     r_->trajectory.AppendState(t_, t_seg, config_, dense, kSecond);
     Emit(t_seg, false);
@@ -548,7 +579,7 @@ UnilateralEnd Runner::Go(const std::string& reason) {
         const ContactMode mode_before = mode_;
         if (imp.found) mode_ = imp.mode;
         config_ = stack_.ConfigurationOf(mode_, Q(post));
-        std::string note = Changes(mode_before, mode_);
+        std::string note = Changes(mode_before, mode_) + EpisodeAudit(mode_before);
         if (!imp.note.empty()) note += (note.empty() ? "" : "; ") + imp.note;
         const double e0 = stack_.Energy(Q(y_), V(y_)), e1 = stack_.Energy(Q(post), V(post));
         if (e1 - e0 > 1e-9 * std::abs(e0) + 1e-12) {

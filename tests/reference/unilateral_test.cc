@@ -104,9 +104,13 @@ TEST(UnilateralRun, NewmarkSlidingBlockUnderAPulse) {
   const Scene s = BlockUnderPulse(2.0, 1.0, mu, a_g, t0, pulse, 2.0);
   const Result r = Simulate(s, GroundMotion::FromScene(s));
   const benchmarks::SlidingPulse cf = benchmarks::SlidingBlockUnderPulse(a_g * kG, pulse, mu, kG);
-  double stick_t = -1.0;
+  double stick_t = -1.0, episode_j = -1.0;
   for (const Event& e : r.history.events) {
-    if (e.note.find("slip stops") != std::string::npos) stick_t = e.t_s;
+    if (e.note.find("slip stops") == std::string::npos) continue;
+    stick_t = e.t_s;
+    // The episode's energy audit: what friction dissipated while the block slipped.
+    const size_t at = e.note.find("slip dissipated ");
+    if (at != std::string::npos) episode_j = std::stod(e.note.substr(at + 16));
   }
   EXPECT_NEAR(stick_t - t0, cf.stick_t_s, 1e-9);
   ASSERT_TRUE(r.history.slip_and_lift);
@@ -116,6 +120,8 @@ TEST(UnilateralRun, NewmarkSlidingBlockUnderAPulse) {
   EXPECT_EQ(r.summary.status, RunStatus::kAtRest);
   EXPECT_NEAR(r.summary.friction_work_j, mu * 1000.0 * kG * std::abs(cf.slip_m),
               1e-9 * mu * 1000.0 * kG * std::abs(cf.slip_m));
+  // One episode: its audit (printed to 6 digits) is the whole work.
+  EXPECT_NEAR(episode_j, r.summary.friction_work_j, 1e-5 * r.summary.friction_work_j);
   // The peak slip rate, at the pulse's end: the slope of u there (u is quadratic on each side,
   // so the centred difference over +-1 ms carries an error of the rate's jump in slope times
   // 1e-3 / 2 = 4.9e-3 m/s at most; one-sided differences of 1e-6 s: 5e-6 m/s).
