@@ -366,14 +366,18 @@ long Enumerate(const std::vector<std::vector<Option>>& options, long limit, cons
   return tried;
 }
 
-// Whether two solutions are the same motion (to 1e-6 of their scale).
-bool SameMotion(const std::vector<double>& a, const std::vector<double>& b) {
-  double scale = 0.0, diff = 0.0;
+// Whether two solutions are the same motion: every translational component within 1e-6 of
+// `linear` and every angular one within 1e-6 of `linear` / `length` (accelerations: g; impacts:
+// the largest velocity). Solutions that differ only by the contact conditions' tolerances (a
+// slip that starts at an acceleration of 1e-9 g, a contact that stays closed with a force of
+// 1e-9 of the weight) are one motion.
+bool SameMotion(const std::vector<double>& a, const std::vector<double>& b, double linear,
+                double length) {
   for (size_t i = 0; i < a.size(); ++i) {
-    scale = std::max({scale, std::abs(a[i]), std::abs(b[i])});
-    diff = std::max(diff, std::abs(a[i] - b[i]));
+    const double scale = i % 3 == 2 ? linear / length : linear;
+    if (!(std::abs(a[i] - b[i]) <= 1e-6 * scale)) return false;
   }
-  return diff <= 1e-6 * scale + 1e-300;
+  return true;
 }
 
 constexpr long kCandidateCap = 200000;
@@ -467,7 +471,7 @@ ModeSolution UnilateralStack::Solve(const double* q, const double* v, double xg_
       best = std::move(sol);
       return !best.exhaustive;
     }
-    if (!SameMotion(best.result, sol.result)) ++best.solutions;
+    if (!SameMotion(best.result, sol.result, g_, length_)) ++best.solutions;
     return false;
   });
   best.candidates = tried;
@@ -564,7 +568,7 @@ ModeSolution UnilateralStack::SolveImpact(const double* q, const double* v_minus
       best = std::move(sol);
       return !best.exhaustive;
     }
-    if (!SameMotion(best.result, sol.result)) ++best.solutions;
+    if (!SameMotion(best.result, sol.result, std::max(v_scale, 1e-300), length_)) ++best.solutions;
     return false;
   });
   best.candidates = tried;
