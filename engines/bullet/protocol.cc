@@ -17,8 +17,9 @@ namespace {
 constexpr char kInputMagic[8] = {'R', 'B', 'B', 'I', 'N', 'P', 'U', 'T'};
 constexpr char kOutputMagic[8] = {'R', 'B', 'B', 'O', 'U', 'T', 'P', 'T'};
 // 3: each flag with its onset time; 4: the history, events and outcome of N blocks (rates and
-// configurations per block); 5: the input's N blocks (every block, angle and rate).
-constexpr std::uint32_t kVersion = 5;
+// configurations per block); 5: the input's N blocks (every block, angle and rate); 6: each
+// block's friction, and slip and lift (the input's flag, the samples' u and z).
+constexpr std::uint32_t kVersion = 6;
 constexpr std::uint64_t kViolationFlagCount = std::size(kViolationFlags);
 
 class Writer {
@@ -106,6 +107,7 @@ void PutBlock(Writer& w, const BlockDef& b) {
   w.Put(b.depth_m);
   w.Put(b.mass_kg);
   w.Put(b.density_kgpm3);
+  w.Put(b.friction);
 }
 BlockDef GetBlock(Reader& r) {
   BlockDef b;
@@ -114,6 +116,7 @@ BlockDef GetBlock(Reader& r) {
   b.depth_m = r.Get<double>();
   b.mass_kg = r.Get<double>();
   b.density_kgpm3 = r.Get<double>();
+  b.friction = r.Get<double>();
   return b;
 }
 
@@ -151,6 +154,7 @@ std::string SerializeInput(const BulletInput& in) {
   w.Put<std::int64_t>(in.steps);
   w.Put(in.motion_end_s);
   w.Put(in.stop_at_rest_after_s);
+  w.PutBool(in.slip_and_lift);
   const DriveSamples& d = in.drive;
   w.PutVec(d.ax_mps2);
   w.PutVec(d.ay_mps2);
@@ -201,6 +205,7 @@ BulletInput ParseInput(const std::string& bytes) {
   in.steps = r.Get<std::int64_t>();
   in.motion_end_s = r.Get<double>();
   in.stop_at_rest_after_s = r.Get<double>();
+  in.slip_and_lift = r.GetBool();
   DriveSamples& d = in.drive;
   d.ax_mps2 = r.GetVec();
   d.ay_mps2 = r.GetVec();
@@ -233,12 +238,18 @@ std::string SerializeOutput(const EngineResult& out) {
       w.Put<std::int32_t>(k < c.size() ? static_cast<std::int32_t>(c[k]) : 0);
     }
   };
+  const bool slip_and_lift = out.history.slip_and_lift;
+  w.PutBool(slip_and_lift);
   w.Put<std::uint64_t>(out.history.samples.size());
   for (const Sample& s : out.history.samples) {
     w.Put(s.t_s);
     put_values(s.theta_rad);
     put_values(s.omega_radps);
     put_configuration(s.mode);
+    if (slip_and_lift) {
+      put_values(s.u_m);
+      put_values(s.z_m);
+    }
   }
   w.Put<std::uint64_t>(out.history.events.size());
   for (const Event& e : out.history.events) {
@@ -298,15 +309,21 @@ EngineResult ParseOutput(const std::string& bytes) {
       c->set(k, static_cast<Contact>(contact));
     }
   };
+  const bool slip_and_lift = r.GetBool();
+  out.history.slip_and_lift = slip_and_lift;
   const auto ns = r.Get<std::uint64_t>();
   if (ns > bytes.size()) throw std::runtime_error("bullet helper protocol: bad sample count");
   out.history.samples.reserve(ns);
   for (std::uint64_t i = 0; i < ns; ++i) {
-    Sample s(blocks);
+    Sample s(blocks, slip_and_lift);
     s.t_s = r.Get<double>();
     get_values(&s.theta_rad);
     get_values(&s.omega_radps);
     get_configuration(&s.mode);
+    if (slip_and_lift) {
+      get_values(&s.u_m);
+      get_values(&s.z_m);
+    }
     out.history.samples.push_back(std::move(s));
   }
   const auto ne = r.Get<std::uint64_t>();

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <mutex>
 
 #include "scene/stack_pose.h"
 
@@ -42,6 +43,29 @@ struct NeighbourFilter : btOverlapFilterCallback {
     return gap == 1 || gap == -1;
   }
 };
+
+// Bullet's contact-added callback (process-wide; Bullet calls it only for a pair with a body
+// flagged CF_CUSTOM_MATERIAL_CALLBACK): a contact between two neighbours of the stack (user
+// indices differing by one) takes the upper body's base friction, which its user pointer holds
+// (RockingWorld::base_friction_), in place of Bullet's product of the two bodies' values.
+// Infinite there, or any other pair: Bullet's own combination stays.
+bool SetPairFriction(btManifoldPoint& cp, const btCollisionObjectWrapper* w0, int, int,
+                     const btCollisionObjectWrapper* w1, int, int) {
+  const btCollisionObject* a = w0->getCollisionObject();
+  const btCollisionObject* b = w1->getCollisionObject();
+  const btCollisionObject* upper = a->getUserIndex() > b->getUserIndex() ? a : b;
+  const btCollisionObject* lower = upper == a ? b : a;
+  if (upper->getUserIndex() - lower->getUserIndex() != 1) return false;
+  const auto* mu = static_cast<const double*>(upper->getUserPointer());
+  if (mu != nullptr && std::isfinite(*mu)) cp.m_combinedFriction = btScalar(*mu);
+  return false;
+}
+
+// Installs SetPairFriction as Bullet's contact-added callback, once per process.
+void InstallPairFriction() {
+  static std::once_flag once;
+  std::call_once(once, [] { gContactAddedCallback = SetPairFriction; });
+}
 
 // Largest out-of-plane rotation component of a basis (0 for a rotation about z alone).
 double OutOfPlaneRotation(const btMatrix3x3& r) {
@@ -151,6 +175,21 @@ RockingWorld::RockingWorld(const BulletInput& input) : in_(input) {
   for (int k = 0; k < n; ++k) {
     blocks_.push_back(make_block(in_.blocks[k], place.blocks[k], z_[k], k + 1, &shapes_[k]));
   }
+  // Friction from the scene: the contacts of a block with a finite friction and its support take
+  // that coefficient exactly (SetPairFriction); without one, nothing changes.
+  if (HasFiniteFriction(in_)) {
+    InstallPairFriction();
+    base_friction_.resize(static_cast<size_t>(n));
+    for (int k = 0; k < n; ++k) {
+      base_friction_[k] = in_.blocks[k].friction;
+      btRigidBody& body = *blocks_[k];
+      body.setUserPointer(&base_friction_[k]);
+      if (std::isfinite(base_friction_[k])) {
+        body.setCollisionFlags(body.getCollisionFlags() |
+                               btCollisionObject::CF_CUSTOM_MATERIAL_CALLBACK);
+      }
+    }
+  }
 }
 
 RockingWorld::~RockingWorld() {
@@ -236,6 +275,14 @@ nlohmann::json RockingWorld::Settings() const {
   j["bullet_version"] = btGetVersion();
   // Three or more blocks: only neighbours collide (one and two blocks: every pair, as before).
   if (filter_) j["collision_filter"] = "neighbours";
+  // Friction from the scene: each interface's coefficient, block 1 on the ground first.
+  if (!base_friction_.empty()) {
+    nlohmann::json mu = nlohmann::json::array();
+    for (int k = 0; k < block_count(); ++k) {
+      mu.push_back(InterfaceFriction(in_, k, BulletCombinedFriction(c.friction)));
+    }
+    j["interface_friction"] = mu;
+  }
   return j;
 }
 

@@ -72,6 +72,9 @@ class RockingWorld {
   std::vector<std::unique_ptr<btRigidBody>> blocks_;  // per block, bottom first
   double ground_half_depth_m_ = 0.0;
   std::vector<double> z_;  // initial out-of-plane positions, per block
+  // Per block, the scene's friction with its support (infinite: Bullet's own combination); each
+  // block's user pointer points at its entry. Empty when every block's is infinite.
+  std::vector<double> base_friction_;
 };
 
 }  // namespace rockbench::bullet

@@ -66,6 +66,16 @@ nlohmann::json KinematicDriveJson(const EngineInput& input) {
   return k;
 }
 
+bool HasFiniteFriction(const EngineInput& input) {
+  return std::any_of(input.blocks.begin(), input.blocks.end(),
+                     [](const BlockDef& b) { return std::isfinite(b.friction); });
+}
+
+double InterfaceFriction(const EngineInput& input, int k, double engine_mu) {
+  const double mu = input.blocks.at(static_cast<size_t>(k)).friction;
+  return std::isfinite(mu) ? mu : engine_mu;
+}
+
 const char* DriveKindName(DriveKind kind) {
   return kind == DriveKind::kKinematic ? "kinematic" : "inertial";
 }
@@ -93,6 +103,7 @@ EngineInput MakeEngineInput(const Scene& scene, const GroundMotion& motion,
   in.overturn_rad = scene.model.overturn_rad;
   in.steps = StepCount(scene.run.duration_s, dt);
   in.motion_end_s = motion.empty() ? 0.0 : motion.end_s();
+  in.slip_and_lift = scene.tracks_slip_and_lift();
 
   const size_t n = static_cast<size_t>(in.steps);
   DriveSamples& d = in.drive;

@@ -65,11 +65,23 @@ struct EngineInput {
   /// Set for ensemble members, whose outcomes are all that is kept; never for a run whose
   /// history is compared.
   double stop_at_rest_after_s = std::numeric_limits<double>::infinity();
+  /// Whether the history carries each block's slip and lift, u1..uN and z1..zN
+  /// (Scene::tracks_slip_and_lift: a finite friction somewhere or a vertical base motion).
+  bool slip_and_lift = false;
   DriveSamples drive;
 
   /// Number of blocks of the stack.
   int block_count() const { return static_cast<int>(blocks.size()); }
 };
+
+/// Whether some block of the stack has a finite friction coefficient (BlockDef::friction).
+bool HasFiniteFriction(const EngineInput& input);
+
+/// The Coulomb coefficient of the contact between block k + 1 (index k, bottom first) and its
+/// support (the ground for k = 0, block k otherwise): the block's `friction` where it is finite
+/// (the scene's value wins over the engine's table), else `engine_mu`, the coefficient the
+/// engine's own settings give that contact (dimensionless).
+double InterfaceFriction(const EngineInput& input, int k, double engine_mu);
 
 /// Builds the input of a run of step `time_step_s` (s) with `drive`: samples the base motion on
 /// the step grid. Throws SceneError naming `engine`.time_step when the run would take more than

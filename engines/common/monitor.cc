@@ -148,14 +148,16 @@ Monitor::Monitor(const EngineInput& input, MonitorConfig config) : cfg_(config) 
   in_meta_.overturn_rad = input.overturn_rad;
   in_meta_.stop_at_rest_after_s = input.stop_at_rest_after_s;
   in_meta_.steps = input.steps;
+  in_meta_.slip_and_lift = input.slip_and_lift;
   blocks_ = input.block_count();
+  slip_and_lift_ = input.slip_and_lift;
   if (blocks_ < 1 || blocks_ > kMaxBlocks) {
     throw std::invalid_argument(std::string("Monitor: ") + std::to_string(blocks_) +
                                 " blocks; expected 1 to " + std::to_string(kMaxBlocks));
   }
   const size_t n = static_cast<size_t>(blocks_);
-  last_ = Sample(blocks_);
-  prev_ = Derived(blocks_);
+  last_ = Sample(blocks_, slip_and_lift_);
+  prev_ = Derived(blocks_, slip_and_lift_);
   g_ = input.run.gravity_mps2;
   dt_ = input.time_step_s;
   out_dt_ = input.run.output_interval_s;
@@ -186,6 +188,7 @@ Monitor::Monitor(const EngineInput& input, MonitorConfig config) : cfg_(config) 
   impacts_at_.assign(n, 0);
   contacts_.assign(n, ContactWatch{});
   history_.blocks = blocks_;
+  history_.slip_and_lift = slip_and_lift_;
 }
 
 void Monitor::CheckBodies(const StepReadout& s) const {
@@ -196,8 +199,25 @@ void Monitor::CheckBodies(const StepReadout& s) const {
   }
 }
 
+void Monitor::SlipAndLift(int k, double x, double y, double c, double sn, double xs, double ys,
+                          double cs, double ss, double hs, Derived* d) const {
+  // The support's top face: its middle point, unit normal nL and tangent tL (the reference's
+  // (sin thL, cos thL) and (cos thL, -sin thL) with thL = -phi of the support).
+  const double tx = xs - ss * hs, ty = ys + cs * hs;
+  const double nx = -ss, ny = cs, tlx = cs, tly = ss;
+  // Block k's base corners, local (+-b, -h) turned by its CCW angle, relative to that point.
+  const double b = b_[k], h = h_[k];
+  const double rx = x + c * b + sn * h - tx, ry = y + sn * b - c * h - ty;
+  const double lx = x - c * b + sn * h - tx, ly = y - sn * b - c * h - ty;
+  Sample& smp = d->sample;
+  smp.z_m[k] = std::min(rx * nx + ry * ny, lx * nx + ly * ny);
+  // The corner on the side of the relative tilt, from where it stood at rest (centred).
+  const double rel = smp.theta_rad[k] - (k == 0 ? 0.0 : smp.theta_rad[k - 1]);
+  smp.u_m[k] = rel >= 0.0 ? rx * tlx + ry * tly - b : lx * tlx + ly * tly + b;
+}
+
 Monitor::Derived Monitor::Derive(const StepReadout& s) {
-  Derived d(blocks_);
+  Derived d(blocks_, slip_and_lift_);
   d.sample.t_s = s.t_s;
   // The support of the block being read (the block below), in the base frame.
   double xs = 0.0, ys = 0.0, cs = 1.0, ss = 0.0, hs = 0.0;
@@ -235,6 +255,7 @@ Monitor::Derived Monitor::Derive(const StepReadout& s) {
       }
       d.gap_m[k] = gap;
     }
+    if (slip_and_lift_) SlipAndLift(k, x, y, c, sn, xs, ys, cs, ss, hs, &d);
     xs = x, ys = y, cs = c, ss = sn, hs = h;
   }
   return d;

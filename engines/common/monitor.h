@@ -142,8 +142,8 @@ class Monitor {
     double prev = 0.0;  // previous angle
   };
   struct Derived {
-    explicit Derived(int blocks)
-        : sample(blocks),
+    explicit Derived(int blocks, bool slip_and_lift = false)
+        : sample(blocks, slip_and_lift),
           gap_m(static_cast<size_t>(blocks), 0.0),
           pivot_x_m(static_cast<size_t>(blocks), 0.0) {}
     Sample sample;
@@ -155,6 +155,12 @@ class Monitor {
     double energy_j = 0.0;  // kinetic (base frame) + m g y_G of every block, J, as the reference
   };
   Derived Derive(const StepReadout& s);
+  // Block k's slip u_k and lift z_k (index k) on its support, into d's sample (Sample::u_m,
+  // z_m; docs/sliding.md): the support's top face has its middle point (xs, ys) + R(0, hs) and
+  // the CCW angle whose cosine and sine are cs, ss; the block's centre is (x, y), its CCW
+  // angle's cosine and sine c, sn; base frame, m.
+  void SlipAndLift(int k, double x, double y, double c, double sn, double xs, double ys, double cs,
+                   double ss, double hs, Derived* d) const;
   // The landing of one interface in a step (its tilted block's relative angle crossing zero or
   // falling below angle_leave_rad), from the hysteresis before the step.
   struct Landing {
@@ -206,7 +212,8 @@ class Monitor {
 
   EngineInput in_meta_;  // geometry and settings (drive samples not kept)
   MonitorConfig cfg_;
-  int blocks_ = 1;  // N
+  int blocks_ = 1;              // N
+  bool slip_and_lift_ = false;  // samples carry u_m and z_m (EngineInput::slip_and_lift)
   // Per block (block k at k - 1): half width and height (m), mass (kg), properties for the
   // energy (scene/rigid_block.h).
   std::vector<double> b_, h_, m_;

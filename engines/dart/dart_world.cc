@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <dart/collision/CollisionFilter.hpp>
+#include <dart/collision/CollisionObject.hpp>
 #include <dart/collision/dart/DARTCollisionDetector.hpp>
 #include <dart/collision/fcl/FCLCollisionDetector.hpp>
 #include <dart/config.hpp>
@@ -17,9 +18,13 @@
 #include <dart/dynamics/Skeleton.hpp>
 #include <dart/dynamics/TranslationalJoint2D.hpp>
 #include <dart/simulation/World.hpp>
+#include <functional>
+#include <limits>
 #include <mutex>
+#include <set>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "scene/stack_pose.h"
@@ -109,6 +114,68 @@ class CountingLcpSolver final : public dart::constraint::BoxedLcpSolver {
   std::int64_t* failures_;
 };
 
+// Friction from the scene. DART 6.12 has no coefficient per pair of shapes: a contact takes the
+// smaller of its two shapes' coefficients (ContactConstraint). Each interface k (block k + 1 on
+// its support) must get mu[k]; a block meets its support with its base and the block above with
+// its top. One shape per block gets there unless an interface's coefficient is below both its
+// neighbours' (then no single value of the block below it can be the smaller at both of its
+// faces): that block below is given a second shape, its top, with its own coefficient.
+struct ShapeFrictions {
+  double ground = 0.0;
+  std::vector<double> base;  // per block: its (only, or base) shape's coefficient
+  std::vector<double> top;   // per block: its top shape's coefficient; NaN: no top shape
+};
+
+// Coefficients for the shapes such that min(ground, base[0]) = mu[0] and, for k >= 1,
+// min(upper face of block k, base[k]) = mu[k], the upper face being top[k - 1] when block k has a
+// top shape and base[k - 1] otherwise. Equal coefficients everywhere give every shape that value.
+ShapeFrictions AssignShapeFrictions(const std::vector<double>& mu) {
+  const size_t n = mu.size();
+  ShapeFrictions f;
+  f.ground = mu[0];
+  f.base.assign(n, 0.0);
+  f.top.assign(n, std::numeric_limits<double>::quiet_NaN());
+  double below = f.ground;  // the support's upper face; at least mu[k] at each k
+  for (size_t k = 0; k < n; ++k) {
+    // One shape: at least both its interfaces' coefficients, and the smaller at this one.
+    const double one = k + 1 < n ? std::max(mu[k], mu[k + 1]) : mu[k];
+    if (below == mu[k] || one == mu[k]) {
+      f.base[k] = one;
+      below = one;
+    } else {
+      f.base[k] = mu[k];
+      f.top[k] = mu[k + 1];
+      below = mu[k + 1];
+    }
+  }
+  return f;
+}
+
+// The world's collision filter, then only the listed pairs of shapes (a block's base with its
+// support's upper face): with a block's top shape, its base and top must each meet one
+// neighbour only.
+class ShapePairFilter final : public dart::collision::CollisionFilter {
+ public:
+  explicit ShapePairFilter(std::shared_ptr<dart::collision::CollisionFilter> inner)
+      : inner_(std::move(inner)) {}
+  void Allow(const dart::dynamics::ShapeFrame* a, const dart::dynamics::ShapeFrame* b) {
+    allowed_.insert(Key(a, b));
+  }
+  bool ignoresCollision(const dart::collision::CollisionObject* a,
+                        const dart::collision::CollisionObject* b) const override {
+    if (inner_ && inner_->ignoresCollision(a, b)) return true;
+    return allowed_.count(Key(a->getShapeFrame(), b->getShapeFrame())) == 0;
+  }
+
+ private:
+  using Pair = std::pair<const void*, const void*>;
+  static Pair Key(const void* a, const void* b) {
+    return std::less<const void*>()(a, b) ? Pair(a, b) : Pair(b, a);
+  }
+  std::shared_ptr<dart::collision::CollisionFilter> inner_;
+  std::set<Pair> allowed_;
+};
+
 double OutOfPlaneRotation(const Eigen::Matrix3d& r) {
   return std::max({std::abs(r(2, 0)), std::abs(r(2, 1)), std::abs(r(0, 2)), std::abs(r(1, 2))});
 }
@@ -141,6 +208,10 @@ struct DartWorld::Impl {
   std::vector<dart::dynamics::SkeletonPtr> skels;
   std::vector<dart::dynamics::BodyNode*> blocks;
   std::vector<double> z;
+  // The ground's shape; per block, its base shape and its top shape (null: the base is its top
+  // too; ShapeFrictions).
+  dart::dynamics::ShapeNode* ground_shape = nullptr;
+  std::vector<dart::dynamics::ShapeNode*> base_shapes, top_shapes;
   bool params_acquired = false;
   // Diagnostics.
   std::int64_t steps = 0, primary_calls = 0, primary_failures = 0, fallback_calls = 0,
@@ -149,14 +220,18 @@ struct DartWorld::Impl {
 
   Impl(const EngineInput& input, const DartSettings& settings) : in(input), s(settings) {}
 
+  // Block `name` (its skeleton into *skel) with its base shape of friction `base_mu` and, when
+  // top_mu is a number, a top shape of friction top_mu (the same box).
   dart::dynamics::BodyNode* MakeBlock(const std::string& name, const BlockDef& def,
                                       const PlanarPose& pose, double ux0, double uy0, double gvx,
-                                      double gvy, dart::dynamics::SkeletonPtr* skel);
+                                      double gvy, double base_mu, double top_mu,
+                                      dart::dynamics::SkeletonPtr* skel);
 };
 
 dart::dynamics::BodyNode* DartWorld::Impl::MakeBlock(const std::string& name, const BlockDef& def,
                                                      const PlanarPose& pose, double ux0, double uy0,
-                                                     double gvx, double gvy,
+                                                     double gvx, double gvy, double base_mu,
+                                                     double top_mu,
                                                      dart::dynamics::SkeletonPtr* skel) {
   using namespace dart::dynamics;
   *skel = Skeleton::create(name);
@@ -167,8 +242,16 @@ dart::dynamics::BodyNode* DartWorld::Impl::MakeBlock(const std::string& name, co
   auto shape = std::make_shared<BoxShape>(Eigen::Vector3d(def.width_m, def.height_m, def.depth_m));
   ShapeNode* node =
       body->createShapeNodeWith<CollisionAspect, DynamicsAspect>(shape, name + "_shape");
-  node->getDynamicsAspect()->setFrictionCoeff(s.friction);
+  node->getDynamicsAspect()->setFrictionCoeff(base_mu);
   node->getDynamicsAspect()->setRestitutionCoeff(s.restitution);
+  base_shapes.push_back(node);
+  ShapeNode* top = nullptr;
+  if (!std::isnan(top_mu)) {
+    top = body->createShapeNodeWith<CollisionAspect, DynamicsAspect>(shape, name + "_top_shape");
+    top->getDynamicsAspect()->setFrictionCoeff(top_mu);
+    top->getDynamicsAspect()->setRestitutionCoeff(s.restitution);
+  }
+  top_shapes.push_back(top);
   body->setInertia(
       Inertia(def.mass_kg, Eigen::Vector3d::Zero(), shape->computeInertia(def.mass_kg)));
   // No damping, no spring: PlanarJoint's defaults are zero; the coordinates are (x, y, phi) of
@@ -230,6 +313,12 @@ DartWorld::DartWorld(const EngineInput& input, const DartSettings& settings)
   }
   solver->getCollisionOption().maxNumContacts = static_cast<std::size_t>(m.s.max_contacts);
 
+  // Friction from the scene: each interface's coefficient (the block's where finite, else the
+  // settings'), given by the shapes' coefficients under DART's rule (ShapeFrictions).
+  const int n = m.in.block_count();
+  std::vector<double> mu(static_cast<size_t>(n));
+  for (int k = 0; k < n; ++k) mu[k] = InterfaceFriction(m.in, k, m.s.friction);
+  const ShapeFrictions friction = AssignShapeFrictions(mu);
   double size = 0.5, depth = 0.0;  // the largest half size and depth of a block
   for (const BlockDef& def : m.in.blocks) {
     size = std::max({size, 0.5 * def.width_m, 0.5 * def.height_m});
@@ -250,8 +339,9 @@ DartWorld::DartWorld(const EngineInput& input, const DartSettings& settings)
         Eigen::Vector3d(80.0 * size, m.s.ground_depth_m, 2.0 * (depth + 1.0)));
     ShapeNode* node =
         body->createShapeNodeWith<CollisionAspect, DynamicsAspect>(shape, "ground_shape");
-    node->getDynamicsAspect()->setFrictionCoeff(m.s.friction);
+    node->getDynamicsAspect()->setFrictionCoeff(friction.ground);
     node->getDynamicsAspect()->setRestitutionCoeff(m.s.restitution);
+    m.ground_shape = node;
     // The box's centre is half its thickness below the body frame, the ground's reference point.
     Eigen::Isometry3d offset = Eigen::Isometry3d::Identity();
     offset.translation() = Eigen::Vector3d(0.0, -0.5 * m.s.ground_depth_m, 0.0);
@@ -271,11 +361,11 @@ DartWorld::DartWorld(const EngineInput& input, const DartSettings& settings)
   const double uy0 = m.kinematic ? m.in.drive.uy_m.front() : 0.0;
   const double gvx = m.kinematic ? m.in.drive.ux0_mps : 0.0;
   const double gvy = m.kinematic ? m.in.drive.uy0_mps : 0.0;
-  const int n = m.in.block_count();
   m.skels.resize(static_cast<size_t>(n));
   for (int k = 0; k < n; ++k) {
     m.blocks.push_back(m.MakeBlock(std::string("block") + std::to_string(k + 1), m.in.blocks[k],
-                                   place.blocks[k], ux0, uy0, gvx, gvy, &m.skels[k]));
+                                   place.blocks[k], ux0, uy0, gvx, gvy, friction.base[k],
+                                   friction.top[k], &m.skels[k]));
     m.z.push_back(m.blocks[k]->getCOM().z());
   }
   if (n >= 3) {
@@ -293,6 +383,18 @@ DartWorld::DartWorld(const EngineInput& input, const DartSettings& settings)
     for (int i = 0; i < n; ++i) {
       for (int j = i + 2; j < n; ++j) filter->addBodyNodePairToBlackList(m.blocks[i], m.blocks[j]);
     }
+  }
+  if (std::any_of(m.top_shapes.begin(), m.top_shapes.end(), [](auto* p) { return p != nullptr; })) {
+    // A block with a top shape: each block's base meets its support's upper face only (a top
+    // shape needs three or more blocks, whose other pairs the blacklist above leaves out).
+    auto& option = solver->getCollisionOption();
+    auto filter = std::make_shared<ShapePairFilter>(option.collisionFilter);
+    filter->Allow(m.ground_shape, m.base_shapes[0]);
+    for (int k = 1; k < n; ++k) {
+      filter->Allow(m.top_shapes[k - 1] ? m.top_shapes[k - 1] : m.base_shapes[k - 1],
+                    m.base_shapes[k]);
+    }
+    option.collisionFilter = filter;
   }
 
   AcquireContactParams({m.s.erp, m.s.error_allowance_m, m.s.max_erv_mps, m.s.cfm});
@@ -396,6 +498,21 @@ nlohmann::json DartWorld::Settings() const {
   j["joint"] = "PlanarJoint (x-y plane) per block";
   // Three or more blocks: contacts between neighbours only (two: block 2 and the ground too).
   if (m.blocks.size() >= 3) j["collision_pairs"] = "neighbours";
+  // Friction from the scene: each interface's coefficient as DART combines the shapes' values
+  // in force (the smaller), block 1 on the ground first.
+  if (HasFiniteFriction(m.in)) {
+    auto mu_of = [](const dart::dynamics::ShapeNode* node) {
+      return node->getDynamicsAspect()->getFrictionCoeff();
+    };
+    nlohmann::json mu = nlohmann::json::array();
+    for (size_t k = 0; k < m.blocks.size(); ++k) {
+      const dart::dynamics::ShapeNode* face =
+          k == 0 ? m.ground_shape
+                 : (m.top_shapes[k - 1] ? m.top_shapes[k - 1] : m.base_shapes[k - 1]);
+      mu.push_back(std::min(mu_of(face), mu_of(m.base_shapes[k])));
+    }
+    j["interface_friction"] = mu;
+  }
   j["integrator"] = "semi-implicit Euler (DART World::step)";
   return j;
 }

@@ -134,6 +134,31 @@ std::string BlockMjcf(const std::string& name, const BlockDef& b) {
   return s;
 }
 
+// Friction from the scene: each interface whose block has a finite friction is an explicit
+// contact pair with exactly that coefficient (MuJoCo would combine two geoms' values by their
+// maximum), its other parameters those the geoms' defaults give the dynamic pair (condim 3, the
+// contact's solref and solimp, margin and gap 0); a coefficient of 0 is a frictionless pair
+// (condim 1: MuJoCo's friction is at least mjMINMU). The dynamic pair of the same two bodies is
+// excluded. Empty when every block's friction is infinite.
+std::string SceneFrictionPairs(const EngineInput& in, const ContactParams& c) {
+  std::string x;
+  for (int k = 0; k < in.block_count(); ++k) {
+    const double mu = in.blocks[k].friction;
+    if (!std::isfinite(mu)) continue;
+    const std::string upper = std::string("block") + std::to_string(k + 1);
+    const std::string lower =
+        k == 0 ? std::string("ground") : std::string("block") + std::to_string(k);
+    const std::string lower_body = k == 0 ? std::string("world") : lower;
+    x += std::string("    <exclude body1=\"") + lower_body + "\" body2=\"" + upper + "\"/>\n";
+    x += std::string("    <pair geom1=\"") + lower + "\" geom2=\"" + upper + "\" condim=\"" +
+         (mu > 0.0 ? "3" : "1") + "\" friction=\"" + Num(mu) + " " + Num(mu) +
+         " 0.005 0.0001 0.0001\" solref=\"" + Num(c.solref[0]) + " " + Num(c.solref[1]) +
+         "\" solimp=\"" + Num(c.solimp[0]) + " " + Num(c.solimp[1]) + " " + Num(c.solimp[2]) + " " +
+         Num(c.solimp[3]) + " " + Num(c.solimp[4]) + "\" margin=\"0\" gap=\"0\"/>\n";
+  }
+  return x;
+}
+
 std::string ModelMjcf(const EngineInput& in, const MujocoSettings& s) {
   const ContactParams c = ContactParamsOf(s, in.time_step_s);
   std::string x;
@@ -170,22 +195,24 @@ std::string ModelMjcf(const EngineInput& in, const MujocoSettings& s) {
   for (int k = 0; k < blocks; ++k)
     x += BlockMjcf(std::string("block") + std::to_string(k + 1), in.blocks[k]);
   x += "  </worldbody>\n";
+  std::string contact;
   if (blocks >= 3) {
     // Three or more blocks: contacts between neighbours only (block 1 and the ground, block k
     // and block k - 1), as the model; every other pair excluded. (Two blocks keep block 2 and
     // the ground, as before issue 23.)
-    x += "  <contact>\n";
     for (int k = 2; k <= blocks; ++k) {
-      x += std::string("    <exclude body1=\"world\" body2=\"block") + std::to_string(k) + "\"/>\n";
+      contact +=
+          std::string("    <exclude body1=\"world\" body2=\"block") + std::to_string(k) + "\"/>\n";
     }
     for (int i = 1; i <= blocks; ++i) {
       for (int j = i + 2; j <= blocks; ++j) {
-        x += std::string("    <exclude body1=\"block") + std::to_string(i) + "\" body2=\"block" +
-             std::to_string(j) + "\"/>\n";
+        contact += std::string("    <exclude body1=\"block") + std::to_string(i) +
+                   "\" body2=\"block" + std::to_string(j) + "\"/>\n";
       }
     }
-    x += "  </contact>\n";
   }
+  contact += SceneFrictionPairs(in, c);
+  if (!contact.empty()) x += std::string("  <contact>\n") + contact + "  </contact>\n";
   x += "</mujoco>\n";
   return x;
 }
@@ -350,6 +377,28 @@ nlohmann::json MujocoWorld::Settings() const {
   j["warmstart"] = (m_->opt.disableflags & mjDSBL_WARMSTART) == 0;
   // Three or more blocks: contacts between neighbours only (two: block 2 and the ground too).
   if (qpos_.size() >= 3) j["collision_pairs"] = "neighbours";
+  // Friction from the scene: each interface's coefficient as the compiled model has it, block 1
+  // on the ground first: its explicit pair's (0 for a frictionless one), else the larger of the
+  // two geoms' (MuJoCo's rule for a dynamic pair).
+  if (HasFiniteFriction(in_)) {
+    auto geom = [this](int k) {
+      const std::string name =
+          k == 0 ? std::string("ground") : std::string("block") + std::to_string(k);
+      return mj_name2id(m_, mjOBJ_GEOM, name.c_str());
+    };
+    nlohmann::json mu = nlohmann::json::array();
+    for (int k = 0; k < in_.block_count(); ++k) {
+      const int lower = geom(k), upper = geom(k + 1);
+      double v = std::max(m_->geom_friction[3 * lower], m_->geom_friction[3 * upper]);
+      for (int p = 0; p < m_->npair; ++p) {
+        if (m_->pair_geom1[p] == lower && m_->pair_geom2[p] == upper) {
+          v = m_->pair_dim[p] == 1 ? 0.0 : m_->pair_friction[5 * p];
+        }
+      }
+      mu.push_back(v);
+    }
+    j["interface_friction"] = mu;
+  }
   return j;
 }
 

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <mutex>
 #include <stdexcept>
 #include <string>
@@ -225,17 +226,19 @@ void OdeWorld::ApplyDrive(std::int64_t n) {
   dBodySetLinearVel(ground_body_, (nx - ux) / dt_, (ny - uy) / dt_, 0);
 }
 
-int OdeWorld::Collide(dxGeom* a, dxGeom* b, dxBody* body_a, dxBody* body_b) {
+int OdeWorld::Collide(dxGeom* a, dxGeom* b, dxBody* body_a, dxBody* body_b, double scene_mu) {
+  // The scene's coefficient wins: Coulomb's law with that mu (the pyramid is exact in the plane).
+  const bool scene_friction = std::isfinite(scene_mu);
   dContact contact[8];
   const int n = dCollide(a, b, s_.max_contacts, &contact[0].geom, sizeof(dContact));
   for (int k = 0; k < n; ++k) {
     dContact& c = contact[k];
     dSurfaceParameters& sp = c.surface;
     sp.mode = dContactSoftERP | dContactSoftCFM;
-    sp.mu = s_.friction;
+    sp.mu = scene_friction ? scene_mu : s_.friction;
     sp.soft_erp = s_.contact_erp;
     sp.soft_cfm = s_.contact_cfm;
-    if (s_.friction_pyramid) sp.mode |= dContactApprox1;
+    if (scene_friction || s_.friction_pyramid) sp.mode |= dContactApprox1;
     if (s_.restitution > 0.0) {
       sp.mode |= dContactBounce;
       sp.bounce = s_.restitution;
@@ -290,16 +293,20 @@ void OdeWorld::Step() {
     thread_ = std::this_thread::get_id();
   }
   // Neighbours only, bottom first: block 1 on the ground, block k on block k - 1.
-  contacts_ground_ = Collide(geoms_[0], ground_geom_, bodies_[0], ground_body_);
+  contacts_ground_ =
+      Collide(geoms_[0], ground_geom_, bodies_[0], ground_body_, in_.blocks[0].friction);
   contacts_interface_ = 0;
   contacts_block2_ground_ = 0;
   for (size_t k = 1; k < bodies_.size(); ++k) {
-    contacts_interface_ += Collide(geoms_[k], geoms_[k - 1], bodies_[k], bodies_[k - 1]);
+    contacts_interface_ +=
+        Collide(geoms_[k], geoms_[k - 1], bodies_[k], bodies_[k - 1], in_.blocks[k].friction);
   }
   if (bodies_.size() == 2) {
     // Two blocks: also block 2 on the ground, once it has fallen off block 1 (as before issue
-    // 23, so that their runs keep their bytes; Bullet's two blocks collide every pair too).
-    contacts_block2_ground_ = Collide(geoms_[1], ground_geom_, bodies_[1], ground_body_);
+    // 23, so that their runs keep their bytes; Bullet's two blocks collide every pair too). Not
+    // an interface of the model: the settings' friction.
+    contacts_block2_ground_ = Collide(geoms_[1], ground_geom_, bodies_[1], ground_body_,
+                                      std::numeric_limits<double>::infinity());
   }
   int ok = 0;
   if (s_.stepper == OdeStepper::kQuickStep) {
@@ -366,6 +373,15 @@ nlohmann::json OdeWorld::Settings() const {
       s_.friction_pyramid
           ? "pyramid (dContactApprox1: mu times the normal force)"
           : (std::isfinite(s_.friction) ? "box (constant bound mu, N)" : "unbounded (never slips)");
+  // Friction from the scene: each interface's coefficient (Coulomb's pyramid where the scene
+  // sets it), block 1 on the ground first.
+  if (HasFiniteFriction(in_)) {
+    nlohmann::json mu = nlohmann::json::array();
+    for (int k = 0; k < in_.block_count(); ++k) {
+      mu.push_back(finite_or_null(InterfaceFriction(in_, k, s_.friction)));
+    }
+    j["interface_friction"] = mu;
+  }
   j["restitution"] = s_.restitution;
   j["max_contacts"] = s_.max_contacts;
   j["finite_rotation"] = s_.finite_rotation;

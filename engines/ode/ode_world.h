@@ -71,7 +71,11 @@ class OdeWorld {
   int last_contacts_block2_ground() const { return contacts_block2_ground_; }
 
  private:
-  int Collide(dxGeom* a, dxGeom* b, dxBody* body_a, dxBody* body_b);
+  // Contact joints between geoms a and b (bodies body_a, body_b; null: the static ground) at
+  // the current poses; returns their number. `scene_mu`: the pair's Coulomb coefficient from the
+  // scene (finite: Coulomb's pyramid, dContactApprox1, with that mu), infinite: the settings'
+  // friction and friction_pyramid.
+  int Collide(dxGeom* a, dxGeom* b, dxBody* body_a, dxBody* body_b, double scene_mu);
   // A bound on |omega| dt any block can reach in the next step, rad: the fastest point of a
   // block (|v| + |omega| times its half-diagonal) plus the effective gravity (and, kinematic, the
   // ground's speed) times dt, over the smallest half-size of a block, times dt. Contact impulses

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <limits>
+#include <map>
 #include <stdexcept>
 
 namespace rockbench::siconos_engine {
@@ -219,7 +220,11 @@ SiconosSystem::SiconosSystem(const SiconosSystemConfig& config) : impl_(std::mak
   m.cfg = config;
   const SiconosSystemConfig& c = m.cfg;
   if (c.blocks.empty()) throw std::invalid_argument("siconos: no block");
-  if (!(std::isfinite(c.friction) && c.friction >= 0.0)) {
+  const auto finite_mu = [](double mu) { return std::isfinite(mu) && mu >= 0.0; };
+  if (!finite_mu(c.friction) ||
+      !std::all_of(c.blocks.begin(), c.blocks.end(), [&](const SiconosBlock& b) {
+        return std::isnan(b.friction) || finite_mu(b.friction);
+      })) {
     throw std::invalid_argument("siconos: friction must be finite in the contact problem");
   }
   if (openblas_set_num_threads != nullptr) openblas_set_num_threads(1);
@@ -249,10 +254,19 @@ SiconosSystem::SiconosSystem(const SiconosSystemConfig& config) : impl_(std::mak
           std::make_shared<BoundaryCondition>(indices, m.ground_velocity));
       m.nsds->insertDynamicalSystem(m.ground);
     }
-    auto nslaw = std::make_shared<NewtonImpactFrictionNSL>(c.restitution, 0.0, c.friction, 2);
+    // One law per coefficient: the config's, and each block's own (its base corners' contacts).
+    std::map<double, SP::NewtonImpactFrictionNSL> laws;
+    laws[c.friction] = std::make_shared<NewtonImpactFrictionNSL>(c.restitution, 0.0, c.friction, 2);
+    const auto law_of = [&](double mu) {
+      SP::NewtonImpactFrictionNSL& law = laws[mu];
+      if (!law) law = std::make_shared<NewtonImpactFrictionNSL>(c.restitution, 0.0, mu, 2);
+      return law;
+    };
     const double kWide = 1e9;  // the ground's face has no ends
     for (size_t i = 0; i < c.blocks.size(); ++i) {
       const SiconosBlock& b = c.blocks[i];
+      const SP::NewtonImpactFrictionNSL nslaw =
+          law_of(std::isnan(b.friction) ? c.friction : b.friction);
       for (const double side : {-1.0, 1.0}) {
         SP::Interaction inter;
         if (i == 0) {

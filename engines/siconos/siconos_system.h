@@ -14,6 +14,7 @@
 /// 2-D FrictionContact problem. With the kinematic drive the ground is a third dynamical system
 /// whose velocity is prescribed (BoundaryCondition) and whose position is set each step.
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -32,6 +33,9 @@ enum class SiconosSolver {
 struct SiconosBlock {
   double b_m = 0.0, h_m = 0.0, mass_kg = 0.0, inertia_kgm2 = 0.0;
   double x_m = 0.0, y_m = 0.0, phi_rad = 0.0, vx_mps = 0.0, vy_mps = 0.0, w_radps = 0.0;
+  /// Coulomb mu of its base corners' contacts with its support (finite); NaN: the config's
+  /// friction.
+  double friction = std::numeric_limits<double>::quiet_NaN();
 };
 
 struct SiconosSystemConfig {
@@ -39,7 +43,7 @@ struct SiconosSystemConfig {
   double time_step_s = 1e-4;
   double theta = 0.5;        ///< Moreau-Jean theta
   double restitution = 0.0;  ///< Newton's normal restitution e
-  double friction = 10.0;    ///< Coulomb mu (finite)
+  double friction = 10.0;    ///< Coulomb mu (finite) of every block without its own
   SiconosSolver solver = SiconosSolver::kLemke;
   double solver_tolerance = 1e-6;
   int solver_max_iterations = 10000;

@@ -59,6 +59,8 @@ SiconosWorld::SiconosWorld(const EngineInput& input, const SiconosSettings& sett
   SiconosSystemConfig c;
   for (int k = 0; k < in_.block_count(); ++k) {
     c.blocks.push_back(Block(in_.blocks[k], place.blocks[k], ux0, uy0, gvx, gvy));
+    // Friction from the scene: the law of block k's base contacts has its coefficient.
+    if (std::isfinite(in_.blocks[k].friction)) c.blocks.back().friction = in_.blocks[k].friction;
   }
   c.time_step_s = in_.time_step_s;
   c.theta = s_.theta;
@@ -156,6 +158,14 @@ nlohmann::json SiconosWorld::Settings() const {
   j["kinematic_highpass_hz"] = in_.kinematic_highpass_hz;
   j["integrator"] = "Moreau-Jean time stepping (TimeStepping + MoreauJeanOSI)";
   j["contact"] = "FrictionContact (2-D), NewtonImpactFrictionNSL per bottom corner";
+  // Friction from the scene: each interface's coefficient (its contacts' law), block 1 on the
+  // ground first.
+  if (HasFiniteFriction(in_)) {
+    nlohmann::json mu = nlohmann::json::array();
+    for (int k = 0; k < in_.block_count(); ++k)
+      mu.push_back(InterfaceFriction(in_, k, s_.friction));
+    j["interface_friction"] = mu;
+  }
   return j;
 }
 

@@ -150,6 +150,39 @@ TEST(ProtocolTest, OutputRoundTripIsBitExact) {
   EXPECT_EQ(b.wall_s, 0.125);
 }
 
+// Issue 24: each block's friction (infinity too) and the slip and lift flag go to the helper;
+// the samples' slip and lift come back, and only when the history carries them.
+TEST(ProtocolTest, FrictionAndSlipAndLiftTravel) {
+  BulletInput in = SomeInput();
+  in.blocks[0].friction = 0.2;
+  in.slip_and_lift = true;
+  const BulletInput b = ParseInput(SerializeInput(in));
+  EXPECT_EQ(b.blocks[0].friction, 0.2);
+  EXPECT_TRUE(std::isinf(b.blocks[1].friction));
+  EXPECT_TRUE(b.slip_and_lift);
+  EXPECT_FALSE(ParseInput(SerializeInput(SomeInput())).slip_and_lift);
+
+  for (const bool tracked : {false, true}) {
+    EngineResult a;
+    a.history.blocks = 2;
+    a.history.slip_and_lift = tracked;
+    Sample smp(2, tracked);
+    smp.t_s = 0.25;
+    if (tracked) {
+      smp.u_m = {-0.5, 1.0 / 3.0};
+      smp.z_m = {0.0, 2e-3};
+    }
+    a.history.samples.push_back(smp);
+    a.summary = nlohmann::json::object();
+    const EngineResult r = ParseOutput(SerializeOutput(a));
+    EXPECT_EQ(SerializeOutput(r), SerializeOutput(a));
+    EXPECT_EQ(r.history.slip_and_lift, tracked);
+    ASSERT_EQ(r.history.samples.size(), 1u);
+    EXPECT_EQ(r.history.samples[0].u_m, smp.u_m);
+    EXPECT_EQ(r.history.samples[0].z_m, smp.z_m);
+  }
+}
+
 TEST(ProtocolTest, RefusesTruncatedForeignAndStaleData) {
   const std::string bytes = SerializeInput(SomeInput());
   for (size_t cut : {size_t{0}, size_t{5}, size_t{12}, bytes.size() / 2, bytes.size() - 1}) {

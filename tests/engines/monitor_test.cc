@@ -555,5 +555,44 @@ TEST(MonitorNBlocks, AReadoutOfAnotherNumberOfBodiesIsRefused) {
   EXPECT_THROW(m.Step(1, StepReadout(4)), std::invalid_argument);
 }
 
+// Slip and lift (issue 24) as the reference defines them (docs/sliding.md): u_k the slip of
+// block k's base corner on the side of its relative tilt along its support's top face, from
+// where it stood at rest; z_k the height of its lowest base corner above that face's line. The
+// pivot chain's states have none; block 1 moved 1 cm left on the ground and block 2 moved 3 cm
+// along block 1's tilted face and 2 mm off it have exactly those; the history carries them
+// only with EngineInput::slip_and_lift.
+TEST(MonitorTest, SlipAndLiftAreTheReferencesOnTheSupportsFace) {
+  for (const bool tracked : {false, true}) {
+    EngineInput in = Input(true);
+    in.slip_and_lift = tracked;
+    Monitor m(in);
+    const double th1 = -0.1, th2 = -0.15;  // both tilted left, block 2 left on block 1
+    m.Start(At(in, 0.0, th1, 0.0, th2, 0.0));
+    EXPECT_EQ(m.history().slip_and_lift, tracked);
+    if (!tracked) {
+      EXPECT_TRUE(m.last().u_m.empty() && m.last().z_m.empty());
+      continue;
+    }
+    for (int k = 0; k < 2; ++k) {
+      EXPECT_NEAR(m.last().u_m[k], 0.0, 1e-15) << k;
+      EXPECT_NEAR(m.last().z_m[k], 0.0, 1e-15) << k;
+    }
+    StepReadout r = At(in, 1e-3, th1, 0.0, th2, 0.0);
+    for (BodyReadout& b : r.blocks) b.x_m -= 0.01;
+    // Block 1's face: tangent (cos phi1, sin phi1), normal (-sin phi1, cos phi1), phi1 = -th1.
+    const double c1 = std::cos(-th1), s1 = std::sin(-th1);
+    r.blocks[1].x_m += 0.03 * c1 - 0.002 * s1;
+    r.blocks[1].y_m += 0.03 * s1 + 0.002 * c1;
+    m.Step(1, r);
+    EXPECT_NEAR(m.last().u_m[0], -0.01, 1e-14);
+    EXPECT_NEAR(m.last().z_m[0], 0.0, 1e-14);
+    EXPECT_NEAR(m.last().u_m[1], 0.03, 1e-14);
+    EXPECT_NEAR(m.last().z_m[1], 0.002, 1e-14);
+    m.Finish();
+    ASSERT_EQ(m.history().samples.size(), 2u);
+    EXPECT_EQ(m.history().samples[1].u_m, m.last().u_m);
+  }
+}
+
 }  // namespace
 }  // namespace rockbench
