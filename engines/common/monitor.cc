@@ -220,7 +220,7 @@ Monitor::Derived Monitor::Derive(const StepReadout& s) {
   Derived d(blocks_, slip_and_lift_);
   d.sample.t_s = s.t_s;
   // The support of the block being read (the block below), in the base frame.
-  double xs = 0.0, ys = 0.0, cs = 1.0, ss = 0.0, hs = 0.0;
+  double xs = 0.0, ys = 0.0, cs = 1.0, ss = 0.0, hs = 0.0, bs = 0.0;
   for (int k = 0; k < blocks_; ++k) {
     const BodyReadout& r = s.blocks[k];
     // Unwrapped CCW angles; the thesis's theta is -phi.
@@ -245,18 +245,23 @@ Monitor::Derived Monitor::Derive(const StepReadout& s) {
     } else {
       d.energy_j += BlockEnergy_j(props_[k], g_, {{x, y}, {vx, vy}, r.w_radps});
       // Block k's bottom corners in block k - 1's frame: gap above its top face (y = h_(k-1)).
-      double gap = 1e300;
+      // Only a corner over that face counts: one that has slid past the face's edge hangs
+      // beside the block below, not in it (issue 24: a top block sliding off). With every corner
+      // past the edge, the gap is that of the nearer one (the block has left its support).
+      double gap = 1e300, gap_beside = 1e300;
       for (int j = -1; j <= 1; j += 2) {
         const double px = x + c * (j * b) + sn * h;  // local (j b, -h)
         const double py = y + sn * (j * b) - c * h;
         const double dx = px - xs, dy = py - ys;
+        const double lx = cs * dx + ss * dy;
         const double ly = -ss * dx + cs * dy;
-        gap = std::min(gap, ly - hs);
+        double& g = std::abs(lx) <= bs * (1.0 + 1e-9) ? gap : gap_beside;
+        g = std::min(g, ly - hs);
       }
-      d.gap_m[k] = gap;
+      d.gap_m[k] = gap < 1e300 ? gap : std::max(gap_beside, 0.0);
     }
     if (slip_and_lift_) SlipAndLift(k, x, y, c, sn, xs, ys, cs, ss, hs, &d);
-    xs = x, ys = y, cs = c, ss = sn, hs = h;
+    xs = x, ys = y, cs = c, ss = sn, hs = h, bs = b;
   }
   return d;
 }
