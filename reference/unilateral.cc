@@ -52,13 +52,6 @@ bool SolveDense(std::vector<double>& a, std::vector<double>& b, int n) {
   return true;
 }
 
-// One interface's contact option: which of its slots close and its tangential state.
-struct Option {
-  std::array<bool, 2> closed{false, false};
-  Slip slip = Slip::kStick;
-  bool operator==(const Option&) const = default;
-};
-
 }  // namespace
 
 UnilateralStack::UnilateralStack(std::vector<UnilateralBlock> blocks, double g_mps2)
@@ -293,10 +286,10 @@ namespace {
 
 // The options of one interface: its slots at a zero gap closed in every subset, each with the
 // tangential states its friction and slip rate allow.
-std::vector<Option> OptionsOf(const std::array<SlotKinematics, 2>& s,
-                              const std::array<bool, 2>& zero, double mu, bool slipping,
-                              double slip_rate) {
-  std::vector<Option> out;
+std::vector<ContactOption> ContactOptionsOf(const std::array<SlotKinematics, 2>& s,
+                                            const std::array<bool, 2>& zero, double mu,
+                                            bool slipping, double slip_rate) {
+  std::vector<ContactOption> out;
   std::vector<Slip> tangential;
   if (std::isinf(mu)) {
     tangential = {Slip::kStick};
@@ -325,7 +318,8 @@ namespace {
 // from the preferred option (index 0 of each list), calling try_one until it returns true (stop)
 // or `limit` combinations were tried. Returns the number tried.
 template <class F>
-long Enumerate(const std::vector<std::vector<Option>>& options, long limit, const F& try_one) {
+long Enumerate(const std::vector<std::vector<ContactOption>>& options, long limit,
+               const F& try_one) {
   const int n = static_cast<int>(options.size());
   std::vector<int> pick(static_cast<size_t>(n), 0);
   long tried = 0;
@@ -384,11 +378,88 @@ constexpr long kCandidateCap = 200000;
 
 }  // namespace
 
+namespace {
+
+// A constraint row w (its upper block's three entries, then its support's) times x (3 per
+// block): the relative normal or tangential rate (or acceleration, without its velocity terms)
+// of interface k's contact.
+double RowTimes(const std::array<double, 6>& w, int k, const double* x) {
+  double s = 0.0;
+  for (int i = 0; i < 3; ++i) s += w[i] * x[3 * k + i];
+  if (k > 0) {
+    for (int i = 0; i < 3; ++i) s += w[3 + i] * x[3 * (k - 1) + i];
+  }
+  return s;
+}
+
+}  // namespace
+
+ModeSolution UnilateralStack::Search(const std::vector<std::array<SlotKinematics, 2>>& slots,
+                                     const std::vector<std::array<bool, 2>>& zero,
+                                     const std::vector<std::vector<ContactOption>>& options,
+                                     const double* base, bool impact, double tol_force,
+                                     double tol_motion, double rate_tol_mps, double same_scale,
+                                     bool exhaustive) const {
+  ModeSolution best;
+  best.exhaustive = exhaustive;
+  ContactMode mode(n_);
+  // A row's value in a solution: the rate (impact) or the acceleration with its velocity terms.
+  auto row = [&](const std::array<double, 6>& w, double kappa, int k, const double* x) {
+    return RowTimes(w, k, x) + (impact ? 0.0 : kappa);
+  };
+  const long tried = Enumerate(options, kCandidateCap, [&](const std::vector<int>& pick) {
+    for (int k = 0; k < n_; ++k) {
+      const ContactOption& o = options[k][pick[k]];
+      mode.closed[k] = o.closed;
+      mode.slip[k] = o.slip;
+      mode.support_corner[k] = {!slots[k][0].upper_corner, !slots[k][1].upper_corner};
+    }
+    ModeSolution sol;
+    if (!SolveCandidate(mode, slots, base, impact, &sol)) return false;
+    const double* x = sol.result.data();
+    for (int k = 0; k < n_; ++k) {
+      const double mu = blocks_[k].friction;
+      int ref = -1;
+      for (int j = 0; j < 2; ++j) {
+        if (mode.closed[k][j]) {
+          if (ref < 0) ref = j;
+          if (sol.slot_normal[k][j] < -tol_force) return false;
+        } else if (zero[k][j] && row(slots[k][j].wn, slots[k][j].kappa_n, k, x) < -tol_motion) {
+          return false;  // left open, it would move (accelerate) into its support
+        }
+      }
+      if (ref < 0) continue;
+      if (mode.slip[k] == Slip::kStick) {
+        if (!std::isinf(mu) && std::abs(sol.tangential[k]) > mu * sol.normal[k] + tol_force) {
+          return false;
+        }
+      } else if (mu > 0.0 && (impact || std::abs(slots[k][ref].slip_rate_mps) <= rate_tol_mps)) {
+        // Friction opposes the slip after an impact; from a zero slip rate the interface must
+        // accelerate the way it slips.
+        const double t = row(slots[k][ref].wt, slots[k][ref].kappa_t, k, x);
+        if (static_cast<int>(mode.slip[k]) * t < -tol_motion) return false;
+      }
+    }
+    if (!best.found) {
+      sol.solutions = 1;
+      sol.found = true;
+      sol.exhaustive = best.exhaustive;
+      best = std::move(sol);
+      return !best.exhaustive;
+    }
+    if (!SameMotion(best.result, sol.result, same_scale, length_)) ++best.solutions;
+    return false;
+  });
+  best.candidates = tried;
+  if (!best.found) best.mode = ContactMode(n_);
+  return best;
+}
+
 ModeSolution UnilateralStack::Solve(const double* q, const double* v, double xg_mps2,
                                     double yg_mps2, const ContactMode& hint, double gap_tol_m,
                                     double rate_tol_mps, long exhaustive_limit) const {
   std::vector<std::array<SlotKinematics, 2>> slots(static_cast<size_t>(n_));
-  std::vector<std::vector<Option>> options(static_cast<size_t>(n_));
+  std::vector<std::vector<ContactOption>> options(static_cast<size_t>(n_));
   std::vector<std::array<bool, 2>> zero(static_cast<size_t>(n_));
   long total = 1;
   for (int k = 0; k < n_; ++k) {
@@ -405,10 +476,10 @@ ModeSolution UnilateralStack::Solve(const double* q, const double* v, double xg_
       if (zero[k][j]) rate = slots[k][j].slip_rate_mps;
     }
     const bool slipping = std::abs(rate) > rate_tol_mps;
-    options[k] = OptionsOf(slots[k], zero[k], blocks_[k].friction, slipping, rate);
+    options[k] = ContactOptionsOf(slots[k], zero[k], blocks_[k].friction, slipping, rate);
     // The hint's option first when it is one of them.
     if (k < static_cast<int>(hint.closed.size())) {
-      const Option want{hint.closed[k], hint.any_closed(k) ? hint.slip[k] : Slip::kStick};
+      const ContactOption want{hint.closed[k], hint.any_closed(k) ? hint.slip[k] : Slip::kStick};
       const auto it = std::find(options[k].begin(), options[k].end(), want);
       if (it != options[k].end()) std::rotate(options[k].begin(), it, it + 1);
     }
@@ -419,68 +490,14 @@ ModeSolution UnilateralStack::Solve(const double* q, const double* v, double xg_
     free[3 * i] = -xg_mps2;
     free[3 * i + 1] = -(g_ + yg_mps2);
   }
-  const double tol_f = 1e-9 * weight_;
-  const double tol_a = 1e-9 * g_;
-  ModeSolution best;
-  best.exhaustive = total <= exhaustive_limit;
-  ContactMode mode(n_);
-  auto rel_acc = [&](const std::array<double, 6>& w, double kappa, int k, const double* a) {
-    double s = kappa;
-    for (int i = 0; i < 3; ++i) s += w[i] * a[3 * k + i];
-    if (k > 0) {
-      for (int i = 0; i < 3; ++i) s += w[3 + i] * a[3 * (k - 1) + i];
-    }
-    return s;
-  };
-  const long tried = Enumerate(options, kCandidateCap, [&](const std::vector<int>& pick) {
-    for (int k = 0; k < n_; ++k) {
-      const Option& o = options[k][pick[k]];
-      mode.closed[k] = o.closed;
-      mode.slip[k] = o.slip;
-      mode.support_corner[k] = {!slots[k][0].upper_corner, !slots[k][1].upper_corner};
-    }
-    ModeSolution sol;
-    if (!SolveCandidate(mode, slots, free.data(), false, &sol)) return false;
-    const double* a = sol.result.data();
-    for (int k = 0; k < n_; ++k) {
-      const double mu = blocks_[k].friction;
-      int ref = -1;
-      for (int j = 0; j < 2; ++j) {
-        if (mode.closed[k][j]) {
-          if (ref < 0) ref = j;
-          if (sol.slot_normal[k][j] < -tol_f) return false;
-        } else if (zero[k][j] && rel_acc(slots[k][j].wn, slots[k][j].kappa_n, k, a) < -tol_a) {
-          return false;  // it must open, but accelerates into its support
-        }
-      }
-      if (ref < 0) continue;
-      if (mode.slip[k] == Slip::kStick) {
-        if (!std::isinf(mu) && std::abs(sol.tangential[k]) > mu * sol.normal[k] + tol_f) {
-          return false;
-        }
-      } else if (mu > 0.0 && std::abs(slots[k][ref].slip_rate_mps) <= rate_tol_mps) {
-        // From a zero slip rate the interface must accelerate the way it slips.
-        const double at = rel_acc(slots[k][ref].wt, slots[k][ref].kappa_t, k, a);
-        if (static_cast<int>(mode.slip[k]) * at < -tol_a) return false;
-      }
-    }
-    if (!best.found) {
-      sol.solutions = 1;
-      sol.found = true;
-      sol.exhaustive = best.exhaustive;
-      best = std::move(sol);
-      return !best.exhaustive;
-    }
-    if (!SameMotion(best.result, sol.result, g_, length_)) ++best.solutions;
-    return false;
-  });
-  best.candidates = tried;
+  ModeSolution best = Search(slots, zero, options, free.data(), false, 1e-9 * weight_, 1e-9 * g_,
+                             rate_tol_mps, g_, total <= exhaustive_limit);
   if (!best.found) {
-    best.mode = ContactMode(n_);
-    best.note = tried >= kCandidateCap ? "the contact search stopped after " +
-                                             std::to_string(kCandidateCap) + " states"
-                                       : "no contact state satisfies Coulomb's and the "
-                                         "contact conditions (Painleve: no solution)";
+    best.note =
+        best.candidates >= kCandidateCap
+            ? "the contact search stopped after " + std::to_string(kCandidateCap) + " states"
+            : "no contact state satisfies Coulomb's and the contact conditions "
+              "(Painleve: no solution)";
   } else if (best.solutions > 1) {
     best.note = std::to_string(best.solutions) +
                 " contact states give different motions (Painleve: several solutions)";
@@ -492,7 +509,7 @@ ModeSolution UnilateralStack::SolveImpact(const double* q, const double* v_minus
                                           const ContactMode& hint, double gap_tol_m,
                                           double rest_rate_mps, long exhaustive_limit) const {
   std::vector<std::array<SlotKinematics, 2>> slots(static_cast<size_t>(n_));
-  std::vector<std::vector<Option>> options(static_cast<size_t>(n_));
+  std::vector<std::vector<ContactOption>> options(static_cast<size_t>(n_));
   std::vector<std::array<bool, 2>> zero(static_cast<size_t>(n_));
   long total = 1;
   double v_scale = 0.0, p_scale = 0.0;
@@ -508,72 +525,19 @@ ModeSolution UnilateralStack::SolveImpact(const double* q, const double* v_minus
       zero[k][j] = slots[k][j].exists && slots[k][j].gap_m <= gap_tol_m;
     }
     // After an impact any tangential state may follow (the impulses decide).
-    options[k] = OptionsOf(slots[k], zero[k], blocks_[k].friction, false, 0.0);
+    options[k] = ContactOptionsOf(slots[k], zero[k], blocks_[k].friction, false, 0.0);
     if (k < static_cast<int>(hint.closed.size())) {
       // Preferred: every zero slot closed, the hint's tangential state.
-      const Option want{zero[k], hint.any_closed(k) ? hint.slip[k] : Slip::kStick};
+      const ContactOption want{zero[k], hint.any_closed(k) ? hint.slip[k] : Slip::kStick};
       const auto it = std::find(options[k].begin(), options[k].end(), want);
       if (it != options[k].end()) std::rotate(options[k].begin(), it, it + 1);
     }
     total = std::min(total * static_cast<long>(options[k].size()), kCandidateCap + 1);
   }
-  const double tol_p = 1e-9 * p_scale + 1e-300;
-  const double tol_v = 1e-9 * v_scale + 1e-300;
-  ModeSolution best;
-  best.exhaustive = total <= exhaustive_limit;
-  ContactMode mode(n_);
-  auto rel = [&](const std::array<double, 6>& w, int k, const double* x) {
-    double s = 0.0;
-    for (int i = 0; i < 3; ++i) s += w[i] * x[3 * k + i];
-    if (k > 0) {
-      for (int i = 0; i < 3; ++i) s += w[3 + i] * x[3 * (k - 1) + i];
-    }
-    return s;
-  };
-  const long tried = Enumerate(options, kCandidateCap, [&](const std::vector<int>& pick) {
-    for (int k = 0; k < n_; ++k) {
-      const Option& o = options[k][pick[k]];
-      mode.closed[k] = o.closed;
-      mode.slip[k] = o.slip;
-      mode.support_corner[k] = {!slots[k][0].upper_corner, !slots[k][1].upper_corner};
-    }
-    ModeSolution sol;
-    if (!SolveCandidate(mode, slots, v_minus, true, &sol)) return false;
-    const double* vp = sol.result.data();
-    for (int k = 0; k < n_; ++k) {
-      const double mu = blocks_[k].friction;
-      int ref = -1;
-      for (int j = 0; j < 2; ++j) {
-        if (mode.closed[k][j]) {
-          if (ref < 0) ref = j;
-          if (sol.slot_normal[k][j] < -tol_p) return false;
-        } else if (zero[k][j] && rel(slots[k][j].wn, k, vp) < -tol_v) {
-          return false;  // left open, it would move into its support
-        }
-      }
-      if (ref < 0) continue;
-      if (mode.slip[k] == Slip::kStick) {
-        if (!std::isinf(mu) && std::abs(sol.tangential[k]) > mu * sol.normal[k] + tol_p) {
-          return false;
-        }
-      } else if (mu > 0.0) {
-        // Friction opposes the slip after the impact.
-        if (static_cast<int>(mode.slip[k]) * rel(slots[k][ref].wt, k, vp) < -tol_v) return false;
-      }
-    }
-    if (!best.found) {
-      sol.solutions = 1;
-      sol.found = true;
-      sol.exhaustive = best.exhaustive;
-      best = std::move(sol);
-      return !best.exhaustive;
-    }
-    if (!SameMotion(best.result, sol.result, std::max(v_scale, 1e-300), length_)) ++best.solutions;
-    return false;
-  });
-  best.candidates = tried;
+  ModeSolution best =
+      Search(slots, zero, options, v_minus, true, 1e-9 * p_scale + 1e-300, 1e-9 * v_scale + 1e-300,
+             0.0, std::max(v_scale, 1e-300), total <= exhaustive_limit);
   if (!best.found) {
-    best.mode = ContactMode(n_);
     best.result.assign(v_minus, v_minus + 3 * n_);
     best.note = "no impact outcome satisfies Coulomb's and the contact conditions";
     return best;
@@ -587,7 +551,7 @@ ModeSolution UnilateralStack::SolveImpact(const double* q, const double* v_minus
   for (int k = 0; k < n_; ++k) {
     for (int j = 0; j < 2; ++j) {
       if (zero[k][j] && !best.mode.closed[k][j] &&
-          rel(slots[k][j].wn, k, best.result.data()) < rest_rate_mps) {
+          RowTimes(slots[k][j].wn, k, best.result.data()) < rest_rate_mps) {
         if (!held.any_closed(k)) held.slip[k] = Slip::kStick;
         held.closed[k][j] = true;
         rest = true;

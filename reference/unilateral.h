@@ -56,6 +56,14 @@ namespace rockbench::reference {
 /// right (+1) or the left (-1) relative to it.
 enum class Slip : int8_t { kLeft = -1, kStick = 0, kRight = 1 };
 
+/// One interface's contact option in the search: which of its slots close and its tangential
+/// state.
+struct ContactOption {
+  std::array<bool, 2> closed{false, false};
+  Slip slip = Slip::kStick;
+  bool operator==(const ContactOption&) const = default;
+};
+
 /// One block: half width b, half height h (m), mass (kg), central inertia (kg m^2), and the
 /// friction coefficient of its base on its support (infinity: never slips).
 struct UnilateralBlock {
@@ -188,6 +196,17 @@ class UnilateralStack {
   Configuration ConfigurationOf(const ContactMode& mode, const double* q) const;
 
  private:
+  // The complementarity problem over `options` (per interface, the preferred first), at the
+  // acceleration level (base = M^-1 f, the rows' velocity terms added) or the velocity level
+  // (impact: base = v-): each contact state's equations solved and its conditions checked
+  // (forces to tol_force, rates or accelerations to tol_motion; a slip's direction checked from
+  // a zero slip rate, or always after an impact); with `exhaustive`, every state is tried and
+  // the different motions (to 1e-6 of same_scale) counted.
+  ModeSolution Search(const std::vector<std::array<SlotKinematics, 2>>& slots,
+                      const std::vector<std::array<bool, 2>>& zero,
+                      const std::vector<std::vector<ContactOption>>& options, const double* base,
+                      bool impact, double tol_force, double tol_motion, double rate_tol_mps,
+                      double same_scale, bool exhaustive) const;
   // The candidate's equations solved: false when singular.
   bool SolveCandidate(const ContactMode& mode, const std::vector<std::array<SlotKinematics, 2>>& s,
                       const double* rhs_base, bool impact, ModeSolution* out) const;

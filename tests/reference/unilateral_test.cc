@@ -10,6 +10,7 @@
 #include <random>
 #include <string>
 
+#include "common/rectangular_pulse.h"
 #include "reference/benchmarks/sliding_forms.h"
 #include "reference/simulate.h"
 #include "scene/ground_motion.h"
@@ -35,13 +36,7 @@ Scene BlockUnderPulse(double B, double H, double mu, double a_g, double t0, doub
   s.run.duration_s = duration_s;
   s.run.gravity_mps2 = kG;
   s.compare.members = 0;
-  MotionDef d;
-  d.key = "base.horizontal";
-  d.kind = MotionKind::kRectangularPulse;
-  d.amplitude_g = a_g;
-  d.start_s = t0;
-  d.duration_s = pulse_s;
-  s.horizontal = d;
+  s.horizontal = RectangularPulseDef(a_g, pulse_s, t0);
   return s;
 }
 
