@@ -245,20 +245,20 @@ Monitor::Derived Monitor::Derive(const StepReadout& s) {
     } else {
       d.energy_j += BlockEnergy_j(props_[k], g_, {{x, y}, {vx, vy}, r.w_radps});
       // Block k's bottom corners in block k - 1's frame: gap above its top face (y = h_(k-1)).
-      // Only a corner over that face counts: one that has slid past the face's edge hangs
-      // beside the block below, not in it (issue 24: a top block sliding off). With every corner
-      // past the edge, the gap is that of the nearer one (the block has left its support).
-      double gap = 1e300, gap_beside = 1e300;
+      // The lowest corner's height gives lift (as for block 1). Below the face's line only a
+      // corner over the face penetrates it: one that has slid past the face's edge hangs beside
+      // the block below, not in it (issue 24: a top block sliding off, tipping over the edge).
+      double gap = 1e300, gap_over = 1e300;
       for (int j = -1; j <= 1; j += 2) {
         const double px = x + c * (j * b) + sn * h;  // local (j b, -h)
         const double py = y + sn * (j * b) - c * h;
         const double dx = px - xs, dy = py - ys;
         const double lx = cs * dx + ss * dy;
         const double ly = -ss * dx + cs * dy;
-        double& g = std::abs(lx) <= bs * (1.0 + 1e-9) ? gap : gap_beside;
-        g = std::min(g, ly - hs);
+        gap = std::min(gap, ly - hs);
+        if (std::abs(lx) <= bs * (1.0 + 1e-9)) gap_over = std::min(gap_over, ly - hs);
       }
-      d.gap_m[k] = gap < 1e300 ? gap : std::max(gap_beside, 0.0);
+      d.gap_m[k] = gap >= 0.0 ? gap : std::min(0.0, gap_over);
     }
     if (slip_and_lift_) SlipAndLift(k, x, y, c, sn, xs, ys, cs, ss, hs, &d);
     xs = x, ys = y, cs = c, ss = sn, hs = h, bs = b;
