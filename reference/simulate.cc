@@ -455,15 +455,21 @@ class Simulator {
     }
   }
   // The result's summary gets the per-block figures.
-  Result TakeResult() {
+  // The per-block figures into the summary (once: after a hand-over the unilateral model
+  // carries the summary's on).
+  void FlushFigures() {
+    if (handed_over_) return;
     Summary& sum = result_.summary;
-    for (int i = 0; i < n_ && !handed_over_; ++i) {
+    for (int i = 0; i < n_; ++i) {
       sum.peak_theta_rad[i] = fig_.peak_theta_rad[i];
       sum.peak_theta_t_s[i] = fig_.peak_theta_t_s[i];
       sum.impacts_at[i] = fig_.impacts_at[i];
       sum.friction_required[i] = fig_.friction_required[i];
       sum.min_normal_n[i] = fig_.min_normal_n[i];
     }
+  }
+  Result TakeResult() {
+    FlushFigures();
     return std::move(result_);
   }
   bool HandOverOrStop(double t, const Y& y, const std::string& reason) {
@@ -523,16 +529,8 @@ class Simulator {
 
 template <class Mech>
 void Simulator<Mech>::EmitSamples(double t_end, bool inclusive) {
-  const double dt = scene_.run.output_interval_s;
-  auto& samples = result_.history.samples;
-  while (true) {
-    const double ts = next_sample_ * dt;
-    if (ts > t_end_ + 1e-12 * t_end_) break;
-    if (inclusive ? ts > t_end : ts >= t_end) break;
-    samples.push_back(result_.trajectory.At(ts));
-    samples.back().t_s = ts;
-    ++next_sample_;
-  }
+  EmitTrajectorySamples(result_.trajectory, scene_.run.output_interval_s, t_end_, t_end, inclusive,
+                        &next_sample_, &result_.history.samples);
 }
 
 template <class Mech>
@@ -958,15 +956,9 @@ void Simulator<Mech>::HandleEvent(const LocatedEvent& ev, const StepDense& at, d
 template <class Mech>
 void Simulator<Mech>::HandOver(double t, const Y& y, const std::string& reason) {
   // The chain's figures go to the summary, which the unilateral model carries on.
-  Summary& sum = result_.summary;
-  for (int i = 0; i < n_; ++i) {
-    sum.peak_theta_rad[i] = fig_.peak_theta_rad[i];
-    sum.peak_theta_t_s[i] = fig_.peak_theta_t_s[i];
-    sum.impacts_at[i] = fig_.impacts_at[i];
-    sum.friction_required[i] = fig_.friction_required[i];
-    sum.min_normal_n[i] = fig_.min_normal_n[i];
-  }
+  FlushFigures();
   handed_over_ = true;
+  Summary& sum = result_.summary;
   sum.rhs_evaluations += rhs_count_;
   rhs_count_ = 0;
   UnilateralStart start;

@@ -157,6 +157,14 @@ class Trajectory {
   size_t used_ = 0;  // doubles used in the last chunk
 };
 
+/// Appends to `samples` the trajectory's states at the output times next * dt_s, from *next
+/// on, up to t_end_s (inclusive or not) and never past the run's end run_end_s (to 1e-12 of
+/// it), advancing *next: the one sampling of a run's history, for the chain's driver and the
+/// unilateral model's.
+void EmitTrajectorySamples(const Trajectory& trajectory, double dt_s, double run_end_s,
+                           double t_end_s, bool inclusive, long* next,
+                           std::vector<Sample>* samples);
+
 /// Summary figures of a reference run.
 struct Summary {
   /// completed | overturned | at_rest | assumption_violated | non_finite

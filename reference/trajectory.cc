@@ -57,4 +57,17 @@ Sample Trajectory::At(double t_s) const {
   return out;
 }
 
+void EmitTrajectorySamples(const Trajectory& trajectory, double dt_s, double run_end_s,
+                           double t_end_s, bool inclusive, long* next,
+                           std::vector<Sample>* samples) {
+  while (true) {
+    const double ts = static_cast<double>(*next) * dt_s;
+    if (ts > run_end_s + 1e-12 * run_end_s) break;
+    if (inclusive ? ts > t_end_s : ts >= t_end_s) break;
+    samples->push_back(trajectory.At(ts));
+    samples->back().t_s = ts;
+    ++*next;
+  }
+}
+
 }  // namespace rockbench::reference

@@ -137,6 +137,9 @@ class Runner {
   std::string Changes(const ContactMode& before, const ContactMode& after) const;
   std::string EpisodeAudit(const ContactMode& before);
   // Friction's power, W (>= 0), and per interface (with `per`).
+  // The contact forces of the current mode at (t, y) (null: its equations are singular), kept
+  // for the last instant asked.
+  const ModeSolution* Forces(double t, const Y& y) const;
   double FrictionPower(double t, const Y& y,
                        std::array<double, kUnilateralMaxBlocks>* per = nullptr) const;
   bool HasClosed() const {
@@ -160,6 +163,14 @@ class Runner {
   Y y_{};
   double gap_tol_ = 0.0, rate_tol_ = 0.0, force_tol_ = 0.0, rest_rate_ = 0.0;
   bool done_ = false;
+  // Forces' last solve: its instant, state and mode, and what it gave.
+  mutable struct {
+    bool valid = false, solved = false;
+    double t = 0.0;
+    Y y{};
+    ContactMode mode;
+    ModeSolution forces;
+  } memo_;
   // Friction's work at each interface since its slip began, J (the episode's energy audit).
   std::array<double, kUnilateralMaxBlocks> episode_work_j_{};
   int same_time_events_ = 0;
@@ -216,9 +227,9 @@ double Runner::Value(const EventFn& e, double t, const Y& y) const {
     }
     case Kind::kLift:
     case Kind::kCone: {
-      std::array<double, kSecond> acc{};
-      ModeSolution f;
-      if (!stack_.Accelerations(mode_, Q(y), V(y), Xg(t), Yg(t), acc.data(), &f)) return -1.0;
+      const ModeSolution* forces = Forces(t, y);
+      if (forces == nullptr) return -1.0;
+      const ModeSolution& f = *forces;
       // Roots at twice the contact conditions' tolerance: past them, so that the mode that
       // ends is no longer consistent where the next is sought.
       if (e.kind == Kind::kLift) {
@@ -237,6 +248,20 @@ double Runner::Value(const EventFn& e, double t, const Y& y) const {
   return 1.0;
 }
 
+const ModeSolution* Runner::Forces(double t, const Y& y) const {
+  // The event functions of every closed slot and interface, friction's power and the
+  // summary's forces all ask at the same step end: one solve serves them.
+  if (!(memo_.valid && memo_.t == t && memo_.y == y && memo_.mode == mode_)) {
+    std::array<double, kSecond> acc{};
+    memo_.solved = stack_.Accelerations(mode_, Q(y), V(y), Xg(t), Yg(t), acc.data(), &memo_.forces);
+    memo_.t = t;
+    memo_.y = y;
+    memo_.mode = mode_;
+    memo_.valid = true;
+  }
+  return memo_.solved ? &memo_.forces : nullptr;
+}
+
 double Runner::FrictionPower(double t, const Y& y,
                              std::array<double, kUnilateralMaxBlocks>* per) const {
   double p = 0.0;
@@ -244,9 +269,9 @@ double Runner::FrictionPower(double t, const Y& y,
   bool any = false;
   for (int k = 0; k < n_; ++k) any = any || (mode_.any_closed(k) && mode_.slip[k] != Slip::kStick);
   if (!any) return 0.0;
-  std::array<double, kSecond> acc{};
-  ModeSolution f;
-  if (!stack_.Accelerations(mode_, Q(y), V(y), Xg(t), Yg(t), acc.data(), &f)) return 0.0;
+  const ModeSolution* forces = Forces(t, y);
+  if (forces == nullptr) return 0.0;
+  const ModeSolution& f = *forces;
   for (int k = 0; k < n_; ++k) {
     if (!mode_.any_closed(k) || mode_.slip[k] == Slip::kStick) continue;
     const auto s = stack_.Slots(k, Q(y), V(y), &mode_);
@@ -271,9 +296,9 @@ void Runner::Track(double t, const Y& y) {
 }
 
 void Runner::NoteForces(const Y& y, double t) {
-  std::array<double, kSecond> acc{};
-  ModeSolution f;
-  if (!stack_.Accelerations(mode_, Q(y), V(y), Xg(t), Yg(t), acc.data(), &f)) return;
+  const ModeSolution* forces = Forces(t, y);
+  if (forces == nullptr) return;
+  const ModeSolution& f = *forces;
   Summary& sum = r_->summary;
   for (int k = 0; k < n_; ++k) {
     if (!mode_.any_closed(k)) continue;
@@ -286,16 +311,8 @@ void Runner::NoteForces(const Y& y, double t) {
 }
 
 void Runner::Emit(double t_end, bool inclusive) {
-  const double dt = scene_.run.output_interval_s;
-  while (true) {
-    const double ts = static_cast<double>(*next_sample_) * dt;
-    if (ts > steps_.t_end_s + 1e-12 * steps_.t_end_s) break;
-    if (inclusive ? ts > t_end : ts >= t_end) break;
-    Sample s = r_->trajectory.At(ts);
-    s.t_s = ts;
-    r_->history.samples.push_back(std::move(s));
-    ++*next_sample_;
-  }
+  EmitTrajectorySamples(r_->trajectory, scene_.run.output_interval_s, steps_.t_end_s, t_end,
+                        inclusive, next_sample_, &r_->history.samples);
 }
 
 void Runner::AddEvent(double t, const std::string& kind, const Configuration& before,
