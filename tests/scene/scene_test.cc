@@ -686,6 +686,29 @@ TEST(BlockTables, BothStylesInOneFileAreAnError) {
   EXPECT_CONTAINS(ErrorOf("block = []\n"), "block: expected at least one [[block]] table");
 }
 
+// A block's friction (issue 24): >= 0 or inf, infinite when absent; a finite one needs the
+// unilateral model, which takes at most kUnilateralMaxBlocks blocks.
+TEST(BlockTables, FrictionIsNonNegativeAndNeedsAStackTheUnilateralModelTakes) {
+  const Scene absent = ParseScene("[block1]\nwidth = 1\nheight = 2\nmass = 100\n", "");
+  EXPECT_TRUE(std::isinf(absent.blocks[0].friction));
+  EXPECT_FALSE(absent.has_finite_friction());
+  const Scene given =
+      ParseScene("[block1]\nwidth = 1\nheight = 2\nmass = 100\nfriction = 0.3\n", "");
+  EXPECT_EQ(given.blocks[0].friction, 0.3);
+  EXPECT_TRUE(given.tracks_slip_and_lift());
+  EXPECT_TRUE(
+      std::isinf(ParseScene("[block1]\nwidth = 1\nheight = 2\nmass = 100\nfriction = inf\n", "")
+                     .blocks[0]
+                     .friction));
+  EXPECT_EQ(ErrorOf("[block1]\nwidth = 1\nheight = 2\nmass = 100\nfriction = -0.1\n"),
+            "scenes/x.toml:5: block1.friction: expected a number >= 0 or inf, got -0.1");
+  EXPECT_CONTAINS(ErrorOf("[block1]\nwidth = 1\nheight = 2\nmass = 100\nfriction = nan\n"),
+                  "block1.friction: expected a number >= 0 or inf");
+  EXPECT_CONTAINS(ErrorOf(BlockTables(kUnilateralMaxBlocks + 1) + "friction = 0.5\n"),
+                  "block" + std::to_string(kUnilateralMaxBlocks + 1) +
+                      ".friction: a finite friction needs the unilateral model");
+}
+
 TEST(BlockTables, AnErrorNamesTheBlockByItsIndex) {
   // Lines: block 1 is lines 1-4, block 2 lines 5-8, block 3 lines 9-12.
   const std::string three = BlockTables(2) + "[[block]]\nwidth = -1\nheight = 2\ndensity = 10\n";
@@ -695,8 +718,9 @@ TEST(BlockTables, AnErrorNamesTheBlockByItsIndex) {
                   "block3.height: missing; expected a positive number (m)");
   EXPECT_CONTAINS(ErrorOf(BlockTables(2) + "[[block]]\nwidth = 1\nheight = 1\n"),
                   "block3: missing density (kg/m^3) or mass (kg)");
-  EXPECT_CONTAINS(ErrorOf(BlockTables(2) + "[[block]]\nwidth = 1\nheight = 1\nmass = 1\nfoo = 2\n"),
-                  "block3.foo: unknown key (expected one of: width, height, density, mass, depth, friction)");
+  EXPECT_CONTAINS(
+      ErrorOf(BlockTables(2) + "[[block]]\nwidth = 1\nheight = 1\nmass = 1\nfoo = 2\n"),
+      "block3.foo: unknown key (expected one of: width, height, density, mass, depth, friction)");
 }
 
 TEST(BlockTables, EveryBlockIsNoWiderThanTheOneBelow) {
