@@ -1,8 +1,13 @@
 #include "run/engine_registry.h"
 
 #include <algorithm>
+#include <cstdlib>
+#include <deque>
 #include <memory>
+#include <mutex>
+#include <sstream>
 
+#include "engines/external/external_engine.h"
 #include "run/reference_engine.h"
 
 namespace rockbench {
@@ -15,21 +20,103 @@ namespace engine_registry {
 #undef ROCKBENCH_MISSING_ENGINE
 }  // namespace engine_registry
 
-const std::vector<RegisteredEngine>& EngineRegistry() {
-  static const std::vector<RegisteredEngine> kRegistry = [] {
-    // The engines live as long as the program.
-    static std::vector<std::unique_ptr<Engine>> owned;
-    std::vector<RegisteredEngine> list;
-#define ROCKBENCH_BUILT_ENGINE(name)               \
-  owned.push_back(engine_registry::Make_##name()); \
-  list.push_back(RegisteredEngine{#name, owned.back().get(), ""});
-#define ROCKBENCH_MISSING_ENGINE(name, why) list.push_back(RegisteredEngine{#name, nullptr, why});
+namespace {
+
+// The registry: the built-in engines, then the external ones as registry files and scenes name
+// them. Engines live as long as the program; the list only grows, under a mutex.
+struct Registry {
+  std::mutex mutex;
+  std::vector<RegisteredEngine> list;
+  std::deque<std::unique_ptr<Engine>> owned;
+  // Per external engine (same index as its entry, from first_external): what named it.
+  std::vector<ExternalEngineRef> refs;
+  size_t first_external = 0;
+};
+
+bool SameRef(const ExternalEngineRef& a, const ExternalEngineRef& b) {
+  return a.manifest == b.manifest && a.command == b.command && a.base_dir == b.base_dir;
+}
+
+// Adds an external engine (the caller holds the mutex). A name taken by a built-in engine, or by
+// another external engine named differently, is an error naming both places.
+void AddExternal(Registry& r, const ExternalEngineRef& ref) {
+  for (size_t i = 0; i < r.list.size(); ++i) {
+    if (r.list[i].name != ref.name) continue;
+    if (i < r.first_external) {
+      throw SceneError(ref.where + ": [external." + ref.name + "]: '" + ref.name +
+                       "' is a built-in engine's name; give the external engine another");
+    }
+    if (SameRef(r.refs[i - r.first_external], ref)) return;
+    throw SceneError(ref.where + ": [external." + ref.name + "]: an external engine of that name is " +
+                     "already registered, differently, by " + r.refs[i - r.first_external].where);
+  }
+  external::ExternalManifest m = external::LoadManifest(ref);
+  RegisteredEngine e{ref.name, nullptr, m.missing_reason};
+  if (m.missing_reason.empty()) {
+    r.owned.push_back(std::make_unique<external::ExternalEngine>(std::move(m)));
+    e.engine = r.owned.back().get();
+  }
+  r.list.push_back(std::move(e));
+  r.refs.push_back(ref);
+}
+
+// Adds the engines of a registry file; a file that cannot be read leaves a line saying why.
+void AddRegistryFile(Registry& r, const std::filesystem::path& file) {
+  try {
+    for (const ExternalEngineRef& ref : LoadExternalEngineRegistry(file)) AddExternal(r, ref);
+  } catch (const SceneError& e) {
+    r.list.push_back(RegisteredEngine{"(" + file.string() + ")", nullptr, e.what()});
+    r.refs.push_back(ExternalEngineRef{});
+  }
+}
+
+Registry& TheRegistry() {
+  static Registry* registry = [] {
+    auto* r = new Registry;
+#define ROCKBENCH_BUILT_ENGINE(name)                  \
+  r->owned.push_back(engine_registry::Make_##name()); \
+  r->list.push_back(RegisteredEngine{#name, r->owned.back().get(), ""});
+#define ROCKBENCH_MISSING_ENGINE(name, why) \
+  r->list.push_back(RegisteredEngine{#name, nullptr, why});
 #include "engines/engine_list.inc"
 #undef ROCKBENCH_BUILT_ENGINE
 #undef ROCKBENCH_MISSING_ENGINE
-    return list;
+    r->first_external = r->list.size();
+#ifdef ROCKBENCH_EXTERNAL_REGISTRY
+    std::error_code ec;
+    if (std::filesystem::exists(ROCKBENCH_EXTERNAL_REGISTRY, ec)) {
+      AddRegistryFile(*r, ROCKBENCH_EXTERNAL_REGISTRY);
+    }
+#endif
+    if (const char* files = std::getenv("ROCKBENCH_EXTERNAL_ENGINES")) {
+      std::stringstream list(files);
+      std::string file;
+      while (std::getline(list, file, ':')) {
+        if (!file.empty()) AddRegistryFile(*r, file);
+      }
+    }
+    return r;
   }();
-  return kRegistry;
+  return *registry;
+}
+
+}  // namespace
+
+std::vector<RegisteredEngine> EngineRegistry() {
+  Registry& r = TheRegistry();
+  std::lock_guard<std::mutex> lock(r.mutex);
+  std::vector<RegisteredEngine> out;
+  for (const RegisteredEngine& e : r.list) {
+    if (!e.name.empty() && e.name[0] != '(') out.push_back(e);
+  }
+  return out;
+}
+
+void RegisterExternalEngines(const Scene& scene) {
+  if (scene.external_engines.empty()) return;
+  Registry& r = TheRegistry();
+  std::lock_guard<std::mutex> lock(r.mutex);
+  for (const ExternalEngineRef& ref : scene.external_engines) AddExternal(r, ref);
 }
 
 const Engine* FindEngine(const std::string& name) {
@@ -94,6 +181,7 @@ std::vector<std::string> ParseEngineList(const std::string& text) {
 }
 
 void CheckEngineTables(const Scene& scene) {
+  RegisterExternalEngines(scene);
   for (const auto& [name, table] : scene.engine_tables) {
     bool known = false;
     for (const RegisteredEngine& e : EngineRegistry()) {
@@ -112,7 +200,17 @@ void CheckEngineTables(const Scene& scene) {
 
 std::string EngineListText() {
   std::string out;
-  for (const RegisteredEngine& e : EngineRegistry()) {
+  Registry& r = TheRegistry();
+  std::vector<RegisteredEngine> all;
+  {
+    std::lock_guard<std::mutex> lock(r.mutex);
+    all = r.list;
+  }
+  for (const RegisteredEngine& e : all) {
+    if (!e.name.empty() && e.name[0] == '(') {
+      out += "registry " + e.name + ": not read: " + e.missing_reason + "\n";
+      continue;
+    }
     if (e.engine != nullptr) {
       out += e.name + ": " + e.engine->version() + "\n";
     } else {

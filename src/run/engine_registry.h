@@ -25,8 +25,17 @@ struct RegisteredEngine {
   std::string missing_reason;  ///< why it was left out ("libmujoco-dev not found")
 };
 
-/// Every registered engine, in registration order (built or not).
-const std::vector<RegisteredEngine>& EngineRegistry();
+/// Every registered engine, in registration order (built or not): the built-in engines, then
+/// the external ones (docs/external-engines.md) of the repository's registry
+/// (engines/external_engines.toml), of the registry files ROCKBENCH_EXTERNAL_ENGINES names
+/// (separated by ':') and of the scenes loaded so far. An external engine that cannot run here
+/// (its program or packages missing) is listed as left out, with the reason.
+std::vector<RegisteredEngine> EngineRegistry();
+
+/// Registers the external engines a scene names ([external.<name>]). A name taken by a
+/// built-in engine or by another external engine named differently is a SceneError naming both
+/// places; the same engine named again is registered once. CheckEngineTables calls it.
+void RegisterExternalEngines(const Scene& scene);
 
 /// The engine `name`: "reference" (run/reference_engine.h) or a built physics engine; nullptr
 /// when it is not registered or was left out of this build.

@@ -201,7 +201,8 @@ const std::map<std::string, KeyList, std::less<>>& Schema() {
         {"base", true},
         {"run", true},
         {"model", true},
-        {"compare", true}}},
+        {"compare", true},
+        {"external", true}}},
       {"block1", kBlock},
       {"block2", kBlock},
       // [initial] takes theta, omega and thetaK, omegaK for any K (ParseInitialKey).
@@ -504,6 +505,92 @@ class Reader {
         t.values[std::string(key.str())] = RawSetting{std::move(value), Loc(dotted, &node)};
       }
     }
+  }
+
+  // [external.<name>] tables: each names a manifest or a command (ExternalEngineRef).
+  std::vector<ExternalEngineRef> ReadExternalEngines(const toml::table& ext,
+                                                     const std::filesystem::path& path) const {
+    std::vector<ExternalEngineRef> out;
+    const std::filesystem::path base =
+        path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
+    for (auto&& [k, v] : ext) {
+      const std::string name(k.str());
+      const std::string prefix = "external." + name;
+      const toml::table* t = v.as_table();
+      if (t == nullptr) {
+        Fail(prefix, &v,
+             "expected a table [external.<name>] with manifest = \"FILE\" or command = "
+             "[\"PROGRAM\", ...], got " +
+                 Describe(v));
+      }
+      if (!IsEngineName(name)) {
+        Fail(prefix, &v,
+             "expected an engine name of lower-case letters, digits and '_', starting with a "
+             "letter");
+      }
+      for (auto&& [key, node] : *t) {
+        if (key.str() != "manifest" && key.str() != "command") {
+          Fail(prefix + "." + std::string(key.str()), &node,
+               "unknown key (expected manifest or command)");
+        }
+      }
+      ExternalEngineRef ref;
+      ref.name = name;
+      ref.where = Loc(prefix, &v);
+      ref.base_dir = base;
+      if (auto m = String(*t, prefix, "manifest", "a file name")) {
+        if (t->get("command") != nullptr) {
+          Fail(prefix + ".command", t->get("command"),
+               "give either manifest or command, not both (a manifest states the command)");
+        }
+        ref.manifest = std::filesystem::path(*m).is_absolute() ? std::filesystem::path(*m)
+                                                                : base / *m;
+      } else if (const toml::node* c = t->get("command")) {
+        const toml::array* a = c->as_array();
+        if (a == nullptr || a->empty()) {
+          Fail(prefix + ".command", c,
+               "expected a non-empty array of strings [\"PROGRAM\", \"ARG\", ...], got " +
+                   Describe(*c));
+        }
+        for (auto&& arg : *a) {
+          auto str = arg.as_string();
+          if (str == nullptr || str->get().empty()) {
+            Fail(prefix + ".command", &arg,
+                 "expected non-empty strings, got " + Describe(arg));
+          }
+          ref.command.push_back(str->get());
+        }
+      } else {
+        Fail(prefix, &v, "expected manifest = \"FILE\" or command = [\"PROGRAM\", ...]");
+      }
+      out.push_back(std::move(ref));
+    }
+    return out;
+  }
+
+  static bool IsEngineName(const std::string& name) {
+    if (name.empty() || name[0] < 'a' || name[0] > 'z') return false;
+    for (char c : name) {
+      if (!((c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_')) return false;
+    }
+    return true;
+  }
+
+ public:
+  // A registry file: [external.<name>] tables and nothing else.
+  std::vector<ExternalEngineRef> ReadRegistry(const toml::table& root,
+                                              const std::filesystem::path& path) const {
+    for (auto&& [k, v] : root) {
+      if (k.str() != "external") {
+        Fail(std::string(k.str()), &v,
+             "unknown table or key: a registry of external engines holds [external.<name>] "
+             "tables only");
+      }
+    }
+    const toml::node* ext = root.get("external");
+    if (ext == nullptr) return {};
+    if (!ext->is_table()) Fail("external", ext, "expected tables [external.<name>]");
+    return ReadExternalEngines(*ext->as_table(), path);
   }
 
   BlockDef ReadBlock(const toml::table& t, const std::string& prefix) const {
@@ -928,6 +1015,10 @@ class Reader {
       }
     }
     ReadEngineTables(root, &s);
+    if (const toml::node* ext = root.get("external")) {
+      if (!ext->is_table()) Fail("external", ext, "expected tables [external.<name>]");
+      s.external_engines = ReadExternalEngines(*ext->as_table(), path);
+    }
     s.title = String(root, "", "title", "a string").value_or("");
 
     ReadBlocks(root, &s);
@@ -1376,6 +1467,29 @@ void ValidateScene(const Scene& scene) {
   limit("compare.sample_precision", c.sample_precision, kSamplePrecisionLimit, Rule::kNonNegative,
         "");
   check("compare.initial_rel", c.initial_rel, Rule::kUnitInterval, "");
+}
+
+}  // namespace rockbench
+
+namespace rockbench {
+
+std::vector<ExternalEngineRef> LoadExternalEngineRegistry(const std::filesystem::path& path) {
+  constexpr double kMaxRegistryFile_bytes = 1024.0 * 1024;
+  if (const std::string problem =
+          InputFileProblem(path, "registry of external engines", kMaxRegistryFile_bytes);
+      !problem.empty()) {
+    throw SceneError(problem);
+  }
+  const std::string file = FileLabel(path);
+  toml::table root;
+  try {
+    root = toml::parse_file(path.string());
+  } catch (const toml::parse_error& e) {
+    throw SceneError(file + ":" + std::to_string(e.source().begin.line) + ":" +
+                     std::to_string(e.source().begin.column) +
+                     ": TOML syntax error: " + std::string(e.description()));
+  }
+  return Reader(file, {}).ReadRegistry(root, path);
 }
 
 }  // namespace rockbench

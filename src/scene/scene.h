@@ -142,6 +142,21 @@ struct CompareConfig {
   uint64_t seed = 1;
 };
 
+/// An engine run through the external-engine protocol (docs/external-engines.md), as a scene's
+/// table [external.<name>] or a registry file names it: its manifest, or a bare command (an engine
+/// with the protocol's standard settings only).
+struct ExternalEngineRef {
+  std::string name;   ///< the engine's name and the name of its settings table: "rapier"
+  std::string where;  ///< "FILE:LINE" of the [external.<name>] table
+  /// The manifest file (absolute, or relative to the file that named it: resolved here).
+  std::filesystem::path manifest;
+  /// Without a manifest: the command, run with the input file's path appended; a relative
+  /// argument that names a file beside the naming file is made absolute.
+  std::vector<std::string> command;
+  /// The folder of the file that named the engine (relative paths of `command`).
+  std::filesystem::path base_dir;
+};
+
 struct Scene {
   std::filesystem::path path;  ///< the scene file (empty for a scene built in code)
   std::string title;           ///< optional free text
@@ -156,6 +171,8 @@ struct Scene {
   /// Every other top-level table: an engine's settings ([bullet], [ode], ...), as written;
   /// the engine checks its own (scene/engine_settings.h).
   std::map<std::string, RawEngineTable, std::less<>> engine_tables;
+  /// The external engines the scene names ([external.<name>] tables), in file order.
+  std::vector<ExternalEngineRef> external_engines;
   CompareConfig compare;
 
   /// Number of blocks of the stack.
@@ -180,6 +197,11 @@ Scene LoadScene(const std::filesystem::path& path, const std::vector<std::string
 /// Parses a scene from TOML text; `path` is used for messages and relative files.
 Scene ParseScene(std::string_view toml_text, const std::filesystem::path& path,
                  const std::vector<std::string>& overrides = {});
+
+/// Reads a registry file of external engines: [external.<name>] tables only, each with either
+/// `manifest = "FILE"` or `command = ["PROGRAM", "ARG", ...]`. Throws SceneError naming the file,
+/// line and key.
+std::vector<ExternalEngineRef> LoadExternalEngineRegistry(const std::filesystem::path& path);
 
 /// Checks a scene built in code (the same checks as the reader). Throws SceneError.
 void ValidateScene(const Scene& scene);

@@ -1,0 +1,172 @@
+#include "engines/external/external_engine.h"
+
+#include <stdlib.h>
+
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+
+#include "engines/common/engine_input.h"
+#include "engines/common/monitor.h"
+#include "engines/external/protocol.h"
+#include "engines/external/subprocess.h"
+
+namespace rockbench::external {
+namespace {
+
+// A folder of its own for one run, removed with everything in it when the run is over.
+class RunFolder {
+ public:
+  explicit RunFolder(const std::string& engine) {
+    std::error_code ec;
+    std::filesystem::path base = std::filesystem::temp_directory_path(ec);
+    if (ec) base = "/tmp";
+    std::string pattern = (base / ("rockbench-" + engine + "-XXXXXX")).string();
+    if (mkdtemp(pattern.data()) == nullptr) {
+      throw ExternalEngineError(engine + ": cannot make a run folder under " + base.string());
+    }
+    path_ = pattern;
+  }
+  ~RunFolder() {
+    std::error_code ec;
+    std::filesystem::remove_all(path_, ec);
+  }
+  RunFolder(const RunFolder&) = delete;
+  RunFolder& operator=(const RunFolder&) = delete;
+  const std::filesystem::path& path() const { return path_; }
+
+ private:
+  std::filesystem::path path_;
+};
+
+std::string CommandText(const std::vector<std::string>& command) {
+  std::string out;
+  for (const std::string& a : command) out += (out.empty() ? "" : " ") + a;
+  return out;
+}
+
+// The families of the manifest over `steps`, as sweep points or stress cases.
+std::vector<SweepSetting> Points(const ExternalManifest& m, const std::vector<double>& steps,
+                                 bool stress) {
+  std::vector<SweepSetting> out;
+  for (const ExternalFamily& f : m.families) {
+    for (size_t i = 0; i < steps.size(); ++i) {
+      SweepSetting p;
+      p.family = f.name;
+      p.label = TimeStepLabel(steps[i]);
+      p.time_step_s = steps[i];
+      p.settings = f.settings;
+      p.settings.emplace_back("time_step", steps[i]);
+      p.id = f.id + "/dt=" + p.label;
+      p.quick = stress && i == 0;
+      out.push_back(std::move(p));
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+std::vector<SweepSetting> ExternalEngine::SweepGrid(bool quick) const {
+  return Points(m_, quick ? m_.quick_steps_s : m_.sweep_steps_s, false);
+}
+
+std::vector<SweepSetting> ExternalEngine::StressGrid() const {
+  return Points(m_, m_.stress_steps_s, true);
+}
+
+EngineResult ExternalEngine::Simulate(const Scene& scene, const GroundMotion& motion,
+                                      const SimulateOptions& options) const {
+  const auto start = std::chrono::steady_clock::now();
+  if (!m_.missing_reason.empty()) {
+    throw SceneError(m_.where + ": external engine " + m_.name + " cannot run here: " +
+                     m_.missing_reason);
+  }
+  if (scene.block_count() > m_.max_blocks) {
+    throw SceneError(scene.path.string() + ": engine " + m_.name + " simulates at most " +
+                     std::to_string(m_.max_blocks) + " block" + (m_.max_blocks == 1 ? "" : "s") +
+                     " (its manifest's max_blocks), the scene has " +
+                     std::to_string(scene.block_count()));
+  }
+  const EngineSettings settings = ResolveEngineSettings(scene, m_.schema);
+  const EngineInput input =
+      MakeEngineInput(scene, motion, m_.name, settings, options.stop_at_rest_after_s);
+  const std::int64_t every = settings.Integer("output_every_steps");
+
+  RunFolder folder(m_.name);
+  const std::filesystem::path input_file = folder.path() / "input.json";
+  const std::filesystem::path poses_file = folder.path() / "poses.csv";
+  const std::filesystem::path contacts_file = folder.path() / "contacts.csv";
+  {
+    const nlohmann::json j =
+        InputJson(m_.name, scene, input, settings, every, poses_file, contacts_file);
+    std::ofstream out(input_file, std::ios::binary);
+    out << j.dump() << '\n';
+    if (!out) throw ExternalEngineError(m_.name + ": cannot write " + input_file.string());
+  }
+  ProcessSpec spec;
+  spec.argv = m_.command;
+  spec.argv.push_back(input_file.string());
+  spec.working_dir = folder.path();
+  spec.stdout_file = folder.path() / "stdout.txt";
+  spec.stderr_file = folder.path() / "stderr.txt";
+  spec.wall_limit_s = settings.Number("wall_limit_s");
+  spec.memory_limit_mib = settings.Number("memory_limit_mib");
+  const ProcessResult proc = RunProcess(spec);
+  if (!proc.ok()) {
+    std::string said = TailOfFile(spec.stderr_file);
+    if (said.empty()) said = TailOfFile(spec.stdout_file);
+    throw ExternalEngineError(m_.name + ": its command (" + CommandText(spec.argv) + ") " +
+                              proc.Describe(spec) +
+                              (said.empty() ? std::string(", and said nothing")
+                                            : ";\nits last words:\n" + said));
+  }
+  const auto read_start = std::chrono::steady_clock::now();
+  PoseRows poses = ReadPoses(m_.name, poses_file, input, every);
+
+  // The monitor reads the rows as a fixed-step engine's steps.
+  const EngineInput watched = MonitorInput(input, every);
+  Monitor monitor(watched);
+  for (size_t j = 0; j < poses.rows.size(); ++j) {
+    StepReadout& r = poses.rows[j];
+    ReadBaseMotion(watched, static_cast<std::int64_t>(j), &r);
+    if (j == 0) {
+      monitor.Start(r);
+    } else if (!monitor.Step(static_cast<std::int64_t>(j), r)) {
+      break;
+    }
+  }
+  monitor.Finish();
+  const auto end = std::chrono::steady_clock::now();
+  const double wall_s = std::chrono::duration<double>(end - start).count();
+
+  EngineResult out;
+  out.summary = monitor.Summary();
+  out.summary["engine"] = m_.name;
+  out.summary["settings"] = settings.ToJson();
+  out.summary["wall_s"] = wall_s;
+  out.summary["real_time_factor"] = wall_s > 0.0 ? monitor.last().t_s / wall_s : 0.0;
+  out.summary["external"] = {
+      {"protocol_version", kProtocolVersion},
+      {"command", m_.command},
+      {"process_wall_s", proc.wall_s},
+      {"peak_resident_mib", proc.peak_rss_mib},
+      {"rows", poses.rows.size()},
+      {"poses_bytes", poses.bytes},
+      {"velocities", poses.velocities_given ? "engine" : "differences of the poses"},
+      {"overhead_s", wall_s - proc.wall_s},
+      {"read_and_monitor_s", std::chrono::duration<double>(end - read_start).count()}};
+  if (input.drive_kind == DriveKind::kKinematic) {
+    out.summary["kinematic"] = KinematicDriveJson(input);
+  }
+  out.outcome = monitor.Outcome();
+  out.wall_s = wall_s;
+  out.history = monitor.TakeHistory();
+  char line[200];
+  std::snprintf(line, sizeof line, "external, %s, dt %.3g s", DriveKindName(input.drive_kind),
+                input.time_step_s);
+  out.settings_line = line;
+  return out;
+}
+
+}  // namespace rockbench::external

@@ -1,0 +1,371 @@
+#include "engines/external/protocol.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <limits>
+#include <map>
+
+#include "scene/rigid_block.h"
+#include "scene/stack_pose.h"
+
+namespace rockbench::external {
+namespace {
+
+nlohmann::json NumberOrNull(double v) {
+  return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
+}
+
+// The scene's base-motion component as the input states it: its analytic form, or the record
+// it was read from.
+nlohmann::json MotionJson(const MotionDef& m) {
+  nlohmann::json j;
+  j["kind"] = std::string(MotionKindName(m.kind));
+  j["scale"] = m.scale;
+  if (m.kind == MotionKind::kFile || m.kind == MotionKind::kKanaiTajimi) {
+    if (m.kind == MotionKind::kFile) j["file"] = m.file.filename().string();
+    j["analytic"] = false;
+    return j;
+  }
+  j["analytic"] = true;
+  j["amplitude_g"] = m.amplitude_g;
+  j["frequency_hz"] = m.frequency_hz;
+  j["duration_s"] = NumberOrNull(m.duration_s);
+  j["start_s"] = m.start_s;
+  return j;
+}
+
+[[noreturn]] void Fail(const std::string& engine, const std::filesystem::path& file, int64_t line,
+                       const std::string& msg) {
+  throw ExternalEngineError(engine + ": " + file.string() +
+                            (line > 0 ? ":" + std::to_string(line) : std::string()) + ": " + msg);
+}
+
+// Splits a CSV line on commas (no quoting: the protocol's fields are names and numbers).
+void SplitFields(const std::string& line, std::vector<std::string>* out) {
+  out->clear();
+  size_t start = 0;
+  for (;;) {
+    const size_t comma = line.find(',', start);
+    std::string f = line.substr(start, comma == std::string::npos ? std::string::npos
+                                                                  : comma - start);
+    while (!f.empty() && (f.back() == ' ' || f.back() == '\r' || f.back() == '\t')) f.pop_back();
+    size_t lead = 0;
+    while (lead < f.size() && (f[lead] == ' ' || f[lead] == '\t')) ++lead;
+    out->push_back(f.substr(lead));
+    if (comma == std::string::npos) break;
+    start = comma + 1;
+  }
+}
+
+}  // namespace
+
+std::int64_t ExpectedRows(std::int64_t steps, std::int64_t every) {
+  return steps / every + 1 + (steps % every != 0 ? 1 : 0);
+}
+
+std::int64_t RowStep(std::int64_t j, std::int64_t steps, std::int64_t every) {
+  return std::min(j * every, steps);
+}
+
+nlohmann::json InputJson(const std::string& engine, const Scene& scene, const EngineInput& input,
+                         const EngineSettings& settings, std::int64_t every,
+                         const std::filesystem::path& poses_file,
+                         const std::filesystem::path& contacts_file) {
+  nlohmann::json j;
+  j["protocol"] = "rockbench-external-engine";
+  j["protocol_version"] = 1;
+  j["engine"] = engine;
+  j["poses_file"] = poses_file.string();
+  j["contacts_file"] = contacts_file.string();
+  j["units"] = "SI: m, kg, s, rad; angles counter-clockwise about +z";
+  j["dimensions"] = 2;
+  j["gravity_mps2"] = input.run.gravity_mps2;
+  j["time_step_s"] = input.time_step_s;
+  j["steps"] = input.steps;
+  j["duration_s"] = static_cast<double>(input.steps) * input.time_step_s;
+  j["output_every_steps"] = every;
+  j["output_interval_s"] = static_cast<double>(every) * input.time_step_s;
+  j["rows"] = ExpectedRows(input.steps, every);
+  j["overturn_rad"] = input.overturn_rad;
+  j["ground"] = {{"top_y_m", 0.0}, {"friction", NumberOrNull(input.blocks[0].friction)}};
+  const StackPlacement placed = PlaceStack(input.blocks, input.initial);
+  nlohmann::json blocks = nlohmann::json::array();
+  for (int k = 0; k < input.block_count(); ++k) {
+    const BlockDef& b = input.blocks[static_cast<size_t>(k)];
+    const BlockProps p = MakeBlockProps(b.width_m, b.height_m, b.mass_kg);
+    const PlanarPose& pose = placed.blocks[static_cast<size_t>(k)];
+    blocks.push_back({{"width_m", b.width_m},
+                      {"height_m", b.height_m},
+                      {"depth_m", b.depth_m},
+                      {"mass_kg", b.mass_kg},
+                      {"inertia_kgm2", p.I_G},
+                      {"friction", NumberOrNull(b.friction)},
+                      {"x_m", pose.x_m},
+                      {"y_m", pose.y_m},
+                      {"angle_rad", pose.phi_rad},
+                      {"vx_mps", pose.vx_mps},
+                      {"vy_mps", pose.vy_mps},
+                      {"omega_radps", pose.w_radps}});
+  }
+  j["blocks"] = std::move(blocks);
+  // The pairs that touch: each block on its support, and with two blocks block 2 on the ground
+  // once it has fallen off (as every built-in engine has it).
+  nlohmann::json pairs = nlohmann::json::array();
+  for (int k = 0; k < input.block_count(); ++k) {
+    pairs.push_back({{"lower", k},
+                     {"upper", k + 1},
+                     {"friction", NumberOrNull(input.blocks[static_cast<size_t>(k)].friction)}});
+  }
+  if (input.block_count() == 2) {
+    pairs.push_back({{"lower", 0}, {"upper", 2}, {"friction", NumberOrNull(input.blocks[1].friction)}});
+  }
+  j["contact_pairs"] = std::move(pairs);
+  nlohmann::json drive;
+  drive["kind"] = DriveKindName(input.drive_kind);
+  if (input.drive_kind == DriveKind::kInertial) {
+    drive["ax_mps2"] = input.drive.ax_mps2;
+    drive["ay_mps2"] = input.drive.ay_mps2;
+  } else {
+    drive["ux_m"] = input.drive.ux_m;
+    drive["uy_m"] = input.drive.uy_m;
+    drive["ux0_mps"] = input.drive.ux0_mps;
+    drive["uy0_mps"] = input.drive.uy0_mps;
+  }
+  j["drive"] = std::move(drive);
+  nlohmann::json base = nlohmann::json::object();
+  if (scene.horizontal) base["horizontal"] = MotionJson(*scene.horizontal);
+  if (scene.vertical) base["vertical"] = MotionJson(*scene.vertical);
+  j["base_motion"] = std::move(base);
+  j["settings"] = settings.ToJson();
+  return j;
+}
+
+EngineInput MonitorInput(const EngineInput& input, std::int64_t every) {
+  if (every == 1) return input;
+  EngineInput m = input;
+  const std::int64_t rows = ExpectedRows(input.steps, every);
+  m.time_step_s = input.time_step_s * static_cast<double>(every);
+  m.steps = rows - 1;
+  if (input.drive_kind == DriveKind::kInertial) {
+    // Window j (rows j to j + 1) keeps its largest acceleration: whether the base moved in it.
+    auto window_peak = [&](const std::vector<double>& a) {
+      std::vector<double> out;
+      if (a.empty()) return out;
+      for (std::int64_t j = 0; j + 1 < rows; ++j) {
+        double peak = 0.0;
+        for (std::int64_t n = RowStep(j, input.steps, every);
+             n < RowStep(j + 1, input.steps, every); ++n) {
+          const double v = a[static_cast<size_t>(n)];
+          if (std::abs(v) > std::abs(peak)) peak = v;
+        }
+        out.push_back(peak);
+      }
+      return out;
+    };
+    m.drive.ax_mps2 = window_peak(input.drive.ax_mps2);
+    m.drive.ay_mps2 = window_peak(input.drive.ay_mps2);
+  } else {
+    m.drive.ux_m.clear();
+    m.drive.uy_m.clear();
+    for (std::int64_t j = 0; j < rows; ++j) {
+      const size_t n = static_cast<size_t>(RowStep(j, input.steps, every));
+      m.drive.ux_m.push_back(input.drive.ux_m[n]);
+      m.drive.uy_m.push_back(input.drive.uy_m[n]);
+    }
+  }
+  return m;
+}
+
+PoseRows ReadPoses(const std::string& engine, const std::filesystem::path& file,
+                   const EngineInput& input, std::int64_t every) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) {
+    Fail(engine, file, 0,
+         "no poses file: the engine ended without writing it (it must write the input's "
+         "poses_file)");
+  }
+  const int blocks = input.block_count();
+  const std::int64_t expected = ExpectedRows(input.steps, every);
+  // Columns: which field of a row holds what (-1: absent).
+  enum Quantity { kX, kY, kAngle, kVx, kVy, kOmega, kQuantities };
+  static const char* kSuffix[kQuantities] = {"_m", "_m", "_rad", "_mps", "_mps", "_radps"};
+  static const char* kStem[kQuantities] = {"x", "y", "angle", "vx", "vy", "omega"};
+  std::vector<std::array<int, kQuantities>> col(static_cast<size_t>(blocks));
+  for (auto& c : col) c.fill(-1);
+  int t_col = -1;
+  std::map<std::string, std::pair<int, int>> names;  // column name -> (block, quantity)
+  for (int k = 0; k < blocks; ++k) {
+    for (int q = 0; q < kQuantities; ++q) {
+      names[std::string(kStem[q]) + std::to_string(k + 1) + kSuffix[q]] = {k, q};
+    }
+  }
+  PoseRows out;
+  std::string line;
+  std::vector<std::string> fields;
+  std::int64_t line_no = 0;
+  size_t columns = 0;
+  bool header = false;
+  const double out_dt = input.time_step_s * static_cast<double>(every);
+  std::vector<StepReadout> rows;
+  double t_prev = -std::numeric_limits<double>::infinity();
+  while (std::getline(in, line)) {
+    ++line_no;
+    out.bytes += static_cast<std::int64_t>(line.size()) + 1;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (line.empty() || line[0] == '#') continue;
+    SplitFields(line, &fields);
+    if (!header) {
+      header = true;
+      columns = fields.size();
+      for (size_t i = 0; i < fields.size(); ++i) {
+        const std::string& name = fields[i];
+        if (name == "t_s") {
+          t_col = static_cast<int>(i);
+          continue;
+        }
+        auto it = names.find(name);
+        if (it == names.end()) {
+          Fail(engine, file, line_no,
+               "unknown column '" + name + "' (expected t_s and, for blocks 1 to " +
+                   std::to_string(blocks) +
+                   ", xK_m, yK_m, angleK_rad and optionally vxK_mps, vyK_mps, omegaK_radps)");
+        }
+        int& c = col[static_cast<size_t>(it->second.first)][static_cast<size_t>(it->second.second)];
+        if (c >= 0) Fail(engine, file, line_no, "column '" + name + "' appears twice");
+        c = static_cast<int>(i);
+      }
+      if (t_col < 0) Fail(engine, file, line_no, "missing column 't_s' in the header");
+      int with_velocity = 0;
+      for (int k = 0; k < blocks; ++k) {
+        for (int q = kX; q <= kAngle; ++q) {
+          if (col[static_cast<size_t>(k)][static_cast<size_t>(q)] < 0) {
+            Fail(engine, file, line_no,
+                 std::string("missing column '") + kStem[q] + std::to_string(k + 1) + kSuffix[q] +
+                     "' in the header (the scene has " + std::to_string(blocks) + " blocks)");
+          }
+        }
+        int given = 0;
+        for (int q = kVx; q <= kOmega; ++q) given += col[static_cast<size_t>(k)][static_cast<size_t>(q)] >= 0;
+        if (given != 0 && given != 3) {
+          Fail(engine, file, line_no,
+               "block " + std::to_string(k + 1) +
+                   " has some of vxK_mps, vyK_mps, omegaK_radps: give all three or none");
+        }
+        with_velocity += given == 3;
+      }
+      if (with_velocity != 0 && with_velocity != blocks) {
+        Fail(engine, file, line_no, "velocities given for some blocks only: give them for all or none");
+      }
+      out.velocities_given = with_velocity == blocks;
+      rows.reserve(static_cast<size_t>(expected));
+      continue;
+    }
+    const std::int64_t j = static_cast<std::int64_t>(rows.size());
+    if (j >= expected) {
+      Fail(engine, file, line_no,
+           "more rows than the " + std::to_string(expected) + " promised (t = 0 to " +
+               std::to_string(static_cast<double>(input.steps) * input.time_step_s) + " s)");
+    }
+    if (fields.size() != columns) {
+      Fail(engine, file, line_no,
+           std::to_string(fields.size()) + " fields, the header has " + std::to_string(columns) +
+               " (a truncated row?)");
+    }
+    std::vector<double> v(columns);
+    for (size_t i = 0; i < columns; ++i) {
+      const char* s = fields[i].c_str();
+      char* end = nullptr;
+      v[i] = std::strtod(s, &end);
+      if (fields[i].empty() || *end != '\0') {
+        Fail(engine, file, line_no, "column " + std::to_string(i + 1) + ": expected a number, got '" +
+                                        fields[i] + "'");
+      }
+      if (!std::isfinite(v[i])) {
+        Fail(engine, file, line_no, "column " + std::to_string(i + 1) + ": '" + fields[i] +
+                                        "' is not a finite number");
+      }
+    }
+    const double t = v[static_cast<size_t>(t_col)];
+    if (t <= t_prev) {
+      Fail(engine, file, line_no,
+           "time " + fields[static_cast<size_t>(t_col)] + " s goes backwards (the row before is at " +
+               std::to_string(t_prev) + " s)");
+    }
+    const double t_expected = static_cast<double>(RowStep(j, input.steps, every)) * input.time_step_s;
+    if (std::abs(t - t_expected) > 1e-3 * out_dt) {
+      Fail(engine, file, line_no,
+           "row " + std::to_string(j) + " is at t = " + fields[static_cast<size_t>(t_col)] +
+               " s, expected " + std::to_string(t_expected) +
+               " s (rows at every output_every_steps-th step from 0, then the last step)");
+    }
+    t_prev = t;
+    StepReadout r(blocks);
+    r.t_s = t_expected;
+    for (int k = 0; k < blocks; ++k) {
+      const auto& c = col[static_cast<size_t>(k)];
+      BodyReadout& b = r.blocks[static_cast<size_t>(k)];
+      b.x_m = v[static_cast<size_t>(c[kX])];
+      b.y_m = v[static_cast<size_t>(c[kY])];
+      const double phi = v[static_cast<size_t>(c[kAngle])];
+      b.cos_phi = std::cos(phi);
+      b.sin_phi = std::sin(phi);
+      // The unwrapped angle rides in w_radps until the differences are taken.
+      b.w_radps = phi;
+      if (out.velocities_given) {
+        b.vx_mps = v[static_cast<size_t>(c[kVx])];
+        b.vy_mps = v[static_cast<size_t>(c[kVy])];
+      }
+      if (out.velocities_given) b.w_radps = v[static_cast<size_t>(c[kOmega])];
+    }
+    rows.push_back(std::move(r));
+  }
+  if (in.bad()) Fail(engine, file, line_no, "cannot read the poses file");
+  if (!header) Fail(engine, file, line_no, "empty poses file: expected a header line");
+  if (static_cast<std::int64_t>(rows.size()) < expected) {
+    Fail(engine, file, line_no,
+         std::to_string(rows.size()) + " rows, fewer than the " + std::to_string(expected) +
+             " promised (t = 0 to " +
+             std::to_string(static_cast<double>(input.steps) * input.time_step_s) +
+             " s every " + std::to_string(out_dt) + " s)" +
+             (rows.empty() ? std::string() : "; the last is at t = " + std::to_string(rows.back().t_s) + " s"));
+  }
+  if (!out.velocities_given) {
+    // Central differences of the poses (one-sided at the ends), the angle as written (unwrapped
+    // by the engine or not: a jump of 2 pi is taken out).
+    const size_t n = rows.size();
+    const StackPlacement placed = PlaceStack(input.blocks, input.initial);
+    std::vector<double> phi(n);
+    for (int k = 0; k < blocks; ++k) {
+      const size_t kk = static_cast<size_t>(k);
+      for (size_t i = 0; i < n; ++i) {
+        phi[i] = rows[i].blocks[kk].w_radps;
+        if (i > 0) {
+          phi[i] -= 2.0 * M_PI * std::round((phi[i] - phi[i - 1]) / (2.0 * M_PI));
+        }
+      }
+      // t = 0: the input's velocities, which the engine started from.
+      const PlanarPose& p0 = placed.blocks[kk];
+      rows[0].blocks[kk].vx_mps = p0.vx_mps;
+      rows[0].blocks[kk].vy_mps = p0.vy_mps;
+      rows[0].blocks[kk].w_radps = p0.w_radps;
+      for (size_t i = 1; i < n; ++i) {
+        const size_t a = i - 1, b = i + 1 == n ? i : i + 1;
+        const double span = rows[b].t_s - rows[a].t_s;
+        BodyReadout& r = rows[i].blocks[kk];
+        if (span <= 0.0) {
+          r.vx_mps = r.vy_mps = r.w_radps = 0.0;
+          continue;
+        }
+        r.vx_mps = (rows[b].blocks[kk].x_m - rows[a].blocks[kk].x_m) / span;
+        r.vy_mps = (rows[b].blocks[kk].y_m - rows[a].blocks[kk].y_m) / span;
+        r.w_radps = (phi[b] - phi[a]) / span;
+      }
+    }
+  }
+  out.rows = std::move(rows);
+  return out;
+}
+
+}  // namespace rockbench::external

@@ -1,0 +1,64 @@
+#pragma once
+/// The external-engine protocol, version 1 (docs/external-engines.md; the input's JSON Schema is
+/// engines/external/input.schema.json): the input file rockbench writes for one run and the poses
+/// file the engine writes back.
+#include <cstdint>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "engines/common/engine_input.h"
+#include "engines/common/monitor.h"
+#include "scene/engine_settings.h"
+#include "scene/scene.h"
+
+namespace rockbench::external {
+
+/// An external engine's run that failed: it could not start, crashed, hung, ran out of memory or
+/// wrote a poses file the protocol refuses. The message names the engine, and the file and line
+/// at fault.
+struct ExternalEngineError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+/// The input of one run: the blocks (geometry, mass, inertia, pose and velocity at t = 0, bottom
+/// first), the pairs in contact and their friction, gravity, the step, steps, duration and
+/// output interval, the base motion on the step grid (and its analytic form when the scene's
+/// has one), the engine's settings and where to write the poses.
+nlohmann::json InputJson(const std::string& engine, const Scene& scene, const EngineInput& input,
+                         const EngineSettings& settings, std::int64_t output_every_steps,
+                         const std::filesystem::path& poses_file,
+                         const std::filesystem::path& contacts_file);
+
+/// The poses an engine wrote, as the monitor reads them: one readout per output row (row j at
+/// t = j * output_every_steps * time_step_s), velocities from the file or, where it gives none,
+/// from central differences of the poses.
+struct PoseRows {
+  std::vector<StepReadout> rows;
+  bool velocities_given = false;  ///< the file had every block's vx, vy and omega columns
+  std::int64_t bytes = 0;         ///< the file's size
+};
+
+/// The number of rows a run of `steps` steps writes at every `output_every_steps`-th step: t = 0,
+/// then each whole multiple, then the last step when it is not one.
+std::int64_t ExpectedRows(std::int64_t steps, std::int64_t output_every_steps);
+
+/// The step index of row j.
+std::int64_t RowStep(std::int64_t j, std::int64_t steps, std::int64_t output_every_steps);
+
+/// Parses a poses file (CSV: a header `t_s,x1_m,y1_m,angle1_rad[,vx1_mps,vy1_mps,omega1_radps],
+/// x2_m,...`, then one row per output time; lines starting with '#' are comments). Throws
+/// ExternalEngineError "ENGINE: FILE:LINE: ..." for a missing or unknown column, a field that is
+/// not a finite number, a time that goes backwards or is not the row's, fewer or more rows than
+/// promised.
+PoseRows ReadPoses(const std::string& engine, const std::filesystem::path& file,
+                   const EngineInput& input, std::int64_t output_every_steps);
+
+/// The run input as the monitor sees an engine that writes every `output_every_steps`-th step:
+/// the step that many times longer, the base motion sampled at the rows (an inertial window's
+/// largest acceleration, so that a base that moved in it counts as moving).
+EngineInput MonitorInput(const EngineInput& input, std::int64_t output_every_steps);
+
+}  // namespace rockbench::external
