@@ -9,7 +9,7 @@ packages=(build-essential cmake pkg-config
   libeigen3-dev libcli11-dev libtomlplusplus-dev nlohmann-json3-dev
   libgtest-dev libbenchmark-dev libgsl-dev libopenmpi-dev openmpi-bin
   libbullet-dev
-  libode-dev libmujoco-dev libdart-dev libsiconos-kernel-dev
+  libode-dev libmujoco-dev libdart-dev libsiconos-kernel-dev libbox2d-dev
   libosmesa6-dev libpng-dev libfreetype-dev fonts-dejavu-core ffmpeg
   gnuplot-nox chromium
   clang-14 libclang-rt-14-dev llvm-14)
