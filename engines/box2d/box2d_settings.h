@@ -12,7 +12,8 @@
 /// moves at most b2_maxTranslation = 2 m in a step (its velocity is scaled down to that). For a
 /// block of 0.1 m a 1 cm rounded corner is a different block: `length_scale` simulates the world
 /// with every length multiplied by it (dynamic similarity, below), which shrinks all of these
-/// against the blocks by the same factor.
+/// against the blocks by the same factor. Box2D is single precision: its errors stop falling
+/// below dt = 1e-4 s (docs/engines.md "Box2D").
 #include <optional>
 #include <string_view>
 
@@ -30,9 +31,10 @@ inline constexpr double kMaxFriction = 1e6;
 /// takes it as a float; Box2D's testbed uses 1/60 s).
 struct Box2dSettings {
   /// Velocity iterations of the sequential-impulse solver per step (Box2D's testbed and manual:
-  /// 8). The solver is warm-started, so at small steps a few iterations converge; see
-  /// docs/engines.md "Box2D" for the measurement behind ours.
-  int velocity_iterations = 8;
+  /// 8). Ours: 30. Measured at dt = 1e-4 s, length_scale 1000, on the thesis stack: 8 matched 4
+  /// of its 37 impacts with uplift episodes (theta1 / theta2 errors 1.9e-4 / 3.7e-4 rad), 30
+  /// matched 31 with no uplift (1.3e-4 / 5.4e-4 rad) at 1.9 times the wall time.
+  int velocity_iterations = 30;
   /// Position (non-linear Gauss-Seidel) iterations per step, a maximum: Box2D stops early once
   /// every contact is within 3 b2_linearSlop (testbed and manual: 3).
   int position_iterations = 3;
@@ -58,9 +60,14 @@ struct Box2dSettings {
   /// fixed in Box2D's metres, so in the scene's metres they are divided by length_scale: ours,
   /// 100, makes the rounding of a corner 0.1 mm. The price: a body moves at most
   /// b2_maxTranslation = 2 m of Box2D's per step, 2 / (length_scale dt) m/s of the scene
-  /// (2e3 m/s at dt = 1e-5 s, 20 m/s at 1e-3 s, 1.2 m/s at 1/60 s); summary.json's diagnostics
-  /// count the steps where that cap acted.
-  double length_scale = 100.0;
+  /// (20 m/s at dt = 1e-4 s, 2 m/s at 1e-3 s, 0.12 m/s at 1/60 s with ours); summary.json's
+  /// diagnostics count the steps where that cap acted. Ours: 1000. Measured at dt = 1e-4 s (max
+  /// angle error): the skin costs about 0.01 m / (length_scale b) rad on a block of half width b
+  /// (length_scale 1: 4.9e-2, 2.1e-2, 1.1e-2 rad at b = 0.2, 0.5, 1 m); length_scale 100 leaves
+  /// 2.1e-3 rad at b = 0.05 m and 1.5e-2 rad on the thesis stack (uplift at the interface),
+  /// 1000 4.1e-4 and 3.7e-4; 10000 fails (Housner's block 1.3e-3 rad at 1e-4 s, a float
+  /// coordinate's ulp at 4e4 m of Box2D's nears the 5 mm slop).
+  double length_scale = 1000.0;
   /// Warm starting of the contact impulses from the previous step (b2World default on).
   bool warm_starting = true;
   /// Continuous collision against the static (or kinematic) ground: time of impact and sub-steps
