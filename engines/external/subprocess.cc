@@ -56,7 +56,9 @@ std::filesystem::path FindProgram(const std::string& argv0) {
   std::string dir;
   while (std::getline(dirs, dir, ':')) {
     if (dir.empty()) dir = ".";
-    const std::filesystem::path candidate = std::filesystem::path(dir) / argv0;
+    std::string candidate = dir;
+    candidate.push_back('/');
+    candidate.append(argv0);
     struct stat st {};
     if (stat(candidate.c_str(), &st) == 0 && S_ISREG(st.st_mode) &&
         access(candidate.c_str(), X_OK) == 0) {

@@ -253,6 +253,14 @@ double ReadWallLimit(const toml::node& node, const std::filesystem::path& file) 
 }
 
 void CheckEngines(const StudyDef& s, const toml::node& node) {
+  // The external engines the study's scene names ([external.<name>]) are engines of the study
+  // too. A scene that cannot be read is said later, with its member's context.
+  if (!s.scene_path.empty()) {
+    try {
+      RegisterExternalEngines(LoadScene(s.scene_path));
+    } catch (const SceneError&) {
+    }
+  }
   std::vector<std::string> seen;
   for (const std::string& e : s.engines) {
     if (std::find(seen.begin(), seen.end(), e) != seen.end()) {
@@ -277,6 +285,7 @@ void CheckEngines(const StudyDef& s, const toml::node& node) {
 
 void ReadTop(const toml::table& root, StudyDef* s) {
   const std::filesystem::path dir = s->path.parent_path();
+  const toml::node* engines_node = nullptr;
   for (const auto& [k, v] : root) {
     const std::string name(k.str());
     if (name == "title") {
@@ -289,7 +298,7 @@ void ReadTop(const toml::table& root, StudyDef* s) {
       s->scene_line = static_cast<int>(v.source().begin.line);
     } else if (name == "engines") {
       s->engines = ReadStringList(v, "engines", s->path);
-      CheckEngines(*s, v);
+      engines_node = &v;
     } else if (name == "set") {
       s->overrides = ReadStringList(v, "set", s->path);
       s->set_line = static_cast<int>(v.source().begin.line);
@@ -316,6 +325,8 @@ void ReadTop(const toml::table& root, StudyDef* s) {
                        "wall_limit_s, min_impact_rate, axis)");
     }
   }
+  // Once the scene is known: its external engines are the study's too.
+  if (engines_node != nullptr) CheckEngines(*s, *engines_node);
 }
 
 // Block 1's p = sqrt(3 g / (4 R)) (rad/s) and tan(alpha1).

@@ -114,7 +114,13 @@ TEST_P(EngineFriction, NewmarksBlockSlidesByTheClosedForm) {
   ASSERT_EQ(held, 4001);  // T / dt + 1: both ends of the pulse are step starts
 
   const std::string& e = GetParam();
-  const double engine_rel = e == "mujoco" ? 5e-7 : e == "siconos" ? 1.5e-7 : 1.5e-8;
+  // Box2D steps in single precision: its velocity, rounded to float's 6e-8 at each of the
+  // 10^4 steps of the slide, walks by about sqrt(10^4) 6e-8 = 6e-6 of the slip (measured
+  // 6.4e-6 at length_scale 1000, 2026-11-26); ten times that, as for the others.
+  const double engine_rel = e == "mujoco"    ? 5e-7
+                            : e == "siconos" ? 1.5e-7
+                            : e == "box2d"   ? 6.5e-5
+                                             : 1.5e-8;
   const double u = run.history.samples.back().u_m[0];
   EXPECT_NEAR(u, stepped, engine_rel * std::abs(stepped))
       << "u1 at " << run.history.samples.back().t_s;
