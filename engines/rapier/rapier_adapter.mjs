@@ -1,0 +1,213 @@
+#!/usr/bin/env node
+// Rapier 2-D (the deterministic WebAssembly build of its official JavaScript bindings) as a
+// rockbench external engine (protocol 1; the protocol's definition is InputJson and ReadPoses in
+// engines/external/protocol.cc).
+//
+//     node rapier_adapter.mjs INPUT.json
+//
+// One fixed (inertial drive) or kinematic-velocity-based (kinematic drive) ground cuboid whose
+// top is y = 0 at t = 0, one dynamic cuboid per block with the input's mass and inertia, stepped
+// `steps` times at the input's step; the poses go to the input's poses_file. Each contact pair
+// of the input gets a collider of its own on each of its two bodies, and only the two colliders
+// of one pair meet (collision groups, or a contact filter hook past 16 pairs), so that every
+// pair has exactly its friction coefficient (Min rule, the same value on both sides). Rapier
+// computes in f32: the poses are f32 values written as the doubles they are.
+import { closeSync, openSync, readFileSync, writeSync } from "node:fs";
+import RAPIER from "@dimforge/rapier2d-deterministic-compat";
+
+function fail(msg) {
+  process.stderr.write(`rapier_adapter.mjs: ${msg}\n`);
+  process.exit(1);
+}
+
+function finiteOr(v, fallback) {
+  return typeof v === "number" && Number.isFinite(v) ? v : fallback;
+}
+
+// The [rapier] table's keys (engines/rapier/manifest.toml), with the manifest's defaults for a
+// hand-written input that leaves one out.
+const DEFAULTS = {
+  friction: 10.0,
+  num_solver_iterations: 8,
+  num_internal_pgs_iterations: 1,
+  allowed_linear_error: 0.005,
+  prediction_distance: 0.002,
+  contact_skin: 0.0,
+  contact_natural_frequency: 30.0,
+};
+
+async function main(argv) {
+  if (argv.length !== 1) fail("usage: node rapier_adapter.mjs INPUT.json");
+  const run = JSON.parse(readFileSync(argv[0], "utf8"));
+  if (run.protocol_version !== 1) {
+    fail(`speaks protocol 1, the input is ${run.protocol_version}`);
+  }
+  if (run.dimensions !== 2) fail(`simulates 2 dimensions, the input has ${run.dimensions}`);
+  const s = { ...DEFAULTS, ...(run.settings || {}) };
+  const dt = run.time_step_s;
+  const steps = run.steps;
+  const every = run.output_every_steps;
+  const g = run.gravity_mps2;
+  const blocks = run.blocks;
+  const drive = run.drive;
+  const kinematic = drive.kind === "kinematic";
+  if (!kinematic && drive.kind !== "inertial") fail(`unknown drive '${drive.kind}'`);
+
+  await RAPIER.init();
+  const world = new RAPIER.World({ x: 0.0, y: -g });
+  world.timestep = dt;
+  world.lengthUnit = 1.0; // the normalized lengths below are then in m
+  world.numSolverIterations = s.num_solver_iterations;
+  world.numInternalPgsIterations = s.num_internal_pgs_iterations;
+  const ip = world.integrationParameters;
+  ip.normalizedAllowedLinearError = s.allowed_linear_error;
+  ip.normalizedPredictionDistance = s.prediction_distance;
+  ip.raw.contact_natural_frequency = s.contact_natural_frequency;
+
+  // The ground: a cuboid far wider than the stack, 2 m thick (its top is then exactly 0 in f32).
+  let size = 0.5;
+  for (const b of blocks) size = Math.max(size, 0.5 * b.width_m, 0.5 * b.height_m);
+  const groundHalfW = 40.0 * size;
+  const groundHalfH = 1.0;
+  const ux0 = kinematic ? drive.ux_m[0] : 0.0;
+  const uy0 = kinematic ? drive.uy_m[0] : 0.0;
+  const gvx = kinematic ? drive.ux0_mps : 0.0;
+  const gvy = kinematic ? drive.uy0_mps : 0.0;
+  // Rapier's positions are f32: the world's origin sits at the stack's mass centre at t = 0
+  // (rounded to 2^-10 m, so that the ground's top stays exact), where their ulp is smallest.
+  let mass = 0.0, mx = 0.0, my = 0.0;
+  for (const b of blocks) {
+    mass += b.mass_kg;
+    mx += b.mass_kg * b.x_m;
+    my += b.mass_kg * b.y_m;
+  }
+  const ox = Math.round((mx / mass) * 1024) / 1024;
+  const oy = Math.round((my / mass) * 1024) / 1024;
+  const ground = world.createRigidBody(
+    (kinematic ? RAPIER.RigidBodyDesc.kinematicVelocityBased() : RAPIER.RigidBodyDesc.fixed())
+      .setTranslation(ux0 - ox, uy0 - oy - groundHalfH)
+      .setLinvel(gvx, gvy)
+      .setCanSleep(false),
+  );
+
+  // The blocks, bottom first, placed as the input has them (relative to the ground at t = 0).
+  const bodies = [ground];
+  for (const b of blocks) {
+    const body = world.createRigidBody(
+      RAPIER.RigidBodyDesc.dynamic()
+        .setTranslation(b.x_m + ux0 - ox, b.y_m + uy0 - oy)
+        .setRotation(b.angle_rad)
+        .setLinvel(b.vx_mps + gvx, b.vy_mps + gvy)
+        .setAngvel(b.omega_radps)
+        .setAdditionalMassProperties(b.mass_kg, { x: 0.0, y: 0.0 }, b.inertia_kgm2)
+        .setCanSleep(false)
+        .setCcdEnabled(false),
+    );
+    bodies.push(body);
+  }
+
+  // One collider per (pair, side): only the pair's two colliders meet.
+  const pairs = run.contact_pairs;
+  const useGroups = pairs.length <= 16;
+  const allowed = new Set(); // "h1,h2" of collider handles that may touch (the hook's filter)
+  const halfExtents = (body) =>
+    body === 0
+      ? [groundHalfW, groundHalfH]
+      : [0.5 * blocks[body - 1].width_m, 0.5 * blocks[body - 1].height_m];
+  for (const [p, pair] of pairs.entries()) {
+    const mu = finiteOr(pair.friction, s.friction);
+    const handles = [];
+    for (const body of [pair.lower, pair.upper]) {
+      if (!(body >= 0 && body <= blocks.length)) fail(`contact pair ${p}: no body ${body}`);
+      const [hx, hy] = halfExtents(body);
+      let desc = RAPIER.ColliderDesc.cuboid(hx, hy)
+        .setDensity(0.0)
+        .setFriction(mu)
+        .setFrictionCombineRule(RAPIER.CoefficientCombineRule.Min)
+        .setRestitution(0.0)
+        .setRestitutionCombineRule(RAPIER.CoefficientCombineRule.Min)
+        .setContactSkin(s.contact_skin);
+      if (useGroups) {
+        const bit = 1 << p;
+        desc = desc.setCollisionGroups(((bit << 16) | bit) >>> 0);
+      } else {
+        desc = desc.setActiveHooks(RAPIER.ActiveHooks.FILTER_CONTACT_PAIRS);
+      }
+      handles.push(world.createCollider(desc, bodies[body]).handle);
+    }
+    allowed.add(`${handles[0]},${handles[1]}`);
+    allowed.add(`${handles[1]},${handles[0]}`);
+  }
+  const hooks = useGroups
+    ? undefined
+    : {
+        filterContactPair: (c1, c2) =>
+          allowed.has(`${c1},${c2}`) ? RAPIER.SolverFlags.COMPUTE_IMPULSE : null,
+        filterIntersectionPair: () => false,
+      };
+
+  // The mass properties are the input's (f32).
+  for (const [k, b] of blocks.entries()) {
+    const body = bodies[k + 1];
+    body.recomputeMassPropertiesFromColliders();
+    const rel = (a, e) => Math.abs(a - e) / Math.abs(e);
+    if (rel(body.mass(), b.mass_kg) > 1e-6 || rel(body.principalInertia(), b.inertia_kgm2) > 1e-6) {
+      fail(
+        `block ${k + 1}: Rapier has mass ${body.mass()} kg and inertia ` +
+          `${body.principalInertia()} kg m^2, the input ${b.mass_kg} and ${b.inertia_kgm2}`,
+      );
+    }
+  }
+
+  // The poses file: t = 0, every `every`-th step, the last step.
+  const fd = openSync(run.poses_file, "w");
+  let buf = [];
+  const flush = () => {
+    if (buf.length) writeSync(fd, buf.join(""));
+    buf = [];
+  };
+  const header = ["t_s"];
+  for (let k = 1; k <= blocks.length; ++k) {
+    header.push(`x${k}_m`, `y${k}_m`, `angle${k}_rad`, `vx${k}_mps`, `vy${k}_mps`, `omega${k}_radps`);
+  }
+  buf.push(`# Rapier ${RAPIER.version()} (@dimforge/rapier2d-deterministic-compat, f32)\n`);
+  buf.push(header.join(",") + "\n");
+  const row = (n) => {
+    const f = [String(n * dt)];
+    for (let k = 1; k < bodies.length; ++k) {
+      const b = bodies[k];
+      const x = b.translation();
+      const v = b.linvel();
+      f.push(String(x.x + ox), String(x.y + oy), String(b.rotation()), String(v.x), String(v.y), String(b.angvel()));
+    }
+    buf.push(f.join(",") + "\n");
+    if (buf.length >= 4096) flush();
+  };
+
+  row(0);
+  const ax = kinematic ? [] : drive.ax_mps2;
+  const ay = kinematic ? [] : drive.ay_mps2;
+  const gravity = { x: 0.0, y: -g };
+  for (let n = 0; n < steps; ++n) {
+    if (kinematic) {
+      // The ground at u_n, moving with (u_{n+1} - u_n) / dt during step n.
+      ground.setTranslation({ x: drive.ux_m[n] - ox, y: drive.uy_m[n] - oy - groundHalfH }, false);
+      ground.setLinvel(
+        { x: (drive.ux_m[n + 1] - drive.ux_m[n]) / dt, y: (drive.uy_m[n + 1] - drive.uy_m[n]) / dt },
+        false,
+      );
+    } else {
+      // The base's acceleration as the effective gravity of the base frame.
+      gravity.x = ax.length ? -ax[n] : 0.0;
+      gravity.y = -(g + (ay.length ? ay[n] : 0.0));
+      world.gravity = gravity;
+    }
+    world.step(undefined, hooks);
+    if ((n + 1) % every === 0 || n + 1 === steps) row(n + 1);
+  }
+  flush();
+  closeSync(fd);
+  world.free();
+}
+
+main(process.argv.slice(2)).catch((e) => fail(e && e.stack ? e.stack : String(e)));
