@@ -9,7 +9,7 @@
 #include "engines/common/engine_input.h"
 #include "engines/common/monitor.h"
 #include "engines/external/protocol.h"
-#include "engines/external/subprocess.h"
+#include "engines/external/command.h"
 
 namespace rockbench::external {
 namespace {
@@ -104,18 +104,16 @@ EngineResult ExternalEngine::Simulate(const Scene& scene, const GroundMotion& mo
     out << j.dump() << '\n';
     if (!out) throw ExternalEngineError(m_.name + ": cannot write " + input_file.string());
   }
-  ProcessSpec spec;
+  CommandSpec spec;
   spec.argv = m_.command;
   spec.argv.push_back(input_file.string());
   spec.working_dir = folder.path();
-  spec.stdout_file = folder.path() / "stdout.txt";
   spec.stderr_file = folder.path() / "stderr.txt";
   spec.wall_limit_s = settings.Number("wall_limit_s");
   spec.memory_limit_mib = settings.Number("memory_limit_mib");
-  const ProcessResult proc = RunProcess(spec);
+  const CommandResult proc = RunCommand(spec);
   if (!proc.ok()) {
-    std::string said = TailOfFile(spec.stderr_file);
-    if (said.empty()) said = TailOfFile(spec.stdout_file);
+    const std::string said = TailOfFile(spec.stderr_file);
     throw ExternalEngineError(m_.name + ": its command (" + CommandText(spec.argv) + ") " +
                               proc.Describe(spec) +
                               (said.empty() ? std::string(", and said nothing")

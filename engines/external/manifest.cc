@@ -7,7 +7,7 @@
 #include <map>
 
 #include "engines/common/engine_input.h"
-#include "engines/external/subprocess.h"
+#include "util/subprocess.h"
 
 namespace rockbench::external {
 namespace {
@@ -312,7 +312,7 @@ std::vector<std::string> ResolveCommand(std::vector<std::string> command,
 }
 
 std::string MissingReason(const ExternalManifest& m, const std::filesystem::path& dir) {
-  if (FindProgram(m.command[0]).empty()) {
+  if (!FindProgram(m.command[0])) {
     return "its program '" + m.command[0] + "' is not installed" +
            (m.install_hint.empty() ? "" : " (" + m.install_hint + ")");
   }

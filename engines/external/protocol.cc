@@ -6,6 +6,7 @@
 #include <fstream>
 #include <limits>
 #include <map>
+#include <ostream>
 
 #include "scene/rigid_block.h"
 #include "scene/stack_pose.h"
@@ -140,6 +141,27 @@ nlohmann::json InputJson(const std::string& engine, const Scene& scene, const En
   j["base_motion"] = std::move(base);
   j["settings"] = settings.ToJson();
   return j;
+}
+
+void WritePoses(std::ostream& out, const std::vector<StepReadout>& rows) {
+  if (rows.empty()) return;
+  const size_t blocks = rows.front().blocks.size();
+  out << "t_s";
+  for (size_t k = 1; k <= blocks; ++k) {
+    const std::string i = std::to_string(k);
+    out << ",x" << i << "_m,y" << i << "_m,angle" << i << "_rad,vx" << i << "_mps,vy" << i
+        << "_mps,omega" << i << "_radps";
+  }
+  out << '\n';
+  for (const StepReadout& r : rows) {
+    out << ShortestText(r.t_s);
+    for (const BodyReadout& b : r.blocks) {
+      out << ',' << ShortestText(b.x_m) << ',' << ShortestText(b.y_m) << ','
+          << ShortestText(std::atan2(b.sin_phi, b.cos_phi)) << ',' << ShortestText(b.vx_mps) << ','
+          << ShortestText(b.vy_mps) << ',' << ShortestText(b.w_radps);
+    }
+    out << '\n';
+  }
 }
 
 EngineInput MonitorInput(const EngineInput& input, std::int64_t every) {

@@ -4,6 +4,7 @@
 /// file the engine writes back.
 #include <cstdint>
 #include <filesystem>
+#include <iosfwd>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 #include <string>
@@ -55,6 +56,11 @@ std::int64_t RowStep(std::int64_t j, std::int64_t steps, std::int64_t output_eve
 /// promised.
 PoseRows ReadPoses(const std::string& engine, const std::filesystem::path& file,
                    const EngineInput& input, std::int64_t output_every_steps);
+
+/// Writes rows as a poses file (the header with every block's velocities, then one row per
+/// readout, each number in its shortest exact form): what an engine written in C++ would write,
+/// and what a replay of a built-in engine's steps writes.
+void WritePoses(std::ostream& out, const std::vector<StepReadout>& rows);
 
 /// The run input as the monitor sees an engine that writes every `output_every_steps`-th step:
 /// the step that many times longer, the base motion sampled at the rows (an inertial window's

@@ -57,7 +57,8 @@ struct ChildFds {
 // In a forked child: the only calls until exec are async-signal-safe. Writes errno to
 // `report` and exits when something fails.
 [[noreturn]] void ExecChild(const std::vector<char*>& args, const ChildFds& fds, const char* dir,
-                            pid_t parent, int report) {
+                            pid_t parent, bool own_group, int report) {
+  if (own_group) ::setpgid(0, 0);
   // The child dies with the thread that started it (SpawnOptions::die_with_parent); a parent
   // already gone before prctl took effect is checked by hand.
   ::prctl(PR_SET_PDEATHSIG, SIGKILL);
@@ -86,7 +87,8 @@ struct ChildFds {
 
 // Starts the child by fork and exec (die_with_parent: posix_spawn cannot set PR_SET_PDEATHSIG).
 // Returns the pid, or -1 with *err set.
-pid_t ForkExec(const std::vector<char*>& args, const ChildFds& fds, const char* dir, int* err) {
+pid_t ForkExec(const std::vector<char*>& args, const ChildFds& fds, const char* dir, bool own_group,
+               int* err) {
   int report[2];
   if (::pipe2(report, O_CLOEXEC) != 0) {
     *err = errno;
@@ -94,7 +96,9 @@ pid_t ForkExec(const std::vector<char*>& args, const ChildFds& fds, const char* 
   }
   const pid_t parent = ::getpid();
   const pid_t pid = ::fork();
-  if (pid == 0) ExecChild(args, fds, dir, parent, report[1]);
+  if (pid == 0) ExecChild(args, fds, dir, parent, own_group, report[1]);
+  // Also here, so that a kill of the group right after the start cannot miss it.
+  if (pid > 0 && own_group) ::setpgid(pid, pid);
   const int fork_errno = errno;
   ::close(report[1]);
   int exec_errno = 0;
@@ -122,7 +126,14 @@ pid_t ForkExec(const std::vector<char*>& args, const ChildFds& fds, const char* 
 // Starts the child by posix_spawn (posix_spawnp without a '/'). Returns the pid, or -1 with
 // *err set.
 pid_t Spawn(const std::vector<char*>& args, const ChildFds& fds, const char* dir, bool search,
-            int* err) {
+            bool own_group, int* err) {
+  // A process group of its own (SpawnOptions::own_process_group): its pid is the group's id.
+  posix_spawnattr_t attr;
+  posix_spawnattr_init(&attr);
+  if (own_group) {
+    posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETPGROUP);
+    posix_spawnattr_setpgroup(&attr, 0);
+  }
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
   for (int target = 0; target < 3; ++target) {
@@ -130,9 +141,10 @@ pid_t Spawn(const std::vector<char*>& args, const ChildFds& fds, const char* dir
   }
   if (dir != nullptr) posix_spawn_file_actions_addchdir_np(&actions, dir);
   pid_t pid = -1;
-  const int rc = search ? ::posix_spawnp(&pid, args[0], &actions, nullptr, args.data(), environ)
-                        : ::posix_spawn(&pid, args[0], &actions, nullptr, args.data(), environ);
+  const int rc = search ? ::posix_spawnp(&pid, args[0], &actions, &attr, args.data(), environ)
+                        : ::posix_spawn(&pid, args[0], &actions, &attr, args.data(), environ);
   posix_spawn_file_actions_destroy(&actions);
+  posix_spawnattr_destroy(&attr);
   if (rc != 0) {
     *err = rc;
     return -1;
@@ -150,6 +162,7 @@ std::string ExitStatus::Text() const {
 struct Subprocess::State {
   pid_t pid = -1;
   bool started = false;
+  bool own_group = false;  // SpawnOptions::own_process_group: Kill signals the whole group
   std::string start_error;
   int in = -1, out = -1, err = -1;  // the caller's ends of the kPipe streams
   std::thread out_reader, err_reader;
@@ -251,9 +264,9 @@ Subprocess::Subprocess(const std::vector<std::string>& argv, const SpawnOptions&
       resolved = found->string();
     }
     args[0] = resolved.data();
-    pid = ForkExec(args, child, dir, &err);
+    pid = ForkExec(args, child, dir, options.own_process_group, &err);
   } else {
-    pid = Spawn(args, child, dir, search, &err);
+    pid = Spawn(args, child, dir, search, options.own_process_group, &err);
   }
   if (pid < 0) {
     fail(argv[0] + ": " + ErrnoText(err));
@@ -262,6 +275,7 @@ Subprocess::Subprocess(const std::vector<std::string>& argv, const SpawnOptions&
 
   s.pid = pid;
   s.started = true;
+  s.own_group = options.own_process_group;
   s.in = parent_end[0];
   const size_t limit = options.capture_limit_bytes;
   if (modes[1] == Stdio::kCapture) {
@@ -356,7 +370,7 @@ void Subprocess::CloseStdin() {
 }
 
 void Subprocess::Kill(int sig) {
-  if (running()) ::kill(state_->pid, sig);
+  if (running()) ::kill(state_->own_group ? -state_->pid : state_->pid, sig);
 }
 
 ExitStatus Subprocess::Wait() {

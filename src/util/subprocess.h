@@ -51,6 +51,10 @@ struct SpawnOptions {
   /// must not leave the child writing files. A child that must outlive a worker thread of the
   /// caller must not ask for this.
   bool die_with_parent = false;
+  /// The child leads a process group of its own (its pid is the group's id), and Kill signals
+  /// the whole group: a command that starts programs of its own (a shell, a language runtime)
+  /// is ended with them.
+  bool own_process_group = false;
 };
 
 /// A running child process, started by the constructor. Move-only; the destructor kills
@@ -91,7 +95,8 @@ class Subprocess {
   /// Closes the caller's end of the child's standard input: the child reads end of input.
   void CloseStdin();
 
-  /// Sends `sig` to a running child (no effect once it was waited for).
+  /// Sends `sig` to a running child, and to its process group with own_process_group (no
+  /// effect once it was waited for).
   void Kill(int sig = SIGKILL);
   /// Closes the caller's pipe ends (the child reads end of input; one still writing gets
   /// EPIPE), waits for the child to end (retrying interrupted waits) and for the capture

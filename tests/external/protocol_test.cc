@@ -13,10 +13,12 @@
 #include "common/error_of.h"
 #include "common/scratch_dir_test.h"
 #include "compare/agreement.h"
+#include "engines/bullet/bullet_settings.h"
+#include "engines/bullet/rocking_world.h"
 #include "engines/external/external_engine.h"
 #include "engines/external/manifest.h"
 #include "engines/external/protocol.h"
-#include "engines/external/subprocess.h"
+#include "engines/external/command.h"
 #include "reference/simulate.h"
 #include "run/engine_registry.h"
 #include "run/engine_run.h"
@@ -87,6 +89,48 @@ TEST(ExternalInput, HoldsTheRunInputBitForBit) {
   EXPECT_EQ(back.at("contact_pairs").size(), 3u);  // ground-1, 1-2, ground-2
   EXPECT_EQ(back.at("base_motion").at("horizontal").at("kind"), "sine_pulse");
   EXPECT_TRUE(back.at("base_motion").at("horizontal").at("analytic").get<bool>());
+}
+
+// The input as the JSON Schema (engines/external/input.schema.json) states it: at each level,
+// every required key is written and every key written is a property of the schema.
+void ExpectKeysMatch(const nlohmann::json& value, const nlohmann::json& schema,
+                     const std::string& where) {
+  for (const auto& key : schema.at("required")) {
+    EXPECT_TRUE(value.contains(key.get<std::string>())) << where << ": missing " << key;
+  }
+  for (const auto& [key, v] : value.items()) {
+    EXPECT_TRUE(schema.at("properties").contains(key)) << where << ": not in the schema: " << key;
+  }
+}
+
+TEST(ExternalInput, IsWhatTheJsonSchemaSays) {
+  std::ifstream in(kSource + "/engines/external/input.schema.json");
+  const nlohmann::json schema = nlohmann::json::parse(in);
+  for (const char* drive : {"inertial", "kinematic"}) {
+    const Scene s = StackScene();
+    const EngineInput input =
+        MakeEngineInput(s, GroundMotion::FromScene(s), "faulty", 1e-3,
+                        std::string(drive) == "inertial" ? DriveKind::kInertial
+                                                         : DriveKind::kKinematic,
+                        0.0);
+    const nlohmann::json j = InputJson("faulty", s, input, EngineSettings(), 1, "/p", "/c");
+    ExpectKeysMatch(j, schema, "top");
+    EXPECT_EQ(j.at("protocol"), schema.at("properties").at("protocol").at("const"));
+    EXPECT_EQ(j.at("protocol_version"), kProtocolVersion);
+    for (const auto& b : j.at("blocks")) {
+      ExpectKeysMatch(b, schema.at("properties").at("blocks").at("items"), "block");
+    }
+    for (const auto& p : j.at("contact_pairs")) {
+      ExpectKeysMatch(p, schema.at("properties").at("contact_pairs").at("items"), "pair");
+    }
+    ExpectKeysMatch(j.at("ground"), schema.at("properties").at("ground"), "ground");
+    const auto& variants = schema.at("properties").at("drive").at("oneOf");
+    const auto& variant = variants[std::string(drive) == "inertial" ? 0 : 1];
+    EXPECT_EQ(j.at("drive").at("kind"), variant.at("properties").at("kind").at("const"));
+    ExpectKeysMatch(j.at("drive"), variant, drive);
+    ExpectKeysMatch(j.at("base_motion").at("horizontal"), schema.at("$defs").at("motion"),
+                    "motion");
+  }
 }
 
 TEST(ExternalInput, TheMonitorSeesACoarserOutputAsLongerSteps) {
@@ -182,34 +226,33 @@ TEST_F(PosesTest, VelocitiesFromDifferencesAreExactForAUniformMotion) {
   }
 }
 
-TEST(ExternalProcess, EndsAreToldApart) {
+TEST(ExternalCommand, EndsAreToldApart) {
   const auto dir = std::filesystem::temp_directory_path();
-  ProcessSpec spec;
+  CommandSpec spec;
   spec.working_dir = dir;
-  spec.stdout_file = dir / ("rockbench_proc_out_" + std::to_string(getpid()));
-  spec.stderr_file = dir / ("rockbench_proc_err_" + std::to_string(getpid()));
+  spec.stderr_file = dir / ("rockbench_command_err_" + std::to_string(getpid()));
   spec.argv = {"sh", "-c", "echo bye >&2; exit 3"};
-  ProcessResult r = RunProcess(spec);
-  EXPECT_TRUE(r.started && r.exited);
+  CommandResult r = RunCommand(spec);
+  EXPECT_TRUE(r.started);
   EXPECT_EQ(r.exit_code, 3);
   EXPECT_EQ(TailOfFile(spec.stderr_file), "bye");
   spec.argv = {"sh", "-c", "kill -SEGV $$"};
-  r = RunProcess(spec);
+  r = RunCommand(spec);
   EXPECT_EQ(r.signal, SIGSEGV);
   EXPECT_EQ(r.Describe(spec), "killed by signal 11 (Segmentation fault)");
-  // A hang is killed at its limit, with whatever it started (its process group).
+  // A hang is killed at its limit, with whatever it started (its process group): the sleep
+  // in the background would otherwise live on.
   spec.argv = {"sh", "-c", "sleep 30 & sleep 30"};
   spec.wall_limit_s = 0.3;
-  r = RunProcess(spec);
+  r = RunCommand(spec);
   EXPECT_TRUE(r.timed_out);
   EXPECT_LT(r.wall_s, 5.0);
   EXPECT_EQ(r.Describe(spec), "killed after its wall-clock limit of 0.3 s");
   spec.argv = {"no-such-program-rockbench"};
-  r = RunProcess(spec);
+  r = RunCommand(spec);
   EXPECT_FALSE(r.started);
-  EXPECT_EQ(r.Describe(spec),
-            "could not start: no executable program 'no-such-program-rockbench' in PATH");
-  std::filesystem::remove(spec.stdout_file);
+  EXPECT_EQ(r.Describe(spec).rfind("could not start: no-such-program-rockbench: ", 0), 0u)
+      << r.Describe(spec);
   std::filesystem::remove(spec.stderr_file);
 }
 
@@ -314,6 +357,56 @@ TEST_F(FaultyEngineTest, ASceneCannotTakeABuiltInEnginesName) {
   EXPECT_EQ(ErrorOf([&] { CheckEngineTables(s); }),
             scene_file.string() + ":1: [external.bullet]: 'bullet' is a built-in engine's "
                                   "name; give the external engine another");
+}
+
+// Bullet's own steps, replayed through the protocol by a command that only copies them to the
+// poses file: the monitor reads the same poses it reads in process (angles through their
+// shortest text and back: a few ulps), so the histories agree to 1e-12 rad and the outcomes
+// (status, impacts) are Bullet's.
+class ReplayTest : public testing_util::ScratchDirTest {};
+
+TEST_F(ReplayTest, ReplayingBulletsStepsGivesBulletsHistory) {
+  const Scene s = LoadScene(kSource + "/scenes/thesis_free_rocking.toml",
+                            {"run.duration=1.5", "bullet.time_step=1e-3"});
+  const GroundMotion motion = GroundMotion::FromScene(s);
+  const EngineRun bullet = RunEngine("bullet", s, motion);
+  const bullet::BulletInput in = bullet::MakeBulletInput(s, motion);
+  std::vector<StepReadout> steps;
+  {
+    bullet::RockingWorld world(in);
+    steps.push_back(world.Read(0));
+    for (std::int64_t n = 0; n < in.steps; ++n) {
+      world.ApplyDrive(n);
+      world.Step();
+      steps.push_back(world.Read(n + 1));
+    }
+  }
+  const auto saved = dir_ / "bullet_poses.csv";
+  {
+    std::ofstream out(saved);
+    WritePoses(out, steps);
+  }
+  ExternalEngineRef ref;
+  ref.name = "replay";
+  ref.where = "test";
+  ref.base_dir = dir_;
+  ref.command = {"sh", "-c", "cp '" + saved.string() + "' \"$(dirname \"$0\")/poses.csv\""};
+  const ExternalEngine replay(LoadManifest(ref));
+  Scene rs = s;
+  rs.engine_tables["replay"].values["time_step"] = RawSetting{1e-3, "test"};
+  const EngineResult r = replay.Simulate(rs, motion, {});
+  EXPECT_EQ(r.outcome.status, bullet.outcome.status);
+  EXPECT_EQ(r.outcome.impacts(), bullet.outcome.impacts());
+  ASSERT_EQ(r.history.samples.size(), bullet.history.samples.size());
+  double worst = 0.0;
+  for (size_t i = 0; i < r.history.samples.size(); ++i) {
+    for (int k = 0; k < 2; ++k) {
+      worst = std::max(worst, std::abs(r.history.samples[i].theta_rad[k] -
+                                       bullet.history.samples[i].theta_rad[k]));
+    }
+  }
+  EXPECT_LT(worst, 1e-12);
+  EXPECT_EQ(r.summary.at("external").at("velocities"), "engine");
 }
 
 // The Python example (standard library only) through the protocol: Housner's block released
