@@ -1,6 +1,9 @@
 #include "engines/external/protocol.h"
 
 #include <algorithm>
+#include <charconv>
+#include <iterator>
+#include <string_view>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
@@ -58,6 +61,47 @@ void SplitFields(const std::string& line, std::vector<std::string>* out) {
     if (comma == std::string::npos) break;
     start = comma + 1;
   }
+}
+
+// Parses a row of `columns` comma-separated numbers (spaces around them allowed) into *v.
+// False, with *v cleared, for anything else: the caller then finds and names the fault.
+bool ParseNumbers(std::string_view row, size_t columns, std::vector<double>* v) {
+  v->clear();
+  const char* p = row.data();
+  const char* end = row.data() + row.size();
+  while (true) {
+    while (p < end && (*p == ' ' || *p == '\t')) ++p;
+    if (p < end && *p == '+') ++p;
+    double x = 0.0;
+    const auto [next, ec] = std::from_chars(p, end, x);
+    if (ec != std::errc() || next == p) {
+      v->clear();
+      return false;
+    }
+    v->push_back(x);
+    p = next;
+    while (p < end && (*p == ' ' || *p == '\t')) ++p;
+    if (p == end) break;
+    if (*p != ',') {
+      v->clear();
+      return false;
+    }
+    ++p;
+  }
+  if (v->size() != columns) {
+    v->clear();
+    return false;
+  }
+  return true;
+}
+
+// The time field of a row as written.
+std::string TimeText(std::string_view row, int t_col) {
+  std::string line(row);
+  std::vector<std::string> fields;
+  SplitFields(line, &fields);
+  return t_col >= 0 && static_cast<size_t>(t_col) < fields.size() ? fields[static_cast<size_t>(t_col)]
+                                                                    : std::string();
 }
 
 }  // namespace
@@ -224,20 +268,41 @@ PoseRows ReadPoses(const std::string& engine, const std::filesystem::path& file,
     }
   }
   PoseRows out;
+  // The whole file at once, its lines read in place (a run of 1e5 rows is 20 MB).
+  std::string text;
+  {
+    std::error_code ec;
+    const auto size = std::filesystem::file_size(file, ec);
+    text.resize(ec ? 0 : static_cast<size_t>(size));
+    in.read(text.data(), static_cast<std::streamsize>(text.size()));
+    if (in.bad() || in.gcount() != static_cast<std::streamsize>(text.size())) {
+      Fail(engine, file, 0, "cannot read the poses file");
+    }
+  }
+  out.bytes = static_cast<std::int64_t>(text.size());
   std::string line;
   std::vector<std::string> fields;
+  std::vector<double> v;
   std::int64_t line_no = 0;
   size_t columns = 0;
   bool header = false;
   const double out_dt = input.time_step_s * static_cast<double>(every);
   std::vector<StepReadout> rows;
   double t_prev = -std::numeric_limits<double>::infinity();
-  while (std::getline(in, line)) {
+  size_t pos = 0;
+  while (pos < text.size()) {
+    const size_t end = std::min(text.find('\n', pos), text.size());
+    std::string_view row(text.data() + pos, end - pos);
+    pos = end + 1;
     ++line_no;
-    out.bytes += static_cast<std::int64_t>(line.size()) + 1;
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    if (line.empty() || line[0] == '#') continue;
-    SplitFields(line, &fields);
+    if (!row.empty() && row.back() == '\r') row.remove_suffix(1);
+    if (row.empty() || row[0] == '#') continue;
+    if (header && ParseNumbers(row, columns, &v)) {
+      // The fast path: every field a number (checked below for being finite).
+    } else {
+      line.assign(row);
+      SplitFields(line, &fields);
+    }
     if (!header) {
       header = true;
       columns = fields.size();
@@ -290,35 +355,42 @@ PoseRows ReadPoses(const std::string& engine, const std::filesystem::path& file,
            "more rows than the " + std::to_string(expected) + " promised (t = 0 to " +
                std::to_string(static_cast<double>(input.steps) * input.time_step_s) + " s)");
     }
-    if (fields.size() != columns) {
-      Fail(engine, file, line_no,
-           std::to_string(fields.size()) + " fields, the header has " + std::to_string(columns) +
-               " (a truncated row?)");
-    }
-    std::vector<double> v(columns);
-    for (size_t i = 0; i < columns; ++i) {
-      const char* s = fields[i].c_str();
-      char* end = nullptr;
-      v[i] = std::strtod(s, &end);
-      if (fields[i].empty() || *end != '\0') {
-        Fail(engine, file, line_no, "column " + std::to_string(i + 1) + ": expected a number, got '" +
-                                        fields[i] + "'");
+    if (v.size() != columns) {
+      // The slow path found the fault: a row of another length, or a field that is no number.
+      if (fields.size() != columns) {
+        Fail(engine, file, line_no,
+             std::to_string(fields.size()) + " fields, the header has " + std::to_string(columns) +
+                 " (a truncated row?)");
       }
+      // What strtod reads (a hexadecimal float, say) is a number too.
+      v.assign(columns, 0.0);
+      for (size_t i = 0; i < columns; ++i) {
+        char* stop = nullptr;
+        v[i] = std::strtod(fields[i].c_str(), &stop);
+        if (fields[i].empty() || *stop != '\0') {
+          Fail(engine, file, line_no,
+               "column " + std::to_string(i + 1) + ": expected a number, got '" + fields[i] + "'");
+        }
+      }
+    }
+    for (size_t i = 0; i < columns; ++i) {
       if (!std::isfinite(v[i])) {
-        Fail(engine, file, line_no, "column " + std::to_string(i + 1) + ": '" + fields[i] +
-                                        "' is not a finite number");
+        line.assign(row);
+        SplitFields(line, &fields);
+        Fail(engine, file, line_no,
+             "column " + std::to_string(i + 1) + ": '" + fields[i] + "' is not a finite number");
       }
     }
     const double t = v[static_cast<size_t>(t_col)];
     if (t <= t_prev) {
       Fail(engine, file, line_no,
-           "time " + fields[static_cast<size_t>(t_col)] + " s goes backwards (the row before is at " +
+           "time " + TimeText(row, t_col) + " s goes backwards (the row before is at " +
                std::to_string(t_prev) + " s)");
     }
     const double t_expected = static_cast<double>(RowStep(j, input.steps, every)) * input.time_step_s;
     if (std::abs(t - t_expected) > 1e-3 * out_dt) {
       Fail(engine, file, line_no,
-           "row " + std::to_string(j) + " is at t = " + fields[static_cast<size_t>(t_col)] +
+           "row " + std::to_string(j) + " is at t = " + TimeText(row, t_col) +
                " s, expected " + std::to_string(t_expected) +
                " s (rows at every output_every_steps-th step from 0, then the last step)");
     }
@@ -343,7 +415,6 @@ PoseRows ReadPoses(const std::string& engine, const std::filesystem::path& file,
     }
     rows.push_back(std::move(r));
   }
-  if (in.bad()) Fail(engine, file, line_no, "cannot read the poses file");
   if (!header) Fail(engine, file, line_no, "empty poses file: expected a header line");
   if (static_cast<std::int64_t>(rows.size()) < expected) {
     Fail(engine, file, line_no,
