@@ -3,6 +3,9 @@
 #include <stdlib.h>
 
 #include <chrono>
+#include <cmath>
+#include <limits>
+#include <variant>
 #include <cstdio>
 #include <fstream>
 
@@ -143,6 +146,20 @@ EngineResult ExternalEngine::Simulate(const Scene& scene, const GroundMotion& mo
   out.summary = monitor.Summary();
   out.summary["engine"] = m_.name;
   out.summary["settings"] = settings.ToJson();
+  // Friction from the scene, as every engine reports it: each interface's coefficient, the
+  // scene's where finite, else the engine's `friction` setting (null: none it states).
+  if (HasFiniteFriction(input)) {
+    const SettingDef* own = m_.schema.Find("friction");
+    const double engine_mu = own != nullptr && std::holds_alternative<double>(own->default_value)
+                                 ? settings.Number("friction")
+                                 : std::numeric_limits<double>::infinity();
+    nlohmann::json mu = nlohmann::json::array();
+    for (int k = 0; k < input.block_count(); ++k) {
+      const double v = InterfaceFriction(input, k, engine_mu);
+      mu.push_back(std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr));
+    }
+    out.summary["settings"]["interface_friction"] = mu;
+  }
   out.summary["wall_s"] = wall_s;
   out.summary["real_time_factor"] = wall_s > 0.0 ? monitor.last().t_s / wall_s : 0.0;
   out.summary["external"] = {

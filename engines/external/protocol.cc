@@ -281,7 +281,7 @@ PoseRows ReadPoses(const std::string& engine, const std::filesystem::path& file,
   }
   out.bytes = static_cast<std::int64_t>(text.size());
   std::string line;
-  std::vector<std::string> fields;
+  std::vector<std::string> fields, header_names;
   std::vector<double> v;
   std::int64_t line_no = 0;
   size_t columns = 0;
@@ -306,6 +306,7 @@ PoseRows ReadPoses(const std::string& engine, const std::filesystem::path& file,
     if (!header) {
       header = true;
       columns = fields.size();
+      header_names = fields;
       for (size_t i = 0; i < fields.size(); ++i) {
         const std::string& name = fields[i];
         if (name == "t_s") {
@@ -373,13 +374,26 @@ PoseRows ReadPoses(const std::string& engine, const std::filesystem::path& file,
         }
       }
     }
-    for (size_t i = 0; i < columns; ++i) {
+    // A value that is not finite: the engine's state blew up. The row ends the run (its
+    // readout carries the fault: the monitor stops there, status non_finite).
+    std::string fault;
+    for (size_t i = 0; i < columns && fault.empty(); ++i) {
       if (!std::isfinite(v[i])) {
         line.assign(row);
         SplitFields(line, &fields);
-        Fail(engine, file, line_no,
-             "column " + std::to_string(i + 1) + ": '" + fields[i] + "' is not a finite number");
+        fault = engine + ": " + file.string() + ":" + std::to_string(line_no) + ": column " +
+                std::to_string(i + 1) + " (" + header_names[i] + ") is '" + fields[i] + "'";
       }
+    }
+    if (!fault.empty()) {
+      const double t_expected =
+          static_cast<double>(RowStep(j, input.steps, every)) * input.time_step_s;
+      StepReadout r = rows.empty() ? StepReadout(blocks) : rows.back();
+      r.t_s = t_expected;
+      r.engine_fault = fault;
+      rows.push_back(std::move(r));
+      out.stopped_at_line = line_no;
+      break;
     }
     const double t = v[static_cast<size_t>(t_col)];
     if (t <= t_prev) {
@@ -416,7 +430,7 @@ PoseRows ReadPoses(const std::string& engine, const std::filesystem::path& file,
     rows.push_back(std::move(r));
   }
   if (!header) Fail(engine, file, line_no, "empty poses file: expected a header line");
-  if (static_cast<std::int64_t>(rows.size()) < expected) {
+  if (out.stopped_at_line == 0 && static_cast<std::int64_t>(rows.size()) < expected) {
     Fail(engine, file, line_no,
          std::to_string(rows.size()) + " rows, fewer than the " + std::to_string(expected) +
              " promised (t = 0 to " +
@@ -424,10 +438,11 @@ PoseRows ReadPoses(const std::string& engine, const std::filesystem::path& file,
              " s every " + std::to_string(out_dt) + " s)" +
              (rows.empty() ? std::string() : "; the last is at t = " + std::to_string(rows.back().t_s) + " s"));
   }
-  if (!out.velocities_given) {
+  if (!out.velocities_given && rows.size() > (out.stopped_at_line != 0 ? 1u : 0u)) {
     // Central differences of the poses (one-sided at the ends), the angle as written (unwrapped
     // by the engine or not: a jump of 2 pi is taken out).
-    const size_t n = rows.size();
+    // The finite rows (a last row with a fault is not read by the monitor).
+    const size_t n = rows.size() - (out.stopped_at_line != 0 ? 1 : 0);
     const StackPlacement placed = PlaceStack(input.blocks, input.initial);
     std::vector<double> phi(n);
     for (int k = 0; k < blocks; ++k) {

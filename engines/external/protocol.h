@@ -37,8 +37,12 @@ nlohmann::json InputJson(const std::string& engine, const Scene& scene, const En
 /// t = j * output_every_steps * time_step_s), velocities from the file or, where it gives none,
 /// from central differences of the poses.
 struct PoseRows {
+  /// The rows read. When a row holds a value that is not finite (the engine's state blew up),
+  /// reading stops there: that row is the last, its readout's engine_fault says "FILE:LINE:
+  /// column C (NAME) is 'nan'", and the monitor ends the run there with status non_finite.
   std::vector<StepReadout> rows;
   bool velocities_given = false;  ///< the file had every block's vx, vy and omega columns
+  std::int64_t stopped_at_line = 0;  ///< the line of a value that is not finite (0: none)
   std::int64_t bytes = 0;         ///< the file's size
 };
 
@@ -52,8 +56,9 @@ std::int64_t RowStep(std::int64_t j, std::int64_t steps, std::int64_t output_eve
 /// Parses a poses file (CSV: a header `t_s,x1_m,y1_m,angle1_rad[,vx1_mps,vy1_mps,omega1_radps],
 /// x2_m,...`, then one row per output time; lines starting with '#' are comments). Throws
 /// ExternalEngineError "ENGINE: FILE:LINE: ..." for a missing or unknown column, a field that is
-/// not a finite number, a time that goes backwards or is not the row's, fewer or more rows than
-/// promised.
+/// not a number, a time that goes backwards or is not the row's, fewer or more rows than
+/// promised. A number that is not finite (nan, inf) is the engine's blow-up, not a fault of the
+/// file: PoseRows::rows.
 PoseRows ReadPoses(const std::string& engine, const std::filesystem::path& file,
                    const EngineInput& input, std::int64_t output_every_steps);
 

@@ -209,6 +209,15 @@ async function main(argv) {
       // The base's acceleration as the effective gravity of the base frame.
       gravity.x = ax.length ? -ax[n] : 0.0;
       gravity.y = -(g + (ay.length ? ay[n] : 0.0));
+      // Rapier holds gravity in f32: a base acceleration beyond its range (3.4e38 m/s^2) cannot
+      // be given to it (it would step as if the base were still). The state after this step is
+      // not finite in Rapier's arithmetic: one row of NaN ends the run there (status non_finite).
+      if (!Number.isFinite(Math.fround(gravity.x)) || !Number.isFinite(Math.fround(gravity.y))) {
+        const f = [String((n + 1) * dt)];
+        for (let k = 1; k < bodies.length; ++k) f.push("NaN", "NaN", "NaN", "NaN", "NaN", "NaN");
+        buf.push(f.join(",") + "\n");
+        break;
+      }
       world.gravity = gravity;
     }
     world.step(undefined, hooks);

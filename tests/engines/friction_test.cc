@@ -117,9 +117,12 @@ TEST_P(EngineFriction, NewmarksBlockSlidesByTheClosedForm) {
   // Box2D steps in single precision: its velocity, rounded to float's 6e-8 at each of the
   // 10^4 steps of the slide, walks by about sqrt(10^4) 6e-8 = 6e-6 of the slip (measured
   // 6.4e-6 at length_scale 1000, 2026-11-26); ten times that, as for the others.
+  // Rapier (f32 too, and a contact soft at 300 Hz) slips 1.3e-4 more than the stepped closed
+  // form (measured 2026-11-27); ten times that.
   const double engine_rel = e == "mujoco"    ? 5e-7
                             : e == "siconos" ? 1.5e-7
                             : e == "box2d"   ? 6.5e-5
+                            : e == "rapier"  ? 1.3e-3
                                              : 1.5e-8;
   const double u = run.history.samples.back().u_m[0];
   EXPECT_NEAR(u, stepped, engine_rel * std::abs(stepped))
