@@ -45,7 +45,8 @@ std::string CommandResult::Describe(const CommandSpec& spec) const {
   char buf[160];
   if (!started) return "could not start: " + start_error;
   if (timed_out) {
-    std::snprintf(buf, sizeof buf, "killed after its wall-clock limit of %.3g s", spec.wall_limit_s);
+    std::snprintf(buf, sizeof buf, "killed after its wall-clock limit of %.3g s",
+                  spec.wall_limit_s);
     return buf;
   }
   if (over_memory) {

@@ -4,15 +4,15 @@
 
 #include <chrono>
 #include <cmath>
-#include <limits>
-#include <variant>
 #include <cstdio>
 #include <fstream>
+#include <limits>
+#include <variant>
 
 #include "engines/common/engine_input.h"
 #include "engines/common/monitor.h"
-#include "engines/external/protocol.h"
 #include "engines/external/command.h"
+#include "engines/external/protocol.h"
 
 namespace rockbench::external {
 namespace {
@@ -82,8 +82,8 @@ EngineResult ExternalEngine::Simulate(const Scene& scene, const GroundMotion& mo
                                       const SimulateOptions& options) const {
   const auto start = std::chrono::steady_clock::now();
   if (!m_.missing_reason.empty()) {
-    throw SceneError(m_.where + ": external engine " + m_.name + " cannot run here: " +
-                     m_.missing_reason);
+    throw SceneError(m_.where + ": external engine " + m_.name +
+                     " cannot run here: " + m_.missing_reason);
   }
   if (scene.block_count() > m_.max_blocks) {
     throw SceneError(scene.path.string() + ": engine " + m_.name + " simulates at most " +
@@ -117,10 +117,9 @@ EngineResult ExternalEngine::Simulate(const Scene& scene, const GroundMotion& mo
   const CommandResult proc = RunCommand(spec);
   if (!proc.ok()) {
     const std::string said = TailOfFile(spec.stderr_file);
-    throw ExternalEngineError(m_.name + ": its command (" + CommandText(spec.argv) + ") " +
-                              proc.Describe(spec) +
-                              (said.empty() ? std::string(", and said nothing")
-                                            : ";\nits last words:\n" + said));
+    throw ExternalEngineError(
+        m_.name + ": its command (" + CommandText(spec.argv) + ") " + proc.Describe(spec) +
+        (said.empty() ? std::string(", and said nothing") : ";\nits last words:\n" + said));
   }
   const auto read_start = std::chrono::steady_clock::now();
   PoseRows poses = ReadPoses(m_.name, poses_file, input, every);

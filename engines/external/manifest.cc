@@ -113,9 +113,8 @@ class ManifestReader {
 
   void Setting(const std::string& key, const toml::table& t, EngineSettingsSchema* schema) const {
     const std::string prefix = "settings." + key + ".";
-    static const std::vector<std::string> kKeys = {"type", "default", "min",  "max",
-                                                   "range", "choices", "unit", "engine_default",
-                                                   "doc"};
+    static const std::vector<std::string> kKeys = {
+        "type", "default", "min", "max", "range", "choices", "unit", "engine_default", "doc"};
     for (auto&& [k, v] : t) {
       if (std::find(kKeys.begin(), kKeys.end(), std::string(k.str())) == kKeys.end()) {
         Fail(prefix + std::string(k.str()), &v,
@@ -131,9 +130,8 @@ class ManifestReader {
     const std::string type = String(t, "type");
     const toml::node* def = t.get("default");
     if (def == nullptr) Fail(prefix + "default", &t, "expected the setting's default value");
-    const std::string engine_default = t.get("engine_default") != nullptr
-                                           ? String(t, "engine_default")
-                                           : std::string("-");
+    const std::string engine_default =
+        t.get("engine_default") != nullptr ? String(t, "engine_default") : std::string("-");
     const std::string doc = String(t, "doc");
     if (type == "number") {
       static const std::map<std::string, SettingRange> kRanges = {
@@ -148,7 +146,8 @@ class ManifestReader {
       if (range == kRanges.end()) {
         Fail(prefix + "range", t.get("range"),
              "expected finite, positive, non_negative, non_negative_or_infinite, fraction or "
-             "unit_interval, got '" + range_text + "'");
+             "unit_interval, got '" +
+                 range_text + "'");
       }
       NumberBounds bounds;
       bounds.min = Number(t, prefix, "min", bounds.min, false);
@@ -188,8 +187,8 @@ class ManifestReader {
 
   ExternalManifest Read(const toml::table& root, const ExternalEngineRef& ref) const {
     static const std::vector<std::string> kKeys = {
-        "protocol", "version",  "command",      "max_blocks",     "drives",   "requires",
-        "install_hint", "wall_limit_s", "memory_limit_mib", "settings", "sweep"};
+        "protocol",     "version",      "command",          "max_blocks", "drives", "requires",
+        "install_hint", "wall_limit_s", "memory_limit_mib", "settings",   "sweep"};
     for (auto&& [k, v] : root) {
       if (std::find(kKeys.begin(), kKeys.end(), std::string(k.str())) == kKeys.end()) {
         Fail(std::string(k.str()), &v,
@@ -222,8 +221,8 @@ class ManifestReader {
       m.drives = Strings(root, "drives");
       for (const std::string& d : m.drives) {
         if (d != "inertial" && d != "kinematic") {
-          Fail("drives", root.get("drives"), "expected \"inertial\" and/or \"kinematic\", got '" +
-                                                  d + "'");
+          Fail("drives", root.get("drives"),
+               "expected \"inertial\" and/or \"kinematic\", got '" + d + "'");
         }
       }
       if (m.drives.empty()) Fail("drives", root.get("drives"), "expected at least one drive");

@@ -32,7 +32,7 @@ struct ExternalManifest {
   /// The command with relative program and file arguments made absolute; the input file's path
   /// is appended when it runs.
   std::vector<std::string> command;
-  std::string version;  ///< "Rapier 0.20.0 (...)"; a bare command: "external: COMMAND"
+  std::string version;          ///< "Rapier 0.20.0 (...)"; a bare command: "external: COMMAND"
   int max_blocks = kMaxBlocks;  ///< the most blocks it simulates
   /// The drives it takes: "inertial" and/or "kinematic" (the input's drive.kind).
   std::vector<std::string> drives = {"inertial"};

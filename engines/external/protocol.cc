@@ -2,14 +2,14 @@
 
 #include <algorithm>
 #include <charconv>
-#include <iterator>
-#include <string_view>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
+#include <iterator>
 #include <limits>
 #include <map>
 #include <ostream>
+#include <string_view>
 
 #include "scene/rigid_block.h"
 #include "scene/stack_pose.h"
@@ -52,8 +52,8 @@ void SplitFields(const std::string& line, std::vector<std::string>* out) {
   size_t start = 0;
   for (;;) {
     const size_t comma = line.find(',', start);
-    std::string f = line.substr(start, comma == std::string::npos ? std::string::npos
-                                                                  : comma - start);
+    std::string f =
+        line.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
     while (!f.empty() && (f.back() == ' ' || f.back() == '\r' || f.back() == '\t')) f.pop_back();
     size_t lead = 0;
     while (lead < f.size() && (f[lead] == ' ' || f[lead] == '\t')) ++lead;
@@ -100,8 +100,9 @@ std::string TimeText(std::string_view row, int t_col) {
   std::string line(row);
   std::vector<std::string> fields;
   SplitFields(line, &fields);
-  return t_col >= 0 && static_cast<size_t>(t_col) < fields.size() ? fields[static_cast<size_t>(t_col)]
-                                                                    : std::string();
+  return t_col >= 0 && static_cast<size_t>(t_col) < fields.size()
+             ? fields[static_cast<size_t>(t_col)]
+             : std::string();
 }
 
 }  // namespace
@@ -164,7 +165,8 @@ nlohmann::json InputJson(const std::string& engine, const Scene& scene, const En
                      {"friction", NumberOrNull(input.blocks[static_cast<size_t>(k)].friction)}});
   }
   if (input.block_count() == 2) {
-    pairs.push_back({{"lower", 0}, {"upper", 2}, {"friction", NumberOrNull(input.blocks[1].friction)}});
+    pairs.push_back(
+        {{"lower", 0}, {"upper", 2}, {"friction", NumberOrNull(input.blocks[1].friction)}});
   }
   j["contact_pairs"] = std::move(pairs);
   nlohmann::json drive;
@@ -335,7 +337,8 @@ PoseRows ReadPoses(const std::string& engine, const std::filesystem::path& file,
           }
         }
         int given = 0;
-        for (int q = kVx; q <= kOmega; ++q) given += col[static_cast<size_t>(k)][static_cast<size_t>(q)] >= 0;
+        for (int q = kVx; q <= kOmega; ++q)
+          given += col[static_cast<size_t>(k)][static_cast<size_t>(q)] >= 0;
         if (given != 0 && given != 3) {
           Fail(engine, file, line_no,
                "block " + std::to_string(k + 1) +
@@ -344,7 +347,8 @@ PoseRows ReadPoses(const std::string& engine, const std::filesystem::path& file,
         with_velocity += given == 3;
       }
       if (with_velocity != 0 && with_velocity != blocks) {
-        Fail(engine, file, line_no, "velocities given for some blocks only: give them for all or none");
+        Fail(engine, file, line_no,
+             "velocities given for some blocks only: give them for all or none");
       }
       out.velocities_given = with_velocity == blocks;
       rows.reserve(static_cast<size_t>(expected));
@@ -401,11 +405,12 @@ PoseRows ReadPoses(const std::string& engine, const std::filesystem::path& file,
            "time " + TimeText(row, t_col) + " s goes backwards (the row before is at " +
                std::to_string(t_prev) + " s)");
     }
-    const double t_expected = static_cast<double>(RowStep(j, input.steps, every)) * input.time_step_s;
+    const double t_expected =
+        static_cast<double>(RowStep(j, input.steps, every)) * input.time_step_s;
     if (std::abs(t - t_expected) > 1e-3 * out_dt) {
       Fail(engine, file, line_no,
-           "row " + std::to_string(j) + " is at t = " + TimeText(row, t_col) +
-               " s, expected " + std::to_string(t_expected) +
+           "row " + std::to_string(j) + " is at t = " + TimeText(row, t_col) + " s, expected " +
+               std::to_string(t_expected) +
                " s (rows at every output_every_steps-th step from 0, then the last step)");
     }
     t_prev = t;
@@ -434,9 +439,10 @@ PoseRows ReadPoses(const std::string& engine, const std::filesystem::path& file,
     Fail(engine, file, line_no,
          std::to_string(rows.size()) + " rows, fewer than the " + std::to_string(expected) +
              " promised (t = 0 to " +
-             std::to_string(static_cast<double>(input.steps) * input.time_step_s) +
-             " s every " + std::to_string(out_dt) + " s)" +
-             (rows.empty() ? std::string() : "; the last is at t = " + std::to_string(rows.back().t_s) + " s"));
+             std::to_string(static_cast<double>(input.steps) * input.time_step_s) + " s every " +
+             std::to_string(out_dt) + " s)" +
+             (rows.empty() ? std::string()
+                           : "; the last is at t = " + std::to_string(rows.back().t_s) + " s"));
   }
   if (!out.velocities_given && rows.size() > (out.stopped_at_line != 0 ? 1u : 0u)) {
     // Central differences of the poses (one-sided at the ends), the angle as written (unwrapped

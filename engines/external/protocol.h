@@ -41,9 +41,9 @@ struct PoseRows {
   /// reading stops there: that row is the last, its readout's engine_fault says "FILE:LINE:
   /// column C (NAME) is 'nan'", and the monitor ends the run there with status non_finite.
   std::vector<StepReadout> rows;
-  bool velocities_given = false;  ///< the file had every block's vx, vy and omega columns
+  bool velocities_given = false;     ///< the file had every block's vx, vy and omega columns
   std::int64_t stopped_at_line = 0;  ///< the line of a value that is not finite (0: none)
-  std::int64_t bytes = 0;         ///< the file's size
+  std::int64_t bytes = 0;            ///< the file's size
 };
 
 /// The number of rows a run of `steps` steps writes at every `output_every_steps`-th step: t = 0,

@@ -47,7 +47,8 @@ void AddExternal(Registry& r, const ExternalEngineRef& ref) {
                        "' is a built-in engine's name; give the external engine another");
     }
     if (SameRef(r.refs[i - r.first_external], ref)) return;
-    throw SceneError(ref.where + ": [external." + ref.name + "]: an external engine of that name is " +
+    throw SceneError(ref.where + ": [external." + ref.name +
+                     "]: an external engine of that name is " +
                      "already registered, differently, by " + r.refs[i - r.first_external].where);
   }
   external::ExternalManifest m = external::LoadManifest(ref);

@@ -543,8 +543,8 @@ class Reader {
           Fail(prefix + ".command", t->get("command"),
                "give either manifest or command, not both (a manifest states the command)");
         }
-        ref.manifest = std::filesystem::path(*m).is_absolute() ? std::filesystem::path(*m)
-                                                                : base / *m;
+        ref.manifest =
+            std::filesystem::path(*m).is_absolute() ? std::filesystem::path(*m) : base / *m;
       } else if (const toml::node* c = t->get("command")) {
         const toml::array* a = c->as_array();
         if (a == nullptr || a->empty()) {
@@ -555,8 +555,7 @@ class Reader {
         for (auto&& arg : *a) {
           auto str = arg.as_string();
           if (str == nullptr || str->get().empty()) {
-            Fail(prefix + ".command", &arg,
-                 "expected non-empty strings, got " + Describe(arg));
+            Fail(prefix + ".command", &arg, "expected non-empty strings, got " + Describe(arg));
           }
           ref.command.push_back(str->get());
         }

@@ -263,11 +263,11 @@ std::vector<Event> GroundImpacts(const History& h) {
 // and the pivot's slip flagged; the 5-drum column's second interface opens before it lands,
 // 0.86 ms early.
 struct Departures {
-  double impact_time_s = 0.0;    // added to the impact-time bounds, s
-  double rate_ratio = 1e-3;      // |omega+ / omega- - e| at Housner's first impact
+  double impact_time_s = 0.0;     // added to the impact-time bounds, s
+  double rate_ratio = 1e-3;       // |omega+ / omega- - e| at Housner's first impact
   bool lifts_and_slides = false;  // Housner's block: uplift and sliding flagged
-  double column_impact_s = 0.0;  // added to the column's landing-time bound, s
-  int column_opens_at = 0;       // the column of this many drums does not land locked
+  double column_impact_s = 0.0;   // added to the column's landing-time bound, s
+  int column_opens_at = 0;        // the column of this many drums does not land locked
 };
 
 Departures DeparturesOf(const std::string& engine) {

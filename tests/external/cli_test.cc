@@ -33,8 +33,9 @@ TEST_F(ExternalCliTest, ComparesThePythonExampleWithTheReference) {
 
 TEST_F(ExternalCliTest, AnEngineListsItselfOrSaysWhyItIsLeftOut) {
   Write("registry.toml", "[external.ghost]\ncommand = [\"no-such-program-rockbench\"]\n");
-  const auto r = testing_util::Shell("ROCKBENCH_EXTERNAL_ENGINES=" + (dir_ / "registry.toml").string() +
-                                     " " + ROCKBENCH_EXE + " engines");
+  const auto r =
+      testing_util::Shell("ROCKBENCH_EXTERNAL_ENGINES=" + (dir_ / "registry.toml").string() + " " +
+                          ROCKBENCH_EXE + " engines");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("ghost: left out of this build (its program "
                           "'no-such-program-rockbench' is not installed)"),
@@ -60,8 +61,8 @@ TEST_F(ExternalCliTest, AHangInAStudyIsARow) {
   const auto study = Write("study.toml",
                            "scene = \"block.toml\"\nengines = [\"reference\", \"hangs\"]\n"
                            "[[axis]]\nkey = \"pulse.amplitude_ratio\"\nvalues = [0.5, 3]\n");
-  const auto r = Rockbench("ensemble " + study.string() + " --out " + (dir_ / "out").string() +
-                           " --jobs 2");
+  const auto r =
+      Rockbench("ensemble " + study.string() + " --out " + (dir_ / "out").string() + " --jobs 2");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const std::string members = ReadFile(dir_ / "out" / "members.csv");
   int hung = 0;

@@ -4,6 +4,8 @@
 // manifest's errors; a faulty engine's failures through the engine interface; and the Python
 // example (examples/python_housner) converging on Housner's block at first order, as its
 // semi-implicit Euler must.
+#include "engines/external/protocol.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -15,10 +17,9 @@
 #include "compare/agreement.h"
 #include "engines/bullet/bullet_settings.h"
 #include "engines/bullet/rocking_world.h"
+#include "engines/external/command.h"
 #include "engines/external/external_engine.h"
 #include "engines/external/manifest.h"
-#include "engines/external/protocol.h"
-#include "engines/external/command.h"
 #include "reference/simulate.h"
 #include "run/engine_registry.h"
 #include "run/engine_run.h"
@@ -50,8 +51,8 @@ EngineInput StackInput(const Scene& s, double dt = 1e-3) {
 
 TEST(ExternalRows, EveryNthStepFromZeroThenTheLast) {
   EXPECT_EQ(ExpectedRows(10, 1), 11);
-  EXPECT_EQ(ExpectedRows(10, 5), 3);   // 0, 5, 10
-  EXPECT_EQ(ExpectedRows(10, 3), 5);   // 0, 3, 6, 9, 10
+  EXPECT_EQ(ExpectedRows(10, 5), 3);  // 0, 5, 10
+  EXPECT_EQ(ExpectedRows(10, 3), 5);  // 0, 3, 6, 9, 10
   EXPECT_EQ(RowStep(4, 10, 3), 10);
   EXPECT_EQ(RowStep(2, 10, 3), 6);
 }
@@ -108,11 +109,9 @@ TEST(ExternalInput, IsWhatTheJsonSchemaSays) {
   const nlohmann::json schema = nlohmann::json::parse(in);
   for (const char* drive : {"inertial", "kinematic"}) {
     const Scene s = StackScene();
-    const EngineInput input =
-        MakeEngineInput(s, GroundMotion::FromScene(s), "faulty", 1e-3,
-                        std::string(drive) == "inertial" ? DriveKind::kInertial
-                                                         : DriveKind::kKinematic,
-                        0.0);
+    const EngineInput input = MakeEngineInput(
+        s, GroundMotion::FromScene(s), "faulty", 1e-3,
+        std::string(drive) == "inertial" ? DriveKind::kInertial : DriveKind::kKinematic, 0.0);
     const nlohmann::json j = InputJson("faulty", s, input, EngineSettings(), 1, "/p", "/c");
     ExpectKeysMatch(j, schema, "top");
     EXPECT_EQ(j.at("protocol"), schema.at("properties").at("protocol").at("const"));
@@ -189,20 +188,20 @@ TEST_F(PosesTest, EveryFaultNamesTheEngineTheFileAndTheLine) {
   EXPECT_NE(Error(std::string(kHeader) + "0,0,2,0\n0.001,0,2\n")
                 .find(at + ":3: 3 fields, the header has 4 (a truncated row?)"),
             std::string::npos);
-  EXPECT_NE(Error(std::string(kHeader) +
-                  "0,0,2,0\n0.001,0,2,0\n0.002,0,2,0\n0.003,0,2,0\n0.004,0,2,0\n")
-                .find(at + ":6: more rows than the 4 promised"),
-            std::string::npos);
+  EXPECT_NE(
+      Error(std::string(kHeader) + "0,0,2,0\n0.001,0,2,0\n0.002,0,2,0\n0.003,0,2,0\n0.004,0,2,0\n")
+          .find(at + ":6: more rows than the 4 promised"),
+      std::string::npos);
   EXPECT_NE(Error("").find(at + ": empty poses file"), std::string::npos);
-  EXPECT_NE(Error("t_s,x1_m,y1_m,angle1_rad,vx1_mps\n")
-                .find("give all three or none"),
+  EXPECT_NE(Error("t_s,x1_m,y1_m,angle1_rad,vx1_mps\n").find("give all three or none"),
             std::string::npos);
 }
 
 TEST_F(PosesTest, VelocitiesFromDifferencesAreExactForAUniformMotion) {
   // x = 0.5 t, phi = -0.2 t (after t = 0, whose velocities are the input's: at rest).
   const Scene s = ParseScene(
-      "[block1]\nwidth = 1.0\nheight = 4.0\ndensity = 2500.0\n[run]\nduration = 0.004\noutput_interval = 0.001\n",
+      "[block1]\nwidth = 1.0\nheight = 4.0\ndensity = 2500.0\n[run]\nduration = "
+      "0.004\noutput_interval = 0.001\n",
       "one.toml");
   const EngineInput in =
       MakeEngineInput(s, GroundMotion(), "faulty", 1e-3, DriveKind::kInertial, 0.0);
@@ -270,24 +269,34 @@ class ManifestTest : public testing_util::ScratchDirTest {
 TEST_F(ManifestTest, ErrorsNameTheFileTheLineAndTheKey) {
   const std::string tail = " (the manifest of external engine mine)";
   EXPECT_EQ(Error("protocol = 2\ncommand = [\"sh\"]\n"),
-            File() + ":1: protocol: expected protocol = 1 (the version of the external-engine "
-                     "protocol this rockbench speaks)" + tail);
+            File() +
+                ":1: protocol: expected protocol = 1 (the version of the external-engine "
+                "protocol this rockbench speaks)" +
+                tail);
   EXPECT_EQ(Error("protocol = 1\ncommand = [\"sh\"]\ncolour = 1\n"),
-            File() + ":3: colour: unknown key (expected protocol, version, command, max_blocks, "
-                     "drives, requires, install_hint, wall_limit_s, memory_limit_mib, "
-                     "[settings.<key>], [sweep])" + tail);
+            File() +
+                ":3: colour: unknown key (expected protocol, version, command, max_blocks, "
+                "drives, requires, install_hint, wall_limit_s, memory_limit_mib, "
+                "[settings.<key>], [sweep])" +
+                tail);
   EXPECT_EQ(Error("protocol = 1\ncommand = [\"sh\"]\n[settings.iterations]\ntype = \"int\"\n"
                   "default = 4\n"),
-            File() + ":4: settings.iterations.type: expected number, integer, flag or choice, "
-                     "got 'int'" + tail);
+            File() +
+                ":4: settings.iterations.type: expected number, integer, flag or choice, "
+                "got 'int'" +
+                tail);
   EXPECT_EQ(Error("protocol = 1\ncommand = [\"sh\"]\n[settings.time_step]\ntype = \"number\"\n"
                   "default = 1e-3\n"),
-            File() + ":3: settings.time_step: a standard key of every external engine's table "
-                     "(docs/external-engines.md); give it another name" + tail);
+            File() +
+                ":3: settings.time_step: a standard key of every external engine's table "
+                "(docs/external-engines.md); give it another name" +
+                tail);
   EXPECT_EQ(Error("protocol = 1\ncommand = [\"sh\"]\n[[sweep.family]]\nname = \"a\"\nid = \"x\"\n"
                   "settings = { iterations = 3 }\n"),
-            File() + ":6: sweep.family.settings.iterations: not a key of the engine's table (the "
-                     "step is the sweep's own)" + tail);
+            File() +
+                ":6: sweep.family.settings.iterations: not a key of the engine's table (the "
+                "step is the sweep's own)" +
+                tail);
 }
 
 TEST_F(ManifestTest, AMissingProgramOrPackageLeavesTheEngineOutSayingWhy) {
@@ -370,8 +379,9 @@ TEST_F(FaultyEngineTest, ASceneCannotTakeABuiltInEnginesName) {
                                 "[block1]\nwidth = 1.0\nheight = 4.0\ndensity = 2500.0\n");
   const Scene s = LoadScene(scene_file);
   EXPECT_EQ(ErrorOf([&] { CheckEngineTables(s); }),
-            scene_file.string() + ":1: [external.bullet]: 'bullet' is a built-in engine's "
-                                  "name; give the external engine another");
+            scene_file.string() +
+                ":1: [external.bullet]: 'bullet' is a built-in engine's "
+                "name; give the external engine another");
 }
 
 // Bullet's own steps, replayed through the protocol by a command that only copies them to the
