@@ -167,7 +167,7 @@ void EmitTrajectorySamples(const Trajectory& trajectory, double dt_s, double run
 
 /// Summary figures of a reference run.
 struct Summary {
-  /// completed | overturned | at_rest | assumption_violated | non_finite
+  /// completed | overturned | at_rest | assumption_violated | non_finite | left_support
   RunStatus status = RunStatus::kCompleted;
   std::string status_detail;  ///< why, for assumption_violated and non_finite
   /// For status non_finite: the first quantity found not finite ("theta2", "omega1", "energy",
@@ -178,6 +178,10 @@ struct Summary {
   double non_finite_t_s = 0.0, non_finite_last_t_s = 0.0;
   std::optional<int> overturn_block;  ///< 1..N
   double overturn_t_s = 0.0;
+  /// The first block that slid off its support (its base left the top face of the block below;
+  /// status left_support), 2..N, and when, s. Not an overturn.
+  std::optional<int> left_support_block;
+  double left_support_t_s = 0.0;
   /// Peak |theta_k| and its time, one entry per block (block k at k - 1).
   std::vector<double> peak_theta_rad, peak_theta_t_s;
   /// Per interface, one entry per block: [0] block 1 (or the stack) on the ground, [k] block

@@ -94,6 +94,12 @@ nlohmann::json ReferenceSummaryJson(const Scene& scene, const reference::Result&
   } else {
     j["overturn"] = nullptr;
   }
+  // The block that slid off its support (null: none; not an overturn).
+  if (s.left_support_block) {
+    j["left_support"] = {{"block", *s.left_support_block}, {"t_s", s.left_support_t_s}};
+  } else {
+    j["left_support"] = nullptr;
+  }
   j["friction_required"] = {{"ground", s.friction_required[0]}};
   if (n <= 2) {
     j["friction_required"]["interface"] = n == 2 ? s.friction_required[1] : 0.0;
@@ -122,6 +128,8 @@ RunOutcome ReferenceOutcome(const reference::Result& result) {
   o.status = s.status;
   o.overturned_block = s.overturn_block.value_or(0);
   if (s.overturn_block) o.overturn_t_s = s.overturn_t_s;
+  o.left_support_block = s.left_support_block.value_or(0);
+  if (s.left_support_block) o.left_support_t_s = s.left_support_t_s;
   o.end_t_s = result.history.samples.empty() ? 0.0 : result.history.samples.back().t_s;
   o.peak_theta_rad = s.peak_theta_rad;
   o.peak_theta_t_s = s.peak_theta_t_s;

@@ -9,13 +9,14 @@
 namespace rockbench {
 namespace {
 
-constexpr std::array<std::pair<RunStatus, const char*>, 6> kStatusTexts = {{
+constexpr std::array<std::pair<RunStatus, const char*>, 7> kStatusTexts = {{
     {RunStatus::kCompleted, "completed"},
     {RunStatus::kOverturned, "overturned"},
     {RunStatus::kAtRest, "at_rest"},
     {RunStatus::kAssumptionViolated, "assumption_violated"},
     {RunStatus::kBlowUp, "blow_up"},
     {RunStatus::kNonFinite, "non_finite"},
+    {RunStatus::kLeftSupport, "left_support"},
 }};
 
 }  // namespace

@@ -20,10 +20,14 @@ enum class RunStatus {
   kAssumptionViolated,  ///< the reference: the model's assumptions stop holding
   kBlowUp,              ///< engines: the monitor flagged a blow-up
   kNonFinite,           ///< the state, energy, an event time or a force stopped being finite
+  /// A block slid off its support: its base left the top face of the block below (the ground
+  /// is infinite: block 1 never leaves it). Not an overturn: the block did not tip over.
+  kLeftSupport,
 };
 
 /// The one text form of a status, as summary.json, the CSV files and the console print it:
-/// "completed", "overturned", "at_rest", "assumption_violated", "blow_up", "non_finite".
+/// "completed", "overturned", "at_rest", "assumption_violated", "blow_up", "non_finite",
+/// "left_support".
 const char* StatusText(RunStatus status);
 
 /// The status whose StatusText is `text`; nullopt for any other text (statuses read back from
@@ -40,12 +44,17 @@ NLOHMANN_JSON_SERIALIZE_ENUM(RunStatus, {{RunStatus::kCompleted, "completed"},
                                          {RunStatus::kAtRest, "at_rest"},
                                          {RunStatus::kAssumptionViolated, "assumption_violated"},
                                          {RunStatus::kBlowUp, "blow_up"},
-                                         {RunStatus::kNonFinite, "non_finite"}})
+                                         {RunStatus::kNonFinite, "non_finite"},
+                                         {RunStatus::kLeftSupport, "left_support"}})
 
 struct RunOutcome {
   RunStatus status = RunStatus::kCompleted;  ///< how the run ended
   int overturned_block = 0;                  ///< 0: none; 1..N: the block that overturned first
   double overturn_t_s = std::numeric_limits<double>::quiet_NaN();
+  /// 0: none; 2..N: the first block whose base left its support's top face (slid off it).
+  int left_support_block = 0;
+  /// When it did, s (NaN: none).
+  double left_support_t_s = std::numeric_limits<double>::quiet_NaN();
   double end_t_s = 0.0;  ///< last simulated time, s
   /// Largest |theta_k| and when (s), one entry per block (block k at k - 1).
   std::vector<double> peak_theta_rad, peak_theta_t_s;
@@ -82,6 +91,7 @@ struct RunOutcome {
     return n;
   }
   bool overturned() const { return overturned_block != 0; }
+  bool left_support() const { return left_support_block != 0; }
 };
 
 /// The name of interface k (k = 0: block 1 on the ground; k: block k + 1 on block k) in the
