@@ -181,6 +181,7 @@ Monitor::Monitor(const EngineInput& input, MonitorConfig config) : cfg_(config) 
   phi_.assign(n, 0.0);
   landings_.assign(n, Landing{});
   abs_prev_.assign(n, 0.0);
+  offset_prev_.assign(n, 0.0);
   side_now_.assign(n, 0);
   pivot_side_.assign(n, 0);
   peak_.assign(n, 0.0);
@@ -259,6 +260,9 @@ Monitor::Derived Monitor::Derive(const StepReadout& s) {
         if (std::abs(lx) <= bs * (1.0 + 1e-9)) gap_over = std::min(gap_over, ly - hs);
       }
       d.gap_m[k] = gap >= 0.0 ? gap : std::min(0.0, gap_over);
+      // The middle of the base, local (0, -h), along the support's top face.
+      const double mx = x + sn * h - xs, my = y - c * h - ys;
+      d.base_offset_m[k] = cs * mx + ss * my;
     }
     if (slip_and_lift_) SlipAndLift(k, x, y, c, sn, xs, ys, cs, ss, hs, &d);
     xs = x, ys = y, cs = c, ss = sn, hs = h, bs = b;
@@ -360,7 +364,10 @@ bool Monitor::Step(std::int64_t n, const StepReadout& s) {
   Sample& cur = d.sample;
   const double t_prev = prev_.sample.t_s, t = cur.t_s;
   // |theta| of every block before this step (prev_ is overwritten before the overturn check).
-  for (int k = 0; k < blocks_; ++k) abs_prev_[k] = std::abs(prev_.sample.theta_rad[k]);
+  for (int k = 0; k < blocks_; ++k) {
+    abs_prev_[k] = std::abs(prev_.sample.theta_rad[k]);
+    offset_prev_[k] = std::abs(prev_.base_offset_m[k]);
+  }
 
   DetectLandings(cur, t_prev);
   cur.mode = InferMode(cur);
@@ -641,6 +648,35 @@ bool Monitor::Stopped(const Derived& d, double t_prev) {
     }
   };
   for (int k = 0; k < blocks_; ++k) crossed(k + 1, abs_prev_[k], std::abs(cur.theta_rad[k]));
+  // A block whose base no longer overlaps its support's top face has left it (block 1 never:
+  // the ground is infinite). If it did so before any overturn in the step, the run ends there.
+  int off_block = 0;
+  double t_off = 0.0;
+  for (int k = 1; k < blocks_; ++k) {
+    const double reach = b_[k] + b_[k - 1], off = std::abs(d.base_offset_m[k]);
+    if (!(off > reach)) continue;
+    const double when = CrossingTime(reach - offset_prev_[k], reach - off, t_prev, t);
+    if (off_block == 0 || when < t_off) {
+      off_block = k + 1;
+      t_off = when;
+    }
+  }
+  if (off_block != 0 && (over_block == 0 || t_off <= t_over)) {
+    status_ = RunStatus::kLeftSupport;
+    left_support_block_ = off_block;
+    left_support_t_s_ = t_off;
+    status_detail_ = "block " + std::to_string(off_block) + " slid off its support (its base " +
+                     "no longer overlaps block " + std::to_string(off_block - 1) + "'s top face)";
+    Event e(blocks_);
+    e.t_s = t_off;
+    e.kind = "left_support";
+    e.mode_before = e.mode_after = cur.mode;
+    e.omega_before_radps = e.omega_after_radps = cur.omega_radps;
+    e.energy_before_j = e.energy_after_j = d.energy_j;
+    e.note = "block " + std::to_string(off_block);
+    PushEvent(std::move(e));
+    return true;
+  }
   if (over_block != 0) {
     status_ = RunStatus::kOverturned;
     overturn_block_ = over_block;
@@ -707,6 +743,8 @@ RunOutcome Monitor::Outcome() const {
   o.status = status_;
   o.overturned_block = overturn_block_;
   if (overturn_block_ != 0) o.overturn_t_s = overturn_t_s_;
+  o.left_support_block = left_support_block_;
+  if (left_support_block_ != 0) o.left_support_t_s = left_support_t_s_;
   o.end_t_s = end_t_s_;
   o.peak_theta_rad = peak_;
   o.peak_theta_t_s = peak_t_;
@@ -762,6 +800,12 @@ nlohmann::json Monitor::Summary() const {
     j["overturn"] = {{"block", overturn_block_}, {"t_s", overturn_t_s_}};
   } else {
     j["overturn"] = nullptr;
+  }
+  // A block that slid off its support (null: none), as the reference's summary.
+  if (left_support_block_ != 0) {
+    j["left_support"] = {{"block", left_support_block_}, {"t_s", left_support_t_s_}};
+  } else {
+    j["left_support"] = nullptr;
   }
   json fin;
   fin["t_s"] = last_.t_s;

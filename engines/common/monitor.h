@@ -114,12 +114,17 @@ class Monitor {
 
   /// The state at t = 0 (first sample).
   void Start(const StepReadout& s);
-  /// The state after step n (1-based). Returns false when the run must stop (overturn,
-  /// blow-up, a state that is not finite). The overturn time is the interpolated crossing of
-  /// model.overturn_angle inside the step; the last sample is the state at the step's end. A
-  /// pose, velocity (of a block or of the ground) or energy that is not finite ends the run with
-  /// status "non_finite" at the last finite state: the step is not recorded, a "non_finite"
-  /// event is, and status_detail names the quantity, its value and the time.
+  /// The state after step n (1-based). Returns false when the run must stop (overturn, a block
+  /// that left its support, blow-up, a state that is not finite). A block k >= 2 leaves its
+  /// support (status left_support, not an overturn) once its base's middle point is further
+  /// from the support's top middle, along the support's top face, than b_k + b_(k-1): the two
+  /// faces no longer overlap (the reference's "slid off its support"); block 1 never leaves
+  /// the ground, which is infinite. The time is the interpolated crossing inside the step. The
+  /// overturn time is the interpolated crossing of model.overturn_angle inside the step; the last
+  /// sample is the state at the step's end. A pose, velocity (of a block or of the ground) or
+  /// energy that is not finite ends the run with status "non_finite" at the last finite state: the
+  /// step is not recorded, a "non_finite" event is, and status_detail names the quantity, its value
+  /// and the time.
   bool Step(std::int64_t n, const StepReadout& s);
   /// Ends the run: records the last state as a sample if it was not one.
   void Finish();
@@ -145,13 +150,17 @@ class Monitor {
     explicit Derived(int blocks, bool slip_and_lift = false)
         : sample(blocks, slip_and_lift),
           gap_m(static_cast<size_t>(blocks), 0.0),
-          pivot_x_m(static_cast<size_t>(blocks), 0.0) {}
+          pivot_x_m(static_cast<size_t>(blocks), 0.0),
+          base_offset_m(static_cast<size_t>(blocks), 0.0) {}
     Sample sample;
     // Per interface k (index k - 1): block k's lowest corner above its support (block 1: any
     // corner above the ground; block k >= 2: a base corner above block k - 1's top face, in
     // block k - 1's frame), m; and block k's pivot along its support (block 1: x in the base
     // frame; block k: x in block k - 1's frame), m.
     std::vector<double> gap_m, pivot_x_m;
+    // Per block k >= 2 (index k - 1): the middle of its base from the middle of its support's
+    // top face, along that face (block k - 1's frame), m; 0 for block 1.
+    std::vector<double> base_offset_m;
     double energy_j = 0.0;  // kinetic (base frame) + m g y_G of every block, J, as the reference
   };
   Derived Derive(const StepReadout& s);
@@ -223,13 +232,14 @@ class Monitor {
   History history_;
   Sample last_{1};
   Derived prev_{1};
-  std::vector<Side> hysteresis_;   // per interface
-  std::vector<double> phi_;        // unwrapped CCW angles, per block
-  std::vector<Landing> landings_;  // per interface, the last step's
-  double landings_t_prev_ = 0.0;   // the start of that step, s
-  std::vector<double> abs_prev_;   // |theta| of every block before the step being read
-  std::vector<int> side_now_;      // scratch: the sides of the step being read
-  std::int64_t next_out_ = 1;      // index of the next output time
+  std::vector<Side> hysteresis_;     // per interface
+  std::vector<double> phi_;          // unwrapped CCW angles, per block
+  std::vector<Landing> landings_;    // per interface, the last step's
+  double landings_t_prev_ = 0.0;     // the start of that step, s
+  std::vector<double> abs_prev_;     // |theta| of every block before the step being read
+  std::vector<double> offset_prev_;  // |base_offset_m| of every block before that step
+  std::vector<int> side_now_;        // scratch: the sides of the step being read
+  std::int64_t next_out_ = 1;        // index of the next output time
   bool last_recorded_ = false;
 
   // Pending impacts: completed with the state one step later (a fixed-step engine such as
@@ -282,6 +292,8 @@ class Monitor {
   double non_finite_t_s_ = 0.0;
   int overturn_block_ = 0;
   double overturn_t_s_ = 0.0, end_t_s_ = 0.0;
+  int left_support_block_ = 0;  // 0: none; 2..N: the block that left its support
+  double left_support_t_s_ = 0.0;
   std::int64_t steps_done_ = 0;
 };
 

@@ -50,7 +50,8 @@ void EnginePeak(const EngineRun& run, int block, double* peak, double* t) {
 }
 
 // Mode family for the final-state check.
-std::string Family(const Configuration& m, bool overturned) {
+std::string Family(const Configuration& m, bool overturned, bool left_support = false) {
+  if (left_support) return "left_support";
   if (overturned) return "overturned";
   return m.at_rest() ? "rest" : "rocking";
 }
@@ -150,10 +151,57 @@ nlohmann::json AngleJson(const AngleAgreement& a) {
       {"samples_beyond", a.samples_beyond},
       {"predictability_horizon_s", std::isfinite(a.predictability_horizon_s)
                                        ? nlohmann::json(a.predictability_horizon_s)
-                                       : nlohmann::json(nullptr)}};
+                                       : nlohmann::json(nullptr)},
+      {"judged", a.judged},
+      {"floor_rad", a.floor_rad},
+      {"peak_abs_error_rad", a.peak_engine_rad - a.peak_reference_rad},
+      {"peak_tolerance_rad", a.peak_tolerance_rad},
+      {"peak_within_tolerance", a.peak_within_tolerance},
+      {"impacts_reference", a.impacts_reference},
+      {"impacts_engine", a.impacts_engine}};
+}
+
+nlohmann::json SlipJson(const SlipAgreement& a) {
+  return {{"max_abs_error_m", a.max_abs_error_m},
+          {"rms_error_m", a.rms_error_m},
+          {"final_reference_m", a.final_reference_m},
+          {"final_engine_m", a.final_engine_m},
+          {"tolerance_m", a.tolerance_m},
+          {"floor_m", a.floor_m},
+          {"peak_reference_m", a.peak_reference_m},
+          {"peak_reference_t_s", a.peak_reference_t_s},
+          {"peak_engine_m", a.peak_engine_m},
+          {"max_abs_error_predictable_m", a.max_abs_error_predictable_m},
+          {"max_error_ratio_predictable", a.max_error_ratio_predictable},
+          {"within_tolerance", a.within_tolerance},
+          {"horizon_s", RoundTime_s(a.horizon_s)}};
+}
+
+// Impacts of interface `k` (block k + 1 on its support) faster than `min_rate` up to until_s.
+int InterfaceImpacts(const History& h, int k, double until_s, double min_rate) {
+  int n = 0;
+  for (const Event& e : h.events) {
+    if (e.t_s > until_s + 1e-12) break;
+    if (ImpactInterface(e) == k && LandingRate(e) >= min_rate) ++n;
+  }
+  return n;
 }
 
 }  // namespace
+
+bool PeakAgrees(double peak_reference_rad, double peak_engine_rad, double floor_rad,
+                double* tolerance_rad) {
+  const double tol = std::max(kPeakToleranceRel * std::abs(peak_reference_rad),
+                              kPeakToleranceFloorFraction * floor_rad);
+  if (tolerance_rad) *tolerance_rad = tol;
+  return std::abs(peak_engine_rad - peak_reference_rad) <= tol;
+}
+
+double SlipTolerance_m(const Scene& scene, int block, double peak_reference_m) {
+  const BlockDef& d = scene.blocks.at(static_cast<size_t>(block - 1));
+  const double alpha = std::atan(d.width_m / d.height_m);
+  return std::max(0.1 * std::abs(peak_reference_m), 0.01 * alpha * d.width_m);
+}
 
 int CountComparedImpacts(const History& history, double min_rate_radps) {
   int all = 0;
@@ -201,8 +249,10 @@ EngineAgreement CompareWithReference(const Scene& scene, const reference::Result
   // ended non_finite has nothing after its last finite state.
   const double eng_end = run.history.samples.empty() ? 0.0 : run.history.samples.back().t_s;
   double until = eng_end;
-  if (rs.status == RunStatus::kOverturned || rs.status == RunStatus::kAssumptionViolated ||
-      IsNonFinite(rs.status)) {
+  // The reference ends where a block overturns or leaves its support (it has no model of what
+  // follows), where its assumptions end, or at its last finite state.
+  if (rs.status == RunStatus::kOverturned || rs.status == RunStatus::kLeftSupport ||
+      rs.status == RunStatus::kAssumptionViolated || IsNonFinite(rs.status)) {
     until = std::min(until, ref.trajectory.end_s());
   }
   // Past an impact the model leaves undecided, the reference's motion is its rule's choice.
@@ -224,6 +274,10 @@ EngineAgreement CompareWithReference(const Scene& scene, const reference::Result
     ang[b].predictability_horizon_s = options.predictability_horizon_s[b];
     profile[b] = LocalTolerance(scene, b + 1, ref.history);
     ang[b].tolerance_min_rad = profile[b].Min();
+    // Below kJudgedPeakOverFloor floors of motion the pointwise tolerance is more than a fifth
+    // of the motion: the peak judges the block instead.
+    ang[b].floor_rad = profile[b].fixed_rad ? *profile[b].fixed_rad : profile[b].floor_rad;
+    ang[b].judged = !(ang[b].floor_rad * kJudgedPeakOverFloor > peak_ref[b]);
   }
   std::vector<double> sum2(nb, 0.0), sum2_h(nb, 0.0), sum2_p(nb, 0.0), sum2_b(nb, 0.0);
   std::vector<int> n_h(nb, 0), n_p(nb, 0);
@@ -280,6 +334,77 @@ EngineAgreement CompareWithReference(const Scene& scene, const reference::Result
     EnginePeak(run, b + 1, &g.peak_engine_rad, &g.peak_engine_t_s);
     g.peak_rel_error = peak_ref[b] > 0.0 ? (g.peak_engine_rad - peak_ref[b]) / peak_ref[b] : 0.0;
     g.peak_time_error_s = g.peak_engine_t_s - peak_ref_t[b];
+    g.peak_within_tolerance =
+        PeakAgrees(peak_ref[b], g.peak_engine_rad, g.floor_rad, &g.peak_tolerance_rad);
+    g.impacts_reference = InterfaceImpacts(ref.history, b, until, options.min_impact_rate_radps);
+    g.impacts_engine = InterfaceImpacts(run.history, b, until, options.min_impact_rate_radps);
+  }
+
+  // Slip and lift, where both histories carry them: on the slip's own scale, before the
+  // block's predictability horizon as the angles.
+  if (ref.history.slip_and_lift && run.history.slip_and_lift) {
+    a.slip.assign(nb, SlipAgreement{});
+    a.lift.assign(nb, SlipAgreement{});
+    for (int b = 0; b < nb; ++b) {
+      for (SlipAgreement* g : {&a.slip[b], &a.lift[b]}) {
+        g->horizon_s = until;
+        g->predictability_horizon_s = options.predictability_horizon_s[b];
+      }
+    }
+    for (const Sample& r : ref.history.samples) {
+      if (r.u_m.size() < static_cast<size_t>(nb) || r.z_m.size() < static_cast<size_t>(nb)) break;
+      for (int b = 0; b < nb; ++b) {
+        if (std::abs(r.u_m[b]) > a.slip[b].peak_reference_m) {
+          a.slip[b].peak_reference_m = std::abs(r.u_m[b]);
+          a.slip[b].peak_reference_t_s = r.t_s;
+        }
+        if (std::abs(r.z_m[b]) > a.lift[b].peak_reference_m) {
+          a.lift[b].peak_reference_m = std::abs(r.z_m[b]);
+          a.lift[b].peak_reference_t_s = r.t_s;
+        }
+      }
+    }
+    for (int b = 0; b < nb; ++b) {
+      for (SlipAgreement* g : {&a.slip[b], &a.lift[b]}) {
+        g->tolerance_m = SlipTolerance_m(scene, b + 1, g->peak_reference_m);
+        g->floor_m = SlipTolerance_m(scene, b + 1, 0.0);
+      }
+    }
+    std::vector<double> su2(nb, 0.0), sz2(nb, 0.0);
+    int ns = 0;
+    for (const Sample& s : run.history.samples) {
+      if (s.t_s > until + 1e-12) break;
+      if (s.u_m.size() < static_cast<size_t>(nb)) break;
+      const Sample r = ref.trajectory.At(s.t_s);
+      if (r.u_m.size() < static_cast<size_t>(nb)) break;
+      ++ns;
+      for (int b = 0; b < nb; ++b) {
+        const double pairs[2][2] = {{s.u_m[b], r.u_m[b]}, {s.z_m[b], r.z_m[b]}};
+        SlipAgreement* gs[2] = {&a.slip[b], &a.lift[b]};
+        for (int q = 0; q < 2; ++q) {
+          SlipAgreement& g = *gs[q];
+          const double e = std::abs(pairs[q][0] - pairs[q][1]);
+          (q == 0 ? su2 : sz2)[b] += e * e;
+          g.max_abs_error_m = std::max(g.max_abs_error_m, e);
+          g.peak_engine_m = std::max(g.peak_engine_m, std::abs(pairs[q][0]));
+          g.final_engine_m = pairs[q][0];
+          g.final_reference_m = pairs[q][1];
+          if (s.t_s <= g.predictability_horizon_s) {
+            g.max_abs_error_predictable_m = std::max(g.max_abs_error_predictable_m, e);
+            g.max_error_ratio_predictable =
+                std::max(g.max_error_ratio_predictable, e / g.tolerance_m);
+          }
+          if (g.within_tolerance && e > g.tolerance_m) {
+            g.within_tolerance = false;
+            g.horizon_s = s.t_s;
+          }
+        }
+      }
+    }
+    for (int b = 0; b < nb; ++b) {
+      a.slip[b].rms_error_m = ns > 0 ? std::sqrt(su2[b] / ns) : 0.0;
+      a.lift[b].rms_error_m = ns > 0 ? std::sqrt(sz2[b] / ns) : 0.0;
+    }
   }
   a.theta1 = ang[0];
   if (nb >= 2) a.theta2 = ang[1];
@@ -297,6 +422,27 @@ EngineAgreement CompareWithReference(const Scene& scene, const reference::Result
   }
   a.overturn_agree = a.overturn_block_reference == a.overturn_block_engine;
 
+  // Leaving the support (a block slid off the block below): an outcome of its own. The
+  // engine's block comes from its outcome, or from its summary's "left_support" object where a
+  // helper's protocol carried the status but not the block.
+  a.left_support_block_reference = rs.left_support_block;
+  int engine_off = run.outcome.left_support_block;
+  double engine_off_t = run.outcome.left_support_t_s;
+  if (engine_off == 0 && run.summary.is_object()) {
+    if (const auto it = run.summary.find("left_support");
+        it != run.summary.end() && it->is_object()) {
+      engine_off = it->value("block", 0);
+      engine_off_t = it->value("t_s", std::numeric_limits<double>::quiet_NaN());
+    }
+  }
+  if (engine_off != 0) {
+    a.left_support_block_engine = engine_off;
+    if (rs.left_support_block && std::isfinite(engine_off_t)) {
+      a.left_support_time_error_s = engine_off_t - rs.left_support_t_s;
+    }
+  }
+  a.left_support_agree = a.left_support_block_reference == a.left_support_block_engine;
+
   // Final state at the end of the common grid: the same family, and every block's angle within
   // its tolerance.
   if (!run.history.samples.empty()) {
@@ -305,8 +451,10 @@ EngineAgreement CompareWithReference(const Scene& scene, const reference::Result
       if (s.t_s <= until + 1e-12) last = &s;
     }
     const Sample r = ref.trajectory.At(last->t_s);
-    a.final_mode_reference = Family(r.mode, rs.overturn_block.has_value());
-    a.final_mode_engine = Family(last->mode, a.overturn_block_engine.has_value());
+    a.final_mode_reference =
+        Family(r.mode, rs.overturn_block.has_value(), rs.left_support_block.has_value());
+    a.final_mode_engine = Family(last->mode, a.overturn_block_engine.has_value(),
+                                 a.left_support_block_engine.has_value());
     a.final_theta1_error_rad = last->theta_rad[0] - r.theta_rad[0];
     a.final_theta2_error_rad = nb >= 2 ? last->theta_rad[1] - r.theta_rad[1] : 0.0;
     a.final_theta_from3_error_rad.clear();
@@ -332,6 +480,12 @@ nlohmann::json AgreementJson(const EngineAgreement& a) {
   j["theta1"] = AngleJson(a.theta1);
   if (a.theta2) j["theta2"] = AngleJson(*a.theta2);
   for (int b = 3; b <= a.blocks(); ++b) j[Numbered("theta", b)] = AngleJson(a.angle(b));
+  for (size_t b = 0; b < a.slip.size(); ++b) {
+    j[Numbered("u", static_cast<int>(b) + 1)] = SlipJson(a.slip[b]);
+  }
+  for (size_t b = 0; b < a.lift.size(); ++b) {
+    j[Numbered("z", static_cast<int>(b) + 1)] = SlipJson(a.lift[b]);
+  }
   j["impacts_matched"] = a.impacts.matched;
   j["impacts_reference"] = a.impacts.reference_impacts;
   j["impacts_engine"] = a.impacts.engine_impacts;
@@ -350,6 +504,15 @@ nlohmann::json AgreementJson(const EngineAgreement& a) {
   ov["engine_block"] = a.overturn_block_engine ? nlohmann::json(*a.overturn_block_engine) : nullptr;
   ov["time_error_s"] = a.overturn_time_error_s ? nlohmann::json(*a.overturn_time_error_s) : nullptr;
   j["overturn"] = ov;
+  nlohmann::json off;
+  off["agree"] = a.left_support_agree;
+  off["reference_block"] =
+      a.left_support_block_reference ? nlohmann::json(*a.left_support_block_reference) : nullptr;
+  off["engine_block"] =
+      a.left_support_block_engine ? nlohmann::json(*a.left_support_block_engine) : nullptr;
+  off["time_error_s"] =
+      a.left_support_time_error_s ? nlohmann::json(*a.left_support_time_error_s) : nullptr;
+  j["left_support"] = off;
   j["final"] = {{"agree", a.final_agree},
                 {"reference", a.final_mode_reference},
                 {"engine", a.final_mode_engine},
@@ -408,14 +571,14 @@ std::string ComparisonCsv(const std::vector<EngineAgreement>& engines) {
       "peak_rel_error,peak_time_error_s,impacts_reference,impacts_engine,impacts_matched,"
       "max_abs_impact_time_error_s,overturn_agree,final_agree,status,wall_s,"
       "predictability_horizon_s,max_abs_error_predictable_rad,max_abs_error_beyond_rad,"
-      "verdict_kind\n";
-  char line[1024];
+      "verdict_kind,judged,max_abs_error_u_m,tolerance_u_m\n";
+  char line[1280];
   for (const EngineAgreement& a : engines) {
     for (int b = 1; b <= a.blocks(); ++b) {
       const AngleAgreement& g = a.angle(b);
       std::snprintf(line, sizeof line,
                     "%s,%d,%.9e,%.9e,%.9g,%d,%.9e,%.9e,%.9e,%.9e,%.9e,%.9e,%.9e,%d,%d,%d,%.9e,%d,"
-                    "%d,%s,%.6g,%s,%.9e,%.9e,%s\n",
+                    "%d,%s,%.6g,%s,%.9e,%.9e,%s,%d,%s,%s\n",
                     a.engine.c_str(), b, g.max_abs_error_rad, g.rms_error_rad, g.horizon_s,
                     g.within_tolerance ? 1 : 0, g.tolerance_rad, g.max_abs_error_horizon_rad,
                     g.rms_error_horizon_rad, g.peak_reference_rad, g.peak_engine_rad,
@@ -426,7 +589,13 @@ std::string ComparisonCsv(const std::vector<EngineAgreement>& engines) {
                         ? std::to_string(g.predictability_horizon_s).c_str()
                         : "",
                     g.max_abs_error_predictable_rad, g.max_abs_error_beyond_rad,
-                    a.verdict_kind.c_str());
+                    a.verdict_kind.c_str(), g.judged ? 1 : 0,
+                    b <= static_cast<int>(a.slip.size())
+                        ? Format("%.9e", a.slip[b - 1].max_abs_error_m).c_str()
+                        : "",
+                    b <= static_cast<int>(a.slip.size())
+                        ? Format("%.9e", a.slip[b - 1].tolerance_m).c_str()
+                        : "");
       out += line;
     }
   }

@@ -17,6 +17,20 @@
 
 namespace rockbench {
 
+/// A block is judged point by point when the reference's peak |theta| of it is at least this
+/// many times its tolerance floor (1% of its critical angle, or the scene's constant
+/// tolerance): below, the tolerance is more than a fifth of the block's whole motion, so an
+/// engine whose block never moves would stay within it (docs/verdicts.md, "Blocks below the
+/// floor").
+inline constexpr double kJudgedPeakOverFloor = 5.0;
+/// A block not judged point by point is judged by its peak |theta|: the engine's must be within
+/// kPeakToleranceRel of the reference's, and never less than kPeakToleranceFloorFraction of the
+/// floor (0.1% of the critical angle: the tilt d / B of a corner moved by the monitor's
+/// significant contact displacement d = 0.1% alpha B, which an engine's compliant contact
+/// reaches; so a reference at rest and an engine tilting within its contacts agree).
+inline constexpr double kPeakToleranceRel = 0.25;
+inline constexpr double kPeakToleranceFloorFraction = 0.1;
+
 /// Agreement of one block's angle (theta1, theta2, ..., thetaN) with the reference.
 struct AngleAgreement {
   /// The tolerance at the reference's peak (AngleTolerance_rad): the scale of the run's
@@ -47,6 +61,38 @@ struct AngleAgreement {
   /// The horizon used for that split (+inf: predictable to the end, or no perturbation members were
   /// run).
   double predictability_horizon_s = std::numeric_limits<double>::infinity();
+  /// The tolerance's floor (1% of the critical angle, or the scene's constant tolerance), rad.
+  double floor_rad = 0.0;
+  /// Whether the block is judged point by point: the reference's peak is at least
+  /// kJudgedPeakOverFloor times the floor. When not, its peak decides instead:
+  /// |peak_engine - peak_reference| within peak_tolerance_rad (max(kPeakToleranceRel x the
+  /// reference's peak, kPeakToleranceFloorFraction x the floor)).
+  bool judged = true;
+  double peak_tolerance_rad = 0.0;
+  bool peak_within_tolerance = true;
+  /// Impacts of this block (block 1 on the ground, block k on block k - 1) in each run, faster
+  /// than the comparison's minimum rate, over the compared run (reported beside the peak).
+  int impacts_reference = 0, impacts_engine = 0;
+};
+
+/// Agreement of one block's slip u_k (or lift z_k) on its support with the reference's, where
+/// both histories carry them (docs/sliding.md). The tolerance is on the slip's own scale:
+/// 10% of the reference's peak |u_k| over the run, never below 1% of the block's critical
+/// angle times its width (alpha_k B_k: ten times the monitor's significant displacement).
+struct SlipAgreement {
+  double tolerance_m = 0.0, floor_m = 0.0;
+  double peak_reference_m = 0.0, peak_reference_t_s = 0.0;  ///< max |u_ref| over the run
+  double peak_engine_m = 0.0;                               ///< max |u_engine|, compared run
+  double max_abs_error_m = 0.0, rms_error_m = 0.0;          ///< over the compared run
+  /// Before the block's predictability horizon (that of its angle): there an error decides.
+  double max_abs_error_predictable_m = 0.0;
+  double max_error_ratio_predictable = 0.0;  ///< max |error| / tolerance there
+  bool within_tolerance = true;              ///< the error never exceeded the tolerance
+  double horizon_s = 0.0;  ///< first time it did (the end of the comparison if never)
+  double final_reference_m = 0.0, final_engine_m = 0.0;  ///< at the last compared sample
+  double predictability_horizon_s = std::numeric_limits<double>::infinity();
+  /// Within the tolerance wherever the reference is predictable.
+  bool agrees_predictable() const { return !(max_error_ratio_predictable > 1.0); }
 };
 
 /// The engine's impacts against the reference's, matched in order until the first missing or
@@ -103,6 +149,13 @@ struct EngineAgreement {
   /// Blocks 3..N of a stack of N >= 3 blocks (theta3 at index 0); empty for one or two blocks.
   std::vector<AngleAgreement> theta_from3;
   ImpactAgreement impacts;
+  /// Slip u_k and lift z_k of every block (block k at k - 1), when both histories carry them;
+  /// empty otherwise.
+  std::vector<SlipAgreement> slip, lift;
+  /// A block that left its support (slid off it): both runs or neither, and the same block.
+  bool left_support_agree = true;
+  std::optional<int> left_support_block_reference, left_support_block_engine;
+  std::optional<double> left_support_time_error_s;
   /// Overturning: both or neither, and the same block.
   bool overturn_agree = true;
   std::optional<int> overturn_block_reference, overturn_block_engine;
@@ -163,6 +216,15 @@ struct EngineAgreement {
 /// comparison counts.
 int CountComparedImpacts(const History& history, double min_rate_radps);
 
+/// Whether block `block`'s peak agrees with the reference's on the scale of a block below the
+/// floor: |peak_engine - peak_reference| <= max(kPeakToleranceRel peak_reference,
+/// kPeakToleranceFloorFraction floor). Sets *tolerance_rad to that bound.
+bool PeakAgrees(double peak_reference_rad, double peak_engine_rad, double floor_rad,
+                double* tolerance_rad);
+
+/// The tolerance of a block's slip (or lift): max(0.1 peak_reference, 0.01 alpha B), m.
+double SlipTolerance_m(const Scene& scene, int block, double peak_reference_m);
+
 /// Compares an engine's run with the reference's result on the same scene.
 EngineAgreement CompareWithReference(const Scene& scene, const reference::Result& reference,
                                      const EngineRun& run, const CompareOptions& options = {});
@@ -170,7 +232,9 @@ EngineAgreement CompareWithReference(const Scene& scene, const reference::Result
 /// comparison.json: {"scene": ..., "reference": {...}, "engines": {name: {...}}}. Keys read by
 /// other tools: engines.<name>.wall_s, engines.<name>.impacts_matched and, under
 /// engines.<name>.theta1 / theta2 (/ theta3 ... thetaN for N >= 3 blocks): max_abs_error_rad,
-/// rms_error_rad, peak_rel_error, peak_time_error_s, horizon_s.
+/// rms_error_rad, peak_rel_error, peak_time_error_s, horizon_s, judged; engines.<name>.u1 ..
+/// uN and z1 .. zN (histories with slip and lift): max_abs_error_m, final_reference_m,
+/// final_engine_m, tolerance_m; engines.<name>.left_support.
 nlohmann::json ComparisonJson(const Scene& scene, const reference::Result& reference,
                               double reference_wall_s, const std::vector<EngineAgreement>& engines,
                               const CompareOptions& options = {});

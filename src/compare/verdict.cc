@@ -228,15 +228,60 @@ std::string FlagsText(const EngineAgreement& a, double from_s, double to_s,
   return out;
 }
 
+// Why a block is not judged point by point, in words.
+std::string NotJudgedText(int b, const AngleAgreement& g) {
+  return th(b) + " is not judged point by point (the reference's peak, " +
+         Format("%.3g", g.peak_reference_rad) + " rad, is below " +
+         Format("%g", kJudgedPeakOverFloor) + " x the tolerance floor " +
+         Format("%.3g", g.floor_rad) + " rad, so the floor exceeds a fifth of its motion)";
+}
+
+// How a block not judged point by point fares on its peak, in words.
+std::string PeakText(const AngleAgreement& g) {
+  return "its peak " + Format("%.3g", g.peak_engine_rad) + " rad against the reference's " +
+         Format("%.3g", g.peak_reference_rad) + " rad is " +
+         (g.peak_within_tolerance ? "within" : "beyond") + " the peak tolerance " +
+         Format("%.3g", g.peak_tolerance_rad) +
+         " rad (impacts faster than the minimum rate: " + std::to_string(g.impacts_engine) +
+         " against " + std::to_string(g.impacts_reference) + ")";
+}
+
+// "u2 (slip of block 2 on block 1)", "z1 (lift of block 1 off the ground)".
+std::string SlipName(bool lift, int b) {
+  const std::string support = b == 0 ? std::string("the ground") : "block " + std::to_string(b);
+  return Numbered(lift ? "z" : "u", b + 1) + " (" + (lift ? "lift" : "slip") + " of block " +
+         std::to_string(b + 1) + (lift ? " off " : " on ") + support + ")";
+}
+
+// What a run did with its blocks: "block 2 leaves its support at 0.863 s", "block 1
+// overturns", "no block overturns or leaves its support".
+std::string EndText(const std::optional<int>& overturned, const std::optional<int>& left,
+                    std::optional<double> left_t_s = std::nullopt) {
+  std::string out;
+  if (left) {
+    out = "block " + std::to_string(*left) + " leaves its support" +
+          (left_t_s ? " at " + Format("%.3f", *left_t_s) + " s" : std::string());
+  }
+  if (overturned) {
+    out += (out.empty() ? "" : ", ") + std::string("block ") + std::to_string(*overturned) +
+           " overturns";
+  }
+  return out.empty() ? "no block overturns or leaves its support" : out;
+}
+
 // The block with the largest error ratio, in words: before the horizons (`predictable`), or
-// over the whole comparison.
+// over the whole comparison. Blocks judged point by point come first.
 std::string RatioText(const std::vector<const AngleAgreement*>& ang, int nb, bool predictable) {
   auto ratio = [predictable](const AngleAgreement* g) {
     return predictable ? g->max_error_ratio_predictable : g->max_error_ratio;
   };
   int w = 0;
   for (int b = 1; b < nb; ++b) {
-    if (ratio(ang[b]) > ratio(ang[w])) w = b;
+    if (ang[b]->judged != ang[w]->judged ? ang[b]->judged : ratio(ang[b]) > ratio(ang[w])) w = b;
+  }
+  if (!ang[w]->judged) {
+    return th(w) + " peak " + Format("%.3g", ang[w]->peak_engine_rad) + " rad against " +
+           Format("%.3g", ang[w]->peak_reference_rad) + " rad (no block judged point by point)";
   }
   return th(w) + " error at most " + Format("%.3g", ratio(ang[w])) + " x the local tolerance" +
          (predictable ? " where the reference is predictable" : std::string());
@@ -353,19 +398,47 @@ Verdict MakeVerdict(const Scene& scene, const EngineAgreement& a,
   if (!predictability) {
     bool all_within = true;
     std::string out;
+    std::string unjudged;
     for (int b = 0; b < nb; ++b) {
+      if (!ang[b]->judged) {
+        const std::string words = NotJudgedText(b, *ang[b]) + ": " + PeakText(*ang[b]);
+        if (ang[b]->peak_within_tolerance) {
+          unjudged += "; " + words;
+        } else {
+          all_within = false;
+          out += (out.empty() ? "" : "; ") + words;
+        }
+        continue;
+      }
       if (ang[b]->within_tolerance) continue;
       all_within = false;
       out += (out.empty() ? "" : "; ") + th(b) + " leaves the local tolerance (" +
              Format("%.3g", ang[b]->tolerance_at_horizon_rad) + " rad there) at " +
              Format("%.3f", ang[b]->horizon_s) + " s";
     }
+    for (int b = 0; b < static_cast<int>(a.slip.size()); ++b) {
+      for (const bool lift : {false, true}) {
+        const SlipAgreement& g = lift ? a.lift[b] : a.slip[b];
+        if (g.within_tolerance) continue;
+        all_within = false;
+        out += (out.empty() ? "" : "; ") + SlipName(lift, b) + " leaves its tolerance (" +
+               Format("%.3g", g.tolerance_m) + " m) at " + Format("%.3f", g.horizon_s) + " s";
+      }
+    }
+    if (!a.overturn_agree || !a.left_support_agree) {
+      all_within = false;
+      out += (out.empty() ? "" : "; ") +
+             EndText(a.overturn_block_engine, a.left_support_block_engine) +
+             " in the engine's run, " +
+             EndText(a.overturn_block_reference, a.left_support_block_reference) +
+             " in the reference's";
+    }
     v.decided_by = RatioText(ang, nb, false);
     v.kind = all_within ? "pointwise_only" : "pointwise_differs";
     v.agrees = all_within;
     v.text = all_within ? "agrees pointwise over the whole comparison (" +
-                              Format("%.3f", a.compared_until_s) +
-                              " s); no reference ensemble was run, so the reference's own "
+                              Format("%.3f", a.compared_until_s) + " s)" + unjudged +
+                              "; no reference ensemble was run, so the reference's own "
                               "predictability was not measured"
                         : out +
                               "; no reference ensemble was run, so whether the reference is "
@@ -380,8 +453,21 @@ Verdict MakeVerdict(const Scene& scene, const EngineAgreement& a,
     const std::optional<double>& hp = predictability->horizon_s[b];
     const AngleAgreement& g = *ang[b];
     whole_run = whole_run && !hp;
-    const bool ok = g.within_tolerance || (hp && g.horizon_s >= *hp - slack_s);
     const std::string hp_text = hp ? Format("%.2f s", *hp) : "the end of the run";
+    // A block below the floor: its peak decides where the reference is predictable throughout
+    // (with a horizon, the statistics beyond it judge the peak).
+    if (!g.judged) {
+      const std::string words = NotJudgedText(b, g) + ": " + PeakText(g);
+      if (g.peak_within_tolerance || hp) {
+        agree_part += (agree_part.empty() ? "" : "; ") + words +
+                      (hp ? " (the reference's own horizon is " + hp_text + ")" : std::string());
+      } else {
+        before += (before.empty() ? "" : "; ") + words +
+                  ", while the reference is predictable throughout";
+      }
+      continue;
+    }
+    const bool ok = g.within_tolerance || (hp && g.horizon_s >= *hp - slack_s);
     if (!ok) {
       before += (before.empty() ? "" : "; ") + th(b) + " leaves the local tolerance (" +
                 Format("%.3g", g.tolerance_at_horizon_rad) + " rad there) at " +
@@ -397,26 +483,63 @@ Verdict MakeVerdict(const Scene& scene, const EngineAgreement& a,
                         : " (the reference is predictable throughout)");
     }
   }
+  bool angles_decide = !before.empty();
+  // Slip and lift where the reference is predictable: on the slip's own scale.
+  std::string slip_before, slip_decided;
+  double slip_worst = 0.0;
+  for (int b = 0; b < static_cast<int>(a.slip.size()); ++b) {
+    for (const bool lift : {false, true}) {
+      const SlipAgreement& g = lift ? a.lift[b] : a.slip[b];
+      if (g.agrees_predictable()) {
+        agree_part += (agree_part.empty() ? "" : "; ") + SlipName(lift, b) + " within " +
+                      Format("%.3g", g.tolerance_m) + " m (max error " +
+                      Format("%.3g", g.max_abs_error_predictable_m) + " m)";
+        continue;
+      }
+      slip_before += (slip_before.empty() ? "" : "; ") + SlipName(lift, b) +
+                     " leaves its tolerance (" + Format("%.3g", g.tolerance_m) +
+                     " m: 10% of the reference's peak " + Format("%.3g", g.peak_reference_m) +
+                     " m, at least " + Format("%.3g", g.floor_m) + " m) at " +
+                     Format("%.2f", g.horizon_s) +
+                     " s where the reference is predictable (max error there " +
+                     Format("%.3g", g.max_abs_error_predictable_m) + " m, " +
+                     Format("%.3g", g.max_error_ratio_predictable) + " x the tolerance)";
+      if (g.max_error_ratio_predictable > slip_worst) {
+        slip_worst = g.max_error_ratio_predictable;
+        slip_decided = Numbered(lift ? "z" : "u", b + 1) + " error at most " +
+                       Format("%.3g", g.max_error_ratio_predictable) +
+                       " x its tolerance where the reference is predictable";
+      }
+    }
+  }
+  if (!slip_before.empty()) before += (before.empty() ? "" : "; ") + slip_before;
   if (!before.empty()) {
     v.kind = "differs_before_horizon";
     v.agrees = false;
     v.text = "an engine error: " + before;
-    v.decided_by = RatioText(ang, nb, true);
+    v.decided_by = angles_decide ? RatioText(ang, nb, true) : slip_decided;
     return v;
   }
-  // Overturning where the reference is predictable throughout is the engine's to reproduce.
-  if (whole_run && !a.overturn_agree && !model_ends) {
+  // Overturning, or a block leaving its support, where the reference is predictable throughout
+  // is the engine's to reproduce.
+  if (whole_run && (!a.overturn_agree || !a.left_support_agree) && !model_ends) {
     v.kind = "differs_before_horizon";
     v.agrees = false;
-    auto block = [](const std::optional<int>& b) {
-      return b ? "block " + std::to_string(*b) + " overturns" : std::string("nothing overturns");
-    };
-    v.text = "an engine error: " + block(a.overturn_block_engine) + " in the engine's run, " +
-             block(a.overturn_block_reference) +
-             " in the reference's, which is predictable "
-             "throughout";
-    v.decided_by = "overturning";
+    v.text = "an engine error: " + EndText(a.overturn_block_engine, a.left_support_block_engine) +
+             " in the engine's run, " +
+             EndText(a.overturn_block_reference, a.left_support_block_reference) +
+             " in the reference's, which is predictable throughout";
+    v.decided_by = !a.overturn_agree ? "overturning" : "leaving the support";
     return v;
+  }
+  if (a.left_support_block_reference && a.left_support_agree) {
+    agree_part += std::string(agree_part.empty() ? "" : "; ") + "block " +
+                  std::to_string(*a.left_support_block_reference) +
+                  " leaves its support in both runs" +
+                  (a.left_support_time_error_s
+                       ? " (the engine's " + Format("%+.3f", *a.left_support_time_error_s) +
+                             " s from the reference's)"
+                       : std::string());
   }
 
   // 2. Where the reference stops because its assumptions end, it has nothing to say.
