@@ -289,7 +289,14 @@ class Simulator {
   }
   // Hands the run over to the unilateral model at (t, y) (unilateral_run.h): it runs to the
   // end.
-  void HandOver(double t, const Y& y, const std::string& reason);
+  // `impact_interface` >= 0: at an impact of that interface, y the state just before it (the
+  // unilateral model resolves the impact).
+  void HandOver(double t, const Y& y, const std::string& reason, int impact_interface = -1);
+  // Whether Coulomb's law forbids the chain's impact outcome `ir` from (before, pre): an
+  // interface's impulse pulls or leaves its friction cone, or the outcome is inadmissible; `why`
+  // says which.
+  bool ChainImpactForbidden(const Configuration& before, const Y& pre,
+                            const typename Mech::Impact& ir, int interface, std::string* why) const;
 
   // Records the samples of the output times up to t_end (inclusive or not): most calls have
   // none to record, and return at once.
@@ -586,6 +593,16 @@ void Simulator<Mech>::DoImpact(double t, const Y& pre, int interface) {
                    InterfaceName(interface, n_) + " impact";
     StopNonFinite(nf, t, pre);
     return;
+  }
+  // An impact whose no-slip impulse Coulomb's law forbids (it pulls, or leaves a friction cone)
+  // is the unilateral model's: the run is handed over just before it, and that model resolves
+  // it at the impulse level.
+  if (unilateral_ && (finite_friction_ || !ir.admissible)) {
+    std::string why;
+    if (ChainImpactForbidden(before, pre, ir, interface, &why)) {
+      HandOver(t, pre, why, interface);
+      return;
+    }
   }
   Summary& sum = result_.summary;
   Event ev = NewEvent(t, impact_kinds_[interface].c_str(), before, ir.config, pre, ir.y);
@@ -954,7 +971,38 @@ void Simulator<Mech>::HandleEvent(const LocatedEvent& ev, const StepDense& at, d
 }
 
 template <class Mech>
-void Simulator<Mech>::HandOver(double t, const Y& y, const std::string& reason) {
+bool Simulator<Mech>::ChainImpactForbidden(const Configuration& before, const Y& pre,
+                                           const typename Mech::Impact& ir, int interface,
+                                           std::string* why) const {
+  std::array<double, kCap> theta{}, w0{}, w1{};
+  double scale = 0.0;
+  for (int i = 0; i < n_; ++i) {
+    theta[i] = pre[i];
+    w0[i] = pre[kCap + i];
+    w1[i] = ir.y[kCap + i];
+    scale += std::abs(w0[i]);
+  }
+  // Impulses are judged against the stack's momentum scale at the impact: its mass times the
+  // sum of the rates times its height.
+  double mass = 0.0, height = 0.0;
+  for (const BlockDef& b : scene_.blocks) {
+    mass += b.mass_kg;
+    height += b.height_m;
+  }
+  const std::vector<InterfaceImpulse> p =
+      ChainImpactImpulses(scene_, before, ir.config, theta.data(), w0.data(), w1.data());
+  std::string cone;
+  const int k = InterfaceOutsideCone(scene_, p, mass * scale * height, &cone);
+  if (k < 0 && ir.admissible) return false;
+  *why = k >= 0
+             ? "at the " + InterfaceName(k, n_) + " impact, " + cone
+             : "the " + InterfaceName(interface, n_) + " impact has no admissible no-slip outcome";
+  return true;
+}
+
+template <class Mech>
+void Simulator<Mech>::HandOver(double t, const Y& y, const std::string& reason,
+                               int impact_interface) {
   // The chain's figures go to the summary, which the unilateral model carries on.
   FlushFigures();
   handed_over_ = true;
@@ -965,6 +1013,7 @@ void Simulator<Mech>::HandOver(double t, const Y& y, const std::string& reason) 
   start.t_s = t;
   start.config = config_;
   start.reason = reason;
+  start.impact_interface = impact_interface;
   for (int i = 0; i < n_; ++i) {
     start.theta_rad.push_back(y[i]);
     start.omega_radps.push_back(y[kCap + i]);

@@ -77,7 +77,9 @@ class Runner {
         steps_(steps),
         r_(result),
         next_sample_(next_sample),
-        mode_(n_) {
+        mode_(n_),
+        slip_armed_(static_cast<size_t>(n_), false),
+        impact_interface_(start.impact_interface) {
     const double L = stack_.length_scale_m();
     gap_tol_ = kGapTolRel * L;
     rate_tol_ = kRateTolRel * std::sqrt(stack_.g_mps2() * L);
@@ -127,6 +129,9 @@ class Runner {
   // The contact state from (t, y) on, from its complementarity problem; false: none (the run
   // stops, stated).
   bool NewMode(double t, const Y& y, const char* kind, const std::string& why);
+  // The impact of a slot of interface k landing at (t_, y_): its outcome, event and the mode
+  // after it; false: the run stopped.
+  bool Impact(int k);
   void AddEvent(double t, const std::string& kind, const Configuration& before,
                 const Configuration& after, const Y& pre, const Y& post, const std::string& note);
   void Stop(double t, const Y& y, RunStatus status, const std::string& kind,
@@ -142,6 +147,24 @@ class Runner {
   const ModeSolution* Forces(double t, const Y& y) const;
   double FrictionPower(double t, const Y& y,
                        std::array<double, kUnilateralMaxBlocks>* per = nullptr) const;
+  // Interface k's slip rate at its first closed slot of the current mode, m/s.
+  double SlipRate(int k, const Y& y) const {
+    const auto s = stack_.Slots(k, Q(y), V(y), &mode_);
+    return (mode_.closed[k][0] ? s[0] : s[1]).slip_rate_mps;
+  }
+  // Arms the slip-stop event of every slipping interface whose rate in its slip's direction
+  // exceeds the rate tolerance at y; with `reset` (a new mode), disarms the others.
+  void ArmSlipStops(const Y& y, bool reset) {
+    for (int k = 0; k < n_; ++k) {
+      const bool slips = mode_.any_closed(k) && mode_.slip[k] != Slip::kStick;
+      if (!slips) {
+        slip_armed_[k] = false;
+        continue;
+      }
+      const bool beyond = static_cast<int>(mode_.slip[k]) * SlipRate(k, y) > rate_tol_;
+      slip_armed_[k] = beyond || (!reset && slip_armed_[k]);
+    }
+  }
   bool HasClosed() const {
     for (int k = 0; k < n_; ++k) {
       if (mode_.any_closed(k)) return true;
@@ -163,6 +186,10 @@ class Runner {
   Y y_{};
   double gap_tol_ = 0.0, rate_tol_ = 0.0, force_tol_ = 0.0, rest_rate_ = 0.0;
   bool done_ = false;
+  // Per interface: its slip-stop event is armed (see Value, kSlipStop).
+  std::vector<bool> slip_armed_;
+  // >= 0: handed over at an impact of this interface (UnilateralStart::impact_interface).
+  int impact_interface_ = -1;
   // Forces' last solve: its instant, state and mode, and what it gave.
   mutable struct {
     bool valid = false, solved = false;
@@ -240,9 +267,13 @@ double Runner::Value(const EventFn& e, double t, const Y& y) const {
              stack_.weight_n();
     }
     case Kind::kSlipStop: {
-      const auto s = stack_.Slots(e.k, Q(y), V(y), &mode_);
-      const SlotKinematics& ref = mode_.closed[e.k][0] ? s[0] : s[1];
-      return static_cast<int>(mode_.slip[e.k]) * ref.slip_rate_mps / std::sqrt(stack_.g_mps2() * L);
+      // The slip rate in the slip's direction. A slip that began within the rate tolerance of
+      // zero (a slip from rest, its acceleration pointing its way) is armed once its rate
+      // exceeds that tolerance; until then it ends only when its rate falls the tolerance the
+      // other way, so that the rounding of a rate of ~1e-18 m/s at its first instant is not
+      // taken for its end (which gave the same mode again, at the same instant, for ever).
+      const double rate = static_cast<int>(mode_.slip[e.k]) * SlipRate(e.k, y);
+      return (slip_armed_[e.k] ? rate : rate + rate_tol_) / std::sqrt(stack_.g_mps2() * L);
     }
   }
   return 1.0;
@@ -392,6 +423,7 @@ bool Runner::NewMode(double t, const Y& y, const char* kind, const std::string& 
   const Configuration config_before = config_;
   mode_ = sol.mode;
   config_ = stack_.ConfigurationOf(mode_, Q(y));
+  ArmSlipStops(y, true);
   if (kind[0] == '\0' || (before == mode_ && why.find("edge") == std::string::npos &&
                           why.find("base end") == std::string::npos)) {
     return true;
@@ -414,18 +446,59 @@ bool Runner::NewMode(double t, const Y& y, const char* kind, const std::string& 
   return true;
 }
 
+bool Runner::Impact(int k) {
+  Summary& sum = r_->summary;
+  const ModeSolution imp = stack_.SolveImpact(Q(y_), V(y_), mode_, gap_tol_, rest_rate_);
+  Y post = y_;
+  for (int i = 0; i < 3 * n_; ++i) post[kSecond + i] = imp.result[i];
+  if ((!imp.found || imp.solutions > 1) && !sum.undetermined_from_s) {
+    sum.undetermined_from_s = t_;
+    sum.undetermined_detail =
+        "the " + InterfaceName(k, n_) + " impact at t = " + std::to_string(t_) + " s: " + imp.note;
+  }
+  if (!imp.found) ++sum.impacts_inadmissible;
+  if (imp.solutions > 1) ++sum.impacts_ambiguous;
+  const Configuration before = config_;
+  const ContactMode mode_before = mode_;
+  if (imp.found) mode_ = imp.mode;
+  // A slip that the impact starts is a slip start.
+  for (int i = 0; i < n_; ++i) {
+    if (mode_.any_closed(i) && mode_.slip[i] != Slip::kStick &&
+        (!mode_before.any_closed(i) || mode_before.slip[i] == Slip::kStick)) {
+      ++sum.slip_starts;
+    }
+  }
+  config_ = stack_.ConfigurationOf(mode_, Q(post));
+  std::string note = Changes(mode_before, mode_) + EpisodeAudit(mode_before);
+  if (!imp.note.empty()) note += (note.empty() ? "" : "; ") + imp.note;
+  const double e0 = stack_.Energy(Q(y_), V(y_)), e1 = stack_.Energy(Q(post), V(post));
+  if (e1 - e0 > 1e-9 * std::abs(e0) + 1e-12) {
+    ++sum.impacts_energy_gain;
+    note += " ENERGY GAIN";
+  }
+  AddEvent(t_, InterfaceName(k, n_) + "_impact", before, config_, y_, post, note);
+  ++sum.impacts_at[k];
+  y_ = post;
+  return NewMode(t_, y_, "transition", "after impact");
+}
+
 UnilateralEnd Runner::Go(const std::string& reason) {
   Summary& sum = r_->summary;
   sum.unilateral_from_s = t_;
   sum.unilateral_reason = reason;
   // The contact state at the hand-over: every slot at a zero gap may close.
-  {
-    ContactMode hint(n_);
-    for (int k = 0; k < n_; ++k) {
-      hint.closed[k] = {config_[k] != Contact::kLeft, config_[k] != Contact::kRight};
-    }
-    mode_ = hint;
-    const ContactMode chain = hint;
+  ContactMode chain(n_);
+  for (int k = 0; k < n_; ++k) {
+    chain.closed[k] = {config_[k] != Contact::kLeft, config_[k] != Contact::kRight};
+  }
+  mode_ = chain;
+  if (impact_interface_ >= 0) {
+    // Handed over at an impact: the chain's pivots closed and sticking just before it, the
+    // impact resolved here (Coulomb at the impulse level), then the mode after it.
+    AddEvent(t_, "transition", config_, config_, y_, y_, "unilateral model from here: " + reason);
+    ++sum.transitions;
+    if (!Impact(impact_interface_)) return {config_, false};
+  } else {
     if (!NewMode(t_, y_, "", "")) return {config_, false};
     std::string note = "unilateral model from here: " + reason;
     const std::string ch = Changes(chain, mode_);
@@ -557,6 +630,7 @@ UnilateralEnd Runner::Go(const std::string& reason) {
         // Back on the constraints (the drift of one step), and the next step's first stage there.
         stack_.Project(mode_, y_.data(), y_.data() + kSecond);
         f0 = Rhs(t_, y_);
+        ArmSlipStops(y_, false);
       }
       continue;
     }
@@ -581,34 +655,9 @@ UnilateralEnd Runner::Go(const std::string& reason) {
         sum.overturn_t_s = t_;
         Stop(t_, y_, RunStatus::kOverturned, "overturn", "block " + std::to_string(e.k + 1));
         return {config_, false};
-      case Kind::kLanding: {
-        const ModeSolution imp = stack_.SolveImpact(Q(y_), V(y_), mode_, gap_tol_, rest_rate_);
-        Y post = y_;
-        for (int i = 0; i < 3 * n_; ++i) post[kSecond + i] = imp.result[i];
-        if ((!imp.found || imp.solutions > 1) && !sum.undetermined_from_s) {
-          sum.undetermined_from_s = t_;
-          sum.undetermined_detail = "the " + InterfaceName(e.k, n_) +
-                                    " impact at t = " + std::to_string(t_) + " s: " + imp.note;
-        }
-        if (!imp.found) ++sum.impacts_inadmissible;
-        if (imp.solutions > 1) ++sum.impacts_ambiguous;
-        const Configuration before = config_;
-        const ContactMode mode_before = mode_;
-        if (imp.found) mode_ = imp.mode;
-        config_ = stack_.ConfigurationOf(mode_, Q(post));
-        std::string note = Changes(mode_before, mode_) + EpisodeAudit(mode_before);
-        if (!imp.note.empty()) note += (note.empty() ? "" : "; ") + imp.note;
-        const double e0 = stack_.Energy(Q(y_), V(y_)), e1 = stack_.Energy(Q(post), V(post));
-        if (e1 - e0 > 1e-9 * std::abs(e0) + 1e-12) {
-          ++sum.impacts_energy_gain;
-          note += " ENERGY GAIN";
-        }
-        AddEvent(t_, InterfaceName(e.k, n_) + "_impact", before, config_, y_, post, note);
-        ++sum.impacts_at[e.k];
-        y_ = post;
-        if (!NewMode(t_, y_, "transition", "after impact")) return {config_, false};
+      case Kind::kLanding:
+        if (!Impact(e.k)) return {config_, false};
         break;
-      }
       case Kind::kEdge: {
         const bool upper = !mode_.support_corner[e.k][e.j];
         const std::string corner = e.j == 0 ? "right" : "left";
@@ -617,11 +666,12 @@ UnilateralEnd Runner::Go(const std::string& reason) {
                                        : "its support's " + corner + " corner reaches block " +
                                              std::to_string(e.k + 1) + "'s base end";
         if (!stack_.Slots(e.k, Q(y_), V(y_))[e.j].exists) {
-          // Past both edges: the block has left its support.
+          // Past both edges: the block has left its support (an outcome of its own, not an
+          // overturn: the block may still stand upright).
           config_ = stack_.ConfigurationOf(mode_, Q(y_));
-          sum.overturn_block = e.k + 1;
-          sum.overturn_t_s = t_;
-          Stop(t_, y_, RunStatus::kOverturned, "overturn",
+          sum.left_support_block = e.k + 1;
+          sum.left_support_t_s = t_;
+          Stop(t_, y_, RunStatus::kLeftSupport, "left_support",
                "block " + std::to_string(e.k + 1) + " slid off its support");
           return {config_, false};
         }
@@ -676,6 +726,56 @@ UnilateralEnd ContinueUnilateral(const Scene& scene, const GroundMotion& motion,
                                  Result* result, long* next_sample) {
   Runner run(scene, motion, start, steps, result, next_sample);
   return run.Go(start.reason);
+}
+
+std::vector<InterfaceImpulse> ChainImpactImpulses(const Scene& scene, const Configuration& before,
+                                                  const Configuration& after,
+                                                  const double* theta_rad,
+                                                  const double* omega_before_radps,
+                                                  const double* omega_after_radps) {
+  const UnilateralStack stack = UnilateralStack::OfScene(scene);
+  const int n = stack.size();
+  std::vector<double> q0(3 * n), v0(3 * n), q1(3 * n), v1(3 * n);
+  stack.FromChain(before, theta_rad, omega_before_radps, q0.data(), v0.data());
+  stack.FromChain(after, theta_rad, omega_after_radps, q1.data(), v1.data());
+  std::vector<InterfaceImpulse> out(static_cast<size_t>(n));
+  // Interface k's impulse on block k: the momentum blocks k..N gain, summed from the top.
+  double px = 0.0, py = 0.0;
+  for (int k = n - 1; k >= 0; --k) {
+    const double m = stack.block(k).mass_kg;
+    px += m * (v1[3 * k] - v0[3 * k]);
+    py += m * (v1[3 * k + 1] - v0[3 * k + 1]);
+    // The support's top face: the ground's is level; block k - 1's turns with it.
+    const double th = k > 0 ? theta_rad[k - 1] : 0.0;
+    const double c = std::cos(th), s = std::sin(th);
+    out[k].normal_ns = px * s + py * c;
+    out[k].tangential_ns = px * c - py * s;
+  }
+  return out;
+}
+
+int InterfaceOutsideCone(const Scene& scene, const std::vector<InterfaceImpulse>& impulses,
+                         double impulse_scale_ns, std::string* why) {
+  const double tol = 1e-9 * impulse_scale_ns;
+  for (size_t k = 0; k < impulses.size(); ++k) {
+    const double mu = scene.blocks[k].friction;
+    const InterfaceImpulse& p = impulses[k];
+    char buf[200];
+    if (p.normal_ns < -tol) {
+      std::snprintf(buf, sizeof buf, "block %zu's no-slip impact impulse pulls (P_N = %.6g N s)",
+                    k + 1, p.normal_ns);
+    } else if (std::isfinite(mu) && std::abs(p.tangential_ns) > mu * p.normal_ns + tol) {
+      std::snprintf(buf, sizeof buf,
+                    "block %zu's no-slip impact impulse leaves its friction cone (|P_T| / P_N "
+                    "= %.6g > mu = %.6g)",
+                    k + 1, std::abs(p.tangential_ns) / std::max(p.normal_ns, 1e-300), mu);
+    } else {
+      continue;
+    }
+    if (why != nullptr) *why = buf;
+    return static_cast<int>(k);
+  }
+  return -1;
 }
 
 }  // namespace rockbench::reference

@@ -23,7 +23,36 @@ struct UnilateralStart {
   Configuration config;
   std::vector<double> theta_rad, omega_radps;
   std::string reason;
+  /// >= 0: the run is handed over at an impact of this interface (0: block 1 on the ground),
+  /// the state being the one just before it; the unilateral model resolves that impact
+  /// (Coulomb's law at the impulse level) before anything else.
+  int impact_interface = -1;
 };
+
+/// An interface's impulse in an impact outcome, N s: normal (> 0 pushes the upper block away
+/// from its support) and tangential (along the support's top face, > 0 to the right).
+struct InterfaceImpulse {
+  double normal_ns = 0.0, tangential_ns = 0.0;
+};
+
+/// The impulses the interfaces transmit in a pivot-chain impact (impact.h: plastic, no slip)
+/// from the chain's state just before it (configuration `before`, rates omega_before) to its
+/// outcome (`after`, omega_after), at angles theta (unchanged by the impact). Interface k's
+/// impulse on block k is the momentum the blocks k..N gain, sum_(j >= k) m_j (v+_j - v-_j)
+/// (gravity and the base's acceleration give no impulse): exact, whatever the impact law, and
+/// computed without the chain's equations.
+std::vector<InterfaceImpulse> ChainImpactImpulses(const Scene& scene, const Configuration& before,
+                                                  const Configuration& after,
+                                                  const double* theta_rad,
+                                                  const double* omega_before_radps,
+                                                  const double* omega_after_radps);
+
+/// The first interface of `impulses` whose impulse Coulomb's law forbids: it pulls (normal <
+/// -tol) or leaves the friction cone (|tangential| > mu normal + tol, mu the upper block's
+/// `friction`), tol being 1e-9 of `impulse_scale_ns`; -1 when none does. `why` (optional) says
+/// which and by how much.
+int InterfaceOutsideCone(const Scene& scene, const std::vector<InterfaceImpulse>& impulses,
+                         double impulse_scale_ns, std::string* why = nullptr);
 
 /// The driver's step and event scales, s (the chain's: simulate.cc).
 struct UnilateralSteps {
