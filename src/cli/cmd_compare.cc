@@ -29,6 +29,7 @@
 #include "scene/ground_motion.h"
 #include "scene/history.h"
 #include "scene/scene.h"
+#include "util/format.h"
 
 namespace rockbench::cli {
 namespace {
@@ -125,11 +126,36 @@ void Execute(const CompareCliOptions& opt) {
       const AngleAgreement& g = a.angle(b);
       std::printf(
           "  %s theta%d: max error %.3g rad (%.3g where the reference is predictable: %.3g x the "
-          "local tolerance), RMS %.3g rad, within the local tolerance until %.3f s, peak "
-          "%+.2f%% (%+.4f s)\n",
+          "local tolerance), RMS %.3g rad, within the local tolerance until %.3f s, ",
           a.engine.c_str(), b, g.max_abs_error_rad, g.max_abs_error_predictable_rad,
-          g.max_error_ratio_predictable, g.rms_error_rad, g.horizon_s, 100.0 * g.peak_rel_error,
-          g.peak_time_error_s);
+          g.max_error_ratio_predictable, g.rms_error_rad, g.horizon_s);
+      if (g.judged) {
+        std::printf("peak %+.2f%% (%+.4f s)\n", 100.0 * g.peak_rel_error, g.peak_time_error_s);
+      } else {
+        // Below the floor a relative peak error means nothing: the absolute one, and the peak
+        // judgement that replaces the pointwise one.
+        std::printf(
+            "peak %.3g rad against the reference's %.3g rad (%+.3g rad); not judged point by "
+            "point (the reference's peak is below %g x the tolerance floor %.3g rad): its peak "
+            "%s the peak tolerance %.3g rad\n",
+            g.peak_engine_rad, g.peak_reference_rad, g.peak_engine_rad - g.peak_reference_rad,
+            kJudgedPeakOverFloor, g.floor_rad, g.peak_within_tolerance ? "within" : "BEYOND",
+            g.peak_tolerance_rad);
+      }
+    }
+    // Slip and lift, where the histories carry them.
+    for (size_t b = 0; b < a.slip.size(); ++b) {
+      for (const bool lift : {false, true}) {
+        const SlipAgreement& g = lift ? a.lift[b] : a.slip[b];
+        std::printf(
+            "  %s %s%zu (%s): max error %.3g m (tolerance %.3g m: 10%% of the reference's peak "
+            "%.3g m, at least %.3g m), %s, final %.4g m against the reference's %.4g m\n",
+            a.engine.c_str(), lift ? "z" : "u", b + 1, lift ? "lift" : "slip", g.max_abs_error_m,
+            g.tolerance_m, g.peak_reference_m, g.floor_m,
+            g.within_tolerance ? "within it throughout"
+                               : ("LEAVES it at " + Format("%.3f", g.horizon_s) + " s").c_str(),
+            g.final_engine_m, g.final_reference_m);
+      }
     }
     std::printf(
         "  %s impacts faster than %g rad/s: %d of %d matched (engine %d; all impacts: "
@@ -139,8 +165,12 @@ void Execute(const CompareCliOptions& opt) {
         a.impacts.engine_impacts_all, a.impacts.max_abs_time_error_s * 1e3,
         a.impacts.first_mismatch.empty() ? "" : "; first mismatch: ",
         a.impacts.first_mismatch.c_str());
-    std::printf("  %s overturning %s, final state %s\n", a.engine.c_str(),
-                a.overturn_agree ? "agrees" : "DIFFERS", a.final_agree ? "agrees" : "DIFFERS");
+    // Leaving the support is named where either run had a block leave it.
+    const bool left = a.left_support_block_reference || a.left_support_block_engine;
+    std::printf("  %s overturning %s%s%s, final state %s\n", a.engine.c_str(),
+                a.overturn_agree ? "agrees" : "DIFFERS", left ? ", leaving the support " : "",
+                !left ? "" : (a.left_support_agree ? "agrees" : "DIFFERS"),
+                a.final_agree ? "agrees" : "DIFFERS");
   }
   for (const EngineAgreement& a : agreements) {
     std::printf("verdict %s: %s: %s\n", a.engine.c_str(), VerdictLabel(a.verdict_kind).c_str(),

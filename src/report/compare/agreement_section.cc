@@ -45,7 +45,7 @@ void MetricsTable(const RunData& run, Page& page) {
   const json& c = *run.comparison;
   const fs::path& file = run.comparison_path;
   std::vector<std::vector<std::string>> rows;
-  std::vector<std::vector<std::string>> impacts;
+  std::vector<std::vector<std::string>> impacts, slips;
   for (const EngineData& e : run.engines) {
     if (IsReference(e.name)) continue;
     const std::string k = "engines." + e.name;
@@ -53,13 +53,24 @@ void MetricsTable(const RunData& run, Page& page) {
     for (int b = 1; b <= run.scene.block_count(); ++b) {
       const std::string kb = k + "." + Numbered("theta", b);
       const bool within = OptBool(c, kb + ".within_tolerance", file);
+      // A block below the floor (judged false): no relative peak error (its reference peak may
+      // be zero), the absolute one and the peak judgement instead.
+      const json* judged = Find(c, kb + ".judged");
+      const bool is_judged = judged == nullptr || !judged->is_boolean() || judged->get<bool>();
+      const std::string peak_error =
+          is_judged ? Num(100.0 * NeedNumber(c, kb + ".peak_rel_error", file), 3) + " %"
+                    : "not judged (below the floor): " +
+                          Num(OptNumber(c, kb + ".peak_abs_error_rad", file), 3) + " rad, " +
+                          (OptBool(c, kb + ".peak_within_tolerance", file) ? "within" : "BEYOND") +
+                          " the peak tolerance " +
+                          Num(OptNumber(c, kb + ".peak_tolerance_rad", file), 3) + " rad";
       rows.push_back({e.name, "theta" + std::to_string(b),
                       Num(NeedNumber(c, kb + ".max_abs_error_rad", file), 3),
                       Num(NeedNumber(c, kb + ".rms_error_rad", file), 3),
                       Num(OptNumber(c, kb + ".tolerance_rad", file), 3),
                       within ? "whole run (" + Num(NeedNumber(c, kb + ".horizon_s", file)) + " s)"
                              : Num(NeedNumber(c, kb + ".horizon_s", file), 5) + " s",
-                      Num(100.0 * NeedNumber(c, kb + ".peak_rel_error", file), 3) + " %",
+                      peak_error,
                       Num(1e3 * NeedNumber(c, kb + ".peak_time_error_s", file), 3) + " ms"});
     }
     const double matched = NeedNumber(c, k + ".impacts_matched", file);
@@ -79,18 +90,51 @@ void MetricsTable(const RunData& run, Page& page) {
       matched_text +=
           "; all impacts: " + Num(nref_all) + " reference, " + Num(neng_all) + " engine";
     }
+    // Slip and lift (u1.., z1..), where the histories carry them.
+    for (int b = 1; b <= run.scene.block_count(); ++b) {
+      for (const char* q : {"u", "z"}) {
+        const std::string kq = k + "." + Numbered(q, b);
+        if (Find(c, kq) == nullptr) continue;
+        slips.push_back({e.name, Numbered(q, b) + (q[0] == 'u' ? " (slip)" : " (lift)"),
+                         Num(NeedNumber(c, kq + ".max_abs_error_m", file), 3),
+                         Num(NeedNumber(c, kq + ".tolerance_m", file), 3),
+                         Num(OptNumber(c, kq + ".peak_reference_m", file), 4),
+                         Num(OptNumber(c, kq + ".final_reference_m", file), 4),
+                         Num(OptNumber(c, kq + ".final_engine_m", file), 4),
+                         OptBool(c, kq + ".within_tolerance", file)
+                             ? "whole run"
+                             : Num(OptNumber(c, kq + ".horizon_s", file), 5) + " s"});
+      }
+    }
+    std::string off = "none";
+    if (const json* o = Find(c, k + ".left_support");
+        o != nullptr && o->is_object() &&
+        (!o->value("reference_block", json()).is_null() ||
+         !o->value("engine_block", json()).is_null())) {
+      off = OptBool(c, k + ".left_support.agree", file) ? "agrees" : "DIFFERS";
+    }
     impacts.push_back({e.name, matched_text,
                        Num(1e3 * OptNumber(c, k + ".max_abs_impact_time_error_s", file), 3) + " ms",
                        mismatch.empty() ? "none" : mismatch,
-                       OptBool(c, k + ".overturn.agree", file) ? "agrees" : "DIFFERS",
+                       OptBool(c, k + ".overturn.agree", file) ? "agrees" : "DIFFERS", off,
                        OptBool(c, k + ".final.agree", file) ? "agrees" : "DIFFERS",
                        Num(NeedNumber(c, k + ".wall_s", file), 3) + " s"});
   }
   page.Table({"engine", "angle", "max error (rad)", "RMS error (rad)", "tolerance (rad)",
               "agreement horizon", "peak error", "peak time error"},
              rows);
+  if (!slips.empty()) {
+    page.Table({"engine", "quantity", "max error (m)", "tolerance (m)", "reference peak (m)",
+                "reference final (m)", "engine final (m)", "within the tolerance until"},
+               slips);
+    page.Paragraph(
+        "Slip u of a block on its support and lift z of its lowest base corner above it "
+        "(docs/sliding.md), compared at the engine's sample times; tolerance 10% of the "
+        "reference's peak, never below 1% of the block's critical angle times its width. An "
+        "error beyond it where the reference is predictable decides DIFFERS.");
+  }
   page.Table({"engine", "impacts matched", "max impact time error", "first mismatch", "overturning",
-              "final state", "wall time"},
+              "left its support", "final state", "wall time"},
              impacts);
   page.Paragraph("From comparison.json (reference wall time " +
                  Num(OptNumber(c, "reference.wall_s", file), 3) +

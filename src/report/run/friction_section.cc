@@ -78,6 +78,9 @@ void FrictionWarnings(const RunData& run, const StackModel& model, const Frictio
   // weight (near N = 0, as at an uplift, the ratio grows without bound and says nothing).
   const auto engine_mu = EngineFriction(run);
   for (int k = 0; k < nc && engine_mu; ++k) {
+    // Where the scene gives a finite friction, every engine uses it and the reference slides
+    // too (docs/sliding.md): no warning, the comparison judges the slip.
+    if (k < run.scene.block_count() && std::isfinite(run.scene.blocks[k].friction)) continue;
     const double need = facts.max_mu[k];
     if (need > engine_mu->first) {
       // One or two blocks: "the ground (block 1 on the ground)", "the interface (block 2 on
@@ -167,13 +170,38 @@ void FrictionSection(const RunData& run, const FrictionFacts& facts,
     // summary.json friction_required.ground, .interface (two blocks), .interface2 ... (N >= 3).
     const std::string name = k == 0 ? "ground" : InterfaceName(k, nc);
     const double sum = OptNumber(run.summary, "friction_required." + name, run.summary_path);
+    // A finite friction of the scene is every engine's (docs/engines.md, 'Friction from the
+    // scene') and the reference's.
+    const double mu_scene = run.scene.blocks.at(static_cast<size_t>(k)).friction;
     table.push_back({name, Num(sum), Num(facts.max_mu[k]),
                      Num(facts.min_N[k], 6) + " N at " + Fixed(facts.min_N_t[k], 3) + " s",
-                     engine_mu_text});
+                     std::isfinite(mu_scene) ? Num(mu_scene) + " (the scene's: every engine and "
+                                                               "the reference)"
+                                             : engine_mu_text});
   }
   page.Table({"contact", "largest |T|/N (reference run, every step, N -> 0 included)",
               "largest |T|/N (samples plotted)", "smallest normal force", "engine friction"},
              table);
+  // With a finite friction the reference slides: what the numbers above are then.
+  std::string finite;
+  for (int k = 0; k < nc; ++k) {
+    const double mu = run.scene.blocks.at(static_cast<size_t>(k)).friction;
+    if (!std::isfinite(mu)) continue;
+    finite += (finite.empty() ? "" : ", ") +
+              (k == 0 ? std::string("ground") : InterfaceName(k, nc)) + " " + Num(mu);
+  }
+  if (!finite.empty()) {
+    const double from = OptNumber(run.summary, "unilateral.from_t_s", run.summary_path);
+    page.Paragraph(
+        "The scene gives a finite friction coefficient (" + finite +
+        "): there the reference itself slips once |T|/N reaches it, and its unilateral model "
+        "(docs/sliding.md) follows the slip" +
+        (std::isnan(from) ? std::string(" (it never did in this run)")
+                          : " from " + Fixed(from, 3) + " s") +
+        ". The curves are the no-slip value of each sample's contact configuration, which "
+        "exceeds the coefficient while a block slides; the reference run's column covers the "
+        "steps of the rigid chain only, before the unilateral model takes over.");
+  }
 }
 
 }  // namespace rockbench::report

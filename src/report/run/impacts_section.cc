@@ -13,7 +13,7 @@ int EventCode(const std::string& kind) {
   const int interface = ImpactInterface(kind);
   if (interface >= 0) return interface == 0 ? 1 : 2;
   if (kind == "transition" || kind == "initiation") return 3;
-  if (kind == "overturn" || kind == "assumption_violated") return 4;
+  if (kind == "overturn" || kind == "left_support" || kind == "assumption_violated") return 4;
   return 0;  // rest and anything else: not drawn
 }
 
@@ -25,7 +25,7 @@ void ImpactsSection(const RunData& run, Figures& fig) {
   std::vector<std::vector<std::string>> rows;
   std::string dat =
       "# t_s row code (1 ground impact, 2 interface impact, 3 transition or "
-      "initiation, 4 overturn or assumption violated)\n";
+      "initiation, 4 overturn, left its support or assumption violated)\n";
   std::set<int> codes;
   std::string ytics;
   for (size_t i = 0; i < run.engines.size(); ++i) {
@@ -45,7 +45,7 @@ void ImpactsSection(const RunData& run, Figures& fig) {
                     std::to_string(n[4])});
   }
   page.Table({"run", "ground impacts", "interface impacts", "transitions and initiations",
-              "overturn or violation"},
+              "overturn, left its support or violation"},
              rows);
   if (codes.empty()) {
     page.Paragraph("No impact, transition or overturning in any run: no timeline.");
@@ -65,7 +65,7 @@ void ImpactsSection(const RunData& run, Figures& fig) {
                           many ? "interface impact (a block lands on the one below)"
                                : "interface impact (block 2 lands on block 1)",
                           "transition or initiation (no impact)",
-                          "overturn or assumption violated"};
+                          "overturn, left its support or assumption violated"};
   std::string plot = "plot ";
   bool first = true;
   for (int code : codes) {

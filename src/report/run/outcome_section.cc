@@ -15,7 +15,11 @@ namespace {
 
 using nlohmann::json;
 
-std::string EngineWarnings(const EngineData& e, std::vector<std::string>& out) {
+// An engine's warnings, checked against the scene's model: sliding is a warning only where the
+// reference cannot slide (every friction infinite), lift-off only where the reference's stack
+// never lifted off (with a finite friction or a vertical motion the reference follows both with
+// its unilateral model, docs/sliding.md, and the comparison judges u and z instead).
+std::string EngineWarnings(const RunData& run, const EngineData& e, std::vector<std::string>& out) {
   const json* v = Find(e.summary, "violations");
   std::string status = e.summary.value("status", std::string("unknown"));
   if (v == nullptr || !v->is_object()) return status;
@@ -42,7 +46,11 @@ std::string EngineWarnings(const EngineData& e, std::vector<std::string>& out) {
   }
   const auto key = [](const std::string& what, const std::string& contact,
                       const std::string& tail) { return what + "_" + contact + tail; };
-  if (flag("sliding")) {
+  const bool reference_slides = run.scene.has_finite_friction();
+  const double reference_lift_offs =
+      OptNumber(run.summary, "unilateral.lift_offs", run.summary_path);
+  const bool reference_lifts = reference_lift_offs > 0;
+  if (flag("sliding") && !reference_slides) {
     std::string where;
     for (size_t k = 0; k < contacts.size(); ++k) {
       where += std::string(k == 0                     ? ""
@@ -52,10 +60,10 @@ std::string EngineWarnings(const EngineData& e, std::vector<std::string>& out) {
                contacts[k].second;
     }
     out.push_back(who + " slid: the blocks slipped " + where +
-                  ". The rigid-block model assumes no sliding, so the two are not simulating "
-                  "the same system.");
+                  ". The scene gives no friction coefficient (infinite friction), so the "
+                  "reference's blocks cannot slide: the two are not simulating the same system.");
   }
-  if (flag("uplift")) {
+  if (flag("uplift") && !reference_lifts) {
     std::string where;
     for (const auto& [c, words] : contacts) {
       const double n = num(key("uplift", c, "_episodes").c_str());
@@ -64,7 +72,8 @@ std::string EngineWarnings(const EngineData& e, std::vector<std::string>& out) {
                " (up to " + Num(1e3 * num(key("uplift", c, "_max_m").c_str()), 3) + " mm)";
     }
     out.push_back(who + " lifted off" + (where.empty() ? "" : ": " + where) +
-                  ". The model assumes the pivots stay in contact (no bouncing or jumping).");
+                  ". The reference's blocks never lift off in this run: their pivots stay in "
+                  "contact (no bouncing or jumping).");
   }
   if (flag("penetration")) {
     double depth = num(key("penetration", contacts[0].first, "_max_m").c_str());
@@ -104,6 +113,12 @@ std::string ReferenceOutcome(const RunData& run, std::vector<std::string>& warni
         Num(OptNumber(run.summary, "overturn.block", run.summary_path)) +
         " overturned at t = " + Fixed(OptNumber(run.summary, "overturn.t_s", run.summary_path), 4) +
         " s.";
+  } else if (status == "left_support") {
+    outcome = "The reference model: block " +
+              Num(OptNumber(run.summary, "left_support.block", run.summary_path)) +
+              " left its support (slid off it) at t = " +
+              Fixed(OptNumber(run.summary, "left_support.t_s", run.summary_path), 4) +
+              " s; the model ends there.";
   } else if (status == "at_rest") {
     outcome = "The reference model: the blocks came to rest (run to " +
               Fixed(ref.history.samples.back().t_s, 3) + " s).";
@@ -146,13 +161,19 @@ std::string EnginesOutcome(const RunData& run, std::vector<std::string>& warning
   std::string text;
   std::vector<std::string> engine_status;
   for (size_t i = 1; i < run.engines.size(); ++i) {
-    const std::string st = EngineWarnings(run.engines[i], warnings);
+    const std::string st = EngineWarnings(run, run.engines[i], warnings);
     std::string line = run.engines[i].name + ": " + st;
     const double ot = OptNumber(run.engines[i].summary, "overturn.t_s", run.summary_path);
     if (!std::isnan(ot)) {
       line += ", block " +
               Num(OptNumber(run.engines[i].summary, "overturn.block", run.summary_path)) +
               " overturned at t = " + Fixed(ot, 4) + " s";
+    }
+    const double lt = OptNumber(run.engines[i].summary, "left_support.t_s", run.summary_path);
+    if (!std::isnan(lt)) {
+      line += ", block " +
+              Num(OptNumber(run.engines[i].summary, "left_support.block", run.summary_path)) +
+              " left its support (slid off it) at t = " + Fixed(lt, 4) + " s";
     }
     engine_status.push_back(line);
   }

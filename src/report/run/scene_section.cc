@@ -16,9 +16,15 @@ namespace {
 
 using nlohmann::json;
 
-std::string BlockDescription(const BlockDef& b) {
+std::string BlockDescription(const BlockDef& b, int k) {
+  // Block k's friction on its support (k = 0: the ground): the scene's key, or none (infinite:
+  // the block cannot slide, the thesis's assumption).
+  const std::string support = k == 0 ? "the ground" : "block " + std::to_string(k);
+  const std::string friction = std::isfinite(b.friction)
+                                   ? "friction " + Num(b.friction) + " on " + support
+                                   : "no sliding on " + support + " (friction infinite)";
   return Num(b.width_m) + " m wide, " + Num(b.height_m) + " m high, " + Num(b.depth_m) +
-         " m deep, " + Num(b.mass_kg, 6) + " kg";
+         " m deep, " + Num(b.mass_kg, 6) + " kg, " + friction;
 }
 
 // PGA, PGV and PGD of each component: PGV and PGD by trapezoidal integration over the simulated
@@ -158,13 +164,13 @@ void SceneSection(const RunData& run, const GroundMotion& motion, Figures& fig) 
   if (nb <= 2) {
     const reference::Geometry geo = reference::MakeGeometry(s);
     const BlockDef& b1 = s.blocks.at(0);
-    rows.push_back({"block 1 (lower)", BlockDescription(b1),
+    rows.push_back({"block 1 (lower)", BlockDescription(b1, 0),
                     "H/B = " + Num(b1.height_m / b1.width_m) + ", slenderness " +
                         Num(geo.block1.theta_c) + " rad"});
     const bool two = nb == 2;
     if (two) {
       const BlockDef& b2 = s.blocks[1];
-      rows.push_back({"block 2 (upper)", BlockDescription(b2),
+      rows.push_back({"block 2 (upper)", BlockDescription(b2, 1),
                       "H/B = " + Num(b2.height_m / b2.width_m) + ", slenderness " +
                           Num(geo.block2.theta_c) + " rad"});
       rows.push_back({"stack", "mass " + Num(geo.M, 6) + " kg",
@@ -189,7 +195,7 @@ void SceneSection(const RunData& run, const GroundMotion& motion, Figures& fig) 
                                 : k == nb - 1 ? " (top)"
                                               : "");
       rows.push_back(
-          {name, BlockDescription(b),
+          {name, BlockDescription(b, k),
            "H/B = " + Num(b.height_m / b.width_m) + ", slenderness " + Num(p.theta_c) + " rad"});
       mass_kg += b.mass_kg;
       moment_kgm += b.mass_kg * (base_m + 0.5 * b.height_m);
