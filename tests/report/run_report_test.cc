@@ -149,6 +149,38 @@ TEST_F(RunReportTest, AReferenceOnlyRunHasNoErrorFigureAndSaysSo) {
   EXPECT_FALSE(fs::exists(r.page_dir / "animation.mp4"));
 }
 
+// Issue 37: on a scene with a finite friction the reference slides too, so an engine that
+// slides is no warning (the slip is compared instead, u1.. in comparison.json); the block that
+// slid off its support left it (not "overturned"); the scene table gives each block's friction;
+// the tables never break a word. (The infinite-friction case keeps the warning: the next test.)
+TEST_F(RunReportTest, AFiniteFrictionSceneSaysTheReferenceSlidesToo) {
+  const fs::path run = base_ / "slides_off";
+  RockbenchOk({"compare", SceneFile("top_block_slides_off.toml").string(), "--engines", "bullet",
+               "--quick", "--out", run.string()});
+  RunReportOptions o;
+  o.keyframes = o.animation = false;
+  const RunReportResult r = WriteRunReport(run, base_ / "out_slides_off", o);
+  for (const std::string& w : r.warnings) {
+    EXPECT_EQ(w.find("slid"), std::string::npos) << w;
+    EXPECT_EQ(w.find("assumes no sliding"), std::string::npos) << w;
+  }
+  const std::string md = Slurp(r.page_dir / "report.md");
+  EXPECT_EQ(md.find("assumes no sliding"), std::string::npos);
+  EXPECT_EQ(md.find("overturned at"), std::string::npos) << md;
+  EXPECT_NE(md.find("The reference model: block 2 left its support (slid off it) at t = "),
+            std::string::npos)
+      << md;
+  EXPECT_NE(md.find("bullet: left_support, block 2 left its support"), std::string::npos) << md;
+  EXPECT_NE(md.find("friction 0.2 on block 1"), std::string::npos) << md;
+  EXPECT_NE(md.find("no sliding on the ground (friction infinite)"), std::string::npos) << md;
+  // Block 1 never moves: no relative peak error (its reference peak is ~1e-18 rad).
+  EXPECT_NE(md.find("not judged (below the floor)"), std::string::npos) << md;
+  EXPECT_NE(md.find("| bullet | u2 (slip) |"), std::string::npos) << md;
+  const std::string html = Slurp(r.page_dir / "report.html");
+  EXPECT_EQ(html.find("overflow-wrap:anywhere"), std::string::npos);
+  EXPECT_NE(html.find("word-break:normal"), std::string::npos);
+}
+
 TEST_F(RunReportTest, TooLittleFrictionIsAWarningAtTheTopOfBothPages) {
   RunReportOptions o;
   o.keyframes = o.animation = false;
