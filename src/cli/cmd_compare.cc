@@ -148,10 +148,11 @@ void Execute(const CompareCliOptions& opt) {
       for (const bool lift : {false, true}) {
         const SlipAgreement& g = lift ? a.lift[b] : a.slip[b];
         std::printf(
-            "  %s %s%zu (%s): max error %.3g m (tolerance %.3g m: 10%% of the reference's peak "
-            "%.3g m, at least %.3g m), %s, final %.4g m against the reference's %.4g m\n",
+            "  %s %s%zu (%s): max error %.3g m (%.3g m within a time slack of %g s; tolerance "
+            "%.3g m: 10%% of the reference's peak %.3g m, at least %.3g m), %s, final %.4g m "
+            "against the reference's %.4g m\n",
             a.engine.c_str(), lift ? "z" : "u", b + 1, lift ? "lift" : "slip", g.max_abs_error_m,
-            g.tolerance_m, g.peak_reference_m, g.floor_m,
+            g.max_abs_error_slack_m, g.time_slack_s, g.tolerance_m, g.peak_reference_m, g.floor_m,
             g.within_tolerance ? "within it throughout"
                                : ("LEAVES it at " + Format("%.3f", g.horizon_s) + " s").c_str(),
             g.final_engine_m, g.final_reference_m);

@@ -78,13 +78,19 @@ struct AngleAgreement {
 /// Agreement of one block's slip u_k (or lift z_k) on its support with the reference's, where
 /// both histories carry them (docs/sliding.md). The tolerance is on the slip's own scale:
 /// 10% of the reference's peak |u_k| over the run, never below 1% of the block's critical
-/// angle times its width (alpha_k B_k: ten times the monitor's significant displacement).
+/// angle times its width (alpha_k B_k: ten times the monitor's significant displacement). The
+/// error that decides is the engine's distance from the range the reference's value takes
+/// within two output intervals of the time (time_slack_s): a slip episode a few ms early is a
+/// timing difference, not a slip of another size (docs/verdicts.md).
 struct SlipAgreement {
   double tolerance_m = 0.0, floor_m = 0.0;
   double peak_reference_m = 0.0, peak_reference_t_s = 0.0;  ///< max |u_ref| over the run
   double peak_engine_m = 0.0;                               ///< max |u_engine|, compared run
   double max_abs_error_m = 0.0, rms_error_m = 0.0;          ///< over the compared run
-  /// Before the block's predictability horizon (that of its angle): there an error decides.
+  /// The error with the time slack (what the tolerance judges), m, and the slack, s.
+  double max_abs_error_slack_m = 0.0, time_slack_s = 0.0;
+  /// Before the block's predictability horizon (that of its angle), with the time slack: there
+  /// an error decides.
   double max_abs_error_predictable_m = 0.0;
   double max_error_ratio_predictable = 0.0;  ///< max |error| / tolerance there
   bool within_tolerance = true;              ///< the error never exceeded the tolerance
