@@ -13,6 +13,7 @@
 #include "scene/ground_motion.h"
 #include "scene/history.h"
 #include "scene/scene.h"
+#include "util/format.h"
 
 namespace rockbench::cli {
 namespace {
@@ -47,10 +48,17 @@ void Execute(const RunOptions& opt) {
                       {"overrides", opt.overrides},
                       {"two_blocks", scene.block_count() == 2}};
   summary["base"] = BaseMotionJson(motion);
-  std::vector<std::string> failed;  // runs that ended non_finite
+  std::vector<std::string> failed;        // runs that ended non_finite
+  std::vector<std::string> undetermined;  // runs whose model stopped deciding the motion
   for (const std::string& name : opt.engines) {
     const EngineRun run = RunEngine(name, scene, motion);
     if (const std::string f = NonFiniteText(run); !f.empty()) failed.push_back(f);
+    if (const auto u = run.summary.find("undetermined"); u != run.summary.end() && u->is_object()) {
+      undetermined.push_back(name + ": the model stops deciding the motion at t = " +
+                             Format("%.4f", u->value("t_s", 0.0)) + " s (" +
+                             u->value("detail", std::string()) +
+                             "); the history after it is one admissible outcome the rule chose");
+    }
     WriteEngineFiles(run, out);
     if (IsReference(name)) {
       for (auto it = run.summary.begin(); it != run.summary.end(); ++it) summary[it.key()] = *it;
@@ -70,6 +78,11 @@ void Execute(const RunOptions& opt) {
       std::fprintf(stderr, "rockbench: run failed: %s\n", f.c_str());
     }
     throw CLI::RuntimeError(kExitRunFailed);
+  }
+  if (!undetermined.empty()) {
+    std::fflush(stdout);
+    for (const std::string& u : undetermined) std::fprintf(stderr, "rockbench: %s\n", u.c_str());
+    throw CLI::RuntimeError(kExitUndetermined);
   }
 }
 

@@ -250,15 +250,19 @@ ReferencePerturbationMembers RunReferencePerturbationMembers(
   // overturn, the overturned block stays at its overturn angle (a lasting outcome that other
   // members may not share) and the other blocks' angles are undefined (NaN: the model ends
   // there).
+  // Past the first impact the model leaves undecided (summary "undetermined"), a run's motion
+  // is its rule's choice, not the model's: nothing there to compare either (NaN).
   auto on_grid = [&](const reference::Result& r, std::vector<std::vector<double>>* th) {
     const bool stopped =
         r.summary.status == RunStatus::kAssumptionViolated || IsNonFinite(r.summary.status);
     const int overturned = r.summary.overturn_block.value_or(0);
     const double end = r.trajectory.end_s();
+    const double decided_until = r.summary.undetermined_from_s.value_or(INFINITY);
     th->assign(nbs, std::vector<double>(n_grid, std::nan("")));
     for (size_t k = 0; k < n_grid; ++k) {
       const bool after_end = e.t_s[k] > end;
       if (stopped && after_end) break;
+      if (e.t_s[k] > decided_until) break;
       const Sample s = r.trajectory.At(e.t_s[k]);
       for (int b = 0; b < nb; ++b) {
         if (!after_end || overturned == b + 1) (*th)[b][k] = s.theta_rad[b];
@@ -267,6 +271,17 @@ ReferencePerturbationMembers RunReferencePerturbationMembers(
   };
   std::vector<std::vector<double>> nominal_grid;
   on_grid(nominal, &nominal_grid);
+  // Where a run's model ends without an outcome: its stop (a violated assumption, a state no
+  // longer finite) or its first undecided impact; infinity when it decides the whole run.
+  auto model_end_s = [](const reference::Result& r) {
+    double end = r.summary.undetermined_from_s.value_or(INFINITY);
+    if (r.summary.status == RunStatus::kAssumptionViolated || IsNonFinite(r.summary.status)) {
+      end = std::min(end, r.trajectory.end_s());
+    }
+    return end;
+  };
+  const double nominal_model_end_s = model_end_s(nominal);
+  std::vector<double> member_model_end_s(static_cast<size_t>(members), INFINITY);
 
   e.perturbations.resize(members);
   e.outcomes.resize(members);
@@ -279,6 +294,7 @@ ReferencePerturbationMembers RunReferencePerturbationMembers(
         const MemberInput in = PerturbedInput(nominal_scene, motion, i);
         const auto t0 = std::chrono::steady_clock::now();
         reference::Result r = reference::Simulate(in.scene, in.motion);
+        member_model_end_s[i] = model_end_s(r);
         EngineRun run;
         run.engine = "reference";
         run.wall_s = SecondsSince(t0);
@@ -303,16 +319,29 @@ ReferencePerturbationMembers RunReferencePerturbationMembers(
     e.spread_rad[b].assign(n_grid, 0.0);
     for (size_t k = 0; k < n_grid; ++k) {
       const double nom = nominal_grid[b][k];
-      if (std::isnan(nom)) continue;
+      if (e.t_s[k] > nominal_model_end_s) {
+        // The nominal run's model ends here (it stopped, or its motion is undecided): nothing
+        // is predictable from here on, and the horizon is here at the latest.
+        if (!e.horizon_s[b]) e.horizon_s[b] = e.t_s[k];
+        continue;
+      }
+      if (std::isnan(nom)) continue;  // past the nominal run's overturn
+      // A member whose model ended here while the nominal run's goes on (it stopped, or its
+      // motion is undecided) is a spread beyond any tolerance: the inputs' uncertainty reaches
+      // a different end.
+      bool lost = false;
       for (int i = 0; i < members; ++i) {
         const double v = grids[i][b][k];
+        if (e.t_s[k] > member_model_end_s[i]) lost = true;
         if (std::isnan(v)) continue;
         e.lo_rad[b][k] = std::min(e.lo_rad[b][k], v);
         e.hi_rad[b][k] = std::max(e.hi_rad[b][k], v);
         e.spread_rad[b][k] = std::max(e.spread_rad[b][k], std::abs(v - nom));
       }
       e.max_spread_rad[b] = std::max(e.max_spread_rad[b], e.spread_rad[b][k]);
-      if (!e.horizon_s[b] && e.spread_rad[b][k] > e.tolerance_rad[b]) e.horizon_s[b] = e.t_s[k];
+      if (!e.horizon_s[b] && (lost || e.spread_rad[b][k] > e.tolerance_rad[b])) {
+        e.horizon_s[b] = e.t_s[k];
+      }
     }
   }
   e.wall_s = SecondsSince(start);

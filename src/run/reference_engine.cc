@@ -37,6 +37,12 @@ std::string ReferenceEngine::SummaryLine(const EngineResult& result) const {
   const reference::Summary& s = checked.used().summary;
   // Every block's peak (block 2's is 0 for one block).
   std::string text = std::string("reference: ") + StatusText(s.status);
+  // Where the model stopped deciding the motion: the history after it is one rule's choice.
+  if (s.undetermined_from_s) {
+    char when[96];
+    std::snprintf(when, sizeof when, " (UNDETERMINED from %.4f s: ", *s.undetermined_from_s);
+    text += when + s.undetermined_detail + ")";
+  }
   for (int k = 0; k < std::max(s.blocks(), 2); ++k) {
     char peak[128];
     std::snprintf(peak, sizeof peak, ", peak |theta%d| %.4g rad at %.3f s", k + 1,
