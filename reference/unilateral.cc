@@ -5,6 +5,8 @@
 #include <limits>
 #include <stdexcept>
 
+#include "reference/lcp.h"
+
 namespace rockbench::reference {
 namespace {
 
@@ -19,37 +21,86 @@ Vec2 Turn(double c, double s, Vec2 p) {
   return {p.x * c + p.y * s, -p.x * s + p.y * c};
 }
 
-// Dense solve of a x = b (n x n, row-major) by Gaussian elimination with partial pivoting;
-// false when a pivot is below tol times the largest entry (the equations are singular).
-bool SolveDense(std::vector<double>& a, std::vector<double>& b, int n) {
-  double scale = 0.0;
-  for (const double x : a) scale = std::max(scale, std::abs(x));
+// Dense solve of a x = b (n x n, row-major) by Gaussian elimination with partial pivoting on
+// the system scaled symmetrically, D a D y = D b, x = D y: D_i = scale[i], or 1/sqrt(|a_ii|)
+// (Jacobi scaling; 1 where a_ii = 0). The scaling makes the rows of blocks of very different
+// masses (1e12) comparable: without it a heavy block's rows fall below the pivot tolerance.
+// False when a pivot is below 1e-12 of the scaled system's largest entry (the equations are
+// singular: never for a mode's rows, whose matrix is block triangular over the interfaces with
+// full-rank diagonal blocks, docs/sliding.md).
+//
+// `group` (optional, nondecreasing): the interface of each row and column, when a row of
+// interface k touches only the columns of interfaces k - 1 to k + 1 (a mode's rows: each
+// acts on a block and its support). The elimination then stays inside the band: a column's
+// pivot is sought among the rows of its interface and the next, and a pivot row (of the next
+// interface at most) reaches the columns of the interface after that.
+bool SolveDense(std::vector<double>& a, std::vector<double>& b, int n,
+                const double* scale = nullptr, const int* group = nullptr) {
   if (n == 0) return true;
-  if (!(scale > 0.0) || !std::isfinite(scale)) return false;
-  const double tol = 1e-12 * scale;
+  std::vector<double> d(static_cast<size_t>(n), 1.0);
+  for (int i = 0; i < n; ++i) {
+    const double aii = std::abs(a[i * n + i]);
+    d[i] = scale != nullptr ? scale[i] : (aii > 0.0 ? 1.0 / std::sqrt(aii) : 1.0);
+    if (!(d[i] > 0.0) || !std::isfinite(d[i])) return false;
+  }
+  for (int r = 0; r < n; ++r) {
+    for (int c = 0; c < n; ++c) a[r * n + c] *= d[r] * d[c];
+    b[r] *= d[r];
+  }
+  double scale_max = 0.0;
+  for (const double x : a) scale_max = std::max(scale_max, std::abs(x));
+  if (!(scale_max > 0.0) || !std::isfinite(scale_max)) return false;
+  const double tol = 1e-12 * scale_max;
+  // The end of the rows (and columns) of interfaces up to group[i] + 1 and + 2.
+  std::vector<int> end1(static_cast<size_t>(n), n), end2(static_cast<size_t>(n), n);
+  if (group != nullptr) {
+    for (int i = n - 1, e1 = n, e2 = n; i >= 0; --i) {
+      int j = i;
+      while (j < n && group[j] <= group[i] + 1) ++j;
+      e1 = j;
+      while (j < n && group[j] <= group[i] + 2) ++j;
+      e2 = j;
+      end1[i] = e1;
+      end2[i] = e2;
+    }
+  }
   for (int col = 0; col < n; ++col) {
+    const int rows = end1[col], cols = end2[col];
     int piv = col;
-    for (int r = col + 1; r < n; ++r) {
+    for (int r = col + 1; r < rows; ++r) {
       if (std::abs(a[r * n + col]) > std::abs(a[piv * n + col])) piv = r;
     }
     if (std::abs(a[piv * n + col]) <= tol) return false;
     if (piv != col) {
-      for (int j = 0; j < n; ++j) std::swap(a[col * n + j], a[piv * n + j]);
+      for (int j = col; j < cols; ++j) std::swap(a[col * n + j], a[piv * n + j]);
       std::swap(b[col], b[piv]);
     }
-    for (int r = col + 1; r < n; ++r) {
+    for (int r = col + 1; r < rows; ++r) {
       const double f = a[r * n + col] / a[col * n + col];
       if (f == 0.0) continue;
-      for (int j = col; j < n; ++j) a[r * n + j] -= f * a[col * n + j];
+      for (int j = col; j < cols; ++j) a[r * n + j] -= f * a[col * n + j];
       b[r] -= f * b[col];
     }
   }
   for (int r = n - 1; r >= 0; --r) {
     double s = b[r];
-    for (int j = r + 1; j < n; ++j) s -= a[r * n + j] * b[j];
+    for (int j = r + 1; j < end2[r]; ++j) s -= a[r * n + j] * b[j];
     b[r] = s / a[r * n + r];
   }
+  for (int r = 0; r < n; ++r) b[r] *= d[r];
   return true;
+}
+
+// A constraint row w (its upper block's three entries, then its support's) times x (3 per
+// block): the relative normal or tangential rate (or acceleration, without its velocity terms)
+// of interface k's contact.
+double RowTimes(const std::array<double, 6>& w, int k, const double* x) {
+  double s = 0.0;
+  for (int i = 0; i < 3; ++i) s += w[i] * x[3 * k + i];
+  if (k > 0) {
+    for (int i = 0; i < 3; ++i) s += w[3 + i] * x[3 * (k - 1) + i];
+  }
+  return s;
 }
 
 }  // namespace
@@ -165,13 +216,30 @@ std::array<SlotKinematics, 2> UnilateralStack::Slots(int k, const double* q, con
   return out;
 }
 
+double UnilateralStack::Coupling(int kw, const std::array<double, 6>& w, int kv,
+                                 const std::array<double, 6>& v) const {
+  double sum = 0.0;
+  for (int side_w = 0; side_w < 2; ++side_w) {
+    const int blk = kw - side_w;
+    if (blk < 0) continue;
+    for (int side_v = 0; side_v < 2; ++side_v) {
+      if (kv - side_v != blk) continue;
+      const UnilateralBlock& b = blocks_[blk];
+      sum += (w[3 * side_w] * v[3 * side_v] + w[3 * side_w + 1] * v[3 * side_v + 1]) / b.mass_kg +
+             w[3 * side_w + 2] * v[3 * side_v + 2] / b.inertia_kgm2;
+    }
+  }
+  return sum;
+}
+
 bool UnilateralStack::SolveCandidate(const ContactMode& mode,
                                      const std::vector<std::array<SlotKinematics, 2>>& slots,
                                      const double* rhs_base, bool impact, ModeSolution* out) const {
   // The unknowns (columns) and the constraints (rows): a closed slot's normal force (with its
   // friction when the interface slips) and zero normal relative acceleration (impact: velocity);
   // a sticking interface's tangential force and zero slip acceleration (velocity) at its first
-  // closed slot.
+  // closed slot. A limit slip at infinite friction (the header): the slot's friction tau
+  // along -slip, and zero normal acceleration.
   struct Column {
     int k;
     std::array<double, 6> w;
@@ -184,15 +252,17 @@ bool UnilateralStack::SolveCandidate(const ContactMode& mode,
     if (!mode.any_closed(k)) continue;
     const double mu = blocks_[k].friction;
     const Slip slip = mode.slip[k];
+    const double sign = static_cast<double>(static_cast<int>(slip));
     int ref = -1;
     for (int j = 0; j < 2; ++j) {
       if (!mode.closed[k][j]) continue;
       const SlotKinematics& s = slots[k][j];
       if (ref < 0) ref = j;
       Column c{k, s.wn, s.wn, s.kappa_n};
-      if (slip != Slip::kStick && mu > 0.0) {
-        const double f = -static_cast<double>(static_cast<int>(slip)) * mu;
-        for (int i = 0; i < 6; ++i) c.w[i] += f * s.wt[i];
+      if (slip != Slip::kStick && std::isinf(mu)) {
+        for (int i = 0; i < 6; ++i) c.w[i] = -sign * s.wt[i];
+      } else if (slip != Slip::kStick && mu > 0.0) {
+        for (int i = 0; i < 6; ++i) c.w[i] += -sign * mu * s.wt[i];
       }
       cols.push_back(c);
     }
@@ -207,28 +277,24 @@ bool UnilateralStack::SolveCandidate(const ContactMode& mode,
     const UnilateralBlock& b = blocks_[block];
     return i == 2 ? 1.0 / b.inertia_kgm2 : 1.0 / b.mass_kg;
   };
-  auto dot_row = [&](const Column& r, const double* x) {
-    double s = 0.0;
-    for (int i = 0; i < 3; ++i) s += r.row[i] * x[3 * r.k + i];
-    if (r.k > 0) {
-      for (int i = 0; i < 3; ++i) s += r.row[3 + i] * x[3 * (r.k - 1) + i];
-    }
-    return s;
-  };
   std::vector<double> A(static_cast<size_t>(m * m), 0.0), b(static_cast<size_t>(m), 0.0);
-  std::vector<double> tmp(static_cast<size_t>(3 * n_), 0.0);
-  for (int c = 0; c < m; ++c) {
-    std::fill(tmp.begin(), tmp.end(), 0.0);
-    const Column& col = cols[c];
-    for (int i = 0; i < 3; ++i) tmp[3 * col.k + i] += inv_mass(col.k, i) * col.w[i];
-    if (col.k > 0) {
-      for (int i = 0; i < 3; ++i) tmp[3 * (col.k - 1) + i] += inv_mass(col.k - 1, i) * col.w[3 + i];
+  std::vector<double> scale(static_cast<size_t>(m), 1.0);
+  for (int r = 0; r < m; ++r) {
+    for (int c = 0; c < m; ++c) {
+      if (std::abs(cols[r].k - cols[c].k) > 1) continue;
+      A[r * m + c] = Coupling(cols[r].k, cols[r].row, cols[c].k, cols[c].w);
     }
-    for (int r = 0; r < m; ++r) A[r * m + c] = dot_row(cols[r], tmp.data());
+    // The row's own norm in the mass metric scales it (a friction column's diagonal entry may
+    // be small or negative; the row's norm is not).
+    scale[r] = 1.0 / std::sqrt(Coupling(cols[r].k, cols[r].row, cols[r].k, cols[r].row));
   }
   // rhs_base: M^-1 f (accelerations) or v- (impact); the rows' values there.
-  for (int r = 0; r < m; ++r) b[r] = -(dot_row(cols[r], rhs_base) + (impact ? 0.0 : cols[r].kappa));
-  if (!SolveDense(A, b, m)) return false;
+  for (int r = 0; r < m; ++r) {
+    b[r] = -(RowTimes(cols[r].row, cols[r].k, rhs_base) + (impact ? 0.0 : cols[r].kappa));
+  }
+  std::vector<int> group(static_cast<size_t>(m));
+  for (int r = 0; r < m; ++r) group[r] = cols[r].k;
+  if (!SolveDense(A, b, m, scale.data(), group.data())) return false;
   out->result.assign(rhs_base, rhs_base + 3 * n_);
   out->normal.assign(static_cast<size_t>(n_), 0.0);
   out->tangential.assign(static_cast<size_t>(n_), 0.0);
@@ -237,16 +303,22 @@ bool UnilateralStack::SolveCandidate(const ContactMode& mode,
   for (int k = 0; k < n_; ++k) {
     if (!mode.any_closed(k)) continue;
     const double mu = blocks_[k].friction;
+    const double sign = static_cast<double>(static_cast<int>(mode.slip[k]));
+    const bool limit = mode.slip[k] != Slip::kStick && std::isinf(mu);
     for (int j = 0; j < 2; ++j) {
       if (!mode.closed[k][j]) continue;
       out->slot_normal[k][j] = b[c];
-      out->normal[k] += b[c];
+      if (limit) {
+        out->tangential[k] += -sign * b[c];  // tau along -slip; the normal force is zero
+      } else {
+        out->normal[k] += b[c];
+      }
       ++c;
     }
     if (mode.slip[k] == Slip::kStick) {
       out->tangential[k] = b[c++];
-    } else {
-      out->tangential[k] = mu > 0.0 ? -static_cast<int>(mode.slip[k]) * mu * out->normal[k] : 0.0;
+    } else if (!limit) {
+      out->tangential[k] = mu > 0.0 ? -sign * mu * out->normal[k] : 0.0;
     }
   }
   for (int cc = 0; cc < m; ++cc) {
@@ -267,7 +339,17 @@ bool UnilateralStack::Accelerations(const ContactMode& mode, const double* q, co
                                     ModeSolution* forces) const {
   std::vector<std::array<SlotKinematics, 2>> slots(static_cast<size_t>(n_));
   for (int k = 0; k < n_; ++k) {
-    if (mode.any_closed(k)) slots[k] = Slots(k, q, v, &mode);
+    if (!mode.any_closed(k)) continue;
+    slots[k] = Slots(k, q, v, &mode);
+    // A limit slip (infinite friction) holds only while it slips its way: the driver has no
+    // slip-stop event for infinite friction, so a reversed slip makes the equations fail (the
+    // step is refused and shrinks, and the run stops there, stated).
+    if (mode.slip[k] != Slip::kStick && std::isinf(blocks_[k].friction)) {
+      const SlotKinematics& ref = mode.closed[k][0] ? slots[k][0] : slots[k][1];
+      if (static_cast<int>(mode.slip[k]) * ref.slip_rate_mps < -1e-9 * std::sqrt(g_ * length_)) {
+        return false;
+      }
+    }
   }
   // M^-1 f: the effective gravity.
   std::vector<double> free(static_cast<size_t>(3 * n_), 0.0);
@@ -285,34 +367,37 @@ bool UnilateralStack::Accelerations(const ContactMode& mode, const double* q, co
 namespace {
 
 // The options of one interface: its slots at a zero gap closed in every subset, each with the
-// tangential states its friction and slip rate allow.
-std::vector<ContactOption> ContactOptionsOf(const std::array<SlotKinematics, 2>& s,
-                                            const std::array<bool, 2>& zero, double mu,
-                                            bool slipping, double slip_rate) {
+// tangential states its friction and slip rate allow (`slipping`: the sign of a slip under way,
+// else 0). Infinite friction sticks; with `limit_slip`, or while it slips, one closed corner
+// may also slip (the limit of mu -> infinity, the header).
+std::vector<ContactOption> ContactOptionsOf(const std::array<bool, 2>& zero, double mu,
+                                            int slipping, bool limit_slip) {
   std::vector<ContactOption> out;
-  std::vector<Slip> tangential;
-  if (std::isinf(mu)) {
-    tangential = {Slip::kStick};
-  } else if (mu == 0.0) {
-    tangential = {Slip::kRight};  // frictionless: the tangential state plays no part
-  } else if (slipping) {
-    tangential = {slip_rate > 0.0 ? Slip::kRight : Slip::kLeft};
-  } else {
-    tangential = {Slip::kStick, Slip::kRight, Slip::kLeft};
-  }
-  (void)s;
   const std::array<std::array<bool, 2>, 3> subsets = {{{true, true}, {true, false}, {false, true}}};
+  const Slip dir = slipping > 0 ? Slip::kRight : Slip::kLeft;
   for (const auto& sub : subsets) {
     if ((sub[0] && !zero[0]) || (sub[1] && !zero[1])) continue;
+    const bool one = sub[0] != sub[1];
+    std::vector<Slip> tangential;
+    if (std::isinf(mu)) {
+      if (slipping != 0) {
+        if (one) tangential = {dir};
+      } else {
+        tangential = {Slip::kStick};
+        if (limit_slip && one) tangential = {Slip::kStick, Slip::kRight, Slip::kLeft};
+      }
+    } else if (mu == 0.0) {
+      tangential = {Slip::kRight};  // frictionless: the tangential state plays no part
+    } else if (slipping != 0) {
+      tangential = {dir};
+    } else {
+      tangential = {Slip::kStick, Slip::kRight, Slip::kLeft};
+    }
     for (const Slip t : tangential) out.push_back({sub, t});
   }
   out.push_back({{false, false}, Slip::kStick});  // open
   return out;
 }
-
-}  // namespace
-
-namespace {
 
 // Enumerates combinations of per-interface options, by the number of interfaces that differ
 // from the preferred option (index 0 of each list), calling try_one until it returns true (stop)
@@ -374,72 +459,70 @@ bool SameMotion(const std::vector<double>& a, const std::vector<double>& b, doub
   return true;
 }
 
+// The most states an enumeration tries (exhaustive or from a hint).
 constexpr long kCandidateCap = 200000;
+// The friction coefficient that stands for an infinite one in the LCP: a sticking solution's
+// |T| / N above it is mapped to stick all the same and checked; one of the LCP's slips there is
+// a limit slip (the header) when those are allowed.
+constexpr double kLcpInfiniteFriction = 1e4;
 
 }  // namespace
 
-namespace {
-
-// A constraint row w (its upper block's three entries, then its support's) times x (3 per
-// block): the relative normal or tangential rate (or acceleration, without its velocity terms)
-// of interface k's contact.
-double RowTimes(const std::array<double, 6>& w, int k, const double* x) {
-  double s = 0.0;
-  for (int i = 0; i < 3; ++i) s += w[i] * x[3 * k + i];
-  if (k > 0) {
-    for (int i = 0; i < 3; ++i) s += w[3 + i] * x[3 * (k - 1) + i];
+ContactMode UnilateralStack::ModeOf(const Problem& p,
+                                    const std::vector<ContactOption>& pick) const {
+  ContactMode mode(n_);
+  for (int k = 0; k < n_; ++k) {
+    mode.closed[k] = pick[k].closed;
+    mode.slip[k] = pick[k].slip;
+    mode.support_corner[k] = {!p.slots[k][0].upper_corner, !p.slots[k][1].upper_corner};
   }
-  return s;
+  return mode;
 }
 
-}  // namespace
+bool UnilateralStack::Check(const Problem& p, const ContactMode& mode, ModeSolution* sol) const {
+  if (!SolveCandidate(mode, p.slots, p.base.data(), p.impact, sol)) return false;
+  const double* x = sol->result.data();
+  // A row's value in a solution: the rate (impact) or the acceleration with its velocity terms.
+  auto row = [&](const std::array<double, 6>& w, double kappa, int k) {
+    return RowTimes(w, k, x) + (p.impact ? 0.0 : kappa);
+  };
+  for (int k = 0; k < n_; ++k) {
+    const double mu = blocks_[k].friction;
+    int ref = -1;
+    for (int j = 0; j < 2; ++j) {
+      const SlotKinematics& s = p.slots[k][j];
+      if (mode.closed[k][j]) {
+        if (ref < 0) ref = j;
+        if (sol->slot_normal[k][j] < -p.tol_force) return false;
+      } else if (p.zero[k][j] && row(s.wn, s.kappa_n, k) < -p.tol_motion) {
+        return false;  // left open, it would move (accelerate) into its support
+      }
+    }
+    if (ref < 0) continue;
+    if (mode.slip[k] == Slip::kStick) {
+      if (!std::isinf(mu) && std::abs(sol->tangential[k]) > mu * sol->normal[k] + p.tol_force) {
+        return false;
+      }
+    } else if (mu > 0.0 && (p.impact || std::abs(p.slots[k][ref].slip_rate_mps) <= p.rate_tol)) {
+      // Friction opposes the slip after an impact; from a zero slip rate the interface must
+      // accelerate the way it slips.
+      const SlotKinematics& s = p.slots[k][ref];
+      if (static_cast<int>(mode.slip[k]) * row(s.wt, s.kappa_t, k) < -p.tol_motion) return false;
+    }
+  }
+  return true;
+}
 
-ModeSolution UnilateralStack::Search(const std::vector<std::array<SlotKinematics, 2>>& slots,
-                                     const std::vector<std::array<bool, 2>>& zero,
+ModeSolution UnilateralStack::Search(const Problem& p,
                                      const std::vector<std::vector<ContactOption>>& options,
-                                     const double* base, bool impact, double tol_force,
-                                     double tol_motion, double rate_tol_mps, double same_scale,
-                                     bool exhaustive) const {
+                                     bool exhaustive, long cap) const {
   ModeSolution best;
   best.exhaustive = exhaustive;
-  ContactMode mode(n_);
-  // A row's value in a solution: the rate (impact) or the acceleration with its velocity terms.
-  auto row = [&](const std::array<double, 6>& w, double kappa, int k, const double* x) {
-    return RowTimes(w, k, x) + (impact ? 0.0 : kappa);
-  };
-  const long tried = Enumerate(options, kCandidateCap, [&](const std::vector<int>& pick) {
-    for (int k = 0; k < n_; ++k) {
-      const ContactOption& o = options[k][pick[k]];
-      mode.closed[k] = o.closed;
-      mode.slip[k] = o.slip;
-      mode.support_corner[k] = {!slots[k][0].upper_corner, !slots[k][1].upper_corner};
-    }
+  const long tried = Enumerate(options, cap, [&](const std::vector<int>& pick) {
+    std::vector<ContactOption> chosen(static_cast<size_t>(n_));
+    for (int k = 0; k < n_; ++k) chosen[k] = options[k][pick[k]];
     ModeSolution sol;
-    if (!SolveCandidate(mode, slots, base, impact, &sol)) return false;
-    const double* x = sol.result.data();
-    for (int k = 0; k < n_; ++k) {
-      const double mu = blocks_[k].friction;
-      int ref = -1;
-      for (int j = 0; j < 2; ++j) {
-        if (mode.closed[k][j]) {
-          if (ref < 0) ref = j;
-          if (sol.slot_normal[k][j] < -tol_force) return false;
-        } else if (zero[k][j] && row(slots[k][j].wn, slots[k][j].kappa_n, k, x) < -tol_motion) {
-          return false;  // left open, it would move (accelerate) into its support
-        }
-      }
-      if (ref < 0) continue;
-      if (mode.slip[k] == Slip::kStick) {
-        if (!std::isinf(mu) && std::abs(sol.tangential[k]) > mu * sol.normal[k] + tol_force) {
-          return false;
-        }
-      } else if (mu > 0.0 && (impact || std::abs(slots[k][ref].slip_rate_mps) <= rate_tol_mps)) {
-        // Friction opposes the slip after an impact; from a zero slip rate the interface must
-        // accelerate the way it slips.
-        const double t = row(slots[k][ref].wt, slots[k][ref].kappa_t, k, x);
-        if (static_cast<int>(mode.slip[k]) * t < -tol_motion) return false;
-      }
-    }
+    if (!Check(p, ModeOf(p, chosen), &sol)) return false;
     if (!best.found) {
       sol.solutions = 1;
       sol.found = true;
@@ -447,57 +530,275 @@ ModeSolution UnilateralStack::Search(const std::vector<std::array<SlotKinematics
       best = std::move(sol);
       return !best.exhaustive;
     }
-    if (!SameMotion(best.result, sol.result, same_scale, length_)) ++best.solutions;
+    if (!SameMotion(best.result, sol.result, p.same_scale, length_)) ++best.solutions;
     return false;
   });
   best.candidates = tried;
+  // An enumeration that ends before its cap has tried every state.
+  if (tried < cap) best.exhaustive = true;
+  if (!exhaustive && best.found) best.exhaustive = false;
   if (!best.found) best.mode = ContactMode(n_);
+  return best;
+}
+
+std::vector<std::vector<ContactOption>> UnilateralStack::Options(
+    const Problem& p, const std::vector<ContactOption>& preferred, bool limit_slip) const {
+  std::vector<std::vector<ContactOption>> options(static_cast<size_t>(n_));
+  for (int k = 0; k < n_; ++k) {
+    options[k] = ContactOptionsOf(p.zero[k], blocks_[k].friction, p.slipping[k], limit_slip);
+    if (k < static_cast<int>(preferred.size())) {
+      const auto it = std::find(options[k].begin(), options[k].end(), preferred[k]);
+      if (it != options[k].end()) std::rotate(options[k].begin(), it, it + 1);
+    }
+  }
+  return options;
+}
+
+bool UnilateralStack::LemkeMode(const Problem& p, const ContactMode& hint, bool limit_slip,
+                                ContactMode* mode, int* pivots) const {
+  // The force columns: per slot in contact its normal force (with the friction of a slip under
+  // way, or a limit slip's friction), per interface with static friction its tangential force
+  // at its first slot in contact. Each scaled by its row's norm in the mass metric.
+  struct Force {
+    int k, j;
+    bool tangential;
+    std::array<double, 6> dir, row;
+    double kappa, scale;
+    int var;  // its LCP variable (tangential: T+, then T- and, finite mu, sigma)
+  };
+  std::vector<Force> f;
+  int nv = 0;
+  for (int k = 0; k < n_; ++k) {
+    const double mu = blocks_[k].friction;
+    const int slipping = p.slipping[k];
+    int ref = -1;
+    for (int j = 0; j < 2; ++j) {
+      if (!p.zero[k][j]) continue;
+      if (ref < 0) ref = j;
+      const SlotKinematics& s = p.slots[k][j];
+      Force c{k, j, false, s.wn, s.wn, s.kappa_n, 1.0, nv++};
+      if (slipping != 0 && std::isinf(mu)) {
+        for (int i = 0; i < 6; ++i) c.dir[i] = -slipping * s.wt[i];
+      } else if (slipping != 0 && mu > 0.0) {
+        for (int i = 0; i < 6; ++i) c.dir[i] += -slipping * mu * s.wt[i];
+      }
+      f.push_back(c);
+    }
+    if (ref >= 0 && slipping == 0 && mu > 0.0) {
+      const SlotKinematics& s = p.slots[k][ref];
+      f.push_back({k, ref, true, s.wt, s.wt, s.kappa_t, 1.0, nv});
+      nv += 3;
+    }
+  }
+  const int m = static_cast<int>(f.size());
+  if (m == 0) {
+    *mode = ContactMode(n_);
+    return true;
+  }
+  std::vector<double> A(static_cast<size_t>(m * m), 0.0), b(static_cast<size_t>(m));
+  for (int r = 0; r < m; ++r) {
+    f[r].scale = 1.0 / std::sqrt(Coupling(f[r].k, f[r].row, f[r].k, f[r].row));
+  }
+  double b_max = 0.0;
+  for (int r = 0; r < m; ++r) {
+    for (int c = 0; c < m; ++c) {
+      if (std::abs(f[r].k - f[c].k) > 1) continue;
+      A[r * m + c] = f[r].scale * Coupling(f[r].k, f[r].row, f[c].k, f[c].dir) * f[c].scale;
+    }
+    b[r] = f[r].scale * (RowTimes(f[r].row, f[r].k, p.base.data()) + (p.impact ? 0.0 : f[r].kappa));
+    b_max = std::max(b_max, std::abs(b[r]));
+  }
+  // The LCP: z = (scaled normal forces; per tangential force T+, T-, sigma), w = M z + q:
+  // w_n = A_n. F + b_n; w_+ = A_t. F + b_t + sigma; w_- = -(A_t. F + b_t) + sigma;
+  // w_sigma = mu sum_j (s_j / s_t) N_j - T+ - T-, F the forces (T = T+ - T-).
+  std::vector<double> M(static_cast<size_t>(nv * nv), 0.0), q(static_cast<size_t>(nv), 0.0);
+  auto Mat = [&](int i, int j) -> double& { return M[static_cast<size_t>(i * nv + j)]; };
+  auto add_row = [&](int var, int r, double sign) {
+    for (int c = 0; c < m; ++c) {
+      const double a = sign * A[r * m + c];
+      if (a == 0.0) continue;
+      Mat(var, f[c].var) += a;
+      if (f[c].tangential) Mat(var, f[c].var + 1) -= a;
+    }
+    q[var] = sign * b[r];
+  };
+  for (int r = 0; r < m; ++r) {
+    if (!f[r].tangential) {
+      add_row(f[r].var, r, 1.0);
+      continue;
+    }
+    const int tp = f[r].var, tm = tp + 1, sg = tp + 2;
+    add_row(tp, r, 1.0);
+    add_row(tm, r, -1.0);
+    Mat(tp, sg) = 1.0;
+    Mat(tm, sg) = 1.0;
+    const double mu =
+        std::isinf(blocks_[f[r].k].friction) ? kLcpInfiniteFriction : blocks_[f[r].k].friction;
+    for (int c = 0; c < m; ++c) {
+      if (f[c].tangential || f[c].k != f[r].k) continue;
+      Mat(sg, f[c].var) = mu * f[c].scale / f[r].scale;
+    }
+    Mat(sg, tp) = -1.0;
+    Mat(sg, tm) = -1.0;
+  }
+  const LcpResult lcp = SolveLcpLemke(M, q, nv);
+  *pivots = lcp.pivots;
+  if (lcp.status != LcpStatus::kSolved) return false;
+  // The mode: a slot is closed where its force is positive, open where it separates, the hint's
+  // where both are zero (to 1e-9 of the problem's scale); a slip where sigma (the slip rate's
+  // size) is positive, its direction against the friction force.
+  double z_max = 0.0;
+  for (const double z : lcp.z) z_max = std::max(z_max, z);
+  const double tol = 1e-9 * std::max(b_max, z_max);
+  *mode = ContactMode(n_);
+  for (int k = 0; k < n_; ++k) {
+    mode->support_corner[k] = {!p.slots[k][0].upper_corner, !p.slots[k][1].upper_corner};
+  }
+  for (const Force& c : f) {
+    if (c.tangential) continue;
+    const double z = lcp.z[c.var], w = lcp.w[c.var];
+    const bool hinted = c.k < static_cast<int>(hint.closed.size()) && hint.closed[c.k][c.j];
+    mode->closed[c.k][c.j] = z > tol || (w <= tol && hinted);
+  }
+  for (int k = 0; k < n_; ++k) {
+    if (!mode->any_closed(k)) continue;
+    const double mu = blocks_[k].friction;
+    if (p.slipping[k] != 0) {
+      mode->slip[k] = p.slipping[k] > 0 ? Slip::kRight : Slip::kLeft;
+    } else if (mu == 0.0) {
+      mode->slip[k] = Slip::kRight;
+    }
+  }
+  for (const Force& c : f) {
+    if (!c.tangential || !mode->any_closed(c.k)) continue;
+    const double tp = lcp.z[c.var], tm = lcp.z[c.var + 1], sigma = lcp.z[c.var + 2];
+    const bool slips = sigma > tol;
+    const Slip dir = tp > tm ? Slip::kLeft : Slip::kRight;  // friction + t: a slip to the left
+    if (!std::isinf(blocks_[c.k].friction)) {
+      mode->slip[c.k] = slips ? dir : Slip::kStick;
+    } else if (slips && limit_slip && mode->closed[c.k][0] != mode->closed[c.k][1]) {
+      mode->slip[c.k] = dir;
+    }
+  }
+  return true;
+}
+
+ModeSolution UnilateralStack::Resolve(const Problem& p, const std::vector<ContactOption>& preferred,
+                                      bool limit_slip, long exhaustive_limit) const {
+  const std::vector<std::vector<ContactOption>> options = Options(p, preferred, limit_slip);
+  long total = 1;
+  for (const auto& o : options) {
+    total = std::min(total * static_cast<long>(o.size()), kCandidateCap + 1);
+  }
+  if (total <= exhaustive_limit) {
+    ModeSolution best = Search(p, options, true, kCandidateCap);
+    best.method = "enumeration";
+    return best;
+  }
+  // The preferred state (each interface's first option) first: a mode that goes on.
+  std::vector<ContactOption> first(static_cast<size_t>(n_));
+  for (int k = 0; k < n_; ++k) first[k] = options[k][0];
+  const ContactMode hint = ModeOf(p, first);
+  ModeSolution sol;
+  if (Check(p, hint, &sol)) {
+    sol.found = true;
+    sol.solutions = 1;
+    sol.candidates = 1;
+    sol.method = "preferred";
+    return sol;
+  }
+  // Lemke's method, its mode checked.
+  ContactMode lemke(n_);
+  int pivots = 0;
+  const bool solved = LemkeMode(p, hint, limit_slip, &lemke, &pivots);
+  if (solved && Check(p, lemke, &sol)) {
+    sol.found = true;
+    sol.solutions = 1;
+    sol.candidates = 2;
+    sol.method = "lemke";
+    sol.lcp_pivots = pivots;
+    return sol;
+  }
+  // Else an enumeration from Lemke's mode (or, after a ray, from the hint).
+  std::vector<ContactOption> from = first;
+  if (solved) {
+    for (int k = 0; k < n_; ++k) {
+      from[k] = {lemke.closed[k], lemke.any_closed(k) ? lemke.slip[k] : Slip::kStick};
+    }
+  }
+  ModeSolution best = Search(p, Options(p, from, limit_slip), false, kCandidateCap);
+  best.candidates += 2;
+  best.method = solved ? "lemke+search" : "search";
+  best.lcp_pivots = pivots;
+  if (!best.found && !best.exhaustive) {
+    best.note = solved ? "Lemke's mode failed its check"
+                       : "no solution found by Lemke (ray termination: not a proof)";
+  }
   return best;
 }
 
 ModeSolution UnilateralStack::Solve(const double* q, const double* v, double xg_mps2,
                                     double yg_mps2, const ContactMode& hint, double gap_tol_m,
                                     double rate_tol_mps, long exhaustive_limit) const {
-  std::vector<std::array<SlotKinematics, 2>> slots(static_cast<size_t>(n_));
-  std::vector<std::vector<ContactOption>> options(static_cast<size_t>(n_));
-  std::vector<std::array<bool, 2>> zero(static_cast<size_t>(n_));
-  long total = 1;
+  Problem p;
+  p.slots.resize(static_cast<size_t>(n_));
+  p.zero.resize(static_cast<size_t>(n_));
+  p.slipping.assign(static_cast<size_t>(n_), 0);
+  std::vector<ContactOption> preferred(static_cast<size_t>(n_));
+  bool infinite = false;
   for (int k = 0; k < n_; ++k) {
-    slots[k] = Slots(k, q, v);
+    p.slots[k] = Slots(k, q, v);
     for (int j = 0; j < 2; ++j) {
-      const SlotKinematics& s = slots[k][j];
+      const SlotKinematics& s = p.slots[k][j];
       // In contact: at a zero gap, or past it (a projection onto other constraints may push an
       // open corner a little into its face).
-      zero[k][j] = s.exists && s.gap_m <= gap_tol_m && std::abs(s.gap_rate_mps) <= rate_tol_mps;
+      p.zero[k][j] = s.exists && s.gap_m <= gap_tol_m && std::abs(s.gap_rate_mps) <= rate_tol_mps;
     }
     // The slip rate of the interface: at its first zero slot.
     double rate = 0.0;
     for (int j = 1; j >= 0; --j) {
-      if (zero[k][j]) rate = slots[k][j].slip_rate_mps;
+      if (p.zero[k][j]) rate = p.slots[k][j].slip_rate_mps;
     }
-    const bool slipping = std::abs(rate) > rate_tol_mps;
-    options[k] = ContactOptionsOf(slots[k], zero[k], blocks_[k].friction, slipping, rate);
+    if (std::abs(rate) > rate_tol_mps && blocks_[k].friction > 0.0)
+      p.slipping[k] = rate > 0 ? 1 : -1;
+    infinite = infinite || (std::isinf(blocks_[k].friction) && (p.zero[k][0] || p.zero[k][1]));
     // The hint's option first when it is one of them.
     if (k < static_cast<int>(hint.closed.size())) {
-      const ContactOption want{hint.closed[k], hint.any_closed(k) ? hint.slip[k] : Slip::kStick};
-      const auto it = std::find(options[k].begin(), options[k].end(), want);
-      if (it != options[k].end()) std::rotate(options[k].begin(), it, it + 1);
+      preferred[k] = {hint.closed[k], hint.any_closed(k) ? hint.slip[k] : Slip::kStick};
     }
-    total = std::min(total * static_cast<long>(options[k].size()), kCandidateCap + 1);
   }
-  std::vector<double> free(static_cast<size_t>(3 * n_), 0.0);
+  p.base.assign(static_cast<size_t>(3 * n_), 0.0);
   for (int i = 0; i < n_; ++i) {
-    free[3 * i] = -xg_mps2;
-    free[3 * i + 1] = -(g_ + yg_mps2);
+    p.base[3 * i] = -xg_mps2;
+    p.base[3 * i + 1] = -(g_ + yg_mps2);
   }
-  ModeSolution best = Search(slots, zero, options, free.data(), false, 1e-9 * weight_, 1e-9 * g_,
-                             rate_tol_mps, g_, total <= exhaustive_limit);
+  p.impact = false;
+  p.tol_force = 1e-9 * weight_;
+  p.tol_motion = 1e-9 * g_;
+  p.rate_tol = rate_tol_mps;
+  p.same_scale = g_;
+  ModeSolution best = Resolve(p, preferred, false, exhaustive_limit);
+  if (!best.found && infinite) {
+    // No state of stick or open at infinite friction: the limit slips (the header).
+    const long before = best.candidates;
+    best = Resolve(p, preferred, true, exhaustive_limit);
+    best.candidates += before;
+    if (best.found) {
+      best.note = "infinite friction: no sticking state; the limit of slip as mu -> infinity";
+      if (best.solutions > 1) {
+        best.note += "; " + std::to_string(best.solutions) +
+                     " contact states give different motions (Painleve: several solutions)";
+      }
+      return best;
+    }
+  }
   if (!best.found) {
-    best.note =
-        best.candidates >= kCandidateCap
-            ? "the contact search stopped after " + std::to_string(kCandidateCap) + " states"
-            : "no contact state satisfies Coulomb's and the contact conditions "
-              "(Painleve: no solution)";
+    const std::string why = best.note;
+    best.note = best.exhaustive ? "no contact state satisfies Coulomb's and the contact conditions "
+                                  "(Painleve: no solution)"
+                                : "the contact search stopped after " +
+                                      std::to_string(kCandidateCap) + " states";
+    if (!why.empty()) best.note += " (" + why + ")";
   } else if (best.solutions > 1) {
     best.note = std::to_string(best.solutions) +
                 " contact states give different motions (Painleve: several solutions)";
@@ -508,10 +809,11 @@ ModeSolution UnilateralStack::Solve(const double* q, const double* v, double xg_
 ModeSolution UnilateralStack::SolveImpact(const double* q, const double* v_minus,
                                           const ContactMode& hint, double gap_tol_m,
                                           double rest_rate_mps, long exhaustive_limit) const {
-  std::vector<std::array<SlotKinematics, 2>> slots(static_cast<size_t>(n_));
-  std::vector<std::vector<ContactOption>> options(static_cast<size_t>(n_));
-  std::vector<std::array<bool, 2>> zero(static_cast<size_t>(n_));
-  long total = 1;
+  Problem p;
+  p.slots.resize(static_cast<size_t>(n_));
+  p.zero.resize(static_cast<size_t>(n_));
+  p.slipping.assign(static_cast<size_t>(n_), 0);  // after an impact any tangential state
+  std::vector<ContactOption> preferred(static_cast<size_t>(n_));
   double v_scale = 0.0, p_scale = 0.0;
   for (int i = 0; i < 3 * n_; ++i) {
     const double r = i % 3 == 2 ? length_ : 1.0;
@@ -520,26 +822,28 @@ ModeSolution UnilateralStack::SolveImpact(const double* q, const double* v_minus
   for (const UnilateralBlock& b : blocks_) p_scale += b.mass_kg;
   p_scale *= v_scale;
   for (int k = 0; k < n_; ++k) {
-    slots[k] = Slots(k, q, v_minus);
+    p.slots[k] = Slots(k, q, v_minus);
     for (int j = 0; j < 2; ++j) {
-      zero[k][j] = slots[k][j].exists && slots[k][j].gap_m <= gap_tol_m;
+      p.zero[k][j] = p.slots[k][j].exists && p.slots[k][j].gap_m <= gap_tol_m;
     }
-    // After an impact any tangential state may follow (the impulses decide).
-    options[k] = ContactOptionsOf(slots[k], zero[k], blocks_[k].friction, false, 0.0);
     if (k < static_cast<int>(hint.closed.size())) {
       // Preferred: every zero slot closed, the hint's tangential state.
-      const ContactOption want{zero[k], hint.any_closed(k) ? hint.slip[k] : Slip::kStick};
-      const auto it = std::find(options[k].begin(), options[k].end(), want);
-      if (it != options[k].end()) std::rotate(options[k].begin(), it, it + 1);
+      preferred[k] = {p.zero[k], hint.any_closed(k) ? hint.slip[k] : Slip::kStick};
     }
-    total = std::min(total * static_cast<long>(options[k].size()), kCandidateCap + 1);
   }
-  ModeSolution best =
-      Search(slots, zero, options, v_minus, true, 1e-9 * p_scale + 1e-300, 1e-9 * v_scale + 1e-300,
-             0.0, std::max(v_scale, 1e-300), total <= exhaustive_limit);
+  p.base.assign(v_minus, v_minus + 3 * n_);
+  p.impact = true;
+  p.tol_force = 1e-9 * p_scale + 1e-300;
+  p.tol_motion = 1e-9 * v_scale + 1e-300;
+  p.rate_tol = 0.0;
+  p.same_scale = std::max(v_scale, 1e-300);
+  ModeSolution best = Resolve(p, preferred, false, exhaustive_limit);
+  const auto& slots = p.slots;
+  const auto& zero = p.zero;
   if (!best.found) {
     best.result.assign(v_minus, v_minus + 3 * n_);
-    best.note = "no impact outcome satisfies Coulomb's and the contact conditions";
+    best.note = "no impact outcome satisfies Coulomb's and the contact conditions" +
+                (best.note.empty() ? std::string() : " (" + best.note + ")");
     return best;
   }
   if (best.solutions > 1) {
@@ -565,6 +869,8 @@ ModeSolution UnilateralStack::SolveImpact(const double* q, const double* v_minus
       sol.solutions = best.solutions;
       sol.exhaustive = best.exhaustive;
       sol.candidates = best.candidates;
+      sol.method = best.method;
+      sol.lcp_pivots = best.lcp_pivots;
       sol.note = best.note.empty() ? "rest rule" : best.note + "; rest rule";
       return sol;
     }
@@ -604,7 +910,9 @@ void UnilateralStack::Project(const ContactMode& mode, double* q, double* v) con
         A[r * m + c] = sum;
       }
     }
-    if (!SolveDense(A, b, m)) return;
+    std::vector<int> group(static_cast<size_t>(m));
+    for (int r = 0; r < m; ++r) group[r] = rows[r].k;
+    if (!SolveDense(A, b, m, nullptr, group.data())) return;
     for (int c = 0; c < m; ++c) {
       for (int side = 0; side < 2; ++side) {
         const int blk = rows[c].k - side;

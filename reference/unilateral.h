@@ -24,13 +24,25 @@
 /// Transitions without impact: the contact forces and the accelerations at an instant solve a
 /// linear complementarity problem (LCP): every closed contact compressive, every opening one
 /// accelerating apart, a sticking interface inside its cone, a slipping one's friction opposing
-/// its slip (and, from a zero slip rate, its slip accelerating that way). It is solved exactly by
-/// enumeration of the contact states (Solve): with Coulomb friction the LCP's matrix need not be
-/// positive definite, and a state can have no solution or several (Painleve's paradoxes, Pfeiffer
-/// & Glocker 1996, "Multibody Dynamics with Unilateral Contacts", ch. 5). Small problems are
-/// enumerated to the end and their solutions counted: none, or two different motions, is a
-/// stated status, never a silent choice.
+/// its slip (and, from a zero slip rate, its slip accelerating that way). With Coulomb friction
+/// the LCP's matrix need not be positive definite, and a state can have no solution or several
+/// (Painleve's paradoxes, Pfeiffer & Glocker 1996, "Multibody Dynamics with Unilateral
+/// Contacts", ch. 5). Small problems (at most `exhaustive_limit` contact states) are enumerated
+/// to the end and their solutions counted: none, or two different motions, is a stated status,
+/// never a silent choice. Larger ones are solved by Lemke's method with the lexicographic rule
+/// (lcp.h) on the LCP with the 2-D friction cone written as complementarity (docs/sliding.md),
+/// its mode then checked by the same equations and conditions as an enumerated one; where
+/// Lemke ends on a ray, or its mode fails the check, a bounded enumeration from its mode
+/// follows (stated in `method`). Every solve is scaled (the rows to unit mass-metric norm), so
+/// that blocks of very different masses (1e12) stay regular.
 ///
+/// Infinite friction. A sticking interface whose normal force reaches zero while it still
+/// carries a tangential force has no sticking continuation, and opening it would remove the
+/// force that held it. Any finite mu slips there first: its limit as mu -> infinity is a slip
+/// on one corner with a vanishing normal force and a finite friction force tau, which holds
+/// the corner on its face (its normal row) and opposes the slip (tau >= 0). Where no state of
+/// stick or open exists, Solve tries these limit slips (stated in the note); their slot_normal
+/// is tau (the limit of mu N, whose sign is N's), their normal force zero.
 /// Impacts: perfectly plastic in the normal direction and Coulomb in the tangential one (the
 /// impact law with normal and tangential restitution zero of Glocker's set-valued force laws,
 /// Pfeiffer & Glocker 1996 ch. 7; Moreau's velocity-level contact law). The impulses solve the
@@ -125,6 +137,11 @@ struct ModeSolution {
   bool exhaustive = false;  ///< every contact state was tried
   long candidates = 0;      ///< contact states tried
   std::string note;
+  /// How the state was found: "enumeration" (every state, counted), "preferred" (the hint's
+  /// state checked first), "lemke", "lemke+search" (an enumeration from Lemke's mode), "search"
+  /// (Lemke ended on a ray: an enumeration from the hint).
+  std::string method;
+  int lcp_pivots = 0;  ///< Lemke's pivots (0: not used)
 };
 
 /// The stack's mechanics in maximal coordinates.
@@ -158,19 +175,19 @@ class UnilateralStack {
 
   /// The contact state at (q, v): the LCP over the slots in contact (gap <= gap_tol_m: at a
   /// zero gap, or a little past it) with a zero normal rate (|rate| <= rate_tol_mps), the
-  /// others open. `hint` (a mode, or empty):
-  /// tried first, then states by the number of interfaces that differ from it. Problems of at
-  /// most `exhaustive_limit` states are enumerated to the end (solutions counted).
+  /// others open. Problems of at most `exhaustive_limit` states are enumerated to the end
+  /// (solutions counted; `hint`'s state first). Larger ones: `hint`'s state checked first, then
+  /// Lemke's method (solutions = 1, exhaustive false).
   ModeSolution Solve(const double* q, const double* v, double xg_mps2, double yg_mps2,
                      const ContactMode& hint, double gap_tol_m, double rate_tol_mps,
-                     long exhaustive_limit = 4096) const;
+                     long exhaustive_limit = 1000) const;
 
   /// A plastic impact with Coulomb friction at (q, v_minus): the velocities after it (result),
   /// over every slot in contact (gap <= gap_tol_m). `rest_rate_mps`: a slot that would separate
-  /// slower than this stays closed (the rest rule). Enumerated as Solve.
+  /// slower than this stays closed (the rest rule). Solved as Solve.
   ModeSolution SolveImpact(const double* q, const double* v_minus, const ContactMode& hint,
                            double gap_tol_m, double rest_rate_mps,
-                           long exhaustive_limit = 4096) const;
+                           long exhaustive_limit = 1000) const;
 
   /// Puts (q, v) back on the constraints of `mode` (the drift of an integration that holds them
   /// at the acceleration level): the closed slots' gaps to zero (one Gauss-Newton step, in the
@@ -196,20 +213,45 @@ class UnilateralStack {
   Configuration ConfigurationOf(const ContactMode& mode, const double* q) const;
 
  private:
-  // The complementarity problem over `options` (per interface, the preferred first), at the
-  // acceleration level (base = M^-1 f, the rows' velocity terms added) or the velocity level
-  // (impact: base = v-): each contact state's equations solved and its conditions checked
-  // (forces to tol_force, rates or accelerations to tol_motion; a slip's direction checked from
-  // a zero slip rate, or always after an impact); with `exhaustive`, every state is tried and
-  // the different motions (to 1e-6 of same_scale) counted.
-  ModeSolution Search(const std::vector<std::array<SlotKinematics, 2>>& slots,
-                      const std::vector<std::array<bool, 2>>& zero,
-                      const std::vector<std::vector<ContactOption>>& options, const double* base,
-                      bool impact, double tol_force, double tol_motion, double rate_tol_mps,
-                      double same_scale, bool exhaustive) const;
+  // One complementarity problem: the slots at (q, v), which are in contact (`zero`), per
+  // interface the sign of a slip already under way (acceleration level, a nonzero slip rate:
+  // dynamic friction) or 0, the rows' base (M^-1 f, the rows' velocity terms added, or v- for
+  // an impact) and the conditions' tolerances (forces to tol_force, rates or accelerations to
+  // tol_motion; two solutions are one motion to 1e-6 of same_scale).
+  struct Problem {
+    std::vector<std::array<SlotKinematics, 2>> slots;
+    std::vector<std::array<bool, 2>> zero;
+    std::vector<int> slipping;
+    std::vector<double> base;
+    bool impact = false;
+    double tol_force = 0.0, tol_motion = 0.0, rate_tol = 0.0, same_scale = 1.0;
+  };
+  // The per-interface options of p (with limit slips at infinite friction when `limit_slip`),
+  // `preferred` first where it is one of them.
+  std::vector<std::vector<ContactOption>> Options(const Problem& p,
+                                                  const std::vector<ContactOption>& preferred,
+                                                  bool limit_slip) const;
+  // The state of p: enumerated (counted) when small, else the preferred state, Lemke, and a
+  // bounded enumeration.
+  ModeSolution Resolve(const Problem& p, const std::vector<ContactOption>& preferred,
+                       bool limit_slip, long exhaustive_limit) const;
+  // Enumeration over `options` by the number of interfaces that differ from the first option
+  // of each, up to `cap` states; with `exhaustive`, every state tried and the motions counted.
+  ModeSolution Search(const Problem& p, const std::vector<std::vector<ContactOption>>& options,
+                      bool exhaustive, long cap) const;
+  // `mode`'s equations solved and its conditions checked: false when singular or violated.
+  bool Check(const Problem& p, const ContactMode& mode, ModeSolution* sol) const;
+  // Lemke's method on p's LCP: the mode its solution gives (false: Lemke found none).
+  bool LemkeMode(const Problem& p, const ContactMode& hint, bool limit_slip, ContactMode* mode,
+                 int* pivots) const;
   // The candidate's equations solved: false when singular.
   bool SolveCandidate(const ContactMode& mode, const std::vector<std::array<SlotKinematics, 2>>& s,
                       const double* rhs_base, bool impact, ModeSolution* out) const;
+  // w . M^-1 v for the rows w of interface kw and v of interface kv (6 entries each: the upper
+  // block's three, then its support's).
+  double Coupling(int kw, const std::array<double, 6>& w, int kv,
+                  const std::array<double, 6>& v) const;
+  ContactMode ModeOf(const Problem& p, const std::vector<ContactOption>& pick) const;
 
   std::vector<UnilateralBlock> blocks_;
   int n_ = 0;
