@@ -228,12 +228,14 @@ std::string FlagsText(const EngineAgreement& a, double from_s, double to_s,
   return out;
 }
 
-// Why a block is not judged point by point, in words.
+// Why a block is not judged point by point alone, in words.
 std::string NotJudgedText(int b, const AngleAgreement& g) {
-  return th(b) + " is not judged point by point (the reference's peak, " +
+  return th(b) + " is not judged point by point alone (the reference's peak, " +
          Format("%.3g", g.peak_reference_rad) + " rad, is below " +
          Format("%g", kJudgedPeakOverFloor) + " x the tolerance floor " +
-         Format("%.3g", g.floor_rad) + " rad, so the floor exceeds a fifth of its motion)";
+         Format("%.3g", g.floor_rad) +
+         " rad: the floor exceeds a fifth of its motion, so a block at rest would pass), so its "
+         "peak is judged too";
 }
 
 // How a block not judged point by point fares on its peak, in words.
@@ -269,19 +271,28 @@ std::string EndText(const std::optional<int>& overturned, const std::optional<in
   return out.empty() ? "no block overturns or leaves its support" : out;
 }
 
+// The first block below the floor whose peak is beyond its peak tolerance, in words; empty:
+// none.
+std::string PeakDecides(const std::vector<const AngleAgreement*>& ang, int nb) {
+  for (int b = 0; b < nb; ++b) {
+    const AngleAgreement& g = *ang[b];
+    if (g.judged || g.peak_within_tolerance) continue;
+    return th(b) + " peak " + Format("%.3g", g.peak_engine_rad) + " rad against " +
+           Format("%.3g", g.peak_reference_rad) + " rad, beyond its peak tolerance " +
+           Format("%.3g", g.peak_tolerance_rad) + " rad (the block is below the floor)";
+  }
+  return "";
+}
+
 // The block with the largest error ratio, in words: before the horizons (`predictable`), or
-// over the whole comparison. Blocks judged point by point come first.
+// over the whole comparison.
 std::string RatioText(const std::vector<const AngleAgreement*>& ang, int nb, bool predictable) {
   auto ratio = [predictable](const AngleAgreement* g) {
     return predictable ? g->max_error_ratio_predictable : g->max_error_ratio;
   };
   int w = 0;
   for (int b = 1; b < nb; ++b) {
-    if (ang[b]->judged != ang[w]->judged ? ang[b]->judged : ratio(ang[b]) > ratio(ang[w])) w = b;
-  }
-  if (!ang[w]->judged) {
-    return th(w) + " peak " + Format("%.3g", ang[w]->peak_engine_rad) + " rad against " +
-           Format("%.3g", ang[w]->peak_reference_rad) + " rad (no block judged point by point)";
+    if (ratio(ang[b]) > ratio(ang[w])) w = b;
   }
   return th(w) + " error at most " + Format("%.3g", ratio(ang[w])) + " x the local tolerance" +
          (predictable ? " where the reference is predictable" : std::string());
@@ -408,7 +419,6 @@ Verdict MakeVerdict(const Scene& scene, const EngineAgreement& a,
           all_within = false;
           out += (out.empty() ? "" : "; ") + words;
         }
-        continue;
       }
       if (ang[b]->within_tolerance) continue;
       all_within = false;
@@ -433,7 +443,10 @@ Verdict MakeVerdict(const Scene& scene, const EngineAgreement& a,
              EndText(a.overturn_block_reference, a.left_support_block_reference) +
              " in the reference's";
     }
-    v.decided_by = RatioText(ang, nb, false);
+    const bool angles_out = std::any_of(
+        ang.begin(), ang.end(), [](const AngleAgreement* g) { return !g->within_tolerance; });
+    v.decided_by = angles_out || PeakDecides(ang, nb).empty() ? RatioText(ang, nb, false)
+                                                              : PeakDecides(ang, nb);
     v.kind = all_within ? "pointwise_only" : "pointwise_differs";
     v.agrees = all_within;
     v.text = all_within ? "agrees pointwise over the whole comparison (" +
@@ -448,7 +461,7 @@ Verdict MakeVerdict(const Scene& scene, const EngineAgreement& a,
 
   // 1. Before the horizon: an error there is the engine's.
   std::string before, agree_part;
-  bool whole_run = true;
+  bool whole_run = true, peak_decided = false;
   for (int b = 0; b < nb; ++b) {
     const std::optional<double>& hp = predictability->horizon_s[b];
     const AngleAgreement& g = *ang[b];
@@ -464,8 +477,8 @@ Verdict MakeVerdict(const Scene& scene, const EngineAgreement& a,
       } else {
         before += (before.empty() ? "" : "; ") + words +
                   ", while the reference is predictable throughout";
+        peak_decided = true;
       }
-      continue;
     }
     const bool ok = g.within_tolerance || (hp && g.horizon_s >= *hp - slack_s);
     if (!ok) {
@@ -483,7 +496,14 @@ Verdict MakeVerdict(const Scene& scene, const EngineAgreement& a,
                         : " (the reference is predictable throughout)");
     }
   }
-  bool angles_decide = !before.empty();
+  // Whether the angles' pointwise errors decide (else a peak below the floor, or the slip).
+  bool angles_decide = false;
+  for (int b = 0; b < nb; ++b) {
+    const std::optional<double>& hp = predictability->horizon_s[b];
+    const AngleAgreement& g = *ang[b];
+    angles_decide = angles_decide || !(g.within_tolerance || (hp && g.horizon_s >= *hp - slack_s));
+  }
+  const bool peak_decides = peak_decided && !angles_decide;
   // Slip and lift where the reference is predictable: on the slip's own scale.
   std::string slip_before, slip_decided;
   double slip_worst = 0.0;
@@ -517,7 +537,9 @@ Verdict MakeVerdict(const Scene& scene, const EngineAgreement& a,
     v.kind = "differs_before_horizon";
     v.agrees = false;
     v.text = "an engine error: " + before;
-    v.decided_by = angles_decide ? RatioText(ang, nb, true) : slip_decided;
+    v.decided_by = angles_decide  ? RatioText(ang, nb, true)
+                   : peak_decides ? PeakDecides(ang, nb)
+                                  : slip_decided;
     return v;
   }
   // Overturning, or a block leaving its support, where the reference is predictable throughout
