@@ -287,6 +287,20 @@ class Simulator {
     }
     return -1;
   }
+  // The interface of finite friction with the smallest friction margin (0 when none carries a
+  // compressive force).
+  int TightestInterface(const Margins& cm) const {
+    int best = 0;
+    double m = kInf;
+    for (int k = 0; k < n_; ++k) {
+      if (std::isfinite(friction_[k]) && cm.normal_n[k] > 0.0 &&
+          cm.normal_n[k] * (friction_[k] - cm.mu[k]) < m) {
+        m = cm.normal_n[k] * (friction_[k] - cm.mu[k]);
+        best = k;
+      }
+    }
+    return best;
+  }
   // Hands the run over to the unilateral model at (t, y) (unilateral_run.h): it runs to the
   // end.
   // `impact_interface` >= 0: at an impact of that interface, y the state just before it (the
@@ -942,11 +956,14 @@ void Simulator<Mech>::HandleEvent(const LocatedEvent& ev, const StepDense& at, d
       // Just past the located root: the smaller of the two margins is the one that crossed.
       const Margins cmh = EvaluateAt(ev.t_hi, at(ev.t_hi));
       const double slip = SlipMargin(cmh);
-      if (slip < 0.0 && slip <= cmh.point && (!cfg_.check_transitions || slip <= cmh.face)) {
+      // The located root's far side has the crossing margin at or below zero: a friction
+      // margin of exactly zero there is the crossing one when it is the smallest (taking it for
+      // a face opening found the same configuration again, at the same instant, for ever).
+      if (slip <= 0.0 && slip <= cmh.point && (!cfg_.check_transitions || slip <= cmh.face)) {
         // A contact's friction is exhausted: the unilateral model goes on from just past it.
         t_ = ev.t_hi;
         y_ = at(ev.t_hi);
-        const int k = std::max(0, SlippingInterface(cmh));
+        const int k = TightestInterface(cmh);
         HandOver(t_, y_, "block " + std::to_string(k + 1) + " slips");
       } else if (cfg_.check_transitions && cmh.face <= cmh.point) {
         // A face force has turned tensile: the face opens.

@@ -74,6 +74,10 @@ ConvergenceCheck CompareWithWitness(const Scene& scene, const reference::Result&
   }
   c.same_status = nominal.summary.status == witness.summary.status &&
                   nominal.summary.overturn_block == witness.summary.overturn_block;
+  c.nominal_status = nominal.summary.status;
+  c.witness_status = witness.summary.status;
+  c.nominal_end_s = nominal.trajectory.end_s();
+  c.witness_end_s = witness.trajectory.end_s();
   c.converged = !c.diverges_at_s && c.same_status;
   c.nominal_non_finite = IsNonFinite(nominal.summary.status);
   c.witness_non_finite = IsNonFinite(witness.summary.status);
@@ -139,8 +143,10 @@ std::string ConvergenceWarning(const ConvergenceCheck& c) {
   } else {
     std::snprintf(buf, sizeof buf,
                   "the reference is NOT converged: at a tighter tolerance the run ends "
-                  "differently (status or overturned block); the comparison uses the tighter "
-                  "solution");
+                  "differently (the default run: %s at %.3f s; the tighter: %s at %.3f s); the "
+                  "comparison uses the tighter solution, to its end",
+                  StatusText(c.nominal_status), c.nominal_end_s, StatusText(c.witness_status),
+                  c.witness_end_s);
   }
   return buf;
 }

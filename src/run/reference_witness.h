@@ -34,7 +34,10 @@ struct ConvergenceCheck {
   /// First time any block's difference exceeds its tolerance; nullopt: never.
   std::optional<double> diverges_at_s;
   bool same_status = true;  ///< both runs end the same way (status and overturned block)
-  bool converged = true;    ///< never diverges and ends the same way
+  /// How and when each run ended (the warning says it when they differ).
+  RunStatus nominal_status = RunStatus::kCompleted, witness_status = RunStatus::kCompleted;
+  double nominal_end_s = 0.0, witness_end_s = 0.0;
+  bool converged = true;  ///< never diverges and ends the same way
   /// Which of the two ended non_finite (run/engine_run.h IsNonFinite): such a run failed, and
   /// the solution used is the failed one, so that the failure is reported, never hidden behind
   /// the other run.

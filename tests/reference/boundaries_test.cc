@@ -238,5 +238,50 @@ TEST(Chattering, TheUnilateralModelRunsThroughAnImpactCascade) {
   EXPECT_LT(worst, 1e-6);
 }
 
+// A statue on a plinth on a pedestal (1.0 x 1.1, 0.7 x 0.2, 0.4 x 1.5 m; mu = 0.5 at every
+// interface) under El Centro 1940 x 4.5455. At dop853 rtol 1e-14 the chain's friction margin is
+// exactly zero on the far side of a located root at 1.685 s; taken for a face opening, the same
+// configuration was found again at the same instant until the cascade guard stopped the run,
+// while the default run (dopri5, 1e-12) overturned at 4.772 s: the comparison then used the
+// stopped run. A margin at zero is the friction's, and both runs hand over and overturn at the
+// same instant (to 1e-6 s: both are exact to their tolerances, measured 6e-10 rad apart).
+TEST(Chattering, AFrictionMarginOfExactlyZeroHandsOver) {
+  const std::string text = R"(
+[[block]]
+width = 1.0
+height = 1.1
+density = 2500.0
+friction = 0.5
+[[block]]
+width = 0.7
+height = 0.2
+density = 2500.0
+friction = 0.5
+[[block]]
+width = 0.4
+height = 1.5
+density = 2500.0
+friction = 0.5
+[base.horizontal]
+file = "records/imperialvalley1940_elcentro_array9_180_PEER2000.AT2"
+scale = 4.5455
+[run]
+duration = 15.0
+output_interval = 0.01
+)";
+  Scene s = ParseScene(text, std::string(ROCKBENCH_SOURCE_DIR) + "/statue.toml");
+  s.compare.members = 0;
+  Scene w = s;
+  w.model.integrator = Integrator::kDop853;
+  w.model.rtol = 1e-14;
+  w.model.atol = 1e-16;
+  const GroundMotion gm = GroundMotion::FromScene(s);
+  const Result a = Simulate(s, gm), b = Simulate(w, gm);
+  ASSERT_EQ(a.summary.status, RunStatus::kOverturned) << a.summary.status_detail;
+  ASSERT_EQ(b.summary.status, RunStatus::kOverturned) << b.summary.status_detail;
+  EXPECT_EQ(a.summary.overturn_block, b.summary.overturn_block);
+  EXPECT_NEAR(a.summary.overturn_t_s, b.summary.overturn_t_s, 1e-6);
+}
+
 }  // namespace
 }  // namespace rockbench::reference
