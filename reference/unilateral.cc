@@ -232,6 +232,68 @@ double UnilateralStack::Coupling(int kw, const std::array<double, 6>& w, int kv,
   return sum;
 }
 
+bool UnilateralStack::SolveConstrained(const std::vector<Constraint>& cons, const double* base,
+                                       double* x, double* lam) const {
+  // Unknowns in chain order: interface k's multipliers (group 2k), then block k's three
+  // coordinates (group 2k + 1); the equations in the same order (a row of interface k touches
+  // blocks k - 1 and k, block k's equations the multipliers of interfaces k and k + 1).
+  const int m = static_cast<int>(cons.size());
+  const int size = m + 3 * n_;
+  std::vector<int> at_block(static_cast<size_t>(n_)), at_con(static_cast<size_t>(m));
+  std::vector<int> group(static_cast<size_t>(size));
+  {
+    int i = 0, c = 0;
+    for (int k = 0; k < n_; ++k) {
+      for (; c < m && cons[c].k == k; ++c) {
+        at_con[c] = i;
+        group[i++] = 2 * k;
+      }
+      at_block[k] = i;
+      for (int j = 0; j < 3; ++j) group[i++] = 2 * k + 1;
+    }
+    if (c != m) return false;  // not ordered by interface
+  }
+  // Scaled unknowns: x = D y (D = M^-1/2 per block), lam_c = s_c l_c (s_c = 1 / |row_c|_M^-1).
+  auto d = [&](int blk, int i) {
+    const UnilateralBlock& b = blocks_[blk];
+    return 1.0 / std::sqrt(i == 2 ? b.inertia_kgm2 : b.mass_kg);
+  };
+  std::vector<double> s(static_cast<size_t>(m));
+  for (int c = 0; c < m; ++c) {
+    s[c] = 1.0 / std::sqrt(Coupling(cons[c].k, cons[c].row, cons[c].k, cons[c].row));
+  }
+  std::vector<double> K(static_cast<size_t>(size * size), 0.0), r(static_cast<size_t>(size), 0.0);
+  auto Kat = [&](int i, int j) -> double& { return K[static_cast<size_t>(i * size + j)]; };
+  for (int c = 0; c < m; ++c) {
+    const Constraint& con = cons[c];
+    const int row = at_con[c];
+    // s_c (row_c . D y) = -s_c rhs_c.
+    for (int side = 0; side < 2; ++side) {
+      const int blk = con.k - side;
+      if (blk < 0) continue;
+      for (int i = 0; i < 3; ++i) {
+        Kat(row, at_block[blk] + i) = s[c] * con.row[3 * side + i] * d(blk, i);
+        // Block equations, scaled by D: y - D dir_c s_c l_c = D M base.
+        Kat(at_block[blk] + i, row) = -d(blk, i) * con.dir[3 * side + i] * s[c];
+      }
+    }
+    r[row] = -s[c] * con.rhs;
+  }
+  for (int blk = 0; blk < n_; ++blk) {
+    for (int i = 0; i < 3; ++i) {
+      Kat(at_block[blk] + i, at_block[blk] + i) = 1.0;
+      r[at_block[blk] + i] = base[3 * blk + i] / d(blk, i);
+    }
+  }
+  const std::vector<double> ones(static_cast<size_t>(size), 1.0);
+  if (!SolveDense(K, r, size, ones.data(), group.data())) return false;
+  for (int blk = 0; blk < n_; ++blk) {
+    for (int i = 0; i < 3; ++i) x[3 * blk + i] = d(blk, i) * r[at_block[blk] + i];
+  }
+  for (int c = 0; c < m; ++c) lam[c] = s[c] * r[at_con[c]];
+  return true;
+}
+
 bool UnilateralStack::SolveCandidate(const ContactMode& mode,
                                      const std::vector<std::array<SlotKinematics, 2>>& slots,
                                      const double* rhs_base, bool impact, ModeSolution* out) const {
@@ -272,30 +334,48 @@ bool UnilateralStack::SolveCandidate(const ContactMode& mode,
     }
   }
   const int m = static_cast<int>(cols.size());
-  // M^-1 applied to a column's two blocks' entries.
-  auto inv_mass = [&](int block, int i) {
-    const UnilateralBlock& b = blocks_[block];
-    return i == 2 ? 1.0 / b.inertia_kgm2 : 1.0 / b.mass_kg;
-  };
-  std::vector<double> A(static_cast<size_t>(m * m), 0.0), b(static_cast<size_t>(m), 0.0);
-  std::vector<double> scale(static_cast<size_t>(m), 1.0);
-  for (int r = 0; r < m; ++r) {
-    for (int c = 0; c < m; ++c) {
-      if (std::abs(cols[r].k - cols[c].k) > 1) continue;
-      A[r * m + c] = Coupling(cols[r].k, cols[r].row, cols[c].k, cols[c].w);
+  std::vector<double> x(static_cast<size_t>(3 * n_)), b(static_cast<size_t>(m));
+  // rhs_base: M^-1 f (accelerations) or v- (impact). The Schur complement W^T M^-1 W of the
+  // rows (banded, Jacobi-scaled: the cheaper system); where it is singular to working
+  // precision (a light block between heavy ones), the augmented system.
+  bool solved = false;
+  {
+    std::vector<double> A(static_cast<size_t>(m * m), 0.0), scale(static_cast<size_t>(m));
+    std::vector<int> group(static_cast<size_t>(m));
+    for (int r = 0; r < m; ++r) {
+      for (int c = 0; c < m; ++c) {
+        if (std::abs(cols[r].k - cols[c].k) > 1) continue;
+        A[r * m + c] = Coupling(cols[r].k, cols[r].row, cols[c].k, cols[c].w);
+      }
+      // The row's own norm in the mass metric scales it (a friction column's diagonal entry
+      // may be small or negative; the row's norm is not).
+      scale[r] = 1.0 / std::sqrt(Coupling(cols[r].k, cols[r].row, cols[r].k, cols[r].row));
+      b[r] = -(RowTimes(cols[r].row, cols[r].k, rhs_base) + (impact ? 0.0 : cols[r].kappa));
+      group[r] = cols[r].k;
     }
-    // The row's own norm in the mass metric scales it (a friction column's diagonal entry may
-    // be small or negative; the row's norm is not).
-    scale[r] = 1.0 / std::sqrt(Coupling(cols[r].k, cols[r].row, cols[r].k, cols[r].row));
+    if (SolveDense(A, b, m, scale.data(), group.data())) {
+      solved = true;
+      std::copy(rhs_base, rhs_base + 3 * n_, x.begin());
+      for (int c = 0; c < m; ++c) {
+        const Column& col = cols[c];
+        for (int side = 0; side < 2; ++side) {
+          const int blk = col.k - side;
+          if (blk < 0) continue;
+          const UnilateralBlock& B = blocks_[blk];
+          x[3 * blk] += col.w[3 * side] * b[c] / B.mass_kg;
+          x[3 * blk + 1] += col.w[3 * side + 1] * b[c] / B.mass_kg;
+          x[3 * blk + 2] += col.w[3 * side + 2] * b[c] / B.inertia_kgm2;
+        }
+      }
+    }
   }
-  // rhs_base: M^-1 f (accelerations) or v- (impact); the rows' values there.
-  for (int r = 0; r < m; ++r) {
-    b[r] = -(RowTimes(cols[r].row, cols[r].k, rhs_base) + (impact ? 0.0 : cols[r].kappa));
+  if (!solved) {
+    std::vector<Constraint> cons(static_cast<size_t>(m));
+    for (int c = 0; c < m; ++c) {
+      cons[c] = {cols[c].k, cols[c].w, cols[c].row, impact ? 0.0 : cols[c].kappa};
+    }
+    if (!SolveConstrained(cons, rhs_base, x.data(), b.data())) return false;
   }
-  std::vector<int> group(static_cast<size_t>(m));
-  for (int r = 0; r < m; ++r) group[r] = cols[r].k;
-  if (!SolveDense(A, b, m, scale.data(), group.data())) return false;
-  out->result.assign(rhs_base, rhs_base + 3 * n_);
   out->normal.assign(static_cast<size_t>(n_), 0.0);
   out->tangential.assign(static_cast<size_t>(n_), 0.0);
   out->slot_normal.assign(static_cast<size_t>(n_), {0.0, 0.0});
@@ -321,15 +401,7 @@ bool UnilateralStack::SolveCandidate(const ContactMode& mode,
       out->tangential[k] = mu > 0.0 ? -sign * mu * out->normal[k] : 0.0;
     }
   }
-  for (int cc = 0; cc < m; ++cc) {
-    const Column& col = cols[cc];
-    for (int i = 0; i < 3; ++i) out->result[3 * col.k + i] += inv_mass(col.k, i) * col.w[i] * b[cc];
-    if (col.k > 0) {
-      for (int i = 0; i < 3; ++i) {
-        out->result[3 * (col.k - 1) + i] += inv_mass(col.k - 1, i) * col.w[3 + i] * b[cc];
-      }
-    }
-  }
+  out->result = x;
   out->mode = mode;
   return true;
 }
@@ -888,39 +960,39 @@ void UnilateralStack::Project(const ContactMode& mode, double* q, double* v) con
   auto correct = [&](const std::vector<Row>& rows, double* x) {
     const int m = static_cast<int>(rows.size());
     if (m == 0) return;
-    auto inv_mass = [&](int block, int i) {
-      return i == 2 ? 1.0 / blocks_[block].inertia_kgm2 : 1.0 / blocks_[block].mass_kg;
-    };
-    // A_rc = w_r . M^-1 w_c over the blocks the two rows share.
-    std::vector<double> A(static_cast<size_t>(m * m), 0.0), b(static_cast<size_t>(m));
-    for (int r = 0; r < m; ++r) {
-      b[r] = -rows[r].r;
-      for (int c = 0; c < m; ++c) {
-        double sum = 0.0;
-        for (int side_r = 0; side_r < 2; ++side_r) {
-          const int br = rows[r].k - side_r;
-          if (br < 0) continue;
-          for (int side_c = 0; side_c < 2; ++side_c) {
-            if (rows[c].k - side_c != br) continue;
-            for (int i = 0; i < 3; ++i) {
-              sum += rows[r].w[3 * side_r + i] * inv_mass(br, i) * rows[c].w[3 * side_c + i];
-            }
-          }
-        }
-        A[r * m + c] = sum;
-      }
-    }
+    // The smallest correction in the mass metric: M dx = W lambda, W^T dx = -r.
+    std::vector<Constraint> cons(static_cast<size_t>(m));
+    for (int c = 0; c < m; ++c) cons[c] = {rows[c].k, rows[c].w, rows[c].w, rows[c].r};
+    std::vector<double> dx(static_cast<size_t>(3 * n_), 0.0), lam(static_cast<size_t>(m));
+    // The Schur complement (banded, Jacobi-scaled), else the augmented system (as a mode's
+    // equations).
+    std::vector<double> A(static_cast<size_t>(m * m), 0.0);
     std::vector<int> group(static_cast<size_t>(m));
-    for (int r = 0; r < m; ++r) group[r] = rows[r].k;
-    if (!SolveDense(A, b, m, nullptr, group.data())) return;
-    for (int c = 0; c < m; ++c) {
-      for (int side = 0; side < 2; ++side) {
-        const int blk = rows[c].k - side;
-        if (blk < 0) continue;
-        for (int i = 0; i < 3; ++i)
-          x[3 * blk + i] += inv_mass(blk, i) * rows[c].w[3 * side + i] * b[c];
+    for (int r = 0; r < m; ++r) {
+      for (int c = 0; c < m; ++c) {
+        if (std::abs(rows[r].k - rows[c].k) <= 1) {
+          A[r * m + c] = Coupling(rows[r].k, rows[r].w, rows[c].k, rows[c].w);
+        }
       }
+      lam[r] = -rows[r].r;
+      group[r] = rows[r].k;
     }
+    if (SolveDense(A, lam, m, nullptr, group.data())) {
+      for (int c = 0; c < m; ++c) {
+        for (int side = 0; side < 2; ++side) {
+          const int blk = rows[c].k - side;
+          if (blk < 0) continue;
+          const UnilateralBlock& B = blocks_[blk];
+          dx[3 * blk] += rows[c].w[3 * side] * lam[c] / B.mass_kg;
+          dx[3 * blk + 1] += rows[c].w[3 * side + 1] * lam[c] / B.mass_kg;
+          dx[3 * blk + 2] += rows[c].w[3 * side + 2] * lam[c] / B.inertia_kgm2;
+        }
+      }
+    } else {
+      const std::vector<double> still(static_cast<size_t>(3 * n_), 0.0);
+      if (!SolveConstrained(cons, still.data(), dx.data(), lam.data())) return;
+    }
+    for (int i = 0; i < 3 * n_; ++i) x[i] += dx[i];
   };
   std::vector<Row> rows;
   for (int k = 0; k < n_; ++k) {

@@ -244,6 +244,22 @@ class UnilateralStack {
   // Lemke's method on p's LCP: the mode its solution gives (false: Lemke found none).
   bool LemkeMode(const Problem& p, const ContactMode& hint, bool limit_slip, ContactMode* mode,
                  int* pivots) const;
+  // One constraint of a mode's equations: interface k, the generalized direction of its force
+  // (dir) and of its row (row: the upper block's three entries, then its support's), and the
+  // row's value at x = 0 (row . x + rhs = 0).
+  struct Constraint {
+    int k;
+    std::array<double, 6> dir, row;
+    double rhs;
+  };
+  // M x = M base + sum_c dir_c lam_c with row_c . x + rhs_c = 0 (constraints ordered by
+  // interface): x (3N) and lam (one per constraint); false when singular. Solved as the
+  // augmented (KKT) system, scaled (each block's coordinates by M^-1/2, each row to unit norm in
+  // the mass metric) and banded over the chain of blocks and interfaces: its condition number
+  // is about the square root of that of the Schur complement W^T M^-1 W, which a light block
+  // between heavy ones (a mass ratio of 1e12) makes singular to working precision.
+  bool SolveConstrained(const std::vector<Constraint>& c, const double* base, double* x,
+                        double* lam) const;
   // The candidate's equations solved: false when singular.
   bool SolveCandidate(const ContactMode& mode, const std::vector<std::array<SlotKinematics, 2>>& s,
                       const double* rhs_base, bool impact, ModeSolution* out) const;
