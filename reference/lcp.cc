@@ -6,7 +6,7 @@
 namespace rockbench::reference {
 
 LcpResult SolveLcpLemke(const std::vector<double>& M, const std::vector<double>& q, int n,
-                        int max_pivots) {
+                        int max_pivots, const std::vector<double>& covering) {
   LcpResult out;
   out.z.assign(static_cast<size_t>(n), 0.0);
   out.w = q;
@@ -16,14 +16,14 @@ LcpResult SolveLcpLemke(const std::vector<double>& M, const std::vector<double>&
   }
   if (max_pivots <= 0) max_pivots = 50 * n + 100;
   // Variables: w_i = i, z_i = n + i, z0 = 2n; the tableau's columns are theirs, then the
-  // right-hand side. Rows: w - M z - d z0 = q, d = 1.
+  // right-hand side. Rows: w - M z - d z0 = q.
   const int cols = 2 * n + 2, z0 = 2 * n, rhs = 2 * n + 1;
   std::vector<double> T(static_cast<size_t>(n * cols), 0.0);
   auto at = [&](int i, int j) -> double& { return T[static_cast<size_t>(i * cols + j)]; };
   for (int i = 0; i < n; ++i) {
     at(i, i) = 1.0;
     for (int j = 0; j < n; ++j) at(i, n + j) = -M[static_cast<size_t>(i * n + j)];
-    at(i, z0) = -1.0;
+    at(i, z0) = covering.empty() ? -1.0 : -covering[static_cast<size_t>(i)];
     at(i, rhs) = q[static_cast<size_t>(i)];
   }
   std::vector<int> basis(static_cast<size_t>(n));
@@ -41,11 +41,12 @@ LcpResult SolveLcpLemke(const std::vector<double>& M, const std::vector<double>&
     basis[r] = e;
     ++out.pivots;
   };
-  // z0 enters at the most negative q_i; ties: the last such row (its (q, B^-1) rows then stay
-  // lexicographically positive: e_i - e_r is, for i < r).
+  // z0 enters at the most negative q_i / d_i; ties: the last such row (its (q, B^-1) rows
+  // then stay lexicographically positive: e_i - e_r is, for i < r).
+  auto d = [&](int i) { return covering.empty() ? 1.0 : covering[static_cast<size_t>(i)]; };
   int r = 0;
   for (int i = 1; i < n; ++i) {
-    if (q[i] <= q[r]) r = i;
+    if (q[i] / d(i) <= q[r] / d(r)) r = i;
   }
   int leaving = basis[r];
   pivot(r, z0);

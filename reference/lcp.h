@@ -40,8 +40,10 @@ struct LcpResult {
 
 /// Lemke's method on LCP(M, q), M n x n row-major. `max_pivots` <= 0: 50 n + 100. A pivot is
 /// refused below 1e-13 of its column's largest entry (and of 1): scale M's rows and columns
-/// to order one first (a diagonal scaling keeps the problem's solutions).
+/// to order one first (a diagonal scaling keeps the problem's solutions). `covering`: the
+/// covering vector d (all entries > 0; empty: all ones). Lemke's path depends on d: where it
+/// ends on a ray, another d may still find a solution.
 LcpResult SolveLcpLemke(const std::vector<double>& M, const std::vector<double>& q, int n,
-                        int max_pivots = 0);
+                        int max_pivots = 0, const std::vector<double>& covering = {});
 
 }  // namespace rockbench::reference

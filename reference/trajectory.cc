@@ -39,7 +39,8 @@ Sample Trajectory::At(double t_s) const {
   if (step.state) {
     // The view's state: its components one after the other.
     const size_t m = static_cast<size_t>(view_->components());
-    std::array<double, 64> buffer{};
+    // The unilateral model's state: 6 components a block.
+    std::array<double, 6 * kUnilateralMaxBlocks> buffer{};
     const double* cs = c;
     auto state_value = [&](size_t i) {
       return constant ? cs[i] : DenseKinds::Component(step.kind, s, cs + i, m);

@@ -713,8 +713,19 @@ bool UnilateralStack::LemkeMode(const Problem& p, const ContactMode& hint, bool 
     Mat(sg, tp) = -1.0;
     Mat(sg, tm) = -1.0;
   }
-  const LcpResult lcp = SolveLcpLemke(M, q, nv);
+  // Where Lemke ends on a ray, two more covering vectors (Lemke's path depends on it): the
+  // rows' own sizes, and a fixed spread.
+  LcpResult lcp = SolveLcpLemke(M, q, nv);
   *pivots = lcp.pivots;
+  for (int attempt = 0; attempt < 2 && lcp.status != LcpStatus::kSolved; ++attempt) {
+    std::vector<double> cover(static_cast<size_t>(nv));
+    for (int i = 0; i < nv; ++i) {
+      cover[i] = attempt == 0 ? 1.0 + std::abs(q[i]) / std::max(b_max, 1e-300)
+                              : 1.0 + 0.5 * std::sin(1.0 + 7.0 * i);
+    }
+    lcp = SolveLcpLemke(M, q, nv, 0, cover);
+    *pivots += lcp.pivots;
+  }
   if (lcp.status != LcpStatus::kSolved) return false;
   // The mode: a slot is closed where its force is positive, open where it separates, the hint's
   // where both are zero (to 1e-9 of the problem's scale); a slip where sigma (the slip rate's

@@ -73,7 +73,7 @@ inline Mode ModeOf(Contacts c, bool two_blocks) {
 inline constexpr int kMaxBlocks = 64;
 /// The most blocks the reference's unilateral model (sliding and lift-off, docs/sliding.md)
 /// takes: a stack with a finite friction has at most this many.
-inline constexpr int kUnilateralMaxBlocks = 8;
+inline constexpr int kUnilateralMaxBlocks = 20;
 
 /// The contact state of a stack of N blocks: one Contact per interface, bottom first. Interface
 /// k (1-based) is block k on its support (the ground for k = 1, block k - 1 above it): closed on
