@@ -302,5 +302,212 @@ TEST(UnilateralStack, ImpactsNeverAddEnergy) {
   EXPECT_GT(solved, 250);
 }
 
+// A random stack of n blocks on random pivots (every pivot at a zero gap), for the solver
+// comparisons: widths shrinking upwards, masses 100 to 1100 kg, friction 0 to 1.5 or infinite.
+struct RandomStack {
+  std::vector<UnilateralBlock> blocks;
+  std::vector<double> q, v;
+};
+RandomStack MakeRandomStack(int n, std::mt19937_64& rng, bool chain_rates) {
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  RandomStack out;
+  double width = 1.0 + u(rng);
+  for (int i = 0; i < n; ++i) {
+    width *= 0.6 + 0.4 * u(rng);
+    const double bh = width / 2, hh = 0.3 + u(rng);
+    const double mass = 100.0 + 1000.0 * u(rng);
+    const double r = u(rng);
+    const double mu = r < 0.2 ? kInf : r < 0.3 ? 0.0 : 1.5 * u(rng);
+    out.blocks.push_back({bh, hh, mass, mass * (bh * bh + hh * hh) / 3.0, mu});
+  }
+  const UnilateralStack stack(out.blocks, 9.81);
+  Configuration c(n);
+  std::vector<double> th(n), om(n);
+  double below = 0.0;
+  for (int k = 0; k < n; ++k) {
+    const double r = u(rng);
+    c.set(k, r < 0.33 ? Contact::kFace : r < 0.66 ? Contact::kRight : Contact::kLeft);
+    const double rel =
+        c[k] == Contact::kFace ? 0.0 : (c[k] == Contact::kRight ? 1 : -1) * 0.2 * u(rng);
+    th[k] = below + rel;
+    below = th[k];
+    om[k] = c[k] == Contact::kFace && k == 0 ? 0.0 : 2.0 * u(rng) - 1.0;
+  }
+  out.q.resize(3 * n);
+  out.v.resize(3 * n);
+  // The chain's rates keep every pivot at rest (zero normal and slip rates: static friction).
+  stack.FromChain(c, th.data(), om.data(), out.q.data(), out.v.data());
+  if (!chain_rates) {
+    for (double& x : out.v) x = 2.0 * u(rng) - 1.0;
+  }
+  return out;
+}
+
+// Lemke's method (the path of problems above the enumeration's limit: exhaustive_limit 0)
+// against the enumeration of every contact state (the model's former solver, kept for small
+// problems), on random states of one to three blocks under random base accelerations: where the
+// enumeration finds exactly one motion, Lemke's path finds the same (1e-6 g and 1e-6 g / L: the
+// enumeration's own measure of one motion, SameMotion). Impacts likewise, from random
+// velocities. Lemke's path must also find a state in (nearly) every case the enumeration does:
+// it may only end on a ray where the LCP has no solution or a degenerate one.
+TEST(UnilateralStack, LemkeAgreesWithTheEnumeration) {
+  std::mt19937_64 rng(37);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  int compared = 0, impacts = 0, lemke_used = 0;
+  for (int trial = 0; trial < 600; ++trial) {
+    const int n = 1 + trial % 3;
+    const bool impact = trial % 2 == 1;
+    const RandomStack rs = MakeRandomStack(n, rng, !impact);
+    const UnilateralStack stack(rs.blocks, 9.81);
+    SCOPED_TRACE("trial " + std::to_string(trial));
+    ModeSolution all, lemke;
+    if (impact) {
+      all = stack.SolveImpact(rs.q.data(), rs.v.data(), ContactMode(n), 1e-9, 0.0, 1000000);
+      lemke = stack.SolveImpact(rs.q.data(), rs.v.data(), ContactMode(n), 1e-9, 0.0, 0);
+    } else {
+      const double xg = 9.81 * (2.0 * u(rng) - 1.0), yg = 9.81 * (0.5 * u(rng) - 0.25);
+      all = stack.Solve(rs.q.data(), rs.v.data(), xg, yg, ContactMode(n), 1e-9, 1e-9, 1000000);
+      lemke = stack.Solve(rs.q.data(), rs.v.data(), xg, yg, ContactMode(n), 1e-9, 1e-9, 0);
+    }
+    ASSERT_TRUE(all.exhaustive);
+    // Lemke's path counts no solutions (a fallback enumeration that ends below its cap has
+    // tried every state, and says so).
+    if (lemke.method == "lemke" || lemke.method == "preferred") EXPECT_FALSE(lemke.exhaustive);
+    if (!all.found || all.solutions != 1) continue;
+    ASSERT_TRUE(lemke.found) << lemke.note;
+    if (lemke.method == "lemke") ++lemke_used;
+    double scale = 9.81;
+    if (impact) {
+      scale = 0.0;
+      for (int i = 0; i < 3 * n; ++i) {
+        scale = std::max(scale, std::abs(rs.v[i]) * (i % 3 == 2 ? stack.length_scale_m() : 1.0));
+      }
+      ++impacts;
+    }
+    for (int i = 0; i < 3 * n; ++i) {
+      const double tol = 1e-6 * scale / (i % 3 == 2 ? stack.length_scale_m() : 1.0);
+      EXPECT_NEAR(lemke.result[i], all.result[i], tol) << i << " " << lemke.method;
+    }
+    ++compared;
+  }
+  // Most random states have one motion; Lemke itself (not the preferred state) decides many.
+  EXPECT_GT(compared, 400);
+  EXPECT_GT(impacts, 200);
+  EXPECT_GT(lemke_used, 200);
+}
+
+// The thesis's stack (block 1 1.25 x 1.25 m, block 2 1.0 x 2.5 m, 2500 kg/m^3, infinite
+// friction) under one cycle of a 1.2 g, 0.75 Hz sine: block 2 falls over. At 1.2348 s the
+// chain's interface pivot would pull while it still carries 1.1e4 N of tangential force, so
+// that no state of stick or open exists (the enumeration proves it; the run stopped there
+// before). Any finite friction slips first, and as mu grows the overturn converges (measured
+// with this model: 1.37377 s at mu = 1, 1.37193 at 10, 1.371660 at 100, 1.3716284 at 1e4):
+// the limit slip of infinite friction must reach it, to the convergence of that sequence
+// (1e-4 s: 1e2 to 1e4 moved it 3.2e-5 s).
+TEST(UnilateralRun, InfiniteFrictionOverturnsThroughTheLimitSlip) {
+  auto scene = [](double mu) {
+    Scene s;
+    BlockDef b1, b2;
+    b1.width_m = 1.25;
+    b1.height_m = 1.25;
+    b1.mass_kg = 2500.0 * 1.25 * 1.25;
+    b1.friction = mu;
+    b2.width_m = 1.0;
+    b2.height_m = 2.5;
+    b2.mass_kg = 2500.0 * 2.5;
+    b2.friction = mu;
+    s.blocks = {b1, b2};
+    s.run.duration_s = 3.0;
+    s.run.gravity_mps2 = 9.81;
+    s.compare.members = 0;
+    MotionDef d;
+    d.key = "base.horizontal";
+    d.kind = MotionKind::kSinePulse;
+    d.amplitude_g = 1.2;
+    d.frequency_hz = 0.75;
+    s.horizontal = d;
+    return s;
+  };
+  const Scene inf = scene(kInf), big = scene(1e4);
+  const Result a = Simulate(inf, GroundMotion::FromScene(inf));
+  const Result b = Simulate(big, GroundMotion::FromScene(big));
+  ASSERT_EQ(a.summary.status, RunStatus::kOverturned) << a.summary.status_detail;
+  EXPECT_EQ(a.summary.overturn_block, 2);
+  ASSERT_EQ(b.summary.status, RunStatus::kOverturned);
+  EXPECT_NEAR(a.summary.overturn_t_s, b.summary.overturn_t_s, 1e-4);
+  EXPECT_TRUE(HasNote(a.history, "block 2 sticks on its left corner -> slips left on its left"));
+}
+
+// Two blocks, one 1e12 times heavier than the other (1e3 and 1e15 kg, the scene's limits),
+// from t = 0 in the unilateral model, at rest and under a small pulse: the run does not stop
+// (its mode's equations were singular to the solver's tolerance: the Schur complement's
+// condition number is about the mass ratio). At rest nothing moves: the angles stay zero to
+// rounding (1e-12 rad).
+TEST(UnilateralRun, AMassRatioOf1e12IsRegular) {
+  for (const int heavy : {0, 1}) {
+    for (const double a_g : {0.0, 0.05}) {
+      SCOPED_TRACE("heavy block " + std::to_string(heavy + 1) + " pulse " + std::to_string(a_g));
+      Scene s;
+      BlockDef b1, b2;
+      b1.width_m = 1.25;
+      b1.height_m = 1.25;
+      b1.mass_kg = 1e3;
+      b2.width_m = 1.0;
+      b2.height_m = 2.5;
+      b2.mass_kg = 1e3;
+      (heavy == 0 ? b1 : b2).mass_kg = 1e15;
+      s.blocks = {b1, b2};
+      s.run.duration_s = 1.0;
+      s.run.gravity_mps2 = kG;
+      s.compare.members = 0;
+      s.model.formulation = Formulation::kUnilateral;
+      if (a_g > 0.0) s.horizontal = RectangularPulseDef(a_g, 0.2, 0.1);
+      const Result r = Simulate(s, GroundMotion::FromScene(s));
+      EXPECT_NE(r.summary.status, RunStatus::kAssumptionViolated) << r.summary.status_detail;
+      EXPECT_NEAR(r.trajectory.end_s(), 1.0, 1e-12);
+      if (a_g == 0.0) {
+        EXPECT_LT(std::abs(r.summary.peak_theta_rad[0]), 1e-12);
+        EXPECT_LT(std::abs(r.summary.peak_theta_rad[1]), 1e-12);
+      }
+    }
+  }
+}
+
+// Twenty wide blocks (4 m x 0.2 m: the stack is 4 m tall and as wide, so it slides rather than
+// rocks, mu = 0.3 < b / h_G = 1) with friction 0.3 on the ground and 0.8 between blocks, under
+// a rectangular pulse of 0.5 g for 0.3 s: the stack slides on the ground as one body (each
+// interface above needs |T| / N = 0.3 < 0.8) and sticks again where Newmark's closed form for
+// one block says. The stick time is an event (1e-9 s, as NewmarkSlidingBlockUnderPulse); the
+// slip is integrated in 60 coordinates with the drift projected every step (measured 2e-11
+// relative; 1e-9).
+TEST(UnilateralRun, TwentyBlocksSlideAsOne) {
+  const double mu = 0.3, a_g = 0.5, t0 = 0.1, pulse = 0.3;
+  Scene s;
+  for (int i = 0; i < 20; ++i) {
+    BlockDef b;
+    b.width_m = 4.0;
+    b.height_m = 0.2;
+    b.mass_kg = 2500.0 * 4.0 * 0.2;
+    b.friction = i == 0 ? mu : 0.8;
+    s.blocks.push_back(b);
+  }
+  s.run.duration_s = 1.0;
+  s.run.gravity_mps2 = kG;
+  s.compare.members = 0;
+  s.horizontal = RectangularPulseDef(a_g, pulse, t0);
+  const Result r = Simulate(s, GroundMotion::FromScene(s));
+  const benchmarks::SlidingPulse cf = benchmarks::SlidingBlockUnderPulse(a_g * kG, pulse, mu, kG);
+  EXPECT_EQ(r.summary.status, RunStatus::kAtRest) << r.summary.status_detail;
+  double stick_t = -1.0;
+  for (const Event& e : r.history.events) {
+    if (e.note.find("slip stops") != std::string::npos) stick_t = e.t_s;
+  }
+  EXPECT_NEAR(stick_t - t0, cf.stick_t_s, 1e-9);
+  ASSERT_TRUE(r.history.slip_and_lift);
+  const Sample& last = r.history.samples.back();
+  EXPECT_NEAR(last.u_m[0], cf.slip_m, 1e-9 * std::abs(cf.slip_m));
+  for (int k = 1; k < 20; ++k) EXPECT_LT(std::abs(last.u_m[k]), 1e-9) << k;
+}
+
 }  // namespace
 }  // namespace rockbench::reference
