@@ -154,6 +154,18 @@ std::string ReferenceOutcome(const RunData& run, std::vector<std::string>& warni
   if (gain > 0) {
     warnings.push_back(Num(gain) + " impact(s) of the reference added energy.");
   }
+  // Where the model stopped deciding the motion (an impact or a contact state with no
+  // admissible outcome, or several): from there the history is one choice of its rule.
+  const double undetermined = OptNumber(run.summary, "undetermined.t_s", run.summary_path);
+  if (!std::isnan(undetermined)) {
+    const std::string when = Fixed(undetermined, 4);
+    outcome += " The model stopped deciding the motion at t = " + when +
+               " s: the history after that instant is the outcome its rule chose.";
+    warnings.push_back("The reference model does not decide the motion from t = " + when +
+                       " s on (" + OptString(run.summary, "undetermined.detail", run.summary_path) +
+                       "): after that instant its history is one admissible outcome that the "
+                       "model's rule chose, and no comparison rests on it.");
+  }
   return outcome;
 }
 
