@@ -372,7 +372,9 @@ TEST(UnilateralStack, LemkeAgreesWithTheEnumeration) {
     ASSERT_TRUE(all.exhaustive);
     // Lemke's path counts no solutions (a fallback enumeration that ends below its cap has
     // tried every state, and says so).
-    if (lemke.method == "lemke" || lemke.method == "preferred") EXPECT_FALSE(lemke.exhaustive);
+    if (lemke.method == "lemke" || lemke.method == "preferred") {
+      EXPECT_FALSE(lemke.exhaustive);
+    }
     if (!all.found || all.solutions != 1) continue;
     ASSERT_TRUE(lemke.found) << lemke.note;
     if (lemke.method == "lemke") ++lemke_used;
