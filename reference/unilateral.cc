@@ -533,6 +533,9 @@ bool SameMotion(const std::vector<double>& a, const std::vector<double>& b, doub
 
 // The most states an enumeration tries (exhaustive or from a hint).
 constexpr long kCandidateCap = 200000;
+// The most an enumeration after Lemke tries: every state within two interfaces of Lemke's
+// mode (or the hint) for 20 blocks (20 x 9 + 190 x 81 = 15,570).
+constexpr long kFallbackCap = 20000;
 // The friction coefficient that stands for an infinite one in the LCP: a sticking solution's
 // |T| / N above it is mapped to stick all the same and checked; one of the LCP's slips there is
 // a limit slip (the header) when those are allowed.
@@ -809,7 +812,7 @@ ModeSolution UnilateralStack::Resolve(const Problem& p, const std::vector<Contac
       from[k] = {lemke.closed[k], lemke.any_closed(k) ? lemke.slip[k] : Slip::kStick};
     }
   }
-  ModeSolution best = Search(p, Options(p, from, limit_slip), false, kCandidateCap);
+  ModeSolution best = Search(p, Options(p, from, limit_slip), false, kFallbackCap);
   best.candidates += 2;
   best.method = solved ? "lemke+search" : "search";
   best.lcp_pivots = pivots;
@@ -880,7 +883,7 @@ ModeSolution UnilateralStack::Solve(const double* q, const double* v, double xg_
     best.note = best.exhaustive ? "no contact state satisfies Coulomb's and the contact conditions "
                                   "(Painleve: no solution)"
                                 : "the contact search stopped after " +
-                                      std::to_string(kCandidateCap) + " states";
+                                      std::to_string(best.candidates) + " states";
     if (!why.empty()) best.note += " (" + why + ")";
   } else if (best.solutions > 1) {
     best.note = std::to_string(best.solutions) +
