@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <limits>
 #include <memory>
+#include <optional>
 
 #include "reference/integrator.h"
 #include "reference/unilateral.h"
@@ -165,6 +166,19 @@ class Runner {
       slip_armed_[k] = beyond || (!reset && slip_armed_[k]);
     }
   }
+  // The stack without friction (built once, when an impact has no Coulomb outcome).
+  const UnilateralStack& FrictionlessStack() {
+    if (!frictionless_) {
+      std::vector<UnilateralBlock> blocks;
+      for (int i = 0; i < n_; ++i) {
+        UnilateralBlock b = stack_.block(i);
+        b.friction = 0.0;
+        blocks.push_back(b);
+      }
+      frictionless_.emplace(std::move(blocks), stack_.g_mps2());
+    }
+    return *frictionless_;
+  }
   bool HasClosed() const {
     for (int k = 0; k < n_; ++k) {
       if (mode_.any_closed(k)) return true;
@@ -186,6 +200,7 @@ class Runner {
   Y y_{};
   double gap_tol_ = 0.0, rate_tol_ = 0.0, force_tol_ = 0.0, rest_rate_ = 0.0;
   bool done_ = false;
+  std::optional<UnilateralStack> frictionless_;
   // Per interface: its slip-stop event is armed (see Value, kSlipStop).
   std::vector<bool> slip_armed_;
   // >= 0: handed over at an impact of this interface (UnilateralStart::impact_interface).
@@ -448,7 +463,27 @@ bool Runner::NewMode(double t, const Y& y, const char* kind, const std::string& 
 
 bool Runner::Impact(int k) {
   Summary& sum = r_->summary;
-  const ModeSolution imp = stack_.SolveImpact(Q(y_), V(y_), mode_, gap_tol_, rest_rate_);
+  ModeSolution imp = stack_.SolveImpact(Q(y_), V(y_), mode_, gap_tol_, rest_rate_);
+  bool took_frictionless = false;
+  if (!imp.found) {
+    // No outcome satisfies Coulomb's law (a sticking impulse that would pull, with no slip to
+    // take its place): the model does not decide this impact (stated below). Leaving the
+    // velocities as they were would drive the corner on into its face and land it again at
+    // the same instant for ever; the rule takes the frictionless plastic outcome instead (the
+    // kinetic-energy projection onto the unilateral constraints, a convex problem that always
+    // has its one solution), which stops every approach and never adds energy.
+    const ModeSolution frictionless =
+        FrictionlessStack().SolveImpact(Q(y_), V(y_), mode_, gap_tol_, rest_rate_);
+    if (frictionless.found) {
+      const std::string why = imp.note;
+      imp = frictionless;
+      imp.found = false;
+      imp.note = why + "; the frictionless outcome follows";
+      // Its contacts close; their tangential states are the next mode's to decide.
+      for (int i = 0; i < n_; ++i) imp.mode.slip[i] = Slip::kStick;
+      took_frictionless = true;
+    }
+  }
   Y post = y_;
   for (int i = 0; i < 3 * n_; ++i) post[kSecond + i] = imp.result[i];
   if ((!imp.found || imp.solutions > 1) && !sum.undetermined_from_s) {
@@ -460,7 +495,7 @@ bool Runner::Impact(int k) {
   if (imp.solutions > 1) ++sum.impacts_ambiguous;
   const Configuration before = config_;
   const ContactMode mode_before = mode_;
-  if (imp.found) mode_ = imp.mode;
+  if (imp.found || took_frictionless) mode_ = imp.mode;
   // A slip that the impact starts is a slip start.
   for (int i = 0; i < n_; ++i) {
     if (mode_.any_closed(i) && mode_.slip[i] != Slip::kStick &&
