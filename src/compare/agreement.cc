@@ -49,6 +49,19 @@ void EnginePeak(const EngineRun& run, int block, double* peak, double* t) {
   *t = has ? o.peak_theta_t_s[block - 1] : 0.0;
 }
 
+// The largest |theta| of a block (0-based) over a history's samples up to until_s, and when.
+void SampledPeak(const History& h, int block, double until_s, double* peak, double* t) {
+  *peak = 0.0;
+  *t = 0.0;
+  for (const Sample& x : h.samples) {
+    if (x.t_s > until_s + 1e-12) break;
+    if (std::abs(x.theta_rad[block]) > *peak) {
+      *peak = std::abs(x.theta_rad[block]);
+      *t = x.t_s;
+    }
+  }
+}
+
 // Mode family for the final-state check.
 std::string Family(const Configuration& m, bool overturned, bool left_support = false) {
   if (left_support) return "left_support";
@@ -334,6 +347,16 @@ EngineAgreement CompareWithReference(const Scene& scene, const reference::Result
     g.peak_reference_rad = peak_ref[b];
     g.peak_reference_t_s = peak_ref_t[b];
     EnginePeak(run, b + 1, &g.peak_engine_rad, &g.peak_engine_t_s);
+    // Peaks are compared over the compared window: where the reference's model stopped, or
+    // stopped deciding, before a run's end, the peaks after that instant are not the model's.
+    if (g.peak_engine_t_s > until) {
+      SampledPeak(run.history, b, until, &g.peak_engine_rad, &g.peak_engine_t_s);
+    }
+    if (peak_ref_t[b] > until) {
+      SampledPeak(ref.history, b, until, &g.peak_reference_rad, &g.peak_reference_t_s);
+      peak_ref[b] = g.peak_reference_rad;
+      peak_ref_t[b] = g.peak_reference_t_s;
+    }
     g.peak_rel_error = peak_ref[b] > 0.0 ? (g.peak_engine_rad - peak_ref[b]) / peak_ref[b] : 0.0;
     g.peak_time_error_s = g.peak_engine_t_s - peak_ref_t[b];
     g.peak_within_tolerance =

@@ -103,6 +103,25 @@ TEST_F(BelowTheFloor, AnEngineThatLeavesTheBlockAtRestDoesNotAgree) {
   EXPECT_EQ(q.kind, "pointwise_differs") << q.text;
 }
 
+// Where the reference's model stops deciding (undetermined from 1.0 s here), nothing after it
+// is the model's: an engine that rocks like the reference until then and tips to 0.5 rad after
+// it is judged on its peak over the compared window (to 1.0 s), and the verdict says the model
+// ends there (outside_model), not that the engine's peak differs.
+TEST_F(BelowTheFloor, PeaksAreComparedWhereTheModelDecides) {
+  reference::Result cut = *ref_;
+  cut.summary.undetermined_from_s = 1.0;
+  cut.summary.undetermined_detail = "a test's undecided impact";
+  const EngineRun tips = Engine(cut, 2.0, [](Sample* s) {
+    if (s->t_s > 1.0) s->theta_rad[0] = 0.5;
+  });
+  const EngineAgreement a = CompareWithReference(*scene_, cut, tips);
+  EXPECT_DOUBLE_EQ(a.compared_until_s, 1.0);
+  EXPECT_LE(a.theta1.peak_engine_t_s, 1.0);
+  EXPECT_TRUE(a.theta1.peak_within_tolerance) << a.theta1.peak_engine_rad;
+  const Verdict v = MakeVerdict(*scene_, a, Horizons{}, std::nullopt);
+  EXPECT_EQ(v.kind, "outside_model") << v.text;
+}
+
 TEST_F(BelowTheFloor, AnEngineThatRocksLikeItAgrees) {
   // The reference's own motion 10% larger: within the 25% peak tolerance and the floor.
   const EngineRun near = Engine(*ref_, 2.0, [](Sample* s) { s->theta_rad[0] *= 1.1; });
