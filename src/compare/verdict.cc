@@ -435,7 +435,8 @@ Verdict MakeVerdict(const Scene& scene, const EngineAgreement& a,
                Format("%.3g", g.tolerance_m) + " m) at " + Format("%.3f", g.horizon_s) + " s";
       }
     }
-    if (!a.overturn_agree || !a.left_support_agree) {
+    // Where the reference's model ends, its end is not an outcome to match.
+    if ((!a.overturn_agree || !a.left_support_agree) && !model_ends) {
       all_within = false;
       out += (out.empty() ? "" : "; ") +
              EndText(a.overturn_block_engine, a.left_support_block_engine) +
@@ -447,6 +448,18 @@ Verdict MakeVerdict(const Scene& scene, const EngineAgreement& a,
         ang.begin(), ang.end(), [](const AngleAgreement* g) { return !g->within_tolerance; });
     v.decided_by = angles_out || PeakDecides(ang, nb).empty() ? RatioText(ang, nb, false)
                                                               : PeakDecides(ang, nb);
+    // The same rule as with the ensemble: where the reference's model ends, it has nothing to
+    // say after that instant; what came before is said.
+    if (model_ends) {
+      v.kind = "outside_model";
+      v.agrees = false;
+      v.text = "outside the model: the reference's model ends at " + Format("%.2f", model_end_s) +
+               " s (" + model_end_why + "); pointwise until then the engine " +
+               (all_within ? "agrees with it" + unjudged : "differs: " + out) +
+               "; no reference ensemble was run";
+      v.decided_by = model_end_why;
+      return v;
+    }
     v.kind = all_within ? "pointwise_only" : "pointwise_differs";
     v.agrees = all_within;
     v.text = all_within ? "agrees pointwise over the whole comparison (" +

@@ -120,6 +120,10 @@ TEST_F(BelowTheFloor, PeaksAreComparedWhereTheModelDecides) {
   EXPECT_TRUE(a.theta1.peak_within_tolerance) << a.theta1.peak_engine_rad;
   const Verdict v = MakeVerdict(*scene_, a, Horizons{}, std::nullopt);
   EXPECT_EQ(v.kind, "outside_model") << v.text;
+  // The same rule without the ensemble (compare --quick).
+  const Verdict q = MakeVerdict(*scene_, a, std::nullopt, std::nullopt);
+  EXPECT_EQ(q.kind, "outside_model") << q.text;
+  EXPECT_NE(q.text.find("ends at 1.00 s (a test's undecided impact)"), std::string::npos) << q.text;
 }
 
 TEST_F(BelowTheFloor, AnEngineThatRocksLikeItAgrees) {
