@@ -165,9 +165,12 @@ TEST(StackSimulateTest, AnImpactWhoseSearchReachesItsCapIsReportedAndEndsTheMode
   // the interfaces below (docs/n-blocks.md, "Where the model ends"): the admissible outcome is
   // one with many changes, which the search (fewest changes first) reaches last. With
   // 10 drums every candidate is within the cap (2 x 3^9 = 39,366 of 59,049) and the landing is
-  // admissible. With 20 (2 x 3^19) the search stops at the cap, and the run says so: the note,
-  // the inadmissible count and `undetermined` at that impact.
-  for (const int n : {10, 20}) {
+  // admissible. With 21 (2 x 3^20) the search stops at the cap, and the run says so: the note,
+  // the inadmissible count and `undetermined` at that impact. (Up to kUnilateralMaxBlocks = 20
+  // drums an impact without an admissible chain outcome is the unilateral model's instead,
+  // docs/sliding.md "The impact at a hand-over": 21 is the first column the chain keeps.)
+  static_assert(kUnilateralMaxBlocks < 21);
+  for (const int n : {10, 21}) {
     Scene sc = Column(n, 0.2);
     sc.initial.theta_rad[n - 1] = 0.02;
     const Result r = RunOn(sc, "chain");
