@@ -15,12 +15,6 @@ namespace rockbench::reference {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
-// The state: q (3 per block) from 0, v from kSecond, padded with zeros to kState.
-constexpr size_t kSecond = 3 * static_cast<size_t>(kUnilateralMaxBlocks);
-constexpr size_t kState = 2 * kSecond;
-using Y = VecN<kState>;
-using Dense = DenseStepN<kState>;
-using Step = StepResultN<kState>;
 
 // Relative tolerances of the contact conditions and events: forces to 1e-9 of the weight,
 // gaps to 1e-10 of the largest half-diagonal, rates to 1e-9 of sqrt(g L).
@@ -67,7 +61,17 @@ std::string StateText(const ContactMode& m, int k) {
   return std::string(SlipText(m.slip[k])) + " on " + where;
 }
 
+// The driver for stacks of at most kCap blocks: its state arrays have that many blocks' room
+// (a stack of two does not step, zero and copy twenty blocks' arrays).
+template <int kCap>
 class Runner {
+  // The state: q (3 per block) from 0, v from kSecond, padded with zeros to kState.
+  static constexpr size_t kSecond = 3 * static_cast<size_t>(kCap);
+  static constexpr size_t kState = 2 * kSecond;
+  using Y = VecN<kState>;
+  using Dense = DenseStepN<kState>;
+  using Step = StepResultN<kState>;
+
  public:
   Runner(const Scene& scene, const GroundMotion& motion, const UnilateralStart& start,
          const UnilateralSteps& steps, Result* result, long* next_sample)
@@ -146,8 +150,7 @@ class Runner {
   // The contact forces of the current mode at (t, y) (null: its equations are singular), kept
   // for the last instant asked.
   const ModeSolution* Forces(double t, const Y& y) const;
-  double FrictionPower(double t, const Y& y,
-                       std::array<double, kUnilateralMaxBlocks>* per = nullptr) const;
+  double FrictionPower(double t, const Y& y, std::array<double, kCap>* per = nullptr) const;
   // Interface k's slip rate at its first closed slot of the current mode, m/s.
   double SlipRate(int k, const Y& y) const {
     const auto s = stack_.Slots(k, Q(y), V(y), &mode_);
@@ -214,12 +217,13 @@ class Runner {
     ModeSolution forces;
   } memo_;
   // Friction's work at each interface since its slip began, J (the episode's energy audit).
-  std::array<double, kUnilateralMaxBlocks> episode_work_j_{};
+  std::array<double, kCap> episode_work_j_{};
   int same_time_events_ = 0;
   double last_event_t_ = -1.0;
 };
 
-std::vector<Runner::EventFn> Runner::Functions() const {
+template <int kCap>
+std::vector<typename Runner<kCap>::EventFn> Runner<kCap>::Functions() const {
   std::vector<EventFn> out;
   for (int k = 0; k < n_; ++k) {
     const bool closed = mode_.any_closed(k);
@@ -240,7 +244,8 @@ std::vector<Runner::EventFn> Runner::Functions() const {
   return out;
 }
 
-double Runner::Value(const EventFn& e, double t, const Y& y) const {
+template <int kCap>
+double Runner<kCap>::Value(const EventFn& e, double t, const Y& y) const {
   const double L = stack_.length_scale_m();
   switch (e.kind) {
     case Kind::kOverturn:
@@ -294,7 +299,8 @@ double Runner::Value(const EventFn& e, double t, const Y& y) const {
   return 1.0;
 }
 
-const ModeSolution* Runner::Forces(double t, const Y& y) const {
+template <int kCap>
+const ModeSolution* Runner<kCap>::Forces(double t, const Y& y) const {
   // The event functions of every closed slot and interface, friction's power and the
   // summary's forces all ask at the same step end: one solve serves them.
   if (!(memo_.valid && memo_.t == t && memo_.y == y && memo_.mode == mode_)) {
@@ -308,8 +314,8 @@ const ModeSolution* Runner::Forces(double t, const Y& y) const {
   return memo_.solved ? &memo_.forces : nullptr;
 }
 
-double Runner::FrictionPower(double t, const Y& y,
-                             std::array<double, kUnilateralMaxBlocks>* per) const {
+template <int kCap>
+double Runner<kCap>::FrictionPower(double t, const Y& y, std::array<double, kCap>* per) const {
   double p = 0.0;
   if (per != nullptr) per->fill(0.0);
   bool any = false;
@@ -330,7 +336,8 @@ double Runner::FrictionPower(double t, const Y& y,
   return p;
 }
 
-void Runner::Track(double t, const Y& y) {
+template <int kCap>
+void Runner<kCap>::Track(double t, const Y& y) {
   Summary& sum = r_->summary;
   for (int i = 0; i < n_; ++i) {
     const double a = std::abs(y[3 * i + 2]);
@@ -341,7 +348,8 @@ void Runner::Track(double t, const Y& y) {
   }
 }
 
-void Runner::NoteForces(const Y& y, double t) {
+template <int kCap>
+void Runner<kCap>::NoteForces(const Y& y, double t) {
   const ModeSolution* forces = Forces(t, y);
   if (forces == nullptr) return;
   const ModeSolution& f = *forces;
@@ -356,14 +364,16 @@ void Runner::NoteForces(const Y& y, double t) {
   }
 }
 
-void Runner::Emit(double t_end, bool inclusive) {
+template <int kCap>
+void Runner<kCap>::Emit(double t_end, bool inclusive) {
   EmitTrajectorySamples(r_->trajectory, scene_.run.output_interval_s, steps_.t_end_s, t_end,
                         inclusive, next_sample_, &r_->history.samples);
 }
 
-void Runner::AddEvent(double t, const std::string& kind, const Configuration& before,
-                      const Configuration& after, const Y& pre, const Y& post,
-                      const std::string& note) {
+template <int kCap>
+void Runner<kCap>::AddEvent(double t, const std::string& kind, const Configuration& before,
+                            const Configuration& after, const Y& pre, const Y& post,
+                            const std::string& note) {
   Event ev(n_);
   ev.t_s = t;
   ev.kind = kind;
@@ -379,8 +389,9 @@ void Runner::AddEvent(double t, const std::string& kind, const Configuration& be
   r_->history.events.push_back(std::move(ev));
 }
 
-void Runner::Stop(double t, const Y& y, RunStatus status, const std::string& kind,
-                  const std::string& detail) {
+template <int kCap>
+void Runner<kCap>::Stop(double t, const Y& y, RunStatus status, const std::string& kind,
+                        const std::string& detail) {
   AddEvent(t, kind, config_, config_, y, y, detail);
   Summary& sum = r_->summary;
   if (sum.status == RunStatus::kCompleted) sum.status = status;
@@ -394,7 +405,8 @@ void Runner::Stop(double t, const Y& y, RunStatus status, const std::string& kin
   done_ = true;
 }
 
-std::string Runner::EpisodeAudit(const ContactMode& before) {
+template <int kCap>
+std::string Runner<kCap>::EpisodeAudit(const ContactMode& before) {
   // Each interface whose slip ends here: the energy friction dissipated over the episode.
   std::string out;
   for (int k = 0; k < n_; ++k) {
@@ -410,7 +422,8 @@ std::string Runner::EpisodeAudit(const ContactMode& before) {
   return out;
 }
 
-std::string Runner::Changes(const ContactMode& before, const ContactMode& after) const {
+template <int kCap>
+std::string Runner<kCap>::Changes(const ContactMode& before, const ContactMode& after) const {
   std::string out;
   for (int k = 0; k < n_; ++k) {
     const std::string a = StateText(before, k), b = StateText(after, k);
@@ -421,7 +434,8 @@ std::string Runner::Changes(const ContactMode& before, const ContactMode& after)
   return out;
 }
 
-bool Runner::NewMode(double t, const Y& y, const char* kind, const std::string& why) {
+template <int kCap>
+bool Runner<kCap>::NewMode(double t, const Y& y, const char* kind, const std::string& why) {
   const ModeSolution sol = stack_.Solve(Q(y), V(y), Xg(t), Yg(t), mode_, gap_tol_, rate_tol_);
   Summary& sum = r_->summary;
   if (!sol.found) {
@@ -461,7 +475,8 @@ bool Runner::NewMode(double t, const Y& y, const char* kind, const std::string& 
   return true;
 }
 
-bool Runner::Impact(int k) {
+template <int kCap>
+bool Runner<kCap>::Impact(int k) {
   Summary& sum = r_->summary;
   ModeSolution imp = stack_.SolveImpact(Q(y_), V(y_), mode_, gap_tol_, rest_rate_);
   bool took_frictionless = false;
@@ -517,7 +532,8 @@ bool Runner::Impact(int k) {
   return NewMode(t_, y_, "transition", "after impact");
 }
 
-UnilateralEnd Runner::Go(const std::string& reason) {
+template <int kCap>
+UnilateralEnd Runner<kCap>::Go(const std::string& reason) {
   Summary& sum = r_->summary;
   sum.unilateral_from_s = t_;
   sum.unilateral_reason = reason;
@@ -635,7 +651,7 @@ UnilateralEnd Runner::Go(const std::string& reason) {
     // Friction's work over the segment (Simpson's rule).
     {
       const double tm = 0.5 * (t_ + t_seg);
-      std::array<double, kUnilateralMaxBlocks> p0{}, pm{}, p1{};
+      std::array<double, kCap> p0{}, pm{}, p1{};
       const double p = (FrictionPower(t_, y_, &p0) + 4.0 * FrictionPower(tm, at(tm), &pm) +
                         FrictionPower(t_seg, y_end, &p1)) /
                        6.0;
@@ -759,7 +775,13 @@ bool UnilateralApplies(const Scene& scene, std::string* why) {
 UnilateralEnd ContinueUnilateral(const Scene& scene, const GroundMotion& motion,
                                  const UnilateralStart& start, const UnilateralSteps& steps,
                                  Result* result, long* next_sample) {
-  Runner run(scene, motion, start, steps, result, next_sample);
+  // Two sizes of state arrays: small stacks (the common case) and the largest.
+  constexpr int kSmall = 4;
+  if (scene.block_count() <= kSmall) {
+    Runner<kSmall> run(scene, motion, start, steps, result, next_sample);
+    return run.Go(start.reason);
+  }
+  Runner<kUnilateralMaxBlocks> run(scene, motion, start, steps, result, next_sample);
   return run.Go(start.reason);
 }
 
