@@ -236,8 +236,12 @@ std::vector<typename Runner<kCap>::EventFn> Runner<kCap>::Functions() const {
       }
     }
     const double mu = stack_.block(k).friction;
-    if (closed && mu > 0.0 && std::isfinite(mu)) {
-      out.push_back({mode_.slip[k] == Slip::kStick ? Kind::kCone : Kind::kSlipStop, k, 0});
+    // A sticking interface of finite friction may reach its cone; a slipping one, whatever its
+    // friction (infinite friction's limit slip included), may stop.
+    if (closed && mu > 0.0 && mode_.slip[k] != Slip::kStick) {
+      out.push_back({Kind::kSlipStop, k, 0});
+    } else if (closed && mu > 0.0 && std::isfinite(mu)) {
+      out.push_back({Kind::kCone, k, 0});
     }
   }
   for (int i = 0; i < n_; ++i) out.push_back({Kind::kOverturn, i, 0});
