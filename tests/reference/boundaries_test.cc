@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
+#include <array>
 #include <cmath>
 #include <functional>
 #include <string>
@@ -26,35 +27,26 @@ Scene Shipped(const std::string& name) {
   return s;
 }
 
-// A stack of three blocks with friction 0.5 at every interface under Rinaldi 228 (the
-// repository's record), 15 s: it slips first at a ground impact and chatters (hundreds of
-// impacts and stick-slip transitions within 1 ms) at 6.79 s.
-Scene ThreeBlocksWithFriction() {
-  const std::string text = R"(
-[[block]]
-width = 0.8
-height = 0.8
-density = 2500.0
-friction = 0.5
-[[block]]
-width = 0.6
-height = 0.6
-density = 2500.0
-friction = 0.5
-[[block]]
-width = 0.4
-height = 0.8
-density = 2500.0
-friction = 0.5
-[base.horizontal]
-file = "records/northridge1994_rinaldi_receiving_sta_228.AT2"
-[run]
-duration = 15.0
-output_interval = 0.01
-)";
+// Three blocks (width x height, m; 2500 kg/m^3) with friction 0.5 at every interface, under a
+// record of the repository's at `scale`, 15 s.
+Scene ThreeBlocks(const std::array<double, 6>& wh, const std::string& record, double scale) {
+  std::string text;
+  for (int i = 0; i < 3; ++i) {
+    text += "[[block]]\nwidth = " + std::to_string(wh[2 * i]) +
+            "\nheight = " + std::to_string(wh[2 * i + 1]) + "\ndensity = 2500.0\nfriction = 0.5\n";
+  }
+  text += "[base.horizontal]\nfile = \"records/" + record + "\"\nscale = " + std::to_string(scale) +
+          "\n[run]\nduration = 15.0\noutput_interval = 0.01\n";
   Scene s = ParseScene(text, std::string(ROCKBENCH_SOURCE_DIR) + "/three_blocks.toml");
   s.compare.members = 0;
   return s;
+}
+
+// 0.8 x 0.8, 0.6 x 0.6 and 0.4 x 0.8 m under Rinaldi 228: the stack slips first at a ground
+// impact and chatters (hundreds of impacts and stick-slip transitions within 1 ms) at 6.79 s.
+Scene ThreeBlocksWithFriction() {
+  return ThreeBlocks({0.8, 0.8, 0.6, 0.6, 0.4, 0.8}, "northridge1994_rinaldi_receiving_sta_228.AT2",
+                     1.0);
 }
 
 std::vector<ImpactBlock> BlocksOf(const Scene& s) {
@@ -246,31 +238,8 @@ TEST(Chattering, TheUnilateralModelRunsThroughAnImpactCascade) {
 // stopped run. A margin at zero is the friction's, and both runs hand over and overturn at the
 // same instant (to 1e-6 s: both are exact to their tolerances, measured 6e-10 rad apart).
 TEST(Chattering, AFrictionMarginOfExactlyZeroHandsOver) {
-  const std::string text = R"(
-[[block]]
-width = 1.0
-height = 1.1
-density = 2500.0
-friction = 0.5
-[[block]]
-width = 0.7
-height = 0.2
-density = 2500.0
-friction = 0.5
-[[block]]
-width = 0.4
-height = 1.5
-density = 2500.0
-friction = 0.5
-[base.horizontal]
-file = "records/imperialvalley1940_elcentro_array9_180_PEER2000.AT2"
-scale = 4.5455
-[run]
-duration = 15.0
-output_interval = 0.01
-)";
-  Scene s = ParseScene(text, std::string(ROCKBENCH_SOURCE_DIR) + "/statue.toml");
-  s.compare.members = 0;
+  const Scene s = ThreeBlocks({1.0, 1.1, 0.7, 0.2, 0.4, 1.5},
+                              "imperialvalley1940_elcentro_array9_180_PEER2000.AT2", 4.5455);
   Scene w = s;
   w.model.integrator = Integrator::kDop853;
   w.model.rtol = 1e-14;
