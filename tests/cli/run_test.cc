@@ -121,11 +121,11 @@ TEST(CliRunTest, AThreeBlockSceneRunsOnTheReference) {
 // An impact with two admissible outcomes is said (issue 37, case 4): three blocks (0.8 x 0.8,
 // 0.6 x 0.6 and 0.4 x 0.8 m, no friction key: infinite) under Rinaldi 228 x 1.167. Their chain
 // hands over to the unilateral model where a contact would pull, and an interface impact at
-// 2.541 s has two admissible outcomes (an impact that may also separate an interface is not
-// the convex problem of impact.h's uniqueness argument; the two found differ by 1.8e-4 of the
-// rates' scale, beyond the 1e-6 within which the model takes two outcomes for one motion).
-// The status line names the instant, stderr repeats it, the command exits 5 with its outputs
-// written, and summary.json's undetermined holds it.
+// 2.642 s has two admissible outcomes (an impact that may also separate an interface is not
+// the convex problem of impact.h's uniqueness argument) that differ beyond the 1e-4 of the
+// rates' scale within which the model takes two outcomes for one motion. The status line names
+// the instant, stderr repeats it, the command exits 5 with its outputs written, and
+// summary.json's undetermined holds it.
 TEST(CliRunTest, AnUndeterminedImpactIsSaidAndExitsFive) {
   const fs::path dir = TempDir("undetermined");
   const fs::path scene = dir / "three.toml";
@@ -138,15 +138,15 @@ TEST(CliRunTest, AnUndeterminedImpactIsSaidAndExitsFive) {
                           "scale = 1.167\n[run]\nduration = 5.0\n";
   const ShellRun r = Rockbench("run " + scene.string() + " --out " + (dir / "out").string());
   EXPECT_EQ(r.exit_code, 5) << r.output;
-  EXPECT_NE(r.output.find("(UNDETERMINED from 2.5410 s: the interface2 impact"), std::string::npos)
+  EXPECT_NE(r.output.find("(UNDETERMINED from 2.6424 s: the interface2 impact"), std::string::npos)
       << r.output;
   EXPECT_NE(r.output.find("rockbench: reference: the model stops deciding the motion at t = "
-                          "2.5410 s"),
+                          "2.6424 s"),
             std::string::npos)
       << r.output;
   const auto summary = nlohmann::json::parse(ReadFile(dir / "out" / "summary.json"));
   ASSERT_TRUE(summary["undetermined"].is_object()) << summary.dump();
-  EXPECT_NEAR(summary["undetermined"]["t_s"].get<double>(), 2.5409677, 1e-6);
+  EXPECT_NEAR(summary["undetermined"]["t_s"].get<double>(), 2.6423512, 1e-6);
   EXPECT_TRUE(fs::exists(dir / "out" / "reference" / "history.csv"));
   fs::remove_all(dir);
 }
