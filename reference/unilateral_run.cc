@@ -169,6 +169,20 @@ class Runner {
       slip_armed_[k] = beyond || (!reset && slip_armed_[k]);
     }
   }
+  // The stack with every infinite friction at 1e4 (built once, when an impact has no Coulomb
+  // outcome at infinite friction).
+  const UnilateralStack& LimitStack() {
+    if (!limit_) {
+      std::vector<UnilateralBlock> blocks;
+      for (int i = 0; i < n_; ++i) {
+        UnilateralBlock b = stack_.block(i);
+        if (std::isinf(b.friction)) b.friction = 1e4;
+        blocks.push_back(b);
+      }
+      limit_.emplace(std::move(blocks), stack_.g_mps2());
+    }
+    return *limit_;
+  }
   // The stack without friction (built once, when an impact has no Coulomb outcome).
   const UnilateralStack& FrictionlessStack() {
     if (!frictionless_) {
@@ -203,7 +217,7 @@ class Runner {
   Y y_{};
   double gap_tol_ = 0.0, rate_tol_ = 0.0, force_tol_ = 0.0, rest_rate_ = 0.0;
   bool done_ = false;
-  std::optional<UnilateralStack> frictionless_;
+  std::optional<UnilateralStack> frictionless_, limit_;
   // Per interface: its slip-stop event is armed (see Value, kSlipStop).
   std::vector<bool> slip_armed_;
   // >= 0: handed over at an impact of this interface (UnilateralStart::impact_interface).
@@ -484,6 +498,23 @@ bool Runner<kCap>::Impact(int k) {
   Summary& sum = r_->summary;
   ModeSolution imp = stack_.SolveImpact(Q(y_), V(y_), mode_, gap_tol_, rest_rate_);
   bool took_frictionless = false;
+  bool infinite = false;
+  for (int i = 0; i < n_; ++i) infinite = infinite || std::isinf(stack_.block(i).friction);
+  if (!imp.found && infinite) {
+    // At infinite friction no sticking outcome may exist (the sticking impulse would pull):
+    // the outcome is then the limit of Coulomb's as the friction grows, taken at mu = 1e4 (as
+    // the contact problem's limit slip, docs/sliding.md). Decided by that limit, and said.
+    const ModeSolution limit = LimitStack().SolveImpact(Q(y_), V(y_), mode_, gap_tol_, rest_rate_);
+    if (limit.found) {
+      const std::string why = imp.note;
+      imp = limit;
+      imp.note = why + " at infinite friction; the limit of Coulomb's outcome (mu = 1e4) follows";
+      for (int i = 0; i < n_; ++i) {
+        if (std::isinf(stack_.block(i).friction)) imp.mode.slip[i] = Slip::kStick;
+      }
+      took_frictionless = true;  // its mode's tangential states are the next mode's to decide
+    }
+  }
   if (!imp.found) {
     // No outcome satisfies Coulomb's law (a sticking impulse that would pull, with no slip to
     // take its place): the model does not decide this impact (stated below). Leaving the

@@ -189,8 +189,11 @@ TEST(StackSimulateTest, AnImpactWhoseSearchReachesItsCapIsReportedAndEndsTheMode
       // kept closed by the rest rule (the note says "settled"). Eight changes from the
       // baseline: the search's last depths.
       EXPECT_GE(landing->mode_after.open_count(), n - 2) << ConfigurationName(landing->mode_after);
-      ASSERT_TRUE(r.summary.undetermined_from_s.has_value());
-      EXPECT_GT(*r.summary.undetermined_from_s, landing->t_s);
+      // The landing itself is decided: anything undecided comes later (since issue 37 the
+      // column's later impacts without an admissible chain outcome are the unilateral model's).
+      if (r.summary.undetermined_from_s) {
+        EXPECT_GT(*r.summary.undetermined_from_s, landing->t_s);
+      }
     } else {
       EXPECT_NE(landing->note.find("no admissible outcome among the first 59049 (search stopped)"),
                 std::string::npos)
