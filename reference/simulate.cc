@@ -269,13 +269,17 @@ class Simulator {
   }
 
   // The smallest friction margin (mu N - |T|) / (M g) over the interfaces of finite friction
-  // that carry a compressive normal force; 1 when there is none.
-  double SlipMargin(const Margins& cm) const {
+  // that carry a compressive normal force; 1 when there is none. `tightest` (optional): that
+  // interface (0 when there is none).
+  double SlipMargin(const Margins& cm, int* tightest = nullptr) const {
     double m = 1.0;
+    if (tightest != nullptr) *tightest = 0;
     if (!finite_friction_) return m;
     for (int k = 0; k < n_; ++k) {
       if (std::isfinite(friction_[k]) && cm.normal_n[k] > 0.0) {
-        m = std::min(m, cm.normal_n[k] * (friction_[k] - cm.mu[k]) / weight_n_);
+        const double mk = cm.normal_n[k] * (friction_[k] - cm.mu[k]) / weight_n_;
+        if (mk < m && tightest != nullptr) *tightest = k;
+        m = std::min(m, mk);
       }
     }
     return m;
@@ -286,20 +290,6 @@ class Simulator {
       if (std::isfinite(friction_[k]) && cm.normal_n[k] > 0.0 && cm.mu[k] > friction_[k]) return k;
     }
     return -1;
-  }
-  // The interface of finite friction with the smallest friction margin (0 when none carries a
-  // compressive force).
-  int TightestInterface(const Margins& cm) const {
-    int best = 0;
-    double m = kInf;
-    for (int k = 0; k < n_; ++k) {
-      if (std::isfinite(friction_[k]) && cm.normal_n[k] > 0.0 &&
-          cm.normal_n[k] * (friction_[k] - cm.mu[k]) < m) {
-        m = cm.normal_n[k] * (friction_[k] - cm.mu[k]);
-        best = k;
-      }
-    }
-    return best;
   }
   // Hands the run over to the unilateral model at (t, y) (unilateral_run.h): it runs to the
   // end.
@@ -955,7 +945,8 @@ void Simulator<Mech>::HandleEvent(const LocatedEvent& ev, const StepDense& at, d
     case StepEvent::kMargin: {
       // Just past the located root: the smaller of the two margins is the one that crossed.
       const Margins cmh = EvaluateAt(ev.t_hi, at(ev.t_hi));
-      const double slip = SlipMargin(cmh);
+      int k = 0;
+      const double slip = SlipMargin(cmh, &k);
       // The located root's far side has the crossing margin at or below zero: a friction
       // margin of exactly zero there is the crossing one when it is the smallest (taking it for
       // a face opening found the same configuration again, at the same instant, for ever).
@@ -963,7 +954,6 @@ void Simulator<Mech>::HandleEvent(const LocatedEvent& ev, const StepDense& at, d
         // A contact's friction is exhausted: the unilateral model goes on from just past it.
         t_ = ev.t_hi;
         y_ = at(ev.t_hi);
-        const int k = TightestInterface(cmh);
         HandOver(t_, y_, "block " + std::to_string(k + 1) + " slips");
       } else if (cfg_.check_transitions && cmh.face <= cmh.point) {
         // A face force has turned tensile: the face opens.

@@ -169,32 +169,20 @@ class Runner {
       slip_armed_[k] = beyond || (!reset && slip_armed_[k]);
     }
   }
-  // The stack with every infinite friction at 1e4 (built once, when an impact has no Coulomb
-  // outcome at infinite friction).
-  const UnilateralStack& LimitStack() {
-    if (!limit_) {
+  // The stack with its friction changed to mu (every interface's with `every`, else only the
+  // infinite ones), built once into *cache: the fallbacks of an impact with no Coulomb outcome.
+  const UnilateralStack& StackWithFriction(std::optional<UnilateralStack>* cache, bool every,
+                                           double mu) {
+    if (!*cache) {
       std::vector<UnilateralBlock> blocks;
       for (int i = 0; i < n_; ++i) {
         UnilateralBlock b = stack_.block(i);
-        if (std::isinf(b.friction)) b.friction = 1e4;
+        if (every || std::isinf(b.friction)) b.friction = mu;
         blocks.push_back(b);
       }
-      limit_.emplace(std::move(blocks), stack_.g_mps2());
+      cache->emplace(std::move(blocks), stack_.g_mps2());
     }
-    return *limit_;
-  }
-  // The stack without friction (built once, when an impact has no Coulomb outcome).
-  const UnilateralStack& FrictionlessStack() {
-    if (!frictionless_) {
-      std::vector<UnilateralBlock> blocks;
-      for (int i = 0; i < n_; ++i) {
-        UnilateralBlock b = stack_.block(i);
-        b.friction = 0.0;
-        blocks.push_back(b);
-      }
-      frictionless_.emplace(std::move(blocks), stack_.g_mps2());
-    }
-    return *frictionless_;
+    return **cache;
   }
   bool HasClosed() const {
     for (int k = 0; k < n_; ++k) {
@@ -497,42 +485,40 @@ template <int kCap>
 bool Runner<kCap>::Impact(int k) {
   Summary& sum = r_->summary;
   ModeSolution imp = stack_.SolveImpact(Q(y_), V(y_), mode_, gap_tol_, rest_rate_);
-  bool took_frictionless = false;
+  // Its outcome from `alt` instead, where Coulomb's law gives none: the note says which, the
+  // contacts that close stick until the next mode decides, and `decided` says whether the
+  // model's limit decides it (else the impact is undetermined).
+  bool took_fallback = false;
+  auto fall_back = [&](const UnilateralStack& alt, const std::string& what, bool decided) {
+    const ModeSolution o = alt.SolveImpact(Q(y_), V(y_), mode_, gap_tol_, rest_rate_);
+    if (!o.found) return;
+    const std::string why = imp.note;
+    imp = o;
+    imp.found = decided;
+    imp.note = why + what;
+    for (int i = 0; i < n_; ++i) {
+      if (!decided || std::isinf(stack_.block(i).friction)) imp.mode.slip[i] = Slip::kStick;
+    }
+    took_fallback = true;
+  };
   bool infinite = false;
   for (int i = 0; i < n_; ++i) infinite = infinite || std::isinf(stack_.block(i).friction);
+  // At infinite friction no sticking outcome may exist (the sticking impulse would pull): the
+  // outcome is then the limit of Coulomb's as the friction grows, taken at mu = 1e4 (as the
+  // contact problem's limit slip, docs/sliding.md). Decided by that limit, and said.
   if (!imp.found && infinite) {
-    // At infinite friction no sticking outcome may exist (the sticking impulse would pull):
-    // the outcome is then the limit of Coulomb's as the friction grows, taken at mu = 1e4 (as
-    // the contact problem's limit slip, docs/sliding.md). Decided by that limit, and said.
-    const ModeSolution limit = LimitStack().SolveImpact(Q(y_), V(y_), mode_, gap_tol_, rest_rate_);
-    if (limit.found) {
-      const std::string why = imp.note;
-      imp = limit;
-      imp.note = why + " at infinite friction; the limit of Coulomb's outcome (mu = 1e4) follows";
-      for (int i = 0; i < n_; ++i) {
-        if (std::isinf(stack_.block(i).friction)) imp.mode.slip[i] = Slip::kStick;
-      }
-      took_frictionless = true;  // its mode's tangential states are the next mode's to decide
-    }
+    fall_back(StackWithFriction(&limit_, false, 1e4),
+              " at infinite friction; the limit of Coulomb's outcome (mu = 1e4) follows", true);
   }
+  // Still none (a sticking impulse that would pull, with no slip to take its place): the model
+  // does not decide this impact (stated below). Leaving the velocities as they were would drive
+  // the corner on into its face and land it again at the same instant for ever; the rule takes
+  // the frictionless plastic outcome instead (the kinetic-energy projection onto the unilateral
+  // constraints, a convex problem that always has its one solution), which stops every approach
+  // and never adds energy.
   if (!imp.found) {
-    // No outcome satisfies Coulomb's law (a sticking impulse that would pull, with no slip to
-    // take its place): the model does not decide this impact (stated below). Leaving the
-    // velocities as they were would drive the corner on into its face and land it again at
-    // the same instant for ever; the rule takes the frictionless plastic outcome instead (the
-    // kinetic-energy projection onto the unilateral constraints, a convex problem that always
-    // has its one solution), which stops every approach and never adds energy.
-    const ModeSolution frictionless =
-        FrictionlessStack().SolveImpact(Q(y_), V(y_), mode_, gap_tol_, rest_rate_);
-    if (frictionless.found) {
-      const std::string why = imp.note;
-      imp = frictionless;
-      imp.found = false;
-      imp.note = why + "; the frictionless outcome follows";
-      // Its contacts close; their tangential states are the next mode's to decide.
-      for (int i = 0; i < n_; ++i) imp.mode.slip[i] = Slip::kStick;
-      took_frictionless = true;
-    }
+    fall_back(StackWithFriction(&frictionless_, true, 0.0), "; the frictionless outcome follows",
+              false);
   }
   Y post = y_;
   for (int i = 0; i < 3 * n_; ++i) post[kSecond + i] = imp.result[i];
@@ -545,7 +531,7 @@ bool Runner<kCap>::Impact(int k) {
   if (imp.solutions > 1) ++sum.impacts_ambiguous;
   const Configuration before = config_;
   const ContactMode mode_before = mode_;
-  if (imp.found || took_frictionless) mode_ = imp.mode;
+  if (imp.found || took_fallback) mode_ = imp.mode;
   // A slip that the impact starts is a slip start.
   for (int i = 0; i < n_; ++i) {
     if (mode_.any_closed(i) && mode_.slip[i] != Slip::kStick &&

@@ -661,20 +661,24 @@ bool Monitor::Stopped(const Derived& d, double t_prev) {
       t_off = when;
     }
   }
+  // The event that ends the run at t_end (kind, the block it names).
+  auto end_event = [&](const char* kind, double t_end, int block) {
+    Event e(blocks_);
+    e.t_s = t_end;
+    e.kind = kind;
+    e.mode_before = e.mode_after = cur.mode;
+    e.omega_before_radps = e.omega_after_radps = cur.omega_radps;
+    e.energy_before_j = e.energy_after_j = d.energy_j;
+    e.note = "block " + std::to_string(block);
+    PushEvent(std::move(e));
+  };
   if (off_block != 0 && (over_block == 0 || t_off <= t_over)) {
     status_ = RunStatus::kLeftSupport;
     left_support_block_ = off_block;
     left_support_t_s_ = t_off;
     status_detail_ = "block " + std::to_string(off_block) + " slid off its support (its base " +
                      "no longer overlaps block " + std::to_string(off_block - 1) + "'s top face)";
-    Event e(blocks_);
-    e.t_s = t_off;
-    e.kind = "left_support";
-    e.mode_before = e.mode_after = cur.mode;
-    e.omega_before_radps = e.omega_after_radps = cur.omega_radps;
-    e.energy_before_j = e.energy_after_j = d.energy_j;
-    e.note = "block " + std::to_string(off_block);
-    PushEvent(std::move(e));
+    end_event("left_support", t_off, off_block);
     return true;
   }
   if (over_block != 0) {
@@ -683,14 +687,7 @@ bool Monitor::Stopped(const Derived& d, double t_prev) {
     overturn_t_s_ = t_over;
     status_detail_ = "block " + std::to_string(over_block) +
                      " reached |theta| = " + std::to_string(over) + " rad (model.overturn_angle)";
-    Event e(blocks_);
-    e.t_s = t_over;
-    e.kind = "overturn";
-    e.mode_before = e.mode_after = cur.mode;
-    e.omega_before_radps = e.omega_after_radps = cur.omega_radps;
-    e.energy_before_j = e.energy_after_j = d.energy_j;
-    e.note = "block " + std::to_string(over_block);
-    PushEvent(std::move(e));
+    end_event("overturn", t_over, over_block);
     return true;
   }
   // Settled: at rest once the base can no longer start rocking (ensemble members only).

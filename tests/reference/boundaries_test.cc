@@ -49,6 +49,16 @@ Scene ThreeBlocksWithFriction() {
                      1.0);
 }
 
+// The scene at compare's witness settings (run/reference_witness.h, WitnessModel): dop853 at
+// rtol 1e-14, atol 1e-16.
+Scene Witness(const Scene& s) {
+  Scene w = s;
+  w.model.integrator = Integrator::kDop853;
+  w.model.rtol = 1e-14;
+  w.model.atol = 1e-16;
+  return w;
+}
+
 std::vector<ImpactBlock> BlocksOf(const Scene& s) {
   std::vector<ImpactBlock> out;
   for (const BlockDef& d : s.blocks) {
@@ -203,10 +213,7 @@ TEST(HandOverImpact, DefaultRunFollowsTheUnilateralModelFromTheStart) {
 // with it to 1e-6 rad over the whole run (measured: 1.2e-8 rad, at 3.93 s).
 TEST(Chattering, TheUnilateralModelRunsThroughAnImpactCascade) {
   const Scene s = ThreeBlocksWithFriction();
-  Scene w = s;
-  w.model.integrator = Integrator::kDop853;
-  w.model.rtol = 1e-14;
-  w.model.atol = 1e-16;
+  const Scene w = Witness(s);
   const GroundMotion gm = GroundMotion::FromScene(s);
   const Result a = Simulate(s, gm), b = Simulate(w, gm);
   for (const Result* r : {&a, &b}) {
@@ -240,10 +247,7 @@ TEST(Chattering, TheUnilateralModelRunsThroughAnImpactCascade) {
 TEST(Chattering, AFrictionMarginOfExactlyZeroHandsOver) {
   const Scene s = ThreeBlocks({1.0, 1.1, 0.7, 0.2, 0.4, 1.5},
                               "imperialvalley1940_elcentro_array9_180_PEER2000.AT2", 4.5455);
-  Scene w = s;
-  w.model.integrator = Integrator::kDop853;
-  w.model.rtol = 1e-14;
-  w.model.atol = 1e-16;
+  const Scene w = Witness(s);
   const GroundMotion gm = GroundMotion::FromScene(s);
   const Result a = Simulate(s, gm), b = Simulate(w, gm);
   ASSERT_EQ(a.summary.status, RunStatus::kOverturned) << a.summary.status_detail;
