@@ -87,6 +87,11 @@ class Trajectory {
 
   /// State at t (clamped to [0, end]); interpolated with the integrator's dense output.
   Sample At(double t_s) const;
+  /// The state view's components at t (the unilateral model's q then v, 3 per block each), from
+  /// the segment that ends at t when `before_event` (the state just before an event at t), else
+  /// from the one that starts there (just after it); empty where the trajectory holds the
+  /// chain's angles and rates instead.
+  std::vector<double> StateAt(double t_s, bool before_event) const;
   double end_s() const;
   bool empty() const;
 

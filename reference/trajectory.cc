@@ -58,6 +58,31 @@ Sample Trajectory::At(double t_s) const {
   return out;
 }
 
+std::vector<double> Trajectory::StateAt(double t_s, bool before_event) const {
+  if (segments_.empty() || !view_) return {};
+  t_s = std::clamp(t_s, segments_.front().t0, segments_.back().t1);
+  // Segments are ordered by time: the first that ends at or after t (before an event), or the
+  // last that starts at or before it (after it).
+  auto it = before_event
+                ? std::lower_bound(segments_.begin(), segments_.end(), t_s,
+                                   [](const Segment& s, double t) { return s.t1 < t; })
+                : std::prev(std::upper_bound(segments_.begin(), segments_.end(), t_s,
+                                             [](double t, const Segment& s) { return t < s.t0; }));
+  if (it == segments_.end()) it = std::prev(segments_.end());
+  const Step& step = steps_[static_cast<size_t>(it - segments_.begin())];
+  if (!step.state) return {};
+  const double t = std::clamp(t_s, it->t0, it->t1);
+  const size_t m = static_cast<size_t>(view_->components());
+  const double* c = chunks_[step.chunk].data() + step.pos;
+  const bool constant = step.kind == DenseKinds::kConstant || step.h == 0.0;
+  const double s = constant ? 0.0 : (t - step.t0) / step.h;
+  std::vector<double> out(m);
+  for (size_t i = 0; i < m; ++i) {
+    out[i] = constant ? c[i] : DenseKinds::Component(step.kind, s, c + i, m);
+  }
+  return out;
+}
+
 void EmitTrajectorySamples(const Trajectory& trajectory, double dt_s, double run_end_s,
                            double t_end_s, bool inclusive, long* next,
                            std::vector<Sample>* samples) {

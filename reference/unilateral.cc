@@ -119,6 +119,20 @@ UnilateralStack::UnilateralStack(std::vector<UnilateralBlock> blocks, double g_m
     length_ = std::max(length_, std::hypot(b.b_m, b.h_m));
   }
   weight_ = mass * g_;
+  // The rest rule's speed per interface (the chain's rule, stack_contacts.h RestRate, as a
+  // separation speed): R_k from block k's base corner to the mass centre of blocks k..N at
+  // rest, and the two contact points 2 min(b_k, b_(k-1)) apart (the upper block's base corners,
+  // or its support's top corners where the support is the narrower).
+  rest_speed_rel_.assign(static_cast<size_t>(n_), 0.0);
+  double m_above = 0.0, moment_above = 0.0;  // mass and first moment about block k's base
+  for (int k = n_ - 1; k >= 0; --k) {
+    const UnilateralBlock& b = blocks_[k];
+    moment_above += m_above * 2.0 * b.h_m + b.mass_kg * b.h_m;
+    m_above += b.mass_kg;
+    const double R = std::hypot(b.b_m, moment_above / m_above);
+    const double span = 2.0 * (k > 0 ? std::min(b.b_m, blocks_[k - 1].b_m) : b.b_m);
+    rest_speed_rel_[k] = std::sqrt(g_ / R) * span;
+  }
 }
 
 UnilateralStack UnilateralStack::OfScene(const Scene& scene) {
@@ -900,7 +914,7 @@ ModeSolution UnilateralStack::Solve(const double* q, const double* v, double xg_
 
 ModeSolution UnilateralStack::SolveImpact(const double* q, const double* v_minus,
                                           const ContactMode& hint, double gap_tol_m,
-                                          double rest_rate_mps, long exhaustive_limit) const {
+                                          double rest_rate_rel, long exhaustive_limit) const {
   Problem p;
   p.slots.resize(static_cast<size_t>(n_));
   p.zero.resize(static_cast<size_t>(n_));
@@ -941,13 +955,14 @@ ModeSolution UnilateralStack::SolveImpact(const double* q, const double* v_minus
   if (best.solutions > 1) {
     best.note = std::to_string(best.solutions) + " impact outcomes give different motions";
   }
-  // The rest rule: a zero slot that would separate slower than rest_rate_mps stays closed.
+  // The rest rule: a zero slot that would separate slower than its interface's rest speed
+  // stays closed.
   bool rest = false;
   ContactMode held = best.mode;
   for (int k = 0; k < n_; ++k) {
     for (int j = 0; j < 2; ++j) {
       if (zero[k][j] && !best.mode.closed[k][j] &&
-          RowTimes(slots[k][j].wn, k, best.result.data()) < rest_rate_mps) {
+          RowTimes(slots[k][j].wn, k, best.result.data()) < RestSpeed(k, rest_rate_rel)) {
         if (!held.any_closed(k)) held.slip[k] = Slip::kStick;
         held.closed[k][j] = true;
         rest = true;

@@ -183,11 +183,20 @@ class UnilateralStack {
                      long exhaustive_limit = 1000) const;
 
   /// A plastic impact with Coulomb friction at (q, v_minus): the velocities after it (result),
-  /// over every slot in contact (gap <= gap_tol_m). `rest_rate_mps`: a slot that would separate
-  /// slower than this stays closed (the rest rule). Solved as Solve.
+  /// over every slot in contact (gap <= gap_tol_m). The rest rule: a slot of interface k that
+  /// would separate slower than RestSpeed(k, rest_rate_rel) stays closed (0: never). Solved as
+  /// Solve.
   ModeSolution SolveImpact(const double* q, const double* v_minus, const ContactMode& hint,
-                           double gap_tol_m, double rest_rate_mps,
+                           double gap_tol_m, double rest_rate_rel,
                            long exhaustive_limit = 1000) const;
+
+  /// The rest rule's separation speed at interface k, m/s: the chain's relative rate
+  /// rest_rate_rel sqrt(g / R_k) (R_k from block k's base corner to the mass centre of blocks
+  /// k..N at rest) times the distance between the interface's two contact points, so that a
+  /// slot separates after an impact exactly when the chain's rocking would go on.
+  double RestSpeed(int k, double rest_rate_rel) const {
+    return rest_rate_rel * rest_speed_rel_[static_cast<size_t>(k)];
+  }
 
   /// Puts (q, v) back on the constraints of `mode` (the drift of an integration that holds them
   /// at the acceleration level): the closed slots' gaps to zero (one Gauss-Newton step, in the
@@ -272,6 +281,8 @@ class UnilateralStack {
   std::vector<UnilateralBlock> blocks_;
   int n_ = 0;
   double g_ = 9.81, weight_ = 0.0, length_ = 1.0;
+  // Per interface: RestSpeed at rest_rate_rel = 1, m/s.
+  std::vector<double> rest_speed_rel_;
 };
 
 }  // namespace rockbench::reference

@@ -89,7 +89,6 @@ class Runner {
     gap_tol_ = kGapTolRel * L;
     rate_tol_ = kRateTolRel * std::sqrt(stack_.g_mps2() * L);
     force_tol_ = kForceTolRel * stack_.weight_n();
-    rest_rate_ = scene.model.rest_rate_rel * std::sqrt(stack_.g_mps2() * L);
     t_ = start.t_s;
     stack_.FromChain(start.config, start.theta_rad.data(), start.omega_radps.data(), y_.data(),
                      y_.data() + kSecond);
@@ -203,7 +202,7 @@ class Runner {
   Configuration config_;
   double t_ = 0.0, h_ = 0.0;
   Y y_{};
-  double gap_tol_ = 0.0, rate_tol_ = 0.0, force_tol_ = 0.0, rest_rate_ = 0.0;
+  double gap_tol_ = 0.0, rate_tol_ = 0.0, force_tol_ = 0.0;
   bool done_ = false;
   std::optional<UnilateralStack> frictionless_, limit_;
   // Per interface: its slip-stop event is armed (see Value, kSlipStop).
@@ -259,13 +258,15 @@ double Runner<kCap>::Value(const EventFn& e, double t, const Y& y) const {
     case Kind::kLanding: {
       const SlotKinematics s = stack_.Slots(e.k, Q(y), V(y))[e.j];
       // An empty slot cannot land; its value stays positive.
-      // Root at half the gap tolerance below zero: inside the impact's zero gaps, and past
-      // the rounding of a slot that has just opened.
       if (!s.exists) return 1.0;
-      // A corner below that tolerance but moving out again grazed its face (its lowest point
-      // within the tolerance of the event's location): no landing.
-      if (s.gap_m < -0.5 * gap_tol_ && s.gap_rate_mps >= 0.0) return gap_tol_ / L;
-      return (s.gap_m + 0.5 * gap_tol_) / L;
+      // Approaching faster than the rate tolerance: the root where the gap is zero. (A root
+      // inside the face would be put back on it after the impact, adding m g times that depth
+      // per landing: a cascade then never came to rest, docs/sliding.md.)
+      if (s.gap_rate_mps < -rate_tol_) return s.gap_m / L;
+      // Else not approaching: no landing. A slot that has just opened has a gap and a rate of
+      // rounding's size, of either sign; a corner that stops within the gap tolerance of its
+      // face lands when it comes back faster than the rate tolerance.
+      return std::max(s.gap_m, 0.5 * gap_tol_) / L;
     }
     case Kind::kEdge: {
       // The closed point's face ends under it: the block's corner passes its support's edge,
@@ -484,13 +485,13 @@ bool Runner<kCap>::NewMode(double t, const Y& y, const char* kind, const std::st
 template <int kCap>
 bool Runner<kCap>::Impact(int k) {
   Summary& sum = r_->summary;
-  ModeSolution imp = stack_.SolveImpact(Q(y_), V(y_), mode_, gap_tol_, rest_rate_);
+  ModeSolution imp = stack_.SolveImpact(Q(y_), V(y_), mode_, gap_tol_, scene_.model.rest_rate_rel);
   // Its outcome from `alt` instead, where Coulomb's law gives none: the note says which, the
   // contacts that close stick until the next mode decides, and `decided` says whether the
   // model's limit decides it (else the impact is undetermined).
   bool took_fallback = false;
   auto fall_back = [&](const UnilateralStack& alt, const std::string& what, bool decided) {
-    const ModeSolution o = alt.SolveImpact(Q(y_), V(y_), mode_, gap_tol_, rest_rate_);
+    const ModeSolution o = alt.SolveImpact(Q(y_), V(y_), mode_, gap_tol_, scene_.model.rest_rate_rel);
     if (!o.found) return;
     const std::string why = imp.note;
     imp = o;
