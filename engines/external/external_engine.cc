@@ -13,6 +13,7 @@
 #include "engines/common/monitor.h"
 #include "engines/external/command.h"
 #include "engines/external/protocol.h"
+#include "util/wall_limit.h"
 
 namespace rockbench::external {
 namespace {
@@ -29,10 +30,13 @@ class RunFolder {
       throw ExternalEngineError(engine + ": cannot make a run folder under " + base.string());
     }
     path_ = pattern;
+    // A signal or the wall-clock limit removes it too (util/wall_limit.h).
+    RegisterTemporary(path_, /*folder=*/true);
   }
   ~RunFolder() {
     std::error_code ec;
     std::filesystem::remove_all(path_, ec);
+    ForgetTemporary(path_);
   }
   RunFolder(const RunFolder&) = delete;
   RunFolder& operator=(const RunFolder&) = delete;

@@ -5,6 +5,7 @@
 #include "cli/commands.h"
 #include "run/engine_registry.h"
 #include "study/study_mpi.h"
+#include "util/wall_limit.h"
 
 namespace rockbench::cli {
 
@@ -24,7 +25,10 @@ void RegisterEngines(CLI::App& app) {
 
 }  // namespace rockbench::cli
 
-int main(int argc, char** argv) {
+namespace {
+
+// The command line's work; main() adds what every command shares (signals, cleanup).
+int Main(int argc, char** argv) {
   CLI::App app{"rockbench: the two-block rocking model (Roussis 1999) beside physics engines"};
   app.require_subcommand(0, 1);
   bool version = false;
@@ -59,4 +63,18 @@ int main(int argc, char** argv) {
     return rockbench::cli::kExitBadInput;
   }
   return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  // First, before any thread: SIGTERM, SIGINT and SIGHUP end every process rockbench started
+  // (and theirs: an engine's helper that left its group with setsid is re-parented to
+  // rockbench, the subreaper) and remove its temporary files (util/wall_limit.h).
+  rockbench::HandleTerminationSignals();
+  rockbench::BecomeSubreaper();
+  const int code = Main(argc, argv);
+  // Whatever an engine left running ends with rockbench.
+  rockbench::CleanUpAtExit();
+  return code;
 }

@@ -15,6 +15,8 @@
 #include <stdexcept>
 #include <string_view>
 
+#include "util/wall_limit.h"
+
 namespace rockbench {
 namespace {
 
@@ -348,8 +350,16 @@ void WriteFileAtomic(const std::filesystem::path& path, const std::string& text)
     if (ec) throw std::runtime_error(parent.string() + ": cannot create folder: " + ec.message());
   }
   const std::string tmp = path.string() + ".tmp." + std::to_string(::getpid());
-  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  // O_EXCL: a file already there under that name is not ours to overwrite. Registered once
+  // made, forgotten once renamed or removed: a signal or the wall-clock limit removes exactly
+  // this name (util/wall_limit.h).
+  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
   if (fd < 0) fail("cannot create " + tmp, errno);
+  struct Forget {
+    const std::string& name;
+    ~Forget() { ForgetTemporary(name); }
+  } forget{tmp};
+  RegisterTemporary(tmp);
   size_t done = 0;
   while (done < text.size()) {
     const ssize_t n = ::write(fd, text.data() + done, text.size() - done);

@@ -17,6 +17,8 @@
 #include <cstring>
 #include <thread>
 
+#include "util/wall_limit.h"
+
 extern char** environ;
 
 namespace rockbench {
@@ -65,6 +67,9 @@ struct ChildFds {
   if (::getppid() != parent) ::_exit(127);
   sigset_t none;
   sigemptyset(&none);
+  struct sigaction dfl = {};
+  dfl.sa_handler = SIG_DFL;
+  ::sigaction(SIGPIPE, &dfl, nullptr);
   ::sigprocmask(SIG_SETMASK, &none, nullptr);
   int err = 0;
   for (int target = 0; target < 3 && err == 0; ++target) {
@@ -130,10 +135,20 @@ pid_t Spawn(const std::vector<char*>& args, const ChildFds& fds, const char* dir
   // A process group of its own (SpawnOptions::own_process_group): its pid is the group's id.
   posix_spawnattr_t attr;
   posix_spawnattr_init(&attr);
+  // The child starts with no signal blocked (the caller blocks the termination signals for its
+  // handler thread, util/wall_limit.h) and SIGPIPE at its default (a study's pool ignores it).
+  short flags = POSIX_SPAWN_SETSIGMASK | POSIX_SPAWN_SETSIGDEF;
+  sigset_t none, defaults;
+  sigemptyset(&none);
+  sigemptyset(&defaults);
+  sigaddset(&defaults, SIGPIPE);
+  posix_spawnattr_setsigmask(&attr, &none);
+  posix_spawnattr_setsigdefault(&attr, &defaults);
   if (own_group) {
-    posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETPGROUP);
+    flags |= POSIX_SPAWN_SETPGROUP;
     posix_spawnattr_setpgroup(&attr, 0);
   }
+  posix_spawnattr_setflags(&attr, flags);
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
   for (int target = 0; target < 3; ++target) {
@@ -197,6 +212,8 @@ Subprocess::Subprocess() : state_(std::make_unique<State>()) {}
 
 Subprocess::Subprocess(const std::vector<std::string>& argv, const SpawnOptions& options)
     : state_(std::make_unique<State>()) {
+  // Nothing new starts while the process is ending (a signal, the wall-clock limit).
+  HoldIfEnding();
   State& s = *state_;
   if (argv.empty()) {
     s.start_error = "no program given";

@@ -4,7 +4,9 @@
 /// gnuplot, the stress catalogue's isolated cases, the report's browser check), and a program
 /// that runs beside the caller with pipes to it (Subprocess: a study's workers, ffmpeg reading
 /// frames, Bullet's single-precision helper). Plus where the running program is
-/// (SelfExecutable, BesideSelf) and the PATH search (FindProgram).
+/// (SelfExecutable, BesideSelf) and the PATH search (FindProgram). A child starts with no signal
+/// blocked and SIGPIPE at its default; none starts once the process is ending
+/// (util/wall_limit.h: the constructor holds the calling thread).
 #include <sys/types.h>
 
 #include <csignal>
