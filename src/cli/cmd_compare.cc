@@ -72,6 +72,8 @@ void Execute(const CompareCliOptions& opt) {
   const Scene scene = LoadScene(opt.scene, overrides);
   CheckEngineTables(scene);
   const std::vector<std::string> engines = CheckedEngines(opt.engines);
+  // An engine the scene brings runs only when the user names it: said, with how to opt in.
+  std::fputs(NotRunNote(engines).c_str(), stderr);
   const int threads =
       opt.jobs > 0 ? opt.jobs : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   CheckRunEstimate(

@@ -60,6 +60,8 @@ void Execute(const SweepCliOptions& opt) {
   CheckEngineTables(scene);
   bool reference_only = false;
   const std::vector<std::string> engines = SweptEngines(opt.engines, &reference_only);
+  // An engine the scene brings runs only when the user names it: said, with how to opt in.
+  std::fputs(NotRunNote(engines).c_str(), stderr);
   // The scene's own settings; the grid's finer steps are held by the wall-clock limit.
   CheckRunEstimate(EstimateRun(scene, engines, 0, 0, 1), budget, opt.scene);
   const GroundMotion motion = GroundMotion::FromScene(scene);

@@ -9,6 +9,7 @@
 
 #include "engines/external/external_engine.h"
 #include "run/reference_engine.h"
+#include "scene/limits.h"
 
 namespace rockbench {
 
@@ -28,8 +29,10 @@ struct Registry {
   std::mutex mutex;
   std::vector<RegisteredEngine> list;
   std::deque<std::unique_ptr<Engine>> owned;
-  // Per external engine (same index as its entry, from first_external): what named it.
+  // Per external engine (same index as its entry, from first_external): what named it, and the
+  // command it runs (resolved against the naming file's folder or its manifest's).
   std::vector<ExternalEngineRef> refs;
+  std::vector<std::vector<std::string>> commands;
   size_t first_external = 0;
 };
 
@@ -37,37 +40,68 @@ bool SameRef(const ExternalEngineRef& a, const ExternalEngineRef& b) {
   return a.manifest == b.manifest && a.command == b.command && a.base_dir == b.base_dir;
 }
 
+// Both empty, or the same file however named.
+bool SameFile(const std::filesystem::path& a, const std::filesystem::path& b) {
+  if (a.empty() || b.empty()) return a.empty() && b.empty();
+  std::error_code ec1, ec2;
+  const std::filesystem::path ca = std::filesystem::weakly_canonical(a, ec1);
+  const std::filesystem::path cb = std::filesystem::weakly_canonical(b, ec2);
+  return !ec1 && !ec2 && ca == cb;
+}
+
 // Adds an external engine (the caller holds the mutex). A name taken by a built-in engine, or by
-// another external engine named differently, is an error naming both places.
-void AddExternal(Registry& r, const ExternalEngineRef& ref) {
+// another external engine named differently, is an error naming both places. `from_scene`: a
+// scene brought it (it awaits the user's word); the same engine a registry file names is the
+// registry's.
+void AddExternal(Registry& r, const ExternalEngineRef& ref, bool from_scene) {
   for (size_t i = 0; i < r.list.size(); ++i) {
     if (r.list[i].name != ref.name) continue;
     if (i < r.first_external) {
       throw SceneError(ref.where + ": [external." + ref.name + "]: '" + ref.name +
                        "' is a built-in engine's name; give the external engine another");
     }
-    if (SameRef(r.refs[i - r.first_external], ref)) return;
+    const size_t k = i - r.first_external;
+    if (SameRef(r.refs[k], ref)) return;
+    // A scene naming an engine of a registry file: the same engine when it runs the same command
+    // (the registry's copy of a scene's table, elsewhere): the registry's.
+    if (from_scene && r.list[i].brought_by.empty() && SameFile(r.refs[k].manifest, ref.manifest)) {
+      std::vector<std::string> command;
+      try {
+        command = external::LoadManifest(ref).command;
+      } catch (const SceneError&) {
+      }
+      if (!command.empty() && command == r.commands[k]) return;
+    }
     throw SceneError(ref.where + ": [external." + ref.name +
                      "]: an external engine of that name is " +
                      "already registered, differently, by " + r.refs[i - r.first_external].where);
   }
   external::ExternalManifest m = external::LoadManifest(ref);
-  RegisteredEngine e{ref.name, nullptr, m.missing_reason};
+  std::vector<std::string> command = m.command;
+  RegisteredEngine e{ref.name, nullptr, m.missing_reason, "", false};
+  if (from_scene) {
+    e.brought_by = ref.where;
+    e.awaits_user = true;
+  }
   if (m.missing_reason.empty()) {
     r.owned.push_back(std::make_unique<external::ExternalEngine>(std::move(m)));
     e.engine = r.owned.back().get();
   }
   r.list.push_back(std::move(e));
   r.refs.push_back(ref);
+  r.commands.push_back(std::move(command));
 }
 
 // Adds the engines of a registry file; a file that cannot be read leaves a line saying why.
 void AddRegistryFile(Registry& r, const std::filesystem::path& file) {
   try {
-    for (const ExternalEngineRef& ref : LoadExternalEngineRegistry(file)) AddExternal(r, ref);
+    for (const ExternalEngineRef& ref : LoadExternalEngineRegistry(file)) {
+      AddExternal(r, ref, false);
+    }
   } catch (const SceneError& e) {
-    r.list.push_back(RegisteredEngine{"(" + file.string() + ")", nullptr, e.what()});
+    r.list.push_back(RegisteredEngine{"(" + file.string() + ")", nullptr, e.what(), "", false});
     r.refs.push_back(ExternalEngineRef{});
+    r.commands.emplace_back();
   }
 }
 
@@ -76,9 +110,9 @@ Registry& TheRegistry() {
     auto* r = new Registry;
 #define ROCKBENCH_BUILT_ENGINE(name)                  \
   r->owned.push_back(engine_registry::Make_##name()); \
-  r->list.push_back(RegisteredEngine{#name, r->owned.back().get(), ""});
+  r->list.push_back(RegisteredEngine{#name, r->owned.back().get(), "", "", false});
 #define ROCKBENCH_MISSING_ENGINE(name, why) \
-  r->list.push_back(RegisteredEngine{#name, nullptr, why});
+  r->list.push_back(RegisteredEngine{#name, nullptr, why, "", false});
 #include "engines/engine_list.inc"
 #undef ROCKBENCH_BUILT_ENGINE
 #undef ROCKBENCH_MISSING_ENGINE
@@ -117,8 +151,21 @@ void RegisterExternalEngines(const Scene& scene) {
   if (scene.external_engines.empty()) return;
   Registry& r = TheRegistry();
   std::lock_guard<std::mutex> lock(r.mutex);
-  for (const ExternalEngineRef& ref : scene.external_engines) AddExternal(r, ref);
+  for (const ExternalEngineRef& ref : scene.external_engines) AddExternal(r, ref, true);
 }
+
+namespace {
+
+// The user named `name` on the command line: a scene-brought engine of that name may run.
+void GiveUsersWord(const std::string& name) {
+  Registry& r = TheRegistry();
+  std::lock_guard<std::mutex> lock(r.mutex);
+  for (RegisteredEngine& e : r.list) {
+    if (e.name == name) e.awaits_user = false;
+  }
+}
+
+}  // namespace
 
 const Engine* FindEngine(const std::string& name) {
   if (name == TheReference().name()) return &TheReference();
@@ -131,9 +178,28 @@ const Engine* FindEngine(const std::string& name) {
 std::vector<std::string> BuiltEngineNames() {
   std::vector<std::string> names;
   for (const RegisteredEngine& e : EngineRegistry()) {
-    if (e.engine != nullptr) names.push_back(e.name);
+    if (e.engine != nullptr && !e.awaits_user) names.push_back(e.name);
   }
   return names;
+}
+
+std::string OptInText(const std::string& name) {
+  return "rockbench runs an engine that a scene or study brings only on your word: name it on "
+         "the command line (--engines " +
+         name + ") or add its [external." + name +
+         "] table to a registry file you own (engines/external_engines.toml, or a file named in "
+         "ROCKBENCH_EXTERNAL_ENGINES)";
+}
+
+std::string NotRunNote(const std::vector<std::string>& selected) {
+  std::string out;
+  for (const RegisteredEngine& e : EngineRegistry()) {
+    if (!e.awaits_user || e.engine == nullptr) continue;
+    if (std::find(selected.begin(), selected.end(), e.name) != selected.end()) continue;
+    out += "rockbench: not run: external engine " + e.name + ", which " + e.brought_by +
+           " brings ([external." + e.name + "]): " + OptInText(e.name) + "\n";
+  }
+  return out;
 }
 
 namespace {
@@ -171,14 +237,42 @@ std::vector<std::string> ParseEngineList(const std::string& text) {
       }
     }
     if (!known) {
-      throw SceneError("--engines: unknown engine '" + name +
+      throw SceneError("--engines: unknown engine '" + Excerpt(name) +
                        "' (expected 'all' or some of: " + KnownList() + ")");
     }
     if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
+    GiveUsersWord(name);
     if (comma == std::string::npos) break;
     start = comma + 1;
   }
   return names;
+}
+
+void CheckEngineName(const std::string& name) {
+  const auto expected = [] {
+    return " (expected \"reference\" or one of: " + KnownList() + ", one name per entry)";
+  };
+  for (const RegisteredEngine& e : EngineRegistry()) {
+    if (e.name != name) continue;
+    if (e.engine == nullptr) {
+      throw SceneError(name + " is not in this build (" + e.missing_reason + ")");
+    }
+    if (e.awaits_user) {
+      throw SceneError(name + " is an external engine that " + e.brought_by +
+                       " brings ([external." + name +
+                       "]), not one you registered: " + OptInText(name));
+    }
+    return;
+  }
+  if (name == "all") {
+    throw SceneError("\"all\" is not an engine name: a study lists its runs one by one" +
+                     expected());
+  }
+  if (name.find(',') != std::string::npos) {
+    throw SceneError("\"" + Excerpt(name) + "\" is not an engine name: one engine per entry" +
+                     expected());
+  }
+  throw SceneError("unknown engine \"" + Excerpt(name) + "\"" + expected());
 }
 
 void CheckEngineTables(const Scene& scene) {

@@ -23,6 +23,13 @@ struct RegisteredEngine {
   std::string name;            ///< "bullet"
   const Engine* engine;        ///< null when the build left it out
   std::string missing_reason;  ///< why it was left out ("libmujoco-dev not found")
+  /// Where a scene brought it: "FILE:LINE" of the scene's [external.<name>] table; empty for a
+  /// built-in engine and for one of a registry file the user owns. Such an engine is data of
+  /// the scene, not the user's word: it runs only once the user names it (ParseEngineList).
+  std::string brought_by;
+  /// A scene-brought engine the user has not named: left out of "all" and of BuiltEngineNames,
+  /// and refused in a study's engine list (CheckEngineName).
+  bool awaits_user = false;
 };
 
 /// Every registered engine, in registration order (built or not): the built-in engines, then
@@ -41,12 +48,32 @@ void RegisterExternalEngines(const Scene& scene);
 /// when it is not registered or was left out of this build.
 const Engine* FindEngine(const std::string& name);
 
-/// Names of the built engines, in registration order.
+/// Names of the built engines the user may run without naming them, in registration order: the
+/// built-in engines and those of the registry files (and any scene-brought engine the user named
+/// on the command line): never one a scene brought on its own.
 std::vector<std::string> BuiltEngineNames();
 
-/// Engine names from a --engines value: a comma-separated list of built engine names, or "all"
-/// (every built engine). Throws SceneError naming an unknown or left-out engine (and why).
+/// Engine names from a --engines value the user typed: a comma-separated list of built engine
+/// names, or "all" (BuiltEngineNames: the built-in and registered engines, not those a scene
+/// brings). Naming a scene-brought engine ([external.<name>] in the scene) is the user's word
+/// to run it. Throws SceneError naming an unknown or left-out engine (and why).
 std::vector<std::string> ParseEngineList(const std::string& text);
+
+/// Checks one engine name that a file (not the user) lists, as a study's `engines` does: a
+/// built engine of the build or of a registry file the user owns. Throws SceneError (without
+/// a place: the caller adds the file and key) for a text that is no single engine name ("all",
+/// "bullet,ode", " bullet"), an unknown or left-out engine, and a scene-brought engine the user
+/// has not named, saying how to opt in.
+void CheckEngineName(const std::string& name);
+
+/// How to opt in to the scene-brought engine `name` ("name it on the command line: --engines
+/// NAME, or add its [external.NAME] table to a registry file you own: ...").
+std::string OptInText(const std::string& name);
+
+/// One line per scene-brought engine the user has not named and `selected` leaves out:
+/// "rockbench: not run: external engine X, which FILE:LINE brings ([external.X]): ...how to opt
+/// in"; empty when there is none. `compare` and `sweep` print it when the engines were "all".
+std::string NotRunNote(const std::vector<std::string>& selected);
 
 /// Checks every engine table of a scene: a built engine's against its schema (SceneError naming
 /// FILE:LINE and the key), a left-out engine's is kept unchecked, any other table is an error

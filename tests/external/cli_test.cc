@@ -61,8 +61,13 @@ TEST_F(ExternalCliTest, AHangInAStudyIsARow) {
   const auto study = Write("study.toml",
                            "scene = \"block.toml\"\nengines = [\"reference\", \"hangs\"]\n"
                            "[[axis]]\nkey = \"pulse.amplitude_ratio\"\nvalues = [0.5, 3]\n");
-  const auto r =
-      Rockbench("ensemble " + study.string() + " --out " + (dir_ / "out").string() + " --jobs 2");
+  // A study runs a scene's engine that a registry file of the user's names (trust_cli_test.cc).
+  const auto registry =
+      Write("registry.toml", "[external.hangs]\ncommand = [\"python3\", \"" + kSource +
+                                 "/tests/external/faulty_engine.py\", \"hang\"]\n");
+  const auto r = testing_util::Shell("ROCKBENCH_EXTERNAL_ENGINES=" + registry.string() + " " +
+                                     ROCKBENCH_EXE + " ensemble " + study.string() + " --out " +
+                                     (dir_ / "out").string() + " --jobs 2");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const std::string members = ReadFile(dir_ / "out" / "members.csv");
   int hung = 0;
