@@ -19,6 +19,7 @@
 #include "cli/commands.h"
 #include "cli/limit_options.h"
 #include "run/parallel.h"
+#include "scene/history.h"
 #include "scene/limits.h"
 #include "scene/scene.h"
 #include "study/study.h"
@@ -110,15 +111,8 @@ void WriteStudyJson(const StudyDef& study, const std::filesystem::path& dir, int
     for (const AxisValue& v : a.values) values.push_back(v.text);
     j["axes"].push_back({{"key", a.key}, {"values", values}, {"derived", a.derived}});
   }
-  const std::filesystem::path path = dir / "study.json";
-  // A temporary name holding ".tmp.<pid>": the wall-clock limit removes it (util/wall_limit.h).
-  const std::filesystem::path tmp = path.string() + ".tmp." + std::to_string(::getpid());
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    out << j.dump(2) << "\n";
-    if (!out) throw SceneError(Excerpt(tmp.string(), 200) + ": cannot write");
-  }
-  std::filesystem::rename(tmp, path);
+  // Written to a registered temporary name and renamed (util/wall_limit.h).
+  WriteFileAtomic(dir / "study.json", j.dump(2) + "\n");
 }
 
 void RunStudy(const EnsembleCliOptions& opt, double start_s) {
@@ -131,7 +125,9 @@ void RunStudy(const EnsembleCliOptions& opt, double start_s) {
     // A worker does not outlive its pool (killed, or stopped by --wall-limit): the kernel kills
     // it when the parent ends; a parent already gone ends it now.
     if (opt.worker_parent > 0) {
-      ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+      // SIGTERM: the worker's handler ends its engines and removes its temporary files first
+      // (util/wall_limit.h, main.cc).
+      ::prctl(PR_SET_PDEATHSIG, SIGTERM);
       if (::getppid() != static_cast<pid_t>(opt.worker_parent)) return;
     }
     // Its parent checked every value of the study: the worker reads it and builds member 0.
@@ -182,6 +178,10 @@ void RunStudy(const EnsembleCliOptions& opt, double start_s) {
     session->Abort(kExitBadInput);  // the other ranks wait for rank 0
   }
   MembersJournal& journal = *opened;
+  // What the resume let through (a blank line, a row cut short, a second row of a run).
+  for (const std::string& note : journal.notes()) {
+    std::fprintf(stderr, "rockbench ensemble: note: %s\n", note.c_str());
+  }
   std::vector<StudyTask> tasks = PendingTasks(study, journal);
   const double serial_start_s = Now_s() - start_s;
   ProgressLine line("ensemble");

@@ -68,7 +68,7 @@ int Main(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  // First, before any thread: SIGTERM, SIGINT and SIGHUP end every process rockbench started
+  // First: SIGTERM, SIGINT and SIGHUP end every process rockbench started
   // (and theirs: an engine's helper that left its group with setsid is re-parented to
   // rockbench, the subreaper) and remove its temporary files (util/wall_limit.h).
   rockbench::HandleTerminationSignals();

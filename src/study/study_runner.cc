@@ -4,10 +4,12 @@
 #include <fcntl.h>
 #include <poll.h>
 #include <signal.h>
+#include <sys/file.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <cerrno>
+#include <charconv>
 #include <chrono>
 #include <cstdio>
 #include <cstring>
@@ -15,8 +17,10 @@
 #include <sstream>
 
 #include "run/engine_run.h"
+#include "scene/history.h"
 #include "scene/limits.h"
 #include "util/subprocess.h"
+#include "util/wall_limit.h"
 
 namespace rockbench {
 namespace {
@@ -254,6 +258,234 @@ void RunWorkerLoop(const StudyDef& study, std::FILE* in, std::FILE* out,
   }
 }
 
+namespace {
+
+// The cells of one line (its newline left out): members.csv's cells hold no ',' (TextCell).
+std::vector<std::string_view> Cells(std::string_view line) {
+  if (!line.empty() && line.back() == '\n') line.remove_suffix(1);
+  std::vector<std::string_view> cells;
+  for (size_t start = 0;;) {
+    const size_t comma = line.find(',', start);
+    cells.push_back(line.substr(start, comma == std::string_view::npos ? comma : comma - start));
+    if (comma == std::string_view::npos) break;
+    start = comma + 1;
+  }
+  return cells;
+}
+
+std::optional<int64_t> MemberNumber(std::string_view cell, const StudyDef& study) {
+  int64_t m = -1;
+  const auto r = std::from_chars(cell.data(), cell.data() + cell.size(), m);
+  if (r.ec != std::errc() || r.ptr != cell.data() + cell.size()) return std::nullopt;
+  if (m < 0 || m >= study.member_count()) return std::nullopt;
+  return m;
+}
+
+// One row of the journal as read back.
+struct JournalRow {
+  int64_t member = 0;
+  int engine = 0;  // index into StudyDef::engines
+  size_t line = 0;
+  std::string text;  // with its newline
+};
+
+// The journal's text read back: its rows (complete, of this study, a run's first), and the
+// length of a last line cut short (0: none).
+struct JournalScan {
+  std::vector<JournalRow> rows;
+  size_t cut_short_bytes = 0;
+  std::vector<std::string> notes;
+};
+
+// Reads members.csv's text after its header; throws SceneError naming `name`:LINE for a line
+// that is not a row of this study as it is now.
+JournalScan ScanJournal(const StudyDef& study, const std::string& text, const std::string& name) {
+  const std::string header = MembersCsvHeader(study);
+  const std::vector<std::string_view> columns = Cells(header);
+  const size_t engine_column =
+      static_cast<size_t>(std::find(columns.begin(), columns.end(), "engine") - columns.begin());
+  JournalScan scan;
+  std::vector<std::vector<size_t>> first_line(static_cast<size_t>(study.member_count()),
+                                              std::vector<size_t>(study.engines.size(), 0));
+  const auto refuse = [&](size_t line, const std::string& why) {
+    throw SceneError(name + ":" + std::to_string(line) + ": " + why +
+                     "; no row was dropped: repair the line, or run the study into another "
+                     "--out folder");
+  };
+  size_t line = 1;
+  for (size_t pos = header.size(); pos < text.size();) {
+    ++line;
+    const size_t nl = text.find('\n', pos);
+    if (nl == std::string::npos) {
+      // A kill in the middle of an append leaves the beginning of a row: its member number
+      // (whole, or its first digits) and maybe more cells.
+      const std::string_view tail(text.data() + pos, text.size() - pos);
+      const std::string_view first = Cells(tail).front();
+      const bool digits = !first.empty() && first.size() <= 19 &&
+                          first.find_first_not_of("0123456789") == std::string_view::npos;
+      if (!digits) {
+        refuse(line, "a last line without its end that is not the beginning of a row (" +
+                         Excerpt(tail, 60) + ")");
+      }
+      scan.cut_short_bytes = tail.size();
+      scan.notes.push_back(name + ":" + std::to_string(line) +
+                           ": the last line is cut short (a run killed while its row was "
+                           "written): removed, its run is made again");
+      break;
+    }
+    const std::string_view text_line(text.data() + pos, nl + 1 - pos);
+    pos = nl + 1;
+    if (text_line.find_first_not_of(" \t\r\n") == std::string_view::npos) {
+      scan.notes.push_back(name + ":" + std::to_string(line) + ": a blank line, skipped");
+      continue;
+    }
+    const std::vector<std::string_view> cells = Cells(text_line);
+    if (cells.size() != columns.size()) {
+      refuse(line, "not a row of this study: " + std::to_string(cells.size()) + " cells, the " +
+                       "header has " + std::to_string(columns.size()) + " (" +
+                       Excerpt(text_line, 60) + ")");
+    }
+    const std::optional<int64_t> member = MemberNumber(cells[0], study);
+    if (!member) {
+      refuse(line, "member \"" + Excerpt(cells[0], 40) + "\": not a member of this study (0 to " +
+                       std::to_string(study.member_count() - 1) + ")");
+    }
+    const std::string_view engine_name = cells[engine_column];
+    const auto e = std::find(study.engines.begin(), study.engines.end(), engine_name);
+    if (e == study.engines.end()) {
+      std::string list;
+      for (const std::string& n : study.engines) list += (list.empty() ? "" : ", ") + n;
+      refuse(line, "member " + std::to_string(*member) + ": engine \"" + Excerpt(engine_name, 40) +
+                       "\" is not one of the study's (" + list +
+                       "): the study was edited since this row was made");
+    }
+    // The row's axis values against those the study gives its member now.
+    const std::string expected_line =
+        MembersCsvLine(study, FailedRow(*member, std::string(engine_name), "", ""));
+    const std::vector<std::string_view> expected = Cells(expected_line);
+    for (size_t k = 0; k < study.axes.size(); ++k) {
+      if (cells[1 + k] != expected[1 + k]) {
+        refuse(line, "member " + std::to_string(*member) + " (" + std::string(engine_name) +
+                         ") was run with " + study.axes[k].key + " = " + Excerpt(cells[1 + k], 40) +
+                         ", the study gives it " + Excerpt(expected[1 + k], 40) +
+                         " now: the study was edited since this row was made");
+      }
+    }
+    const int engine = static_cast<int>(e - study.engines.begin());
+    size_t& first = first_line[static_cast<size_t>(*member)][static_cast<size_t>(engine)];
+    if (first != 0) {
+      scan.notes.push_back(name + ":" + std::to_string(line) + ": a second row of member " +
+                           std::to_string(*member) + ", engine " + std::string(engine_name) +
+                           " (line " + std::to_string(first) + " is kept), skipped");
+      continue;
+    }
+    first = line;
+    scan.rows.push_back({*member, engine, line, std::string(text_line)});
+  }
+  return scan;
+}
+
+// FNV-1a, 64 bits, in hex: a file's fingerprint.
+std::string Fnv1a64(const std::string& bytes) {
+  uint64_t h = 14695981039346656037ull;
+  for (const unsigned char c : bytes) {
+    h ^= c;
+    h *= 1099511628211ull;
+  }
+  char hex[17];
+  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h));
+  return hex;
+}
+
+// Holds DIR/members.lock (flock, exclusive) and writes this process's pid in it; throws
+// SceneError naming the folder and the holder's pid when another process holds it.
+int LockStudyFolder(const std::filesystem::path& dir) {
+  const std::filesystem::path lock = dir / "members.lock";
+  const int fd = ::open(lock.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+  if (fd < 0) {
+    throw SceneError(Excerpt(lock.string(), 200) + ": cannot open: " + std::strerror(errno));
+  }
+  if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
+    const int err = errno;
+    char buf[32] = {};
+    const ssize_t n = ::pread(fd, buf, sizeof buf - 1, 0);
+    std::string holder(buf, n > 0 ? static_cast<size_t>(n) : 0);
+    while (!holder.empty() && holder.back() == '\n') holder.pop_back();
+    if (holder.empty() || holder.find_first_not_of("0123456789") != std::string::npos) {
+      holder = "unknown";
+    }
+    ::close(fd);
+    if (err == EWOULDBLOCK) {
+      throw SceneError(Excerpt(dir.string(), 200) + ": another rockbench ensemble (pid " + holder +
+                       ") is writing this study folder (it holds " + Excerpt(lock.string(), 200) +
+                       "): wait for it to end, or use another --out folder");
+    }
+    throw SceneError(Excerpt(lock.string(), 200) + ": cannot lock: " + std::strerror(err));
+  }
+  const std::string pid = std::to_string(::getpid()) + "\n";
+  if (::ftruncate(fd, 0) != 0 || ::pwrite(fd, pid.data(), pid.size(), 0) < 0) {
+    const int err = errno;
+    ::close(fd);
+    throw SceneError(Excerpt(lock.string(), 200) + ": cannot write: " + std::strerror(err));
+  }
+  return fd;
+}
+
+// Compares DIR/members.study with the study's inputs now: throws SceneError naming the first
+// that differs.
+void CheckStudyInputs(const StudyDef& study, const std::filesystem::path& file,
+                      std::vector<std::string>* notes) {
+  std::error_code ec;
+  if (!std::filesystem::exists(file, ec)) {
+    notes->push_back(Excerpt(file.string(), 200) +
+                     ": absent (a folder made before rockbench kept it): the base scene, `set`, "
+                     "combine and blocks could not be compared with the rows'; their axis "
+                     "values were");
+    return;
+  }
+  const auto lines = [](const std::string& text) {
+    std::vector<std::string> out;
+    std::istringstream in(text);
+    for (std::string l; std::getline(in, l);) {
+      if (!l.empty() && l[0] != '#') out.push_back(l);
+    }
+    return out;
+  };
+  const std::vector<std::string> was = lines(ReadAll(file));
+  const std::vector<std::string> now = lines(StudyInputsText(study));
+  for (size_t k = 0; k < std::max(was.size(), now.size()); ++k) {
+    const std::string a = k < was.size() ? was[k] : "(none)";
+    const std::string b = k < now.size() ? now[k] : "(none)";
+    if (a == b) continue;
+    throw SceneError(Excerpt(file.string(), 200) + ":" + std::to_string(k + 2) + ": " +
+                     Excerpt(a, 120) + " when the rows were made, the study gives " +
+                     Excerpt(b, 120) +
+                     " now: the study was edited since; resume with the study the folder was "
+                     "made with, or run it into another --out folder");
+  }
+}
+
+}  // namespace
+
+std::string StudyInputsText(const StudyDef& study) {
+  std::string t =
+      "# The inputs of members.csv's rows that its columns do not show; rockbench ensemble "
+      "--resume compares them with the study's.\n";
+  std::string bytes;
+  {
+    std::ifstream in(study.scene_path, std::ios::binary);
+    std::ostringstream s;
+    s << in.rdbuf();
+    bytes = s.str();
+  }
+  t += "scene_bytes_fnv1a64 = " + Fnv1a64(bytes) + "\n";
+  for (const std::string& o : study.overrides) t += "set = " + nlohmann::json(o).dump() + "\n";
+  t += std::string("combine = ") + (study.combine == StudyCombine::kZip ? "zip" : "product") + "\n";
+  t += "blocks = " + std::to_string(study.blocks) + "\n";
+  t += "min_impact_rate_radps = " + ShortestText(study.min_impact_rate_radps) + "\n";
+  return t;
+}
+
 MembersJournal::MembersJournal(const StudyDef& study, const std::filesystem::path& dir, bool resume)
     : study_(study), path_(dir / "members.csv") {
   done_by_member_.assign(static_cast<size_t>(study.member_count()),
@@ -263,47 +495,53 @@ MembersJournal::MembersJournal(const StudyDef& study, const std::filesystem::pat
   std::filesystem::create_directories(dir, ec);
   if (ec)
     throw SceneError(Excerpt(dir.string(), 200) + ": cannot create the folder: " + ec.message());
-  const bool exists = std::filesystem::exists(path_);
-  if (exists && !resume) {
-    throw SceneError(Excerpt(path_.string(), 200) +
-                     ": exists (use --resume to go on with it, or another --out folder)");
-  }
-  size_t keep = 0;
-  if (exists) {
-    const std::string text = ReadAll(path_);
-    if (text.compare(0, header.size(), header) != 0) {
+  // One writer per folder: held until the journal closes (the process ends).
+  lock_fd_ = LockStudyFolder(dir);
+  try {
+    const bool exists = std::filesystem::exists(path_);
+    if (exists && !resume) {
       throw SceneError(Excerpt(path_.string(), 200) +
-                       ":1: not this study's members.csv (expected the header " +
-                       header.substr(0, header.size() - 1) + ")");
+                       ": exists (use --resume to go on with it, or another --out folder)");
     }
-    keep = header.size();
-    for (size_t pos = header.size(); pos < text.size();) {
-      const size_t nl = text.find('\n', pos);
-      if (nl == std::string::npos) break;  // a line cut short: dropped
-      const std::optional<RowKey> key = MembersCsvKey(study, text.substr(pos, nl + 1 - pos));
-      if (!key) break;
-      const int e =
-          static_cast<int>(std::find(study.engines.begin(), study.engines.end(), key->engine) -
-                           study.engines.begin());
-      if (!done_by_member_[key->member][e]) done_.push_back({key->member, e});
-      done_by_member_[key->member][e] = true;
-      pos = nl + 1;
-      keep = pos;
+    if (exists) {
+      const std::string text = ReadAll(path_);
+      if (text.compare(0, header.size(), header) != 0) {
+        throw SceneError(Excerpt(path_.string(), 200) +
+                         ":1: not this study's members.csv (expected the header " +
+                         header.substr(0, header.size() - 1) + ")");
+      }
+      CheckStudyInputs(study, dir / "members.study", &notes_);
+      JournalScan scan = ScanJournal(study, text, Excerpt(path_.string(), 200));
+      for (const JournalRow& r : scan.rows) {
+        done_.push_back({r.member, r.engine});
+        done_by_member_[r.member][r.engine] = true;
+      }
+      notes_.insert(notes_.end(), scan.notes.begin(), scan.notes.end());
+      // Only a last line cut short is removed (appends start on a line of their own).
+      if (scan.cut_short_bytes > 0) {
+        std::filesystem::resize_file(path_, text.size() - scan.cut_short_bytes);
+      }
+    } else {
+      WriteFileAtomic(dir / "members.study", StudyInputsText(study));
     }
-    std::filesystem::resize_file(path_, keep);
-  }
-  fd_ = ::open(path_.c_str(), O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0644);
-  if (fd_ < 0)
-    throw SceneError(Excerpt(path_.string(), 200) + ": cannot write: " + std::strerror(errno));
-  if (!exists) {
-    if (::write(fd_, header.data(), header.size()) != static_cast<ssize_t>(header.size())) {
+    fd_ = ::open(path_.c_str(), O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0644);
+    if (fd_ < 0)
       throw SceneError(Excerpt(path_.string(), 200) + ": cannot write: " + std::strerror(errno));
+    if (!exists) {
+      if (::write(fd_, header.data(), header.size()) != static_cast<ssize_t>(header.size())) {
+        throw SceneError(Excerpt(path_.string(), 200) + ": cannot write: " + std::strerror(errno));
+      }
     }
+  } catch (...) {
+    CloseFd(fd_);
+    CloseFd(lock_fd_);
+    throw;
   }
 }
 
 MembersJournal::~MembersJournal() {
   CloseFd(fd_);
+  CloseFd(lock_fd_);
 }
 
 bool MembersJournal::Has(const StudyTask& t) const {
@@ -311,6 +549,9 @@ bool MembersJournal::Has(const StudyTask& t) const {
 }
 
 void MembersJournal::Append(const MemberRow& row) {
+  // A run ended by the process's own end (a signal, the wall-clock limit) is no row: the
+  // thread is held until the process ends (util/wall_limit.h), and a resume makes the run.
+  HoldIfEnding();
   const std::string line = MembersCsvLine(study_, row);
   if (::write(fd_, line.data(), line.size()) != static_cast<ssize_t>(line.size())) {
     throw SceneError(Excerpt(path_.string(), 200) + ": cannot write: " + std::strerror(errno));
@@ -324,35 +565,23 @@ void MembersJournal::Finish() {
   CloseFd(fd_);
   const std::string text = ReadAll(path_);
   const std::string header = MembersCsvHeader(study_);
-  std::vector<std::pair<std::pair<int64_t, int>, std::string>> rows;
-  for (size_t pos = header.size(); pos < text.size();) {
-    const size_t nl = text.find('\n', pos);
-    const std::string line = text.substr(pos, nl + 1 - pos);
-    const std::optional<RowKey> key = MembersCsvKey(study_, line);
-    if (!key)
-      throw SceneError(Excerpt(path_.string(), 200) + ": an unreadable row: " + Excerpt(line, 200));
-    const int e =
-        static_cast<int>(std::find(study_.engines.begin(), study_.engines.end(), key->engine) -
-                         study_.engines.begin());
-    rows.push_back({{key->member, e}, line});
-    pos = nl + 1;
+  if (text.compare(0, header.size(), header) != 0) {
+    throw SceneError(Excerpt(path_.string(), 200) + ":1: the header changed while the study ran");
   }
-  std::stable_sort(rows.begin(), rows.end(),
-                   [](const auto& a, const auto& b) { return a.first < b.first; });
+  JournalScan scan = ScanJournal(study_, text, Excerpt(path_.string(), 200));
+  std::vector<JournalRow>& rows = scan.rows;
+  std::stable_sort(rows.begin(), rows.end(), [](const JournalRow& a, const JournalRow& b) {
+    return std::pair(a.member, a.engine) < std::pair(b.member, b.engine);
+  });
   const auto total = static_cast<size_t>(study_.member_count()) * study_.engines.size();
   if (rows.size() != total) {
     throw SceneError(Excerpt(path_.string(), 200) + ": " + std::to_string(rows.size()) +
                      " rows of " + std::to_string(total) + " runs");
   }
-  // A temporary name holding ".tmp.<pid>": the wall-clock limit removes it (util/wall_limit.h).
-  const std::filesystem::path tmp = path_.string() + ".tmp." + std::to_string(::getpid());
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    out << header;
-    for (const auto& r : rows) out << r.second;
-    if (!out) throw SceneError(Excerpt(tmp.string(), 200) + ": cannot write");
-  }
-  std::filesystem::rename(tmp, path_);
+  // Written to a registered temporary name and renamed (util/wall_limit.h).
+  std::string sorted = header;
+  for (const JournalRow& r : rows) sorted += r.text;
+  WriteFileAtomic(path_, sorted);
 }
 
 std::vector<StudyTask> PendingTasks(const StudyDef& study, const MembersJournal& journal) {

@@ -66,11 +66,22 @@ void RunWorkerPool(const StudyDef& study, StudyScheduler& scheduler,
 void RunWorkerLoop(const StudyDef& study, std::FILE* in, std::FILE* out,
                    const std::optional<std::filesystem::path>& keep_dir);
 
-/// The journal DIR/members.csv.
+/// The journal DIR/members.csv, and what keeps it the study's own: DIR/members.lock (held with
+/// flock for as long as the journal is open: a second writer is refused, naming the holder's
+/// pid) and DIR/members.study (the study's inputs that the rows do not show: the base scene's
+/// bytes, `set`, `combine`, blocks and the impact rate; written with the file, compared on
+/// resume).
 class MembersJournal {
  public:
-  /// Opens (or creates) DIR/members.csv. An existing file is an error unless `resume`, and then
-  /// must have this study's header; a last line cut short is dropped. Throws SceneError.
+  /// Opens (or creates) DIR/members.csv, holding DIR/members.lock. An existing file is an error
+  /// unless `resume`, and then must have this study's header. On resume every complete row is
+  /// kept, or the journal is refused (SceneError naming the file and line): a line that is not
+  /// a row of this study (cells, member, engine), a row whose axis values are not the ones the
+  /// study gives its member now (the study was edited: the axis, the row's value and the
+  /// study's), or DIR/members.study differing from the study (naming the input). Only a blank
+  /// line (skipped), a second row of one run (the first kept) and a last line cut short by a
+  /// kill (a row's beginning: removed from the file, its run made again) are let through, each
+  /// said in notes(). Throws SceneError.
   MembersJournal(const StudyDef& study, const std::filesystem::path& dir, bool resume);
   ~MembersJournal();
   MembersJournal(const MembersJournal&) = delete;
@@ -79,10 +90,12 @@ class MembersJournal {
   bool Has(const StudyTask& task) const;
   /// Rows already in the file when it was opened.
   int64_t rows_at_open() const { return static_cast<int64_t>(done_.size()); }
+  /// What the opening let through, one line each ("DIR/members.csv:7: a blank line, skipped").
+  const std::vector<std::string>& notes() const { return notes_; }
   /// Appends a row (one write: a kill leaves at most one line cut short).
   void Append(const MemberRow& row);
-  /// Rewrites the file in member order (then engine order), atomically. Throws SceneError when
-  /// a run of the study has no row.
+  /// Rewrites the file in member order (then engine order), atomically, without blank lines
+  /// and second rows of a run. Throws SceneError when a run of the study has no row.
   void Finish();
 
  private:
@@ -90,8 +103,13 @@ class MembersJournal {
   std::filesystem::path path_;
   std::vector<std::vector<bool>> done_by_member_;  // [member][engine]
   std::vector<StudyTask> done_;
+  std::vector<std::string> notes_;
   int fd_ = -1;
+  int lock_fd_ = -1;
 };
+
+/// DIR/members.study's text for `study`: one "key = value" line per input the rows do not show.
+std::string StudyInputsText(const StudyDef& study);
 
 /// The runs of the study not yet in the journal, in member order.
 std::vector<StudyTask> PendingTasks(const StudyDef& study, const MembersJournal& journal);

@@ -1,5 +1,7 @@
 #include "util/wall_limit.h"
 
+#include <dirent.h>
+#include <fcntl.h>
 #include <pthread.h>
 #include <signal.h>
 #include <sys/prctl.h>
@@ -7,12 +9,12 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <fstream>
 #include <map>
 #include <mutex>
 #include <string>
@@ -128,16 +130,21 @@ bool BecomeSubreaper() {
 
 std::vector<int> Descendants() {
   // Every live process's parent, from /proc/PID/stat: "PID (COMM) STATE PPID ...", COMM may
-  // hold spaces and parentheses (the last ')' ends it).
+  // hold spaces and parentheses (the last ')' ends it). readdir itself: a process that ends
+  // while the folder is read must not cut the listing short.
   std::multimap<int, int> children;
-  std::error_code ec;
-  for (std::filesystem::directory_iterator it("/proc", ec), end; !ec && it != end;
-       it.increment(ec)) {
-    const std::string name = it->path().filename().string();
+  DIR* proc = ::opendir("/proc");
+  if (proc == nullptr) return {};
+  while (const dirent* entry = ::readdir(proc)) {
+    const std::string name = entry->d_name;
     if (name.empty() || name.find_first_not_of("0123456789") != std::string::npos) continue;
-    std::ifstream in(it->path() / "stat");
-    std::string stat;
-    if (!std::getline(in, stat)) continue;  // gone meanwhile
+    const int fd = ::open(("/proc/" + name + "/stat").c_str(), O_RDONLY | O_CLOEXEC);
+    if (fd < 0) continue;  // gone meanwhile
+    char buf[1024];
+    const ssize_t n = ::read(fd, buf, sizeof buf - 1);
+    ::close(fd);
+    if (n <= 0) continue;
+    const std::string stat(buf, static_cast<size_t>(n));
     const size_t close = stat.rfind(')');
     if (close == std::string::npos || close + 4 >= stat.size()) continue;
     const char state = stat[close + 2];
@@ -145,6 +152,7 @@ std::vector<int> Descendants() {
     const int ppid = std::atoi(stat.c_str() + close + 4);
     children.emplace(ppid, std::atoi(name.c_str()));
   }
+  ::closedir(proc);
   std::vector<int> out;
   std::vector<int> todo{static_cast<int>(::getpid())};
   while (!todo.empty()) {
@@ -181,22 +189,47 @@ int EndDescendants(double grace_s) {
   return signalled;
 }
 
+namespace {
+
+// The termination signals' self-pipe: the handler (on whatever thread the kernel chose) writes
+// the signal's number, the cleanup thread reads it.
+int g_signal_pipe[2] = {-1, -1};
+
+void OnTerminationSignal(int sig) {
+  const int saved = errno;
+  const unsigned char s = static_cast<unsigned char>(sig);
+  (void)!::write(g_signal_pipe[1], &s, 1);
+  errno = saved;
+}
+
+}  // namespace
+
 void HandleTerminationSignals() {
-  sigset_t set;
-  sigemptyset(&set);
-  for (const int sig : {SIGTERM, SIGINT, SIGHUP}) sigaddset(&set, sig);
-  pthread_sigmask(SIG_BLOCK, &set, nullptr);
-  std::thread([set] {
-    int sig = 0;
-    while (sigwait(&set, &sig) != 0) {
+  if (::pipe2(g_signal_pipe, O_CLOEXEC) != 0) return;
+  for (const int sig : {SIGTERM, SIGINT, SIGHUP}) {
+    // A signal ignored when the process started (nohup, a background job's SIGINT) stays so.
+    struct sigaction old = {};
+    if (::sigaction(sig, nullptr, &old) == 0 && old.sa_handler == SIG_IGN) continue;
+    struct sigaction sa = {};
+    sa.sa_handler = OnTerminationSignal;
+    sigemptyset(&sa.sa_mask);
+    sa.sa_flags = SA_RESTART;
+    ::sigaction(sig, &sa, nullptr);
+  }
+  std::thread([] {
+    unsigned char s = 0;
+    while (::read(g_signal_pipe[0], &s, 1) != 1) {
     }
+    const int sig = s;
     if (!ClaimEnd()) HoldForever();
     CleanUpForEnd();
     const char* name = sig == SIGTERM ? "SIGTERM" : sig == SIGINT ? "SIGINT" : "SIGHUP";
     WriteStderr(std::string("rockbench: stopped by ") + name +
                 ": its processes ended and its temporary files removed\n");
     // Die of the same signal (a shell sees why): its default action, delivered to this thread.
-    ::signal(sig, SIG_DFL);
+    struct sigaction dfl = {};
+    dfl.sa_handler = SIG_DFL;
+    ::sigaction(sig, &dfl, nullptr);
     sigset_t one;
     sigemptyset(&one);
     sigaddset(&one, sig);

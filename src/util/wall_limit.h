@@ -49,11 +49,11 @@ std::vector<int> Descendants();
 /// next pass). Returns how many processes were signalled.
 int EndDescendants(double grace_s = 0.5);
 
-/// Starts a thread that takes SIGTERM, SIGINT and SIGHUP (blocked in the calling thread and in
-/// every thread started after it: call it first in main, before any thread exists). On one: it
-/// says "rockbench: stopped by SIGNAME: its processes ended and its temporary files removed" on
-/// stderr, ends every descendant (EndDescendants), removes the registered temporaries, and the
-/// process dies of the same signal. Children started by Subprocess get these signals unblocked.
+/// Handles SIGTERM, SIGINT and SIGHUP (those not ignored when the process started): a handler
+/// hands the signal to a thread of its own, which says "rockbench: stopped by SIGNAME: its
+/// processes ended and its temporary files removed" on stderr after ending every descendant
+/// (EndDescendants) and removing the registered temporaries; the process then dies of the same
+/// signal. Call it once, first in main.
 void HandleTerminationSignals();
 
 /// What the process does at its normal end (main): ends every descendant left running (an
