@@ -109,15 +109,22 @@ void Execute(const CompareCliOptions& opt) {
   for (auto it = run.reference_run.summary.begin(); it != run.reference_run.summary.end(); ++it) {
     summary[it.key()] = *it;
   }
-  for (size_t k = 0; k < engines.size(); ++k) {
+  // The engines that ran (a failed engine is left out: its verdict says why), and what this
+  // command wrote: render and report draw these folders only, never an older one left in DIR.
+  nlohmann::json written = nlohmann::json::array({"reference"});
+  for (size_t k = 0; k < run.engine_runs.size(); ++k) {
+    const std::string& name = run.engine_runs[k].engine;
     WriteEngineFiles(run.engine_runs[k], out);
-    summary["engines"][engines[k]] = run.engine_runs[k].summary;
+    summary["engines"][name] = run.engine_runs[k].summary;
+    written.push_back(name);
     if (!run.engine_outcomes[k].empty()) {
       WriteFileAtomic(
-          out / engines[k] / "ensemble.csv",
+          out / name / "ensemble.csv",
           OutcomesCsv(run.engine_outcomes[k], run.perturbation_members->perturbations, nb));
     }
   }
+  summary["engines_written"] = written;
+  for (const FailedEngine& f : run.failed_engines) summary["failed_engines"][f.engine] = f.reason;
   WriteFileAtomic(out / "comparison.json", run.comparison.dump(2) + "\n");
   WriteFileAtomic(out / "comparison.csv", ComparisonCsv(run.agreements));
   WriteFileAtomic(out / "summary.json", summary.dump(2) + "\n");
@@ -179,10 +186,27 @@ void Execute(const CompareCliOptions& opt) {
     std::printf("verdict %s: %s: %s\n", a.engine.c_str(), VerdictLabel(a.verdict_kind).c_str(),
                 a.verdict.c_str());
   }
+  for (const FailedEngine& f : run.failed_engines) {
+    std::printf("verdict %s: FAILED: %s\n", f.engine.c_str(), f.reason.c_str());
+  }
   std::printf("outputs in %s (comparison.json, comparison.csv, summary.json, reference/",
               out.string().c_str());
-  for (const std::string& name : engines) std::printf(", %s/", name.c_str());
+  for (const EngineRun& r : run.engine_runs) std::printf(", %s/", r.engine.c_str());
   std::printf(")\n");
+  // An engine that failed: the others' outputs are complete; the command failed.
+  if (!run.failed_engines.empty()) {
+    std::fflush(stdout);
+    for (const FailedEngine& f : run.failed_engines) {
+      std::fprintf(stderr,
+                   "rockbench: compare failed: %s: %s (the other engines' outputs are "
+                   "written)\n",
+                   f.engine.c_str(), f.reason.c_str());
+    }
+    for (const std::string& f : run.failures) {
+      std::fprintf(stderr, "rockbench: compare failed: %s\n", f.c_str());
+    }
+    throw CLI::RuntimeError(kExitRunFailed);
+  }
   // A comparison resting on a run that ended non_finite failed.
   if (!run.failures.empty()) {
     std::fflush(stdout);

@@ -122,12 +122,35 @@ Scene RunFolderScene(const fs::path& dir) {
   return LoadScene((*scene_json)["path"].get<std::string>(), overrides);
 }
 
-// Engines with a history in a run folder: reference first, then by name.
+// Engines with a history in a run folder: reference first, then by name. A folder whose
+// summary.json lists what its command wrote ("engines_written", `compare`) gives those only: an
+// engine folder an earlier command left there is not drawn as if it were current (it is named
+// on stderr).
 std::vector<std::string> RunFolderEngines(const fs::path& dir) {
   std::vector<std::string> names;
+  std::optional<std::vector<std::string>> written;
+  try {
+    std::ifstream in(dir / "summary.json");
+    if (in) {
+      const nlohmann::json summary = nlohmann::json::parse(in);
+      if (summary.contains("engines_written")) {
+        written = summary.at("engines_written").get<std::vector<std::string>>();
+      }
+    }
+  } catch (const std::exception& e) {
+    Fail(kExitBadInput, (dir / "summary.json").string() + ": not valid: " + e.what());
+  }
   for (const auto& entry : fs::directory_iterator(dir)) {
     if (entry.is_directory() && fs::exists(entry.path() / "history.csv")) {
-      names.push_back(entry.path().filename().string());
+      const std::string name = entry.path().filename().string();
+      if (written && std::find(written->begin(), written->end(), name) == written->end()) {
+        std::fprintf(stderr,
+                     "rockbench render: note: %s/ is not drawn: summary.json does not list it "
+                     "among what its command wrote (an earlier command's output)\n",
+                     Excerpt(name, 60).c_str());
+        continue;
+      }
+      names.push_back(name);
     }
   }
   std::sort(names.begin(), names.end(), [](const std::string& a, const std::string& b) {

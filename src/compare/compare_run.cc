@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <new>
 
 #include "run/reference_engine.h"
 #include "run/summary.h"
@@ -88,6 +89,69 @@ SeedCheck RecheckWithSeeds(
   return c;
 }
 
+// One engine's nominal run, comparison, perturbation members where the horizon asks for them,
+// and verdict, appended to `out` (all three lists, or nothing when it throws).
+void CompareOneEngine(const Scene& scene, const GroundMotion& motion, const std::string& name,
+                      const CompareRunOptions& options, int engine_members, bool horizon_within_run,
+                      const std::optional<Horizons>& horizons,
+                      const CompareOptions& compare_options,
+                      std::vector<std::optional<ReferencePerturbationMembers>>* extra_ensembles,
+                      CompareRun* out_ptr) {
+  CompareRun& out = *out_ptr;
+  const CompareOptions base;
+  const reference::Result& ref = out.reference().used();
+  auto log = [&](const std::string& line) {
+    if (options.log) options.log(line);
+  };
+  EngineRun run = RunEngine(name, scene, motion);
+  log(run.one_line);
+
+  EngineAgreement a = CompareWithReference(scene, ref, run, compare_options);
+  std::optional<StatisticalComparison> statistics;
+  std::vector<MemberOutcome> outcomes;
+  Verdict v = MakeVerdict(scene, a, horizons, std::nullopt);
+  const bool beyond = horizon_within_run && v.kind != "differs_before_horizon" &&
+                      v.kind != "violates_model" && v.kind != "outside_model" &&
+                      v.kind != "reference_failed";
+  if (beyond) {
+    if (engine_members > 0) {
+      outcomes = RunEnginePerturbationMembers(name, scene, motion, engine_members, options.jobs,
+                                              base.min_impact_rate_radps);
+      statistics = ComparePerturbationMembers(out.perturbation_members->outcomes, outcomes,
+                                              out.tolerance_rad, scene.run.output_interval_s);
+    }
+    v = MakeVerdict(scene, a, horizons, statistics);
+  }
+  // A statistical decision near the level is re-checked with two more seeds: one that
+  // changes with the seed is "marginal", not AGREES or DIFFERS at random.
+  if (statistics && statistics->available && InMarginalBand(SmallestFamilyP(*statistics))) {
+    const SeedCheck c =
+        RecheckWithSeeds(scene, out, motion, name, run, engine_members, options.jobs, v,
+                         SmallestFamilyP(*statistics), extra_ensembles);
+    if (c.same) {
+      v.text +=
+          "; the same with " + std::to_string(kVerdictSeeds) + " ensemble seeds (" + c.text + ")";
+    } else {
+      v.kind = "marginal";
+      v.agrees = false;
+      v.text =
+          "marginal: the statistical decision beyond the horizon changes with the "
+          "ensemble's seed (" +
+          c.text + "); " + v.text;
+      v.decided_by = "the seeds disagree: " + c.text;
+    }
+    a.seeds = c.seeds;
+  }
+  a.verdict_kind = v.kind;
+  a.verdict = v.text;
+  a.verdict_agrees = v.agrees;
+  a.verdict_decided_by = v.decided_by;
+  if (statistics) a.statistics = StatisticsJson(*statistics);
+  out.agreements.push_back(std::move(a));
+  out.engine_runs.push_back(std::move(run));
+  out.engine_outcomes.push_back(std::move(outcomes));
+}
+
 }  // namespace
 
 CompareRun RunCompare(const Scene& scene, const GroundMotion& motion,
@@ -158,52 +222,27 @@ CompareRun RunCompare(const Scene& scene, const GroundMotion& motion,
   // Reference perturbation memberss of the extra seeds, run once for every engine that needs them.
   std::vector<std::optional<ReferencePerturbationMembers>> extra_ensembles(kVerdictSeeds - 1);
   for (const std::string& name : engines) {
-    EngineRun run = RunEngine(name, scene, motion);
-    log(run.one_line);
-    EngineAgreement a = CompareWithReference(scene, ref, run, compare_options);
-    std::optional<StatisticalComparison> statistics;
-    std::vector<MemberOutcome> outcomes;
-    Verdict v = MakeVerdict(scene, a, horizons, std::nullopt);
-    const bool beyond = horizon_within_run && v.kind != "differs_before_horizon" &&
-                        v.kind != "violates_model" && v.kind != "outside_model" &&
-                        v.kind != "reference_failed";
-    if (beyond) {
-      if (engine_members > 0) {
-        outcomes = RunEnginePerturbationMembers(name, scene, motion, engine_members, options.jobs,
-                                                base.min_impact_rate_radps);
-        statistics = ComparePerturbationMembers(out.perturbation_members->outcomes, outcomes,
-                                                out.tolerance_rad, scene.run.output_interval_s);
+    // An engine that fails is that engine's verdict: the others' comparisons stand.
+    try {
+      CompareOneEngine(scene, motion, name, options, engine_members, horizon_within_run, horizons,
+                       compare_options, &extra_ensembles, &out);
+    } catch (const std::bad_alloc&) {
+      out.failed_engines.push_back(
+          {name,
+           "out of memory (std::bad_alloc): the engine could not reserve the memory it "
+           "needed"});
+    } catch (const std::exception& e) {
+      std::string reason = e.what();
+      // "NAME: ..." said once, by the verdict line.
+      if (reason.rfind(name + ": ", 0) == 0) reason.erase(0, name.size() + 2);
+      for (char& c : reason) {
+        if (c == '\n' || c == '\r') c = ' ';
       }
-      v = MakeVerdict(scene, a, horizons, statistics);
+      out.failed_engines.push_back({name, reason});
     }
-    // A statistical decision near the level is re-checked with two more seeds: one that
-    // changes with the seed is "marginal", not AGREES or DIFFERS at random.
-    if (statistics && statistics->available && InMarginalBand(SmallestFamilyP(*statistics))) {
-      const SeedCheck c =
-          RecheckWithSeeds(scene, out, motion, name, run, engine_members, options.jobs, v,
-                           SmallestFamilyP(*statistics), &extra_ensembles);
-      if (c.same) {
-        v.text +=
-            "; the same with " + std::to_string(kVerdictSeeds) + " ensemble seeds (" + c.text + ")";
-      } else {
-        v.kind = "marginal";
-        v.agrees = false;
-        v.text =
-            "marginal: the statistical decision beyond the horizon changes with the "
-            "ensemble's seed (" +
-            c.text + "); " + v.text;
-        v.decided_by = "the seeds disagree: " + c.text;
-      }
-      a.seeds = c.seeds;
+    if (!out.failed_engines.empty() && out.failed_engines.back().engine == name) {
+      log(name + ": FAILED: " + out.failed_engines.back().reason);
     }
-    a.verdict_kind = v.kind;
-    a.verdict = v.text;
-    a.verdict_agrees = v.agrees;
-    a.verdict_decided_by = v.decided_by;
-    if (statistics) a.statistics = StatisticsJson(*statistics);
-    out.agreements.push_back(std::move(a));
-    out.engine_runs.push_back(std::move(run));
-    out.engine_outcomes.push_back(std::move(outcomes));
   }
 
   // Every run that ended non_finite.
@@ -228,6 +267,10 @@ CompareRun RunCompare(const Scene& scene, const GroundMotion& motion,
 
   out.comparison = ComparisonJson(scene, ref, out.reference().nominal_wall_s, out.agreements, base);
   out.comparison["reference"]["convergence"] = ConvergenceJson(scene, check);
+  out.comparison["failed_engines"] = nlohmann::json::array();
+  for (const FailedEngine& f : out.failed_engines) {
+    out.comparison["failed_engines"].push_back({{"engine", f.engine}, {"reason", f.reason}});
+  }
   out.comparison["predictability"] = out.perturbation_members
                                          ? PredictabilityJson(scene, *out.perturbation_members)
                                          : nlohmann::json(nullptr);

@@ -23,6 +23,13 @@ struct CompareRunOptions {
   std::function<void(const std::string&)> log;
 };
 
+/// An engine whose run could not be made or compared (its program exited non-zero, could not
+/// reserve memory, its settings were refused): its own verdict, the other engines' stand.
+struct FailedEngine {
+  std::string engine;
+  std::string reason;  ///< one line: the error's message
+};
+
 struct CompareRun {
   /// The reference's own result, from reference_run's extension (no copy).
   const CheckedReference& reference() const {
@@ -31,8 +38,14 @@ struct CompareRun {
   Scene reference_scene;              ///< the scene with the model settings of the solution used
   std::vector<double> tolerance_rad;  ///< per block (AngleTolerance_rad of the reference)
   std::optional<ReferencePerturbationMembers>
-      perturbation_members;            ///< none with compare.members = 0
-  std::vector<EngineRun> engine_runs;  ///< nominal runs, in the order asked
+      perturbation_members;  ///< none with compare.members = 0
+  /// Nominal runs, in the order asked, of the engines that did not fail (engine_runs[k].engine
+  /// names each; agreements and engine_outcomes follow the same order).
+  std::vector<EngineRun> engine_runs;
+  /// The engines that failed, in the order asked (comparison.json "failed_engines"). Not empty:
+  /// the comparison is incomplete (`rockbench compare` writes the others and exits with
+  /// kExitRunFailed).
+  std::vector<FailedEngine> failed_engines;
   /// Per engine: its perturbation members' outcomes (empty when none was run).
   std::vector<std::vector<MemberOutcome>> engine_outcomes;
   std::vector<EngineAgreement> agreements;  ///< with their verdicts
@@ -48,7 +61,8 @@ struct CompareRun {
 };
 
 /// Runs the comparison of `engines` (names from AvailableEngines, "reference" excluded) on a
-/// scene. Throws SceneError for impossible settings.
+/// scene. Throws SceneError for impossible settings and when the reference cannot run; an
+/// engine that throws (std::exception, std::bad_alloc included) is a FailedEngine.
 CompareRun RunCompare(const Scene& scene, const GroundMotion& motion,
                       const std::vector<std::string>& engines,
                       const CompareRunOptions& options = {});
