@@ -11,10 +11,14 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <fstream>
+#include <optional>
 #include <stdexcept>
 
 #include "renders/limits.h"
+#include "scene/history.h"
 #include "util/subprocess.h"
+#include "util/wall_limit.h"
 
 namespace rockbench::renders {
 namespace fs = std::filesystem;
@@ -111,11 +115,19 @@ std::vector<std::string> RawInput(const FrameSize& like, double fps) {
 }
 
 // Removes files on scope exit unless released (temporary outputs of a failed export).
+// Registered as this process's temporaries (util/wall_limit.h: a signal or the wall-clock limit
+// removes them too).
 struct TempFiles {
   std::vector<fs::path> paths;
+  explicit TempFiles(std::vector<fs::path> p) : paths(std::move(p)) {
+    for (const auto& path : paths) RegisterTemporary(path);
+  }
   ~TempFiles() {
     std::error_code ec;
-    for (const auto& p : paths) fs::remove(p, ec);
+    for (const auto& p : paths) {
+      fs::remove(p, ec);
+      ForgetTemporary(p);
+    }
   }
 };
 
@@ -171,32 +183,113 @@ struct TempDir {
   ~TempDir() {
     std::error_code ec;
     if (!path.empty()) fs::remove_all(path, ec);
+    Release();
+  }
+  // Kept (renamed into place): no longer a temporary.
+  void Release() {
+    if (!path.empty()) ForgetTemporary(path);
+    path.clear();
   }
 };
 
-// The temporary files of an earlier export into `dir` whose process is gone (a kill leaves
-// them): the hidden names this file makes, ".<name>.tmp<pid>...", are removed when no process
-// <pid> exists.
+std::string FrameName(size_t k, int digits);
+
+// The list of frames an export wrote into a frames folder (and into its temporary folder while
+// it writes them): the first line says what it is, then one file name a line. Files a folder
+// holds that are not listed are not the export's: never deleted or overwritten.
+constexpr const char* kFramesList = ".rockbench-frames";
+constexpr const char* kFramesListHeader =
+    "# rockbench render: the frames it wrote in this folder (a file not listed is not its own)";
+
+// The frames listed in `dir`'s list; nullopt when it has none.
+std::optional<std::vector<std::string>> ListedFrames(const fs::path& dir) {
+  std::ifstream in(dir / kFramesList);
+  if (!in) return std::nullopt;
+  std::string line;
+  if (!std::getline(in, line) || line != kFramesListHeader) return std::nullopt;
+  std::vector<std::string> names;
+  while (std::getline(in, line)) {
+    if (line.starts_with("frame_") && line.ends_with(".png") && line.find('/') == line.npos) {
+      names.push_back(line);
+    }
+  }
+  return names;
+}
+
+void WriteFramesList(const fs::path& dir, const std::vector<std::string>& names) {
+  std::string text = std::string(kFramesListHeader) + "\n";
+  for (const std::string& n : names) text += n + "\n";
+  WriteFileAtomic(dir / kFramesList, text);
+}
+
+// The frames folder of an earlier export into `dir` whose process is gone (a SIGKILL leaves
+// it): a hidden ".frames.tmp<pid>" folder holding the export's list, whose process <pid> no
+// longer exists, loses the frames its list names and the list (and goes when that empties
+// it). Anything else named like it is left alone.
 void RemoveStaleTemps(const fs::path& dir) {
   std::error_code ec;
   std::vector<fs::path> stale;
   for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
     const std::string f = it->path().filename().string();
-    // Only the names ExportAnimation makes: .frames.tmp<pid>, .<name>.mp4.tmp<pid>,
-    // .<name>.gif.tmp<pid>, .<name>.palette.tmp<pid>.png.
-    size_t at = std::string::npos;
-    for (const char* kind : {".frames.tmp", ".mp4.tmp", ".gif.tmp", ".palette.tmp"}) {
-      const size_t k = f.find(kind);
-      if (k != std::string::npos) at = k + std::strlen(kind) - 4;
+    const std::string prefix = ".frames.tmp";
+    if (!f.starts_with(prefix) || f.size() == prefix.size() || f.size() > prefix.size() + 9 ||
+        f.find_first_not_of("0123456789", prefix.size()) != std::string::npos) {
+      continue;
     }
-    if (f.empty() || f[0] != '.' || at == std::string::npos) continue;
-    size_t digits = at + 4;
-    while (digits < f.size() && std::isdigit(static_cast<unsigned char>(f[digits]))) ++digits;
-    if (digits == at + 4 || digits - at - 4 > 9) continue;
-    const pid_t pid = static_cast<pid_t>(std::stol(f.substr(at + 4, digits - at - 4)));
-    if (pid != ::getpid() && ::kill(pid, 0) != 0 && errno == ESRCH) stale.push_back(it->path());
+    const pid_t pid = static_cast<pid_t>(std::stol(f.substr(prefix.size())));
+    if (pid != ::getpid() && ::kill(pid, 0) != 0 && errno == ESRCH && ListedFrames(it->path())) {
+      stale.push_back(it->path());
+    }
   }
-  for (const auto& p : stale) fs::remove_all(p, ec);
+  for (const auto& p : stale) {
+    const std::optional<std::vector<std::string>> listed = ListedFrames(p);
+    for (const std::string& name : listed.value_or(std::vector<std::string>{})) {
+      fs::remove(p / name, ec);
+    }
+    fs::remove(p / kFramesList, ec);
+    fs::remove(p, ec);  // only when empty
+  }
+}
+
+// Refuses (std::invalid_argument) a frames folder that holds files an export of rockbench did
+// not write there, or whose files would be overwritten by `count` frames of `digits` digits:
+// nothing is drawn, nothing deleted.
+void CheckFramesFolder(const fs::path& frames_dir, size_t count, int digits) {
+  std::error_code ec;
+  if (!fs::is_directory(frames_dir, ec)) {
+    if (fs::exists(frames_dir, ec)) {
+      throw std::invalid_argument(frames_dir.string() + ": exists and is not a folder");
+    }
+    return;
+  }
+  const std::optional<std::vector<std::string>> listed = ListedFrames(frames_dir);
+  std::vector<std::string> foreign;
+  for (fs::directory_iterator it(frames_dir, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string f = it->path().filename().string();
+    if (f == kFramesList && listed) continue;
+    if (listed && std::find(listed->begin(), listed->end(), f) != listed->end()) continue;
+    foreign.push_back(f);
+  }
+  if (foreign.empty()) return;
+  std::sort(foreign.begin(), foreign.end());
+  if (listed) {
+    // Files of the user's beside an earlier export's: refused only where a frame would take
+    // a name of theirs.
+    std::vector<std::string> taken;
+    for (const std::string& f : foreign) {
+      for (size_t k = 0; k < count && taken.size() < 3; ++k) {
+        if (f == FrameName(k, digits)) taken.push_back(f);
+      }
+    }
+    if (taken.empty()) return;
+    foreign = taken;
+  }
+  std::string names;
+  for (size_t k = 0; k < foreign.size() && k < 3; ++k) names += (k ? ", " : "") + foreign[k];
+  if (foreign.size() > 3) names += ", ... (" + std::to_string(foreign.size()) + " files)";
+  throw std::invalid_argument(
+      frames_dir.string() + ": holds files this command did not write (" + names +
+      "): nothing was drawn or deleted; render into another --out folder, or move them away");
 }
 
 // Writes a frame into the export's temporary folder: plainly (the folder, renamed when the last
@@ -228,14 +321,15 @@ void CheckDeadline(const AnimationConfig& config) {
   }
 }
 
-// Puts the complete frames of `tmp_dir` in place as frames_dir. The frame_*.png files of an
-// earlier export are removed first (a shorter export would otherwise be mistaken for a longer
-// one); other files in frames_dir stay.
+// Puts the complete frames of `tmp_dir` in place as frames_dir, with their list. The frames
+// an earlier export listed there are removed first (a shorter export would otherwise be
+// mistaken for a longer one); files it did not list stay (CheckFramesFolder refused the
+// export if a frame would take one's name).
 void InstallFrames(const fs::path& tmp_dir, const fs::path& frames_dir) {
   if (fs::is_directory(frames_dir)) {
-    for (const auto& entry : fs::directory_iterator(frames_dir)) {
-      const std::string f = entry.path().filename().string();
-      if (f.starts_with("frame_") && f.ends_with(".png")) fs::remove(entry.path());
+    if (const auto listed = ListedFrames(frames_dir)) {
+      for (const std::string& f : *listed) fs::remove(frames_dir / f);
+      fs::remove(frames_dir / kFramesList);
     }
     if (fs::is_empty(frames_dir)) fs::remove(frames_dir);
   }
@@ -307,14 +401,16 @@ AnimationResult ExportAnimation(FrameRenderer& renderer, const AnimationConfig& 
   const Outputs out = ResolveOutputs(config, &result.problems);
 
   fs::create_directories(config.out_dir);
-  RemoveStaleTemps(config.out_dir);
   const fs::path frames_dir = config.out_dir / "frames";
   int digits = 5;
   for (size_t n = times.size(); n >= 100000; n /= 10) ++digits;
-  // Every file is made under a temporary name holding ".tmp<pid>" (util/wall_limit.h removes
-  // them when the command's wall-clock limit ends it) and renamed when complete: the frames in
-  // a hidden folder that becomes frames/ once the last one is written, so that a killed export
-  // never leaves part of a sequence.
+  // Before any work: a frames folder with files not of an export's is refused.
+  if (out.frames) CheckFramesFolder(frames_dir, times.size(), digits);
+  RemoveStaleTemps(config.out_dir);
+  // Every file is made under a temporary name holding ".tmp<pid>", registered (util/wall_limit.h
+  // removes exactly those when a signal or the wall-clock limit ends the command) and renamed
+  // when complete: the frames in a hidden folder that becomes frames/ once the last one is
+  // written, so that a killed export never leaves part of a sequence.
   const std::string tmp_suffix = ".tmp" + std::to_string(::getpid());
   const fs::path mp4_path = config.out_dir / (config.name + ".mp4");
   const fs::path gif_path = config.out_dir / (config.name + ".gif");
@@ -322,13 +418,21 @@ AnimationResult ExportAnimation(FrameRenderer& renderer, const AnimationConfig& 
   const fs::path gif_tmp = config.out_dir / ("." + config.name + ".gif" + tmp_suffix);
   const fs::path palette_tmp =
       config.out_dir / ("." + config.name + ".palette" + tmp_suffix + ".png");
-  TempFiles temps;
-  temps.paths = {mp4_tmp, gif_tmp, palette_tmp};
+  TempFiles temps({mp4_tmp, gif_tmp, palette_tmp});
   TempDir frames_tmp;
   if (out.frames) {
-    frames_tmp.path = config.out_dir / (".frames" + tmp_suffix);
-    fs::remove_all(frames_tmp.path);
-    fs::create_directories(frames_tmp.path);
+    // A folder of its own (an existing one of that name is not this export's), registered,
+    // and holding the list of the frames it will hold (a kill leaves it recognisable).
+    const fs::path tmp_dir = config.out_dir / (".frames" + tmp_suffix);
+    if (!fs::create_directory(tmp_dir)) {
+      throw std::runtime_error(tmp_dir.string() +
+                               ": exists, and this export did not make it: move it away");
+    }
+    RegisterTemporary(tmp_dir, /*folder=*/true);
+    frames_tmp.path = tmp_dir;
+    std::vector<std::string> names;
+    for (size_t k = 0; k < times.size(); ++k) names.push_back(FrameName(k, digits));
+    WriteFramesList(frames_tmp.path, names);
   }
 
   Image frame;
@@ -369,11 +473,12 @@ AnimationResult ExportAnimation(FrameRenderer& renderer, const AnimationConfig& 
   CheckDeadline(config);
   if (out.frames) {
     InstallFrames(frames_tmp.path, frames_dir);
-    frames_tmp.path.clear();
+    frames_tmp.Release();
     result.written.push_back(frames_dir);
   }
   if (out.mp4) {
     fs::rename(mp4_tmp, mp4_path);
+    ForgetTemporary(mp4_tmp);
     result.written.push_back(mp4_path);
   }
 
@@ -388,6 +493,7 @@ AnimationResult ExportAnimation(FrameRenderer& renderer, const AnimationConfig& 
     gif_pipe.Close();
     CheckDeadline(config);
     fs::rename(gif_tmp, gif_path);
+    ForgetTemporary(gif_tmp);
     result.written.push_back(gif_path);
   }
   result.render_wall_s = render_s;

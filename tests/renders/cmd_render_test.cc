@@ -48,10 +48,13 @@ fs::path Folder(const std::string& name) {
 
 #if ROCKBENCH_HAVE_OSMESA
 
+// Files in `dir`, the hidden ones (an export's list of its frames) left out.
 int CountFiles(const fs::path& dir) {
   int n = 0;
   if (!fs::exists(dir)) return 0;
-  for (const auto& e : fs::directory_iterator(dir)) n += e.is_regular_file() ? 1 : 0;
+  for (const auto& e : fs::directory_iterator(dir)) {
+    n += e.is_regular_file() && e.path().filename().string()[0] != '.' ? 1 : 0;
+  }
   return n;
 }
 
@@ -256,11 +259,15 @@ TEST(CmdRender, WallLimitStopsTheExportWithoutPartialOutput) {
 
 // A render killed with SIGKILL (no chance to tidy up) leaves no frames/ (the frames are made in
 // a hidden .frames.tmp<pid> folder renamed whole); the next render into the folder removes that
-// folder and writes the whole sequence, replacing an earlier longer one.
+// folder (it holds the killed export's list of frames) and writes the whole sequence, replacing
+// an earlier longer one (the frames its list names).
 TEST(CmdRender, AKilledRenderLeavesNoPartialOutput) {
   const fs::path out = Folder("killed");
   fs::create_directories(out / "frames");
   std::ofstream(out / "frames" / "frame_99999.png") << "an older, longer export";
+  std::ofstream(out / "frames" / ".rockbench-frames")
+      << "# rockbench render: the frames it wrote in this folder (a file not listed is not its "
+         "own)\nframe_99999.png\n";
   std::vector<std::string> argv = {
       ROCKBENCH_CLI, "render",     (kSource / "scenes/thesis_rinaldi228.toml").string(),
       "--out",       out.string(), "--frames",
@@ -302,6 +309,41 @@ TEST(CmdRender, AKilledRenderLeavesNoPartialOutput) {
   EXPECT_EQ(CountFiles(out / "frames"), 5);
   EXPECT_FALSE(fs::exists(out / "frames" / "frame_99999.png"));
   EXPECT_EQ(Temporaries(out), std::vector<std::string>{});
+  fs::remove_all(out);
+}
+
+// A frames folder holding the user's own frame_*.png (no export's list names them) is refused
+// before anything is drawn, and left as it was; a hidden folder named like a dead export's
+// temporary frames but without its list is left alone. Files of the user's beside an earlier
+// export's frames stay when a new export replaces those.
+TEST(CmdRender, TheUsersFramesAreNeverDeleted) {
+  const fs::path out = Folder("users");
+  fs::create_directories(out / "frames");
+  std::ofstream(out / "frames" / "frame_00000.png") << "the user's";
+  fs::create_directories(out / ".frames.tmp999999999");
+  std::ofstream(out / ".frames.tmp999999999" / "frame_00000.png") << "the user's";
+  const std::string scene = (kSource / "scenes/thesis_free_rocking.toml").string();
+  const Result r =
+      RunCli(scene + " --out " + out.string() + " --frames --size 160x120 --to 0.5 --fps 10");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find((out / "frames").string() +
+                          ": holds files this command did not write (frame_00000.png): nothing "
+                          "was drawn or deleted"),
+            std::string::npos)
+      << r.output;
+  EXPECT_EQ(testing_util::ReadFile(out / "frames" / "frame_00000.png"), "the user's");
+  // Into a fresh folder beside them; then again over its own frames, the user's note kept.
+  fs::remove_all(out / "frames");
+  const Result a =
+      RunCli(scene + " --out " + out.string() + " --frames --size 160x120 --to 0.5 --fps 10");
+  ASSERT_EQ(a.exit_code, 0) << a.output;
+  std::ofstream(out / "frames" / "notes.txt") << "the user's";
+  const Result b =
+      RunCli(scene + " --out " + out.string() + " --frames --size 160x120 --to 0.3 --fps 10");
+  ASSERT_EQ(b.exit_code, 0) << b.output;
+  EXPECT_EQ(CountFiles(out / "frames"), 4);  // 3 frames and the note
+  EXPECT_EQ(testing_util::ReadFile(out / "frames" / "notes.txt"), "the user's");
+  EXPECT_EQ(testing_util::ReadFile(out / ".frames.tmp999999999" / "frame_00000.png"), "the user's");
   fs::remove_all(out);
 }
 
