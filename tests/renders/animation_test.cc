@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <iterator>
 #include <map>
 #include <string>
@@ -25,9 +26,12 @@ Scene Stack() {
   return testing_util::TwoBlockScene(1.0, 1.5, 100.0, 0.6, 1.0, 30.0);
 }
 
-// The number of entries of folder `dir`.
+// The number of entries of folder `dir`, the hidden ones (an export's list of its frames) left
+// out.
 long FileCount(const fs::path& dir) {
-  return std::distance(fs::directory_iterator(dir), fs::directory_iterator());
+  long n = 0;
+  for (const auto& e : fs::directory_iterator(dir)) n += e.path().filename().string()[0] != '.';
+  return n;
 }
 
 History Rocking() {
@@ -123,9 +127,12 @@ TEST(ExportAnimation, FramesArePngsOfTheRenderedImages) {
   cfg.out_dir = Folder("frames");
   cfg.fps = 5.0;
   cfg.frames = true;
-  // An earlier, longer export left more frames: they are removed.
+  // An earlier, longer export left more frames (its list names them): they are removed.
   fs::create_directories(cfg.out_dir / "frames");
   WritePng(Image(4, 4), cfg.out_dir / "frames" / "frame_00099.png");
+  std::ofstream(cfg.out_dir / "frames" / ".rockbench-frames")
+      << "# rockbench render: the frames it wrote in this folder (a file not listed is not its "
+         "own)\nframe_00099.png\n";
   const AnimationResult r = ExportAnimation(renderer, cfg);
   ASSERT_EQ(r.frame_count, 5);
   EXPECT_EQ(FileCount(cfg.out_dir / "frames"), 5);
