@@ -1,5 +1,6 @@
 #include "report/common/gnuplot.h"
 
+#include <cstdio>
 #include <cstdlib>
 #include <stdexcept>
 #include <system_error>
@@ -21,10 +22,44 @@ bool GnuplotAvailable() {
 }
 
 std::string GnuplotQuote(const std::string& text) {
+  // gnuplot substitutes `command` anywhere in a script line outside single quotes, before it
+  // reads the strings; and a ' doubled inside single quotes fails when two follow each other
+  // (x_g''). So: double quotes, with backquote and @ as octal escapes (the line holds neither).
   std::string out = "\"";
   for (char c : text) {
-    if (c == '\\' || c == '"') out += '\\';
-    out += c;
+    const auto u = static_cast<unsigned char>(c);
+    if (c == '\\' || c == '"') {
+      out += '\\';
+      out += c;
+    } else if (c == '`') {
+      out += "\\140";
+    } else if (c == '@') {
+      out += "\\100";
+    } else if (u < 0x20 || u == 0x7f) {
+      // A line break would end the command: shown as the text \xHH.
+      char buf[8];
+      std::snprintf(buf, sizeof buf, "\\\\x%02X", u);
+      out += buf;
+    } else {
+      out += c;
+    }
+  }
+  return out + "\"";
+}
+
+std::string GnuplotDataString(const std::string& text) {
+  std::string out = "\"";
+  for (char c : text) {
+    const auto u = static_cast<unsigned char>(c);
+    if (c == '"') {
+      out += '\'';
+    } else if (u < 0x20 || u == 0x7f) {
+      char buf[8];
+      std::snprintf(buf, sizeof buf, "\\x%02X", u);
+      out += buf;
+    } else {
+      out += c;
+    }
   }
   return out + "\"";
 }

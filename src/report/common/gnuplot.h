@@ -34,7 +34,15 @@ bool GnuplotAvailable();
 /// gnuplot's own message (and the script's path) when it fails or is missing.
 std::filesystem::path RenderGnuplot(const std::filesystem::path& dir, const GnuplotFigure& figure);
 
-/// Quotes text for a gnuplot string literal (double quotes; escapes \ and ").
+/// Quotes text for a gnuplot string literal that nothing in it can escape from or run: double
+/// quotes with \ and " escaped, ` and @ as octal escapes (\140, \100: the script line holds no
+/// backquote to substitute and no macro), control characters (a line break ends a command) as the
+/// text \xHH. Every text from a file (engine, family and axis names, titles) reaches a script
+/// through it. The enhanced-text markup of labels ("theta_1^{ref}") still applies.
 std::string GnuplotQuote(const std::string& text);
+
+/// A string field of a data file (labels plotted `with labels`): double quotes, each " in the
+/// text shown as ', control characters as the text \xHH (a line break would start a data row).
+std::string GnuplotDataString(const std::string& text);
 
 }  // namespace rockbench::report

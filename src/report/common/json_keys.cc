@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "scene/history.h"
+#include "scene/limits.h"
 
 namespace rockbench::report {
 
@@ -36,12 +37,21 @@ const json* Find(const json& root, const std::string& dotted) {
   return j;
 }
 
+namespace {
+
+// A value for a message: its JSON text (invalid UTF-8 replaced), escaped and cut to an excerpt.
+std::string Shown(const json& j) {
+  return Excerpt(j.dump(-1, ' ', false, json::error_handler_t::replace), 200);
+}
+
+}  // namespace
+
 double OptNumber(const json& root, const std::string& key, const fs::path& file) {
   const json* j = Find(root, key);
   if (j == nullptr || j->is_null()) return std::numeric_limits<double>::quiet_NaN();
   if (!j->is_number()) {
     throw std::runtime_error(file.string() + ": key '" + key + "' must be a number, found " +
-                             j->dump());
+                             Shown(*j));
   }
   return j->get<double>();
 }
@@ -59,7 +69,7 @@ std::string OptString(const json& root, const std::string& key, const fs::path& 
   if (j == nullptr || j->is_null()) return "";
   if (!j->is_string()) {
     throw std::runtime_error(file.string() + ": key '" + key + "' must be a string, found " +
-                             j->dump());
+                             Shown(*j));
   }
   return j->get<std::string>();
 }
@@ -69,7 +79,7 @@ bool OptBool(const json& root, const std::string& key, const fs::path& file) {
   if (j == nullptr || j->is_null()) return false;
   if (!j->is_boolean()) {
     throw std::runtime_error(file.string() + ": key '" + key + "' must be true or false, found " +
-                             j->dump());
+                             Shown(*j));
   }
   return j->get<bool>();
 }

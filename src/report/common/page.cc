@@ -1,5 +1,7 @@
 #include "report/common/page.h"
 
+#include <cctype>
+#include <cstdio>
 #include <stdexcept>
 
 #include "scene/history.h"
@@ -24,16 +26,56 @@ std::string MimeType(const std::filesystem::path& file) {
   throw std::runtime_error(file.string() + ": unknown figure type (expected .svg, .png, .gif)");
 }
 
-// Markdown table cells: pipes escaped, newlines flattened.
+// Markdown text: no HTML (a < that could open a tag, comment or declaration as &lt;; "t < 1 s"
+// stays as written), line breaks flattened (a heading or list item stays one line: text from a
+// file cannot start a block of its own), other control characters shown as \xHH.
+std::string MdText(const std::string& text) {
+  std::string out;
+  for (size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    const auto u = static_cast<unsigned char>(c);
+    const char next = i + 1 < text.size() ? text[i + 1] : ' ';
+    const bool opens_tag =
+        std::isalpha(static_cast<unsigned char>(next)) || next == '/' || next == '!' || next == '?';
+    if (c == '<' && opens_tag) {
+      out += "&lt;";
+    } else if (c == '\n' || c == '\r') {
+      out += ' ';
+    } else if (u < 0x20 || u == 0x7f) {
+      char buf[8];
+      std::snprintf(buf, sizeof buf, "\\x%02X", u);
+      out += buf;
+    } else {
+      out += c;
+    }
+  }
+  return out;
+}
+
+// Markdown table cells: MdText with pipes escaped.
 std::string MdCell(const std::string& text) {
   std::string out;
-  for (char c : text) {
-    if (c == '|')
-      out += "\\|";
-    else if (c == '\n')
-      out += ' ';
-    else
+  for (char c : MdText(text)) {
+    if (c == '|') out += '\\';
+    out += c;
+  }
+  return out;
+}
+
+// A relative file path as a Markdown link target: bytes other than letters, digits and
+// "/._-~" percent-encoded (a space or parenthesis would end the link).
+std::string MdUrl(const std::filesystem::path& file) {
+  std::string out;
+  for (char c : file.generic_string()) {
+    const auto u = static_cast<unsigned char>(c);
+    if ((c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '/' ||
+        c == '.' || c == '_' || c == '-' || c == '~') {
       out += c;
+    } else {
+      char buf[8];
+      std::snprintf(buf, sizeof buf, "%%%02X", u);
+      out += buf;
+    }
   }
   return out;
 }
@@ -218,22 +260,22 @@ std::string Page::Html(const std::filesystem::path& page_dir) const {
 }
 
 std::string Page::Markdown() const {
-  std::string m = "# " + title_ + "\n\n";
+  std::string m = "# " + MdText(title_) + "\n\n";
   if (!warnings_.empty()) {
     m += "> **Validity warnings**\n>\n";
-    for (const std::string& w : warnings_) m += "> - " + w + "\n";
+    for (const std::string& w : warnings_) m += "> - " + MdText(w) + "\n";
     m += "\n";
   }
   for (const Block& b : blocks_) {
     switch (b.kind) {
       case Kind::kHeading2:
-        m += "## " + b.text + "\n\n";
+        m += "## " + MdText(b.text) + "\n\n";
         break;
       case Kind::kHeading3:
-        m += "### " + b.text + "\n\n";
+        m += "### " + MdText(b.text) + "\n\n";
         break;
       case Kind::kParagraph:
-        m += b.text + "\n\n";
+        m += MdText(b.text) + "\n\n";
         break;
       case Kind::kTable: {
         m += "|";
@@ -250,13 +292,13 @@ std::string Page::Markdown() const {
         break;
       }
       case Kind::kFigure:
-        m += "![" + MdCell(b.text) + "](" + b.file.generic_string() + ")\n\n*" + b.text + "*\n\n";
+        m += "![" + MdCell(b.text) + "](" + MdUrl(b.file) + ")\n\n*" + MdText(b.text) + "*\n\n";
         break;
       case Kind::kVideo:
-        m += "[" + b.text + "](" + b.file.generic_string() + ")\n\n";
+        m += "[" + MdCell(b.text) + "](" + MdUrl(b.file) + ")\n\n";
         break;
       case Kind::kLink:
-        m += "[" + b.text + "](" + b.file.generic_string() + ")\n\n";
+        m += "[" + MdCell(b.text) + "](" + MdUrl(b.file) + ")\n\n";
         break;
     }
   }

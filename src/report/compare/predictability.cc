@@ -9,6 +9,7 @@
 
 #include "report/common/json_keys.h"
 #include "scene/history.h"
+#include "scene/limits.h"
 #include "scene/mode.h"
 #include "util/format.h"
 
@@ -35,7 +36,7 @@ double ParseCell(const std::string& cell, const fs::path& csv, int line, const s
   const double v = std::strtod(begin, &end);
   if (cell.empty() || end != begin + cell.size() || errno == ERANGE) {
     throw std::runtime_error(csv.string() + ": line " + std::to_string(line) + ": column '" + col +
-                             "' is not a number: '" + cell + "'");
+                             "' is not a number: '" + Excerpt(cell) + "'");
   }
   return v;
 }

@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "report/common/json_keys.h"
+#include "report/common/names.h"
 #include "run/engine_registry.h"
 
 namespace rockbench::report {
@@ -101,6 +102,8 @@ void ReadEngines(const fs::path& run_dir, RunData& run) {
       throw std::runtime_error(run.summary_path.string() + ": key 'engines' must be an object");
     }
     for (auto it = e->begin(); it != e->end(); ++it) {
+      // A key names a folder of the run and reaches figures and pages: engine names only.
+      RequireEngineName(it.key(), run.summary_path.string() + ": key 'engines'");
       if (!IsReference(it.key())) names.push_back(it.key());
     }
   }

@@ -5,8 +5,10 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "report/common/names.h"
 #include "report/run/run_report.h"
 #include "scene/history.h"
+#include "scene/limits.h"
 #include "scene/mode.h"
 #include "util/format.h"
 
@@ -30,7 +32,7 @@ std::optional<double> Number(const std::string& cell, const std::string& where) 
   double v = 0.0;
   const auto r = std::from_chars(cell.data(), cell.data() + cell.size(), v);
   if (r.ec != std::errc() || r.ptr != cell.data() + cell.size()) {
-    throw ReportInputError(where + ": \"" + cell + "\" is not a number");
+    throw ReportInputError(where + ": \"" + Excerpt(cell) + "\" is not a number");
   }
   return v;
 }
@@ -57,6 +59,8 @@ EnsembleData ReadEnsemble(const std::filesystem::path& dir) {
     d.title = j.value("title", "");
     for (const auto& a : j.at("axes")) d.axes.push_back(a.at("key").get<std::string>());
     d.engines = j.at("engines").get<std::vector<std::string>>();
+    // Engine names reach file names, figures and pages: the engine-name alphabet only.
+    for (const std::string& e : d.engines) RequireEngineName(e, "key 'engines'");
     d.members = j.at("members").get<long long>();
     d.ranks = j.value("ranks", 1);
     d.jobs = j.value("jobs_per_rank", 1);
@@ -98,6 +102,13 @@ EnsembleData ReadEnsemble(const std::filesystem::path& dir) {
     r.member = static_cast<long long>(*Number(c[col["member"]], where));
     for (const std::string& a : d.axes) r.axis_values.push_back(c[col[a]]);
     r.engine = c[col["engine"]];
+    if (!IsEngineName(r.engine)) {
+      try {
+        RequireEngineName(r.engine, where + ": column engine");
+      } catch (const std::runtime_error& e) {
+        throw ReportInputError(e.what());
+      }
+    }
     r.status = c[col["status"]];
     r.pga_g = Number(c[col["pga_g"]], where);
     r.pgv_mps = Number(c[col["pgv_mps"]], where);

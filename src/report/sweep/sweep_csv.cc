@@ -6,7 +6,9 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "report/common/names.h"
 #include "run/engine_registry.h"
+#include "scene/limits.h"
 #include "scene/mode.h"
 #include "util/format.h"
 
@@ -79,27 +81,27 @@ class RowReader {
     if (t.empty()) Fail(column, "expected a number, got an empty field");
     char* end = nullptr;
     const double v = std::strtod(t.c_str(), &end);
-    if (end != t.c_str() + t.size()) Fail(column, "expected a number, got '" + t + "'");
+    if (end != t.c_str() + t.size()) Fail(column, "expected a number, got '" + Excerpt(t) + "'");
     return v;
   }
   double Positive(const std::string& column) const {
     const double v = Number(column);
     if (!(v > 0.0) || !std::isfinite(v)) {
-      Fail(column, "expected a positive finite number, got '" + Text(column) + "'");
+      Fail(column, "expected a positive finite number, got '" + Excerpt(Text(column)) + "'");
     }
     return v;
   }
   int Integer(const std::string& column, int min_value) const {
     const double v = Number(column);
     if (!std::isfinite(v) || v != std::floor(v) || v < min_value || v > 1e9) {
-      Fail(column,
-           "expected an integer >= " + std::to_string(min_value) + ", got '" + Text(column) + "'");
+      Fail(column, "expected an integer >= " + std::to_string(min_value) + ", got '" +
+                       Excerpt(Text(column)) + "'");
     }
     return static_cast<int>(v);
   }
   bool Flag(const std::string& column) const {
     const std::string& t = Text(column);
-    if (t != "0" && t != "1") Fail(column, "expected 0 or 1, got '" + t + "'");
+    if (t != "0" && t != "1") Fail(column, "expected 0 or 1, got '" + Excerpt(t) + "'");
     return t == "1";
   }
 
@@ -140,6 +142,12 @@ std::map<std::string, size_t> ReadHeader(const std::vector<std::string>& header,
 void ReadRunSettings(const RowReader& rd, SweepRecord& r) {
   r.engine = rd.Text("engine");
   if (r.engine.empty()) rd.Fail("engine", "expected an engine name or reference, got ''");
+  if (!IsEngineName(r.engine)) {
+    rd.Fail("engine",
+            "expected an engine name or reference (lower-case letters, digits and '_', "
+            "starting with a letter), got \"" +
+                Excerpt(r.engine) + "\"");
+  }
   r.setting = rd.Text("setting");
   if (r.setting.empty()) rd.Fail("setting", "expected the point's label, got ''");
   if (!IsReference(r.engine)) {
@@ -155,7 +163,7 @@ void ReadRunSettings(const RowReader& rd, SweepRecord& r) {
     } else if (r.integrator == "rk4") {
       r.rk4_step_s = rd.Positive("rk4_step_s");
     } else {
-      rd.Fail("integrator", "expected dopri5, dop853 or rk4, got '" + r.integrator + "'");
+      rd.Fail("integrator", "expected dopri5, dop853 or rk4, got '" + Excerpt(r.integrator) + "'");
     }
   }
 }

@@ -155,15 +155,18 @@ GnuplotFigure BuildFigure(const std::vector<SweepRecord>& rows, const FigureSpec
         if (not_drawn) not_drawn->push_back(SweepSettingDescription(r));
         continue;
       }
-      text += Format("%.6g", r.wall_s) + " " + Format("%.6g", y) + " \"" + SweepSettingLabel(r) +
-              "\"\n";
+      text += Format("%.6g", r.wall_s) + " " + Format("%.6g", y) + " " +
+              GnuplotDataString(SweepSettingLabel(r)) + "\n";
       xlo = std::min(xlo, r.wall_s);
       xhi = std::max(xhi, r.wall_s);
       ylo = std::min(ylo, y);
       yhi = std::max(yhi, y);
     }
     if (text.empty()) continue;
-    data += (block > 0 ? "\n\n" : "") + std::string("# ") + family + "\n" + text;
+    // The family as a comment: one line, its control characters shown as \xHH.
+    const std::string comment = GnuplotDataString(family);
+    data += (block > 0 ? "\n\n" : "") + std::string("# ") + comment.substr(1, comment.size() - 2) +
+            "\n" + text;
     const SweepRecord& head = rows[indices.front()];
     const std::vector<std::string> engines = SweepEngines(rows);
     const size_t engine_index = static_cast<size_t>(
