@@ -3,8 +3,12 @@
 #include <toml++/toml.h>
 
 #include <cmath>
+#include <fstream>
 #include <limits>
 #include <map>
+#include <sstream>
+#include <unordered_map>
+#include <unordered_set>
 
 #include "engines/common/engine_input.h"
 #include "util/subprocess.h"
@@ -58,12 +62,23 @@ class ManifestReader {
     return *v;
   }
 
+  // A table or array of `count` items where at most `cap` are allowed.
+  void CheckCount(const std::string& key, const toml::node* node, size_t count, std::int64_t cap,
+                  const char* what) const {
+    if (static_cast<std::int64_t>(count) > cap) {
+      Fail(key, node,
+           std::to_string(count) + " " + what + ", more than the " + std::to_string(cap) +
+               " a manifest may have (docs/limits.md)");
+    }
+  }
+
   std::vector<std::string> Strings(const toml::table& t, const std::string& key) const {
     std::vector<std::string> out;
     const toml::node* n = t.get(key);
     if (n == nullptr) return out;
     const toml::array* a = n->as_array();
     if (a == nullptr) Fail(key, n, "expected an array of strings, got " + Describe(*n));
+    CheckCount(key, n, a->size(), kMaxManifestArray, "entries");
     for (auto&& e : *a) {
       if (!e.is_string() || e.as_string()->get().empty()) {
         Fail(key, &e, "expected non-empty strings, got " + Describe(e));
@@ -81,6 +96,7 @@ class ManifestReader {
     if (a == nullptr || a->empty()) {
       Fail("sweep." + key, n, "expected a non-empty array of time steps in s");
     }
+    CheckCount("sweep." + key, n, a->size(), kMaxManifestArray, "entries");
     std::vector<double> out;
     for (auto&& e : *a) {
       std::optional<double> v = e.value<double>();
@@ -111,7 +127,11 @@ class ManifestReader {
     Fail(where_key, &n, std::string("expected ") + want + ", got " + Describe(n));
   }
 
-  void Setting(const std::string& key, const toml::table& t, EngineSettingsSchema* schema) const {
+  // `standard`: the keys every external engine's table has (a TOML table's keys are unique, so
+  // the manifest's own keys need no check against each other).
+  void Setting(const std::string& key, const toml::table& t,
+               const std::unordered_set<std::string>& standard,
+               EngineSettingsSchema* schema) const {
     const std::string prefix = "settings." + key + ".";
     static const std::vector<std::string> kKeys = {
         "type", "default", "min", "max", "range", "choices", "unit", "engine_default", "doc"};
@@ -122,7 +142,7 @@ class ManifestReader {
              "engine_default, doc)");
       }
     }
-    if (schema->Find(key) != nullptr) {
+    if (standard.count(key) != 0) {
       Fail("settings." + key, &t,
            "a standard key of every external engine's table (docs/external-engines.md); "
            "give it another name");
@@ -234,11 +254,17 @@ class ManifestReader {
                         Number(root, "", "memory_limit_mib", 4096.0, true));
     if (const toml::node* s = root.get("settings")) {
       if (!s->is_table()) Fail("settings", s, "expected tables [settings.<key>]");
+      CheckCount("settings", s, s->as_table()->size(), kMaxManifestSettings, "settings");
+      std::unordered_set<std::string> standard;
+      for (const SettingDef& d : m.schema.settings) standard.insert(d.key);
       for (auto&& [k, v] : *s->as_table()) {
         if (!v.is_table()) Fail("settings." + std::string(k.str()), &v, "expected a table");
-        Setting(std::string(k.str()), *v.as_table(), &m.schema);
+        Setting(std::string(k.str()), *v.as_table(), standard, &m.schema);
       }
     }
+    // The table's keys, looked up once each below.
+    std::unordered_map<std::string, const SettingDef*> keys;
+    for (const SettingDef& d : m.schema.settings) keys.emplace(d.key, &d);
     if (const toml::node* sw = root.get("sweep")) {
       const toml::table* t = sw->as_table();
       if (t == nullptr) Fail("sweep", sw, "expected a table [sweep]");
@@ -256,6 +282,7 @@ class ManifestReader {
       if (const toml::node* f = t->get("family")) {
         const toml::array* a = f->as_array();
         if (a == nullptr) Fail("sweep.family", f, "expected [[sweep.family]] tables");
+        CheckCount("sweep.family", f, a->size(), kMaxManifestFamilies, "families");
         for (auto&& e : *a) {
           const toml::table* ft = e.as_table();
           if (ft == nullptr) Fail("sweep.family", &e, "expected a table");
@@ -272,7 +299,8 @@ class ManifestReader {
             if (!st->is_table()) Fail("sweep.family.settings", st, "expected a table");
             for (auto&& [k, v] : *st->as_table()) {
               const std::string key(k.str());
-              const SettingDef* d = m.schema.Find(key);
+              const auto found = keys.find(key);
+              const SettingDef* d = found == keys.end() ? nullptr : found->second;
               if (d == nullptr || key == "time_step") {
                 Fail("sweep.family.settings." + key, &v,
                      "not a key of the engine's table (the step is the sweep's own)");
@@ -353,13 +381,42 @@ ExternalManifest LoadManifest(const ExternalEngineRef& ref) {
   std::filesystem::path dir = ref.base_dir;
   if (!ref.manifest.empty()) {
     std::error_code ec;
-    if (!std::filesystem::is_regular_file(ref.manifest, ec)) {
-      throw SceneError(ref.where + ": external." + ref.name + ".manifest: no manifest file " +
-                       ref.manifest.string());
+    const auto status = std::filesystem::status(ref.manifest, ec);
+    if (!std::filesystem::is_regular_file(status)) {
+      throw SceneError(
+          ref.where + ": external." + ref.name + ".manifest: " +
+          (std::filesystem::exists(status) ? "not a regular file: " : "no manifest file ") +
+          ref.manifest.string());
+    }
+    // At most the cap and one byte more is read: a file that grows after the check above (or
+    // was swapped for a device) cannot make the read unbounded.
+    std::string text;
+    {
+      std::ifstream in(ref.manifest, std::ios::binary);
+      if (!in) {
+        throw SceneError(ref.manifest.string() + ": cannot read the manifest of external engine " +
+                         ref.name);
+      }
+      text.resize(static_cast<size_t>(kMaxManifestBytes) + 1);
+      in.read(text.data(), static_cast<std::streamsize>(text.size()));
+      if (in.bad()) {
+        throw SceneError(ref.manifest.string() + ": cannot read the manifest of external engine " +
+                         ref.name);
+      }
+      text.resize(static_cast<size_t>(in.gcount()));
+    }
+    if (static_cast<std::int64_t>(text.size()) > kMaxManifestBytes) {
+      const auto size = std::filesystem::file_size(ref.manifest, ec);
+      throw SceneError(
+          ref.manifest.string() + ": " +
+          (ec ? std::string("more than ") : std::to_string(size) + " bytes, more than ") + "the " +
+          std::to_string(kMaxManifestBytes) +
+          " a manifest may have (docs/limits.md; the manifest of external engine " + ref.name +
+          ")");
     }
     toml::table root;
     try {
-      root = toml::parse_file(ref.manifest.string());
+      root = toml::parse(text, ref.manifest.string());
     } catch (const toml::parse_error& e) {
       throw SceneError(ref.manifest.string() + ":" + std::to_string(e.source().begin.line) +
                        ": TOML syntax error: " + std::string(e.description()) +

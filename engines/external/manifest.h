@@ -3,6 +3,7 @@
 /// says of itself, the keys of its settings table and the grids of the work-precision sweep and
 /// the stress catalogue. A TOML file; a scene or registry that gives only a command gets the
 /// protocol's standard settings and grids.
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <utility>
@@ -19,6 +20,16 @@ namespace rockbench::external {
 inline constexpr int kProtocolVersion = 1;
 
 /// One settings family of the sweep: a curve of the work-precision figure.
+/// The largest manifest file, bytes: a manifest is a few kB (the repository's are under 2 kB);
+/// 1 MiB holds thousands of settings tables. A larger file is refused before it is parsed.
+inline constexpr std::int64_t kMaxManifestBytes = std::int64_t{1} << 20;
+/// The most [settings.<key>] tables, [[sweep.family]] tables and entries of one array (command,
+/// drives, requires, choices, sweep steps) a manifest may have: the built-in engines have at
+/// most 20 settings and 4 families; the caps keep every look-up of a run small.
+inline constexpr std::int64_t kMaxManifestSettings = 1000;
+inline constexpr std::int64_t kMaxManifestFamilies = 100;
+inline constexpr std::int64_t kMaxManifestArray = 1000;
+
 struct ExternalFamily {
   std::string name;  ///< "Rapier (ours)": the settings that stay fixed along it
   std::string id;    ///< the stress cases' prefix: "ours"
@@ -55,7 +66,9 @@ struct ExternalManifest {
 
 /// The manifest of an engine a scene or registry names: reads `ref.manifest`, or makes the
 /// standard one of `ref.command`. Throws SceneError naming the file, line and key of a bad
-/// manifest. A program or required file that is missing is not an error: missing_reason says it.
+/// manifest, and a manifest that is not a regular file or is past the caps above (naming the
+/// file and the cap). A program or required file that is missing is not an error:
+/// missing_reason says it. Reading takes time linear in the file's size.
 ExternalManifest LoadManifest(const ExternalEngineRef& ref);
 
 /// The standard keys every external engine's table has (docs/external-engines.md): time_step,

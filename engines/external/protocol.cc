@@ -1,13 +1,21 @@
 #include "engines/external/protocol.h"
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <iterator>
 #include <limits>
 #include <map>
+#include <new>
 #include <ostream>
 #include <string_view>
 
@@ -44,6 +52,90 @@ nlohmann::json MotionJson(const MotionDef& m) {
                        const std::string& msg) {
   throw ExternalEngineError(engine + ": " + file.string() +
                             (line > 0 ? ":" + std::to_string(line) : std::string()) + ": " + msg);
+}
+
+// Text of the poses file as a message shows it: printable ASCII as is, any other byte as \xNN
+// (a NUL, an escape sequence), at most 60 characters and then how long it was.
+std::string Shown(std::string_view text) {
+  constexpr size_t kShownChars = 60;
+  std::string out;
+  for (size_t i = 0; i < text.size() && i < kShownChars; ++i) {
+    const unsigned char c = static_cast<unsigned char>(text[i]);
+    if (c >= 0x20 && c < 0x7f) {
+      out += static_cast<char>(c);
+    } else {
+      char buf[8];
+      std::snprintf(buf, sizeof buf, "\\x%02x", c);
+      out += buf;
+    }
+  }
+  if (text.size() > kShownChars) out += "... (" + std::to_string(text.size()) + " bytes)";
+  return out;
+}
+
+// What a path that is not a regular file is, for a message.
+std::string FileKind(mode_t mode) {
+  if (S_ISFIFO(mode)) return "a FIFO (named pipe)";
+  if (S_ISDIR(mode)) return "a folder";
+  if (S_ISCHR(mode)) return "a character device";
+  if (S_ISBLK(mode)) return "a block device";
+  if (S_ISSOCK(mode)) return "a socket";
+  return "not a file";
+}
+
+// The whole poses file, read in place (a run of 1e5 rows is 20 MB). The path is opened without
+// blocking (a FIFO without a writer would block the open, and its read) and refused unless the
+// opened file is a regular file of at most `max_bytes`.
+std::string ReadPosesText(const std::string& engine, const std::filesystem::path& file,
+                          std::int64_t max_bytes, const std::string& max_why) {
+  const int fd = ::open(file.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC | O_NOCTTY);
+  if (fd < 0) {
+    const int err = errno;
+    if (err == ENOENT) {
+      Fail(engine, file, 0,
+           "no poses file: the engine ended without writing it (it must write the input's "
+           "poses_file)");
+    }
+    struct stat st {};
+    if (::stat(file.c_str(), &st) == 0 && !S_ISREG(st.st_mode)) {
+      Fail(engine, file, 0,
+           "not a regular file (" + FileKind(st.st_mode) +
+               "): the engine must write its poses to the input's poses_file as a regular file");
+    }
+    Fail(engine, file, 0, std::string("cannot open the poses file: ") + std::strerror(err));
+  }
+  struct Closer {
+    int fd;
+    ~Closer() { ::close(fd); }
+  } closer{fd};
+  struct stat st {};
+  if (::fstat(fd, &st) != 0) {
+    Fail(engine, file, 0, std::string("cannot read the poses file: ") + std::strerror(errno));
+  }
+  if (!S_ISREG(st.st_mode)) {
+    Fail(engine, file, 0,
+         "not a regular file (" + FileKind(st.st_mode) +
+             "): the engine must write its poses to the input's poses_file as a regular file");
+  }
+  if (st.st_size > max_bytes) {
+    Fail(engine, file, 0,
+         std::to_string(static_cast<long long>(st.st_size)) + " bytes, more than the " +
+             std::to_string(max_bytes) + " a poses file of this run can hold (" + max_why + ")");
+  }
+  // Back to blocking reads: a regular file's never wait.
+  std::string text(static_cast<size_t>(st.st_size), '\0');
+  size_t got = 0;
+  while (got < text.size()) {
+    const ssize_t n = ::read(fd, text.data() + got, text.size() - got);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) {
+      Fail(engine, file, 0, std::string("cannot read the poses file: ") + std::strerror(errno));
+    }
+    if (n == 0) break;  // shorter than its size said: what is there is read
+    got += static_cast<size_t>(n);
+  }
+  text.resize(got);
+  return text;
 }
 
 // Splits a CSV line on commas (no quoting: the protocol's fields are names and numbers).
@@ -105,10 +197,25 @@ std::string TimeText(std::string_view row, int t_col) {
              : std::string();
 }
 
+// The input of InputJson, once its size is checked.
+nlohmann::json InputJsonOf(const std::string& engine, const Scene& scene, const EngineInput& input,
+                           const EngineSettings& settings, std::int64_t every,
+                           const std::filesystem::path& poses_file,
+                           const std::filesystem::path& contacts_file);
+
 }  // namespace
 
 std::int64_t ExpectedRows(std::int64_t steps, std::int64_t every) {
   return steps / every + 1 + (steps % every != 0 ? 1 : 0);
+}
+
+std::int64_t MaxPosesBytes(const EngineInput& input, std::int64_t every) {
+  const double bytes = static_cast<double>(ExpectedRows(input.steps, every)) *
+                           (1.0 + 6.0 * input.block_count()) *
+                           static_cast<double>(kMaxPosesFieldBytes) +
+                       static_cast<double>(kPosesHeaderBytes);
+  return bytes >= 9e18 ? std::numeric_limits<std::int64_t>::max()
+                       : static_cast<std::int64_t>(bytes);
 }
 
 std::int64_t RowStep(std::int64_t j, std::int64_t steps, std::int64_t every) {
@@ -119,6 +226,31 @@ nlohmann::json InputJson(const std::string& engine, const Scene& scene, const En
                          const EngineSettings& settings, std::int64_t every,
                          const std::filesystem::path& poses_file,
                          const std::filesystem::path& contacts_file) {
+  const bool has_drive = !input.drive.ax_mps2.empty() || !input.drive.ay_mps2.empty() ||
+                         !input.drive.ux_m.empty() || !input.drive.uy_m.empty();
+  if (has_drive && input.steps > kMaxInputSteps) {
+    throw ExternalEngineError(
+        engine + ": " + engine + ".time_step: a step of " + ShortestText(input.time_step_s) +
+        " s is " + std::to_string(input.steps) +
+        " steps, each a row of the input's base motion, more than the " +
+        std::to_string(kMaxInputSteps) + " an external engine's input may hold (docs/limits.md)");
+  }
+  try {
+    return InputJsonOf(engine, scene, input, settings, every, poses_file, contacts_file);
+  } catch (const std::bad_alloc&) {
+  } catch (const std::length_error&) {
+  }
+  throw ExternalEngineError(engine + ": out of memory building the input file of " +
+                            std::to_string(input.steps) + " steps (" + engine + ".time_step " +
+                            ShortestText(input.time_step_s) + " s)");
+}
+
+namespace {
+
+nlohmann::json InputJsonOf(const std::string& engine, const Scene& scene, const EngineInput& input,
+                           const EngineSettings& settings, std::int64_t every,
+                           const std::filesystem::path& poses_file,
+                           const std::filesystem::path& contacts_file) {
   nlohmann::json j;
   j["protocol"] = "rockbench-external-engine";
   j["protocol_version"] = 1;
@@ -189,6 +321,8 @@ nlohmann::json InputJson(const std::string& engine, const Scene& scene, const En
   return j;
 }
 
+}  // namespace
+
 void WritePoses(std::ostream& out, const std::vector<StepReadout>& rows) {
   if (rows.empty()) return;
   const size_t blocks = rows.front().blocks.size();
@@ -248,12 +382,6 @@ EngineInput MonitorInput(const EngineInput& input, std::int64_t every) {
 
 PoseRows ReadPoses(const std::string& engine, const std::filesystem::path& file,
                    const EngineInput& input, std::int64_t every) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) {
-    Fail(engine, file, 0,
-         "no poses file: the engine ended without writing it (it must write the input's "
-         "poses_file)");
-  }
   const int blocks = input.block_count();
   const std::int64_t expected = ExpectedRows(input.steps, every);
   // Columns: which field of a row holds what (-1: absent).
@@ -270,17 +398,11 @@ PoseRows ReadPoses(const std::string& engine, const std::filesystem::path& file,
     }
   }
   PoseRows out;
-  // The whole file at once, its lines read in place (a run of 1e5 rows is 20 MB).
-  std::string text;
-  {
-    std::error_code ec;
-    const auto size = std::filesystem::file_size(file, ec);
-    text.resize(ec ? 0 : static_cast<size_t>(size));
-    in.read(text.data(), static_cast<std::streamsize>(text.size()));
-    if (in.bad() || in.gcount() != static_cast<std::streamsize>(text.size())) {
-      Fail(engine, file, 0, "cannot read the poses file");
-    }
-  }
+  const std::string text =
+      ReadPosesText(engine, file, MaxPosesBytes(input, every),
+                    std::to_string(expected) + " rows x " + std::to_string(1 + 6 * blocks) +
+                        " fields x " + std::to_string(kMaxPosesFieldBytes) + " bytes, and " +
+                        std::to_string(kPosesHeaderBytes) + " for the header and comments");
   out.bytes = static_cast<std::int64_t>(text.size());
   std::string line;
   std::vector<std::string> fields, header_names;
@@ -318,12 +440,12 @@ PoseRows ReadPoses(const std::string& engine, const std::filesystem::path& file,
         auto it = names.find(name);
         if (it == names.end()) {
           Fail(engine, file, line_no,
-               "unknown column '" + name + "' (expected t_s and, for blocks 1 to " +
+               "unknown column '" + Shown(name) + "' (expected t_s and, for blocks 1 to " +
                    std::to_string(blocks) +
                    ", xK_m, yK_m, angleK_rad and optionally vxK_mps, vyK_mps, omegaK_radps)");
         }
         int& c = col[static_cast<size_t>(it->second.first)][static_cast<size_t>(it->second.second)];
-        if (c >= 0) Fail(engine, file, line_no, "column '" + name + "' appears twice");
+        if (c >= 0) Fail(engine, file, line_no, "column '" + Shown(name) + "' appears twice");
         c = static_cast<int>(i);
       }
       if (t_col < 0) Fail(engine, file, line_no, "missing column 't_s' in the header");
@@ -371,10 +493,12 @@ PoseRows ReadPoses(const std::string& engine, const std::filesystem::path& file,
       v.assign(columns, 0.0);
       for (size_t i = 0; i < columns; ++i) {
         char* stop = nullptr;
+        // The whole field: strtod stops at a NUL byte as at the string's end.
         v[i] = std::strtod(fields[i].c_str(), &stop);
-        if (fields[i].empty() || *stop != '\0') {
+        if (fields[i].empty() || stop != fields[i].c_str() + fields[i].size()) {
           Fail(engine, file, line_no,
-               "column " + std::to_string(i + 1) + ": expected a number, got '" + fields[i] + "'");
+               "column " + std::to_string(i + 1) + ": expected a number, got '" + Shown(fields[i]) +
+                   "'");
         }
       }
     }
@@ -386,7 +510,8 @@ PoseRows ReadPoses(const std::string& engine, const std::filesystem::path& file,
         line.assign(row);
         SplitFields(line, &fields);
         fault = engine + ": " + file.string() + ":" + std::to_string(line_no) + ": column " +
-                std::to_string(i + 1) + " (" + header_names[i] + ") is '" + fields[i] + "'";
+                std::to_string(i + 1) + " (" + Shown(header_names[i]) + ") is '" +
+                Shown(fields[i]) + "'";
       }
     }
     if (!fault.empty()) {
@@ -402,15 +527,15 @@ PoseRows ReadPoses(const std::string& engine, const std::filesystem::path& file,
     const double t = v[static_cast<size_t>(t_col)];
     if (t <= t_prev) {
       Fail(engine, file, line_no,
-           "time " + TimeText(row, t_col) + " s goes backwards (the row before is at " +
+           "time " + Shown(TimeText(row, t_col)) + " s goes backwards (the row before is at " +
                std::to_string(t_prev) + " s)");
     }
     const double t_expected =
         static_cast<double>(RowStep(j, input.steps, every)) * input.time_step_s;
     if (std::abs(t - t_expected) > 1e-3 * out_dt) {
       Fail(engine, file, line_no,
-           "row " + std::to_string(j) + " is at t = " + TimeText(row, t_col) + " s, expected " +
-               std::to_string(t_expected) +
+           "row " + std::to_string(j) + " is at t = " + Shown(TimeText(row, t_col)) +
+               " s, expected " + std::to_string(t_expected) +
                " s (rows at every output_every_steps-th step from 0, then the last step)");
     }
     t_prev = t;

@@ -24,10 +24,19 @@ struct ExternalEngineError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+/// The most steps an external engine's run may take when the scene has a base motion: its input
+/// file holds the drive at every step (about 24 bytes of JSON text per value, two components),
+/// and the engine must parse that whole document (Python's json holds each number in 32 bytes):
+/// 2e7 steps are about 1 GB of text and 1.3 GB in the engine, within its default memory limit
+/// of 4096 MiB. The run estimate refuses more up front (run/resource_estimate.h).
+inline constexpr std::int64_t kMaxInputSteps = 20'000'000;
+
 /// The input of one run: the blocks (geometry, mass, inertia, pose and velocity at t = 0, bottom
 /// first), the pairs in contact and their friction, gravity, the step, steps, duration and
 /// output interval, the base motion on the step grid (and its analytic form when the scene's
-/// has one), the engine's settings and where to write the poses.
+/// has one), the engine's settings and where to write the poses. Throws ExternalEngineError for
+/// a run with a base motion of more than kMaxInputSteps steps, and when memory runs out while
+/// building it (never an abort).
 nlohmann::json InputJson(const std::string& engine, const Scene& scene, const EngineInput& input,
                          const EngineSettings& settings, std::int64_t output_every_steps,
                          const std::filesystem::path& poses_file,
@@ -53,12 +62,26 @@ std::int64_t ExpectedRows(std::int64_t steps, std::int64_t output_every_steps);
 /// The step index of row j.
 std::int64_t RowStep(std::int64_t j, std::int64_t steps, std::int64_t output_every_steps);
 
+/// The longest field of a poses file, bytes: a double's shortest exact text is at most 24
+/// characters ("-2.2250738585072014e-308"); 64 leaves room for padding and extra digits.
+inline constexpr std::int64_t kMaxPosesFieldBytes = 64;
+/// Room in a poses file for its header line and comments, bytes.
+inline constexpr std::int64_t kPosesHeaderBytes = std::int64_t{1} << 20;
+
+/// The largest poses file a run can write, bytes: its rows x their fields (t_s and six per
+/// block) x kMaxPosesFieldBytes, plus kPosesHeaderBytes. ReadPoses refuses a larger file before
+/// reading it.
+std::int64_t MaxPosesBytes(const EngineInput& input, std::int64_t output_every_steps);
+
 /// Parses a poses file (CSV: a header `t_s,x1_m,y1_m,angle1_rad[,vx1_mps,vy1_mps,omega1_radps],
 /// x2_m,...`, then one row per output time; lines starting with '#' are comments). Throws
 /// ExternalEngineError "ENGINE: FILE:LINE: ..." for a missing or unknown column, a field that is
-/// not a number, a time that goes backwards or is not the row's, fewer or more rows than
-/// promised. A number that is not finite (nan, inf) is the engine's blow-up, not a fault of the
-/// file: PoseRows::rows.
+/// not a number (a field with anything after its number, a NUL byte included), a time that goes
+/// backwards or is not the row's, fewer or more rows than promised; for a path that is not a
+/// regular file (a FIFO, a device, a folder: refused without reading, so a FIFO cannot hang the
+/// run) and for a file larger than MaxPosesBytes. Text from the file is quoted in messages
+/// (non-printable bytes as \xNN, at most 60 characters). A number that is not finite (nan, inf) is
+/// the engine's blow-up, not a fault of the file: PoseRows::rows.
 PoseRows ReadPoses(const std::string& engine, const std::filesystem::path& file,
                    const EngineInput& input, std::int64_t output_every_steps);
 
