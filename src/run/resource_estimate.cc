@@ -4,9 +4,12 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <limits>
 #include <system_error>
 #include <variant>
 
+#include "engines/external/external_engine.h"
+#include "engines/external/protocol.h"
 #include "run/engine_registry.h"
 #include "scene/engine_settings.h"
 
@@ -31,6 +34,33 @@ constexpr double kSyntheticSampleBytes = 128.0;
 // dopri5 with event location) and an engine's (25 us measured for Bullet with two blocks).
 constexpr double kReferenceStepCpu_s = 5e-6;
 constexpr double kEngineStepCpu_s = 30e-6;
+// An external engine's step in rockbench's own process: the drive's samples, its input file's
+// JSON nodes and text: 100 B measured (peak RSS 2.55 GB with 2.5e7 steps of a harmonic base
+// motion, 2026-11-28).
+constexpr double kExternalStepBytes = 128.0;
+// An engine's CPU time per step: its two-block figure (kEngineStepCpu_s unless measured higher),
+// growing with the blocks n as (n / 2)^p1 up to 8 blocks, then by (n / 8)^p2. Measured on a
+// stack of 0.5 m cubes under a 0.05 g harmonic base motion at 2, 8 and 32 blocks (CPU time of
+// 2000 steps at 1e-4 s, 2026-11-28; docs/limits.md), slopes rounded up, at least 1:
+//   Bullet 1.11, 1.11; MuJoCo 1.11, 1.65; ODE world_step 1.70, 3.49 (its dense LCP);
+//   ODE quick_step 0.95, 1.11 (48 to 55 us per two-block step: 80 us); DART 1.65, 2.37;
+//   Siconos 2.54 (40 us; at 32 blocks its stack fell apart at once: the first slope for both);
+//   Box2D 0.37, 0.79; Rapier 1.10, 1.26 (its Node start-up taken out).
+// Checked at 64 blocks: ODE world_step 187 ms per step (estimated 528), quick_step 2.0 ms (3.9),
+// Bullet 0.63 ms (1.9).
+struct BlockScaling {
+  const char* engine;
+  double to_8, beyond_8;
+  double step_cpu_s = kEngineStepCpu_s;
+};
+constexpr BlockScaling kBlockScaling[] = {
+    {"bullet", 1.2, 1.2},         {"mujoco", 1.2, 1.7}, {"ode", 1.8, 3.5},   {"dart", 1.7, 2.4},
+    {"siconos", 2.6, 2.6, 45e-6}, {"box2d", 1.0, 1.0},  {"rapier", 1.2, 1.3}};
+// ODE's iterative stepper (ode.stepper = "quick_step").
+constexpr BlockScaling kOdeQuickStep = {"ode", 1.0, 1.2, 80e-6};
+// An engine not measured (an external one): the steepest slopes measured, an upper bound; its
+// run is killed at its wall_limit_s all the same, which bounds the estimate of each run.
+constexpr BlockScaling kUnmeasured = {"", 2.6, 3.5};
 // The reference's largest step (reference/simulate.cc: kMaxStepRel, kMaxStepMotion): 0.05
 // sqrt(R / g) and 1/16 of the motion's period. R of block 1 alone is at most the stack's, so
 // the step count is an upper bound.
@@ -94,6 +124,18 @@ double ShortestPeriod(const Scene& scene) {
     }
   }
   return period;
+}
+
+// An engine's CPU time per step with `blocks` blocks, s.
+double StepCpu_s(const std::string& name, const EngineSettings& settings, int blocks) {
+  BlockScaling p = kUnmeasured;
+  for (const BlockScaling& b : kBlockScaling) {
+    if (name == b.engine) p = b;
+  }
+  if (name == "ode" && settings.Choice("stepper") == "quick_step") p = kOdeQuickStep;
+  const double n = blocks;
+  return p.step_cpu_s * std::pow(std::clamp(n / 2.0, 1.0, 4.0), p.to_8) *
+         std::pow(std::max(1.0, n / 8.0), p.beyond_8);
 }
 
 }  // namespace
@@ -186,11 +228,16 @@ RunEstimate EstimateRun(const Scene& scene, const std::vector<std::string>& run_
     // A solver's iterations past its default cost in proportion (an upper bound: some stop
     // early when they converge); the key that raised them is the one named.
     double iterations = 1.0;
+    double step_cpu_s = kEngineStepCpu_s;
     std::string key = name + ".time_step";
+    const auto* external = dynamic_cast<const external::ExternalEngine*>(engine);
+    double run_limit_s = std::numeric_limits<double>::infinity();
     try {
       const EngineSettingsSchema& schema = engine->settings_schema();
       const EngineSettings settings = ResolveEngineSettings(scene, schema);
       dt = settings.Number("time_step");
+      step_cpu_s = StepCpu_s(name, settings, scene.block_count());
+      if (external != nullptr) run_limit_s = settings.Number("wall_limit_s");
       for (const SettingDef& def : schema.settings) {
         const auto* fallback = std::get_if<std::int64_t>(&def.default_value);
         if (fallback == nullptr || def.key.find("iterations") == std::string::npos) continue;
@@ -206,12 +253,31 @@ RunEstimate EstimateRun(const Scene& scene, const std::vector<std::string>& run_
     }
     if (!(dt > 0.0)) continue;
     const double steps = std::ceil(duration / dt);
+    // An external engine's input holds the base motion at every step: past its cap the run is
+    // refused here, before anything is built.
+    if (external != nullptr && (scene.horizontal || scene.vertical) &&
+        steps > static_cast<double>(external::kMaxInputSteps) && e.refusal.empty()) {
+      e.refusal = name + ".time_step: a step of " + ShortestText(dt) + " s over run.duration " +
+                  ShortestText(duration) + " s is " + Count(steps) +
+                  " steps, each a row of the base motion in the external engine's input file, "
+                  "more than the " +
+                  Count(static_cast<double>(external::kMaxInputSteps)) +
+                  " its input may hold (docs/limits.md): coarsen the step or shorten the run";
+    }
     const double runs = 1.0 + std::max(engine_members, 0);
     std::string what = Count(steps) + " " + name + " steps (run.duration / " + name +
                        ".time_step) in " + Count(runs) + " runs";
     if (iterations > 1.0) what += ", " + Count(iterations) + " times the default iterations";
-    e.terms.push_back({key, what, steps * kEngineStepBytes * (1.0 + concurrent_eng),
-                       steps * kEngineStepCpu_s * runs * iterations});
+    if (step_cpu_s != kEngineStepCpu_s) {
+      what += ", " + Count(step_cpu_s * 1e6) + " us per step with " +
+              std::to_string(scene.block_count()) + " block" +
+              (scene.block_count() == 1 ? "" : "s");
+    }
+    // A run is killed at the wall-clock limit of its table (external engines).
+    const double cpu_per_run = std::min(steps * step_cpu_s * iterations, run_limit_s);
+    if (cpu_per_run == run_limit_s) what += ", each stopped at its wall_limit_s";
+    const double step_bytes = external != nullptr ? kExternalStepBytes : kEngineStepBytes;
+    e.terms.push_back({key, what, steps * step_bytes * (1.0 + concurrent_eng), cpu_per_run * runs});
   }
   for (const EstimateTerm& t : e.terms) {
     e.bytes += t.bytes;
@@ -224,6 +290,7 @@ RunEstimate EstimateRun(const Scene& scene, const std::vector<std::string>& run_
 
 void CheckRunEstimate(const RunEstimate& estimate, const ResourceBudget& budget,
                       const std::string& where) {
+  if (!estimate.refusal.empty()) throw SceneError(where + ": " + estimate.refusal);
   if (const EstimateTerm* t = estimate.largest_bytes(); t != nullptr) {
     CheckMemoryEstimate(estimate.bytes, budget, where, t->key, t->what);
   }
