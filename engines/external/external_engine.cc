@@ -13,6 +13,7 @@
 #include "engines/common/monitor.h"
 #include "engines/external/command.h"
 #include "engines/external/protocol.h"
+#include "util/relayed_text.h"
 #include "util/wall_limit.h"
 
 namespace rockbench::external {
@@ -87,7 +88,7 @@ EngineResult ExternalEngine::Simulate(const Scene& scene, const GroundMotion& mo
   const auto start = std::chrono::steady_clock::now();
   if (!m_.missing_reason.empty()) {
     throw SceneError(m_.where + ": external engine " + m_.name +
-                     " cannot run here: " + m_.missing_reason);
+                     " cannot run here: " + EscapedText(m_.missing_reason));
   }
   if (scene.block_count() > m_.max_blocks) {
     throw SceneError(scene.path.string() + ": engine " + m_.name + " simulates at most " +
@@ -120,13 +121,33 @@ EngineResult ExternalEngine::Simulate(const Scene& scene, const GroundMotion& mo
   spec.memory_limit_mib = settings.Number("memory_limit_mib");
   const CommandResult proc = RunCommand(spec);
   if (!proc.ok()) {
+    // What the engine wrote on standard error (its last lines, of its last 4 kB) is relayed
+    // escaped: no escape sequence or carriage return reaches the terminal to rewrite a line.
     const std::string said = TailOfFile(spec.stderr_file);
-    throw ExternalEngineError(
-        m_.name + ": its command (" + CommandText(spec.argv) + ") " + proc.Describe(spec) +
-        (said.empty() ? std::string(", and said nothing") : ";\nits last words:\n" + said));
+    std::error_code ec;
+    const std::uintmax_t bytes = std::filesystem::file_size(spec.stderr_file, ec);
+    const std::string heading = !ec && bytes > said.size() + 2
+                                    ? "its last words (the last " + std::to_string(said.size()) +
+                                          " of " + std::to_string(bytes) + " bytes it wrote):"
+                                    : std::string("its last words:");
+    throw ExternalEngineError(m_.name + ": its command (" +
+                              EscapedText(CommandText(spec.argv), 1024) + ") " +
+                              proc.Describe(spec) +
+                              (said.empty() ? std::string(", and said nothing")
+                                            : ";\n" + heading + "\n" + RelayedLines(said, "")));
   }
   const auto read_start = std::chrono::steady_clock::now();
-  PoseRows poses = ReadPoses(m_.name, poses_file, input, every);
+  // The poses file's texts (a header, a field) reach messages: escaped and capped.
+  PoseRows poses = [&] {
+    try {
+      return ReadPoses(m_.name, poses_file, input, every);
+    } catch (const ExternalEngineError& e) {
+      throw ExternalEngineError(EscapedText(e.what()));
+    }
+  }();
+  for (StepReadout& r : poses.rows) {
+    if (!r.engine_fault.empty()) r.engine_fault = EscapedText(r.engine_fault);
+  }
   const auto monitor_start = std::chrono::steady_clock::now();
 
   // The monitor reads the rows as a fixed-step engine's steps.

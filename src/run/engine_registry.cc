@@ -10,6 +10,7 @@
 #include "engines/external/external_engine.h"
 #include "run/reference_engine.h"
 #include "scene/limits.h"
+#include "util/relayed_text.h"
 
 namespace rockbench {
 
@@ -303,13 +304,15 @@ std::string EngineListText() {
   }
   for (const RegisteredEngine& e : all) {
     if (!e.name.empty() && e.name[0] == '(') {
-      out += "registry " + e.name + ": not read: " + e.missing_reason + "\n";
+      out += "registry " + EscapedText(e.name, 400) +
+             ": not read: " + EscapedText(e.missing_reason) + "\n";
       continue;
     }
+    // A manifest's version text and a registry's reasons are files' text: escaped and capped.
     if (e.engine != nullptr) {
-      out += e.name + ": " + e.engine->version() + "\n";
+      out += e.name + ": " + EscapedText(e.engine->version(), 400) + "\n";
     } else {
-      out += e.name + ": left out of this build (" + e.missing_reason + ")\n";
+      out += e.name + ": left out of this build (" + EscapedText(e.missing_reason) + ")\n";
     }
   }
   return out;

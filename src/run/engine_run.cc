@@ -2,6 +2,7 @@
 
 #include "run/engine_registry.h"
 #include "run/reference_engine.h"
+#include "util/relayed_text.h"
 
 namespace rockbench {
 
@@ -23,7 +24,9 @@ EngineRun RunEngine(const std::string& name, const Scene& scene, const GroundMot
   run.engine = name;
   run.one_line = engine->SummaryLine(result);
   if (IsNonFinite(result.outcome.status)) {
-    run.one_line += "\n  FAILED: " + result.summary.value("status_detail", std::string());
+    // The detail may quote an external engine's output: escaped and capped.
+    run.one_line +=
+        "\n  FAILED: " + EscapedText(result.summary.value("status_detail", std::string()));
   }
   run.history = std::move(result.history);
   run.outcome = std::move(result.outcome);
@@ -35,7 +38,8 @@ EngineRun RunEngine(const std::string& name, const Scene& scene, const GroundMot
 
 std::string NonFiniteText(const EngineRun& run) {
   if (!IsNonFinite(run.outcome.status)) return "";
-  return run.engine + ": " + run.summary.value("status_detail", std::string("not finite"));
+  return run.engine + ": " +
+         EscapedText(run.summary.value("status_detail", std::string("not finite")));
 }
 
 void WriteEngineFiles(const EngineRun& run, const std::filesystem::path& out_dir) {
