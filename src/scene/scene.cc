@@ -51,6 +51,14 @@ const Limit kSamplePrecisionLimit{0.0, 100.0,
                                   "docs/limits.md"};
 const Limit kSampleIntervalLimit{1e-6, 1.0, "records are sampled at 50 to 1000 Hz; docs/limits.md"};
 const Limit kToleranceLimit{0.0, 1.5707963267948966, "docs/limits.md"};
+// The largest finite friction coefficient: the reference's contact problem takes 1e4 for an
+// infinite one (reference/unilateral.cc, kLcpInfiniteFriction; its impact limit at mu = 1e4), so
+// above it a Coulomb friction is no slip in the model; a larger value only risks the engines'
+// arithmetic (MuJoCo's state is not finite at 1e100). No slip at all: leave friction out, or inf.
+constexpr double kMaxFiniteFriction = 1e4;
+const char kFrictionRange[] =
+    "a number from 0 to 10000, or inf (above 1e4 the reference's contact problem treats a "
+    "friction as infinite; leave friction out for no slip; docs/limits.md)";
 
 // An acceleration in g for messages, to six digits.
 std::string GText(double g) {
@@ -599,6 +607,10 @@ class Reader {
     b.depth_m = Number(t, prefix, "depth", Rule::kPositive, "m", &kLengthLimit).value_or(1.0);
     b.friction = Number(t, prefix, "friction", Rule::kNonNegativeOrInfinite, "")
                      .value_or(std::numeric_limits<double>::infinity());
+    if (std::isfinite(b.friction) && b.friction > kMaxFiniteFriction) {
+      Fail(Join(prefix, "friction"), t.get("friction"),
+           std::string("expected ") + kFrictionRange + ", got " + ShortestText(b.friction));
+    }
     auto density = Number(t, prefix, "density", Rule::kPositive, "kg/m^3", &kDensityLimit);
     auto mass = Number(t, prefix, "mass", Rule::kPositive, "kg", &kMassLimit);
     if (density && mass) {
@@ -1320,6 +1332,10 @@ void ValidateScene(const Scene& scene) {
     limit(p + ".mass", b.mass_kg, kMassLimit, Rule::kPositive, "kg");
     check(p + ".density", b.density_kgpm3, Rule::kNonNegative, "kg/m^3");
     check(p + ".friction", b.friction, Rule::kNonNegativeOrInfinite, "");
+    if (std::isfinite(b.friction) && b.friction > kMaxFiniteFriction) {
+      fail(p + ".friction",
+           std::string("expected ") + kFrictionRange + ", got " + ShortestText(b.friction));
+    }
     if (b.density_kgpm3 != 0.0) {
       limit(p + ".density", b.density_kgpm3, kDensityLimit, Rule::kPositive, "kg/m^3");
     }
