@@ -18,7 +18,8 @@ struct LimitOptions {
 void AddLimitOptions(CLI::App* cmd, LimitOptions* opt);
 
 /// Sets this process's budget (SetProcessBudget) and starts the wall-clock limit (temporary
-/// files under `out_dir` are removed when it fires); returns the budget.
+/// files under `out_dir` are removed when it fires); returns the budget. Throws SceneError
+/// when `out_dir` (the command's --out) names a file or lies under one.
 ResourceBudget StartLimits(const LimitOptions& opt, const std::filesystem::path& out_dir,
                            const std::string& command);
 
