@@ -133,6 +133,7 @@ UnilateralStack::UnilateralStack(std::vector<UnilateralBlock> blocks, double g_m
     const double span = 2.0 * (k > 0 ? std::min(b.b_m, blocks_[k - 1].b_m) : b.b_m);
     rest_speed_rel_[k] = std::sqrt(g_ / R) * span;
   }
+  resolved_speed_ = std::sqrt(2.0 * g_ * 4.0 * std::numeric_limits<double>::epsilon() * length_);
 }
 
 UnilateralStack UnilateralStack::OfScene(const Scene& scene) {

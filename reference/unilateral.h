@@ -53,6 +53,7 @@
 /// impact (impact.h "Uniqueness"): the post-impact motion is the one that conserves the
 /// generalized momenta of the configuration after it. Energy is never gained (an impact is the
 /// projection of the velocities in the kinetic-energy metric, with friction dissipating only).
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <string>
@@ -193,9 +194,13 @@ class UnilateralStack {
   /// The rest rule's separation speed at interface k, m/s: the chain's relative rate
   /// rest_rate_rel sqrt(g / R_k) (R_k from block k's base corner to the mass centre of blocks
   /// k..N at rest) times the distance between the interface's two contact points, so that a
-  /// slot separates after an impact exactly when the chain's rocking would go on.
+  /// slot separates after an impact exactly when the chain's rocking would go on; and at least
+  /// the speed of a fall through the rounding of a gap, sqrt(2 g 4 eps L) = 4.2e-8 sqrt(g L)
+  /// (a gap is a few products of coordinates of size L): a slower separation is below what
+  /// maximal coordinates resolve (docs/sliding.md, "the rest rule"). 0 when rest_rate_rel is 0.
   double RestSpeed(int k, double rest_rate_rel) const {
-    return rest_rate_rel * rest_speed_rel_[static_cast<size_t>(k)];
+    if (!(rest_rate_rel > 0.0)) return 0.0;
+    return std::max(rest_rate_rel * rest_speed_rel_[static_cast<size_t>(k)], resolved_speed_);
   }
 
   /// Puts (q, v) back on the constraints of `mode` (the drift of an integration that holds them
@@ -281,8 +286,9 @@ class UnilateralStack {
   std::vector<UnilateralBlock> blocks_;
   int n_ = 0;
   double g_ = 9.81, weight_ = 0.0, length_ = 1.0;
-  // Per interface: RestSpeed at rest_rate_rel = 1, m/s.
+  // Per interface: RestSpeed at rest_rate_rel = 1, m/s; the slowest separation resolved, m/s.
   std::vector<double> rest_speed_rel_;
+  double resolved_speed_ = 0.0;
 };
 
 }  // namespace rockbench::reference

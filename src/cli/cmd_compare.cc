@@ -177,9 +177,14 @@ void Execute(const CompareCliOptions& opt) {
         a.impacts.first_mismatch.c_str());
     // Leaving the support is named where either run had a block leave it.
     const bool left = a.left_support_block_reference || a.left_support_block_engine;
-    std::printf("  %s overturning %s%s%s, final state %s\n", a.engine.c_str(),
+    // Outcomes after the instant the model stops deciding are not compared (agreement.h).
+    const std::string decided =
+        a.reference_undetermined_s
+            ? Format(" up to %.4f s (the model does not decide after it)", *a.reference_undetermined_s)
+            : std::string();
+    std::printf("  %s overturning %s%s%s%s, final state %s\n", a.engine.c_str(),
                 a.overturn_agree ? "agrees" : "DIFFERS", left ? ", leaving the support " : "",
-                !left ? "" : (a.left_support_agree ? "agrees" : "DIFFERS"),
+                !left ? "" : (a.left_support_agree ? "agrees" : "DIFFERS"), decided.c_str(),
                 a.final_agree ? "agrees" : "DIFFERS");
   }
   for (const EngineAgreement& a : agreements) {
@@ -214,6 +219,16 @@ void Execute(const CompareCliOptions& opt) {
       std::fprintf(stderr, "rockbench: compare failed: %s\n", f.c_str());
     }
     throw CLI::RuntimeError(kExitRunFailed);
+  }
+  // The reference's model stopped deciding the motion: said, and exit 5 as `run`.
+  const reference::Summary& rs = run.reference().used().summary;
+  if (rs.undetermined_from_s) {
+    std::fflush(stdout);
+    std::fprintf(stderr,
+                 "rockbench: reference: the model stops deciding the motion at t = %.4f s (%s); "
+                 "no engine is compared after it\n",
+                 *rs.undetermined_from_s, rs.undetermined_detail.c_str());
+    throw CLI::RuntimeError(kExitUndetermined);
   }
 }
 

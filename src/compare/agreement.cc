@@ -467,11 +467,18 @@ EngineAgreement CompareWithReference(const Scene& scene, const reference::Result
 
   a.impacts = MatchImpacts(ref.history, run.history, until, options.min_impact_rate_radps);
 
+  // Outcomes are compared up to the instant the model stops deciding the motion (after it the
+  // reference's outcome is one admissible branch's): an overturn or a block leaving its support
+  // later than that, in either run, is not compared.
+  const double t_decided =
+      rs.undetermined_from_s.value_or(std::numeric_limits<double>::infinity());
+  const auto decided = [&](double t) { return !(t > t_decided + 1e-12); };
+
   // Overturning.
-  a.overturn_block_reference = rs.overturn_block;
-  if (run.outcome.overturned()) {
+  if (rs.overturn_block && decided(rs.overturn_t_s)) a.overturn_block_reference = rs.overturn_block;
+  if (run.outcome.overturned() && decided(run.outcome.overturn_t_s)) {
     a.overturn_block_engine = run.outcome.overturned_block;
-    if (rs.overturn_block) {
+    if (a.overturn_block_reference) {
       a.overturn_time_error_s = run.outcome.overturn_t_s - rs.overturn_t_s;
     }
   }
@@ -480,7 +487,9 @@ EngineAgreement CompareWithReference(const Scene& scene, const reference::Result
   // Leaving the support (a block slid off the block below): an outcome of its own. The
   // engine's block comes from its outcome, or from its summary's "left_support" object where a
   // helper's protocol carried the status but not the block.
-  a.left_support_block_reference = rs.left_support_block;
+  if (rs.left_support_block && decided(rs.left_support_t_s)) {
+    a.left_support_block_reference = rs.left_support_block;
+  }
   int engine_off = run.outcome.left_support_block;
   double engine_off_t = run.outcome.left_support_t_s;
   if (engine_off == 0 && run.summary.is_object()) {
@@ -490,9 +499,9 @@ EngineAgreement CompareWithReference(const Scene& scene, const reference::Result
       engine_off_t = it->value("t_s", std::numeric_limits<double>::quiet_NaN());
     }
   }
-  if (engine_off != 0) {
+  if (engine_off != 0 && decided(engine_off_t)) {
     a.left_support_block_engine = engine_off;
-    if (rs.left_support_block && std::isfinite(engine_off_t)) {
+    if (a.left_support_block_reference && std::isfinite(engine_off_t)) {
       a.left_support_time_error_s = engine_off_t - rs.left_support_t_s;
     }
   }

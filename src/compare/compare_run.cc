@@ -176,6 +176,13 @@ CompareRun RunCompare(const Scene& scene, const GroundMotion& motion,
                 out.reference().nominal_wall_s * 1e3, check.max_abs_diff(),
                 check.converged ? ", converged" : "");
   log(buf);
+  // Where the model stopped deciding the motion: nothing is compared after it.
+  if (ref.summary.undetermined_from_s) {
+    std::snprintf(buf, sizeof buf, "  UNDETERMINED from %.4f s: ", *ref.summary.undetermined_from_s);
+    log(buf + ref.summary.undetermined_detail +
+        "; no engine is compared after it (the reference's history there is one admissible "
+        "outcome the rule chose)");
+  }
   if (!check.converged) log("  WARNING: " + ConvergenceWarning(check));
 
   // 2. The reference's perturbation members: the predictability horizon.

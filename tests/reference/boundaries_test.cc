@@ -273,6 +273,29 @@ TEST(Chattering, AFreeRockingStackComesToRestWithoutGainingEnergy) {
   EXPECT_LE(worst_j, tol_j);
 }
 
+// The stress catalogue's mass-ratio case (the thesis's stack with m2 = 0.001 m1, released at
+// 0.39 rad) at rest_rate_rel 1e-9 and rtol 1e-14 (RestThresholdTest's run b's witness): block 1
+// chatters on the ground under the rocking top block, its rate falling by 4 at each impact down
+// to 2e-8 rad/s, where it stayed: 72 313 impacts 4.5 ns apart in 1.4 ms, the run never ended.
+// At that rate the corner's motion is below the rounding of a gap (a few eps L: maximal
+// coordinates of size L), which each landing rounds up into new energy. The rest speed is
+// therefore never below the speed of a fall through 4 eps L (UnilateralStack::RestSpeed): the
+// run overturns (block 2, 1.2 s) after 12 impacts, as at the default threshold.
+TEST(Chattering, BelowWhatMaximalCoordinatesResolveTheStackComesToRest) {
+  Scene s = ParseScene(
+      "[block1]\nwidth = 1.25\nheight = 1.25\ndensity = 2500.0\n"
+      "[block2]\nwidth = 1.0\nheight = 2.5\nmass = 3.90625\n"
+      "[initial]\ntheta1 = 0.39\ntheta2 = 0.39\n[run]\nduration = 5.0\n"
+      "[model]\nrest_rate_rel = 1e-9\nrtol = 1e-14\natol = 1e-16\n",
+      std::string(ROCKBENCH_SOURCE_DIR) + "/mass_ratio.toml");
+  s.compare.members = 0;
+  const Result r = Simulate(s, GroundMotion::FromScene(s));
+  ASSERT_TRUE(r.summary.unilateral_from_s.has_value());
+  EXPECT_EQ(r.summary.status, RunStatus::kOverturned) << r.summary.status_detail;
+  EXPECT_LT(r.summary.impacts(), 100);
+  EXPECT_EQ(r.summary.impacts_energy_gain, 0);
+}
+
 // Issue 37, case 4: three blocks (0.8 x 0.8, 0.6 x 0.6, 0.4 x 0.8 m, infinite friction) under
 // Rinaldi 228 x 1.167. Handed over to the unilateral model at 2.5406 s (a contact that would
 // pull), the stack's interface-2 impact at 2.642351 s has two admissible outcomes that give
