@@ -176,6 +176,40 @@ TEST_F(CmdCompareTest, SaysOnlyTrueThingsAboutABlockThatSlidesOff) {
   EXPECT_EQ(b["verdict_kind"], "pointwise_only") << b["verdict"];
 }
 
+// An undetermined impact (issue 37): scenes/three_blocks_undetermined.toml run for 4 s (the
+// reference's block 3 overturns at 3.569 s on the branch its rule chose, after the impact at
+// 2.642351 s whose two outcomes give different motions). compare says UNDETERMINED on its console
+// and stderr, writes every output, exits 5 as run does, and compares no outcome after that
+// instant: neither run's overturn (both later) is compared, and the line says up to when.
+TEST_F(CmdCompareTest, AnUndeterminedReferenceIsSaidAndNoOutcomeIsComparedAfterIt) {
+  ::testing::internal::CaptureStdout();
+  ::testing::internal::CaptureStderr();
+  int code = 0;
+  try {
+    RunCli({"compare", (kScenes / "three_blocks_undetermined.toml").string(), "--out",
+            dir_.string(), "--engines", "bullet", "--quick", "--set", "run.duration=4"});
+  } catch (const CLI::RuntimeError& e) {
+    code = e.get_exit_code();
+  }
+  const std::string out = ::testing::internal::GetCapturedStdout();
+  const std::string err = ::testing::internal::GetCapturedStderr();
+  EXPECT_EQ(code, kExitUndetermined) << out << err;
+  EXPECT_NE(out.find("  UNDETERMINED from 2.6424 s: the interface2 impact"), std::string::npos)
+      << out;
+  EXPECT_NE(out.find("overturning agrees up to 2.6424 s (the model does not decide after it)"),
+            std::string::npos)
+      << out;
+  EXPECT_NE(err.find("the model stops deciding the motion at t = 2.6424 s"), std::string::npos)
+      << err;
+  const auto c = nlohmann::json::parse(Slurp(dir_ / "comparison.json"));
+  const auto& b = c["engines"]["bullet"];
+  EXPECT_NEAR(b["compared_until_s"].get<double>(), 2.642351, 1e-6);
+  // The reference's overturn (block 3 at 3.569 s) is after the undetermined instant.
+  EXPECT_TRUE(b["overturn"]["reference_block"].is_null()) << b["overturn"];
+  EXPECT_TRUE(b["overturn"]["agree"].get<bool>());
+  EXPECT_EQ(b["verdict_kind"], "outside_model") << b["verdict"];
+}
+
 TEST_F(CmdCompareTest, UnknownEngineIsBadInput) {
   try {
     RunCli({"compare", (kScenes / "housner_free_rocking.toml").string(), "--out", dir_.string(),
