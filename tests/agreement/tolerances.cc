@@ -244,6 +244,13 @@ std::vector<Bound> ParseTolerances(std::string_view text, const std::string& fil
       throw fail("engine",
                  "unknown engine '" + b.engine + "' (expected one of: " + Join(known) + ")");
     }
+    // The comparison applies reference_settings only where the engine is the reference
+    // (RunComparison): on another engine's row they would be silently ignored.
+    if (b.engine != "reference" && !b.reference_settings.empty()) {
+      throw fail("reference_settings",
+                 "only with engine = \"reference\" (an engine's comparison runs the reference "
+                 "at the row's settings; it would ignore these)");
+    }
     if (b.engine == "reference" && b.reference_settings.empty()) {
       throw fail("reference_settings",
                  "required with engine = \"reference\" (the reference against itself with the "

@@ -137,6 +137,11 @@ TEST(TolerancesTest, EngineMustBeKnownAndTheReferenceNeedsOtherSettings) {
   EXPECT_NE(Error(text + "reference_settings = [\"model.rtol=-1\"]\n")
                 .find("reference_settings do not load"),
             std::string::npos);
+  // On an engine's row the comparison would ignore them: an error, not a silent no-op.
+  EXPECT_NE(Error(Entry() + "reference_settings = [\"model.rtol=1e-12\"]\n")
+                .find("reference_settings: only with engine = \"reference\""),
+            std::string::npos)
+      << Error(Entry() + "reference_settings = [\"model.rtol=1e-12\"]\n");
 }
 
 TEST(TolerancesTest, RunTimeKeysAreAcceptedWhereTheShapeIsOnlyKnownAfterARun) {
