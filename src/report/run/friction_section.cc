@@ -33,11 +33,18 @@ FrictionFacts ComputeFriction(const RunData& run, const StackModel& model,
   facts.max_mu.assign(nc, 0.0);
   facts.min_N.assign(nc, std::numeric_limits<double>::infinity());
   facts.min_N_t.assign(nc, 0.0);
+  // The reference's own normal forces are the chain's only up to the hand-over to its
+  // unilateral model, whose forces are never negative (complementarity): past it the chain's
+  // reaction at a sample is not the reference's, and no tension is read from it.
+  const double handed_over_s = OptNumber(run.summary, "unilateral.from_t_s", run.summary_path);
   for (const Sample& s : ref.history.samples) {
     const StackModel::Contacts c = model.Reactions(s, motion.xg_mps2(s.t_s), motion.yg_mps2(s.t_s));
     std::vector<double> row = {s.t_s};
+    const bool chain = !(s.t_s > handed_over_s);
     for (int k = 0; k < nc; ++k) {
-      if (c.normal_n[k] < facts.min_N[k]) facts.min_N[k] = c.normal_n[k], facts.min_N_t[k] = s.t_s;
+      if (chain && c.normal_n[k] < facts.min_N[k]) {
+        facts.min_N[k] = c.normal_n[k], facts.min_N_t[k] = s.t_s;
+      }
       double mu = kNaN;
       if (c.normal_n[k] >= n_min) {
         mu = c.mu[k];
@@ -174,13 +181,16 @@ void FrictionSection(const RunData& run, const FrictionFacts& facts,
     // scene') and the reference's.
     const double mu_scene = run.scene.blocks.at(static_cast<size_t>(k)).friction;
     table.push_back({name, Num(sum), Num(facts.max_mu[k]),
-                     Num(facts.min_N[k], 6) + " N at " + Fixed(facts.min_N_t[k], 3) + " s",
+                     std::isfinite(facts.min_N[k])
+                         ? Num(facts.min_N[k], 6) + " N at " + Fixed(facts.min_N_t[k], 3) + " s"
+                         : std::string("- (no sample before the hand-over)"),
                      std::isfinite(mu_scene) ? Num(mu_scene) + " (the scene's: every engine and "
                                                                "the reference)"
                                              : engine_mu_text});
   }
   page.Table({"contact", "largest |T|/N (reference run, every step, N -> 0 included)",
-              "largest |T|/N (samples plotted)", "smallest normal force", "engine friction"},
+              "largest |T|/N (samples plotted)",
+              "smallest normal force (the rigid chain's samples)", "engine friction"},
              table);
   // With a finite friction the reference slides: what the numbers above are then.
   std::string finite;
