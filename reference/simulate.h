@@ -1,5 +1,6 @@
 #pragma once
-/// The reference model: the thesis's two-block rocking model (Roussis 1999), event-accurate.
+/// The reference model: the thesis's rocking-block model (Roussis 1999) for a stack of N blocks,
+/// with its unilateral model past the rigid chain's assumptions, event-accurate.
 #include <algorithm>
 #include <cstdint>
 #include <cstring>

@@ -29,7 +29,7 @@ namespace {
 
 // The command line's work; main() adds what every command shares (signals, cleanup).
 int Main(int argc, char** argv) {
-  CLI::App app{"rockbench: the two-block rocking model (Roussis 1999) beside physics engines"};
+  CLI::App app{"rockbench: the rocking-block stack model (Roussis 1999) beside physics engines"};
   app.require_subcommand(0, 1);
   bool version = false;
   app.add_flag("--version", version, "Print the version and the engines of this build");

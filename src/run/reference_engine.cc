@@ -8,7 +8,8 @@
 namespace rockbench {
 
 std::string ReferenceEngine::version() const {
-  return "two-block rocking model (Roussis 1999; Spanos, Roussis & Politis 2001)";
+  return "rocking stack of N blocks (Roussis 1999; Spanos, Roussis & Politis 2001) with a "
+         "unilateral model of sliding, lift-off and Coulomb impacts (docs/sliding.md)";
 }
 
 const EngineSettingsSchema& ReferenceEngine::settings_schema() const {
