@@ -3,6 +3,7 @@
 #include <toml++/toml.h>
 
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <limits>
 #include <map>
@@ -16,6 +17,23 @@
 namespace rockbench::external {
 namespace {
 
+// A message with the manifest's text in it, as a terminal shows it safely: each control byte
+// (an escape sequence's ESC, a NUL, a newline inside a quoted key) as \xNN.
+std::string Printable(const std::string& text) {
+  std::string out;
+  for (const char ch : text) {
+    const unsigned char c = static_cast<unsigned char>(ch);
+    if (c < 0x20 || c == 0x7f) {
+      char buf[8];
+      std::snprintf(buf, sizeof buf, "\\x%02x", c);
+      out += buf;
+    } else {
+      out += ch;
+    }
+  }
+  return out;
+}
+
 // Reads one manifest file, with messages "FILE:LINE: KEY: expected ..., got ...".
 class ManifestReader {
  public:
@@ -28,8 +46,8 @@ class ManifestReader {
     if (node != nullptr && node->source().begin.line > 0) {
       loc += ":" + std::to_string(node->source().begin.line);
     }
-    throw SceneError(loc + ": " + key + ": " + msg + " (the manifest of external engine " +
-                     engine_ + ")");
+    throw SceneError(Printable(loc + ": " + key + ": " + msg) +
+                     " (the manifest of external engine " + engine_ + ")");
   }
 
   static std::string Describe(const toml::node& n) {
@@ -388,7 +406,7 @@ ExternalManifest LoadManifest(const ExternalEngineRef& ref) {
           (std::filesystem::exists(status) ? "not a regular file: " : "no manifest file ") +
           ref.manifest.string());
     }
-    // At most the cap and one byte more is read: a file that grows after the check above (or
+    // At most the cap and one piece more is read: a file that grows after the check above (or
     // was swapped for a device) cannot make the read unbounded.
     std::string text;
     {
@@ -397,13 +415,16 @@ ExternalManifest LoadManifest(const ExternalEngineRef& ref) {
         throw SceneError(ref.manifest.string() + ": cannot read the manifest of external engine " +
                          ref.name);
       }
-      text.resize(static_cast<size_t>(kMaxManifestBytes) + 1);
-      in.read(text.data(), static_cast<std::streamsize>(text.size()));
+      // In pieces: a manifest of a few kB allocates a few kB.
+      char piece[16384];
+      while (in && static_cast<std::int64_t>(text.size()) <= kMaxManifestBytes) {
+        in.read(piece, sizeof piece);
+        text.append(piece, static_cast<size_t>(in.gcount()));
+      }
       if (in.bad()) {
         throw SceneError(ref.manifest.string() + ": cannot read the manifest of external engine " +
                          ref.name);
       }
-      text.resize(static_cast<size_t>(in.gcount()));
     }
     if (static_cast<std::int64_t>(text.size()) > kMaxManifestBytes) {
       const auto size = std::filesystem::file_size(ref.manifest, ec);
@@ -418,8 +439,9 @@ ExternalManifest LoadManifest(const ExternalEngineRef& ref) {
     try {
       root = toml::parse(text, ref.manifest.string());
     } catch (const toml::parse_error& e) {
-      throw SceneError(ref.manifest.string() + ":" + std::to_string(e.source().begin.line) +
-                       ": TOML syntax error: " + std::string(e.description()) +
+      throw SceneError(Printable(ref.manifest.string() + ":" +
+                                 std::to_string(e.source().begin.line) +
+                                 ": TOML syntax error: " + std::string(e.description())) +
                        " (the manifest of external engine " + ref.name + ")");
     }
     m = ManifestReader(ref.manifest.string(), ref.name).Read(root, ref);

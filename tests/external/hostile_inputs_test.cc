@@ -260,6 +260,16 @@ TEST_F(HugeManifest, ASettingTakingAStandardKeyIsStillRefused) {
             std::string::npos);
 }
 
+TEST_F(HugeManifest, AKeyWithControlCharactersIsShownAsBytes) {
+  ExternalEngineRef ref;
+  ref.name = "big";
+  ref.manifest = Write("manifest.toml", "protocol = 1\ncommand = [\"sh\"]\n\"\\u001b[2J\" = 1\n");
+  ref.base_dir = dir_;
+  const std::string error = ErrorOf([&] { LoadManifest(ref); });
+  EXPECT_EQ(error.rfind(File() + ":3: \\x1b[2J: unknown key", 0), 0u) << error;
+  EXPECT_EQ(error.find('\x1b'), std::string::npos);
+}
+
 TEST_F(HugeManifest, AManifestThatIsNotARegularFileIsSaidSo) {
   ExternalEngineRef ref;
   ref.name = "big";
