@@ -468,7 +468,9 @@ TEST_P(EngineConformance, ColumnOfDrumsLandsWhenTheLockedColumnDoes) {
         ASSERT_EQ(ConfigurationName(x.mode), locked) << x.t_s;
       }
     }
-    if (d.column_opens_at == n) EXPECT_GT(unlocked, 0) << "the measured departure is gone";
+    if (d.column_opens_at == n) {
+      EXPECT_GT(unlocked, 0) << "the measured departure is gone";
+    }
     // Nothing the model forbids while the column falls (the impact may open interfaces, and
     // engines may bounce a little there: that is beyond this test).
     const auto& onsets = out.summary["violations"]["onset_t_s"];
