@@ -220,7 +220,7 @@ if [ -n "$mode" ]; then
       rm -rf "$work"
       mkdir -p "$work"
       n=${runs:-}
-      [ -n "$n" ] || case "$t" in scene_run) n=1200 ;; record_*) n=8000 ;; study_reader) n=3000 ;; *) n=20000 ;; esac
+      [ -n "$n" ] || case "$t" in scene_run) n=1200 ;; record_*) n=8000 ;; study_reader) n=3000 ;; members_resume) n=5000 ;; *) n=20000 ;; esac
       rc=0
       "${fixed_addresses[@]}" "$exe" "${common[@]}" -runs="$n" -max_total_time="${seconds:-60}" "$work" "${seeds[@]}" \
         >"$log" 2>&1 || rc=$?
