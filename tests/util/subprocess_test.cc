@@ -198,7 +198,8 @@ TEST(Subprocess, PipesRoundTripLineByLine) {
 
 TEST(Subprocess, WritingToAChildThatStoppedReadingIsAnErrorNotTheEnd) {
   // The child closes its input, says so, and lives on: our write gets EPIPE, no SIGPIPE.
-  Subprocess p({"sh", "-c", "exec 0<&-; echo closed; sleep 30"},
+  // (exec: the sleep is the child that is killed, not a grandchild left holding the pipes.)
+  Subprocess p({"sh", "-c", "exec 0<&-; echo closed; exec sleep 30"},
                Options(Stdio::kPipe, Stdio::kPipe, Stdio::kInherit));
   ASSERT_EQ(ReadLine(p.stdout_fd()), "closed");
   const std::string big(1 << 20, 'x');
