@@ -122,7 +122,8 @@ EngineResult ExternalEngine::Simulate(const Scene& scene, const GroundMotion& mo
   const CommandResult proc = RunCommand(spec);
   if (!proc.ok()) {
     // What the engine wrote on standard error (its last lines, of its last 4 kB) is relayed
-    // escaped: no escape sequence or carriage return reaches the terminal to rewrite a line.
+    // escaped and indented ("  | "): no escape sequence or carriage return reaches the terminal
+    // to rewrite a line, and no line of it reads as one of rockbench's own.
     const std::string said = TailOfFile(spec.stderr_file);
     std::error_code ec;
     const std::uintmax_t bytes = std::filesystem::file_size(spec.stderr_file, ec);
@@ -134,7 +135,7 @@ EngineResult ExternalEngine::Simulate(const Scene& scene, const GroundMotion& mo
                               EscapedText(CommandText(spec.argv), 1024) + ") " +
                               proc.Describe(spec) +
                               (said.empty() ? std::string(", and said nothing")
-                                            : ";\n" + heading + "\n" + RelayedLines(said, "")));
+                                            : ";\n" + heading + "\n" + RelayedLines(said)));
   }
   const auto read_start = std::chrono::steady_clock::now();
   // The poses file's texts (a header, a field) reach messages: escaped and capped.

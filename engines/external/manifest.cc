@@ -12,26 +12,17 @@
 #include <unordered_set>
 
 #include "engines/common/engine_input.h"
+#include "util/relayed_text.h"
 #include "util/subprocess.h"
 
 namespace rockbench::external {
 namespace {
 
 // A message with the manifest's text in it, as a terminal shows it safely: each control byte
-// (an escape sequence's ESC, a NUL, a newline inside a quoted key) as \xNN.
+// (an escape sequence's ESC, a NUL, a newline inside a quoted key) escaped as every text from
+// outside rockbench is (util/relayed_text.h), not cut (the reader's own excerpts are short).
 std::string Printable(const std::string& text) {
-  std::string out;
-  for (const char ch : text) {
-    const unsigned char c = static_cast<unsigned char>(ch);
-    if (c < 0x20 || c == 0x7f) {
-      char buf[8];
-      std::snprintf(buf, sizeof buf, "\\x%02x", c);
-      out += buf;
-    } else {
-      out += ch;
-    }
-  }
-  return out;
+  return EscapedText(text, text.size());
 }
 
 // Reads one manifest file, with messages "FILE:LINE: KEY: expected ..., got ...".

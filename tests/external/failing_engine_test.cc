@@ -71,7 +71,7 @@ TEST_F(FailingEngineTest, AFailingEngineIsItsOwnVerdictAndTheOthersAreWritten) {
   EXPECT_NE(r.output.find("verdict good: AGREES"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("verdict good2: AGREES"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("verdict bad: FAILED: its command"), std::string::npos) << r.output;
-  EXPECT_NE(r.output.find("exit code 3; its last words: faulty engine: cannot simulate this on "
+  EXPECT_NE(r.output.find("exit code 3; its last words:   | faulty engine: cannot simulate this on "
                           "purpose"),
             std::string::npos)
       << r.output;

@@ -266,7 +266,7 @@ TEST_F(HugeManifest, AKeyWithControlCharactersIsShownAsBytes) {
   ref.manifest = Write("manifest.toml", "protocol = 1\ncommand = [\"sh\"]\n\"\\u001b[2J\" = 1\n");
   ref.base_dir = dir_;
   const std::string error = ErrorOf([&] { LoadManifest(ref); });
-  EXPECT_EQ(error.rfind(File() + ":3: \\x1b[2J: unknown key", 0), 0u) << error;
+  EXPECT_EQ(error.rfind(File() + ":3: \\x1B[2J: unknown key", 0), 0u) << error;
   EXPECT_EQ(error.find('\x1b'), std::string::npos);
 }
 

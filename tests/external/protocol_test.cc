@@ -334,7 +334,7 @@ TEST_F(FaultyEngineTest, EveryFailureIsAnErrorNamingTheEngine) {
   EXPECT_EQ(Run("good"), "no error");
   const std::string exit = Run("exit");
   EXPECT_NE(exit.find("faulty_exit: its command (python3 "), std::string::npos) << exit;
-  EXPECT_NE(exit.find(") exit code 3;\nits last words:\nfaulty engine: cannot simulate this on "
+  EXPECT_NE(exit.find(") exit code 3;\nits last words:\n  | faulty engine: cannot simulate this on "
                       "purpose"),
             std::string::npos)
       << exit;
