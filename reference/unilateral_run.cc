@@ -491,7 +491,8 @@ bool Runner<kCap>::Impact(int k) {
   // model's limit decides it (else the impact is undetermined).
   bool took_fallback = false;
   auto fall_back = [&](const UnilateralStack& alt, const std::string& what, bool decided) {
-    const ModeSolution o = alt.SolveImpact(Q(y_), V(y_), mode_, gap_tol_, scene_.model.rest_rate_rel);
+    const ModeSolution o =
+        alt.SolveImpact(Q(y_), V(y_), mode_, gap_tol_, scene_.model.rest_rate_rel);
     if (!o.found) return;
     const std::string why = imp.note;
     imp = o;

@@ -178,10 +178,10 @@ void Execute(const CompareCliOptions& opt) {
     // Leaving the support is named where either run had a block leave it.
     const bool left = a.left_support_block_reference || a.left_support_block_engine;
     // Outcomes after the instant the model stops deciding are not compared (agreement.h).
-    const std::string decided =
-        a.reference_undetermined_s
-            ? Format(" up to %.4f s (the model does not decide after it)", *a.reference_undetermined_s)
-            : std::string();
+    const std::string decided = a.reference_undetermined_s
+                                    ? Format(" up to %.4f s (the model does not decide after it)",
+                                             *a.reference_undetermined_s)
+                                    : std::string();
     std::printf("  %s overturning %s%s%s%s, final state %s\n", a.engine.c_str(),
                 a.overturn_agree ? "agrees" : "DIFFERS", left ? ", leaving the support " : "",
                 !left ? "" : (a.left_support_agree ? "agrees" : "DIFFERS"), decided.c_str(),

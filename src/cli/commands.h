@@ -29,10 +29,11 @@ inline constexpr int kExitBadInput = 2;
 /// or a contact force stopped being finite; run/engine_run.h): 4. The outputs are written, each
 /// ending at its run's last finite state, and stderr names every failed run.
 inline constexpr int kExitRunFailed = 4;
-/// Exit code of `run` and `compare` when the reference's model stopped deciding the motion (an impact or a
-/// contact state with no admissible outcome or several: summary.json "undetermined"): 5. The
-/// outputs are written; from that instant the history is the outcome the model's rule chose,
-/// one of several (or none) that the model admits, and stderr says where and why.
+/// Exit code of `run` and `compare` when the reference's model stopped deciding the motion (an
+/// impact or a contact state with no admissible outcome or several: summary.json
+/// "undetermined"): 5. The outputs are written; from that instant the history is the outcome the
+/// model's rule chose, one of several (or none) that the model admits, and stderr says where and
+/// why.
 inline constexpr int kExitUndetermined = 5;
 
 }  // namespace rockbench::cli

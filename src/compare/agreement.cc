@@ -470,8 +470,7 @@ EngineAgreement CompareWithReference(const Scene& scene, const reference::Result
   // Outcomes are compared up to the instant the model stops deciding the motion (after it the
   // reference's outcome is one admissible branch's): an overturn or a block leaving its support
   // later than that, in either run, is not compared.
-  const double t_decided =
-      rs.undetermined_from_s.value_or(std::numeric_limits<double>::infinity());
+  const double t_decided = rs.undetermined_from_s.value_or(std::numeric_limits<double>::infinity());
   const auto decided = [&](double t) { return !(t > t_decided + 1e-12); };
 
   // Overturning.

@@ -178,7 +178,8 @@ CompareRun RunCompare(const Scene& scene, const GroundMotion& motion,
   log(buf);
   // Where the model stopped deciding the motion: nothing is compared after it.
   if (ref.summary.undetermined_from_s) {
-    std::snprintf(buf, sizeof buf, "  UNDETERMINED from %.4f s: ", *ref.summary.undetermined_from_s);
+    std::snprintf(buf, sizeof buf,
+                  "  UNDETERMINED from %.4f s: ", *ref.summary.undetermined_from_s);
     log(buf + ref.summary.undetermined_detail +
         "; no engine is compared after it (the reference's history there is one admissible "
         "outcome the rule chose)");

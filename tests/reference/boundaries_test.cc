@@ -351,9 +351,10 @@ TEST(UndeterminedImpact, HasTwoIndependentOutcomesAndTheRunTookOne) {
   }
   EXPECT_GT(widest, 1e-4 * v_scale);
   EXPECT_LT(nearest, 1e-6 * v_scale);
-  std::printf("undetermined impact at %.9f s: %zu independent outcomes, %.3g apart (v scale "
-              "%.3g), the run's %.3g from the nearest\n",
-              t, c.outcomes.size(), widest, v_scale, nearest);
+  std::printf(
+      "undetermined impact at %.9f s: %zu independent outcomes, %.3g apart (v scale "
+      "%.3g), the run's %.3g from the nearest\n",
+      t, c.outcomes.size(), widest, v_scale, nearest);
 }
 
 // A statue on a plinth on a pedestal (1.0 x 1.1, 0.7 x 0.2, 0.4 x 1.5 m; mu = 0.5 at every
