@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "reference/boundary_scenes.h"
 #include "reference/coulomb_impact.h"
 #include "reference/simulate.h"
 #include "reference/unilateral.h"
@@ -23,33 +24,13 @@ namespace {
 
 using test::CoulombImpact;
 using test::ImpactBlock;
+using test_scenes::ThreeBlocks;
+using test_scenes::ThreeBlocksWithFriction;
 
 Scene Shipped(const std::string& name) {
   Scene s = LoadScene(std::string(ROCKBENCH_SOURCE_DIR) + "/scenes/" + name + ".toml");
   s.compare.members = 0;
   return s;
-}
-
-// Three blocks (width x height, m; 2500 kg/m^3) with friction 0.5 at every interface, under a
-// record of the repository's at `scale`, 15 s.
-Scene ThreeBlocks(const std::array<double, 6>& wh, const std::string& record, double scale) {
-  std::string text;
-  for (int i = 0; i < 3; ++i) {
-    text += "[[block]]\nwidth = " + std::to_string(wh[2 * i]) +
-            "\nheight = " + std::to_string(wh[2 * i + 1]) + "\ndensity = 2500.0\nfriction = 0.5\n";
-  }
-  text += "[base.horizontal]\nfile = \"records/" + record + "\"\nscale = " + std::to_string(scale) +
-          "\n[run]\nduration = 15.0\noutput_interval = 0.01\n";
-  Scene s = ParseScene(text, std::string(ROCKBENCH_SOURCE_DIR) + "/three_blocks.toml");
-  s.compare.members = 0;
-  return s;
-}
-
-// 0.8 x 0.8, 0.6 x 0.6 and 0.4 x 0.8 m under Rinaldi 228: the stack slips first at a ground
-// impact and chatters (hundreds of impacts and stick-slip transitions within 1 ms) at 6.79 s.
-Scene ThreeBlocksWithFriction() {
-  return ThreeBlocks({0.8, 0.8, 0.6, 0.6, 0.4, 0.8}, "northridge1994_rinaldi_receiving_sta_228.AT2",
-                     1.0);
 }
 
 // The scene at compare's witness settings (run/reference_witness.h, WitnessModel): dop853 at
@@ -63,12 +44,7 @@ Scene Witness(const Scene& s) {
 }
 
 std::vector<ImpactBlock> BlocksOf(const Scene& s) {
-  std::vector<ImpactBlock> out;
-  for (const BlockDef& d : s.blocks) {
-    const double b = d.width_m / 2, h = d.height_m / 2;
-    out.push_back({b, h, d.mass_kg, d.mass_kg * (b * b + h * h) / 3.0, d.friction});
-  }
-  return out;
+  return test_scenes::BlocksOf<ImpactBlock>(s);
 }
 
 // The mass centres and angles of a pivot chain (each block on its support's corner on the side

@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "reference/boundary_scenes.h"
 #include "reference/moreau_jean.h"
 #include "reference/simulate.h"
 #include "scene/ground_motion.h"
@@ -26,23 +27,7 @@ namespace {
 
 using test::MjBlock;
 using test::MoreauJeanStack;
-
-// The three-block stack of boundaries_test.cc (ThreeBlocksWithFriction): 0.8 x 0.8, 0.6 x 0.6
-// and 0.4 x 0.8 m, 2500 kg/m^3, mu = 0.5 at every interface, under Rinaldi 228, 15 s.
-Scene ThreeBlocksWithFriction() {
-  const std::array<double, 6> wh{0.8, 0.8, 0.6, 0.6, 0.4, 0.8};
-  std::string text;
-  for (int i = 0; i < 3; ++i) {
-    text += "[[block]]\nwidth = " + std::to_string(wh[2 * i]) +
-            "\nheight = " + std::to_string(wh[2 * i + 1]) + "\ndensity = 2500.0\nfriction = 0.5\n";
-  }
-  text +=
-      "[base.horizontal]\nfile = \"records/northridge1994_rinaldi_receiving_sta_228.AT2\"\n"
-      "scale = 1.0\n[run]\nduration = 15.0\noutput_interval = 0.01\n";
-  Scene s = ParseScene(text, std::string(ROCKBENCH_SOURCE_DIR) + "/three_blocks.toml");
-  s.compare.members = 0;
-  return s;
-}
+using test_scenes::ThreeBlocksWithFriction;
 
 // The reference's run of that scene (computed once for the tests of this file).
 const Result& ThreeBlockReference() {
@@ -54,12 +39,7 @@ const Result& ThreeBlockReference() {
 }
 
 std::vector<MjBlock> BlocksOf(const Scene& s) {
-  std::vector<MjBlock> out;
-  for (const BlockDef& d : s.blocks) {
-    const double b = d.width_m / 2, h = d.height_m / 2;
-    out.push_back({b, h, d.mass_kg, d.mass_kg * (b * b + h * h) / 3.0, d.friction});
-  }
-  return out;
+  return test_scenes::BlocksOf<MjBlock>(s);
 }
 
 // A block-frame point (x, y) turned by theta clockwise.
