@@ -86,6 +86,23 @@ State PostImpactState(const Geometry& geo, Mode before, const State& pre, Mode a
 /// sqrt(k), settles at the same impacts).
 double RestRate(const Geometry& geo, ImpactKind contact, double rest_rate_rel);
 
+/// The rest rule's radii of a stack of n blocks (bottom first), m: R_k from block k's base
+/// corner to the mass centre of blocks k..N at rest. `props(k)` gives block k's half width and
+/// half height (m) and its mass (kg), as {b, h, m}.
+template <class Props>
+std::vector<double> RestRadii_m(int n, const Props& props) {
+  std::vector<double> r(static_cast<size_t>(n), 0.0);
+  double m_above = 0.0, moment_above = 0.0;  // mass and first moment about block k's base
+  for (int k = n - 1; k >= 0; --k) {
+    const auto [b, h, m] = props(k);
+    // Shifting the base up by block k's height moves the blocks above by 2 h_k.
+    moment_above += m_above * 2.0 * h + m * h;
+    m_above += m;
+    r[static_cast<size_t>(k)] = std::hypot(b, moment_above / m_above);
+  }
+  return r;
+}
+
 /// Resolves an impact at state `pre` (the gap coordinate exactly zero). Chooses the first
 /// candidate that is admissible both in velocities and in impulses; if none is, the first that is
 /// admissible in velocities (the thesis's check) and reports admissible = false; if none is even

@@ -157,6 +157,11 @@ class Trajectory {
   int blocks_ = 2;
   bool slip_and_lift_ = false;
   std::shared_ptr<const StateView> view_;
+  // The last segment starting at or before t (the state just after an event at t); segments_
+  // not empty, t within them.
+  std::vector<Segment>::const_iterator SegmentFrom(double t_s) const;
+  // Segment `it`'s view components (its step holds the view's layout) at t, into out.
+  void StateComponents(std::vector<Segment>::const_iterator it, double t_s, double* out) const;
   std::vector<Segment> segments_;
   std::vector<Step> steps_;
   std::vector<std::vector<double, UninitialisedAllocator<double>>> chunks_;

@@ -1,6 +1,7 @@
 #include "reference/stack_contacts.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <functional>
 #include <utility>
@@ -35,15 +36,10 @@ StackContacts::StackContacts(StackGeometry geometry) : chain_(std::move(geometry
   for (const BlockProps& p : geo.blocks) mass += p.m;
   weight_n_ = mass * geo.g;
   // R_k: block k's base corner to the mass centre of the blocks from k up, at rest.
-  rest_radius_.assign(n, 0.0);
-  double m_above = 0.0, moment_above = 0.0;  // mass and first moment about block k's base
-  for (int k = n - 1; k >= 0; --k) {
+  rest_radius_ = RestRadii_m(n, [&](int k) {
     const BlockProps& p = geo.blocks[k];
-    // Shifting the base up by block k's height moves the blocks above by 2 h_k.
-    moment_above += m_above * 2.0 * p.h + p.m * p.h;
-    m_above += p.m;
-    rest_radius_[k] = std::hypot(p.b, moment_above / m_above);
-  }
+    return std::array<double, 3>{p.b, p.h, p.m};
+  });
   loads_.assign(n, InterfaceLoad{});
   acc_.assign(n, 0.0);
   omega_.assign(n, 0.0);

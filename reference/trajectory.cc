@@ -14,40 +14,54 @@ double Trajectory::end_s() const {
   return segments_.empty() ? 0.0 : segments_.back().t1;
 }
 
-Sample Trajectory::At(double t_s) const {
-  Sample out(blocks_, slip_and_lift_);
-  if (segments_.empty()) return out;
-  t_s = std::clamp(t_s, segments_.front().t0, segments_.back().t1);
-  // The last segment starting at or before t (post-event state at an event time): the last
-  // one for the samples a run records as it goes, else found by bisection.
+std::vector<Trajectory::Segment>::const_iterator Trajectory::SegmentFrom(double t_s) const {
+  // The last one for the samples a run records as it goes, else found by bisection.
   auto it = std::prev(segments_.end());
   if (t_s < it->t0) {
     it = std::upper_bound(segments_.begin(), segments_.end(), t_s,
                           [](double t, const Segment& s) { return t < s.t0; });
     if (it != segments_.begin()) --it;
   }
+  return it;
+}
+
+void Trajectory::StateComponents(std::vector<Segment>::const_iterator it, double t_s,
+                                 double* out) const {
   const Step& step = steps_[static_cast<size_t>(it - segments_.begin())];
-  const double t = std::min(t_s, it->t1);
-  const size_t stride = 2 * static_cast<size_t>(blocks_);
+  const double t = std::clamp(t_s, it->t0, it->t1);
+  // The view's state: its components one after the other.
+  const size_t m = static_cast<size_t>(view_->components());
   const double* c = chunks_[step.chunk].data() + step.pos;
   // As DenseStepN::At: a constant step (or one of zero length) is its first coefficient.
   const bool constant = step.kind == DenseKinds::kConstant || step.h == 0.0;
   const double s = constant ? 0.0 : (t - step.t0) / step.h;
-  auto value = [&](size_t i) {
-    return constant ? c[i] : DenseKinds::Component(step.kind, s, c + i, stride);
-  };
+  for (size_t i = 0; i < m; ++i) {
+    out[i] = constant ? c[i] : DenseKinds::Component(step.kind, s, c + i, m);
+  }
+}
+
+Sample Trajectory::At(double t_s) const {
+  Sample out(blocks_, slip_and_lift_);
+  if (segments_.empty()) return out;
+  t_s = std::clamp(t_s, segments_.front().t0, segments_.back().t1);
+  // The last segment starting at or before t (post-event state at an event time).
+  const auto it = SegmentFrom(t_s);
+  const Step& step = steps_[static_cast<size_t>(it - segments_.begin())];
   if (step.state) {
-    // The view's state: its components one after the other.
-    const size_t m = static_cast<size_t>(view_->components());
     // The unilateral model's state: 6 components a block.
     std::array<double, 6 * kUnilateralMaxBlocks> buffer{};
-    const double* cs = c;
-    auto state_value = [&](size_t i) {
-      return constant ? cs[i] : DenseKinds::Component(step.kind, s, cs + i, m);
-    };
-    for (size_t i = 0; i < m; ++i) buffer[i] = state_value(i);
+    StateComponents(it, t_s, buffer.data());
     view_->Fill(buffer.data(), &out);
   } else {
+    const double t = std::min(t_s, it->t1);
+    const size_t stride = 2 * static_cast<size_t>(blocks_);
+    const double* c = chunks_[step.chunk].data() + step.pos;
+    // As DenseStepN::At: a constant step (or one of zero length) is its first coefficient.
+    const bool constant = step.kind == DenseKinds::kConstant || step.h == 0.0;
+    const double s = constant ? 0.0 : (t - step.t0) / step.h;
+    auto value = [&](size_t i) {
+      return constant ? c[i] : DenseKinds::Component(step.kind, s, c + i, stride);
+    };
     for (int i = 0; i < blocks_; ++i) {
       out.theta_rad[i] = value(static_cast<size_t>(i));
       out.omega_radps[i] = value(static_cast<size_t>(blocks_ + i));
@@ -61,25 +75,15 @@ Sample Trajectory::At(double t_s) const {
 std::vector<double> Trajectory::StateAt(double t_s, bool before_event) const {
   if (segments_.empty() || !view_) return {};
   t_s = std::clamp(t_s, segments_.front().t0, segments_.back().t1);
-  // Segments are ordered by time: the first that ends at or after t (before an event), or the
-  // last that starts at or before it (after it).
-  auto it = before_event
-                ? std::lower_bound(segments_.begin(), segments_.end(), t_s,
-                                   [](const Segment& s, double t) { return s.t1 < t; })
-                : std::prev(std::upper_bound(segments_.begin(), segments_.end(), t_s,
-                                             [](double t, const Segment& s) { return t < s.t0; }));
+  // Before an event at t: the first segment that ends at or after t; after it: the last that
+  // starts at or before it.
+  auto it = before_event ? std::lower_bound(segments_.begin(), segments_.end(), t_s,
+                                            [](const Segment& s, double t) { return s.t1 < t; })
+                         : SegmentFrom(t_s);
   if (it == segments_.end()) it = std::prev(segments_.end());
-  const Step& step = steps_[static_cast<size_t>(it - segments_.begin())];
-  if (!step.state) return {};
-  const double t = std::clamp(t_s, it->t0, it->t1);
-  const size_t m = static_cast<size_t>(view_->components());
-  const double* c = chunks_[step.chunk].data() + step.pos;
-  const bool constant = step.kind == DenseKinds::kConstant || step.h == 0.0;
-  const double s = constant ? 0.0 : (t - step.t0) / step.h;
-  std::vector<double> out(m);
-  for (size_t i = 0; i < m; ++i) {
-    out[i] = constant ? c[i] : DenseKinds::Component(step.kind, s, c + i, m);
-  }
+  if (!steps_[static_cast<size_t>(it - segments_.begin())].state) return {};
+  std::vector<double> out(static_cast<size_t>(view_->components()));
+  StateComponents(it, t_s, out.data());
   return out;
 }
 

@@ -1,6 +1,7 @@
 #include "reference/unilateral.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -123,15 +124,14 @@ UnilateralStack::UnilateralStack(std::vector<UnilateralBlock> blocks, double g_m
   // separation speed): R_k from block k's base corner to the mass centre of blocks k..N at
   // rest, and the two contact points 2 min(b_k, b_(k-1)) apart (the upper block's base corners,
   // or its support's top corners where the support is the narrower).
-  rest_speed_rel_.assign(static_cast<size_t>(n_), 0.0);
-  double m_above = 0.0, moment_above = 0.0;  // mass and first moment about block k's base
-  for (int k = n_ - 1; k >= 0; --k) {
+  const std::vector<double> radius_m = RestRadii_m(n_, [&](int k) {
     const UnilateralBlock& b = blocks_[k];
-    moment_above += m_above * 2.0 * b.h_m + b.mass_kg * b.h_m;
-    m_above += b.mass_kg;
-    const double R = std::hypot(b.b_m, moment_above / m_above);
-    const double span = 2.0 * (k > 0 ? std::min(b.b_m, blocks_[k - 1].b_m) : b.b_m);
-    rest_speed_rel_[k] = std::sqrt(g_ / R) * span;
+    return std::array<double, 3>{b.b_m, b.h_m, b.mass_kg};
+  });
+  rest_speed_rel_.assign(static_cast<size_t>(n_), 0.0);
+  for (int k = 0; k < n_; ++k) {
+    const double b = blocks_[k].b_m, span = 2.0 * (k > 0 ? std::min(b, blocks_[k - 1].b_m) : b);
+    rest_speed_rel_[k] = std::sqrt(g_ / radius_m[k]) * span;
   }
   resolved_speed_ = std::sqrt(2.0 * g_ * 4.0 * std::numeric_limits<double>::epsilon() * length_);
 }
