@@ -13,13 +13,15 @@ namespace rockbench {
 /// Most bytes of foreign text a message carries.
 inline constexpr size_t kMaxRelayedBytes = 4096;
 
-namespace relayed_text_detail {
-
-inline void AppendHex(std::string& out, unsigned char c) {
+/// Appends byte c as the four characters \xHH (upper-case hex): how every text from outside
+/// rockbench shows a byte it must not carry as it is.
+inline void AppendHexEscape(std::string& out, unsigned char c) {
   char buf[8];
   std::snprintf(buf, sizeof buf, "\\x%02X", c);
   out += buf;
 }
+
+namespace relayed_text_detail {
 
 // Appends the bytes of `text` from `i` that make one character: a printable ASCII character as
 // it is; \t, \r and \n (unless `keep_newline`) and every other control character, DEL, a byte
@@ -67,7 +69,7 @@ inline size_t AppendChar(std::string& out, std::string_view text, size_t i) {
   valid =
       valid && cp >= min_cp && cp <= 0x10FFFFu && !(cp >= 0xD800u && cp <= 0xDFFFu) && cp >= 0xA0u;
   if (!valid) {
-    AppendHex(out, c);
+    AppendHexEscape(out, c);
     return i + 1;
   }
   out.append(text.substr(i, n));

@@ -6,6 +6,7 @@
 #include <system_error>
 
 #include "scene/history.h"
+#include "util/relayed_text.h"
 #include "util/subprocess.h"
 
 namespace rockbench::report {
@@ -54,9 +55,7 @@ std::string GnuplotDataString(const std::string& text) {
     if (c == '"') {
       out += '\'';
     } else if (u < 0x20 || u == 0x7f) {
-      char buf[8];
-      std::snprintf(buf, sizeof buf, "\\x%02X", u);
-      out += buf;
+      AppendHexEscape(out, u);
     } else {
       out += c;
     }

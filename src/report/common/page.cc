@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "scene/history.h"
+#include "util/relayed_text.h"
 
 namespace rockbench::report {
 namespace {
@@ -42,9 +43,7 @@ std::string MdText(const std::string& text) {
     } else if (c == '\n' || c == '\r') {
       out += ' ';
     } else if (u < 0x20 || u == 0x7f) {
-      char buf[8];
-      std::snprintf(buf, sizeof buf, "\\x%02X", u);
-      out += buf;
+      AppendHexEscape(out, u);
     } else {
       out += c;
     }
