@@ -224,10 +224,8 @@ void Execute(const CompareCliOptions& opt) {
   const reference::Summary& rs = run.reference().used().summary;
   if (rs.undetermined_from_s) {
     std::fflush(stdout);
-    std::fprintf(stderr,
-                 "rockbench: reference: the model stops deciding the motion at t = %.4f s (%s); "
-                 "no engine is compared after it\n",
-                 *rs.undetermined_from_s, rs.undetermined_detail.c_str());
+    std::fprintf(stderr, "rockbench: reference: %s; no engine is compared after it\n",
+                 StopsDecidingText(*rs.undetermined_from_s, rs.undetermined_detail).c_str());
     throw CLI::RuntimeError(kExitUndetermined);
   }
 }

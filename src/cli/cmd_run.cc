@@ -13,7 +13,6 @@
 #include "scene/ground_motion.h"
 #include "scene/history.h"
 #include "scene/scene.h"
-#include "util/format.h"
 
 namespace rockbench::cli {
 namespace {
@@ -54,10 +53,9 @@ void Execute(const RunOptions& opt) {
     const EngineRun run = RunEngine(name, scene, motion);
     if (const std::string f = NonFiniteText(run); !f.empty()) failed.push_back(f);
     if (const auto u = run.summary.find("undetermined"); u != run.summary.end() && u->is_object()) {
-      undetermined.push_back(name + ": the model stops deciding the motion at t = " +
-                             Format("%.4f", u->value("t_s", 0.0)) + " s (" +
-                             u->value("detail", std::string()) +
-                             "); the history after it is one admissible outcome the rule chose");
+      undetermined.push_back(
+          name + ": " + StopsDecidingText(u->value("t_s", 0.0), u->value("detail", std::string())) +
+          "; the history after it is one admissible outcome the rule chose");
     }
     WriteEngineFiles(run, out);
     if (IsReference(name)) {

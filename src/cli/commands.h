@@ -1,6 +1,8 @@
 #pragma once
 /// CLI subcommands. Each file registers one subcommand on the CLI11 app; main.cc calls them all.
 #include <CLI/CLI.hpp>
+#include <cstdio>
+#include <string>
 
 namespace rockbench::cli {
 
@@ -35,5 +37,13 @@ inline constexpr int kExitRunFailed = 4;
 /// model's rule chose, one of several (or none) that the model admits, and stderr says where and
 /// why.
 inline constexpr int kExitUndetermined = 5;
+
+/// What `run` and `compare` say on stderr where the reference's model stopped deciding the
+/// motion: "the model stops deciding the motion at t = T s (DETAIL)".
+inline std::string StopsDecidingText(double t_s, const std::string& detail) {
+  char t[32];
+  std::snprintf(t, sizeof t, "%.4f", t_s);
+  return std::string("the model stops deciding the motion at t = ") + t + " s (" + detail + ")";
+}
 
 }  // namespace rockbench::cli
