@@ -14,7 +14,7 @@
 #include "engines/bullet/rocking_world.h"
 #include "engines/common/engine_input.h"
 #include "engines/common/monitor.h"
-#include "scene/ground_motion.h"
+#include "motion/ground_motion.h"
 #include "scene/scene.h"
 
 namespace {

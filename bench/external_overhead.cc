@@ -15,8 +15,8 @@
 #include "engines/bullet/rocking_world.h"
 #include "engines/external/external_engine.h"
 #include "engines/external/protocol.h"
+#include "motion/ground_motion.h"
 #include "run/engine_run.h"
-#include "scene/ground_motion.h"
 
 using namespace rockbench;
 

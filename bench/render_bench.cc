@@ -6,11 +6,11 @@
 #include <filesystem>
 #include <string>
 
+#include "motion/ground_motion.h"
 #include "renders/animation.h"
 #include "renders/drawn_motion.h"
 #include "renders/renderer.h"
 #include "run/engine_run.h"
-#include "scene/ground_motion.h"
 #include "scene/scene.h"
 
 namespace {

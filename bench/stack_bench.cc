@@ -12,9 +12,9 @@
 #include <string>
 #include <vector>
 
+#include "motion/ground_motion.h"
+#include "reference/chain/stack_chain.h"
 #include "reference/simulate.h"
-#include "reference/stack_chain.h"
-#include "scene/ground_motion.h"
 #include "scene/scene.h"
 
 namespace {

@@ -5,11 +5,11 @@
 #include <optional>
 #include <utility>
 
-#include "reference/impact.h"
-#include "reference/kinematics.h"
-#include "reference/modes.h"
-#include "reference/observables.h"
-#include "reference/transitions.h"
+#include "reference/thesis/impact.h"
+#include "reference/thesis/kinematics.h"
+#include "reference/thesis/modes.h"
+#include "reference/thesis/observables.h"
+#include "reference/thesis/transitions.h"
 
 namespace rockbench::reference {
 namespace {

@@ -19,11 +19,11 @@
 #include <limits>
 #include <string>
 
-#include "reference/geometry.h"
-#include "reference/integrator.h"
-#include "reference/kinematics.h"
-#include "reference/modes.h"
-#include "reference/stack_contacts.h"
+#include "reference/chain/stack_contacts.h"
+#include "reference/integration/integrator.h"
+#include "reference/thesis/geometry.h"
+#include "reference/thesis/kinematics.h"
+#include "reference/thesis/modes.h"
 #include "scene/mode.h"
 #include "scene/scene.h"
 

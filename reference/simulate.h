@@ -11,11 +11,11 @@
 #include <utility>
 #include <vector>
 
-#include "reference/integrator.h"
-#include "scene/ground_motion.h"
+#include "engine/outcome.h"
+#include "motion/ground_motion.h"
+#include "reference/integration/integrator.h"
 #include "scene/history.h"
 #include "scene/mode.h"
-#include "scene/outcome.h"
 #include "scene/scene.h"
 
 namespace rockbench::reference {

@@ -7,9 +7,9 @@
 #include <memory>
 #include <optional>
 
-#include "reference/integrator.h"
-#include "reference/unilateral.h"
-#include "scene/outcome.h"
+#include "engine/outcome.h"
+#include "reference/integration/integrator.h"
+#include "reference/unilateral/unilateral.h"
 
 namespace rockbench::reference {
 namespace {

@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "motion/ground_motion.h"
 #include "reference/simulate.h"
-#include "scene/ground_motion.h"
 #include "scene/mode.h"
 #include "scene/scene.h"
 

@@ -15,6 +15,7 @@
 #include <optional>
 #include <stdexcept>
 
+#include "files/atomic_file.h"
 #include "renders/limits.h"
 #include "scene/history.h"
 #include "util/subprocess.h"

@@ -11,8 +11,8 @@
 #include <utility>
 #include <variant>
 
+#include "motion/ground_displacement.h"
 #include "renders/limits.h"
-#include "scene/ground_displacement.h"
 
 namespace rockbench::renders {
 

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "scene/ground_motion.h"
+#include "motion/ground_motion.h"
 #include "scene/history.h"
 #include "scene/scene.h"
 #include "scene/stack_pose.h"

@@ -3,6 +3,7 @@
 
 #include <cstring>
 
+#include "files/atomic_file.h"
 #include "renders/image.h"
 #include "scene/history.h"
 

@@ -5,7 +5,9 @@
 #   scripts/check-outputs.sh record DIR     run everything, keep the normalised files in DIR
 #   scripts/check-outputs.sh check DIR      run everything again and compare with DIR
 # Options (environment): ROCKBENCH_BIN (default build/src/cli/rockbench), ONLY=scenes|studies,
-# JOBS (study workers, default 2). Wall-clock figures are replaced by "W" before comparing: JSON
+# JOBS (study workers, default 2), COMPARE_ARGS (extra arguments of every compare, e.g. "--quick":
+# the comparisons without perturbation members, minutes instead of hours; use the same on both
+# sides). Wall-clock figures are replaced by "W" before comparing: JSON
 # values whose key contains "wall", "real_time" or "serial_s" (a study's serial part's wall
 # time), CSV columns whose header contains "wall" or "real_time", wall times printed on stdout
 # and stderr, the temporary folder's name. Everything else must be identical. The check
@@ -76,7 +78,8 @@ if [ "${ONLY:-all}" != studies ]; then
   for scene in scenes/*.toml; do
     name=$(basename "$scene" .toml)
     run_case "run_$name" run "$scene"
-    run_case "compare_$name" compare "$scene" --engines all
+    # shellcheck disable=SC2086 # COMPARE_ARGS is a list of arguments
+    run_case "compare_$name" compare "$scene" --engines all ${COMPARE_ARGS:-}
   done
 fi
 if [ "${ONLY:-all}" != scenes ]; then

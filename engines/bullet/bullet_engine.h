@@ -2,8 +2,8 @@
 /// The Bullet engine's entry point, free of Bullet headers. Compiled into rockbench_bullet
 /// (double precision, used in process by the harness) and rockbench_bullet_float (single
 /// precision, used only by the helper program rockbench-bullet-float).
+#include "engine/engine.h"
 #include "engines/bullet/bullet_settings.h"
-#include "scene/engine.h"
 
 namespace rockbench::bullet {
 

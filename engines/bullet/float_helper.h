@@ -4,8 +4,8 @@
 /// temporary file (protocol.h), its output comes back in another; see docs/bullet.md.
 #include <filesystem>
 
+#include "engine/engine.h"
 #include "engines/bullet/bullet_settings.h"
-#include "scene/engine.h"
 
 namespace rockbench::bullet {
 

@@ -6,8 +6,8 @@
 #include <filesystem>
 #include <string>
 
+#include "engine/engine.h"
 #include "engines/bullet/bullet_settings.h"
-#include "scene/engine.h"
 
 namespace rockbench::bullet {
 

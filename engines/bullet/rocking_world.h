@@ -10,10 +10,10 @@
 #include <nlohmann/json.hpp>
 #include <vector>
 
+#include "engine/engine.h"
 #include "engines/bullet/bullet_engine.h"
 #include "engines/bullet/bullet_settings.h"
 #include "engines/common/monitor.h"
-#include "scene/engine.h"
 
 namespace rockbench::bullet {
 

@@ -7,7 +7,7 @@
 #include <string>
 #include <utility>
 
-#include "scene/engine.h"
+#include "engine/engine.h"
 
 namespace rockbench {
 namespace {

@@ -9,9 +9,9 @@
 #include <utility>
 #include <vector>
 
+#include "motion/ground_displacement.h"
+#include "motion/ground_motion.h"
 #include "scene/engine_settings.h"
-#include "scene/ground_displacement.h"
-#include "scene/ground_motion.h"
 #include "scene/history.h"
 #include "scene/scene.h"
 

@@ -8,9 +8,9 @@
 #include <stdexcept>
 #include <string>
 
+#include "engine/engine.h"
 #include "engines/common/engine_input.h"
 #include "engines/common/monitor.h"
-#include "scene/engine.h"
 
 namespace rockbench {
 

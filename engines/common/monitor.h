@@ -14,10 +14,10 @@
 #include <string>
 #include <vector>
 
+#include "engine/outcome.h"
 #include "engines/common/engine_input.h"
 #include "scene/history.h"
 #include "scene/mode.h"
-#include "scene/outcome.h"
 #include "scene/rigid_block.h"
 
 namespace rockbench {

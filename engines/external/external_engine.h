@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "engine/engine.h"
 #include "engines/external/manifest.h"
-#include "scene/engine.h"
 
 namespace rockbench::external {
 

@@ -9,7 +9,7 @@
 #include <utility>
 #include <vector>
 
-#include "scene/engine.h"
+#include "engine/engine.h"
 #include "scene/engine_settings.h"
 #include "scene/scene.h"
 

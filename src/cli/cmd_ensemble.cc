@@ -18,6 +18,7 @@
 
 #include "cli/commands.h"
 #include "cli/limit_options.h"
+#include "files/atomic_file.h"
 #include "run/parallel.h"
 #include "scene/history.h"
 #include "scene/limits.h"

@@ -18,6 +18,8 @@
 
 #include "cli/commands.h"
 #include "cli/limit_options.h"
+#include "files/history_csv.h"
+#include "motion/ground_motion.h"
 #include "renders/animation.h"
 #include "renders/drawn_motion.h"
 #include "renders/gl_context.h"
@@ -26,7 +28,6 @@
 #include "run/engine_registry.h"
 #include "run/engine_run.h"
 #include "run/resource_estimate.h"
-#include "scene/ground_motion.h"
 #include "scene/history.h"
 #include "scene/limits.h"
 #include "scene/scene.h"

@@ -14,6 +14,7 @@
 
 #include "cli/commands.h"
 #include "cli/limit_options.h"
+#include "files/atomic_file.h"
 #include "run/engine_registry.h"
 #include "run/parallel.h"
 #include "scene/history.h"

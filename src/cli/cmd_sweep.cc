@@ -11,10 +11,11 @@
 
 #include "cli/commands.h"
 #include "cli/limit_options.h"
+#include "files/atomic_file.h"
+#include "motion/ground_motion.h"
 #include "run/engine_registry.h"
 #include "run/parallel.h"
 #include "run/resource_estimate.h"
-#include "scene/ground_motion.h"
 #include "scene/history.h"
 #include "scene/scene.h"
 #include "sweep/sweep.h"

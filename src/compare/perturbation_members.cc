@@ -7,10 +7,10 @@
 #include <stdexcept>
 
 #include "compare/agreement.h"
-#include "reference/geometry.h"
+#include "reference/chain/stack_contacts.h"
 #include "reference/mechanics.h"
-#include "reference/stack_contacts.h"
-#include "reference/transitions.h"
+#include "reference/thesis/geometry.h"
+#include "reference/thesis/transitions.h"
 #include "run/parallel.h"
 #include "run/summary.h"
 #include "run/tolerance.h"

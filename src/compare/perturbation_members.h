@@ -15,9 +15,9 @@
 #include <string>
 #include <vector>
 
+#include "motion/ground_motion.h"
 #include "reference/simulate.h"
 #include "run/engine_run.h"
-#include "scene/ground_motion.h"
 #include "scene/scene.h"
 
 namespace rockbench {

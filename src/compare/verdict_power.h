@@ -4,7 +4,7 @@
 #include <vector>
 
 #include "compare/verdict.h"
-#include "scene/ground_motion.h"
+#include "motion/ground_motion.h"
 #include "scene/scene.h"
 
 namespace rockbench {

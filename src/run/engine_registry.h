@@ -5,7 +5,7 @@
 #include <string_view>
 #include <vector>
 
-#include "scene/engine.h"
+#include "engine/engine.h"
 
 namespace rockbench {
 

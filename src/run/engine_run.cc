@@ -1,5 +1,7 @@
 #include "run/engine_run.h"
 
+#include "files/atomic_file.h"
+#include "files/history_csv.h"
 #include "run/engine_registry.h"
 #include "run/reference_engine.h"
 #include "util/relayed_text.h"

@@ -8,10 +8,10 @@
 #include <string>
 #include <vector>
 
-#include "scene/engine.h"
-#include "scene/ground_motion.h"
+#include "engine/engine.h"
+#include "engine/outcome.h"
+#include "motion/ground_motion.h"
 #include "scene/history.h"
-#include "scene/outcome.h"
 #include "scene/scene.h"
 
 namespace rockbench {

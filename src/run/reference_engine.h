@@ -6,9 +6,9 @@
 /// result (both solutions, the check, the events and modes) travels as the run's extension.
 #include <memory>
 
+#include "engine/engine.h"
 #include "run/engine_registry.h"
 #include "run/reference_witness.h"
-#include "scene/engine.h"
 
 namespace rockbench {
 

@@ -7,10 +7,10 @@
 #include <optional>
 #include <vector>
 
+#include "motion/ground_motion.h"
 #include "reference/simulate.h"
 #include "run/engine_run.h"
 #include "run/tolerance.h"
-#include "scene/ground_motion.h"
 #include "scene/scene.h"
 
 namespace rockbench {

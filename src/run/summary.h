@@ -2,9 +2,9 @@
 /// summary.json of a run: the base motion as read and the reference model's figures.
 #include <nlohmann/json.hpp>
 
+#include "engine/outcome.h"
+#include "motion/ground_motion.h"
 #include "reference/simulate.h"
-#include "scene/ground_motion.h"
-#include "scene/outcome.h"
 #include "scene/scene.h"
 
 namespace rockbench {

@@ -1,6 +1,6 @@
 #pragma once
-/// Histories and events: what every engine (the reference included) returns, and their files.
-#include <filesystem>
+/// Histories and events: what every engine (the reference included) returns (their files:
+/// files/history_csv.h).
 #include <string>
 #include <vector>
 
@@ -61,35 +61,5 @@ struct History {
   /// a finite friction or a vertical motion (Scene::tracks_slip_and_lift).
   bool slip_and_lift = false;
 };
-
-/// CSV header of history.csv: "t,theta1,omega1,mode" (one block), "t,theta1,theta2,omega1,
-/// omega2,mode" (two), "t,theta1,...,thetaN,omega1,...,omegaN,mode" (N); with slip and lift,
-/// ",u1,...,uN,z1,...,zN" after those.
-std::string HistoryCsvHeader(int blocks, bool slip_and_lift = false);
-/// The history as CSV text (deterministic formatting: "%.9f" for times, "%.12e" for angles and
-/// rates, the mode by ConfigurationName: the thesis's names for one or two blocks, the letters
-/// beyond).
-std::string HistoryToCsv(const History& history);
-/// events.csv text. One or two blocks: header "t,kind,mode_before,mode_after,omega1_before,
-/// omega2_before,omega1_after,omega2_after,energy_before_j,energy_after_j,note" (a single block
-/// writes its omega2 columns as 0). N >= 3 blocks: "t,kind,mode_before,mode_after,
-/// omega1_before,...,omegaN_before,omega1_after,...,omegaN_after,energy_before_j,
-/// energy_after_j,note". Same number formats; commas in kind/note become ';'.
-std::string EventsToCsv(const History& history);
-/// Reads a history.csv (any block count, from the header). Throws std::runtime_error naming
-/// file and line.
-History ReadHistoryCsv(const std::filesystem::path& path);
-/// Reads an events.csv (EventsToCsv's format) of a stack of `blocks` blocks (1 or 2 share a
-/// header: 2 when 0; N >= 3 is also read from the header, which must then agree). Throws
-/// std::runtime_error naming file and line.
-std::vector<Event> ReadEventsCsv(const std::filesystem::path& path, int blocks = 0);
-
-/// The whole content of a file (bytes as stored). Throws std::runtime_error naming the file
-/// when it cannot be opened or read.
-std::string ReadTextFile(const std::filesystem::path& path);
-
-/// Writes `text` to `path` atomically: to "<path>.tmp.<pid>" in the same folder, fsync, then
-/// rename over `path`. Creates missing parent folders. Throws std::runtime_error.
-void WriteFileAtomic(const std::filesystem::path& path, const std::string& text);
 
 }  // namespace rockbench

@@ -14,7 +14,7 @@
 
 #include "scene/engine_settings.h"
 #include "scene/mode.h"
-#include "scene/synthetic_motion.h"
+#include "scene/synthetic_motion_def.h"
 
 namespace rockbench {
 

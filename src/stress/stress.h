@@ -16,7 +16,7 @@
 #include <string>
 #include <vector>
 
-#include "scene/engine.h"
+#include "engine/engine.h"
 #include "scene/scene.h"
 
 namespace rockbench {

@@ -5,11 +5,11 @@
 #include <cmath>
 #include <numbers>
 
-#include "reference/geometry.h"
-#include "reference/kinematics.h"
-#include "reference/transitions.h"
+#include "motion/ground_motion.h"
+#include "reference/thesis/geometry.h"
+#include "reference/thesis/kinematics.h"
+#include "reference/thesis/transitions.h"
 #include "run/engine_registry.h"
-#include "scene/ground_motion.h"
 #include "stress/stress.h"
 #include "util/format.h"
 

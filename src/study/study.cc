@@ -12,10 +12,10 @@
 #include <limits>
 #include <sstream>
 
+#include "motion/ground_motion.h"
+#include "motion/intensity.h"
 #include "run/engine_registry.h"
 #include "run/resource_estimate.h"
-#include "scene/ground_motion.h"
-#include "scene/intensity.h"
 #include "scene/limits.h"
 
 namespace rockbench {

@@ -9,11 +9,11 @@
 
 #include "compare/agreement.h"
 #include "compare/perturbation_members.h"
+#include "motion/ground_motion.h"
+#include "motion/intensity.h"
 #include "run/engine_registry.h"
 #include "run/engine_run.h"
 #include "run/reference_engine.h"
-#include "scene/ground_motion.h"
-#include "scene/intensity.h"
 #include "util/format.h"
 
 namespace rockbench {

@@ -16,6 +16,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "files/atomic_file.h"
 #include "run/engine_run.h"
 #include "scene/history.h"
 #include "scene/limits.h"

@@ -10,8 +10,8 @@
 #include <vector>
 
 #include "compare/agreement.h"
-#include "scene/engine.h"
-#include "scene/ground_motion.h"
+#include "engine/engine.h"
+#include "motion/ground_motion.h"
 #include "scene/scene.h"
 
 namespace rockbench {

@@ -12,10 +12,10 @@
 
 #include "compare/agreement.h"
 #include "compare/compare_run.h"
+#include "motion/ground_motion.h"
 #include "reference/simulate.h"
 #include "run/engine_registry.h"
 #include "run/engine_run.h"
-#include "scene/ground_motion.h"
 #include "scene/scene.h"
 
 namespace rockbench::agreement {

@@ -21,10 +21,10 @@
 #include <vector>
 
 #include "compare/agreement.h"
+#include "motion/ground_motion.h"
 #include "reference/benchmarks/closed_forms.h"
 #include "reference/simulate.h"
 #include "run/engine_run.h"
-#include "scene/ground_motion.h"
 #include "scene/scene.h"
 
 namespace rockbench::bullet {

@@ -10,9 +10,9 @@
 #include <vector>
 
 #include "engines/common/engine_input.h"
-#include "reference/geometry.h"
-#include "reference/kinematics.h"
-#include "scene/ground_motion.h"
+#include "motion/ground_motion.h"
+#include "reference/thesis/geometry.h"
+#include "reference/thesis/kinematics.h"
 #include "scene/scene.h"
 #include "tests/common/initial_state.h"
 

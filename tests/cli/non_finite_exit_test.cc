@@ -21,7 +21,7 @@
 #include <vector>
 
 #include "cli/commands.h"
-#include "scene/ground_motion.h"
+#include "motion/ground_motion.h"
 #include "scene/scene.h"
 
 namespace {

@@ -6,8 +6,8 @@
 // tests/reference/pulse_test.cc, closed_forms_test.cc and unilateral_test.cc.
 #include <gtest/gtest.h>
 
+#include "motion/ground_motion.h"
 #include "reference/simulate.h"
-#include "scene/ground_motion.h"
 #include "scene/scene.h"
 
 namespace rockbench::reference {

@@ -10,8 +10,8 @@
 #include <sstream>
 #include <string>
 
+#include "motion/ground_motion.h"
 #include "reference/simulate.h"
-#include "scene/ground_motion.h"
 #include "tests/common/housner_scene.h"
 #include "tests/common/initial_state.h"
 

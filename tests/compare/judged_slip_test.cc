@@ -11,8 +11,8 @@
 #include "compare/agreement.h"
 #include "compare/verdict.h"
 #include "engines/common/monitor.h"
+#include "motion/ground_motion.h"
 #include "reference/simulate.h"
-#include "scene/ground_motion.h"
 #include "tests/common/housner_scene.h"
 
 namespace rockbench {

@@ -14,10 +14,10 @@
 #include "compare/agreement.h"
 #include "compare/perturbation_members.h"
 #include "compare/verdict.h"
+#include "motion/ground_motion.h"
 #include "reference/simulate.h"
 #include "run/summary.h"
 #include "run/tolerance.h"
-#include "scene/ground_motion.h"
 
 namespace rockbench {
 namespace {

@@ -9,8 +9,8 @@
 #include <string>
 
 #include "compare/agreement.h"
+#include "motion/ground_motion.h"
 #include "run/engine_run.h"
-#include "scene/ground_motion.h"
 #include "stress/stress.h"
 #include "tests/common/housner_scene.h"
 

@@ -10,7 +10,7 @@
 #include <string>
 
 #include "compare/verdict_power.h"
-#include "scene/ground_motion.h"
+#include "motion/ground_motion.h"
 
 namespace rockbench {
 namespace {

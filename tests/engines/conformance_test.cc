@@ -21,11 +21,11 @@
 
 #include "common/error_of.h"
 #include "common/scratch_dir_test.h"
+#include "engine/outcome.h"
+#include "motion/ground_motion.h"
 #include "reference/benchmarks/closed_forms.h"
 #include "reference/simulate.h"
 #include "run/engine_registry.h"
-#include "scene/ground_motion.h"
-#include "scene/outcome.h"
 #include "scene/scene.h"
 
 namespace rockbench {

@@ -10,8 +10,8 @@
 #include <vector>
 
 #include "engines/common/engine_input.h"
+#include "motion/ground_displacement.h"
 #include "renders/drawn_motion.h"
-#include "scene/ground_displacement.h"
 #include "scene/stack_pose.h"
 #include "tests/common/initial_state.h"
 

@@ -12,10 +12,11 @@
 #include <vector>
 
 #include "common/housner_scene.h"
+#include "files/history_csv.h"
+#include "motion/ground_motion.h"
 #include "reference/benchmarks/sliding_forms.h"
 #include "run/engine_registry.h"
 #include "run/engine_run.h"
-#include "scene/ground_motion.h"
 #include "scene/history.h"
 #include "scene/scene.h"
 

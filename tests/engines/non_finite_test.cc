@@ -15,12 +15,12 @@
 #include "compare/agreement.h"
 #include "compare/perturbation_members.h"
 #include "compare/verdict.h"
+#include "motion/ground_motion.h"
 #include "reference/simulate.h"
 #include "run/engine_registry.h"
 #include "run/engine_run.h"
 #include "run/reference_engine.h"
 #include "run/summary.h"
-#include "scene/ground_motion.h"
 #include "scene/history.h"
 
 namespace rockbench {

@@ -18,9 +18,9 @@
 #include "engines/external/external_engine.h"
 #include "engines/external/manifest.h"
 #include "engines/external/protocol.h"
+#include "motion/ground_motion.h"
 #include "run/engine_registry.h"
 #include "run/engine_run.h"
-#include "scene/ground_motion.h"
 
 namespace rockbench::external {
 namespace {

@@ -20,10 +20,10 @@
 #include "engines/external/command.h"
 #include "engines/external/external_engine.h"
 #include "engines/external/manifest.h"
+#include "motion/ground_motion.h"
 #include "reference/simulate.h"
 #include "run/engine_registry.h"
 #include "run/engine_run.h"
-#include "scene/ground_motion.h"
 #include "scene/stack_pose.h"
 
 namespace rockbench::external {

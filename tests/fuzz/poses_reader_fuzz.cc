@@ -11,7 +11,7 @@
 #include <fstream>
 
 #include "engines/external/protocol.h"
-#include "scene/ground_motion.h"
+#include "motion/ground_motion.h"
 #include "tests/fuzz/fuzz_target.h"
 
 namespace {

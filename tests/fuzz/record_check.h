@@ -7,8 +7,8 @@
 #include <cmath>
 #include <utility>
 
-#include "scene/ground_motion.h"
-#include "scene/intensity.h"
+#include "motion/ground_motion.h"
+#include "motion/intensity.h"
 #include "scene/limits.h"
 #include "tests/fuzz/fuzz_target.h"
 

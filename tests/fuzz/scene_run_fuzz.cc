@@ -12,8 +12,8 @@
 #include <cmath>
 #include <string>
 
+#include "motion/ground_motion.h"
 #include "reference/simulate.h"
-#include "scene/ground_motion.h"
 #include "tests/fuzz/fuzz_target.h"
 
 namespace {

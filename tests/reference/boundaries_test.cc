@@ -12,11 +12,11 @@
 #include <string>
 #include <vector>
 
+#include "motion/ground_motion.h"
 #include "reference/boundary_scenes.h"
 #include "reference/coulomb_impact.h"
 #include "reference/simulate.h"
-#include "reference/unilateral.h"
-#include "scene/ground_motion.h"
+#include "reference/unilateral/unilateral.h"
 #include "scene/scene.h"
 
 namespace rockbench::reference {

@@ -16,10 +16,10 @@
 #include <string>
 #include <vector>
 
+#include "motion/ground_motion.h"
 #include "reference/boundary_scenes.h"
 #include "reference/moreau_jean.h"
 #include "reference/simulate.h"
-#include "scene/ground_motion.h"
 #include "scene/scene.h"
 
 namespace rockbench::reference {

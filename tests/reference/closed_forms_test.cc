@@ -22,11 +22,11 @@
 
 #include "common/rectangular_pulse.h"
 #include "common/thesis_scene.h"
-#include "reference/geometry.h"
-#include "reference/impact.h"
-#include "reference/kinematics.h"
+#include "motion/ground_motion.h"
 #include "reference/simulate.h"
-#include "scene/ground_motion.h"
+#include "reference/thesis/geometry.h"
+#include "reference/thesis/impact.h"
+#include "reference/thesis/kinematics.h"
 #include "scene/scene.h"
 
 namespace rockbench::reference {

@@ -11,10 +11,10 @@
 #include <string>
 
 #include "reference/benchmarks/closed_forms.h"
-#include "reference/geometry.h"
-#include "reference/integrator.h"
+#include "reference/integration/integrator.h"
 #include "reference/simulate.h"
-#include "reference/transitions.h"
+#include "reference/thesis/geometry.h"
+#include "reference/thesis/transitions.h"
 
 namespace rockbench::reference {
 namespace {

@@ -2,7 +2,7 @@
 // energy gain over a sweep of geometries, the squat-block case, the thesis's first choice and
 // the rest rule. Housner's coefficient (eqs. 3.8, 3.9) and the closed forms 5.29, 5.31, 5.34
 // and 5.36 of the stack's impacts (reference/benchmarks) are checked in closed_forms_test.cc.
-#include "reference/impact.h"
+#include "reference/thesis/impact.h"
 
 #include <gtest/gtest.h>
 
@@ -11,7 +11,7 @@
 #include <random>
 
 #include "reference/benchmarks/closed_forms.h"
-#include "reference/kinematics.h"
+#include "reference/thesis/kinematics.h"
 
 namespace rockbench::reference {
 namespace {

@@ -1,7 +1,7 @@
 // The Runge-Kutta steps of integrator.h: the Dormand-Prince 8(5,3) tableau against its order
 // conditions, the observed orders of its step and its dense output on a closed form, the
 // ordering of the three schemes, and the reference run with it against the default pair.
-#include "reference/integrator.h"
+#include "reference/integration/integrator.h"
 
 #include <gtest/gtest.h>
 

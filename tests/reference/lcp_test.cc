@@ -2,7 +2,7 @@
 // bases written here: on random P-matrix problems (a unique solution, which both must find),
 // on random 2-D friction problems of the unilateral model's form (Lemke's solution checked for
 // complementarity), on degenerate problems, and on one with no solution.
-#include "reference/lcp.h"
+#include "reference/unilateral/lcp.h"
 
 #include <gtest/gtest.h>
 

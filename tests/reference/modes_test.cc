@@ -1,7 +1,7 @@
 // The thesis's per-mode equations (modes.cc, eqs. 4.23, 4.35, 4.39, 4.42 with OCR typos
 // corrected) against the generic pivot-chain Lagrangian assembly (kinematics.cc), at random
 // states, in all 8 modes, with and without vertical base acceleration.
-#include "reference/modes.h"
+#include "reference/thesis/modes.h"
 
 #include <gtest/gtest.h>
 
@@ -9,7 +9,7 @@
 #include <limits>
 #include <random>
 
-#include "reference/kinematics.h"
+#include "reference/thesis/kinematics.h"
 
 namespace rockbench::reference {
 namespace {

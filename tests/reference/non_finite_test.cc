@@ -12,8 +12,8 @@
 #include <vector>
 
 #include "common/thesis_scene.h"
+#include "motion/ground_motion.h"
 #include "reference/simulate.h"
-#include "scene/ground_motion.h"
 
 namespace rockbench::reference {
 namespace {

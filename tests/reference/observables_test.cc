@@ -2,15 +2,15 @@
 // the energy at rest (m g h) and along a free-rocking run between impacts, the reactions at
 // rest (the weight) and at the uplift threshold, and the friction those reactions need, each
 // against a closed form.
-#include "reference/observables.h"
+#include "reference/thesis/observables.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <string>
 
+#include "motion/ground_motion.h"
 #include "reference/simulate.h"
-#include "scene/ground_motion.h"
 
 namespace rockbench::reference {
 namespace {

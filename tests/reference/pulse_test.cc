@@ -10,10 +10,10 @@
 #include <string>
 
 #include "common/rectangular_pulse.h"
+#include "motion/ground_motion.h"
 #include "reference/benchmarks/closed_forms.h"
-#include "reference/geometry.h"
 #include "reference/simulate.h"
-#include "scene/ground_motion.h"
+#include "reference/thesis/geometry.h"
 #include "scene/scene.h"
 
 namespace rockbench::reference {

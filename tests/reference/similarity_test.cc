@@ -12,8 +12,8 @@
 #include <string>
 #include <vector>
 
-#include "reference/geometry.h"
 #include "reference/simulate.h"
+#include "reference/thesis/geometry.h"
 #include "tests/common/initial_state.h"
 
 namespace rockbench::reference {

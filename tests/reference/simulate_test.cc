@@ -13,8 +13,8 @@
 
 #include "common/thesis_scene.h"
 #include "reference/benchmarks/closed_forms.h"
-#include "reference/geometry.h"
-#include "reference/integrator.h"
+#include "reference/integration/integrator.h"
+#include "reference/thesis/geometry.h"
 
 namespace rockbench::reference {
 namespace {

@@ -11,7 +11,7 @@
 // few ulps times N times the largest term; 1e-11 relative (about 5e4 ulps) is that bound with
 // a wide margin for the N <= 10 stacks here, and far below any modelling difference (a wrong
 // sign or lever arm is O(1)).
-#include "reference/stack_chain.h"
+#include "reference/chain/stack_chain.h"
 
 #include <gtest/gtest.h>
 
@@ -23,10 +23,10 @@
 #include <random>
 #include <vector>
 
-#include "reference/geometry.h"
-#include "reference/impact.h"
-#include "reference/kinematics.h"
-#include "reference/modes.h"
+#include "reference/thesis/geometry.h"
+#include "reference/thesis/impact.h"
+#include "reference/thesis/kinematics.h"
+#include "reference/thesis/modes.h"
 
 namespace rockbench::reference {
 namespace {

@@ -3,7 +3,7 @@
 // static tipping thresholds in closed form, the uniqueness of the consistent configuration and
 // of the admissible impact outcome, Housner's impact for one block, and no energy gained at any
 // impact.
-#include "reference/stack_contacts.h"
+#include "reference/chain/stack_contacts.h"
 
 #include <gtest/gtest.h>
 
@@ -13,9 +13,9 @@
 #include <random>
 #include <vector>
 
-#include "reference/geometry.h"
-#include "reference/impact.h"
-#include "reference/transitions.h"
+#include "reference/thesis/geometry.h"
+#include "reference/thesis/impact.h"
+#include "reference/thesis/transitions.h"
 
 namespace rockbench::reference {
 namespace {

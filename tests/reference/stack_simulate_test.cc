@@ -10,12 +10,12 @@
 #include <string>
 #include <vector>
 
+#include "engine/outcome.h"
+#include "motion/ground_motion.h"
 #include "reference/benchmarks/closed_forms.h"
+#include "reference/chain/stack_chain.h"
 #include "reference/simulate.h"
-#include "reference/stack_chain.h"
-#include "scene/ground_motion.h"
 #include "scene/mode.h"
-#include "scene/outcome.h"
 
 namespace rockbench::reference {
 namespace {

@@ -1,7 +1,7 @@
 // Mode changes without impact: the generic face-corner-force rule (transitions.cc) against the
 // thesis's printed criteria (eqs. 4.1-4.4, 4.47, 4.51), and its consistency with the
 // equations of the mode it opens into.
-#include "reference/transitions.h"
+#include "reference/thesis/transitions.h"
 
 #include <gtest/gtest.h>
 
@@ -9,7 +9,7 @@
 #include <cstdio>
 #include <random>
 
-#include "reference/modes.h"
+#include "reference/thesis/modes.h"
 
 namespace rockbench::reference {
 namespace {

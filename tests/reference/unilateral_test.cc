@@ -1,7 +1,7 @@
 // The unilateral model (reference/unilateral.h, unilateral_run.h; issue 24): sliding, lift-off
 // and their transitions against closed forms, the complementarity solver's statements, energy,
 // and the pivot chain where both models hold.
-#include "reference/unilateral.h"
+#include "reference/unilateral/unilateral.h"
 
 #include <gtest/gtest.h>
 
@@ -11,9 +11,9 @@
 #include <string>
 
 #include "common/rectangular_pulse.h"
+#include "motion/ground_motion.h"
 #include "reference/benchmarks/sliding_forms.h"
 #include "reference/simulate.h"
-#include "scene/ground_motion.h"
 #include "scene/scene.h"
 
 namespace rockbench::reference {

@@ -16,6 +16,8 @@
 #include <thread>
 #include <vector>
 
+#include "files/atomic_file.h"
+#include "files/history_csv.h"
 #include "renders/limits.h"
 #include "renders/renderer.h"
 #include "scene/history.h"

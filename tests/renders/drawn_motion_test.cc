@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
+#include "motion/ground_displacement.h"
 #include "scene/engine_settings.h"
-#include "scene/ground_displacement.h"
 #include "scene/stack_pose.h"
 #include "tests/common/initial_state.h"
 #include "tests/common/sample.h"

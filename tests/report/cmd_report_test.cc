@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "files/atomic_file.h"
 #include "report/run_folder.h"
 #include "scene/history.h"
 

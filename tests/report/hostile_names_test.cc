@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "files/atomic_file.h"
 #include "report/common/gnuplot.h"
 #include "report/run_folder.h"
 #include "scene/history.h"

@@ -17,6 +17,8 @@
 #include <vector>
 
 #include "common/stack_scene.h"
+#include "files/atomic_file.h"
+#include "files/history_csv.h"
 #include "report/common/interpolation.h"
 #include "report/run/outcome_section.h"
 #include "report/run/pictures_section.h"

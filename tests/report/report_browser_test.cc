@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "files/atomic_file.h"
 #include "renders/animation.h"
 #include "renders/image.h"
 #include "report/run/run_report.h"

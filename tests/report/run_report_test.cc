@@ -21,8 +21,10 @@
 #include <string>
 #include <vector>
 
-#include "reference/geometry.h"
-#include "reference/observables.h"
+#include "files/atomic_file.h"
+#include "files/history_csv.h"
+#include "reference/thesis/geometry.h"
+#include "reference/thesis/observables.h"
 #include "report/common/gnuplot.h"
 #include "report/common/interpolation.h"
 #include "report/common/page.h"

@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "files/atomic_file.h"
 #include "report/common/page.h"
 #include "report/compare/verdict_section.h"
 #include "report/run/run_report.h"

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "common/scratch_dir_test.h"
+#include "files/atomic_file.h"
 #include "report/common/gnuplot.h"
 #include "scene/history.h"
 #include "sweep/sweep.h"

@@ -6,8 +6,8 @@
 
 #include <cmath>
 
+#include "motion/ground_motion.h"
 #include "run/engine_run.h"
-#include "scene/ground_motion.h"
 #include "tests/common/housner_scene.h"
 
 namespace rockbench {

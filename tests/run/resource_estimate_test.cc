@@ -12,9 +12,9 @@
 #include "common/error_of.h"
 #include "common/scratch_dir_test.h"
 #include "engines/external/protocol.h"
+#include "motion/ground_motion.h"
 #include "run/engine_registry.h"
 #include "run/engine_run.h"
-#include "scene/ground_motion.h"
 
 namespace rockbench {
 namespace {

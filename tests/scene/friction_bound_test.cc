@@ -10,8 +10,8 @@
 #include <limits>
 #include <string>
 
+#include "motion/ground_motion.h"
 #include "reference/simulate.h"
-#include "scene/ground_motion.h"
 #include "scene/scene.h"
 
 namespace rockbench {

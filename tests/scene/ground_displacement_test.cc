@@ -1,7 +1,7 @@
 // The ground's displacement from its acceleration (scene/ground_displacement.h): the kinematic
 // drive's leapfrog path and its zero-phase high-pass against closed forms, and the exact
 // piecewise-linear peaks of the intensity measures.
-#include "scene/ground_displacement.h"
+#include "motion/ground_displacement.h"
 
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
 // Base motion: units and scale, piecewise-linear records, breakpoints, analytic kinds, padding.
-#include "scene/ground_motion.h"
+#include "motion/ground_motion.h"
 
 #include <gtest/gtest.h>
 #include <unistd.h>

@@ -12,7 +12,9 @@
 #include <string>
 #include <vector>
 
-#include "scene/outcome.h"
+#include "engine/outcome.h"
+#include "files/atomic_file.h"
+#include "files/history_csv.h"
 #include "tests/common/scratch_dir_test.h"
 
 namespace rockbench {

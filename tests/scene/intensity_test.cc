@@ -2,14 +2,14 @@
 // pi A^2 T / (4 g0)), a rectangular pulse (exact for piecewise-constant acceleration), a
 // triangle record integrated by hand, an endless harmonic cut at the run's end, and a synthetic
 // record's peak.
-#include "scene/intensity.h"
+#include "motion/intensity.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <numbers>
 
-#include "scene/ground_motion.h"
+#include "motion/ground_motion.h"
 #include "scene/scene.h"
 
 namespace rockbench {

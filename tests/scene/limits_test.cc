@@ -13,8 +13,8 @@
 #include <string>
 #include <vector>
 
+#include "motion/ground_motion.h"
 #include "scene/engine_settings.h"
-#include "scene/ground_motion.h"
 #include "scene/scene.h"
 
 namespace rockbench {

@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "scene/ground_motion.h"
+#include "motion/ground_motion.h"
 #include "tests/common/scratch_dir_test.h"
 
 namespace rockbench {
@@ -384,8 +384,10 @@ TEST_F(RecordFiles, At2BadHeaders) {
   const fs::path zero_dt = Write("zerodt.AT2", "a\nb\nc\nNPTS= 3, DT= 0.0 SEC\n0.1 0.2 0.3\n");
   ExpectError([&] { ReadAt2(zero_dt); }, {zero_dt.string() + ":4:", "positive DT"});
   const fs::path zero_n = Write("zeron.AT2", "a\nb\nc\nNPTS= 0, DT= 0.01 SEC\n");
-  ExpectError([&] { ReadAt2(zero_n); }, {zero_n.string() + ":4:", "NPTS as a positive whole number"});
-  ExpectError([&] { ReadAt2(dir_ / "missing.AT2"); }, {(dir_ / "missing.AT2").string(), "no such record file"});
+  ExpectError([&] { ReadAt2(zero_n); },
+              {zero_n.string() + ":4:", "NPTS as a positive whole number"});
+  ExpectError([&] { ReadAt2(dir_ / "missing.AT2"); },
+              {(dir_ / "missing.AT2").string(), "no such record file"});
 }
 
 TEST_F(RecordFiles, PlainTwoColumnsWithHeaderTabsCommas) {

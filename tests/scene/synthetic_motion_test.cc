@@ -3,7 +3,7 @@
 // bilinear transform exactly; the envelope multiplies the stationary record; the record comes
 // back to rest (zero end velocity and displacement) with a small correction; the same seed gives
 // the same bytes on every machine; the scene reads it and names bad keys.
-#include "scene/synthetic_motion.h"
+#include "motion/synthetic_motion.h"
 
 #include <gtest/gtest.h>
 
@@ -17,7 +17,7 @@
 #include <string>
 #include <vector>
 
-#include "scene/ground_motion.h"
+#include "motion/ground_motion.h"
 #include "scene/scene.h"
 
 namespace rockbench {

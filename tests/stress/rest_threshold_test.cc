@@ -9,8 +9,8 @@
 #include <cstdio>
 #include <string>
 
+#include "motion/ground_motion.h"
 #include "reference/simulate.h"
-#include "scene/ground_motion.h"
 #include "stress/stress.h"
 
 namespace rockbench {

@@ -17,11 +17,11 @@
 #include <vector>
 
 #include "common/stack_scene.h"
+#include "motion/ground_motion.h"
 #include "reference/benchmarks/closed_forms.h"
-#include "reference/geometry.h"
 #include "reference/simulate.h"
-#include "reference/transitions.h"
-#include "scene/ground_motion.h"
+#include "reference/thesis/geometry.h"
+#include "reference/thesis/transitions.h"
 #include "util/format.h"
 
 namespace rockbench {

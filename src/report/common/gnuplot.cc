@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <system_error>
 
+#include "files/atomic_file.h"
 #include "scene/history.h"
 #include "util/relayed_text.h"
 #include "util/subprocess.h"

@@ -4,6 +4,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "files/atomic_file.h"
 #include "scene/history.h"
 #include "scene/limits.h"
 

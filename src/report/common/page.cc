@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "files/atomic_file.h"
 #include "scene/history.h"
 #include "util/relayed_text.h"
 

@@ -7,6 +7,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "files/atomic_file.h"
 #include "report/common/json_keys.h"
 #include "scene/history.h"
 #include "scene/limits.h"

@@ -3,9 +3,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include "engine/outcome.h"
 #include "report/common/json_keys.h"
 #include "report/common/number_text.h"
-#include "scene/outcome.h"
 
 namespace rockbench::report {
 

@@ -8,10 +8,10 @@
 #include <utility>
 #include <vector>
 
+#include "motion/ground_motion.h"
 #include "report/run/run_figures.h"
 #include "report/run/run_report.h"
 #include "report/run/stack_model.h"
-#include "scene/ground_motion.h"
 
 namespace rockbench::report {
 

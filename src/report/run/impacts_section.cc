@@ -2,8 +2,8 @@
 
 #include <set>
 
+#include "engine/outcome.h"
 #include "report/common/number_text.h"
-#include "scene/outcome.h"
 
 namespace rockbench::report {
 namespace {

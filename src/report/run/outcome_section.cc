@@ -4,11 +4,11 @@
 #include <cmath>
 #include <utility>
 
+#include "engine/outcome.h"
 #include "report/common/json_keys.h"
 #include "report/common/number_text.h"
 #include "report/compare/verdict_section.h"
 #include "report/run/run_figures.h"
-#include "scene/outcome.h"
 
 namespace rockbench::report {
 namespace {

@@ -6,13 +6,13 @@
 #include <map>
 #include <utility>
 
+#include "engine/outcome.h"
 #include "renders/animation.h"
 #include "renders/drawn_motion.h"
 #include "renders/gl_context.h"
 #include "renders/renderer.h"
 #include "report/common/json_keys.h"
 #include "report/common/number_text.h"
-#include "scene/outcome.h"
 
 namespace rockbench::report {
 

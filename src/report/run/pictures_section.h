@@ -4,9 +4,9 @@
 #include <string>
 #include <vector>
 
+#include "motion/ground_motion.h"
 #include "report/run/run_figures.h"
 #include "report/run/run_report.h"
-#include "scene/ground_motion.h"
 
 namespace rockbench::report {
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "files/history_csv.h"
 #include "report/common/json_keys.h"
 #include "report/common/names.h"
 #include "run/engine_registry.h"

@@ -2,6 +2,8 @@
 
 #include <stdexcept>
 
+#include "files/atomic_file.h"
+#include "motion/ground_motion.h"
 #include "report/common/page.h"
 #include "report/compare/agreement_section.h"
 #include "report/run/angles_section.h"
@@ -14,7 +16,6 @@
 #include "report/run/run_readers.h"
 #include "report/run/scene_section.h"
 #include "report/run/stack_model.h"
-#include "scene/ground_motion.h"
 
 namespace rockbench::report {
 

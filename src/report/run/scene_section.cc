@@ -4,7 +4,7 @@
 #include <cmath>
 #include <set>
 
-#include "reference/geometry.h"
+#include "reference/thesis/geometry.h"
 #include "report/common/json_keys.h"
 #include "report/common/number_text.h"
 #include "run/engine_registry.h"

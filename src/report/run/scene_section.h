@@ -1,8 +1,8 @@
 #pragma once
 /// The page's Scene section: the blocks, the initial state and run settings, the base motion
 /// (PGA, PGV, PGD and a plot of the record) and every engine's settings.
+#include "motion/ground_motion.h"
 #include "report/run/run_figures.h"
-#include "scene/ground_motion.h"
 
 namespace rockbench::report {
 

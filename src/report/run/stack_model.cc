@@ -1,7 +1,7 @@
 #include "report/run/stack_model.h"
 
 #include "reference/mechanics.h"
-#include "reference/observables.h"
+#include "reference/thesis/observables.h"
 
 namespace rockbench::report {
 

@@ -6,8 +6,8 @@
 #include <optional>
 #include <vector>
 
-#include "reference/geometry.h"
-#include "reference/stack_contacts.h"
+#include "reference/chain/stack_contacts.h"
+#include "reference/thesis/geometry.h"
 #include "scene/history.h"
 #include "scene/scene.h"
 

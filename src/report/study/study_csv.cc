@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "files/atomic_file.h"
 #include "report/common/names.h"
 #include "report/run/run_report.h"
 #include "scene/history.h"

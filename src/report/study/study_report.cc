@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <map>
 
+#include "files/atomic_file.h"
 #include "report/common/number_text.h"
 #include "report/common/page.h"
 #include "report/study/study_csv.h"

@@ -9,6 +9,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "files/atomic_file.h"
 #include "report/common/gnuplot.h"
 #include "report/common/page.h"
 #include "run/engine_registry.h"

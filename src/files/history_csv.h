@@ -1,0 +1,33 @@
+#pragma once
+/// history.csv and events.csv: the files of a History (scene/history.h), written and read back.
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "scene/history.h"
+
+namespace rockbench {
+
+/// CSV header of history.csv: "t,theta1,omega1,mode" (one block), "t,theta1,theta2,omega1,
+/// omega2,mode" (two), "t,theta1,...,thetaN,omega1,...,omegaN,mode" (N); with slip and lift,
+/// ",u1,...,uN,z1,...,zN" after those.
+std::string HistoryCsvHeader(int blocks, bool slip_and_lift = false);
+/// The history as CSV text (deterministic formatting: "%.9f" for times, "%.12e" for angles and
+/// rates, the mode by ConfigurationName: the thesis's names for one or two blocks, the letters
+/// beyond).
+std::string HistoryToCsv(const History& history);
+/// events.csv text. One or two blocks: header "t,kind,mode_before,mode_after,omega1_before,
+/// omega2_before,omega1_after,omega2_after,energy_before_j,energy_after_j,note" (a single block
+/// writes its omega2 columns as 0). N >= 3 blocks: "t,kind,mode_before,mode_after,
+/// omega1_before,...,omegaN_before,omega1_after,...,omegaN_after,energy_before_j,
+/// energy_after_j,note". Same number formats; commas in kind/note become ';'.
+std::string EventsToCsv(const History& history);
+/// Reads a history.csv (any block count, from the header). Throws std::runtime_error naming
+/// file and line.
+History ReadHistoryCsv(const std::filesystem::path& path);
+/// Reads an events.csv (EventsToCsv's format) of a stack of `blocks` blocks (1 or 2 share a
+/// header: 2 when 0; N >= 3 is also read from the header, which must then agree). Throws
+/// std::runtime_error naming file and line.
+std::vector<Event> ReadEventsCsv(const std::filesystem::path& path, int blocks = 0);
+
+}  // namespace rockbench
