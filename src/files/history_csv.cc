@@ -1,7 +1,5 @@
 #include "files/history_csv.h"
 
-#include <fcntl.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cerrno>
@@ -107,7 +105,48 @@ std::string HistoryCsvHeader(int blocks, bool slip_and_lift) {
   return out;
 }
 
+std::string KindHistoryCsvHeader(const BodyKind& kind, int blocks) {
+  std::string out = "t";
+  for (const StateQuantity& q : kind.state) {
+    for (int k = 1; k <= blocks; ++k) out += "," + BodyColumn(q.stem, k);
+  }
+  return out + ",mode";
+}
+
+namespace {
+
+// A history of bodies of another kind than the planar block: each quantity of the kind for
+// every body, then the configuration.
+std::string KindHistoryToCsv(const History& history, const BodyKind& kind) {
+  const int n = history.blocks;
+  std::string out = KindHistoryCsvHeader(kind, n) + "\n";
+  for (const Sample& s : history.samples) {
+    if (s.blocks() != n || s.state.size() != kind.state.size()) {
+      Inconsistent("history: a sample", s.t_s, s.blocks(), n);
+    }
+    AppendTime(out, s.t_s);
+    for (const BlockValues& v : s.state) {
+      if (static_cast<int>(v.size()) != n) Inconsistent("history: a sample", s.t_s, s.blocks(), n);
+      for (const double x : v) {
+        out += ',';
+        AppendValue(out, x);
+      }
+    }
+    out += ',';
+    AppendConfiguration(out, s.mode);
+    out += '\n';
+  }
+  return out;
+}
+
+}  // namespace
+
 std::string HistoryToCsv(const History& history) {
+  if (history.shape != PlanarBlockKind().shape) {
+    const BodyKind* kind = FindBodyKind(history.shape);
+    if (!kind) throw std::invalid_argument("history: unknown body kind '" + history.shape + "'");
+    return KindHistoryToCsv(history, *kind);
+  }
   const int n = history.blocks;
   const bool slip = history.slip_and_lift;
   std::string out = HistoryCsvHeader(n, slip) + "\n";
@@ -172,6 +211,52 @@ std::string EventsToCsv(const History& history) {
   return out;
 }
 
+namespace {
+
+// The kind of body (other than the planar block) and the number of bodies whose history header
+// `line` is, or nullopt.
+std::optional<std::pair<std::string, int>> KindOfHeader(const std::string& line, size_t columns) {
+  for (const std::string& shape : BodyShapes()) {
+    const BodyKind* kind = FindBodyKind(shape);
+    if (shape == PlanarBlockKind().shape || !kind) continue;
+    const size_t q = kind->state.size();
+    if (columns < 2 + q || (columns - 2) % q != 0) continue;
+    const int n = static_cast<int>((columns - 2) / q);
+    if (n <= kMaxBlocks && line == KindHistoryCsvHeader(*kind, n)) return {{shape, n}};
+  }
+  return std::nullopt;
+}
+
+// One row of a history of `kind` bodies: t, each quantity for every body, the configuration.
+template <typename Fail>
+Sample KindSample(const std::vector<std::string_view>& cells, const BodyKind& kind, int blocks,
+                  const Fail& fail) {
+  Sample s(blocks, kind);
+  const size_t n = static_cast<size_t>(blocks);
+  const size_t mode_col = cells.size() - 1;
+  for (size_t i = 0; i < mode_col; ++i) {
+    const std::optional<double> x = ParseNumberCell(cells[i]);
+    if (!x) {
+      fail("column " + std::to_string(i + 1) + ": expected a number, got '" +
+           std::string(cells[i]) + "'");
+    }
+    if (i == 0) {
+      s.t_s = *x;
+    } else {
+      s.state[(i - 1) / n][(i - 1) % n] = *x;
+    }
+  }
+  const std::optional<Configuration> mode = ParseConfiguration(cells[mode_col], blocks);
+  if (!mode) {
+    fail("expected a configuration (one letter f, r or l per body), got '" +
+         std::string(cells[mode_col]) + "'");
+  }
+  s.mode = *mode;
+  return s;
+}
+
+}  // namespace
+
 History ReadHistoryCsv(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw std::runtime_error(path.string() + ": cannot open the history file");
@@ -193,7 +278,10 @@ History ReadHistoryCsv(const std::filesystem::path& path) {
       const int n = columns >= 4 && columns % 2 == 0 ? static_cast<int>((columns - 2) / 2) : 0;
       const int n_slip =
           columns >= 6 && (columns - 2) % 4 == 0 ? static_cast<int>((columns - 2) / 4) : 0;
-      if (n_slip >= 1 && n_slip <= kMaxBlocks && line == HistoryCsvHeader(n_slip, true)) {
+      if (const std::optional<std::pair<std::string, int>> kind = KindOfHeader(line, columns)) {
+        h.shape = kind->first;
+        h.blocks = kind->second;
+      } else if (n_slip >= 1 && n_slip <= kMaxBlocks && line == HistoryCsvHeader(n_slip, true)) {
         h.slip_and_lift = true;
         h.blocks = n_slip;
       } else if (n < 1 || n > kMaxBlocks || line != HistoryCsvHeader(n)) {
@@ -212,6 +300,10 @@ History ReadHistoryCsv(const std::filesystem::path& path) {
     const std::vector<std::string_view> cells = SplitCommas(line);
     if (cells.size() != want) {
       fail("expected " + std::to_string(want) + " columns, got " + std::to_string(cells.size()));
+    }
+    if (h.shape != PlanarBlockKind().shape) {
+      h.samples.push_back(KindSample(cells, *FindBodyKind(h.shape), h.blocks, fail));
+      continue;
     }
     Sample s(h.blocks, h.slip_and_lift);
     const size_t n = static_cast<size_t>(h.blocks);

@@ -12,6 +12,9 @@ namespace rockbench {
 /// omega2,mode" (two), "t,theta1,...,thetaN,omega1,...,omegaN,mode" (N); with slip and lift,
 /// ",u1,...,uN,z1,...,zN" after those.
 std::string HistoryCsvHeader(int blocks, bool slip_and_lift = false);
+/// The header of a history of `blocks` bodies of another kind than the planar block: "t", each
+/// quantity of its state for every body (BodyColumn), "mode".
+std::string KindHistoryCsvHeader(const BodyKind& kind, int blocks);
 /// The history as CSV text (deterministic formatting: "%.9f" for times, "%.12e" for angles and
 /// rates, the mode by ConfigurationName: the thesis's names for one or two blocks, the letters
 /// beyond).
@@ -22,7 +25,7 @@ std::string HistoryToCsv(const History& history);
 /// omega1_before,...,omegaN_before,omega1_after,...,omegaN_after,energy_before_j,
 /// energy_after_j,note". Same number formats; commas in kind/note become ';'.
 std::string EventsToCsv(const History& history);
-/// Reads a history.csv (any block count, from the header). Throws std::runtime_error naming
+/// Reads a history.csv (any block count and body kind, from the header). Throws std::runtime_error naming
 /// file and line.
 History ReadHistoryCsv(const std::filesystem::path& path);
 /// Reads an events.csv (EventsToCsv's format) of a stack of `blocks` blocks (1 or 2 share a

@@ -2,9 +2,11 @@
 /// Histories and events: what every engine (the reference included) returns (their files:
 /// files/history_csv.h).
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "scene/block_values.h"
+#include "scene/body_kind.h"
 #include "scene/mode.h"
 
 namespace rockbench {
@@ -22,15 +24,23 @@ struct Sample {
   /// to the right), and the height of its lowest base corner above its support's top, m (0 in
   /// contact).
   BlockValues u_m, z_m;
+  /// The state of bodies of another kind than the planar block (History::shape,
+  /// scene/body_kind.h): one entry per quantity of the kind's state, in its order, each with one
+  /// value per body. Empty for planar blocks, whose state is theta_rad and omega_radps (those
+  /// are empty for another kind).
+  std::vector<BlockValues> state;
 
-  /// A sample of `blocks` blocks at t = 0, at rest (with slip and lift: `slip_and_lift`).
+  /// A sample of `blocks` planar blocks at t = 0, at rest (with slip and lift: `slip_and_lift`).
   explicit Sample(int blocks, bool slip_and_lift = false)
       : theta_rad(static_cast<size_t>(blocks)),
         omega_radps(static_cast<size_t>(blocks)),
         mode(blocks),
         u_m(slip_and_lift ? static_cast<size_t>(blocks) : 0),
         z_m(slip_and_lift ? static_cast<size_t>(blocks) : 0) {}
-  int blocks() const { return static_cast<int>(theta_rad.size()); }
+  /// A sample of `blocks` bodies of `kind` at t = 0, every quantity zero.
+  Sample(int blocks, const BodyKind& kind);
+  /// The number of bodies (one contact configuration entry each).
+  int blocks() const { return mode.size(); }
 };
 
 /// An event: impact, transition, initiation, rest, overturn, assumption violated, ... The rates
@@ -60,6 +70,14 @@ struct History {
   /// Whether samples carry slip and lift (u1..uN, z1..zN after the mode column): a scene with
   /// a finite friction or a vertical motion (Scene::tracks_slip_and_lift).
   bool slip_and_lift = false;
+  /// The kind of the stack's bodies (scene/body_kind.h): "block", the planar rigid block, or
+  /// another registered kind, whose samples hold its state in Sample::state.
+  std::string shape = "block";
 };
+
+/// Body `body`'s (1-based) value of quantity `stem` in `sample` of `history`: theta, omega, u and
+/// z of a planar block, or a quantity of the history's body kind. Throws std::invalid_argument
+/// for a quantity the kind does not have.
+double StateValue(const History& history, const Sample& sample, std::string_view stem, int body);
 
 }  // namespace rockbench

@@ -29,6 +29,9 @@ struct BlockDef {
   /// block 1, the block below otherwise), dimensionless, >= 0; infinity (the default, the key
   /// absent): no sliding, the thesis's assumption (docs/sliding.md).
   double friction = std::numeric_limits<double>::infinity();
+  /// The body's kind (`shape`, scene/body_kind.h): "block", the planar rigid block, unless the
+  /// table names another registered kind. Every body of a stack is of one kind.
+  std::string shape = "block";
 };
 
 /// Initial state, thesis sign convention (theta > 0 tilts right about the right-hand corner):

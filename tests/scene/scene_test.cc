@@ -720,7 +720,7 @@ TEST(BlockTables, AnErrorNamesTheBlockByItsIndex) {
                   "block3: missing density (kg/m^3) or mass (kg)");
   EXPECT_CONTAINS(
       ErrorOf(BlockTables(2) + "[[block]]\nwidth = 1\nheight = 1\nmass = 1\nfoo = 2\n"),
-      "block3.foo: unknown key (expected one of: width, height, density, mass, depth, friction)");
+      "block3.foo: unknown key (expected one of: width, height, density, mass, depth, friction, shape)");
 }
 
 TEST(BlockTables, EveryBlockIsNoWiderThanTheOneBelow) {

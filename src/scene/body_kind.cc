@@ -1,0 +1,80 @@
+#include "scene/body_kind.h"
+
+#include <deque>
+#include <mutex>
+#include <stdexcept>
+
+namespace rockbench {
+namespace {
+
+// The registry, "block" first: a deque, so that a kind found stays where it is when another is
+// added.
+struct Registry {
+  std::mutex mutex;
+  std::deque<BodyKind> kinds;
+};
+
+Registry& TheRegistry() {
+  static Registry* r = [] {
+    auto* reg = new Registry;
+    reg->kinds.push_back({"block", {{"theta", "rad", true}, {"omega", "rad/s", false}}});
+    return reg;
+  }();
+  return *r;
+}
+
+}  // namespace
+
+const BodyKind& PlanarBlockKind() {
+  static const BodyKind& planar = *FindBodyKind("block");
+  return planar;
+}
+
+std::string BodyColumn(std::string_view stem, int body) {
+  return std::string(stem) + std::to_string(body);
+}
+
+void RegisterBodyKind(const BodyKind& kind) {
+  if (kind.shape.empty()) throw std::invalid_argument("a body kind needs a shape");
+  if (kind.state.empty()) {
+    throw std::invalid_argument("body kind '" + kind.shape + "' has no state quantity");
+  }
+  for (size_t i = 0; i < kind.state.size(); ++i) {
+    if (kind.state[i].stem.empty()) {
+      throw std::invalid_argument("body kind '" + kind.shape + "' has an empty stem");
+    }
+    for (size_t j = 0; j < i; ++j) {
+      if (kind.state[i].stem == kind.state[j].stem) {
+        throw std::invalid_argument("body kind '" + kind.shape + "' names '" +
+                                    kind.state[i].stem + "' twice");
+      }
+    }
+  }
+  Registry& r = TheRegistry();
+  std::lock_guard<std::mutex> lock(r.mutex);
+  for (const BodyKind& k : r.kinds) {
+    if (k.shape == kind.shape) {
+      throw std::invalid_argument("body kind '" + kind.shape + "' is already registered");
+    }
+  }
+  r.kinds.push_back(kind);
+}
+
+const BodyKind* FindBodyKind(std::string_view shape) {
+  Registry& r = TheRegistry();
+  std::lock_guard<std::mutex> lock(r.mutex);
+  for (const BodyKind& k : r.kinds) {
+    if (k.shape == shape) return &k;
+  }
+  return nullptr;
+}
+
+std::vector<std::string> BodyShapes() {
+  Registry& r = TheRegistry();
+  std::lock_guard<std::mutex> lock(r.mutex);
+  std::vector<std::string> out;
+  for (const BodyKind& k : r.kinds) out.push_back(k.shape);
+  return out;
+}
+
+}  // namespace rockbench
