@@ -417,11 +417,17 @@ RecordData ReadPlain(const std::filesystem::path& path, double dt_s) {
   return ParsePlain(ReadRecordText(path), path, dt_s);
 }
 
-RecordData ParsePlain(const std::string& text, const std::filesystem::path& path, double dt_s) {
+namespace {
+
+// The rows of a plain record: its samples (and their resolution and lines) in `rec`, the time
+// column's values in `times` when it has one, the file line of each sample; returns the number
+// of columns (1: a, 2: t, a).
+size_t ReadPlainRows(const std::string& text, const std::filesystem::path& path, RecordData* out,
+                     std::vector<double>* times_out, std::vector<int>* lines_out) {
+  RecordData& rec = *out;
+  std::vector<double>& times = *times_out;
+  std::vector<int>& line_of = *lines_out;
   const std::vector<Line> lines = SplitLines(path, text);
-  RecordData rec;
-  std::vector<double> times;
-  std::vector<int> line_of;  // file line of each sample
   size_t columns = 0;
   int first_data_line = 0;
   for (const Line& line : lines) {
@@ -458,24 +464,33 @@ RecordData ParsePlain(const std::string& text, const std::filesystem::path& path
     rec.lines.push_back(line.number);
   }
   if (rec.values.empty()) throw SceneError(path.string() + ": no numeric data found");
-  if (columns == 1) {
-    if (!(dt_s > 0.0) || !std::isfinite(dt_s)) {
-      throw SceneError(path.string() +
-                       ": a one-column file needs the sample interval: set dt = ... (s) in the "
-                       "scene's [base.*] table");
-    }
-    if (const std::string problem = SampleIntervalProblem(dt_s); !problem.empty()) {
-      throw SceneError(path.string() + ": dt = " + ShortestText(dt_s) + " s: " + problem);
-    }
-    if (static_cast<double>(rec.values.size() - 1) * dt_s > limits::kMaxDuration_s) {
-      throw SceneError(path.string() + ": " + std::to_string(rec.values.size()) +
-                       " samples at dt = " + ShortestText(dt_s) + " s last more than a day (" +
-                       ShortestText(limits::kMaxDuration_s) + " s; docs/limits.md)");
-    }
-    rec.format = "plain-1col";
-    rec.dt_s = dt_s;
-    return rec;
+  return columns;
+}
+
+// A one-column record: the scene gives its sample interval dt.
+RecordData OneColumnRecord(RecordData rec, const std::filesystem::path& path, double dt_s) {
+  if (!(dt_s > 0.0) || !std::isfinite(dt_s)) {
+    throw SceneError(path.string() +
+                     ": a one-column file needs the sample interval: set dt = ... (s) in the "
+                     "scene's [base.*] table");
   }
+  if (const std::string problem = SampleIntervalProblem(dt_s); !problem.empty()) {
+    throw SceneError(path.string() + ": dt = " + ShortestText(dt_s) + " s: " + problem);
+  }
+  if (static_cast<double>(rec.values.size() - 1) * dt_s > limits::kMaxDuration_s) {
+    throw SceneError(path.string() + ": " + std::to_string(rec.values.size()) +
+                     " samples at dt = " + ShortestText(dt_s) + " s last more than a day (" +
+                     ShortestText(limits::kMaxDuration_s) + " s; docs/limits.md)");
+  }
+  rec.format = "plain-1col";
+  rec.dt_s = dt_s;
+  return rec;
+}
+
+// A two-column record (t, a): the interval is the time column's, uniform to 0.1% of it.
+RecordData TimeColumnRecord(RecordData rec, const std::vector<double>& times,
+                            const std::vector<int>& line_of, const std::filesystem::path& path,
+                            double dt_s) {
   rec.format = "plain-2col";
   if (dt_s > 0.0) {
     throw SceneError(path.string() +
@@ -537,6 +552,17 @@ RecordData ParsePlain(const std::string& text, const std::filesystem::path& path
     }
   }
   return rec;
+}
+
+}  // namespace
+
+RecordData ParsePlain(const std::string& text, const std::filesystem::path& path, double dt_s) {
+  RecordData rec;
+  std::vector<double> times;
+  std::vector<int> line_of;  // file line of each sample
+  const size_t columns = ReadPlainRows(text, path, &rec, &times, &line_of);
+  if (columns == 1) return OneColumnRecord(std::move(rec), path, dt_s);
+  return TimeColumnRecord(std::move(rec), times, line_of, path, dt_s);
 }
 
 }  // namespace rockbench
