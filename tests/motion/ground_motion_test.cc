@@ -15,6 +15,8 @@
 #include <vector>
 
 #include "scene/scene.h"
+#include "tests/common/analytic_motion.h"
+#include "tests/common/error_of.h"
 #include "tests/common/scratch_dir_test.h"
 
 namespace rockbench {
@@ -35,18 +37,6 @@ MotionDef FileDef(const fs::path& file) {
   d.kind = MotionKind::kFile;
   d.file = file;
   d.file_as_written = file.filename().string();
-  return d;
-}
-
-MotionDef Analytic(MotionKind kind, double amplitude_g, double f_hz, double t0_s,
-                   double duration_s = kInf) {
-  MotionDef d;
-  d.key = "base.horizontal";
-  d.kind = kind;
-  d.amplitude_g = amplitude_g;
-  d.frequency_hz = f_hz;
-  d.start_s = t0_s;
-  d.duration_s = duration_s;
   return d;
 }
 
@@ -107,14 +97,9 @@ TEST_F(GroundMotionTest, At2InGAndConflictingUnits) {
   d.units = AccelUnits::kG;
   EXPECT_NO_THROW(MotionComponent::FromDef(d));
   d.units = AccelUnits::kMps2;
-  try {
-    MotionComponent::FromDef(d);
-    ADD_FAILURE() << "no error";
-  } catch (const SceneError& e) {
-    const std::string msg = e.what();
-    EXPECT_NE(msg.find(kRinaldi228.string() + ":3:"), std::string::npos) << msg;
-    EXPECT_NE(msg.find("UNITS OF G"), std::string::npos) << msg;
-  }
+  const std::string msg = testing_util::ErrorOf([&] { MotionComponent::FromDef(d); });
+  EXPECT_NE(msg.find(kRinaldi228.string() + ":3:"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("UNITS OF G"), std::string::npos) << msg;
 }
 
 TEST_F(GroundMotionTest, PiecewiseLinearAndZeroOutside) {
@@ -283,7 +268,7 @@ TEST_F(GroundMotionTest, AnalyticKindsFollowTheirFormulas) {
       {MotionKind::kRectangularPulse, 0.8, 0.8}, {MotionKind::kRicker, kInf, 2 / f}};
   for (const Case& c : cases) {
     SCOPED_TRACE(std::string(MotionKindName(c.kind)) + " length " + std::to_string(c.length));
-    MotionDef d = Analytic(c.kind, amp, f, t0, c.duration);
+    MotionDef d = testing_util::AnalyticMotion(c.kind, amp, f, t0, c.duration);
     d.scale = scale;
     const MotionComponent m = MotionComponent::FromDef(d);
     const double a = amp * scale * g;
@@ -329,7 +314,8 @@ TEST_F(GroundMotionTest, AnalyticKindsFollowTheirFormulas) {
 
 TEST_F(GroundMotionTest, RickerPeakIsAgAtT0PlusOneOverF) {
   const double g = kStandardGravity_mps2, amp = -0.45, f = 1.6, t0 = 0.25;
-  const MotionComponent m = MotionComponent::FromDef(Analytic(MotionKind::kRicker, amp, f, t0));
+  const MotionComponent m =
+      MotionComponent::FromDef(testing_util::AnalyticMotion(MotionKind::kRicker, amp, f, t0));
   EXPECT_DOUBLE_EQ(m.accel_mps2(t0 + 1 / f), amp * g);
   EXPECT_DOUBLE_EQ(m.info().peak_t_s, t0 + 1 / f);
   EXPECT_DOUBLE_EQ(m.info().peak_g, 0.45);
@@ -339,8 +325,8 @@ TEST_F(GroundMotionTest, RickerPeakIsAgAtT0PlusOneOverF) {
 
 TEST_F(GroundMotionTest, ShortHarmonicPeakIsAtItsEnd) {
   // 0.1 s of a 2 Hz sine stops before the crest at 0.125 s: peak sin(2 pi 2 0.1) = 0.951.
-  const MotionComponent m =
-      MotionComponent::FromDef(Analytic(MotionKind::kHarmonic, 1.0, 2.0, 0.0, 0.1));
+  const MotionComponent m = MotionComponent::FromDef(
+      testing_util::AnalyticMotion(MotionKind::kHarmonic, 1.0, 2.0, 0.0, 0.1));
   EXPECT_NEAR(m.info().peak_g, std::sin(2 * kPi * 0.2), 1e-15);
   EXPECT_DOUBLE_EQ(m.info().peak_t_s, 0.1);
 }
@@ -398,8 +384,8 @@ TEST_F(GroundMotionTest, CombinedBreakpointsAndEmptyMotion) {
 
   GroundMotion gm;
   gm.set_horizontal(MotionComponent::FromSamples({1.0, 2.0, 3.0}, 0.5, 0.0, "h"));
-  gm.set_vertical(
-      MotionComponent::FromDef(Analytic(MotionKind::kRectangularPulse, 0.1, 0.0, 0.2, 0.6)));
+  gm.set_vertical(MotionComponent::FromDef(
+      testing_util::AnalyticMotion(MotionKind::kRectangularPulse, 0.1, 0.0, 0.2, 0.6)));
   EXPECT_EQ(gm.next_breakpoint_after(0.0), 0.2);        // pulse start
   EXPECT_EQ(gm.next_breakpoint_after(0.2), 0.5);        // sample
   EXPECT_EQ(gm.next_breakpoint_after(0.5), 0.2 + 0.6);  // pulse end
@@ -426,14 +412,9 @@ TEST_F(GroundMotionTest, At2HeaderUnitsDecideTheConversion) {
   };
   const std::vector<double> raw = {100.0, -200.0, 50.0};
   const auto expect_error = [](const MotionDef& d, const std::vector<std::string>& pieces) {
-    try {
-      MotionComponent::FromDef(d);
-      ADD_FAILURE() << "no error";
-    } catch (const SceneError& e) {
-      const std::string msg = e.what();
-      for (const auto& piece : pieces) {
-        EXPECT_NE(msg.find(piece), std::string::npos) << "'" << piece << "' not in: " << msg;
-      }
+    const std::string msg = testing_util::ErrorOf([&] { MotionComponent::FromDef(d); });
+    for (const auto& piece : pieces) {
+      EXPECT_NE(msg.find(piece), std::string::npos) << "'" << piece << "' not in: " << msg;
     }
   };
   struct Case {
@@ -505,7 +486,7 @@ TEST_F(GroundMotionTest, RunGravityDoesNotRescaleTheBaseMotion) {
   Scene scene;
   scene.blocks = {BlockDef{1.0, 2.0, 1.0, 100.0, 0.0}};
   scene.horizontal = FileDef(kRinaldi228);
-  scene.vertical = Analytic(MotionKind::kHarmonic, 0.2, 3.0, 0.0, 1.0);
+  scene.vertical = testing_util::AnalyticMotion(MotionKind::kHarmonic, 0.2, 3.0, 0.0, 1.0);
   scene.vertical->key = "base.vertical";
   scene.run.gravity_mps2 = 9.81;
   const GroundMotion earth = GroundMotion::FromScene(scene);
@@ -550,9 +531,10 @@ TEST_F(GroundMotionTest, SampleResolution) {
   ASSERT_EQ(rinaldi.sample_resolution_mps2().size(), rinaldi.samples_mps2().size());
   EXPECT_DOUBLE_EQ(rinaldi.sample_resolution_mps2()[0], 1e-9 * kStandardGravity_mps2);
   // Analytic kinds: none; FromSamples: as given.
-  EXPECT_TRUE(MotionComponent::FromDef(Analytic(MotionKind::kSinePulse, 0.1, 1.0, 0.0))
-                  .sample_resolution_mps2()
-                  .empty());
+  EXPECT_TRUE(
+      MotionComponent::FromDef(testing_util::AnalyticMotion(MotionKind::kSinePulse, 0.1, 1.0, 0.0))
+          .sample_resolution_mps2()
+          .empty());
   EXPECT_TRUE(
       MotionComponent::FromSamples({1.0, 2.0}, 0.1, 0.0, "s").sample_resolution_mps2().empty());
   EXPECT_EQ(
@@ -578,7 +560,7 @@ TEST_F(GroundMotionTest, ScaledCopies) {
   EXPECT_EQ(rec.samples_mps2()[1], -3.0);  // the original is untouched
   // Analytic: the amplitude, everywhere; the exact peak follows.
   const MotionComponent pulse =
-      MotionComponent::FromDef(Analytic(MotionKind::kRicker, 0.3, 2.0, 0.1));
+      MotionComponent::FromDef(testing_util::AnalyticMotion(MotionKind::kRicker, 0.3, 2.0, 0.1));
   const MotionComponent more = pulse.Scaled(1.01);
   // The amplitude is scaled before the shape multiplies it: equal to an ulp or two.
   for (double t : {0.1, 0.3, 0.6, 0.9}) {
@@ -614,7 +596,7 @@ TEST_F(GroundMotionTest, WithSamplesKeepsTheRecordAndRecomputesThePeak) {
   EXPECT_THROW(rec.WithSamples({1.0, 2.0}), std::invalid_argument);
   EXPECT_THROW(rec.WithSamples({1.0, 2.0, 3.0, 4.0, NAN}), std::invalid_argument);
   const MotionComponent pulse =
-      MotionComponent::FromDef(Analytic(MotionKind::kSinePulse, 0.3, 2.0, 0.0));
+      MotionComponent::FromDef(testing_util::AnalyticMotion(MotionKind::kSinePulse, 0.3, 2.0, 0.0));
   EXPECT_THROW(pulse.WithSamples({}), std::invalid_argument);
 }
 

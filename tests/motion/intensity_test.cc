@@ -11,6 +11,7 @@
 
 #include "motion/ground_motion.h"
 #include "scene/scene.h"
+#include "tests/common/analytic_motion.h"
 
 namespace rockbench {
 namespace {
@@ -20,14 +21,8 @@ constexpr double kG0 = kStandardGravity_mps2;
 
 MotionComponent Analytic(MotionKind kind, double amplitude_g, double f_hz, double t0_s,
                          double duration_s) {
-  MotionDef d;
-  d.key = "base.horizontal";
-  d.kind = kind;
-  d.amplitude_g = amplitude_g;
-  d.frequency_hz = f_hz;
-  d.start_s = t0_s;
-  d.duration_s = duration_s;
-  return MotionComponent::FromDef(d);
+  return MotionComponent::FromDef(
+      testing_util::AnalyticMotion(kind, amplitude_g, f_hz, t0_s, duration_s));
 }
 
 // The time at which the fraction q of a sine pulse's Arias intensity is reached, by bisection on

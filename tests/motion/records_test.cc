@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "motion/ground_motion.h"
+#include "tests/common/error_of.h"
 #include "tests/common/scratch_dir_test.h"
 
 namespace rockbench {
@@ -108,14 +109,9 @@ class RecordFiles : public testing_util::ScratchDirTest {
   // Expects `fn` to throw a SceneError whose message contains every piece.
   template <typename Fn>
   static void ExpectError(Fn fn, const std::vector<std::string>& pieces) {
-    try {
-      fn();
-      ADD_FAILURE() << "no error";
-    } catch (const SceneError& e) {
-      const std::string msg = e.what();
-      for (const auto& piece : pieces) {
-        EXPECT_NE(msg.find(piece), std::string::npos) << "'" << piece << "' not in: " << msg;
-      }
+    const std::string msg = testing_util::ErrorOf([&] { fn(); });
+    for (const auto& piece : pieces) {
+      EXPECT_NE(msg.find(piece), std::string::npos) << "'" << piece << "' not in: " << msg;
     }
   }
 

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "motion/ground_motion.h"
+#include "tests/common/error_of.h"
 
 namespace rockbench {
 namespace {
@@ -493,12 +494,8 @@ TEST(Errors, Validation) {
 }
 
 TEST(Errors, MissingSceneFile) {
-  try {
-    LoadScene(kScenes / "does_not_exist.toml");
-    ADD_FAILURE() << "no error";
-  } catch (const SceneError& e) {
-    EXPECT_CONTAINS(e.what(), "does_not_exist.toml");
-  }
+  EXPECT_CONTAINS(testing_util::ErrorOf([&] { LoadScene(kScenes / "does_not_exist.toml"); }),
+                  "does_not_exist.toml");
 }
 
 TEST(Overrides, AppliedBeforeValidation) {
@@ -555,12 +552,8 @@ TEST(Validate, SceneBuiltInCode) {
   s.blocks = {BlockDef{1.0, 2.0, 1.0, 100.0, 0.0}};
   EXPECT_NO_THROW(ValidateScene(s));
   s.blocks[0].width_m = -1.0;
-  try {
-    ValidateScene(s);
-    ADD_FAILURE() << "no error";
-  } catch (const SceneError& e) {
-    EXPECT_EQ(std::string(e.what()), "scene: block1.width: expected a positive number (m), got -1");
-  }
+  EXPECT_EQ(testing_util::ErrorOf([&] { ValidateScene(s); }),
+            "scene: block1.width: expected a positive number (m), got -1");
   s.blocks[0].width_m = 1.0;
   s.initial.theta_rad[1] = 0.1;  // no block 2
   EXPECT_THROW(ValidateScene(s), SceneError);
@@ -718,9 +711,9 @@ TEST(BlockTables, AnErrorNamesTheBlockByItsIndex) {
                   "block3.height: missing; expected a positive number (m)");
   EXPECT_CONTAINS(ErrorOf(BlockTables(2) + "[[block]]\nwidth = 1\nheight = 1\n"),
                   "block3: missing density (kg/m^3) or mass (kg)");
-  EXPECT_CONTAINS(
-      ErrorOf(BlockTables(2) + "[[block]]\nwidth = 1\nheight = 1\nmass = 1\nfoo = 2\n"),
-      "block3.foo: unknown key (expected one of: width, height, density, mass, depth, friction, shape)");
+  EXPECT_CONTAINS(ErrorOf(BlockTables(2) + "[[block]]\nwidth = 1\nheight = 1\nmass = 1\nfoo = 2\n"),
+                  "block3.foo: unknown key (expected one of: width, height, density, mass, depth, "
+                  "friction, shape)");
 }
 
 TEST(BlockTables, EveryBlockIsNoWiderThanTheOneBelow) {
@@ -737,12 +730,8 @@ TEST(BlockTables, EveryBlockIsNoWiderThanTheOneBelow) {
             "pivot outside block 1's top face, which the model does not describe), got 2");
   Scene s = ParseScene(BlockTables(4), "");
   s.blocks[3].width_m = 10.0;
-  try {
-    ValidateScene(s);
-    ADD_FAILURE() << "no error";
-  } catch (const SceneError& e) {
-    EXPECT_CONTAINS(e.what(), "scene: block4.width: expected at most block3.width");
-  }
+  EXPECT_CONTAINS(testing_util::ErrorOf([&] { ValidateScene(s); }),
+                  "scene: block4.width: expected at most block3.width");
 }
 
 TEST(BlockTables, AtMostMaxBlocks) {
@@ -820,13 +809,8 @@ TEST(InitialArrays, PerBlockKeysOfAnyBlock) {
   // Built in code: the entries beyond the block count must be zero, named by their key.
   Scene c = ParseScene(BlockTables(3), "");
   c.initial.omega_radps[4] = 0.5;
-  try {
-    ValidateScene(c);
-    ADD_FAILURE() << "no error";
-  } catch (const SceneError& e) {
-    EXPECT_EQ(std::string(e.what()),
-              "scene: initial.omega5: must be 0: the scene has 3 blocks (no block 5)");
-  }
+  EXPECT_EQ(testing_util::ErrorOf([&] { ValidateScene(c); }),
+            "scene: initial.omega5: must be 0: the scene has 3 blocks (no block 5)");
 }
 
 TEST(Overrides, BlockKOfEitherStyle) {
@@ -859,14 +843,12 @@ TEST(Overrides, BlockKOfEitherStyle) {
 
 TEST(Validate, RequireAtMostTwoBlocks) {
   EXPECT_NO_THROW(RequireAtMostTwoBlocks(ParseScene(kBlocks, ""), "x"));
-  try {
-    RequireAtMostTwoBlocks(ParseScene(BlockTables(3), "scenes/three.toml"), "reference model");
-    ADD_FAILURE() << "no error";
-  } catch (const SceneError& e) {
-    EXPECT_EQ(std::string(e.what()),
-              "scenes/three.toml: reference model: N-block scenes (3 blocks) are not simulated "
-              "yet (issue 23); 1 or 2 blocks");
-  }
+  EXPECT_EQ(testing_util::ErrorOf([&] {
+              RequireAtMostTwoBlocks(ParseScene(BlockTables(3), "scenes/three.toml"),
+                                     "reference model");
+            }),
+            "scenes/three.toml: reference model: N-block scenes (3 blocks) are not simulated "
+            "yet (issue 23); 1 or 2 blocks");
 }
 
 TEST(Helpers, NamesAndUnits) {
