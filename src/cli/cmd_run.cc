@@ -59,11 +59,7 @@ void Execute(const RunOptions& opt) {
           "; the history after it is one admissible outcome the rule chose");
     }
     WriteEngineFiles(run, out);
-    if (IsReference(name)) {
-      for (auto it = run.summary.begin(); it != run.summary.end(); ++it) summary[it.key()] = *it;
-    } else {
-      summary["engines"][name] = run.summary;
-    }
+    AddRunSummary(summary, run);
     std::printf("%s\n", run.one_line.c_str());
   }
   WriteFileAtomic(out / "summary.json", summary.dump(2) + "\n");

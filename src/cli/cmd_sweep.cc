@@ -34,33 +34,13 @@ struct SweepCliOptions {
   LimitOptions limits;
 };
 
-// The engines of --engines, without "reference" (always swept); `reference_only` when the list
-// names the reference alone (`--engines reference`: a stack the engines do not simulate yet).
-std::vector<std::string> SweptEngines(const std::string& requested, bool* reference_only) {
-  std::string list;
-  bool reference = false;
-  for (size_t start = 0; start <= requested.size();) {
-    const size_t comma = requested.find(',', start);
-    const std::string name =
-        requested.substr(start, comma == std::string::npos ? comma : comma - start);
-    if (IsReference(name)) {
-      reference = true;
-    } else {
-      list += (list.empty() ? "" : ",") + name;
-    }
-    if (comma == std::string::npos) break;
-    start = comma + 1;
-  }
-  *reference_only = reference && list.empty();
-  return *reference_only ? std::vector<std::string>{} : ParseEngineList(list);
-}
-
 void Execute(const SweepCliOptions& opt) {
   const ResourceBudget budget = StartLimits(opt.limits, opt.out, "sweep");
   const Scene scene = LoadScene(opt.scene, opt.overrides);
   CheckEngineTables(scene);
-  bool reference_only = false;
-  const std::vector<std::string> engines = SweptEngines(opt.engines, &reference_only);
+  // The engines beside the reference (always swept); none: `--engines reference`, a stack the
+  // engines do not simulate yet.
+  const std::vector<std::string> engines = ParseEnginesBesideReference(opt.engines);
   // An engine the scene brings runs only when the user names it: said, with how to opt in.
   std::fputs(NotRunNote(engines).c_str(), stderr);
   // The scene's own settings; the grid's finer steps are held by the wall-clock limit.
@@ -72,7 +52,7 @@ void Execute(const SweepCliOptions& opt) {
   so.threads = opt.threads;
   so.engines = engines;
   // No engine: the reference's own grid (an empty list would mean every built engine).
-  if (reference_only) so.points = SweepGrid(opt.quick, {});
+  if (engines.empty()) so.points = SweepGrid(opt.quick, {});
   const std::filesystem::path out(opt.out);
   std::filesystem::create_directories(out);
 

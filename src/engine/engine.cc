@@ -74,6 +74,19 @@ std::vector<SweepSetting> TwoFamilyGrid::StandardStress() const {
   return Stress({1.0 / 60.0, 1e-3, 1e-4, 1e-5}, [](double dt) { return dt > 0.01; });
 }
 
+Scene Engine::SceneForSetting(const Scene& base, const SweepSetting& setting) const {
+  Scene s = base;
+  for (const auto& [key, value] : setting.settings) SetEngineSetting(s, name(), key, value);
+  return s;
+}
+
+std::string Engine::SummaryPointer() const {
+  // A name's '~' and '/' escaped as a JSON pointer's (RFC 6901).
+  std::string key;
+  for (const char c : name()) key += c == '~' ? "~0" : c == '/' ? "~1" : std::string(1, c);
+  return "/engines/" + key;
+}
+
 std::string Engine::SummaryLine(const EngineResult& r) const {
   const RunOutcome& o = r.outcome;
   std::string flags;

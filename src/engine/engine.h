@@ -9,6 +9,7 @@
 #include <limits>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -21,6 +22,15 @@
 
 namespace rockbench {
 
+/// The integrator settings of a point of an engine that integrates with an adaptive or a fixed
+/// step of its own (the reference: its scene's [model] table), shown in sweep.csv's integrator,
+/// rtol, atol and rk4_step_s columns.
+struct IntegratorSetting {
+  Integrator integrator = Integrator::kDopri5;
+  double rtol = 0.0, atol = 0.0;  ///< the adaptive pairs' tolerances (0 for rk4)
+  double step_s = 0.0;            ///< rk4's fixed step, s (0 for an adaptive pair)
+};
+
 /// One point of an engine's work-precision grid: the settings it changes from the scene's.
 struct SweepSetting {
   /// The curve this point belongs to: "Bullet double (50 iterations)" (the settings that stay
@@ -31,6 +41,9 @@ struct SweepSetting {
   double time_step_s = 0.0;  ///< the step of this point (the x of the order-of-convergence fit)
   /// key -> value in the engine's table, applied as `--set <engine>.<key>=<value>` would.
   std::vector<std::pair<std::string, SettingValue>> settings;
+  /// The point's integrator settings, for an engine whose points are its integrator's (the
+  /// reference's); absent for a point of an engine's table (`settings`).
+  std::optional<IntegratorSetting> integrator;
   /// Stress cases: the case's name under "<engine>_dt/" ("double/dt=1e-3/it=200"), and whether
   /// it is in the CI subset (stress --quick).
   std::string id;
@@ -105,6 +118,12 @@ class Engine {
   /// The settings the stress catalogue runs on the thesis's free rocking: the extremes (the
   /// coarsest steps, the fewest iterations) where the engine's artefacts show.
   virtual std::vector<SweepSetting> StressGrid() const = 0;
+  /// The scene of one point of its grids: `base` with the point's settings (default: each of
+  /// `setting.settings` set in the engine's table, as `--set <engine>.<key>=<value>` would).
+  virtual Scene SceneForSetting(const Scene& base, const SweepSetting& setting) const;
+  /// Where its part of a run's summary.json goes (a JSON pointer): "/engines/<name>" by
+  /// default; "" for the top level (the reference's, the file's own subject).
+  virtual std::string SummaryPointer() const;
   /// Simulates the scene under `motion`. Physics outcomes never throw (a blow-up is a status);
   /// throws SceneError for settings the engine cannot run (naming the key).
   virtual EngineResult Simulate(const Scene& scene, const GroundMotion& motion,

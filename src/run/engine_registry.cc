@@ -249,6 +249,19 @@ std::vector<std::string> ParseEngineList(const std::string& text) {
   return names;
 }
 
+std::vector<std::string> ParseEnginesBesideReference(const std::string& text) {
+  std::string list;
+  for (size_t start = 0; start <= text.size();) {
+    const size_t comma = text.find(',', start);
+    const std::string name = text.substr(start, comma == std::string::npos ? comma : comma - start);
+    if (!IsReference(name)) list += (list.empty() ? "" : ",") + name;
+    if (comma == std::string::npos) break;
+    start = comma + 1;
+  }
+  if (list.empty()) return {};
+  return ParseEngineList(list);
+}
+
 void CheckEngineName(const std::string& name) {
   const auto expected = [] {
     return " (expected \"reference\" or one of: " + KnownList() + ", one name per entry)";

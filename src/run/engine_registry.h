@@ -59,6 +59,11 @@ std::vector<std::string> BuiltEngineNames();
 /// to run it. Throws SceneError naming an unknown or left-out engine (and why).
 std::vector<std::string> ParseEngineList(const std::string& text);
 
+/// The engines of a --engines value besides the reference, which every comparison and sweep runs
+/// anyway: ParseEngineList of the list without the name "reference" (naming it adds nothing);
+/// empty when the list names the reference alone. Throws as ParseEngineList.
+std::vector<std::string> ParseEnginesBesideReference(const std::string& text);
+
 /// Checks one engine name that a file (not the user) lists, as a study's `engines` does: a
 /// built engine of the build or of a registry file the user owns. Throws SceneError (without
 /// a place: the caller adds the file and key) for a text that is no single engine name ("all",

@@ -25,6 +25,7 @@ EngineRun RunEngine(const std::string& name, const Scene& scene, const GroundMot
   EngineRun run;
   run.engine = name;
   run.one_line = engine->SummaryLine(result);
+  run.summary_pointer = engine->SummaryPointer();
   if (IsNonFinite(result.outcome.status)) {
     // The detail may quote an external engine's output: escaped and capped.
     run.one_line +=
@@ -42,6 +43,14 @@ std::string NonFiniteText(const EngineRun& run) {
   if (!IsNonFinite(run.outcome.status)) return "";
   return run.engine + ": " +
          EscapedText(run.summary.value("status_detail", std::string("not finite")));
+}
+
+void AddRunSummary(nlohmann::json& summary, const EngineRun& run) {
+  if (run.summary_pointer.empty()) {
+    for (auto it = run.summary.begin(); it != run.summary.end(); ++it) summary[it.key()] = *it;
+    return;
+  }
+  summary[nlohmann::json::json_pointer(run.summary_pointer)] = run.summary;
 }
 
 void WriteEngineFiles(const EngineRun& run, const std::filesystem::path& out_dir) {

@@ -24,6 +24,9 @@ struct EngineRun {
   nlohmann::json summary;  ///< the engine's part of summary.json (everything it measured)
   double wall_s = 0.0;     ///< wall-clock time of the simulation alone, s
   std::string one_line;    ///< one-line human summary
+  /// Where `summary` goes in the run's summary.json (Engine::SummaryPointer): a JSON pointer,
+  /// "" for the top level.
+  std::string summary_pointer;
   /// The engine's richer result (the reference's: run/reference_engine.h ReferenceResultOf).
   std::shared_ptr<const EngineResultExtension> extension;
 };
@@ -48,6 +51,10 @@ EngineRun RunEngine(const std::string& name, const Scene& scene, const GroundMot
 /// "NAME: DETAIL" (the status detail: quantity, value and time) when the run ended non_finite,
 /// else "".
 std::string NonFiniteText(const EngineRun& run);
+
+/// Puts the run's summary in `summary` (summary.json) where its engine says
+/// (EngineRun::summary_pointer): under that pointer, or its keys at the top level.
+void AddRunSummary(nlohmann::json& summary, const EngineRun& run);
 
 /// Writes DIR/<engine>/history.csv and DIR/<engine>/events.csv atomically.
 void WriteEngineFiles(const EngineRun& run, const std::filesystem::path& out_dir);

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <initializer_list>
+#include <vector>
 
 #include "run/summary.h"
 
@@ -15,6 +17,55 @@ std::string ReferenceEngine::version() const {
 const EngineSettingsSchema& ReferenceEngine::settings_schema() const {
   static const EngineSettingsSchema kNone{"reference", {}};
   return kNone;
+}
+
+SweepSetting ReferenceEngine::TolerancePoint(Integrator integrator, double rtol) {
+  SweepSetting s;
+  s.family = std::string("reference ") + IntegratorName(integrator);
+  s.label = TimeStepLabel(rtol);
+  s.integrator = IntegratorSetting{integrator, rtol, rtol * 1e-2, 0.0};
+  return s;
+}
+
+SweepSetting ReferenceEngine::Rk4Point(double step_s) {
+  SweepSetting s;
+  s.family = "reference RK4";
+  s.label = TimeStepLabel(step_s);
+  s.time_step_s = step_s;
+  s.integrator = IntegratorSetting{Integrator::kRk4, 0.0, 0.0, step_s};
+  return s;
+}
+
+std::vector<SweepSetting> ReferenceEngine::SweepGrid(bool quick) const {
+  std::vector<SweepSetting> grid;
+  auto add_adaptive = [&grid](Integrator integrator, std::initializer_list<double> rtols) {
+    for (double rtol : rtols) grid.push_back(TolerancePoint(integrator, rtol));
+  };
+  if (quick) {
+    add_adaptive(Integrator::kDopri5, {1e-4, 1e-6, 1e-8});
+  } else {
+    add_adaptive(Integrator::kDopri5, {1e-4, 1e-6, 1e-8, 1e-10, 1e-12});
+    // The higher-order pair on the full grid only, from rtol 1e-6 to the default.
+    add_adaptive(Integrator::kDop853, {1e-6, 1e-8, 1e-10, 1e-12});
+  }
+  for (double h : quick ? std::vector<double>{1e-3} : std::vector<double>{1e-2, 1e-3, 1e-4}) {
+    grid.push_back(Rk4Point(h));
+  }
+  return grid;
+}
+
+Scene ReferenceEngine::SceneForSetting(const Scene& base, const SweepSetting& setting) const {
+  Scene s = base;
+  if (!setting.integrator) return s;
+  const IntegratorSetting& i = *setting.integrator;
+  s.model.integrator = i.integrator;
+  if (i.integrator != Integrator::kRk4) {
+    s.model.rtol = i.rtol;
+    s.model.atol = i.atol;
+  } else {
+    s.model.step_s = i.step_s;
+  }
+  return s;
 }
 
 EngineResult ReferenceEngine::Simulate(const Scene& scene, const GroundMotion& motion,

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <limits>
+#include <optional>
 #include <system_error>
 #include <variant>
 
@@ -156,44 +157,45 @@ const EstimateTerm* RunEstimate::largest_cpu() const {
   return best;
 }
 
-RunEstimate EstimateRun(const Scene& scene, const std::vector<std::string>& run_engines,
-                        int members, int engine_members, int jobs) {
-  // The reference is always run and estimated (its nominal run, witness and members below); the
-  // list's other engines are the physics engines.
-  std::vector<std::string> engines;
-  for (const std::string& name : run_engines) {
-    if (!IsReference(name)) engines.push_back(name);
-  }
-  RunEstimate e;
-  const double duration = scene.run.duration_s;
-  const int threads = std::max(1, jobs);
-  // Members run `threads` at a time; each holds one run.
-  const double concurrent_ref = std::min<double>(std::max(members, 0), threads);
-  const double concurrent_eng = std::min<double>(std::max(engine_members, 0), threads);
+namespace {
 
-  // The base motion, read once (members perturb copies: one per concurrent member).
+// The engines of `names` that step on a fixed step of their table (a `time_step` key: the
+// physics engines), each once. The reference has no such table: it is always run, and counted
+// by its own term (ReferenceTerm).
+std::vector<std::string> SteppedEngines(const std::vector<std::string>& names) {
+  std::vector<std::string> out;
+  for (const std::string& name : names) {
+    const Engine* engine = FindEngine(name);
+    if (engine == nullptr || std::find(out.begin(), out.end(), name) != out.end()) continue;
+    const auto& defs = engine->settings_schema().settings;
+    if (std::any_of(defs.begin(), defs.end(),
+                    [](const SettingDef& d) { return d.key == "time_step"; })) {
+      out.push_back(name);
+    }
+  }
+  return out;
+}
+
+// The base motion's terms, read once (members perturb copies: one per concurrent member), into
+// `e`; returns the record samples inside the run (each a step boundary of the reference).
+double AddMotionTerms(const Scene& scene, double concurrent_ref, RunEstimate& e) {
   double record_breakpoints = 0.0;
   for (const auto* m : {&scene.horizontal, &scene.vertical}) {
     if (!*m) continue;
     const MotionSize size = SizeOf(**m);
     if (size.bytes <= 0.0) continue;
     e.terms.push_back({size.key, size.what, size.bytes * (1.0 + concurrent_ref), 0.0});
-    // Every sample inside the run is a step boundary of the reference.
     record_breakpoints = std::max(record_breakpoints, size.samples);
   }
+  return record_breakpoints;
+}
 
-  // History rows at the output interval, of every run held at once (nominal runs, the
-  // reference's convergence witness, concurrent members).
-  const double rows = std::ceil(duration / scene.run.output_interval_s) + 1.0;
-  const double runs_held = 2.0 + static_cast<double>(engines.size()) + concurrent_ref +
-                           concurrent_eng * static_cast<double>(engines.size());
-  e.terms.push_back({"run.output_interval",
-                     Count(rows) + " history rows of " + ByteText(kRowBytes) + " in " +
-                         Count(runs_held) + " runs held at once",
-                     rows * kRowBytes * runs_held, 0.0});
-
-  // The reference's steps: rk4's fixed step, or at least one per largest step and per record
-  // sample inside the run.
+// The reference's steps: rk4's fixed step, or at least one per largest step and per record
+// sample inside the run; its nominal run, its convergence witness and `members` members
+// (`concurrent_ref` of them held at once).
+EstimateTerm ReferenceTerm(const Scene& scene, int members, double concurrent_ref,
+                           double record_breakpoints) {
+  const double duration = scene.run.duration_s;
   double ref_steps = 0.0;
   // The convergence witness (run/reference_witness.h, WitnessModel) takes 10 times the steps of
   // the thesis's event scheme, 4 times rk4's, and about as many as dopri5's or dop853's.
@@ -213,71 +215,105 @@ RunEstimate EstimateRun(const Scene& scene, const std::vector<std::string>& run_
     ref_key = "run.duration";
     ref_what = Count(ref_steps) + " reference steps";
   }
-  // The nominal run and its convergence witness, and the members (concurrent for memory).
-  e.terms.push_back({ref_key,
-                     ref_what + " in the nominal run, its convergence witness (" + Count(witness) +
-                         " x) and " + Count(std::max(members, 0)) + " members",
-                     ref_steps * kReferenceStepBytes * (1.0 + witness + concurrent_ref),
-                     ref_steps * kReferenceStepCpu_s * (1.0 + witness + std::max(members, 0))});
+  return {ref_key,
+          ref_what + " in the nominal run, its convergence witness (" + Count(witness) +
+              " x) and " + Count(std::max(members, 0)) + " members",
+          ref_steps * kReferenceStepBytes * (1.0 + witness + concurrent_ref),
+          ref_steps * kReferenceStepCpu_s * (1.0 + witness + std::max(members, 0))};
+}
 
-  // Each engine's fixed steps.
-  for (const std::string& name : engines) {
-    const Engine* engine = FindEngine(name);
-    if (engine == nullptr) continue;
-    double dt = 0.0;
-    // A solver's iterations past its default cost in proportion (an upper bound: some stop
-    // early when they converge); the key that raised them is the one named.
-    double iterations = 1.0;
-    double step_cpu_s = kEngineStepCpu_s;
-    std::string key = name + ".time_step";
-    const auto* external = dynamic_cast<const external::ExternalEngine*>(engine);
-    double run_limit_s = std::numeric_limits<double>::infinity();
-    try {
-      const EngineSettingsSchema& schema = engine->settings_schema();
-      const EngineSettings settings = ResolveEngineSettings(scene, schema);
-      dt = settings.Number("time_step");
-      step_cpu_s = StepCpu_s(name, settings, scene.block_count());
-      if (external != nullptr) run_limit_s = settings.Number("wall_limit_s");
-      for (const SettingDef& def : schema.settings) {
-        const auto* fallback = std::get_if<std::int64_t>(&def.default_value);
-        if (fallback == nullptr || def.key.find("iterations") == std::string::npos) continue;
-        const double ratio =
-            static_cast<double>(settings.Integer(def.key)) / std::max<double>(1.0, *fallback);
-        if (ratio > iterations) {
-          iterations = ratio;
-          key = name + "." + def.key;
-        }
+// One engine's fixed steps in its nominal run and `engine_members` members (`concurrent_eng`
+// of them held at once); nothing when its table does not resolve (the engine's own check
+// names the problem) or has no positive step. An external engine's step that its input cannot
+// hold sets `refusal` (when empty).
+std::optional<EstimateTerm> EngineTerm(const Scene& scene, const std::string& name,
+                                       int engine_members, double concurrent_eng,
+                                       std::string& refusal) {
+  const Engine* engine = FindEngine(name);
+  const double duration = scene.run.duration_s;
+  double dt = 0.0;
+  // A solver's iterations past its default cost in proportion (an upper bound: some stop
+  // early when they converge); the key that raised them is the one named.
+  double iterations = 1.0;
+  double step_cpu_s = kEngineStepCpu_s;
+  std::string key = name + ".time_step";
+  const auto* external = dynamic_cast<const external::ExternalEngine*>(engine);
+  double run_limit_s = std::numeric_limits<double>::infinity();
+  try {
+    const EngineSettingsSchema& schema = engine->settings_schema();
+    const EngineSettings settings = ResolveEngineSettings(scene, schema);
+    dt = settings.Number("time_step");
+    step_cpu_s = StepCpu_s(name, settings, scene.block_count());
+    if (external != nullptr) run_limit_s = settings.Number("wall_limit_s");
+    for (const SettingDef& def : schema.settings) {
+      const auto* fallback = std::get_if<std::int64_t>(&def.default_value);
+      if (fallback == nullptr || def.key.find("iterations") == std::string::npos) continue;
+      const double ratio =
+          static_cast<double>(settings.Integer(def.key)) / std::max<double>(1.0, *fallback);
+      if (ratio > iterations) {
+        iterations = ratio;
+        key = name + "." + def.key;
       }
-    } catch (const std::exception&) {
-      continue;  // the engine's own check names the problem
     }
-    if (!(dt > 0.0)) continue;
-    const double steps = std::ceil(duration / dt);
-    // An external engine's input holds the base motion at every step: past its cap the run is
-    // refused here, before anything is built.
-    if (external != nullptr && (scene.horizontal || scene.vertical) &&
-        steps > static_cast<double>(external::kMaxInputSteps) && e.refusal.empty()) {
-      e.refusal = name + ".time_step: a step of " + ShortestText(dt) + " s over run.duration " +
-                  ShortestText(duration) + " s is " + Count(steps) +
-                  " steps, each a row of the base motion in the external engine's input file, "
-                  "more than the " +
-                  Count(static_cast<double>(external::kMaxInputSteps)) +
-                  " its input may hold (docs/limits.md): coarsen the step or shorten the run";
+  } catch (const std::exception&) {
+    return std::nullopt;
+  }
+  if (!(dt > 0.0)) return std::nullopt;
+  const double steps = std::ceil(duration / dt);
+  // An external engine's input holds the base motion at every step: past its cap the run is
+  // refused here, before anything is built.
+  if (external != nullptr && (scene.horizontal || scene.vertical) &&
+      steps > static_cast<double>(external::kMaxInputSteps) && refusal.empty()) {
+    refusal = name + ".time_step: a step of " + ShortestText(dt) + " s over run.duration " +
+              ShortestText(duration) + " s is " + Count(steps) +
+              " steps, each a row of the base motion in the external engine's input file, more "
+              "than the " +
+              Count(static_cast<double>(external::kMaxInputSteps)) +
+              " its input may hold (docs/limits.md): coarsen the step or shorten the run";
+  }
+  const double runs = 1.0 + std::max(engine_members, 0);
+  std::string what = Count(steps) + " " + name + " steps (run.duration / " + name +
+                     ".time_step) in " + Count(runs) + " runs";
+  if (iterations > 1.0) what += ", " + Count(iterations) + " times the default iterations";
+  if (step_cpu_s != kEngineStepCpu_s) {
+    what += ", " + Count(step_cpu_s * 1e6) + " us per step with " +
+            std::to_string(scene.block_count()) + " block" + (scene.block_count() == 1 ? "" : "s");
+  }
+  // A run is killed at the wall-clock limit of its table (external engines).
+  const double cpu_per_run = std::min(steps * step_cpu_s * iterations, run_limit_s);
+  if (cpu_per_run == run_limit_s) what += ", each stopped at its wall_limit_s";
+  const double step_bytes = external != nullptr ? kExternalStepBytes : kEngineStepBytes;
+  return EstimateTerm{key, what, steps * step_bytes * (1.0 + concurrent_eng), cpu_per_run * runs};
+}
+
+}  // namespace
+
+RunEstimate EstimateRun(const Scene& scene, const std::vector<std::string>& run_engines,
+                        int members, int engine_members, int jobs) {
+  // The reference is always run and estimated (its nominal run, witness and members); the
+  // list's engines that step on a table's time step are the physics engines.
+  const std::vector<std::string> engines = SteppedEngines(run_engines);
+  RunEstimate e;
+  const int threads = std::max(1, jobs);
+  // Members run `threads` at a time; each holds one run.
+  const double concurrent_ref = std::min<double>(std::max(members, 0), threads);
+  const double concurrent_eng = std::min<double>(std::max(engine_members, 0), threads);
+  const double record_breakpoints = AddMotionTerms(scene, concurrent_ref, e);
+
+  // History rows at the output interval, of every run held at once (nominal runs, the
+  // reference's convergence witness, concurrent members).
+  const double rows = std::ceil(scene.run.duration_s / scene.run.output_interval_s) + 1.0;
+  const double runs_held = 2.0 + static_cast<double>(engines.size()) + concurrent_ref +
+                           concurrent_eng * static_cast<double>(engines.size());
+  e.terms.push_back({"run.output_interval",
+                     Count(rows) + " history rows of " + ByteText(kRowBytes) + " in " +
+                         Count(runs_held) + " runs held at once",
+                     rows * kRowBytes * runs_held, 0.0});
+  e.terms.push_back(ReferenceTerm(scene, members, concurrent_ref, record_breakpoints));
+  for (const std::string& name : engines) {
+    if (auto t = EngineTerm(scene, name, engine_members, concurrent_eng, e.refusal)) {
+      e.terms.push_back(std::move(*t));
     }
-    const double runs = 1.0 + std::max(engine_members, 0);
-    std::string what = Count(steps) + " " + name + " steps (run.duration / " + name +
-                       ".time_step) in " + Count(runs) + " runs";
-    if (iterations > 1.0) what += ", " + Count(iterations) + " times the default iterations";
-    if (step_cpu_s != kEngineStepCpu_s) {
-      what += ", " + Count(step_cpu_s * 1e6) + " us per step with " +
-              std::to_string(scene.block_count()) + " block" +
-              (scene.block_count() == 1 ? "" : "s");
-    }
-    // A run is killed at the wall-clock limit of its table (external engines).
-    const double cpu_per_run = std::min(steps * step_cpu_s * iterations, run_limit_s);
-    if (cpu_per_run == run_limit_s) what += ", each stopped at its wall_limit_s";
-    const double step_bytes = external != nullptr ? kExternalStepBytes : kEngineStepBytes;
-    e.terms.push_back({key, what, steps * step_bytes * (1.0 + concurrent_eng), cpu_per_run * runs});
   }
   for (const EstimateTerm& t : e.terms) {
     e.bytes += t.bytes;
