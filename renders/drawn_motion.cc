@@ -28,47 +28,9 @@ InitialState StackState(const Sample& s) {
   return out;
 }
 
-DrawnStack ChainCorners(const Scene& scene, const InitialState& s) {
-  DrawnStack out;
-  out.reserve(scene.blocks.size());
-  // Block k's pivot P_k, angle phi_k and pivot offset s_k b_k, and its half height h_k, carried
-  // up to block k + 1 (PlaceStack's p1, phi1, ground_side * b1 and h1 for block 2).
-  Vec2 pivot{};
-  double phi_below = 0.0, sb_below = 0.0, h_below = 0.0;
-  for (int k = 0; k < scene.block_count(); ++k) {
-    const BlockDef& block = scene.blocks[static_cast<size_t>(k)];
-    const double b = 0.5 * block.width_m, h = 0.5 * block.height_m;
-    const double theta = s.theta_rad[k], omega = s.omega_radps[k];
-    const int side = k == 0 ? PivotSide(theta, omega)
-                            : PivotSide(theta - s.theta_rad[k - 1], omega - s.omega_radps[k - 1]);
-    const double phi = -theta;
-    const double sb = side * b;
-    pivot = k == 0 ? Vec2{sb, 0.0}
-                   : pivot + Rotate(phi_below, Vec2{sb, 2.0 * h_below} - Vec2{sb_below, 0.0});
-    const Vec2 g = pivot + Rotate(phi, Vec2{0.0, h} - Vec2{sb, 0.0});
-    PlanarPose pose;
-    pose.x_m = g.x;
-    pose.y_m = g.y;
-    pose.phi_rad = phi;
-    out.push_back(Corners(pose, b, h));
-    phi_below = phi;
-    sb_below = sb;
-    h_below = h;
-  }
-  return out;
-}
-
 DrawnStack PoseFor(const Scene& scene, const InitialState& state, Vec2 base) {
-  DrawnStack pose;
-  if (scene.block_count() <= 2) {
-    // The engines' chain (scene/stack_pose.h), which places one or two blocks: today's
-    // two-block pictures keep their bytes.
-    const StackCorners c = StackCornersAt(scene, state);
-    pose.push_back(c.block1);
-    if (c.has_block2) pose.push_back(c.block2);
-  } else {
-    pose = ChainCorners(scene, state);
-  }
+  // The engines' chain (scene/stack_pose.h PlaceStack), every block of the scene.
+  DrawnStack pose = StackCornersAt(scene, state).blocks;
   // Everything moves with the base.
   for (BlockCorners& q : pose) {
     for (auto& p : q) p = p + base;

@@ -26,23 +26,13 @@ InitialState StackState(const Sample& sample);
 /// The corners of a stack's blocks, bottom first: one quad per block of the scene, m.
 using DrawnStack = std::vector<BlockCorners>;
 
-/// The pivot chain of a stack of any number of blocks (the renders' own, the chain of
-/// scene/stack_pose.h PlaceStack continued upwards): block 1 pivots on the ground about P_1 =
-/// (s_1 b_1, 0), block k + 1 on block k's top face about P_{k+1} = P_k + R(phi_k)((s_{k+1}
-/// b_{k+1}, 2 h_k) - (s_k b_k, 0)), and block k's corners are those about P_k turned by phi_k =
-/// -theta_k (b, h: half width and height; s_k = PivotSide of block k's angle relative to its
-/// support and of its rate: theta_1 and omega_1, theta_k - theta_{k-1} and omega_k -
-/// omega_{k-1}). The same operations in the same order as PlaceStack and Corners, so one and two
-/// blocks give StackCornersAt's corners (test PoseFor.TheChainIsTheEnginesForTwoBlocks).
-DrawnStack ChainCorners(const Scene& scene, const InitialState& state);
-
 /// Block corners for a state, thesis convention: theta > 0 tilts right (clockwise). Block 1
 /// turns by theta1 about its right base corner when theta1 > 0, its left one when theta1 < 0.
 /// Block k + 1 is centred on block k at rest and turns by (theta_{k+1} - theta_k) relative to
 /// it, on its top face, about its own right base corner when theta_{k+1} > theta_k and its left
 /// one when theta_{k+1} < theta_k. A zero angle takes the side of its rate (PivotSide), which
-/// moves no corner. One or two blocks: scene/stack_pose.h StackCornersAt (the engines' pivot
-/// chain, whose bits today's two-block pictures are drawn from); three and more: ChainCorners.
+/// moves no corner. The corners are scene/stack_pose.h StackCornersAt's: the one placement of
+/// the engines, their initial poses and the external engines' input.
 /// `base` shifts everything (ground displacement x_g, y_g, m). Angles in rad, rates in rad/s.
 DrawnStack PoseFor(const Scene& scene, const InitialState& state, Vec2 base = {});
 /// The same for one or two blocks at rest rates (omega1 = omega2 = 0).

@@ -8,6 +8,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "engine/non_finite.h"
+
 namespace rockbench {
 
 void ReadBaseMotion(const EngineInput& in, std::int64_t n, StepReadout* s) {
@@ -82,18 +84,6 @@ NonFiniteField FirstNonFinite(const StepReadout& s) {
     if (!std::isfinite(v)) return {what, v};
   }
   return {};
-}
-
-// A value that is not finite, in words: "NaN", "+inf" or "-inf".
-const char* NonFiniteText(double v) {
-  return std::isnan(v) ? "NaN" : (v > 0.0 ? "+inf" : "-inf");
-}
-
-// A time for a message, s, to 9 significant digits.
-std::string TimeText(double t_s) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.9g", t_s);
-  return buf;
 }
 
 // Linear interpolation of the zero crossing of a quantity (an angle, or the overturn margin
@@ -320,7 +310,7 @@ void Monitor::Start(const StepReadout& s) {
     // Not even the initial state is finite: no sample, and no step will be read.
     last_.t_s = end_t_s_ = s.t_s;
     last_recorded_ = true;
-    StopNonFinite(f.name, NonFiniteText(f.value), s.t_s, 0);
+    StopNonFinite(f.name, NonFiniteValueText(f.value), s.t_s, 0);
     return;
   }
   for (int k = 0; k < blocks_; ++k) {
@@ -353,12 +343,12 @@ bool Monitor::Step(std::int64_t n, const StepReadout& s) {
     return false;
   }
   if (const NonFiniteField f = FirstNonFinite(s); !f.name.empty()) {
-    StopNonFinite(f.name, NonFiniteText(f.value), s.t_s, n);
+    StopNonFinite(f.name, NonFiniteValueText(f.value), s.t_s, n);
     return false;
   }
   Derived d = Derive(s);
   if (!std::isfinite(d.energy_j)) {
-    StopNonFinite("energy", NonFiniteText(d.energy_j), s.t_s, n);
+    StopNonFinite("energy", NonFiniteValueText(d.energy_j), s.t_s, n);
     return false;
   }
   Sample& cur = d.sample;
@@ -397,10 +387,11 @@ void Monitor::StopNonFinite(const std::string& quantity, const std::string& valu
   non_finite_t_s_ = t_s;
   const bool any_finite = !history_.samples.empty();
   status_detail_ =
-      quantity + " is " + value + " at t = " + TimeText(t_s) + " s (step " + std::to_string(n) +
-      (why.empty() ? std::string() : ": " + why) + ")" +
-      (any_finite ? "; the run stops at its last finite state, t = " + TimeText(last_.t_s) + " s"
-                  : "; no state of the run is finite");
+      quantity + " is " + value + " at t = " + MessageTimeText(t_s) + " s (step " +
+      std::to_string(n) + (why.empty() ? std::string() : ": " + why) + ")" +
+      (any_finite
+           ? "; the run stops at its last finite state, t = " + MessageTimeText(last_.t_s) + " s"
+           : "; no state of the run is finite");
   // The run, its history and its outcome end at the last finite state.
   end_t_s_ = last_.t_s;
   if (any_finite) {

@@ -67,6 +67,8 @@ void StackChain::Place(const Configuration& c, const double* theta_rad, const do
     const double side = open ? SideSign(c[k]) : side_below;
     sin_[k] = open ? std::sin(theta) : (k == 0 ? 0.0 : sin_[k - 1]);
     cos_[k] = open ? std::cos(theta) : (k == 0 ? 1.0 : cos_[k - 1]);
+    // The model's own pivot chain (its equations' terms), not a placement: engines and renders
+    // use scene/stack_pose.h.
     if (k == 0) {
       pivot_[k] = {side * p.b, 0.0};
     } else {

@@ -15,7 +15,8 @@ Vec2 RotateBack(double sin_theta, double cos_theta, Vec2 v) {
   return {cos_theta * v.x + sin_theta * v.y, -sin_theta * v.x + cos_theta * v.y};
 }
 
-// Positions of the chain points for pivot sides s1 (ground) and s2 (interface).
+// Positions of the chain points for pivot sides s1 (ground) and s2 (interface). The model's own
+// pivots (the thesis's equations), not a placement: engines and renders use scene/stack_pose.h.
 struct Points {
   Vec2 P1, Q2, G1, G2;
   double s1, s2;

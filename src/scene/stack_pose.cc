@@ -43,12 +43,6 @@ StackPlacement PlaceChain(const double* b, const double* h, int n, const Initial
     out.sides[k] = side;
     out.blocks[k] = {g.x, g.y, phi, vg.x, vg.y, w};
   }
-  out.block1 = out.blocks[0];
-  out.ground_side = out.sides[0];
-  if (n >= 2) {
-    out.block2 = out.blocks[1];
-    out.interface_side = out.sides[1];
-  }
   return out;
 }
 
@@ -77,12 +71,6 @@ StackPlacement PlaceStack(const Scene& scene, const InitialState& state) {
   return PlaceStack(scene.blocks, state);
 }
 
-StackPlacement PlaceStack(double b1, double h1, double b2, double h2, bool two_blocks,
-                          const InitialState& state) {
-  const double b[2] = {b1, b2}, h[2] = {h1, h2};
-  return PlaceChain(b, h, two_blocks ? 2 : 1, state);
-}
-
 BlockCorners Corners(const PlanarPose& pose, double b, double h) {
   const Vec2 c{pose.x_m, pose.y_m};
   return {c + Rotate(pose.phi_rad, {-b, -h}), c + Rotate(pose.phi_rad, {b, -h}),
@@ -96,11 +84,6 @@ StackCorners StackCornersAt(const Scene& scene, const InitialState& state) {
   for (size_t k = 0; k < place.blocks.size(); ++k) {
     const BlockDef& def = scene.blocks[k];
     out.blocks.push_back(Corners(place.blocks[k], 0.5 * def.width_m, 0.5 * def.height_m));
-  }
-  out.block1 = out.blocks[0];
-  if (out.blocks.size() >= 2) {
-    out.has_block2 = true;
-    out.block2 = out.blocks[1];
   }
   return out;
 }

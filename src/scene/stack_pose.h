@@ -1,8 +1,10 @@
 #pragma once
 /// Where the blocks of the stack are for a state (angles and rates): the pivot chain of N blocks
-/// (docs/n-blocks.md), defined once for every engine (initial poses, engines/) and the renders
-/// (the corners of a frame, renders/). Block 1 turns by theta1 about its base corner on the side
-/// of its tilt; block k + 1, centred on block k at rest, sits on block k's top face at its own
+/// (docs/n-blocks.md), defined once for every engine (initial poses, engines/, the external
+/// engines' input), the monitor and the renders (the corners of a frame, renders/). The
+/// reference keeps its own pivots (reference/thesis/kinematics.cc, reference/chain/): they are
+/// the model's equations, not a placement. Block 1 turns by theta1 about its base corner on the
+/// side of its tilt; block k + 1, centred on block k at rest, sits on block k's top face at its own
 /// pivot corner and turns by theta_(k+1) about it (by theta_(k+1) - theta_k relative to block
 /// k). Coordinates are the base frame: origin at block 1's base centre at rest, x right, y up,
 /// m; phi = -theta is the counter-clockwise angle about +z the engines use (theta > 0 tilts
@@ -29,12 +31,6 @@ struct StackPlacement {
   /// Interface k's pivot at index k - 1 (block 1 on the ground, block k on block k - 1):
   /// +1 block k's right base corner, -1 its left one, 0 flat (on its face).
   std::vector<int> sides;
-
-  /// The names of one and two blocks, kept for code written for them (renders/, tests): copies
-  /// of blocks[0], blocks[1], sides[0] and sides[1], zero where the stack has no such block.
-  PlanarPose block1, block2;  ///< block2 is zero for a single block
-  int ground_side = 0;        ///< block 1's pivot: +1 right corner, -1 left, 0 flat
-  int interface_side = 0;     ///< block 2's pivot on block 1: +1 right, -1 left, 0 flat
 };
 
 /// Pivot of a tilt: +1 (right corner) for a positive angle, -1 for a negative one; a zero angle
@@ -58,11 +54,6 @@ StackPlacement PlaceStack(const std::vector<BlockDef>& blocks, const InitialStat
 /// The same for a scene's blocks.
 StackPlacement PlaceStack(const Scene& scene, const InitialState& state);
 
-/// One or two blocks by their half widths b and half heights h (m; b2 <= b1): block 2 when
-/// two_blocks. The same poses as the vector form (kept for code written for two blocks).
-StackPlacement PlaceStack(double b1_m, double h1_m, double b2_m, double h2_m, bool two_blocks,
-                          const InitialState& state);
-
 /// The corners of a block counter-clockwise from the bottom-left in its own frame:
 /// bottom-left, bottom-right, top-right, top-left, m.
 using BlockCorners = std::array<Vec2, 4>;
@@ -74,12 +65,6 @@ BlockCorners Corners(const PlanarPose& pose, double b_m, double h_m);
 struct StackCorners {
   /// Block k's corners at index k - 1, bottom first: one per block.
   std::vector<BlockCorners> blocks;
-
-  /// The names of one and two blocks, kept for code written for them (renders/): copies of
-  /// blocks[0] and blocks[1] (has_block2: the stack has a second block).
-  BlockCorners block1{};
-  bool has_block2 = false;
-  BlockCorners block2{};  ///< valid when has_block2
 };
 
 /// The corners of a scene's blocks at `state`, placed by PlaceStack (every block of the scene).

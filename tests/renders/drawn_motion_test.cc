@@ -122,8 +122,9 @@ TEST(PoseFor, IsTheEnginesPivotChain) {
   const Scene s = TwoBlocks();
   const InitialState state = testing_util::Initial(0.12, -0.07, 0.3, -0.4);
   const DrawnStack p = PoseFor(s, state);
-  const StackPlacement place = PlaceStack(0.5, 0.75, 0.3, 0.6, true, state);
-  const BlockCorners c1 = Corners(place.block1, 0.5, 0.75), c2 = Corners(place.block2, 0.3, 0.6);
+  const StackPlacement place = PlaceStack(s, state);
+  const BlockCorners c1 = Corners(place.blocks[0], 0.5, 0.75);
+  const BlockCorners c2 = Corners(place.blocks[1], 0.3, 0.6);
   for (int i = 0; i < 4; ++i) {
     EXPECT_EQ(p[0][i].x, c1[i].x);
     EXPECT_EQ(p[0][i].y, c1[i].y);
@@ -150,34 +151,7 @@ InitialState StateOf(const std::vector<double>& theta, const std::vector<double>
   return state;
 }
 
-TEST(ChainCorners, IsTheEnginesChainForOneAndTwoBlocks) {
-  // The renders' N-block chain repeats PlaceStack's operations: for the one or two blocks
-  // StackCornersAt places, the same corners bit for bit, in every pivot case (signs of the
-  // angles, zero angles taking the side of the rate).
-  for (int n : {1, 2}) {
-    const Scene s = Column(n);
-    for (double th1 : {-0.2, 0.0, 0.13}) {
-      for (double th2 : {-0.3, 0.0, 0.13, 0.4}) {
-        for (double w : {-1.0, 0.0, 2.0}) {
-          const InitialState state = testing_util::Initial(th1, th2, w, -0.5 * w);
-          const StackCorners want = StackCornersAt(s, state);
-          const DrawnStack got = ChainCorners(s, state);
-          ASSERT_EQ(got.size(), static_cast<size_t>(n));
-          for (int i = 0; i < 4; ++i) {
-            EXPECT_EQ(got[0][i].x, want.block1[i].x);
-            EXPECT_EQ(got[0][i].y, want.block1[i].y);
-            if (n == 2) {
-              EXPECT_EQ(got[1][i].x, want.block2[i].x);
-              EXPECT_EQ(got[1][i].y, want.block2[i].y);
-            }
-          }
-        }
-      }
-    }
-  }
-}
-
-TEST(ChainCorners, ALockedColumnTurnsRigidlyAboutBlock1sCorner) {
+TEST(PoseFor, ALockedColumnTurnsRigidlyAboutBlock1sCorner) {
   // Every block at the same angle and rate: the column is one rigid body turning about block
   // 1's right base corner (theta > 0) or its left one (theta < 0). Its corners are those at
   // rest turned about that corner.
@@ -206,7 +180,7 @@ TEST(ChainCorners, ALockedColumnTurnsRigidlyAboutBlock1sCorner) {
   }
 }
 
-TEST(ChainCorners, EachBlockPivotsOnTheTopFaceOfTheOneBelow) {
+TEST(PoseFor, EachBlockPivotsOnTheTopFaceOfTheOneBelow) {
   // Three blocks, the third tilted further right than the second (it pivots about its right
   // base corner) and the second back to the left of the first (about its left one): each
   // pivot is a corner of the block above lying on the top face of the block below, and each
@@ -236,7 +210,7 @@ TEST(ChainCorners, EachBlockPivotsOnTheTopFaceOfTheOneBelow) {
   }
 }
 
-TEST(ChainCorners, ZeroAnglesWithRatesMoveNoCorner) {
+TEST(PoseFor, ZeroAnglesWithRatesMoveNoCorner) {
   const Scene s = Column(5);
   const DrawnStack rest = PoseFor(s, InitialState{});
   const DrawnStack p = PoseFor(s, StateOf({0, 0, 0, 0, 0}, {1.0, -2.0, 0.5, 0.5, -3.0}));
@@ -245,7 +219,7 @@ TEST(ChainCorners, ZeroAnglesWithRatesMoveNoCorner) {
   }
 }
 
-TEST(ChainCorners, BaseDisplacementShiftsEveryBlock) {
+TEST(PoseFor, BaseDisplacementShiftsEveryBlock) {
   const Scene s = Column(4);
   const DrawnStack a = PoseFor(s, StateOf({0.1, 0.2, 0.0, -0.1}));
   const DrawnStack b = PoseFor(s, StateOf({0.1, 0.2, 0.0, -0.1}), {0.25, -0.05});
