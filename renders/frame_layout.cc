@@ -21,16 +21,8 @@ double NiceCeil(double x) {
   return 10.0 * p;
 }
 
-}  // namespace
-
-std::optional<Layout> ParseLayout(std::string_view name) {
-  if (name == "overlay") return Layout::kOverlay;
-  if (name == "side") return Layout::kSide;
-  return std::nullopt;
-}
-
-FrameLayout ComputeLayout(const Scene& scene, const std::vector<Track>& tracks,
-                          const BaseDisplacement& base, const RenderConfig& config) {
+// Throws std::invalid_argument for an image size or supersampling out of the limits.
+void CheckImageSize(const RenderConfig& config) {
   const std::string size = std::to_string(config.width_px) + "x" + std::to_string(config.height_px);
   if (config.width_px < kMinWidth_px || config.height_px < kMinHeight_px) {
     throw std::invalid_argument("image size " + size + ": must be at least " +
@@ -50,6 +42,12 @@ FrameLayout ComputeLayout(const Scene& scene, const std::vector<Track>& tracks,
         "image size " + size + " at supersample " + std::to_string(config.supersample) +
         ": drawn at more than OSMesa's " + std::to_string(kMaxDrawnSide_px) + " pixels per side");
   }
+}
+
+// The time window (config's, else the whole of the longest history) into `lay`; the tracks'
+// histories. Throws for no track, an empty history or a window that ends before it starts.
+std::vector<const History*> TimeWindow(const std::vector<Track>& tracks, const RenderConfig& config,
+                                       FrameLayout& lay) {
   if (tracks.empty()) throw std::invalid_argument("nothing to draw: no history given");
   std::vector<const History*> histories;
   double t_end_s = 0.0;
@@ -60,14 +58,117 @@ FrameLayout ComputeLayout(const Scene& scene, const std::vector<Track>& tracks,
     histories.push_back(&t.history);
     t_end_s = std::max(t_end_s, t.history.samples.back().t_s);
   }
-  FrameLayout lay;
   lay.t_from_s = std::isnan(config.t_from_s) ? 0.0 : config.t_from_s;
   lay.t_to_s = std::isnan(config.t_to_s) ? t_end_s : config.t_to_s;
   if (!(lay.t_to_s >= lay.t_from_s)) {
     throw std::invalid_argument("the time window ends before it starts");
   }
+  return histories;
+}
 
+// What is left for the views once the header and the chart have their places: [m, right] by
+// [top, bottom], px.
+struct ViewArea {
+  double top = 0.0, bottom = 0.0, right = 0.0;
+};
+
+// The header (the time stamp line, and in the overlay layout one line per engine of `n`) and
+// the chart: below the views, or for a stack of three and more blocks (`stacked`) a column
+// right of them. Throws when no room is left for the views.
+ViewArea PlaceHeaderAndChart(const RenderConfig& config, int n, bool side, bool stacked,
+                             FrameLayout& lay) {
   const int w = config.width_px, h = config.height_px;
+  const double m = lay.margin_px;
+  const int header_lines = config.show_text ? (side ? 1 : 1 + n) : 0;
+  lay.header = {m, m, w - 2 * m, static_cast<double>(header_lines * lay.line_px)};
+  ViewArea area;
+  area.top = header_lines > 0 ? lay.header.y_px + lay.header.h_px + m : m;
+  area.bottom = h - m;
+  // The views' right edge: the image's margin, or the stacked chart's column.
+  area.right = w - m;
+  if (config.show_chart && !stacked) {
+    lay.has_chart = true;
+    // The plot area, with a gutter on the left for the angle labels and a line below for the
+    // time labels and the legend.
+    const double chart_h = std::max(24.0, std::round(0.2 * h));
+    lay.chart = {m, h - m - chart_h, w - 2 * m, chart_h - lay.line_px};
+    area.bottom = lay.chart.y_px - m;
+  } else if (config.show_chart) {
+    lay.has_chart = true;
+    // A column of 40% of the width right of the views, from below the header to a line for the
+    // time labels and the range: a tall stack is narrow, and its views keep the height. With
+    // several engines a line above it says which is solid and which dashed. The gutter for the
+    // labels comes off its left side below.
+    const double column_w = std::round(0.4 * (w - 2 * m));
+    const double legend_h = n > 1 ? lay.line_px : 0.0;
+    lay.chart = {w - m - column_w, area.top + legend_h, column_w,
+                 h - m - lay.line_px - area.top - legend_h};
+    area.right = lay.chart.x_px - m;
+  }
+  if (area.bottom - area.top < 16.0 || area.right - m < 16.0) {
+    throw std::invalid_argument("image too small for the text and chart: give a larger size");
+  }
+  return area;
+}
+
+// The chart's range: the largest |theta| of the tracks in the window, rounded up to a round
+// number, rad.
+double ChartRange_rad(const std::vector<Track>& tracks, const FrameLayout& lay) {
+  double peak = 0.0;
+  auto add_peak = [&](const History& hist, const Sample& s) {
+    for (int k = 0; k < std::min(hist.blocks, s.blocks()); ++k) {
+      peak = std::max(peak, std::abs(s.theta_rad[k]));
+    }
+  };
+  for (const Track& t : tracks) {
+    add_peak(t.history, StateAt(t.history, lay.t_from_s));
+    add_peak(t.history, StateAt(t.history, lay.t_to_s));
+    for (const Sample& s : t.history.samples) {
+      if (s.t_s >= lay.t_from_s && s.t_s <= lay.t_to_s) add_peak(t.history, s);
+    }
+  }
+  return NiceCeil(std::max(peak, 1e-4) * 1.05);
+}
+
+// The stacked chart's gutter for the labels "θ<k>" and one axis per block of `blocks`, block 1
+// at the bottom. Throws when an axis would be too small.
+void PlaceStackedChart(int blocks, FrameLayout& lay) {
+  // Theta and a subscript digit are about 0.6 and 0.4 em wide; the range goes on the line below.
+  const double digits = std::floor(std::log10(static_cast<double>(blocks))) + 1.0;
+  const double gutter_px = std::round((0.6 + 0.4 * digits + 0.6) * lay.font_px);
+  lay.chart.x_px += gutter_px;
+  lay.chart.w_px -= gutter_px;
+  // A gap between two neighbours (a quarter of the font, at most a fifth of an axis's share
+  // when there are many).
+  const double gap_px = std::max(1.0, std::min(std::max(2.0, std::round(0.25 * lay.font_px)),
+                                               std::floor(0.2 * lay.chart.h_px / blocks)));
+  const double panel_h = (lay.chart.h_px - (blocks - 1) * gap_px) / blocks;
+  if (panel_h < 4.0 || lay.chart.w_px < 16.0) {
+    throw std::invalid_argument("image too small for the chart of " + std::to_string(blocks) +
+                                " blocks' angles: give a larger size");
+  }
+  for (int k = 0; k < blocks; ++k) {
+    lay.chart_panels.push_back({lay.chart.x_px,
+                                lay.chart.y_px + (blocks - 1 - k) * (panel_h + gap_px),
+                                lay.chart.w_px, panel_h});
+  }
+}
+
+}  // namespace
+
+std::optional<Layout> ParseLayout(std::string_view name) {
+  if (name == "overlay") return Layout::kOverlay;
+  if (name == "side") return Layout::kSide;
+  return std::nullopt;
+}
+
+FrameLayout ComputeLayout(const Scene& scene, const std::vector<Track>& tracks,
+                          const BaseDisplacement& base, const RenderConfig& config) {
+  CheckImageSize(config);
+  FrameLayout lay;
+  const std::vector<const History*> histories = TimeWindow(tracks, config, lay);
+
+  const int h = config.height_px;
   const int n = static_cast<int>(tracks.size());
   const bool side = config.layout == Layout::kSide && n > 1;
   // Three and more blocks: one small axis per block, in a column right of the views.
@@ -77,35 +178,8 @@ FrameLayout ComputeLayout(const Scene& scene, const std::vector<Track>& tracks,
   lay.line_px = static_cast<int>(std::lround(lay.font_px * 1.3));
   lay.margin_px = std::max(3, static_cast<int>(std::lround(h * 0.015)));
   const double m = lay.margin_px;
-
-  // Header: the time stamp line, and in the overlay layout one line per engine.
-  const int header_lines = config.show_text ? (side ? 1 : 1 + n) : 0;
-  lay.header = {m, m, w - 2 * m, static_cast<double>(header_lines * lay.line_px)};
-  const double top = header_lines > 0 ? lay.header.y_px + lay.header.h_px + m : m;
-  double bottom = h - m;
-  // The views' right edge: the image's margin, or the stacked chart's column.
-  double views_right = w - m;
-  if (config.show_chart && !stacked) {
-    lay.has_chart = true;
-    // The plot area, with a gutter on the left for the angle labels and a line below for the
-    // time labels and the legend.
-    const double chart_h = std::max(24.0, std::round(0.2 * h));
-    lay.chart = {m, h - m - chart_h, w - 2 * m, chart_h - lay.line_px};
-    bottom = lay.chart.y_px - m;
-  } else if (config.show_chart) {
-    lay.has_chart = true;
-    // A column of 40% of the width right of the views, from below the header to a line for the
-    // time labels and the range: a tall stack is narrow, and its views keep the height. With
-    // several engines a line above it says which is solid and which dashed. The gutter for the
-    // labels comes off its left side below.
-    const double column_w = std::round(0.4 * (w - 2 * m));
-    const double legend_h = n > 1 ? lay.line_px : 0.0;
-    lay.chart = {w - m - column_w, top + legend_h, column_w, h - m - lay.line_px - top - legend_h};
-    views_right = lay.chart.x_px - m;
-  }
-  if (bottom - top < 16.0 || views_right - m < 16.0) {
-    throw std::invalid_argument("image too small for the text and chart: give a larger size");
-  }
+  const ViewArea area = PlaceHeaderAndChart(config, n, side, stacked, lay);
+  const double top = area.top, bottom = area.bottom, views_right = area.right;
 
   const Box box = MotionBox(scene, histories, config.show_base_motion ? base : BaseDisplacement{},
                             lay.t_from_s, lay.t_to_s);
@@ -124,21 +198,7 @@ FrameLayout ComputeLayout(const Scene& scene, const std::vector<Track>& tracks,
     lay.views.push_back(FitCamera(box, m, top, views_right - m, bottom - top));
   }
 
-  // Chart range: the largest |theta| in the window, rounded up to a round number.
-  double peak = 0.0;
-  auto add_peak = [&](const History& hist, const Sample& s) {
-    for (int k = 0; k < std::min(hist.blocks, s.blocks()); ++k) {
-      peak = std::max(peak, std::abs(s.theta_rad[k]));
-    }
-  };
-  for (const Track& t : tracks) {
-    add_peak(t.history, StateAt(t.history, lay.t_from_s));
-    add_peak(t.history, StateAt(t.history, lay.t_to_s));
-    for (const Sample& s : t.history.samples) {
-      if (s.t_s >= lay.t_from_s && s.t_s <= lay.t_to_s) add_peak(t.history, s);
-    }
-  }
-  lay.chart_theta_max_rad = NiceCeil(std::max(peak, 1e-4) * 1.05);
+  lay.chart_theta_max_rad = ChartRange_rad(tracks, lay);
   if (lay.has_chart && !stacked) {
     // A gutter on the left for the range label "+<max>" (DejaVu Sans digits are 0.64 em wide).
     char label[32];
@@ -148,26 +208,7 @@ FrameLayout ComputeLayout(const Scene& scene, const std::vector<Track>& tracks,
     lay.chart.x_px += gutter_px;
     lay.chart.w_px -= gutter_px;
   } else if (lay.has_chart) {
-    // A gutter on the left for the labels "θ<k>" (theta and a subscript digit are about 0.6 and
-    // 0.4 em wide); the range goes on the line below.
-    const double digits = std::floor(std::log10(static_cast<double>(blocks))) + 1.0;
-    const double gutter_px = std::round((0.6 + 0.4 * digits + 0.6) * lay.font_px);
-    lay.chart.x_px += gutter_px;
-    lay.chart.w_px -= gutter_px;
-    // The axes, block 1 at the bottom, a gap between two neighbours (a quarter of the font, at
-    // most a fifth of an axis's share when there are many).
-    const double gap_px = std::max(1.0, std::min(std::max(2.0, std::round(0.25 * lay.font_px)),
-                                                 std::floor(0.2 * lay.chart.h_px / blocks)));
-    const double panel_h = (lay.chart.h_px - (blocks - 1) * gap_px) / blocks;
-    if (panel_h < 4.0 || lay.chart.w_px < 16.0) {
-      throw std::invalid_argument("image too small for the chart of " + std::to_string(blocks) +
-                                  " blocks' angles: give a larger size");
-    }
-    for (int k = 0; k < blocks; ++k) {
-      lay.chart_panels.push_back({lay.chart.x_px,
-                                  lay.chart.y_px + (blocks - 1 - k) * (panel_h + gap_px),
-                                  lay.chart.w_px, panel_h});
-    }
+    PlaceStackedChart(blocks, lay);
   }
   return lay;
 }
