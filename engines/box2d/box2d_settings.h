@@ -31,9 +31,8 @@ inline constexpr double kMaxFriction = 1e6;
 /// takes it as a float; Box2D's testbed uses 1/60 s).
 struct Box2dSettings {
   /// Velocity iterations of the sequential-impulse solver per step (Box2D's testbed and manual:
-  /// 8). Ours: 30. Measured at dt = 1e-4 s, length_scale 1000, on the thesis stack: 8 matched 4
-  /// of its 37 impacts with uplift episodes (theta1 / theta2 errors 1.9e-4 / 3.7e-4 rad), 30
-  /// matched 31 with no uplift (1.3e-4 / 5.4e-4 rad) at 1.9 times the wall time.
+  /// 8). Ours: 30, which matches the thesis stack's impacts without uplift (measurements:
+  /// docs/engine-measurements.md, Box2D).
   int velocity_iterations = 30;
   /// Position (non-linear Gauss-Seidel) iterations per step, a maximum: Box2D stops early once
   /// every contact is within 3 b2_linearSlop (testbed and manual: 3).
@@ -61,12 +60,9 @@ struct Box2dSettings {
   /// 100, makes the rounding of a corner 0.1 mm. The price: a body moves at most
   /// b2_maxTranslation = 2 m of Box2D's per step, 2 / (length_scale dt) m/s of the scene
   /// (20 m/s at dt = 1e-4 s, 2 m/s at 1e-3 s, 0.12 m/s at 1/60 s with ours); summary.json's
-  /// diagnostics count the steps where that cap acted. Ours: 1000. Measured at dt = 1e-4 s (max
-  /// angle error): the skin costs about 0.01 m / (length_scale b) rad on a block of half width b
-  /// (length_scale 1: 4.9e-2, 2.1e-2, 1.1e-2 rad at b = 0.2, 0.5, 1 m); length_scale 100 leaves
-  /// 2.1e-3 rad at b = 0.05 m and 1.5e-2 rad on the thesis stack (uplift at the interface),
-  /// 1000 4.1e-4 and 3.7e-4; 10000 fails (Housner's block 1.3e-3 rad at 1e-4 s, a float
-  /// coordinate's ulp at 4e4 m of Box2D's nears the 5 mm slop).
+  /// diagnostics count the steps where that cap acted. Ours: 1000. The skin costs about
+  /// 0.01 m / (length_scale b) rad on a block of half width b; at 10000 a float coordinate's ulp
+  /// nears the slop (measurements: docs/engine-measurements.md, Box2D).
   double length_scale = 1000.0;
   /// Warm starting of the contact impulses from the previous step (b2World default on).
   bool warm_starting = true;
@@ -78,6 +74,8 @@ struct Box2dSettings {
   bool bullet = false;
   /// Thickness of the ground box, m (the top face is y = 0).
   double ground_depth_m = 1.0;
+
+  bool operator==(const Box2dSettings&) const = default;
 };
 
 /// The [box2d] table: every Box2dSettings field, with Box2D's own default beside ours.
@@ -85,10 +83,7 @@ const EngineSettingsSchema& Box2dSettingsSchema();
 
 /// The input of one Box2D run: the common engine input (step, drive, base motion) and the
 /// settings.
-struct Box2dRun {
-  EngineInput input;
-  Box2dSettings settings;
-};
+using Box2dRun = EngineRunInput<Box2dSettings>;
 
 /// Resolves the scene's [box2d] table (SceneError naming FILE:LINE and the key for a bad value)
 /// and samples the base motion on its step.

@@ -29,6 +29,8 @@ struct BulletConfig {
   double restitution_velocity_threshold = 0.2;  ///< m/s (Bullet default 0.2)
   double margin_m = 0.0;        ///< collision margin, m (Bullet default 0.04 for boxes)
   double ground_depth_m = 1.0;  ///< ground box thickness, m
+
+  bool operator==(const BulletConfig&) const = default;
 };
 
 /// One Bullet run's input.

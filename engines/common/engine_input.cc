@@ -15,20 +15,24 @@ namespace {
 // Upper bound on the number of steps of one run (about a day of CPU at 1 us per step).
 constexpr std::int64_t kMaxSteps = 2'000'000'000;
 
+// The keys this file defines and reads (and kTimeStepKey, engine_input.h).
+constexpr char kDriveKey[] = "drive";
+constexpr char kKinematicHighpassKey[] = "kinematic_highpass_hz";
+
 }  // namespace
 
 void AddTimeStepSetting(EngineSettingsSchema& schema, std::string engine_default, std::string doc) {
-  schema.Number("time_step", kDefaultTimeStep_s, SettingRange::kPositive, "s",
+  schema.Number(kTimeStepKey, kDefaultTimeStep_s, SettingRange::kPositive, "s",
                 std::move(engine_default), std::move(doc));
 }
 
-void AddDriveSetting(EngineSettingsSchema& schema) {
-  schema.Choice("drive", "inertial", {"inertial", "kinematic"}, "-",
-                "base motion as tilted gravity (inertial) or a moving ground (kinematic)");
+void AddDriveSetting(EngineSettingsSchema& schema, const std::vector<std::string>& drives,
+                     std::string doc) {
+  schema.Choice(kDriveKey, drives.front(), drives, "-", std::move(doc));
 }
 
 void AddKinematicHighpassSetting(EngineSettingsSchema& schema) {
-  schema.Number("kinematic_highpass_hz", 0.0, SettingRange::kNonNegative, "Hz", "-",
+  schema.Number(kKinematicHighpassKey, 0.0, SettingRange::kNonNegative, "Hz", "-",
                 "kinematic drive's baseline-correction corner; 0: none (docs/bullet.md)");
 }
 
@@ -39,12 +43,13 @@ EngineInput MakeEngineInput(const Scene& scene, const GroundMotion& motion,
     return std::any_of(settings.values.begin(), settings.values.end(),
                        [&](const auto& kv) { return kv.first == key; });
   };
-  const DriveKind drive = has("drive") && settings.Choice("drive") == "kinematic"
-                              ? DriveKind::kKinematic
-                              : DriveKind::kInertial;
-  EngineInput in = MakeEngineInput(
-      scene, motion, engine, settings.Number("time_step"), drive,
-      has("kinematic_highpass_hz") ? settings.Number("kinematic_highpass_hz") : 0.0);
+  const DriveKind drive =
+      has(kDriveKey) && settings.Choice(kDriveKey) == DriveKindName(DriveKind::kKinematic)
+          ? DriveKind::kKinematic
+          : DriveKind::kInertial;
+  EngineInput in =
+      MakeEngineInput(scene, motion, engine, settings.Number(kTimeStepKey), drive,
+                      has(kKinematicHighpassKey) ? settings.Number(kKinematicHighpassKey) : 0.0);
   in.stop_at_rest_after_s = stop_at_rest_after_s;
   return in;
 }
@@ -86,12 +91,12 @@ EngineInput MakeEngineInput(const Scene& scene, const GroundMotion& motion,
   const double dt = time_step_s;
   const std::string where = scene.path.empty() ? std::string("scene") : scene.path.string();
   if (!(std::isfinite(dt) && dt > 0.0)) {
-    throw SceneError(where + ": " + engine + ".time_step: expected a positive time step in s");
+    throw SceneError(where + ": " + engine + "." + kTimeStepKey +
+                     ": expected a positive time step in s");
   }
   if (std::ceil(scene.run.duration_s / dt - 1e-9) > static_cast<double>(kMaxSteps)) {
-    throw SceneError(where + ": " + engine +
-                     ".time_step: expected at most 2e9 steps over run.duration (time step too "
-                     "small)");
+    throw SceneError(where + ": " + engine + "." + kTimeStepKey +
+                     ": expected at most 2e9 steps over run.duration (time step too small)");
   }
   EngineInput in;
   in.blocks = scene.blocks;

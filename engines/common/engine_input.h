@@ -103,13 +103,36 @@ EngineInput MakeEngineInput(const Scene& scene, const GroundMotion& motion,
 /// a positive number, ours 1e-4 s (kDefaultTimeStep_s); `engine_default` is the engine's own
 /// default as text ("1/60 s"), `doc` one line on it.
 inline constexpr double kDefaultTimeStep_s = 1e-4;
+inline constexpr char kTimeStepKey[] = "time_step";
 void AddTimeStepSetting(EngineSettingsSchema& schema, std::string engine_default, std::string doc);
 
-/// The two keys of an engine's table that MakeEngineInput reads, defined once for every engine
-/// with both drives: `drive` ("inertial", the default, or "kinematic") and
-/// `kinematic_highpass_hz` (the kinematic drive's baseline-correction corner, default 0: none).
-void AddDriveSetting(EngineSettingsSchema& schema);
+/// The two other keys of an engine's table that MakeEngineInput reads, defined once for every
+/// engine: `drive`, one of `drives` (DriveKindName's words; the first is the default; `doc` one
+/// line on it), and `kinematic_highpass_hz` (the kinematic drive's baseline-correction corner,
+/// default 0: none).
+void AddDriveSetting(EngineSettingsSchema& schema,
+                     const std::vector<std::string>& drives = {"inertial", "kinematic"},
+                     std::string doc =
+                         "base motion as tilted gravity (inertial) or a moving "
+                         "ground (kinematic)");
 void AddKinematicHighpassSetting(EngineSettingsSchema& schema);
+
+/// One built-in engine's run: the common input and the engine's own settings.
+template <class S>
+struct EngineRunInput {
+  EngineInput input;
+  S settings;
+};
+
+/// Resolves the scene's table of `table`'s engine (SceneError naming FILE:LINE and the key for
+/// a bad value), samples the base motion on its step and reads the engine's settings.
+template <class S>
+EngineRunInput<S> MakeEngineRunInput(const Scene& scene, const GroundMotion& motion,
+                                     const SettingsTable<S>& table, double stop_at_rest_after_s) {
+  const EngineSettings set = ResolveEngineSettings(scene, table.schema());
+  return {MakeEngineInput(scene, motion, table.schema().engine, set, stop_at_rest_after_s),
+          table.Read(set)};
+}
 
 /// summary.json "kinematic" of a kinematic-drive run: the baseline correction and the peak
 /// displacements before and after it.

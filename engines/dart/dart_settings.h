@@ -98,6 +98,8 @@ struct DartSettings {
 
   /// Ground box thickness, m (the ground is a box whose top face is y = 0; as Bullet's).
   double ground_depth_m = 1.0;
+
+  bool operator==(const DartSettings&) const = default;
 };
 
 /// The [dart] table: every DartSettings field, with DART's own default beside ours.
@@ -105,10 +107,7 @@ const EngineSettingsSchema& DartSettingsSchema();
 
 /// The input of one DART run: the common engine input (step, drive, base motion) and the
 /// settings.
-struct DartRun {
-  EngineInput input;
-  DartSettings settings;
-};
+using DartRun = EngineRunInput<DartSettings>;
 
 /// Resolves the scene's [dart] table (SceneError naming FILE:LINE and the key for a bad value)
 /// and samples the base motion on its step.

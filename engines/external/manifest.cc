@@ -364,25 +364,37 @@ std::string MissingReason(const ExternalManifest& m, const std::filesystem::path
 
 }  // namespace
 
+// The standard keys rockbench reads itself (ReadProtocolSettings).
+constexpr char kOutputEveryKey[] = "output_every_steps";
+constexpr char kWallLimitKey[] = "wall_limit_s";
+constexpr char kMemoryLimitKey[] = "memory_limit_mib";
+
 void AddProtocolSettings(EngineSettingsSchema& schema, const std::vector<std::string>& drives,
                          double wall_limit_s, double memory_limit_mib) {
   AddTimeStepSetting(schema, "-", "the engine's fixed step (input time_step_s)");
   if (drives.size() == 2) {
     AddDriveSetting(schema);
-    AddKinematicHighpassSetting(schema);
   } else {
-    schema.Choice("drive", drives.front(), drives, "-",
-                  "how the base motion reaches the blocks (the manifest's drives)");
-    if (drives.front() == "kinematic") AddKinematicHighpassSetting(schema);
+    AddDriveSetting(schema, drives,
+                    "how the base motion reaches the blocks (the manifest's drives)");
   }
-  schema.Integer("output_every_steps", 1, 1, 1000000, "-",
+  if (drives.size() == 2 || drives.front() == "kinematic") AddKinematicHighpassSetting(schema);
+  schema.Integer(kOutputEveryKey, 1, 1, 1000000, "-",
                  "poses written every this many steps; the monitor reads impacts from them, so "
                  "1 (every step) unless the run is too long to write");
-  schema.Number("wall_limit_s", wall_limit_s, SettingRange::kPositive, "s", "-",
+  schema.Number(kWallLimitKey, wall_limit_s, SettingRange::kPositive, "s", "-",
                 "the run is killed past this wall-clock time (a hang is a failed run, not a lost "
                 "study)");
-  schema.Number("memory_limit_mib", memory_limit_mib, SettingRange::kPositive, "MiB", "-",
+  schema.Number(kMemoryLimitKey, memory_limit_mib, SettingRange::kPositive, "MiB", "-",
                 "the run is killed once its resident memory exceeds this");
+}
+
+ProtocolSettings ReadProtocolSettings(const EngineSettings& settings) {
+  ProtocolSettings p;
+  p.output_every_steps = settings.Integer(kOutputEveryKey);
+  p.wall_limit_s = settings.Number(kWallLimitKey);
+  p.memory_limit_mib = settings.Number(kMemoryLimitKey);
+  return p;
 }
 
 ExternalManifest LoadManifest(const ExternalEngineRef& ref) {

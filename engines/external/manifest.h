@@ -77,4 +77,13 @@ ExternalManifest LoadManifest(const ExternalEngineRef& ref);
 void AddProtocolSettings(EngineSettingsSchema& schema, const std::vector<std::string>& drives,
                          double wall_limit_s, double memory_limit_mib);
 
+/// The values of the standard keys that rockbench itself reads (the time step and the drive go
+/// to MakeEngineInput), from a table resolved against a schema with AddProtocolSettings.
+struct ProtocolSettings {
+  std::int64_t output_every_steps = 1;  ///< poses written every this many steps
+  double wall_limit_s = 0.0;            ///< the run is killed past this wall-clock time, s
+  double memory_limit_mib = 0.0;        ///< ... or past this resident memory, MiB
+};
+ProtocolSettings ReadProtocolSettings(const EngineSettings& settings);
+
 }  // namespace rockbench::external

@@ -5,7 +5,6 @@
 /// engines/mujoco/mujoco_probe.cc (Housner's block 0.4 m x 1.2 m from alpha / 2, 2.5 s, against
 /// its exact solution; the thesis's stack, 3 s, against the reference model).
 #include <array>
-#include <optional>
 #include <string_view>
 
 #include "engines/common/engine_input.h"
@@ -111,6 +110,8 @@ struct MujocoSettings {
   int noslip_iterations = 0;
   /// Noslip tolerance, dimensionless. MuJoCo default 1e-6 (kept).
   double noslip_tolerance = 1e-6;
+
+  bool operator==(const MujocoSettings&) const = default;
 };
 
 /// Names as used in summaries and scene tables.
@@ -127,40 +128,13 @@ constexpr std::string_view ConeName(Cone c) {
   return c == Cone::kPyramidal ? "pyramidal" : "elliptic";
 }
 
-/// The inverse of the names above; nullopt for an unknown name.
-constexpr std::optional<ContactModel> ParseContactModel(std::string_view s) {
-  if (s == "stiff") return ContactModel::kStiff;
-  if (s == "mujoco_default") return ContactModel::kMujocoDefault;
-  return std::nullopt;
-}
-constexpr std::optional<Solver> ParseSolver(std::string_view s) {
-  if (s == "newton") return Solver::kNewton;
-  if (s == "cg") return Solver::kCG;
-  if (s == "pgs") return Solver::kPGS;
-  return std::nullopt;
-}
-constexpr std::optional<Integrator> ParseIntegrator(std::string_view s) {
-  if (s == "euler") return Integrator::kEuler;
-  if (s == "rk4") return Integrator::kRK4;
-  if (s == "implicit") return Integrator::kImplicit;
-  return std::nullopt;
-}
-constexpr std::optional<Cone> ParseCone(std::string_view s) {
-  if (s == "pyramidal") return Cone::kPyramidal;
-  if (s == "elliptic") return Cone::kElliptic;
-  return std::nullopt;
-}
-
 /// The [mujoco] table: the MujocoSettings fields a scene may set, with MuJoCo's own default
 /// beside ours.
 const EngineSettingsSchema& MujocoSettingsSchema();
 
 /// The input of one MuJoCo run: the common engine input (step, drive, base motion) and the
 /// settings.
-struct MujocoRun {
-  EngineInput input;
-  MujocoSettings settings;
-};
+using MujocoRun = EngineRunInput<MujocoSettings>;
 
 /// Resolves the scene's [mujoco] table (SceneError naming FILE:LINE and the key for a bad value)
 /// and samples the base motion on its step.

@@ -5,8 +5,6 @@
 /// max correcting velocity infinity, QuickStep 20 iterations with w = 1.3) and bodies'
 /// (finite rotation off, gyroscopic on).
 #include <limits>
-#include <optional>
-#include <string_view>
 
 #include "engines/common/engine_input.h"
 #include "scene/engine_settings.h"
@@ -26,18 +24,14 @@ enum class OdeStepper {
 
 /// "world_step" or "quick_step".
 const char* OdeStepperName(OdeStepper stepper);
-/// Inverse of OdeStepperName; nullopt for an unknown name.
-std::optional<OdeStepper> ParseOdeStepper(std::string_view name);
 
 /// The [ode] settings besides the time step, which is EngineInput::time_step_s (ODE has no
 /// default: the caller passes it to every dWorldStep).
 struct OdeSettings {
   /// Stepper (ODE offers both; its demos mostly use QuickStep for speed). Ours: dWorldStep, the
   /// exact LCP solve: two boxes give at most ~40 rows, so it is also the faster one here.
-  /// Measured at dt = 1e-4 s (max |theta error|: single block / stack theta1 / theta2, rad):
-  /// world_step 2.1e-4 / 1.6e-4 / 1.7e-4; quick_step with 100 iterations 2.6e-4 / 2.0e-4 /
-  /// 1.1e-3 at 4-5 times the wall time, out-of-plane rotation 2e-7 rad (the Plane2D rows are
-  /// not solved exactly); with 20 iterations 6.8e-4 / 1.2e-4 / 1.2e-4 at 1.4 times.
+  /// QuickStep is less accurate at impacts and slower at equal accuracy (measurements:
+  /// docs/engine-measurements.md, ODE).
   OdeStepper stepper = OdeStepper::kWorldStep;
   /// QuickStep only: SOR iterations per step (ODE default 20). Ours: 100; unused by dWorldStep.
   int quick_step_iterations = 100;
@@ -73,16 +67,12 @@ struct OdeSettings {
   /// Cap of the contact push-out velocity, m/s (ODE default infinity,
   /// dWorldSetContactMaxCorrectingVel). Ours: 1e-4 m/s, from the physics of the blocks rather
   /// than a fit: far below the landing corners' speeds (0.05..1 m/s), so the artificial bounce
-  /// is <= 1e-4 m/s (energy gains measured <= 5e-4 of the tipping energy, uplift never);
+  /// is <= 1e-4 m/s;
   /// far above the creep cfm F (2.5e-6 m/s for the thesis stack; contacts up to 1e6 N per
   /// point stay held); and fast enough to remove a landing's overshoot (v dt ~ 2e-5 m at
   /// dt = 1e-4 s) in ~0.2 s, before the next impact, so that the pivot is back at the
-  /// surface. Measured at dt = 1e-4 s (max |theta error| vs the reference model; single block
-  /// / stack theta1 / stack theta2, rad): cap 1e-4: 2.1e-4 / 1.6e-4 / 1.7e-4; cap 1e-3:
-  /// 2.1e-4 / 3.9e-4 / 1.9e-3; cap 1e-5: 8.1e-4 / 1.6e-4 / 3.9e-4; contact_erp = 0 (no
-  /// correction): 9.0e-4 / 1.5e-4 / 5.2e-4, pivots stay sunk and the stack creeps at rest;
-  /// ODE's defaults (erp 0.2, no cap): 1.2e-4 / 1.3e-3 / 4.8e-3 with bounces (uplift
-  /// episodes, rate ratios 0.83 instead of 0.85).
+  /// surface (measurements against other caps and ODE's defaults: docs/engine-measurements.md,
+  /// ODE).
   double contact_max_correcting_vel_mps = 1e-4;
   /// Penetration allowed without correction, m (ODE default 0, dWorldSetContactSurfaceLayer).
   /// ODE's default: a layer makes resting contacts sit that deep, and does not stop the bounce
@@ -97,13 +87,9 @@ struct OdeSettings {
   double friction = std::numeric_limits<double>::infinity();
   /// dContactApprox1 (ODE default off: friction bounded by a constant force mu, in N): the
   /// friction pyramid |f_t| <= mu f_n, each tangent direction separately. Ours: off, with
-  /// friction = infinity (no bound at all); turn on with a finite friction for Coulomb. Measured
-  /// at dt = 1e-4 s on the thesis stack, whose reference needs at most |T|/N = 0.70 at the
-  /// ground and 1.28 at the interface: friction 3 slid 1.6 mm at the ground and 4.1 mm at the
-  /// interface (max errors 1.4e-2 / 4.9e-2 rad), friction 10 still 0.4 mm and 4.4 mm (5.8e-3 /
-  /// 2.3e-2 rad). Presumably because dWorldStep's Dantzig solver bounds a friction row by the
-  /// normal force known when that row enters the pivoting, and an impact's normal impulses
-  /// grow after that. The single block did not slide (3e-6 m, as with infinity).
+  /// friction = infinity (no bound at all); turn on with a finite friction for Coulomb. With it
+  /// the thesis stack slides at impacts even at friction 10 (measurements:
+  /// docs/engine-measurements.md, ODE).
   bool friction_pyramid = false;
   /// Restitution of the contacts (dContactBounce; ODE default off). Ours: 0 and off: Housner's
   /// impact is perfectly plastic at the landing corner; the energy it loses follows from the
@@ -112,11 +98,8 @@ struct OdeSettings {
   /// Contact points per box pair passed to dCollide (ODE's box-box collider makes up to 8 by
   /// face clipping and culls to this many). A box on a face needs 4 (its face's corners), a
   /// rocking one 2 (both ends of its pivot edge); block 2 on block 1 made up to 6 at some
-  /// steps. Ours: 8, the collider's maximum: no culling. Measured at dt = 1e-4 s: 4 and 8 give
-  /// identical runs of both probes; 2 culls a face contact to one z side (out-of-plane rotation
-  /// 1e-9 / 2.5e-7 rad instead of 1e-20; max error single block 3.5e-4 rad instead of 2.1e-4,
-  /// stack theta2 1.2e-3 instead of 1.7e-4); 1 (with no contact correction) let the single
-  /// block sink 9.5e-5 m.
+  /// steps. Ours: 8, the collider's maximum: no culling (2 culls a face contact to one z side;
+  /// measurements: docs/engine-measurements.md, ODE).
   int max_contacts = 8;
 
   /// dBodySetFiniteRotationMode(1) with no axis (ODE default 0: the infinitesimal quaternion
@@ -127,16 +110,15 @@ struct OdeSettings {
   bool finite_rotation = true;
   /// Thickness of the ground box, m (the top face is y = 0).
   double ground_depth_m = 1.0;
+
+  bool operator==(const OdeSettings&) const = default;
 };
 
 /// The [ode] table: every OdeSettings field, with ODE's own default beside ours.
 const EngineSettingsSchema& OdeSettingsSchema();
 
 /// The input of one ODE run: the common engine input (step, drive, base motion) and the settings.
-struct OdeRun {
-  EngineInput input;
-  OdeSettings settings;
-};
+using OdeRun = EngineRunInput<OdeSettings>;
 
 /// Resolves the scene's [ode] table (SceneError naming FILE:LINE and the key for a bad value)
 /// and samples the base motion on its step.

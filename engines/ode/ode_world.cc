@@ -99,12 +99,6 @@ const char* OdeStepperName(OdeStepper stepper) {
   return stepper == OdeStepper::kQuickStep ? "quick_step" : "world_step";
 }
 
-std::optional<OdeStepper> ParseOdeStepper(std::string_view name) {
-  if (name == "world_step") return OdeStepper::kWorldStep;
-  if (name == "quick_step") return OdeStepper::kQuickStep;
-  return std::nullopt;
-}
-
 OdeWorld::OdeWorld(const EngineInput& input, const OdeSettings& settings)
     : in_(input), s_(settings) {
   CheckInput(in_);

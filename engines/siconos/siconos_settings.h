@@ -62,16 +62,15 @@ struct SiconosSettings {
   /// step's end is below it enters the step's contact problem. Siconos's default: 0. Ours: the
   /// same (EXPERIMENT).
   double activation_threshold_m = 0.0;
+
+  bool operator==(const SiconosSettings&) const = default;
 };
 
 /// The [siconos] table: every SiconosSettings field, with Siconos's own default beside ours.
 const EngineSettingsSchema& SiconosSettingsSchema();
 
 /// The input of one Siconos run: the common engine input and the settings.
-struct SiconosRun {
-  EngineInput input;
-  SiconosSettings settings;
-};
+using SiconosRun = EngineRunInput<SiconosSettings>;
 
 /// Resolves the scene's [siconos] table (SceneError naming FILE:LINE and the key for a bad
 /// value) and samples the base motion on its step.

@@ -6,9 +6,11 @@
 /// checked when that engine is resolved (harness CheckEngineTables does it for every table as
 /// soon as a scene is loaded).
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -110,6 +112,82 @@ class EngineSettings {
 
  private:
   const SettingValue& Get(std::string_view key) const;
+};
+
+/// An engine's schema that also reads its resolved table into the engine's settings struct `S`,
+/// so that each key is written once: a key is bound to the member of S it sets, and the member's
+/// default (S{}.*member) is the schema's default. Keys that are not S's (the time step and the
+/// drive, which MakeEngineInput reads) go into `unbound()`. The messages for a bad value are the
+/// schema's (ResolveEngineSettings): this only adds the reading.
+template <class S>
+class SettingsTable {
+ public:
+  explicit SettingsTable(std::string engine) { schema_.engine = std::move(engine); }
+
+  /// The schema: what ResolveEngineSettings checks against, the docs list and summary.json writes.
+  const EngineSettingsSchema& schema() const { return schema_; }
+  /// The schema, to add keys that S does not hold (read by another function).
+  EngineSettingsSchema& unbound() { return schema_; }
+
+  /// A number key setting `member` (unit as in EngineSettingsSchema::Number).
+  SettingsTable& Number(std::string key, double S::*member, SettingRange range, std::string unit,
+                        std::string engine_default, std::string doc, NumberBounds bounds = {}) {
+    schema_.Number(std::move(key), S{}.*member, range, std::move(unit), std::move(engine_default),
+                   std::move(doc), bounds);
+    return Bind([member](const SettingValue& v, S& s) { s.*member = std::get<double>(v); });
+  }
+  /// An integer key from min_value to max_value (within int) setting `member`.
+  SettingsTable& Integer(std::string key, int S::*member, std::int64_t min_value,
+                         std::int64_t max_value, std::string engine_default, std::string doc) {
+    schema_.Integer(std::move(key), S{}.*member, min_value, max_value, std::move(engine_default),
+                    std::move(doc));
+    return Bind([member](const SettingValue& v, S& s) {
+      s.*member = static_cast<int>(std::get<std::int64_t>(v));
+    });
+  }
+  /// A flag setting `member`.
+  SettingsTable& Flag(std::string key, bool S::*member, std::string engine_default,
+                      std::string doc) {
+    schema_.Flag(std::move(key), S{}.*member, std::move(engine_default), std::move(doc));
+    return Bind([member](const SettingValue& v, S& s) { s.*member = std::get<bool>(v); });
+  }
+  /// A choice among `values`, each written as name_of(value) (the choices in this order);
+  /// sets `member` to the value chosen.
+  template <class T, class NameOf>
+  SettingsTable& Choice(std::string key, T S::*member, std::vector<T> values, NameOf name_of,
+                        std::string engine_default, std::string doc) {
+    std::vector<std::string> names;
+    for (const T& value : values) names.emplace_back(name_of(value));
+    schema_.Choice(std::move(key), std::string(name_of(S{}.*member)), names,
+                   std::move(engine_default), std::move(doc));
+    return Bind([member, values, names](const SettingValue& v, S& s) {
+      const std::string& chosen = std::get<std::string>(v);
+      for (size_t i = 0; i < names.size(); ++i) {
+        if (names[i] == chosen) s.*member = values[i];
+      }
+    });
+  }
+
+  /// S{} with the value of every bound key, from `settings` resolved against schema().
+  S Read(const EngineSettings& settings) const {
+    if (settings.values.size() != schema_.settings.size()) {
+      throw std::logic_error("settings of " + schema_.engine + " not resolved by its schema");
+    }
+    S s{};
+    for (const auto& [index, set] : setters_) set(settings.values[index].second, s);
+    return s;
+  }
+
+ private:
+  using Setter = std::function<void(const SettingValue&, S&)>;
+  // The setter of the key just added to the schema.
+  SettingsTable& Bind(Setter set) {
+    setters_.emplace_back(schema_.settings.size() - 1, std::move(set));
+    return *this;
+  }
+
+  EngineSettingsSchema schema_;
+  std::vector<std::pair<size_t, Setter>> setters_;  ///< (index in schema_.settings, setter)
 };
 
 /// Checks the scene's [schema.engine] table (absent: all defaults) against the schema and fills
