@@ -64,13 +64,79 @@ std::vector<SweepSetting> Points(const ExternalManifest& m, const std::vector<do
       p.label = TimeStepLabel(steps[i]);
       p.time_step_s = steps[i];
       p.settings = f.settings;
-      p.settings.emplace_back("time_step", steps[i]);
+      p.settings.emplace_back(kTimeStepKey, steps[i]);
       p.id = f.id + "/dt=" + p.label;
       p.quick = stress && i == 0;
       out.push_back(std::move(p));
     }
   }
   return out;
+}
+
+// Throws the failure of the engine's command: what it did (exit, signal, limit) and what it
+// wrote on standard error (its last lines, of its last 4 kB), relayed escaped and indented
+// ("  | "): no escape sequence or carriage return reaches the terminal to rewrite a line, and
+// no line of it reads as one of rockbench's own.
+[[noreturn]] void ThrowFailedCommand(const std::string& name, const CommandSpec& spec,
+                                     const CommandResult& proc) {
+  const std::string said = TailOfFile(spec.stderr_file);
+  std::error_code ec;
+  const std::uintmax_t bytes = std::filesystem::file_size(spec.stderr_file, ec);
+  const std::string heading = !ec && bytes > said.size() + 2
+                                  ? "its last words (the last " + std::to_string(said.size()) +
+                                        " of " + std::to_string(bytes) + " bytes it wrote):"
+                                  : std::string("its last words:");
+  throw ExternalEngineError(name + ": its command (" + EscapedText(CommandText(spec.argv), 1024) +
+                            ") " + proc.Describe(spec) +
+                            (said.empty() ? std::string(", and said nothing")
+                                          : ";\n" + heading + "\n" + RelayedLines(said)));
+}
+
+// The poses file read (ReadPoses); its texts (a header, a field) reach messages escaped and
+// capped.
+PoseRows ReadEscapedPoses(const std::string& name, const std::filesystem::path& poses_file,
+                          const EngineInput& input, std::int64_t every) {
+  PoseRows poses = [&] {
+    try {
+      return ReadPoses(name, poses_file, input, every);
+    } catch (const ExternalEngineError& e) {
+      throw ExternalEngineError(EscapedText(e.what()));
+    }
+  }();
+  for (StepReadout& r : poses.rows) {
+    if (!r.engine_fault.empty()) r.engine_fault = EscapedText(r.engine_fault);
+  }
+  return poses;
+}
+
+// The rows given to the monitor as the steps of `watched` (MonitorInput), until it stops.
+void WatchRows(const EngineInput& watched, PoseRows* poses, Monitor* monitor) {
+  for (size_t j = 0; j < poses->rows.size(); ++j) {
+    StepReadout& r = poses->rows[j];
+    ReadBaseMotion(watched, static_cast<std::int64_t>(j), &r);
+    if (j == 0) {
+      monitor->Start(r);
+    } else if (!monitor->Step(static_cast<std::int64_t>(j), r)) {
+      break;
+    }
+  }
+}
+
+// Friction from the scene, as every engine reports it: each interface's coefficient, the
+// scene's where finite, else the engine's `friction` setting (null: none it states).
+nlohmann::json InterfaceFrictionJson(const EngineSettingsSchema& schema,
+                                     const EngineSettings& settings, const EngineInput& input) {
+  constexpr char kFrictionKey[] = "friction";  // a manifest's key, if it has one
+  const SettingDef* own = schema.Find(kFrictionKey);
+  const double engine_mu = own != nullptr && std::holds_alternative<double>(own->default_value)
+                               ? settings.Number(kFrictionKey)
+                               : std::numeric_limits<double>::infinity();
+  nlohmann::json mu = nlohmann::json::array();
+  for (int k = 0; k < input.block_count(); ++k) {
+    const double v = InterfaceFriction(input, k, engine_mu);
+    mu.push_back(std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr));
+  }
+  return mu;
 }
 
 }  // namespace
@@ -99,7 +165,8 @@ EngineResult ExternalEngine::Simulate(const Scene& scene, const GroundMotion& mo
   const EngineSettings settings = ResolveEngineSettings(scene, m_.schema);
   const EngineInput input =
       MakeEngineInput(scene, motion, m_.name, settings, options.stop_at_rest_after_s);
-  const std::int64_t every = settings.Integer("output_every_steps");
+  const ProtocolSettings protocol = ReadProtocolSettings(settings);
+  const std::int64_t every = protocol.output_every_steps;
 
   RunFolder folder(m_.name);
   const std::filesystem::path input_file = folder.path() / "input.json";
@@ -117,52 +184,18 @@ EngineResult ExternalEngine::Simulate(const Scene& scene, const GroundMotion& mo
   spec.argv.push_back(input_file.string());
   spec.working_dir = folder.path();
   spec.stderr_file = folder.path() / "stderr.txt";
-  spec.wall_limit_s = settings.Number("wall_limit_s");
-  spec.memory_limit_mib = settings.Number("memory_limit_mib");
+  spec.wall_limit_s = protocol.wall_limit_s;
+  spec.memory_limit_mib = protocol.memory_limit_mib;
   const CommandResult proc = RunCommand(spec);
-  if (!proc.ok()) {
-    // What the engine wrote on standard error (its last lines, of its last 4 kB) is relayed
-    // escaped and indented ("  | "): no escape sequence or carriage return reaches the terminal
-    // to rewrite a line, and no line of it reads as one of rockbench's own.
-    const std::string said = TailOfFile(spec.stderr_file);
-    std::error_code ec;
-    const std::uintmax_t bytes = std::filesystem::file_size(spec.stderr_file, ec);
-    const std::string heading = !ec && bytes > said.size() + 2
-                                    ? "its last words (the last " + std::to_string(said.size()) +
-                                          " of " + std::to_string(bytes) + " bytes it wrote):"
-                                    : std::string("its last words:");
-    throw ExternalEngineError(m_.name + ": its command (" +
-                              EscapedText(CommandText(spec.argv), 1024) + ") " +
-                              proc.Describe(spec) +
-                              (said.empty() ? std::string(", and said nothing")
-                                            : ";\n" + heading + "\n" + RelayedLines(said)));
-  }
+  if (!proc.ok()) ThrowFailedCommand(m_.name, spec, proc);
   const auto read_start = std::chrono::steady_clock::now();
-  // The poses file's texts (a header, a field) reach messages: escaped and capped.
-  PoseRows poses = [&] {
-    try {
-      return ReadPoses(m_.name, poses_file, input, every);
-    } catch (const ExternalEngineError& e) {
-      throw ExternalEngineError(EscapedText(e.what()));
-    }
-  }();
-  for (StepReadout& r : poses.rows) {
-    if (!r.engine_fault.empty()) r.engine_fault = EscapedText(r.engine_fault);
-  }
+  PoseRows poses = ReadEscapedPoses(m_.name, poses_file, input, every);
   const auto monitor_start = std::chrono::steady_clock::now();
 
   // The monitor reads the rows as a fixed-step engine's steps.
   const EngineInput watched = MonitorInput(input, every);
   Monitor monitor(watched);
-  for (size_t j = 0; j < poses.rows.size(); ++j) {
-    StepReadout& r = poses.rows[j];
-    ReadBaseMotion(watched, static_cast<std::int64_t>(j), &r);
-    if (j == 0) {
-      monitor.Start(r);
-    } else if (!monitor.Step(static_cast<std::int64_t>(j), r)) {
-      break;
-    }
-  }
+  WatchRows(watched, &poses, &monitor);
   monitor.Finish();
   const auto end = std::chrono::steady_clock::now();
   const double wall_s = std::chrono::duration<double>(end - start).count();
@@ -171,19 +204,9 @@ EngineResult ExternalEngine::Simulate(const Scene& scene, const GroundMotion& mo
   out.summary = monitor.Summary();
   out.summary["engine"] = m_.name;
   out.summary["settings"] = settings.ToJson();
-  // Friction from the scene, as every engine reports it: each interface's coefficient, the
-  // scene's where finite, else the engine's `friction` setting (null: none it states).
   if (HasFiniteFriction(input)) {
-    const SettingDef* own = m_.schema.Find("friction");
-    const double engine_mu = own != nullptr && std::holds_alternative<double>(own->default_value)
-                                 ? settings.Number("friction")
-                                 : std::numeric_limits<double>::infinity();
-    nlohmann::json mu = nlohmann::json::array();
-    for (int k = 0; k < input.block_count(); ++k) {
-      const double v = InterfaceFriction(input, k, engine_mu);
-      mu.push_back(std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr));
-    }
-    out.summary["settings"]["interface_friction"] = mu;
+    out.summary["settings"]["interface_friction"] =
+        InterfaceFrictionJson(m_.schema, settings, input);
   }
   out.summary["wall_s"] = wall_s;
   out.summary["real_time_factor"] = wall_s > 0.0 ? monitor.last().t_s / wall_s : 0.0;

@@ -380,23 +380,164 @@ EngineInput MonitorInput(const EngineInput& input, std::int64_t every) {
   return m;
 }
 
-PoseRows ReadPoses(const std::string& engine, const std::filesystem::path& file,
-                   const EngineInput& input, std::int64_t every) {
-  const int blocks = input.block_count();
-  const std::int64_t expected = ExpectedRows(input.steps, every);
-  // Columns: which field of a row holds what (-1: absent).
-  enum Quantity { kX, kY, kAngle, kVx, kVy, kOmega, kQuantities };
-  static const char* kSuffix[kQuantities] = {"_m", "_m", "_rad", "_mps", "_mps", "_radps"};
-  static const char* kStem[kQuantities] = {"x", "y", "angle", "vx", "vy", "omega"};
-  std::vector<std::array<int, kQuantities>> col(static_cast<size_t>(blocks));
-  for (auto& c : col) c.fill(-1);
+namespace {
+
+// The quantities of a block's columns, and their names: x1_m, angle2_rad, omega3_radps.
+enum Quantity { kX, kY, kAngle, kVx, kVy, kOmega, kQuantities };
+constexpr const char* kSuffix[kQuantities] = {"_m", "_m", "_rad", "_mps", "_mps", "_radps"};
+constexpr const char* kStem[kQuantities] = {"x", "y", "angle", "vx", "vy", "omega"};
+
+// Which field of a row holds what (-1: absent), from the header.
+struct PoseColumns {
+  std::vector<std::array<int, kQuantities>> col;  ///< per block, per quantity
   int t_col = -1;
+  bool velocities_given = false;  ///< every block's vx, vy and omega
+};
+
+// The header's columns for a stack of `blocks`; fails naming an unknown, repeated or missing
+// column, and velocities given for some blocks or quantities only.
+PoseColumns ReadHeader(const std::string& engine, const std::filesystem::path& file,
+                       std::int64_t line_no, const std::vector<std::string>& fields, int blocks) {
+  PoseColumns h;
+  h.col.resize(static_cast<size_t>(blocks));
+  for (auto& c : h.col) c.fill(-1);
   std::map<std::string, std::pair<int, int>> names;  // column name -> (block, quantity)
   for (int k = 0; k < blocks; ++k) {
     for (int q = 0; q < kQuantities; ++q) {
       names[std::string(kStem[q]) + std::to_string(k + 1) + kSuffix[q]] = {k, q};
     }
   }
+  for (size_t i = 0; i < fields.size(); ++i) {
+    const std::string& name = fields[i];
+    if (name == "t_s") {
+      h.t_col = static_cast<int>(i);
+      continue;
+    }
+    auto it = names.find(name);
+    if (it == names.end()) {
+      Fail(engine, file, line_no,
+           "unknown column '" + Shown(name) + "' (expected t_s and, for blocks 1 to " +
+               std::to_string(blocks) +
+               ", xK_m, yK_m, angleK_rad and optionally vxK_mps, vyK_mps, omegaK_radps)");
+    }
+    int& c = h.col[static_cast<size_t>(it->second.first)][static_cast<size_t>(it->second.second)];
+    if (c >= 0) Fail(engine, file, line_no, "column '" + Shown(name) + "' appears twice");
+    c = static_cast<int>(i);
+  }
+  if (h.t_col < 0) Fail(engine, file, line_no, "missing column 't_s' in the header");
+  int with_velocity = 0;
+  for (int k = 0; k < blocks; ++k) {
+    for (int q = kX; q <= kAngle; ++q) {
+      if (h.col[static_cast<size_t>(k)][static_cast<size_t>(q)] < 0) {
+        Fail(engine, file, line_no,
+             std::string("missing column '") + kStem[q] + std::to_string(k + 1) + kSuffix[q] +
+                 "' in the header (the scene has " + std::to_string(blocks) + " blocks)");
+      }
+    }
+    int given = 0;
+    for (int q = kVx; q <= kOmega; ++q)
+      given += h.col[static_cast<size_t>(k)][static_cast<size_t>(q)] >= 0;
+    if (given != 0 && given != 3) {
+      Fail(engine, file, line_no,
+           "block " + std::to_string(k + 1) +
+               " has some of vxK_mps, vyK_mps, omegaK_radps: give all three or none");
+    }
+    with_velocity += given == 3;
+  }
+  if (with_velocity != 0 && with_velocity != blocks) {
+    Fail(engine, file, line_no, "velocities given for some blocks only: give them for all or none");
+  }
+  h.velocities_given = with_velocity == blocks;
+  return h;
+}
+
+// The slow path of a row the fast one refused: its fields as numbers in *v (what strtod reads,
+// a hexadecimal float say, is a number too), or a failure naming the row's fault.
+void RowNumbers(const std::string& engine, const std::filesystem::path& file, std::int64_t line_no,
+                const std::vector<std::string>& fields, size_t columns, std::vector<double>* v) {
+  if (fields.size() != columns) {
+    Fail(engine, file, line_no,
+         std::to_string(fields.size()) + " fields, the header has " + std::to_string(columns) +
+             " (a truncated row?)");
+  }
+  v->assign(columns, 0.0);
+  for (size_t i = 0; i < columns; ++i) {
+    char* stop = nullptr;
+    // The whole field: strtod stops at a NUL byte as at the string's end.
+    (*v)[i] = std::strtod(fields[i].c_str(), &stop);
+    if (fields[i].empty() || stop != fields[i].c_str() + fields[i].size()) {
+      Fail(engine, file, line_no,
+           "column " + std::to_string(i + 1) + ": expected a number, got '" + Shown(fields[i]) +
+               "'");
+    }
+  }
+}
+
+// A row's readout at t_expected from its numbers v. Without velocities the unwrapped angle
+// rides in w_radps until DifferenceVelocities takes the differences.
+StepReadout RowReadout(const PoseColumns& h, const std::vector<double>& v, int blocks,
+                       double t_expected) {
+  StepReadout r(blocks);
+  r.t_s = t_expected;
+  for (int k = 0; k < blocks; ++k) {
+    const auto& c = h.col[static_cast<size_t>(k)];
+    BodyReadout& b = r.blocks[static_cast<size_t>(k)];
+    b.x_m = v[static_cast<size_t>(c[kX])];
+    b.y_m = v[static_cast<size_t>(c[kY])];
+    const double phi = v[static_cast<size_t>(c[kAngle])];
+    b.cos_phi = std::cos(phi);
+    b.sin_phi = std::sin(phi);
+    b.w_radps = phi;
+    if (h.velocities_given) {
+      b.vx_mps = v[static_cast<size_t>(c[kVx])];
+      b.vy_mps = v[static_cast<size_t>(c[kVy])];
+      b.w_radps = v[static_cast<size_t>(c[kOmega])];
+    }
+  }
+  return r;
+}
+
+// The velocities of the first n rows from their poses: central differences (one-sided at the
+// ends), the angle as written (unwrapped by the engine or not: a jump of 2 pi is taken out);
+// at t = 0 the input's velocities, which the engine started from.
+void DifferenceVelocities(const EngineInput& input, size_t n, std::vector<StepReadout>* rows_in) {
+  std::vector<StepReadout>& rows = *rows_in;
+  const StackPlacement placed = PlaceStack(input.blocks, input.initial);
+  std::vector<double> phi(n);
+  for (int k = 0; k < input.block_count(); ++k) {
+    const size_t kk = static_cast<size_t>(k);
+    for (size_t i = 0; i < n; ++i) {
+      phi[i] = rows[i].blocks[kk].w_radps;
+      if (i > 0) {
+        phi[i] -= 2.0 * M_PI * std::round((phi[i] - phi[i - 1]) / (2.0 * M_PI));
+      }
+    }
+    const PlanarPose& p0 = placed.blocks[kk];
+    rows[0].blocks[kk].vx_mps = p0.vx_mps;
+    rows[0].blocks[kk].vy_mps = p0.vy_mps;
+    rows[0].blocks[kk].w_radps = p0.w_radps;
+    for (size_t i = 1; i < n; ++i) {
+      const size_t a = i - 1, b = i + 1 == n ? i : i + 1;
+      const double span = rows[b].t_s - rows[a].t_s;
+      BodyReadout& r = rows[i].blocks[kk];
+      if (span <= 0.0) {
+        r.vx_mps = r.vy_mps = r.w_radps = 0.0;
+        continue;
+      }
+      r.vx_mps = (rows[b].blocks[kk].x_m - rows[a].blocks[kk].x_m) / span;
+      r.vy_mps = (rows[b].blocks[kk].y_m - rows[a].blocks[kk].y_m) / span;
+      r.w_radps = (phi[b] - phi[a]) / span;
+    }
+  }
+}
+
+}  // namespace
+
+PoseRows ReadPoses(const std::string& engine, const std::filesystem::path& file,
+                   const EngineInput& input, std::int64_t every) {
+  const int blocks = input.block_count();
+  const std::int64_t expected = ExpectedRows(input.steps, every);
+  PoseColumns h;
   PoseRows out;
   const std::string text =
       ReadPosesText(engine, file, MaxPosesBytes(input, every),
@@ -431,48 +572,8 @@ PoseRows ReadPoses(const std::string& engine, const std::filesystem::path& file,
       header = true;
       columns = fields.size();
       header_names = fields;
-      for (size_t i = 0; i < fields.size(); ++i) {
-        const std::string& name = fields[i];
-        if (name == "t_s") {
-          t_col = static_cast<int>(i);
-          continue;
-        }
-        auto it = names.find(name);
-        if (it == names.end()) {
-          Fail(engine, file, line_no,
-               "unknown column '" + Shown(name) + "' (expected t_s and, for blocks 1 to " +
-                   std::to_string(blocks) +
-                   ", xK_m, yK_m, angleK_rad and optionally vxK_mps, vyK_mps, omegaK_radps)");
-        }
-        int& c = col[static_cast<size_t>(it->second.first)][static_cast<size_t>(it->second.second)];
-        if (c >= 0) Fail(engine, file, line_no, "column '" + Shown(name) + "' appears twice");
-        c = static_cast<int>(i);
-      }
-      if (t_col < 0) Fail(engine, file, line_no, "missing column 't_s' in the header");
-      int with_velocity = 0;
-      for (int k = 0; k < blocks; ++k) {
-        for (int q = kX; q <= kAngle; ++q) {
-          if (col[static_cast<size_t>(k)][static_cast<size_t>(q)] < 0) {
-            Fail(engine, file, line_no,
-                 std::string("missing column '") + kStem[q] + std::to_string(k + 1) + kSuffix[q] +
-                     "' in the header (the scene has " + std::to_string(blocks) + " blocks)");
-          }
-        }
-        int given = 0;
-        for (int q = kVx; q <= kOmega; ++q)
-          given += col[static_cast<size_t>(k)][static_cast<size_t>(q)] >= 0;
-        if (given != 0 && given != 3) {
-          Fail(engine, file, line_no,
-               "block " + std::to_string(k + 1) +
-                   " has some of vxK_mps, vyK_mps, omegaK_radps: give all three or none");
-        }
-        with_velocity += given == 3;
-      }
-      if (with_velocity != 0 && with_velocity != blocks) {
-        Fail(engine, file, line_no,
-             "velocities given for some blocks only: give them for all or none");
-      }
-      out.velocities_given = with_velocity == blocks;
+      h = ReadHeader(engine, file, line_no, fields, blocks);
+      out.velocities_given = h.velocities_given;
       rows.reserve(static_cast<size_t>(expected));
       continue;
     }
@@ -482,26 +583,10 @@ PoseRows ReadPoses(const std::string& engine, const std::filesystem::path& file,
            "more rows than the " + std::to_string(expected) + " promised (t = 0 to " +
                std::to_string(static_cast<double>(input.steps) * input.time_step_s) + " s)");
     }
-    if (v.size() != columns) {
-      // The slow path found the fault: a row of another length, or a field that is no number.
-      if (fields.size() != columns) {
-        Fail(engine, file, line_no,
-             std::to_string(fields.size()) + " fields, the header has " + std::to_string(columns) +
-                 " (a truncated row?)");
-      }
-      // What strtod reads (a hexadecimal float, say) is a number too.
-      v.assign(columns, 0.0);
-      for (size_t i = 0; i < columns; ++i) {
-        char* stop = nullptr;
-        // The whole field: strtod stops at a NUL byte as at the string's end.
-        v[i] = std::strtod(fields[i].c_str(), &stop);
-        if (fields[i].empty() || stop != fields[i].c_str() + fields[i].size()) {
-          Fail(engine, file, line_no,
-               "column " + std::to_string(i + 1) + ": expected a number, got '" + Shown(fields[i]) +
-                   "'");
-        }
-      }
-    }
+    // The slow path found the fault: a row of another length, or a field that is no number.
+    if (v.size() != columns) RowNumbers(engine, file, line_no, fields, columns, &v);
+    const double t_expected =
+        static_cast<double>(RowStep(j, input.steps, every)) * input.time_step_s;
     // A value that is not finite: the engine's state blew up. The row ends the run (its
     // readout carries the fault: the monitor stops there, status non_finite).
     std::string fault;
@@ -515,8 +600,6 @@ PoseRows ReadPoses(const std::string& engine, const std::filesystem::path& file,
       }
     }
     if (!fault.empty()) {
-      const double t_expected =
-          static_cast<double>(RowStep(j, input.steps, every)) * input.time_step_s;
       StepReadout r = rows.empty() ? StepReadout(blocks) : rows.back();
       r.t_s = t_expected;
       r.engine_fault = fault;
@@ -524,40 +607,20 @@ PoseRows ReadPoses(const std::string& engine, const std::filesystem::path& file,
       out.stopped_at_line = line_no;
       break;
     }
-    const double t = v[static_cast<size_t>(t_col)];
+    const double t = v[static_cast<size_t>(h.t_col)];
     if (t <= t_prev) {
       Fail(engine, file, line_no,
-           "time " + Shown(TimeText(row, t_col)) + " s goes backwards (the row before is at " +
+           "time " + Shown(TimeText(row, h.t_col)) + " s goes backwards (the row before is at " +
                std::to_string(t_prev) + " s)");
     }
-    const double t_expected =
-        static_cast<double>(RowStep(j, input.steps, every)) * input.time_step_s;
     if (std::abs(t - t_expected) > 1e-3 * out_dt) {
       Fail(engine, file, line_no,
-           "row " + std::to_string(j) + " is at t = " + Shown(TimeText(row, t_col)) +
+           "row " + std::to_string(j) + " is at t = " + Shown(TimeText(row, h.t_col)) +
                " s, expected " + std::to_string(t_expected) +
                " s (rows at every output_every_steps-th step from 0, then the last step)");
     }
     t_prev = t;
-    StepReadout r(blocks);
-    r.t_s = t_expected;
-    for (int k = 0; k < blocks; ++k) {
-      const auto& c = col[static_cast<size_t>(k)];
-      BodyReadout& b = r.blocks[static_cast<size_t>(k)];
-      b.x_m = v[static_cast<size_t>(c[kX])];
-      b.y_m = v[static_cast<size_t>(c[kY])];
-      const double phi = v[static_cast<size_t>(c[kAngle])];
-      b.cos_phi = std::cos(phi);
-      b.sin_phi = std::sin(phi);
-      // The unwrapped angle rides in w_radps until the differences are taken.
-      b.w_radps = phi;
-      if (out.velocities_given) {
-        b.vx_mps = v[static_cast<size_t>(c[kVx])];
-        b.vy_mps = v[static_cast<size_t>(c[kVy])];
-      }
-      if (out.velocities_given) b.w_radps = v[static_cast<size_t>(c[kOmega])];
-    }
-    rows.push_back(std::move(r));
+    rows.push_back(RowReadout(h, v, blocks, t_expected));
   }
   if (!header) Fail(engine, file, line_no, "empty poses file: expected a header line");
   if (out.stopped_at_line == 0 && static_cast<std::int64_t>(rows.size()) < expected) {
@@ -569,40 +632,9 @@ PoseRows ReadPoses(const std::string& engine, const std::filesystem::path& file,
              (rows.empty() ? std::string()
                            : "; the last is at t = " + std::to_string(rows.back().t_s) + " s"));
   }
-  if (!out.velocities_given && rows.size() > (out.stopped_at_line != 0 ? 1u : 0u)) {
-    // Central differences of the poses (one-sided at the ends), the angle as written (unwrapped
-    // by the engine or not: a jump of 2 pi is taken out).
-    // The finite rows (a last row with a fault is not read by the monitor).
-    const size_t n = rows.size() - (out.stopped_at_line != 0 ? 1 : 0);
-    const StackPlacement placed = PlaceStack(input.blocks, input.initial);
-    std::vector<double> phi(n);
-    for (int k = 0; k < blocks; ++k) {
-      const size_t kk = static_cast<size_t>(k);
-      for (size_t i = 0; i < n; ++i) {
-        phi[i] = rows[i].blocks[kk].w_radps;
-        if (i > 0) {
-          phi[i] -= 2.0 * M_PI * std::round((phi[i] - phi[i - 1]) / (2.0 * M_PI));
-        }
-      }
-      // t = 0: the input's velocities, which the engine started from.
-      const PlanarPose& p0 = placed.blocks[kk];
-      rows[0].blocks[kk].vx_mps = p0.vx_mps;
-      rows[0].blocks[kk].vy_mps = p0.vy_mps;
-      rows[0].blocks[kk].w_radps = p0.w_radps;
-      for (size_t i = 1; i < n; ++i) {
-        const size_t a = i - 1, b = i + 1 == n ? i : i + 1;
-        const double span = rows[b].t_s - rows[a].t_s;
-        BodyReadout& r = rows[i].blocks[kk];
-        if (span <= 0.0) {
-          r.vx_mps = r.vy_mps = r.w_radps = 0.0;
-          continue;
-        }
-        r.vx_mps = (rows[b].blocks[kk].x_m - rows[a].blocks[kk].x_m) / span;
-        r.vy_mps = (rows[b].blocks[kk].y_m - rows[a].blocks[kk].y_m) / span;
-        r.w_radps = (phi[b] - phi[a]) / span;
-      }
-    }
-  }
+  // The finite rows (a last row with a fault is not read by the monitor).
+  const size_t finite = rows.size() - (out.stopped_at_line != 0 ? 1 : 0);
+  if (!out.velocities_given && finite > 0) DifferenceVelocities(input, finite, &rows);
   out.rows = std::move(rows);
   return out;
 }
