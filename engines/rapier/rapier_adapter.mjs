@@ -24,18 +24,32 @@ function finiteOr(v, fallback) {
   return typeof v === "number" && Number.isFinite(v) ? v : fallback;
 }
 
-// The [rapier] table's keys (engines/rapier/manifest.toml), with the manifest's defaults for a
-// hand-written input that leaves one out.
-const DEFAULTS = {
-  friction: 10.0,
-  num_solver_iterations: 8,
-  num_internal_pgs_iterations: 1,
-  allowed_linear_error: 0.005,
-  prediction_distance: 0.002,
-  contact_skin: 0.0,
-  contact_natural_frequency: 300.0,
-  contact_recycling: false,
-};
+// The [rapier] table's defaults, read from its one place, manifest.toml beside this file:
+// rockbench sends every key (the table it resolved against the manifest), and a hand-written
+// input that leaves a key out gets the manifest's default here. Reads the `default = ` line of
+// each [settings.KEY] table (a number or a flag: what the manifest's keys are).
+function manifestDefaults() {
+  const text = readFileSync(new URL("manifest.toml", import.meta.url), "utf8");
+  const defaults = {};
+  let key = null;
+  for (const line of text.split("\n")) {
+    const table = line.match(/^\[settings\.([A-Za-z0-9_]+)\]\s*$/);
+    if (table) {
+      key = table[1];
+      continue;
+    }
+    if (line.startsWith("[")) key = null;
+    const value = line.match(/^default\s*=\s*(\S+)\s*$/);
+    if (key !== null && value) {
+      const v = value[1];
+      defaults[key] = v === "true" ? true : v === "false" ? false : Number(v);
+      if (typeof defaults[key] === "number" && !Number.isFinite(defaults[key])) {
+        fail(`manifest.toml: settings.${key}.default is not a number or a flag: ${v}`);
+      }
+    }
+  }
+  return defaults;
+}
 
 async function main(argv) {
   if (argv.length !== 1) fail("usage: node rapier_adapter.mjs INPUT.json");
@@ -44,7 +58,7 @@ async function main(argv) {
     fail(`speaks protocol 1, the input is ${run.protocol_version}`);
   }
   if (run.dimensions !== 2) fail(`simulates 2 dimensions, the input has ${run.dimensions}`);
-  const s = { ...DEFAULTS, ...(run.settings || {}) };
+  const s = { ...manifestDefaults(), ...(run.settings || {}) };
   const dt = run.time_step_s;
   const steps = run.steps;
   const every = run.output_every_steps;
