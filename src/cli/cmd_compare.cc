@@ -28,6 +28,7 @@
 #include "run/reference_witness.h"
 #include "run/resource_estimate.h"
 #include "run/summary.h"
+#include "scene/body_kind.h"
 #include "scene/history.h"
 #include "scene/scene.h"
 #include "util/format.h"
@@ -62,38 +63,13 @@ std::vector<std::string> CheckedEngines(const std::string& requested) {
   return ParseEngineList(list);
 }
 
-void Execute(const CompareCliOptions& opt) {
-  std::vector<std::string> overrides = opt.overrides;
-  if (opt.members >= 0) overrides.push_back("compare.members=" + std::to_string(opt.members));
-  if (opt.quick) overrides.push_back("compare.members=0");
-  if (opt.engine_members >= 0) {
-    overrides.push_back("compare.engine_members=" + std::to_string(opt.engine_members));
-  }
-  const ResourceBudget budget = StartLimits(opt.limits, opt.out, "compare");
-  const Scene scene = LoadScene(opt.scene, overrides);
-  CheckEngineTables(scene);
-  const std::vector<std::string> engines = CheckedEngines(opt.engines);
-  // An engine the scene brings runs only when the user names it: said, with how to opt in.
-  std::fputs(NotRunNote(engines).c_str(), stderr);
-  const int threads =
-      opt.jobs > 0 ? opt.jobs : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  CheckRunEstimate(
-      EstimateRun(scene, engines, scene.compare.members, scene.compare.engine_members, threads),
-      budget, opt.scene);
-  const GroundMotion motion = GroundMotion::FromScene(scene);
-  const std::filesystem::path out(opt.out);
-  std::filesystem::create_directories(out);
-  const bool two = scene.block_count() == 2;
+// Writes the comparison's files into `out`, each to a temporary name renamed when complete:
+// every run's history, the perturbation members' files, comparison.json, comparison.csv and
+// summary.json.
+void WriteCompareFiles(const CompareCliOptions& opt, const std::vector<std::string>& overrides,
+                       const Scene& scene, const GroundMotion& motion, const CompareRun& run,
+                       const std::filesystem::path& out) {
   const int nb = scene.block_count();
-  CompareRunOptions run_options;
-  run_options.jobs = opt.jobs;
-  run_options.log = [](const std::string& line) {
-    std::printf("%s\n", line.c_str());
-    std::fflush(stdout);
-  };
-  const CompareRun run = RunCompare(scene, motion, engines, run_options);
-
-  // Files: each written to a temporary name and renamed when complete.
   WriteEngineFiles(run.reference_run, out);
   if (run.perturbation_members) {
     WriteFileAtomic(out / "reference" / "ensemble_band.csv",
@@ -105,7 +81,7 @@ void Execute(const CompareCliOptions& opt) {
   nlohmann::json summary;
   summary["scene"] = {{"path", std::filesystem::absolute(opt.scene).lexically_normal().string()},
                       {"overrides", overrides},
-                      {"two_blocks", two}};
+                      {"two_blocks", nb == 2}};
   summary["base"] = BaseMotionJson(motion);
   for (auto it = run.reference_run.summary.begin(); it != run.reference_run.summary.end(); ++it) {
     summary[it.key()] = *it;
@@ -129,64 +105,105 @@ void Execute(const CompareCliOptions& opt) {
   WriteFileAtomic(out / "comparison.json", run.comparison.dump(2) + "\n");
   WriteFileAtomic(out / "comparison.csv", ComparisonCsv(run.agreements));
   WriteFileAtomic(out / "summary.json", summary.dump(2) + "\n");
+}
 
+// Prints one engine's agreement: every body's angle, slip and lift, the impacts (faster than
+// `min_impact_rate_radps`), the outcomes and the final state.
+void PrintAgreement(const EngineAgreement& a, double min_impact_rate_radps) {
+  for (int b = 1; b <= a.blocks(); ++b) {
+    const AngleAgreement& g = a.angle(b);
+    std::printf(
+        "  %s %s: max error %.3g rad (%.3g where the reference is predictable: %.3g x the "
+        "local tolerance), RMS %.3g rad, within the local tolerance until %.3f s, ",
+        a.engine.c_str(), BodyColumn(g.quantity, b).c_str(), g.max_abs_error_rad,
+        g.max_abs_error_predictable_rad, g.max_error_ratio_predictable, g.rms_error_rad,
+        g.horizon_s);
+    if (g.judged) {
+      std::printf("peak %+.2f%% (%+.4f s)\n", 100.0 * g.peak_rel_error, g.peak_time_error_s);
+    } else {
+      // Below the floor a relative peak error means nothing: the absolute one, and the peak
+      // judgement that replaces the pointwise one.
+      std::printf(
+          "peak %.3g rad against the reference's %.3g rad (%+.3g rad); not judged point by "
+          "point (the reference's peak is below %g x the tolerance floor %.3g rad): its peak "
+          "%s the peak tolerance %.3g rad\n",
+          g.peak_engine_rad, g.peak_reference_rad, g.peak_engine_rad - g.peak_reference_rad,
+          kJudgedPeakOverFloor, g.floor_rad, g.peak_within_tolerance ? "within" : "BEYOND",
+          g.peak_tolerance_rad);
+    }
+  }
+  // Slip and lift, where the histories carry them.
+  for (int b = 1; b <= a.blocks(); ++b) {
+    for (const std::optional<SlipAgreement>* slip : {&a.body(b).slip, &a.body(b).lift}) {
+      if (!*slip) continue;
+      const SlipAgreement& g = **slip;
+      const bool lift = g.quantity == "z";
+      std::printf(
+          "  %s %s (%s): max error %.3g m (%.3g m within a time slack of %g s; tolerance "
+          "%.3g m: 10%% of the reference's peak %.3g m, at least %.3g m), %s, final %.4g m "
+          "against the reference's %.4g m\n",
+          a.engine.c_str(), BodyColumn(g.quantity, b).c_str(), lift ? "lift" : "slip",
+          g.max_abs_error_m, g.max_abs_error_slack_m, g.time_slack_s, g.tolerance_m,
+          g.peak_reference_m, g.floor_m,
+          g.within_tolerance ? "within it throughout"
+                             : ("LEAVES it at " + Format("%.3f", g.horizon_s) + " s").c_str(),
+          g.final_engine_m, g.final_reference_m);
+    }
+  }
+  std::printf(
+      "  %s impacts faster than %g rad/s: %d of %d matched (engine %d; all impacts: "
+      "reference %d, engine %d), max time error %.3g ms%s%s\n",
+      a.engine.c_str(), min_impact_rate_radps, a.impacts.matched, a.impacts.reference_impacts,
+      a.impacts.engine_impacts, a.impacts.reference_impacts_all, a.impacts.engine_impacts_all,
+      a.impacts.max_abs_time_error_s * 1e3,
+      a.impacts.first_mismatch.empty() ? "" : "; first mismatch: ",
+      a.impacts.first_mismatch.c_str());
+  // Leaving the support is named where either run had a block leave it.
+  const bool left = a.left_support_block_reference || a.left_support_block_engine;
+  // Outcomes after the instant the model stops deciding are not compared (agreement.h).
+  const std::string decided = a.reference_undetermined_s
+                                  ? Format(" up to %.4f s (the model does not decide after it)",
+                                           *a.reference_undetermined_s)
+                                  : std::string();
+  std::printf("  %s overturning %s%s%s%s, final state %s\n", a.engine.c_str(),
+              a.overturn_agree ? "agrees" : "DIFFERS", left ? ", leaving the support " : "",
+              !left ? "" : (a.left_support_agree ? "agrees" : "DIFFERS"), decided.c_str(),
+              a.final_agree ? "agrees" : "DIFFERS");
+}
+
+void Execute(const CompareCliOptions& opt) {
+  std::vector<std::string> overrides = opt.overrides;
+  if (opt.members >= 0) overrides.push_back("compare.members=" + std::to_string(opt.members));
+  if (opt.quick) overrides.push_back("compare.members=0");
+  if (opt.engine_members >= 0) {
+    overrides.push_back("compare.engine_members=" + std::to_string(opt.engine_members));
+  }
+  const ResourceBudget budget = StartLimits(opt.limits, opt.out, "compare");
+  const Scene scene = LoadScene(opt.scene, overrides);
+  CheckEngineTables(scene);
+  const std::vector<std::string> engines = CheckedEngines(opt.engines);
+  // An engine the scene brings runs only when the user names it: said, with how to opt in.
+  std::fputs(NotRunNote(engines).c_str(), stderr);
+  const int threads =
+      opt.jobs > 0 ? opt.jobs : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  CheckRunEstimate(
+      EstimateRun(scene, engines, scene.compare.members, scene.compare.engine_members, threads),
+      budget, opt.scene);
+  const GroundMotion motion = GroundMotion::FromScene(scene);
+  const std::filesystem::path out(opt.out);
+  std::filesystem::create_directories(out);
+  CompareRunOptions run_options;
+  run_options.jobs = opt.jobs;
+  run_options.log = [](const std::string& line) {
+    std::printf("%s\n", line.c_str());
+    std::fflush(stdout);
+  };
+  const CompareRun run = RunCompare(scene, motion, engines, run_options);
+
+  WriteCompareFiles(opt, overrides, scene, motion, run, out);
   const std::vector<EngineAgreement>& agreements = run.agreements;
   for (const EngineAgreement& a : agreements) {
-    for (int b = 1; b <= nb; ++b) {
-      const AngleAgreement& g = a.angle(b);
-      std::printf(
-          "  %s theta%d: max error %.3g rad (%.3g where the reference is predictable: %.3g x the "
-          "local tolerance), RMS %.3g rad, within the local tolerance until %.3f s, ",
-          a.engine.c_str(), b, g.max_abs_error_rad, g.max_abs_error_predictable_rad,
-          g.max_error_ratio_predictable, g.rms_error_rad, g.horizon_s);
-      if (g.judged) {
-        std::printf("peak %+.2f%% (%+.4f s)\n", 100.0 * g.peak_rel_error, g.peak_time_error_s);
-      } else {
-        // Below the floor a relative peak error means nothing: the absolute one, and the peak
-        // judgement that replaces the pointwise one.
-        std::printf(
-            "peak %.3g rad against the reference's %.3g rad (%+.3g rad); not judged point by "
-            "point (the reference's peak is below %g x the tolerance floor %.3g rad): its peak "
-            "%s the peak tolerance %.3g rad\n",
-            g.peak_engine_rad, g.peak_reference_rad, g.peak_engine_rad - g.peak_reference_rad,
-            kJudgedPeakOverFloor, g.floor_rad, g.peak_within_tolerance ? "within" : "BEYOND",
-            g.peak_tolerance_rad);
-      }
-    }
-    // Slip and lift, where the histories carry them.
-    for (size_t b = 0; b < a.slip.size(); ++b) {
-      for (const bool lift : {false, true}) {
-        const SlipAgreement& g = lift ? a.lift[b] : a.slip[b];
-        std::printf(
-            "  %s %s%zu (%s): max error %.3g m (%.3g m within a time slack of %g s; tolerance "
-            "%.3g m: 10%% of the reference's peak %.3g m, at least %.3g m), %s, final %.4g m "
-            "against the reference's %.4g m\n",
-            a.engine.c_str(), lift ? "z" : "u", b + 1, lift ? "lift" : "slip", g.max_abs_error_m,
-            g.max_abs_error_slack_m, g.time_slack_s, g.tolerance_m, g.peak_reference_m, g.floor_m,
-            g.within_tolerance ? "within it throughout"
-                               : ("LEAVES it at " + Format("%.3f", g.horizon_s) + " s").c_str(),
-            g.final_engine_m, g.final_reference_m);
-      }
-    }
-    std::printf(
-        "  %s impacts faster than %g rad/s: %d of %d matched (engine %d; all impacts: "
-        "reference %d, engine %d), max time error %.3g ms%s%s\n",
-        a.engine.c_str(), run.comparison.value("impact_min_rate_radps", 0.0), a.impacts.matched,
-        a.impacts.reference_impacts, a.impacts.engine_impacts, a.impacts.reference_impacts_all,
-        a.impacts.engine_impacts_all, a.impacts.max_abs_time_error_s * 1e3,
-        a.impacts.first_mismatch.empty() ? "" : "; first mismatch: ",
-        a.impacts.first_mismatch.c_str());
-    // Leaving the support is named where either run had a block leave it.
-    const bool left = a.left_support_block_reference || a.left_support_block_engine;
-    // Outcomes after the instant the model stops deciding are not compared (agreement.h).
-    const std::string decided = a.reference_undetermined_s
-                                    ? Format(" up to %.4f s (the model does not decide after it)",
-                                             *a.reference_undetermined_s)
-                                    : std::string();
-    std::printf("  %s overturning %s%s%s%s, final state %s\n", a.engine.c_str(),
-                a.overturn_agree ? "agrees" : "DIFFERS", left ? ", leaving the support " : "",
-                !left ? "" : (a.left_support_agree ? "agrees" : "DIFFERS"), decided.c_str(),
-                a.final_agree ? "agrees" : "DIFFERS");
+    PrintAgreement(a, run.comparison.value("impact_min_rate_radps", 0.0));
   }
   for (const EngineAgreement& a : agreements) {
     std::printf("verdict %s: %s: %s\n", a.engine.c_str(), VerdictLabel(a.verdict_kind).c_str(),

@@ -6,6 +6,7 @@
 #include <string_view>
 
 #include "run/tolerance.h"
+#include "scene/body_kind.h"
 #include "util/format.h"
 
 namespace rockbench {
@@ -41,6 +42,13 @@ std::vector<const Event*> Impacts(const History& h, double min_rate, int* all) {
   return out;
 }
 
+// Body b's (0-based) value of the angle `stem` in a sample of `history`: the planar block's
+// theta directly (the run's hot loop), another quantity through the body's kind.
+double AngleValue(const History& history, const Sample& s, const std::string& stem, int b) {
+  if (stem == "theta") return s.theta_rad[static_cast<size_t>(b)];
+  return StateValue(history, s, stem, b + 1);
+}
+
 // Peak |theta_i| and its time, measured by the run itself (at every step for the engines).
 void EnginePeak(const EngineRun& run, int block, double* peak, double* t) {
   const RunOutcome& o = run.outcome;
@@ -49,14 +57,17 @@ void EnginePeak(const EngineRun& run, int block, double* peak, double* t) {
   *t = has ? o.peak_theta_t_s[block - 1] : 0.0;
 }
 
-// The largest |theta| of a block (0-based) over a history's samples up to until_s, and when.
-void SampledPeak(const History& h, int block, double until_s, double* peak, double* t) {
+// The largest |angle| `stem` of a body (0-based) over a history's samples up to until_s, and
+// when.
+void SampledPeak(const History& h, const std::string& stem, int block, double until_s, double* peak,
+                 double* t) {
   *peak = 0.0;
   *t = 0.0;
   for (const Sample& x : h.samples) {
     if (x.t_s > until_s + 1e-12) break;
-    if (std::abs(x.theta_rad[block]) > *peak) {
-      *peak = std::abs(x.theta_rad[block]);
+    const double v = std::abs(AngleValue(h, x, stem, block));
+    if (v > *peak) {
+      *peak = v;
       *t = x.t_s;
     }
   }
@@ -223,47 +234,62 @@ int CountComparedImpacts(const History& history, double min_rate_radps) {
   return static_cast<int>(Impacts(history, min_rate_radps, &all).size());
 }
 
-EngineAgreement CompareWithReference(const Scene& scene, const reference::Result& ref,
-                                     const EngineRun& run, const CompareOptions& options) {
-  EngineAgreement a;
-  a.engine = run.engine;
-  a.wall_s = run.wall_s;
-  a.status = run.outcome.status;
-  // The monitor's measures behind the flags, passed through to comparison.json.
-  if (run.summary.is_object() && run.summary.contains("violations")) {
-    a.violations = run.summary["violations"];
-  }
-  if (run.summary.is_object()) {
-    a.status_detail = run.summary.value("status_detail", std::string());
-    if (const auto nf = run.summary.find("non_finite"); nf != run.summary.end()) {
-      a.non_finite_what = nf->value("quantity", std::string("a quantity")) + " is " +
-                          nf->value("value", std::string("not finite"));
-      a.non_finite_t_s = nf->value("t_s", 0.0);
+namespace {
+
+// The compared angle's stem of body `block` (1-based): its kind's first quantity judged as an
+// angle ("theta" for the planar block).
+std::string ComparedAngleStem(const Scene& scene, int block) {
+  const BodyKind* kind = FindBodyKind(scene.blocks.at(static_cast<size_t>(block - 1)).shape);
+  if (kind) {
+    for (const StateQuantity& q : kind->state) {
+      if (q.compared_angle) return q.stem;
     }
   }
-  const int nb = scene.block_count();
-  const reference::Summary& rs = ref.summary;
-  a.flags = run.outcome.violations;
-  a.flag_onsets_t_s = run.outcome.violation_onsets_t_s;
-  a.flag_onsets_t_s.resize(a.flags.size(), run.outcome.end_t_s);
-  a.significant_flags = run.outcome.significant_violations;
-  a.significant_onsets_t_s = run.outcome.significant_onsets_t_s;
-  a.significant_onsets_t_s.resize(a.significant_flags.size(), run.outcome.end_t_s);
-  a.reference_status = rs.status;
-  a.reference_status_detail = rs.status_detail;
-  a.reference_end_s = ref.trajectory.end_s();
-  a.reference_undetermined_s = rs.undetermined_from_s;
-  a.reference_undetermined_detail = rs.undetermined_detail;
-  if (IsNonFinite(rs.status)) {
-    a.reference_non_finite_what = rs.non_finite_quantity + " is " + rs.non_finite_value;
-    a.reference_non_finite_t_s = rs.non_finite_t_s;
-  }
+  return "theta";
+}
 
-  // Common grid: the engine's sample times, up to the end of the shorter meaningful run. A
-  // reference that stopped at rest stays valid afterwards (At clamps to its end); one that
-  // ended non_finite has nothing after its last finite state.
-  const double eng_end = run.history.samples.empty() ? 0.0 : run.history.samples.back().t_s;
-  double until = eng_end;
+// The engine's and the reference's statuses, flags and how each run ended, copied for the
+// verdict and comparison.json.
+void CopyRunStatuses(const reference::Result& ref, const EngineRun& run, EngineAgreement* a) {
+  a->engine = run.engine;
+  a->wall_s = run.wall_s;
+  a->status = run.outcome.status;
+  // The monitor's measures behind the flags, passed through to comparison.json.
+  if (run.summary.is_object() && run.summary.contains("violations")) {
+    a->violations = run.summary["violations"];
+  }
+  if (run.summary.is_object()) {
+    a->status_detail = run.summary.value("status_detail", std::string());
+    if (const auto nf = run.summary.find("non_finite"); nf != run.summary.end()) {
+      a->non_finite_what = nf->value("quantity", std::string("a quantity")) + " is " +
+                           nf->value("value", std::string("not finite"));
+      a->non_finite_t_s = nf->value("t_s", 0.0);
+    }
+  }
+  const reference::Summary& rs = ref.summary;
+  a->flags = run.outcome.violations;
+  a->flag_onsets_t_s = run.outcome.violation_onsets_t_s;
+  a->flag_onsets_t_s.resize(a->flags.size(), run.outcome.end_t_s);
+  a->significant_flags = run.outcome.significant_violations;
+  a->significant_onsets_t_s = run.outcome.significant_onsets_t_s;
+  a->significant_onsets_t_s.resize(a->significant_flags.size(), run.outcome.end_t_s);
+  a->reference_status = rs.status;
+  a->reference_status_detail = rs.status_detail;
+  a->reference_end_s = ref.trajectory.end_s();
+  a->reference_undetermined_s = rs.undetermined_from_s;
+  a->reference_undetermined_detail = rs.undetermined_detail;
+  if (IsNonFinite(rs.status)) {
+    a->reference_non_finite_what = rs.non_finite_quantity + " is " + rs.non_finite_value;
+    a->reference_non_finite_t_s = rs.non_finite_t_s;
+  }
+}
+
+// The end of the common grid: the engine's sample times, up to the end of the shorter
+// meaningful run. A reference that stopped at rest stays valid afterwards (At clamps to its
+// end); one that ended non_finite has nothing after its last finite state.
+double ComparedUntil_s(const reference::Result& ref, const EngineRun& run) {
+  const reference::Summary& rs = ref.summary;
+  double until = run.history.samples.empty() ? 0.0 : run.history.samples.back().t_s;
   // The reference ends where a block overturns or leaves its support (it has no model of what
   // follows), where its assumptions end, or at its last finite state.
   if (rs.status == RunStatus::kOverturned || rs.status == RunStatus::kLeftSupport ||
@@ -272,19 +298,87 @@ EngineAgreement CompareWithReference(const Scene& scene, const reference::Result
   }
   // Past an impact the model leaves undecided, the reference's motion is its rule's choice.
   if (rs.undetermined_from_s) until = std::min(until, *rs.undetermined_from_s);
-  a.compared_until_s = until;
+  return until;
+}
 
-  // Per block, block b + 1 at b. Tolerances: scene [compare] tolerance, else 10% of the
-  // reference's peak |theta|.
-  std::vector<double> peak_ref(nb, 0.0), peak_ref_t(nb, 0.0);
-  for (int b = 0; b < nb; ++b) {
-    peak_ref[b] = rs.peak_theta_rad[b];
-    peak_ref_t[b] = rs.peak_theta_t_s[b];
+// Sums of squared errors of one angle over the compared samples: all, before its horizon,
+// before and beyond the reference's predictability horizon.
+struct SquaredErrors {
+  double all = 0.0, horizon = 0.0, predictable = 0.0, beyond = 0.0;
+  int n_horizon = 0, n_predictable = 0;
+};
+
+// Accounts one sample's error `e` (rad) at t_s, whose local tolerance is `tol`, to angle `g`.
+void AddAngleError(double t_s, double e, double tol, double predictability_horizon_s,
+                   AngleAgreement* g, SquaredErrors* sq) {
+  g->max_abs_error_rad = std::max(g->max_abs_error_rad, e);
+  sq->all += e * e;
+  if (t_s <= predictability_horizon_s) {
+    g->max_abs_error_predictable_rad = std::max(g->max_abs_error_predictable_rad, e);
+    sq->predictable += e * e;
+    ++sq->n_predictable;
+  } else {
+    g->max_abs_error_beyond_rad = std::max(g->max_abs_error_beyond_rad, e);
+    sq->beyond += e * e;
+    ++g->samples_beyond;
   }
+  // The error on the scale of the motion at that time.
+  const double ratio = e / tol;
+  if (ratio > g->max_error_ratio) {
+    g->max_error_ratio = ratio;
+    g->max_error_ratio_t_s = t_s;
+  }
+  if (t_s <= predictability_horizon_s) {
+    g->max_error_ratio_predictable = std::max(g->max_error_ratio_predictable, ratio);
+  }
+  if (g->within_tolerance && e > tol) {
+    g->within_tolerance = false;
+    g->horizon_s = t_s;
+    g->tolerance_at_horizon_rad = tol;
+  }
+  if (g->within_tolerance) {
+    g->max_abs_error_horizon_rad = std::max(g->max_abs_error_horizon_rad, e);
+    sq->horizon += e * e;
+    ++sq->n_horizon;
+  }
+}
+
+// Body b's (0-based) peaks over the compared window, their errors and its impacts. Peaks are
+// compared over the compared window: where the reference's model stopped, or stopped deciding,
+// before a run's end, the peaks after that instant are not the model's.
+void ComparePeaks(const reference::Result& ref, const EngineRun& run, int b, double until,
+                  double min_rate, AngleAgreement* g) {
+  const reference::Summary& rs = ref.summary;
+  g->peak_reference_rad = rs.peak_theta_rad[b];
+  g->peak_reference_t_s = rs.peak_theta_t_s[b];
+  EnginePeak(run, b + 1, &g->peak_engine_rad, &g->peak_engine_t_s);
+  if (g->peak_engine_t_s > until) {
+    SampledPeak(run.history, g->quantity, b, until, &g->peak_engine_rad, &g->peak_engine_t_s);
+  }
+  if (g->peak_reference_t_s > until) {
+    SampledPeak(ref.history, g->quantity, b, until, &g->peak_reference_rad, &g->peak_reference_t_s);
+  }
+  const double peak_ref = g->peak_reference_rad;
+  g->peak_rel_error = peak_ref > 0.0 ? (g->peak_engine_rad - peak_ref) / peak_ref : 0.0;
+  g->peak_time_error_s = g->peak_engine_t_s - g->peak_reference_t_s;
+  g->peak_within_tolerance =
+      PeakAgrees(peak_ref, g->peak_engine_rad, g->floor_rad, &g->peak_tolerance_rad);
+  g->impacts_reference = InterfaceImpacts(ref.history, b, until, min_rate);
+  g->impacts_engine = InterfaceImpacts(run.history, b, until, min_rate);
+}
+
+// Every body's compared angle on the common grid up to `until`, with its tolerance: the
+// scene's [compare] tolerance, else the local tolerance (run/tolerance.h).
+std::vector<AngleAgreement> CompareAngles(const Scene& scene, const reference::Result& ref,
+                                          const EngineRun& run, double until,
+                                          const CompareOptions& options, int* samples_compared) {
+  const int nb = scene.block_count();
+  const reference::Summary& rs = ref.summary;
   std::vector<AngleAgreement> ang(nb);
   std::vector<ToleranceProfile> profile(nb);
   for (int b = 0; b < nb; ++b) {
-    ang[b].tolerance_rad = AngleTolerance_rad(scene, b + 1, peak_ref[b]);
+    ang[b].quantity = ComparedAngleStem(scene, b + 1);
+    ang[b].tolerance_rad = AngleTolerance_rad(scene, b + 1, rs.peak_theta_rad[b]);
     ang[b].horizon_s = until;
     ang[b].predictability_horizon_s = options.predictability_horizon_s[b];
     profile[b] = LocalTolerance(scene, b + 1, ref.history);
@@ -292,202 +386,191 @@ EngineAgreement CompareWithReference(const Scene& scene, const reference::Result
     // Below kJudgedPeakOverFloor floors of motion the pointwise tolerance is more than a fifth
     // of the motion: the peak judges the block instead.
     ang[b].floor_rad = profile[b].fixed_rad ? *profile[b].fixed_rad : profile[b].floor_rad;
-    ang[b].judged = !(ang[b].floor_rad * kJudgedPeakOverFloor > peak_ref[b]);
+    ang[b].judged = !(ang[b].floor_rad * kJudgedPeakOverFloor > rs.peak_theta_rad[b]);
   }
-  std::vector<double> sum2(nb, 0.0), sum2_h(nb, 0.0), sum2_p(nb, 0.0), sum2_b(nb, 0.0);
-  std::vector<int> n_h(nb, 0), n_p(nb, 0);
+  std::vector<SquaredErrors> sq(nb);
   int n = 0;
   for (const Sample& s : run.history.samples) {
     if (s.t_s > until + 1e-12) break;
     const Sample r = ref.trajectory.At(s.t_s);
     ++n;
     for (int b = 0; b < nb; ++b) {
-      const double e = std::abs(s.theta_rad[b] - r.theta_rad[b]);
-      AngleAgreement& g = ang[b];
-      g.max_abs_error_rad = std::max(g.max_abs_error_rad, e);
-      sum2[b] += e * e;
-      if (s.t_s <= options.predictability_horizon_s[b]) {
-        g.max_abs_error_predictable_rad = std::max(g.max_abs_error_predictable_rad, e);
-        sum2_p[b] += e * e;
-        ++n_p[b];
-      } else {
-        g.max_abs_error_beyond_rad = std::max(g.max_abs_error_beyond_rad, e);
-        sum2_b[b] += e * e;
-        ++g.samples_beyond;
-      }
-      // The error on the scale of the motion at that time.
-      const double tol = profile[b].At(s.t_s);
-      const double ratio = e / tol;
-      if (ratio > g.max_error_ratio) {
-        g.max_error_ratio = ratio;
-        g.max_error_ratio_t_s = s.t_s;
-      }
-      if (s.t_s <= options.predictability_horizon_s[b]) {
-        g.max_error_ratio_predictable = std::max(g.max_error_ratio_predictable, ratio);
-      }
-      if (g.within_tolerance && e > tol) {
-        g.within_tolerance = false;
-        g.horizon_s = s.t_s;
-        g.tolerance_at_horizon_rad = tol;
-      }
-      if (g.within_tolerance) {
-        g.max_abs_error_horizon_rad = std::max(g.max_abs_error_horizon_rad, e);
-        sum2_h[b] += e * e;
-        ++n_h[b];
-      }
+      const std::string& q = ang[b].quantity;
+      const double e =
+          std::abs(AngleValue(run.history, s, q, b) - AngleValue(ref.history, r, q, b));
+      AddAngleError(s.t_s, e, profile[b].At(s.t_s), options.predictability_horizon_s[b], &ang[b],
+                    &sq[b]);
     }
   }
-  a.samples_compared = n;
+  *samples_compared = n;
   for (int b = 0; b < nb; ++b) {
     AngleAgreement& g = ang[b];
-    g.rms_error_rad = n > 0 ? std::sqrt(sum2[b] / n) : 0.0;
-    g.rms_error_horizon_rad = n_h[b] > 0 ? std::sqrt(sum2_h[b] / n_h[b]) : 0.0;
-    g.rms_error_predictable_rad = n_p[b] > 0 ? std::sqrt(sum2_p[b] / n_p[b]) : 0.0;
-    g.rms_error_beyond_rad = g.samples_beyond > 0 ? std::sqrt(sum2_b[b] / g.samples_beyond) : 0.0;
-    g.peak_reference_rad = peak_ref[b];
-    g.peak_reference_t_s = peak_ref_t[b];
-    EnginePeak(run, b + 1, &g.peak_engine_rad, &g.peak_engine_t_s);
-    // Peaks are compared over the compared window: where the reference's model stopped, or
-    // stopped deciding, before a run's end, the peaks after that instant are not the model's.
-    if (g.peak_engine_t_s > until) {
-      SampledPeak(run.history, b, until, &g.peak_engine_rad, &g.peak_engine_t_s);
-    }
-    if (peak_ref_t[b] > until) {
-      SampledPeak(ref.history, b, until, &g.peak_reference_rad, &g.peak_reference_t_s);
-      peak_ref[b] = g.peak_reference_rad;
-      peak_ref_t[b] = g.peak_reference_t_s;
-    }
-    g.peak_rel_error = peak_ref[b] > 0.0 ? (g.peak_engine_rad - peak_ref[b]) / peak_ref[b] : 0.0;
-    g.peak_time_error_s = g.peak_engine_t_s - peak_ref_t[b];
-    g.peak_within_tolerance =
-        PeakAgrees(peak_ref[b], g.peak_engine_rad, g.floor_rad, &g.peak_tolerance_rad);
-    g.impacts_reference = InterfaceImpacts(ref.history, b, until, options.min_impact_rate_radps);
-    g.impacts_engine = InterfaceImpacts(run.history, b, until, options.min_impact_rate_radps);
+    g.rms_error_rad = n > 0 ? std::sqrt(sq[b].all / n) : 0.0;
+    g.rms_error_horizon_rad =
+        sq[b].n_horizon > 0 ? std::sqrt(sq[b].horizon / sq[b].n_horizon) : 0.0;
+    g.rms_error_predictable_rad =
+        sq[b].n_predictable > 0 ? std::sqrt(sq[b].predictable / sq[b].n_predictable) : 0.0;
+    g.rms_error_beyond_rad =
+        g.samples_beyond > 0 ? std::sqrt(sq[b].beyond / g.samples_beyond) : 0.0;
+    ComparePeaks(ref, run, b, until, options.min_impact_rate_radps, &g);
   }
+  return ang;
+}
 
-  // Slip and lift, where both histories carry them: on the slip's own scale, before the
-  // block's predictability horizon as the angles.
-  if (ref.history.slip_and_lift && run.history.slip_and_lift) {
-    a.slip.assign(nb, SlipAgreement{});
-    a.lift.assign(nb, SlipAgreement{});
+// Whether a sample carries slip and lift of `nb` bodies.
+bool HasSlip(const Sample& x, int nb) {
+  return x.u_m.size() >= static_cast<size_t>(nb) && x.z_m.size() >= static_cast<size_t>(nb);
+}
+
+// The reference's peak |u_k| and |z_k| over its whole run, and the tolerances they set.
+void SlipPeaks(const Scene& scene, const History& reference, std::vector<BodyAgreement>* bodies) {
+  const int nb = static_cast<int>(bodies->size());
+  for (const Sample& r : reference.samples) {
+    if (!HasSlip(r, nb)) break;
     for (int b = 0; b < nb; ++b) {
-      for (SlipAgreement* g : {&a.slip[b], &a.lift[b]}) {
-        g->horizon_s = until;
-        g->predictability_horizon_s = options.predictability_horizon_s[b];
-      }
-    }
-    for (const Sample& r : ref.history.samples) {
-      if (r.u_m.size() < static_cast<size_t>(nb) || r.z_m.size() < static_cast<size_t>(nb)) break;
-      for (int b = 0; b < nb; ++b) {
-        if (std::abs(r.u_m[b]) > a.slip[b].peak_reference_m) {
-          a.slip[b].peak_reference_m = std::abs(r.u_m[b]);
-          a.slip[b].peak_reference_t_s = r.t_s;
-        }
-        if (std::abs(r.z_m[b]) > a.lift[b].peak_reference_m) {
-          a.lift[b].peak_reference_m = std::abs(r.z_m[b]);
-          a.lift[b].peak_reference_t_s = r.t_s;
+      const double values[2] = {r.u_m[b], r.z_m[b]};
+      SlipAgreement* gs[2] = {&*(*bodies)[b].slip, &*(*bodies)[b].lift};
+      for (int q = 0; q < 2; ++q) {
+        if (std::abs(values[q]) > gs[q]->peak_reference_m) {
+          gs[q]->peak_reference_m = std::abs(values[q]);
+          gs[q]->peak_reference_t_s = r.t_s;
         }
       }
-    }
-    for (int b = 0; b < nb; ++b) {
-      for (SlipAgreement* g : {&a.slip[b], &a.lift[b]}) {
-        g->tolerance_m = SlipTolerance_m(scene, b + 1, g->peak_reference_m);
-        g->floor_m = SlipTolerance_m(scene, b + 1, 0.0);
-      }
-    }
-    std::vector<double> su2(nb, 0.0), sz2(nb, 0.0);
-    int ns = 0;
-    for (const Sample& s : run.history.samples) {
-      if (s.t_s > until + 1e-12) break;
-      if (s.u_m.size() < static_cast<size_t>(nb)) break;
-      const Sample r = ref.trajectory.At(s.t_s);
-      if (r.u_m.size() < static_cast<size_t>(nb)) break;
-      ++ns;
-      // The range of the reference's u and z within the time slack of t: its samples there (the
-      // output grid and every event) and the dense output at both ends.
-      // Two output intervals: a slip episode that an impact starts inherits the impact's timing,
-      // and on rinaldi_with_vertical Bullet's block 2 slips 10-20 ms before the reference's at
-      // 3.69 s with the same size (docs/verdicts.md, section 5).
-      const double slack = 2.0 * scene.run.output_interval_s;
-      std::vector<double> u_lo(r.u_m.begin(), r.u_m.begin() + nb), u_hi = u_lo;
-      std::vector<double> z_lo(r.z_m.begin(), r.z_m.begin() + nb), z_hi = z_lo;
-      auto widen = [&](const Sample& x) {
-        if (x.u_m.size() < static_cast<size_t>(nb) || x.z_m.size() < static_cast<size_t>(nb)) {
-          return;
-        }
-        for (int b = 0; b < nb; ++b) {
-          u_lo[b] = std::min(u_lo[b], x.u_m[b]), u_hi[b] = std::max(u_hi[b], x.u_m[b]);
-          z_lo[b] = std::min(z_lo[b], x.z_m[b]), z_hi[b] = std::max(z_hi[b], x.z_m[b]);
-        }
-      };
-      widen(ref.trajectory.At(std::max(0.0, s.t_s - slack)));
-      widen(ref.trajectory.At(s.t_s + slack));
-      const auto& rh = ref.history.samples;
-      for (auto it = std::lower_bound(rh.begin(), rh.end(), s.t_s - slack,
-                                      [](const Sample&x, double t) { return x.t_s < t; });
-           it != rh.end() && it->t_s <= s.t_s + slack; ++it) {
-        widen(*it);
-      }
-      for (int b = 0; b < nb; ++b) {
-        const double pairs[2][2] = {{s.u_m[b], r.u_m[b]}, {s.z_m[b], r.z_m[b]}};
-        SlipAgreement* gs[2] = {&a.slip[b], &a.lift[b]};
-        for (int q = 0; q < 2; ++q) {
-          SlipAgreement& g = *gs[q];
-          const double e0 = std::abs(pairs[q][0] - pairs[q][1]);
-          (q == 0 ? su2 : sz2)[b] += e0 * e0;
-          g.max_abs_error_m = std::max(g.max_abs_error_m, e0);
-          // The error that decides: outside the reference's range within the time slack.
-          const double lo = q == 0 ? u_lo[b] : z_lo[b], hi = q == 0 ? u_hi[b] : z_hi[b];
-          const double e = std::max({0.0, lo - pairs[q][0], pairs[q][0] - hi});
-          g.time_slack_s = slack;
-          g.max_abs_error_slack_m = std::max(g.max_abs_error_slack_m, e);
-          g.peak_engine_m = std::max(g.peak_engine_m, std::abs(pairs[q][0]));
-          g.final_engine_m = pairs[q][0];
-          g.final_reference_m = pairs[q][1];
-          if (s.t_s <= g.predictability_horizon_s) {
-            g.max_abs_error_predictable_m = std::max(g.max_abs_error_predictable_m, e);
-            g.max_error_ratio_predictable =
-                std::max(g.max_error_ratio_predictable, e / g.tolerance_m);
-          }
-          if (g.within_tolerance && e > g.tolerance_m) {
-            g.within_tolerance = false;
-            g.horizon_s = s.t_s;
-          }
-        }
-      }
-    }
-    for (int b = 0; b < nb; ++b) {
-      a.slip[b].rms_error_m = ns > 0 ? std::sqrt(su2[b] / ns) : 0.0;
-      a.lift[b].rms_error_m = ns > 0 ? std::sqrt(sz2[b] / ns) : 0.0;
     }
   }
-  a.theta1 = ang[0];
-  if (nb >= 2) a.theta2 = ang[1];
-  if (nb >= 3) a.theta_from3.assign(ang.begin() + 2, ang.end());
+  for (int b = 0; b < nb; ++b) {
+    for (SlipAgreement* g : {&*(*bodies)[b].slip, &*(*bodies)[b].lift}) {
+      g->tolerance_m = SlipTolerance_m(scene, b + 1, g->peak_reference_m);
+      g->floor_m = SlipTolerance_m(scene, b + 1, 0.0);
+    }
+  }
+}
 
-  a.impacts = MatchImpacts(ref.history, run.history, until, options.min_impact_rate_radps);
+// The range [lo, hi] of the reference's u (q = 0) and z (q = 1) of every body within `slack`
+// of t: its samples there (the output grid and every event) and the dense output at both ends.
+struct SlipRange {
+  std::vector<double> lo[2], hi[2];
+};
 
-  // Outcomes are compared up to the instant the model stops deciding the motion (after it the
-  // reference's outcome is one admissible branch's): an overturn or a block leaving its support
-  // later than that, in either run, is not compared.
+SlipRange ReferenceSlipRange(const reference::Result& ref, const Sample& r, double t_s,
+                             double slack, int nb) {
+  SlipRange range;
+  range.lo[0].assign(r.u_m.begin(), r.u_m.begin() + nb);
+  range.lo[1].assign(r.z_m.begin(), r.z_m.begin() + nb);
+  range.hi[0] = range.lo[0];
+  range.hi[1] = range.lo[1];
+  auto widen = [&](const Sample& x) {
+    if (!HasSlip(x, nb)) return;
+    for (int b = 0; b < nb; ++b) {
+      range.lo[0][b] = std::min(range.lo[0][b], x.u_m[b]);
+      range.hi[0][b] = std::max(range.hi[0][b], x.u_m[b]);
+      range.lo[1][b] = std::min(range.lo[1][b], x.z_m[b]);
+      range.hi[1][b] = std::max(range.hi[1][b], x.z_m[b]);
+    }
+  };
+  widen(ref.trajectory.At(std::max(0.0, t_s - slack)));
+  widen(ref.trajectory.At(t_s + slack));
+  const auto& rh = ref.history.samples;
+  for (auto it = std::lower_bound(rh.begin(), rh.end(), t_s - slack,
+                                  [](const Sample&x, double t) { return x.t_s < t; });
+       it != rh.end() && it->t_s <= t_s + slack; ++it) {
+    widen(*it);
+  }
+  return range;
+}
+
+// Accounts one sample's slip (or lift) `engine` against the reference's `reference` and its
+// range [lo, hi] within the time slack to `g`; adds the squared error to *sum2.
+void AddSlipError(double t_s, double engine, double reference, double lo, double hi, double slack,
+                  SlipAgreement* g, double* sum2) {
+  const double e0 = std::abs(engine - reference);
+  *sum2 += e0 * e0;
+  g->max_abs_error_m = std::max(g->max_abs_error_m, e0);
+  // The error that decides: outside the reference's range within the time slack.
+  const double e = std::max({0.0, lo - engine, engine - hi});
+  g->time_slack_s = slack;
+  g->max_abs_error_slack_m = std::max(g->max_abs_error_slack_m, e);
+  g->peak_engine_m = std::max(g->peak_engine_m, std::abs(engine));
+  g->final_engine_m = engine;
+  g->final_reference_m = reference;
+  if (t_s <= g->predictability_horizon_s) {
+    g->max_abs_error_predictable_m = std::max(g->max_abs_error_predictable_m, e);
+    g->max_error_ratio_predictable = std::max(g->max_error_ratio_predictable, e / g->tolerance_m);
+  }
+  if (g->within_tolerance && e > g->tolerance_m) {
+    g->within_tolerance = false;
+    g->horizon_s = t_s;
+  }
+}
+
+// Slip and lift of every body, where both histories carry them: on the slip's own scale,
+// before the body's predictability horizon as the angles.
+void CompareSlipAndLift(const Scene& scene, const reference::Result& ref, const EngineRun& run,
+                        double until, const CompareOptions& options,
+                        std::vector<BodyAgreement>* bodies) {
+  const int nb = static_cast<int>(bodies->size());
+  for (int b = 0; b < nb; ++b) {
+    BodyAgreement& body = (*bodies)[b];
+    body.slip = SlipAgreement{};
+    body.lift = SlipAgreement{};
+    body.lift->quantity = "z";
+    for (SlipAgreement* g : {&*body.slip, &*body.lift}) {
+      g->horizon_s = until;
+      g->predictability_horizon_s = options.predictability_horizon_s[b];
+    }
+  }
+  SlipPeaks(scene, ref.history, bodies);
+  std::vector<double> sum2[2] = {std::vector<double>(nb, 0.0), std::vector<double>(nb, 0.0)};
+  int ns = 0;
+  for (const Sample& s : run.history.samples) {
+    if (s.t_s > until + 1e-12) break;
+    if (s.u_m.size() < static_cast<size_t>(nb)) break;
+    const Sample r = ref.trajectory.At(s.t_s);
+    if (r.u_m.size() < static_cast<size_t>(nb)) break;
+    ++ns;
+    // Two output intervals: a slip episode that an impact starts inherits the impact's timing,
+    // and on rinaldi_with_vertical Bullet's block 2 slips 10-20 ms before the reference's at
+    // 3.69 s with the same size (docs/verdicts.md, section 5).
+    const double slack = 2.0 * scene.run.output_interval_s;
+    const SlipRange range = ReferenceSlipRange(ref, r, s.t_s, slack, nb);
+    for (int b = 0; b < nb; ++b) {
+      const double engine[2] = {s.u_m[b], s.z_m[b]}, reference[2] = {r.u_m[b], r.z_m[b]};
+      SlipAgreement* gs[2] = {&*(*bodies)[b].slip, &*(*bodies)[b].lift};
+      for (int q = 0; q < 2; ++q) {
+        AddSlipError(s.t_s, engine[q], reference[q], range.lo[q][b], range.hi[q][b], slack, gs[q],
+                     &sum2[q][b]);
+      }
+    }
+  }
+  for (int b = 0; b < nb; ++b) {
+    (*bodies)[b].slip->rms_error_m = ns > 0 ? std::sqrt(sum2[0][b] / ns) : 0.0;
+    (*bodies)[b].lift->rms_error_m = ns > 0 ? std::sqrt(sum2[1][b] / ns) : 0.0;
+  }
+}
+
+// Overturning and leaving the support, compared up to the instant the model stops deciding
+// the motion (after it the reference's outcome is one admissible branch's): an overturn or a
+// block leaving its support later than that, in either run, is not compared.
+void CompareOutcomes(const reference::Summary& rs, const EngineRun& run, EngineAgreement* a) {
   const double t_decided = rs.undetermined_from_s.value_or(std::numeric_limits<double>::infinity());
   const auto decided = [&](double t) { return !(t > t_decided + 1e-12); };
 
   // Overturning.
-  if (rs.overturn_block && decided(rs.overturn_t_s)) a.overturn_block_reference = rs.overturn_block;
+  if (rs.overturn_block && decided(rs.overturn_t_s))
+    a->overturn_block_reference = rs.overturn_block;
   if (run.outcome.overturned() && decided(run.outcome.overturn_t_s)) {
-    a.overturn_block_engine = run.outcome.overturned_block;
-    if (a.overturn_block_reference) {
-      a.overturn_time_error_s = run.outcome.overturn_t_s - rs.overturn_t_s;
+    a->overturn_block_engine = run.outcome.overturned_block;
+    if (a->overturn_block_reference) {
+      a->overturn_time_error_s = run.outcome.overturn_t_s - rs.overturn_t_s;
     }
   }
-  a.overturn_agree = a.overturn_block_reference == a.overturn_block_engine;
+  a->overturn_agree = a->overturn_block_reference == a->overturn_block_engine;
 
   // Leaving the support (a block slid off the block below): an outcome of its own. The
   // engine's block comes from its outcome, or from its summary's "left_support" object where a
   // helper's protocol carried the status but not the block.
   if (rs.left_support_block && decided(rs.left_support_t_s)) {
-    a.left_support_block_reference = rs.left_support_block;
+    a->left_support_block_reference = rs.left_support_block;
   }
   int engine_off = run.outcome.left_support_block;
   double engine_off_t = run.outcome.left_support_t_s;
@@ -499,37 +582,57 @@ EngineAgreement CompareWithReference(const Scene& scene, const reference::Result
     }
   }
   if (engine_off != 0 && decided(engine_off_t)) {
-    a.left_support_block_engine = engine_off;
-    if (a.left_support_block_reference && std::isfinite(engine_off_t)) {
-      a.left_support_time_error_s = engine_off_t - rs.left_support_t_s;
+    a->left_support_block_engine = engine_off;
+    if (a->left_support_block_reference && std::isfinite(engine_off_t)) {
+      a->left_support_time_error_s = engine_off_t - rs.left_support_t_s;
     }
   }
-  a.left_support_agree = a.left_support_block_reference == a.left_support_block_engine;
+  a->left_support_agree = a->left_support_block_reference == a->left_support_block_engine;
+}
 
-  // Final state at the end of the common grid: the same family, and every block's angle within
-  // its tolerance.
-  if (!run.history.samples.empty()) {
-    const Sample* last = &run.history.samples.front();
-    for (const Sample& s : run.history.samples) {
-      if (s.t_s <= until + 1e-12) last = &s;
-    }
-    const Sample r = ref.trajectory.At(last->t_s);
-    a.final_mode_reference =
-        Family(r.mode, rs.overturn_block.has_value(), rs.left_support_block.has_value());
-    a.final_mode_engine = Family(last->mode, a.overturn_block_engine.has_value(),
-                                 a.left_support_block_engine.has_value());
-    a.final_theta1_error_rad = last->theta_rad[0] - r.theta_rad[0];
-    a.final_theta2_error_rad = nb >= 2 ? last->theta_rad[1] - r.theta_rad[1] : 0.0;
-    a.final_theta_from3_error_rad.clear();
-    for (int b = 2; b < nb; ++b) {
-      a.final_theta_from3_error_rad.push_back(last->theta_rad[b] - r.theta_rad[b]);
-    }
-    a.final_agree = a.final_mode_reference == a.final_mode_engine;
-    for (int b = 1; b <= nb; ++b) {
-      a.final_agree =
-          a.final_agree && std::abs(a.final_theta_error_rad(b)) <= ang[b - 1].tolerance_rad;
-    }
+// Final state at the end of the common grid: the same family, and every body's angle within
+// its tolerance.
+void CompareFinalState(const reference::Result& ref, const EngineRun& run, double until,
+                       EngineAgreement* a) {
+  if (run.history.samples.empty()) return;
+  const reference::Summary& rs = ref.summary;
+  const Sample* last = &run.history.samples.front();
+  for (const Sample& s : run.history.samples) {
+    if (s.t_s <= until + 1e-12) last = &s;
   }
+  const Sample r = ref.trajectory.At(last->t_s);
+  a->final_mode_reference =
+      Family(r.mode, rs.overturn_block.has_value(), rs.left_support_block.has_value());
+  a->final_mode_engine = Family(last->mode, a->overturn_block_engine.has_value(),
+                                a->left_support_block_engine.has_value());
+  a->final_agree = a->final_mode_reference == a->final_mode_engine;
+  for (int b = 0; b < a->blocks(); ++b) {
+    BodyAgreement& body = a->bodies[b];
+    const std::string& q = body.angle.quantity;
+    body.final_angle_error_rad =
+        AngleValue(run.history, *last, q, b) - AngleValue(ref.history, r, q, b);
+    a->final_agree =
+        a->final_agree && std::abs(body.final_angle_error_rad) <= body.angle.tolerance_rad;
+  }
+}
+
+}  // namespace
+
+EngineAgreement CompareWithReference(const Scene& scene, const reference::Result& ref,
+                                     const EngineRun& run, const CompareOptions& options) {
+  EngineAgreement a;
+  CopyRunStatuses(ref, run, &a);
+  const double until = ComparedUntil_s(ref, run);
+  a.compared_until_s = until;
+  for (AngleAgreement& g : CompareAngles(scene, ref, run, until, options, &a.samples_compared)) {
+    a.bodies.push_back(BodyAgreement{std::move(g), 0.0, std::nullopt, std::nullopt});
+  }
+  if (ref.history.slip_and_lift && run.history.slip_and_lift) {
+    CompareSlipAndLift(scene, ref, run, until, options, &a.bodies);
+  }
+  a.impacts = MatchImpacts(ref.history, run.history, until, options.min_impact_rate_radps);
+  CompareOutcomes(ref.summary, run, &a);
+  CompareFinalState(ref, run, until, &a);
   return a;
 }
 
@@ -540,14 +643,12 @@ nlohmann::json AgreementJson(const EngineAgreement& a) {
   if (IsNonFinite(a.status)) j["status_detail"] = a.status_detail;
   j["compared_until_s"] = RoundTime_s(a.compared_until_s);
   j["samples_compared"] = a.samples_compared;
-  j["theta1"] = AngleJson(a.theta1);
-  if (a.theta2) j["theta2"] = AngleJson(*a.theta2);
-  for (int b = 3; b <= a.blocks(); ++b) j[Numbered("theta", b)] = AngleJson(a.angle(b));
-  for (size_t b = 0; b < a.slip.size(); ++b) {
-    j[Numbered("u", static_cast<int>(b) + 1)] = SlipJson(a.slip[b]);
-  }
-  for (size_t b = 0; b < a.lift.size(); ++b) {
-    j[Numbered("z", static_cast<int>(b) + 1)] = SlipJson(a.lift[b]);
+  for (int b = 1; b <= a.blocks(); ++b) {
+    const BodyAgreement& body = a.body(b);
+    j[BodyColumn(body.angle.quantity, b)] = AngleJson(body.angle);
+    for (const std::optional<SlipAgreement>* g : {&body.slip, &body.lift}) {
+      if (*g) j[BodyColumn((*g)->quantity, b)] = SlipJson(**g);
+    }
   }
   j["impacts_matched"] = a.impacts.matched;
   j["impacts_reference"] = a.impacts.reference_impacts;
@@ -578,11 +679,9 @@ nlohmann::json AgreementJson(const EngineAgreement& a) {
   j["left_support"] = off;
   j["final"] = {{"agree", a.final_agree},
                 {"reference", a.final_mode_reference},
-                {"engine", a.final_mode_engine},
-                {"theta1_error_rad", a.final_theta1_error_rad}};
-  if (a.theta2) j["final"]["theta2_error_rad"] = a.final_theta2_error_rad;
-  for (int b = 3; b <= a.blocks(); ++b) {
-    j["final"][Numbered("theta", b) + "_error_rad"] = a.final_theta_error_rad(b);
+                {"engine", a.final_mode_engine}};
+  for (int b = 1; b <= a.blocks(); ++b) {
+    j["final"][BodyColumn(a.angle(b).quantity, b) + "_error_rad"] = a.body(b).final_angle_error_rad;
   }
   j["violations"] = a.violations;
   if (!a.verdict_kind.empty()) {
@@ -610,7 +709,7 @@ nlohmann::json ComparisonJson(const Scene& scene, const reference::Result& ref,
                     {"impacts", rs.impacts()},
                     {"end_s", ref.trajectory.end_s()}};
   for (int k = 0; k < rs.blocks(); ++k) {
-    const std::string theta = "peak_theta" + std::to_string(k + 1);
+    const std::string theta = BodyColumn("peak_theta", k + 1);
     j["reference"][theta + "_rad"] = rs.peak_theta_rad[k];
     j["reference"][theta + "_t_s"] = rs.peak_theta_t_s[k];
   }
@@ -618,7 +717,7 @@ nlohmann::json ComparisonJson(const Scene& scene, const reference::Result& ref,
                        ? nlohmann::json{{"rule", "scene"}, {"rad", *scene.compare.tolerance_rad}}
                        : nlohmann::json{{"rule", ToleranceRuleText()}};
   for (int k = 0; k < rs.blocks(); ++k) {
-    j["tolerance"]["theta" + std::to_string(k + 1) + "_rad"] =
+    j["tolerance"][BodyColumn(ComparedAngleStem(scene, k + 1), k + 1) + "_rad"] =
         AngleTolerance_rad(scene, k + 1, rs.peak_theta_rad[k]);
   }
   j["impact_min_rate_radps"] = options.min_impact_rate_radps;
@@ -639,6 +738,7 @@ std::string ComparisonCsv(const std::vector<EngineAgreement>& engines) {
   for (const EngineAgreement& a : engines) {
     for (int b = 1; b <= a.blocks(); ++b) {
       const AngleAgreement& g = a.angle(b);
+      const std::optional<SlipAgreement>& slip = a.body(b).slip;
       std::snprintf(line, sizeof line,
                     "%s,%d,%.9e,%.9e,%.9g,%d,%.9e,%.9e,%.9e,%.9e,%.9e,%.9e,%.9e,%d,%d,%d,%.9e,%d,"
                     "%d,%s,%.6g,%s,%.9e,%.9e,%s,%d,%s,%s\n",
@@ -653,12 +753,8 @@ std::string ComparisonCsv(const std::vector<EngineAgreement>& engines) {
                         : "",
                     g.max_abs_error_predictable_rad, g.max_abs_error_beyond_rad,
                     a.verdict_kind.c_str(), g.judged ? 1 : 0,
-                    b <= static_cast<int>(a.slip.size())
-                        ? Format("%.9e", a.slip[b - 1].max_abs_error_m).c_str()
-                        : "",
-                    b <= static_cast<int>(a.slip.size())
-                        ? Format("%.9e", a.slip[b - 1].tolerance_m).c_str()
-                        : "");
+                    slip ? Format("%.9e", slip->max_abs_error_m).c_str() : "",
+                    slip ? Format("%.9e", slip->tolerance_m).c_str() : "");
       out += line;
     }
   }

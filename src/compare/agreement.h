@@ -31,8 +31,12 @@ inline constexpr double kJudgedPeakOverFloor = 5.0;
 inline constexpr double kPeakToleranceRel = 0.25;
 inline constexpr double kPeakToleranceFloorFraction = 0.1;
 
-/// Agreement of one block's angle (theta1, theta2, ..., thetaN) with the reference.
+/// Agreement of one body's compared angle (theta1, theta2, ..., thetaN of planar blocks) with
+/// the reference.
 struct AngleAgreement {
+  /// The column stem of the quantity compared (scene/body_kind.h): "theta" for the planar block.
+  /// Its keys and columns are BodyColumn(quantity, body).
+  std::string quantity = "theta";
   /// The tolerance at the reference's peak (AngleTolerance_rad): the scale of the run's
   /// largest motion. The horizon uses the local tolerance (run/tolerance.h).
   double tolerance_rad = 0.0;
@@ -83,6 +87,7 @@ struct AngleAgreement {
 /// within two output intervals of the time (time_slack_s): a slip episode a few ms early is a
 /// timing difference, not a slip of another size (docs/verdicts.md).
 struct SlipAgreement {
+  std::string quantity = "u";  ///< the column stem: "u" (slip) or "z" (lift)
   double tolerance_m = 0.0, floor_m = 0.0;
   double peak_reference_m = 0.0, peak_reference_t_s = 0.0;  ///< max |u_ref| over the run
   double peak_engine_m = 0.0;                               ///< max |u_engine|, compared run
@@ -126,6 +131,16 @@ inline constexpr std::array<double, kMaxBlocks> EveryBlockInfinite() {
   return a;
 }
 
+/// Everything compared of one body (body k of the stack at index k - 1 of
+/// EngineAgreement::bodies).
+struct BodyAgreement {
+  AngleAgreement angle;
+  /// Engine minus reference of the compared angle at the last compared sample, rad.
+  double final_angle_error_rad = 0.0;
+  /// Its slip u_k and lift z_k on its support, when both histories carry them.
+  std::optional<SlipAgreement> slip, lift;
+};
+
 /// Options of the comparison.
 struct CompareOptions {
   /// Per block (block k at k - 1), the reference's predictability horizon (s): errors are also
@@ -150,14 +165,9 @@ struct EngineAgreement {
   double non_finite_t_s = 0.0;
   double compared_until_s = 0.0;  ///< end of the common grid
   int samples_compared = 0;
-  AngleAgreement theta1;
-  std::optional<AngleAgreement> theta2;  ///< scenes of two blocks or more
-  /// Blocks 3..N of a stack of N >= 3 blocks (theta3 at index 0); empty for one or two blocks.
-  std::vector<AngleAgreement> theta_from3;
+  /// Per body, body k at index k - 1: its angle, final error, slip and lift.
+  std::vector<BodyAgreement> bodies;
   ImpactAgreement impacts;
-  /// Slip u_k and lift z_k of every block (block k at k - 1), when both histories carry them;
-  /// empty otherwise.
-  std::vector<SlipAgreement> slip, lift;
   /// A block that left its support (slid off it): both runs or neither, and the same block.
   bool left_support_agree = true;
   std::optional<int> left_support_block_reference, left_support_block_engine;
@@ -170,9 +180,6 @@ struct EngineAgreement {
   /// within the horizon tolerances.
   bool final_agree = true;
   std::string final_mode_reference, final_mode_engine;
-  double final_theta1_error_rad = 0.0, final_theta2_error_rad = 0.0;
-  /// Blocks 3..N (theta3 at index 0): final angle error, rad; empty for one or two blocks.
-  std::vector<double> final_theta_from3_error_rad;
   nlohmann::json violations;  ///< the engine's summary "violations" (null when it has none)
   /// The engine's monitor flags (kViolationFlags) and when each was first raised, s.
   std::vector<std::string> flags;
@@ -200,21 +207,14 @@ struct EngineAgreement {
   nlohmann::json seeds;            ///< the seeds' decisions when the verdict was re-seeded
   nlohmann::json statistics;
 
-  /// Blocks compared: 1, 2 or N.
-  int blocks() const { return theta2 ? 2 + static_cast<int>(theta_from3.size()) : 1; }
-  /// Block `block`'s agreement (1..blocks()).
-  const AngleAgreement& angle(int block) const {
-    return block == 1 ? theta1 : block == 2 ? *theta2 : theta_from3.at(block - 3);
-  }
-  AngleAgreement& angle(int block) {
-    return block == 1 ? theta1 : block == 2 ? *theta2 : theta_from3.at(block - 3);
-  }
-  /// Block `block`'s final angle error, rad (1..blocks()).
-  double final_theta_error_rad(int block) const {
-    return block == 1   ? final_theta1_error_rad
-           : block == 2 ? final_theta2_error_rad
-                        : final_theta_from3_error_rad.at(block - 3);
-  }
+  /// Bodies compared.
+  int blocks() const { return static_cast<int>(bodies.size()); }
+  /// Body `block`'s agreement (1..blocks()).
+  const BodyAgreement& body(int block) const { return bodies.at(static_cast<size_t>(block - 1)); }
+  BodyAgreement& body(int block) { return bodies.at(static_cast<size_t>(block - 1)); }
+  /// Body `block`'s compared angle (1..blocks()).
+  const AngleAgreement& angle(int block) const { return body(block).angle; }
+  AngleAgreement& angle(int block) { return body(block).angle; }
 };
 
 /// Impacts of a history whose landing rate (|omega1| before a ground impact, |omega_k -
@@ -237,7 +237,7 @@ EngineAgreement CompareWithReference(const Scene& scene, const reference::Result
 
 /// comparison.json: {"scene": ..., "reference": {...}, "engines": {name: {...}}}. Keys read by
 /// other tools: engines.<name>.wall_s, engines.<name>.impacts_matched and, under
-/// engines.<name>.theta1 / theta2 (/ theta3 ... thetaN for N >= 3 blocks): max_abs_error_rad,
+/// engines.<name>.theta1 ... thetaN (BodyColumn(quantity, k) of each body k): max_abs_error_rad,
 /// rms_error_rad, peak_rel_error, peak_time_error_s, horizon_s, judged; engines.<name>.u1 ..
 /// uN and z1 .. zN (histories with slip and lift): max_abs_error_m, final_reference_m,
 /// final_engine_m, tolerance_m; engines.<name>.left_support.

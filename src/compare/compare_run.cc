@@ -2,10 +2,12 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <functional>
 #include <new>
 
 #include "run/reference_engine.h"
 #include "run/summary.h"
+#include "scene/body_kind.h"
 #include "util/format.h"
 
 namespace rockbench {
@@ -152,28 +154,19 @@ void CompareOneEngine(const Scene& scene, const GroundMotion& motion, const std:
   out.engine_outcomes.push_back(std::move(outcomes));
 }
 
-}  // namespace
-
-CompareRun RunCompare(const Scene& scene, const GroundMotion& motion,
-                      const std::vector<std::string>& engines, const CompareRunOptions& options) {
-  auto log = [&](const std::string& line) {
-    if (options.log) options.log(line);
-  };
+// 1. The reference and its witness; comparisons use the witness when the default is not
+//    converged.
+void RunReference(const Scene& scene, const GroundMotion& motion,
+                  const std::function<void(const std::string&)>& log, CompareRun* out) {
   char buf[512];
-  CompareRun out;
-  const CompareOptions base;
-  const int nb = scene.block_count();
-
-  // 1. The reference and its witness; comparisons use the witness when the default is not
-  //    converged.
-  out.reference_run = RunEngine(std::string(kReferenceEngine), scene, motion);
-  const reference::Result& ref = out.reference().used();
-  const ConvergenceCheck& check = *out.reference().check;
-  out.reference_scene = scene;
-  if (&ref != &out.reference().nominal) out.reference_scene.model = check.witness;
+  out->reference_run = RunEngine(std::string(kReferenceEngine), scene, motion);
+  const reference::Result& ref = out->reference().used();
+  const ConvergenceCheck& check = *out->reference().check;
+  out->reference_scene = scene;
+  if (&ref != &out->reference().nominal) out->reference_scene.model = check.witness;
   std::snprintf(buf, sizeof buf, "reference: %s, %zu events, %.3g ms; witness within %.2g rad%s",
                 StatusText(ref.summary.status), ref.history.events.size(),
-                out.reference().nominal_wall_s * 1e3, check.max_abs_diff(),
+                out->reference().nominal_wall_s * 1e3, check.max_abs_diff(),
                 check.converged ? ", converged" : "");
   log(buf);
   // Where the model stopped deciding the motion: nothing is compared after it.
@@ -185,57 +178,66 @@ CompareRun RunCompare(const Scene& scene, const GroundMotion& motion,
         "outcome the rule chose)");
   }
   if (!check.converged) log("  WARNING: " + ConvergenceWarning(check));
+}
 
-  // 2. The reference's perturbation members: the predictability horizon.
-  out.tolerance_rad.resize(nb);
+// 2. The reference's perturbation members: the predictability horizon, taken into `horizons`
+// and `compare_options` (none when the scene asks for no members or the reference failed).
+void RunPredictability(const Scene& scene, const GroundMotion& motion, int jobs,
+                       const std::function<void(const std::string&)>& log, CompareRun* out,
+                       std::optional<Horizons>* horizons, CompareOptions* compare_options) {
+  const reference::Result& ref = out->reference().used();
+  const int nb = scene.block_count();
+  out->tolerance_rad.resize(nb);
   for (int b = 0; b < nb; ++b) {
-    out.tolerance_rad[b] = AngleTolerance_rad(scene, b + 1, ref.summary.peak_theta_rad[b]);
+    out->tolerance_rad[b] = AngleTolerance_rad(scene, b + 1, ref.summary.peak_theta_rad[b]);
   }
-  std::optional<Horizons> horizons;
-  CompareOptions compare_options = base;
   // A reference that failed (non_finite) leaves nothing to compare with: no ensemble, and every
   // verdict is reference_failed.
   const bool reference_failed = IsNonFinite(ref.summary.status);
-  if (reference_failed) log("  FAILED: " + NonFiniteText(out.reference_run));
-  if (scene.compare.members > 0 && !reference_failed) {
-    out.perturbation_members = RunReferencePerturbationMembers(
-        out.reference_scene, motion, ref, scene.compare.members, out.tolerance_rad, options.jobs,
-        base.min_impact_rate_radps);
-    horizons = Horizons{};
-    TakeHorizons(*out.perturbation_members, nb, &*horizons, &compare_options);
-    std::string line = "predictability (" + std::to_string(scene.compare.members) + " members";
-    std::snprintf(buf, sizeof buf,
-                  ", amplitude +-%g, samples +-%g of their printed precision, initial state "
-                  "+-%g): theta1 horizon ",
-                  scene.compare.amplitude_rel, scene.compare.sample_precision,
-                  scene.compare.initial_rel);
-    line += buf + HorizonText(out.perturbation_members->horizon_s[0]);
-    for (int b = 1; b < nb; ++b) {
-      line += ", " + Numbered("theta", b + 1) + " horizon " +
-              HorizonText(out.perturbation_members->horizon_s[b]);
-    }
-    std::snprintf(buf, sizeof buf, " (ensemble wall time %.2f s)",
-                  out.perturbation_members->wall_s);
-    log(line + buf);
+  if (reference_failed) log("  FAILED: " + NonFiniteText(out->reference_run));
+  if (scene.compare.members <= 0 || reference_failed) return;
+  out->perturbation_members = RunReferencePerturbationMembers(
+      out->reference_scene, motion, ref, scene.compare.members, out->tolerance_rad, jobs,
+      CompareOptions{}.min_impact_rate_radps);
+  *horizons = Horizons{};
+  TakeHorizons(*out->perturbation_members, nb, &**horizons, compare_options);
+  char buf[512];
+  std::string line = "predictability (" + std::to_string(scene.compare.members) + " members";
+  std::snprintf(buf, sizeof buf,
+                ", amplitude +-%g, samples +-%g of their printed precision, initial state "
+                "+-%g): ",
+                scene.compare.amplitude_rel, scene.compare.sample_precision,
+                scene.compare.initial_rel);
+  line += buf;
+  for (int b = 0; b < nb; ++b) {
+    line += (b == 0 ? "" : ", ") + BodyColumn("theta", b + 1) + " horizon " +
+            HorizonText(out->perturbation_members->horizon_s[b]);
   }
+  std::snprintf(buf, sizeof buf, " (ensemble wall time %.2f s)", out->perturbation_members->wall_s);
+  log(line + buf);
+}
+
+// 3. Each engine: its nominal run, and its perturbation members when the reference's horizon
+// falls inside the run (before it, one run is enough to judge) and the engine agrees up to it.
+// An engine that fails is that engine's verdict: the others' comparisons stand.
+void CompareEngines(const Scene& scene, const GroundMotion& motion,
+                    const std::vector<std::string>& engines, const CompareRunOptions& options,
+                    const std::optional<Horizons>& horizons, const CompareOptions& compare_options,
+                    CompareRun* out) {
   bool horizon_within_run = false;
-  for (int b = 0; b < nb && horizons; ++b) {
+  for (int b = 0; b < scene.block_count() && horizons; ++b) {
     horizon_within_run = horizon_within_run || horizons->horizon_s[b].has_value();
   }
-
-  // 3. Each engine: its nominal run, and its perturbation members when the reference's horizon
-  // falls inside
-  //    the run (before it, one run is enough to judge) and the engine agrees up to it.
   const int engine_members = std::min(scene.compare.engine_members, scene.compare.members);
-  // Reference perturbation memberss of the extra seeds, run once for every engine that needs them.
+  // Reference perturbation members of the extra seeds, run once for every engine that needs
+  // them.
   std::vector<std::optional<ReferencePerturbationMembers>> extra_ensembles(kVerdictSeeds - 1);
   for (const std::string& name : engines) {
-    // An engine that fails is that engine's verdict: the others' comparisons stand.
     try {
       CompareOneEngine(scene, motion, name, options, engine_members, horizon_within_run, horizons,
-                       compare_options, &extra_ensembles, &out);
+                       compare_options, &extra_ensembles, out);
     } catch (const std::bad_alloc&) {
-      out.failed_engines.push_back(
+      out->failed_engines.push_back(
           {name,
            "out of memory (std::bad_alloc): the engine could not reserve the memory it "
            "needed"});
@@ -246,35 +248,55 @@ CompareRun RunCompare(const Scene& scene, const GroundMotion& motion,
       for (char& c : reason) {
         if (c == '\n' || c == '\r') c = ' ';
       }
-      out.failed_engines.push_back({name, reason});
+      out->failed_engines.push_back({name, reason});
     }
-    if (!out.failed_engines.empty() && out.failed_engines.back().engine == name) {
-      log(name + ": FAILED: " + out.failed_engines.back().reason);
+    if (!out->failed_engines.empty() && out->failed_engines.back().engine == name && options.log) {
+      options.log(name + ": FAILED: " + out->failed_engines.back().reason);
     }
   }
+}
 
-  // Every run that ended non_finite.
+// Every run that ended non_finite, into out->failures.
+void CollectFailures(CompareRun* out) {
   auto members = [&](const std::string& who, const std::vector<MemberOutcome>& outcomes) {
     for (const MemberOutcome& o : outcomes) {
       if (IsNonFinite(o.status)) {
-        out.failures.push_back(who + " ensemble member " + std::to_string(o.member) + ": " +
-                               o.detail);
+        out->failures.push_back(who + " ensemble member " + std::to_string(o.member) + ": " +
+                                o.detail);
       }
     }
   };
-  if (const std::string t = NonFiniteText(out.reference_run); !t.empty()) {
-    out.failures.push_back(t);
+  if (const std::string t = NonFiniteText(out->reference_run); !t.empty()) {
+    out->failures.push_back(t);
   }
-  if (out.perturbation_members) members("reference", out.perturbation_members->outcomes);
-  for (size_t k = 0; k < out.engine_runs.size(); ++k) {
-    if (const std::string t = NonFiniteText(out.engine_runs[k]); !t.empty()) {
-      out.failures.push_back(t);
+  if (out->perturbation_members) members("reference", out->perturbation_members->outcomes);
+  for (size_t k = 0; k < out->engine_runs.size(); ++k) {
+    if (const std::string t = NonFiniteText(out->engine_runs[k]); !t.empty()) {
+      out->failures.push_back(t);
     }
-    members(out.engine_runs[k].engine, out.engine_outcomes[k]);
+    members(out->engine_runs[k].engine, out->engine_outcomes[k]);
   }
+}
 
+}  // namespace
+
+CompareRun RunCompare(const Scene& scene, const GroundMotion& motion,
+                      const std::vector<std::string>& engines, const CompareRunOptions& options) {
+  const std::function<void(const std::string&)> log = [&](const std::string& line) {
+    if (options.log) options.log(line);
+  };
+  CompareRun out;
+  const CompareOptions base;
+  RunReference(scene, motion, log, &out);
+  std::optional<Horizons> horizons;
+  CompareOptions compare_options = base;
+  RunPredictability(scene, motion, options.jobs, log, &out, &horizons, &compare_options);
+  CompareEngines(scene, motion, engines, options, horizons, compare_options, &out);
+  CollectFailures(&out);
+
+  const reference::Result& ref = out.reference().used();
   out.comparison = ComparisonJson(scene, ref, out.reference().nominal_wall_s, out.agreements, base);
-  out.comparison["reference"]["convergence"] = ConvergenceJson(scene, check);
+  out.comparison["reference"]["convergence"] = ConvergenceJson(scene, *out.reference().check);
   out.comparison["failed_engines"] = nlohmann::json::array();
   for (const FailedEngine& f : out.failed_engines) {
     out.comparison["failed_engines"].push_back({{"engine", f.engine}, {"reason", f.reason}});

@@ -15,6 +15,7 @@
 #include "run/summary.h"
 #include "run/tolerance.h"
 #include "run/wall_clock.h"
+#include "scene/body_kind.h"
 #include "util/format.h"
 
 namespace rockbench {
@@ -35,11 +36,18 @@ double Uniform(uint64_t seed, uint64_t member, uint64_t slot) {
   return 2.0 * (static_cast<double>(x >> 11) * 0x1.0p-53) - 1.0;
 }
 
-// Slots: amplitude of each component, initial state, then each record sample. The initial state
-// of one or two blocks takes kSlotInitial .. kSlotInitial + 3; of N >= 3 blocks also
-// kSlotInitialFrom3 + 2 (k - 3) (block k's relative angle) and + 1 (its relative rate).
-constexpr uint64_t kSlotAmplitude = 1, kSlotInitial = 8, kSlotInitialFrom3 = 12,
-                   kSlotSamples = 1ull << 32;
+// Slots: amplitude of each component, initial state, then each record sample.
+constexpr uint64_t kSlotAmplitude = 1, kSlotInitial = 8, kSlotSamples = 1ull << 32;
+
+// The slot of body k's (1-based) initial angle factor (`rate`: of its rate). Bodies 1 and 2 take
+// kSlotInitial .. + 3 in the order theta1, theta2, omega1, omega2, body k >= 3 the pair
+// kSlotInitial + 4 + 2 (k - 3) (angle), + 1 (rate): the layout in which the draws were first
+// made, kept so that every member keeps its inputs.
+uint64_t InitialSlot(int body, bool rate) {
+  const auto k = static_cast<uint64_t>(body);
+  if (body <= 2) return kSlotInitial + (k - 1) + (rate ? 2 : 0);
+  return kSlotInitial + 4 + 2 * (k - 3) + (rate ? 1 : 0);
+}
 
 MotionComponent PerturbedComponent(const MotionComponent& c, double factor, double precision,
                                    uint64_t seed, uint64_t member, uint64_t component,
@@ -86,38 +94,25 @@ MemberInput PerturbedInput(const Scene& scene, const GroundMotion& motion, int m
                                               cfg.sample_precision, cfg.seed, m, 1,
                                               &p.vertical_max_sample_move_mps2));
   }
-  // Block 1's angle and rate, and block 2's relative to block 1: a closed contact (block 1 flat,
-  // or block 2 flat on block 1: a relative value of 0) stays closed, so a member starts in the
-  // nominal mode.
+  // Block 1's angle and rate, and every other block's relative to the block below: a closed
+  // contact (block 1 flat, or block k flat on block k - 1: a relative value of 0) stays closed,
+  // so a member starts in the nominal mode.
   InitialState& s = in.scene.initial;
-  const double rel_theta = s.theta_rad[1] - s.theta_rad[0];
-  const double rel_omega = s.omega_radps[1] - s.omega_radps[0];
-  for (int k = 0; k < 4; ++k) {
-    p.initial_factor[k] = 1.0 + Uniform(cfg.seed, m, kSlotInitial + k) * cfg.initial_rel;
-  }
-  // N >= 3: every block's angle and rate relative to the block below, likewise.
   const int nb = scene.block_count();
-  std::vector<double> rel_theta_from3, rel_omega_from3;
-  for (int k = 2; k < nb; ++k) {
-    rel_theta_from3.push_back(s.theta_rad[k] - s.theta_rad[k - 1]);
-    rel_omega_from3.push_back(s.omega_radps[k] - s.omega_radps[k - 1]);
-    for (uint64_t j = 0; j < 2; ++j) {
-      p.initial_factor_from3.push_back(
-          1.0 + Uniform(cfg.seed, m, kSlotInitialFrom3 + 2 * static_cast<uint64_t>(k - 2) + j) *
-                    cfg.initial_rel);
-    }
+  for (int k = 1; k <= nb; ++k) {
+    p.theta_factor.push_back(1.0 + Uniform(cfg.seed, m, InitialSlot(k, false)) * cfg.initial_rel);
+    p.omega_factor.push_back(1.0 + Uniform(cfg.seed, m, InitialSlot(k, true)) * cfg.initial_rel);
   }
-  s.theta_rad[0] *= p.initial_factor[0];
-  s.omega_radps[0] *= p.initial_factor[2];
-  if (nb >= 2) {
-    s.theta_rad[1] = s.theta_rad[0] + rel_theta * p.initial_factor[1];
-    s.omega_radps[1] = s.omega_radps[0] + rel_omega * p.initial_factor[3];
+  std::vector<double> rel_theta(nb, 0.0), rel_omega(nb, 0.0);
+  for (int k = 1; k < nb; ++k) {
+    rel_theta[k] = s.theta_rad[k] - s.theta_rad[k - 1];
+    rel_omega[k] = s.omega_radps[k] - s.omega_radps[k - 1];
   }
-  for (int k = 2; k < nb; ++k) {
-    const size_t i = static_cast<size_t>(k - 2);
-    s.theta_rad[k] = s.theta_rad[k - 1] + rel_theta_from3[i] * p.initial_factor_from3[2 * i];
-    s.omega_radps[k] =
-        s.omega_radps[k - 1] + rel_omega_from3[i] * p.initial_factor_from3[2 * i + 1];
+  s.theta_rad[0] *= p.theta_factor[0];
+  s.omega_radps[0] *= p.omega_factor[0];
+  for (int k = 1; k < nb; ++k) {
+    s.theta_rad[k] = s.theta_rad[k - 1] + rel_theta[k] * p.theta_factor[k];
+    s.omega_radps[k] = s.omega_radps[k - 1] + rel_omega[k] * p.omega_factor[k];
   }
   return in;
 }
@@ -220,6 +215,85 @@ MemberOutcome OutcomeOf(const EngineRun& run, const Scene& scene, double min_imp
   return o;
 }
 
+namespace {
+
+// A run on the grid `t_s`, one vector per block. Beyond the end of a run stopped by a violated
+// assumption, or ended at its last finite state, there is nothing to compare (NaN); beyond an
+// overturn, the overturned block stays at its overturn angle (a lasting outcome that other
+// members may not share) and the other blocks' angles are undefined (NaN: the model ends
+// there). Past the first impact the model leaves undecided (summary "undetermined"), a run's
+// motion is its rule's choice, not the model's: nothing there to compare either (NaN).
+std::vector<std::vector<double>> OnGrid(const reference::Result& r, const std::vector<double>& t_s,
+                                        int nb) {
+  const bool stopped =
+      r.summary.status == RunStatus::kAssumptionViolated || IsNonFinite(r.summary.status);
+  const int overturned = r.summary.overturn_block.value_or(0);
+  const double end = r.trajectory.end_s();
+  const double decided_until = r.summary.undetermined_from_s.value_or(INFINITY);
+  std::vector<std::vector<double>> th(static_cast<size_t>(nb),
+                                      std::vector<double>(t_s.size(), std::nan("")));
+  for (size_t k = 0; k < t_s.size(); ++k) {
+    const bool after_end = t_s[k] > end;
+    if (stopped && after_end) break;
+    if (t_s[k] > decided_until) break;
+    const Sample s = r.trajectory.At(t_s[k]);
+    for (int b = 0; b < nb; ++b) {
+      if (!after_end || overturned == b + 1) th[b][k] = s.theta_rad[b];
+    }
+  }
+  return th;
+}
+
+// Where a run's model ends without an outcome: its stop (a violated assumption, a state no
+// longer finite) or its first undecided impact; infinity when it decides the whole run.
+double ModelEnd_s(const reference::Result& r) {
+  double end = r.summary.undetermined_from_s.value_or(INFINITY);
+  if (r.summary.status == RunStatus::kAssumptionViolated || IsNonFinite(r.summary.status)) {
+    end = std::min(end, r.trajectory.end_s());
+  }
+  return end;
+}
+
+// Block b's band (lo, hi, spread about the nominal run) over the members' grids, its largest
+// spread and its horizon: the first grid time where the spread exceeds the tolerance, a
+// member's model ends while the nominal run's goes on, or the nominal run's model ends.
+void MeasureSpread(int b, const std::vector<double>& nominal, double nominal_model_end_s,
+                   const std::vector<std::vector<std::vector<double>>>& grids,
+                   const std::vector<double>& member_model_end_s, ReferencePerturbationMembers* e) {
+  const size_t n_grid = e->t_s.size();
+  e->lo_rad[b] = nominal;
+  e->hi_rad[b] = nominal;
+  e->spread_rad[b].assign(n_grid, 0.0);
+  for (size_t k = 0; k < n_grid; ++k) {
+    const double nom = nominal[k];
+    if (e->t_s[k] > nominal_model_end_s) {
+      // The nominal run's model ends here (it stopped, or its motion is undecided): nothing
+      // is predictable from here on, and the horizon is here at the latest.
+      if (!e->horizon_s[b]) e->horizon_s[b] = e->t_s[k];
+      continue;
+    }
+    if (std::isnan(nom)) continue;  // past the nominal run's overturn
+    // A member whose model ended here while the nominal run's goes on (it stopped, or its
+    // motion is undecided) is a spread beyond any tolerance: the inputs' uncertainty reaches
+    // a different end.
+    bool lost = false;
+    for (size_t i = 0; i < grids.size(); ++i) {
+      const double v = grids[i][b][k];
+      if (e->t_s[k] > member_model_end_s[i]) lost = true;
+      if (std::isnan(v)) continue;
+      e->lo_rad[b][k] = std::min(e->lo_rad[b][k], v);
+      e->hi_rad[b][k] = std::max(e->hi_rad[b][k], v);
+      e->spread_rad[b][k] = std::max(e->spread_rad[b][k], std::abs(v - nom));
+    }
+    e->max_spread_rad[b] = std::max(e->max_spread_rad[b], e->spread_rad[b][k]);
+    if (!e->horizon_s[b] && (lost || e->spread_rad[b][k] > e->tolerance_rad[b])) {
+      e->horizon_s[b] = e->t_s[k];
+    }
+  }
+}
+
+}  // namespace
+
 ReferencePerturbationMembers RunReferencePerturbationMembers(
     const Scene& nominal_scene, const GroundMotion& motion, const reference::Result& nominal,
     int members, std::span<const double> tolerance_rad, int threads, double min_impact_rate_radps) {
@@ -245,42 +319,8 @@ ReferencePerturbationMembers RunReferencePerturbationMembers(
   const auto n_grid = static_cast<size_t>(std::floor(nominal_scene.run.duration_s / dt + 1e-9)) + 1;
   e.t_s.resize(n_grid);
   for (size_t k = 0; k < n_grid; ++k) e.t_s[k] = RoundTime_s(static_cast<double>(k) * dt);
-  // A run on the grid, one vector per block. Beyond the end of a run stopped by a violated
-  // assumption, or ended at its last finite state, there is nothing to compare (NaN); beyond an
-  // overturn, the overturned block stays at its overturn angle (a lasting outcome that other
-  // members may not share) and the other blocks' angles are undefined (NaN: the model ends
-  // there).
-  // Past the first impact the model leaves undecided (summary "undetermined"), a run's motion
-  // is its rule's choice, not the model's: nothing there to compare either (NaN).
-  auto on_grid = [&](const reference::Result& r, std::vector<std::vector<double>>* th) {
-    const bool stopped =
-        r.summary.status == RunStatus::kAssumptionViolated || IsNonFinite(r.summary.status);
-    const int overturned = r.summary.overturn_block.value_or(0);
-    const double end = r.trajectory.end_s();
-    const double decided_until = r.summary.undetermined_from_s.value_or(INFINITY);
-    th->assign(nbs, std::vector<double>(n_grid, std::nan("")));
-    for (size_t k = 0; k < n_grid; ++k) {
-      const bool after_end = e.t_s[k] > end;
-      if (stopped && after_end) break;
-      if (e.t_s[k] > decided_until) break;
-      const Sample s = r.trajectory.At(e.t_s[k]);
-      for (int b = 0; b < nb; ++b) {
-        if (!after_end || overturned == b + 1) (*th)[b][k] = s.theta_rad[b];
-      }
-    }
-  };
-  std::vector<std::vector<double>> nominal_grid;
-  on_grid(nominal, &nominal_grid);
-  // Where a run's model ends without an outcome: its stop (a violated assumption, a state no
-  // longer finite) or its first undecided impact; infinity when it decides the whole run.
-  auto model_end_s = [](const reference::Result& r) {
-    double end = r.summary.undetermined_from_s.value_or(INFINITY);
-    if (r.summary.status == RunStatus::kAssumptionViolated || IsNonFinite(r.summary.status)) {
-      end = std::min(end, r.trajectory.end_s());
-    }
-    return end;
-  };
-  const double nominal_model_end_s = model_end_s(nominal);
+  const std::vector<std::vector<double>> nominal_grid = OnGrid(nominal, e.t_s, nb);
+  const double nominal_model_end_s = ModelEnd_s(nominal);
   std::vector<double> member_model_end_s(static_cast<size_t>(members), INFINITY);
 
   e.perturbations.resize(members);
@@ -294,13 +334,13 @@ ReferencePerturbationMembers RunReferencePerturbationMembers(
         const MemberInput in = PerturbedInput(nominal_scene, motion, i);
         const auto t0 = std::chrono::steady_clock::now();
         reference::Result r = reference::Simulate(in.scene, in.motion);
-        member_model_end_s[i] = model_end_s(r);
+        member_model_end_s[i] = ModelEnd_s(r);
         EngineRun run;
         run.engine = "reference";
         run.wall_s = SecondsSince(t0);
         run.summary = ReferenceSummaryJson(in.scene, r, run.wall_s);
         run.outcome = ReferenceOutcome(r);
-        on_grid(r, &grids[i]);
+        grids[i] = OnGrid(r, e.t_s, nb);
         run.history = std::move(r.history);
         e.perturbations[i] = in.perturbation;
         e.outcomes[i] = OutcomeOf(run, in.scene, min_impact_rate_radps);
@@ -314,35 +354,7 @@ ReferencePerturbationMembers RunReferencePerturbationMembers(
     const ToleranceProfile profile = LocalTolerance(nominal_scene, b + 1, nominal.history);
     e.local_tolerance_rad[b].resize(n_grid);
     for (size_t k = 0; k < n_grid; ++k) e.local_tolerance_rad[b][k] = profile.At(e.t_s[k]);
-    e.lo_rad[b] = nominal_grid[b];
-    e.hi_rad[b] = nominal_grid[b];
-    e.spread_rad[b].assign(n_grid, 0.0);
-    for (size_t k = 0; k < n_grid; ++k) {
-      const double nom = nominal_grid[b][k];
-      if (e.t_s[k] > nominal_model_end_s) {
-        // The nominal run's model ends here (it stopped, or its motion is undecided): nothing
-        // is predictable from here on, and the horizon is here at the latest.
-        if (!e.horizon_s[b]) e.horizon_s[b] = e.t_s[k];
-        continue;
-      }
-      if (std::isnan(nom)) continue;  // past the nominal run's overturn
-      // A member whose model ended here while the nominal run's goes on (it stopped, or its
-      // motion is undecided) is a spread beyond any tolerance: the inputs' uncertainty reaches
-      // a different end.
-      bool lost = false;
-      for (int i = 0; i < members; ++i) {
-        const double v = grids[i][b][k];
-        if (e.t_s[k] > member_model_end_s[i]) lost = true;
-        if (std::isnan(v)) continue;
-        e.lo_rad[b][k] = std::min(e.lo_rad[b][k], v);
-        e.hi_rad[b][k] = std::max(e.hi_rad[b][k], v);
-        e.spread_rad[b][k] = std::max(e.spread_rad[b][k], std::abs(v - nom));
-      }
-      e.max_spread_rad[b] = std::max(e.max_spread_rad[b], e.spread_rad[b][k]);
-      if (!e.horizon_s[b] && (lost || e.spread_rad[b][k] > e.tolerance_rad[b])) {
-        e.horizon_s[b] = e.t_s[k];
-      }
-    }
+    MeasureSpread(b, nominal_grid[b], nominal_model_end_s, grids, member_model_end_s, &e);
   }
   e.wall_s = SecondsSince(start);
   return e;
@@ -389,7 +401,7 @@ nlohmann::json PredictabilityJson(const Scene& scene, const ReferencePerturbatio
   j["spread_rad"] = nlohmann::json::object();
   j["tolerance_rad"] = nlohmann::json::object();
   for (int b = 0; b < nb; ++b) {
-    const std::string th = Numbered("theta", b + 1);
+    const std::string th = BodyColumn("theta", b + 1);
     j["horizon_s"][th] = opt(e.horizon_s[b]);
     j["spread_rad"][th] = e.max_spread_rad[b];
     j["tolerance_rad"][th] = e.tolerance_rad[b];
@@ -408,7 +420,7 @@ std::string PerturbationBandCsv(const ReferencePerturbationMembers& e) {
   const int nb = std::min(e.blocks, static_cast<int>(e.lo_rad.size()));
   std::string out = "t";
   for (int b = 1; b <= nb; ++b) {
-    const std::string th = Numbered("theta", b);
+    const std::string th = BodyColumn("theta", b);
     for (const char* col : {"_lo", "_hi", "_spread", "_tol"}) out.append(",").append(th + col);
   }
   out += "\n";
@@ -436,11 +448,11 @@ std::string OutcomesCsv(const std::vector<MemberOutcome>& outcomes,
       "member,horizontal_factor,vertical_factor,initial_factor_theta1,status,overturned_block,"
       "overturn_t_s,peak_theta1_rad,peak_theta1_t_s,residual_theta1_rad,";
   for (int b = 2; b <= nb; ++b) {
-    const std::string th = Numbered("theta", b);
+    const std::string th = BodyColumn("theta", b);
     out.append("peak_").append(th).append("_rad,peak_").append(th).append("_t_s,residual_");
     out.append(th).append("_rad,");
   }
-  for (int b = 1; b <= nb; ++b) out.append("rms_theta").append(std::to_string(b)).append("_rad,");
+  for (int b = 1; b <= nb; ++b) out.append("rms_").append(BodyColumn("theta", b)).append("_rad,");
   out += "impacts\n";
   for (const MemberOutcome& o : outcomes) {
     const MemberPerturbation p = o.member >= 0 && o.member < static_cast<int>(perturbations.size())
@@ -448,7 +460,8 @@ std::string OutcomesCsv(const std::vector<MemberOutcome>& outcomes,
                                      : MemberPerturbation{};
     // Appended piece by piece (GCC 12 warns, wrongly, on long chains of string +).
     out.append(std::to_string(o.member));
-    for (double v : {p.horizontal_factor, p.vertical_factor, p.initial_factor[0]}) {
+    const double theta1_factor = p.theta_factor.empty() ? 1.0 : p.theta_factor[0];
+    for (double v : {p.horizontal_factor, p.vertical_factor, theta1_factor}) {
       out.append(",").append(Num(v));
     }
     out.append(",").append(StatusText(o.status)).append(",");

@@ -29,11 +29,10 @@ struct MemberPerturbation {
   double vertical_factor = 1.0;    ///< amplitude factor of base.vertical
   /// Largest sample move of each record, m/s^2 (0 for analytic motions).
   double horizontal_max_sample_move_mps2 = 0.0, vertical_max_sample_move_mps2 = 0.0;
-  /// Factors of theta1, theta2 - theta1, omega1, omega2 - omega1.
-  double initial_factor[4] = {1, 1, 1, 1};
-  /// N >= 3 blocks: the factors of theta_k - theta_(k-1) and omega_k - omega_(k-1) of every block
-  /// k = 3..N, in that order (theta3's, omega3's, theta4's, ...); empty for one or two blocks.
-  std::vector<double> initial_factor_from3;
+  /// Per body (body k at k - 1): the factors of its initial angle and rate, body 1's absolute,
+  /// every other body's relative to the body below (theta_k - theta_(k-1), omega_k -
+  /// omega_(k-1)). Empty for a member left unperturbed.
+  std::vector<double> theta_factor, omega_factor;
 };
 
 /// A member's scene and base motion.

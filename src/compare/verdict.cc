@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <limits>
 
+#include "scene/body_kind.h"
 #include "util/format.h"
 
 namespace rockbench {
@@ -40,15 +41,6 @@ std::string Value(double v, const std::string& unit) {
 }
 
 }  // namespace
-
-StatisticalComparison ComparePerturbationMembers(const std::vector<MemberOutcome>& reference,
-                                                 const std::vector<MemberOutcome>& engine,
-                                                 bool two_blocks, const double tolerance_rad[2],
-                                                 double time_margin_s, double alpha) {
-  return ComparePerturbationMembers(reference, engine,
-                                    std::span<const double>(tolerance_rad, two_blocks ? 2 : 1),
-                                    time_margin_s, alpha);
-}
 
 StatisticalComparison ComparePerturbationMembers(const std::vector<MemberOutcome>& reference,
                                                  const std::vector<MemberOutcome>& engine,
@@ -109,7 +101,7 @@ StatisticalComparison ComparePerturbationMembers(const std::vector<MemberOutcome
     s.quantities.push_back(std::move(q));
   };
   for (int b = 0; b < nb; ++b) {
-    const std::string th = Numbered("theta", b + 1);
+    const std::string th = BodyColumn("theta", b + 1);
     const double tol = tolerance_rad[b];
     add(
         "peak_" + th + "_rad", "peak |" + th + "|", "rad", 0.1 * tol,
@@ -117,7 +109,7 @@ StatisticalComparison ComparePerturbationMembers(const std::vector<MemberOutcome
         [](const MemberOutcome&) { return true; });
   }
   for (int b = 0; b < nb; ++b) {
-    const std::string th = Numbered("theta", b + 1);
+    const std::string th = BodyColumn("theta", b + 1);
     const double tol = tolerance_rad[b];
     // The time of the largest excursion means something only for a block that moved.
     add(
@@ -126,7 +118,7 @@ StatisticalComparison ComparePerturbationMembers(const std::vector<MemberOutcome
         [b, tol](const MemberOutcome& o) { return o.peak_rad[b] > tol; });
   }
   for (int b = 0; b < nb; ++b) {
-    const std::string th = Numbered("theta", b + 1);
+    const std::string th = BodyColumn("theta", b + 1);
     add(
         "rms_" + th + "_rad", "RMS " + th, "rad", 0.1 * tolerance_rad[b],
         [b](const MemberOutcome& o) { return o.rms_rad[b]; },
@@ -138,7 +130,7 @@ StatisticalComparison ComparePerturbationMembers(const std::vector<MemberOutcome
       [](const MemberOutcome&) { return true; });
   s.quantities.back().in_family = false;
   for (int b = 0; b < nb; ++b) {
-    const std::string th = Numbered("theta", b + 1);
+    const std::string th = BodyColumn("theta", b + 1);
     add(
         "residual_" + th + "_rad", "residual " + th, "rad", 0.1 * tolerance_rad[b],
         [b](const MemberOutcome& o) { return o.residual_rad[b]; },
@@ -195,9 +187,9 @@ StatisticalComparison ComparePerturbationMembers(const std::vector<MemberOutcome
 
 namespace {
 
-// "theta1", "theta2", ... for block b + 1.
-std::string th(int b) {
-  return Numbered("theta", b + 1);
+// The name of body b + 1's compared angle: "theta1", "theta2", ...
+std::string Name(int b, const AngleAgreement& g) {
+  return BodyColumn(g.quantity, b + 1);
 }
 
 // A flag in words: what the engine did.
@@ -230,7 +222,7 @@ std::string FlagsText(const EngineAgreement& a, double from_s, double to_s,
 
 // Why a block is not judged point by point alone, in words.
 std::string NotJudgedText(int b, const AngleAgreement& g) {
-  return th(b) + " is not judged point by point alone (the reference's peak, " +
+  return Name(b, g) + " is not judged point by point alone (the reference's peak, " +
          Format("%.3g", g.peak_reference_rad) + " rad, is below " +
          Format("%g", kJudgedPeakOverFloor) + " x the tolerance floor " +
          Format("%.3g", g.floor_rad) +
@@ -248,10 +240,11 @@ std::string PeakText(const AngleAgreement& g) {
          " against " + std::to_string(g.impacts_reference) + ")";
 }
 
-// "u2 (slip of block 2 on block 1)", "z1 (lift of block 1 off the ground)".
-std::string SlipName(bool lift, int b) {
+// "u2 (slip of block 2 on block 1)", "z1 (lift of block 1 off the ground)": body b + 1's.
+std::string SlipName(const SlipAgreement& g, int b) {
+  const bool lift = g.quantity == "z";
   const std::string support = b == 0 ? std::string("the ground") : "block " + std::to_string(b);
-  return Numbered(lift ? "z" : "u", b + 1) + " (" + (lift ? "lift" : "slip") + " of block " +
+  return BodyColumn(g.quantity, b + 1) + " (" + (lift ? "lift" : "slip") + " of block " +
          std::to_string(b + 1) + (lift ? " off " : " on ") + support + ")";
 }
 
@@ -273,11 +266,11 @@ std::string EndText(const std::optional<int>& overturned, const std::optional<in
 
 // The first block below the floor whose peak is beyond its peak tolerance, in words; empty:
 // none.
-std::string PeakDecides(const std::vector<const AngleAgreement*>& ang, int nb) {
-  for (int b = 0; b < nb; ++b) {
+std::string PeakDecides(const std::vector<const AngleAgreement*>& ang) {
+  for (int b = 0; b < static_cast<int>(ang.size()); ++b) {
     const AngleAgreement& g = *ang[b];
     if (g.judged || g.peak_within_tolerance) continue;
-    return th(b) + " peak " + Format("%.3g", g.peak_engine_rad) + " rad against " +
+    return Name(b, g) + " peak " + Format("%.3g", g.peak_engine_rad) + " rad against " +
            Format("%.3g", g.peak_reference_rad) + " rad, beyond its peak tolerance " +
            Format("%.3g", g.peak_tolerance_rad) + " rad (the block is below the floor)";
   }
@@ -286,7 +279,8 @@ std::string PeakDecides(const std::vector<const AngleAgreement*>& ang, int nb) {
 
 // The block with the largest error ratio, in words: before the horizons (`predictable`), or
 // over the whole comparison.
-std::string RatioText(const std::vector<const AngleAgreement*>& ang, int nb, bool predictable) {
+std::string RatioText(const std::vector<const AngleAgreement*>& ang, bool predictable) {
+  const int nb = static_cast<int>(ang.size());
   auto ratio = [predictable](const AngleAgreement* g) {
     return predictable ? g->max_error_ratio_predictable : g->max_error_ratio;
   };
@@ -294,7 +288,8 @@ std::string RatioText(const std::vector<const AngleAgreement*>& ang, int nb, boo
   for (int b = 1; b < nb; ++b) {
     if (ratio(ang[b]) > ratio(ang[w])) w = b;
   }
-  return th(w) + " error at most " + Format("%.3g", ratio(ang[w])) + " x the local tolerance" +
+  return Name(w, *ang[w]) + " error at most " + Format("%.3g", ratio(ang[w])) +
+         " x the local tolerance" +
          (predictable ? " where the reference is predictable" : std::string());
 }
 
@@ -308,336 +303,280 @@ std::string VerdictLabel(const std::string& kind) {
   return "DIFFERS";
 }
 
-Verdict MakeVerdict(const Scene& scene, const EngineAgreement& a,
-                    const std::optional<Horizons>& predictability,
-                    const std::optional<StatisticalComparison>& statistics) {
-  Verdict v;
-  const int nb = a.blocks();
-  std::vector<const AngleAgreement*> ang;
-  for (int b = 1; b <= nb; ++b) ang.push_back(&a.angle(b));
-  const double slack_s = scene.run.output_interval_s;
-  const double inf = std::numeric_limits<double>::infinity();
-  // Where the reference's model holds: to its end when it stopped on a violated assumption, or
-  // to its first impact that the model leaves undecided (no admissible outcome or several),
-  // whichever comes first.
+namespace {
+
+// Where the reference's model holds: to its end when it stopped on a violated assumption, or to
+// its first impact that the model leaves undecided (no admissible outcome or several),
+// whichever comes first.
+struct ModelEnd {
+  bool ends = false;
+  double at_s = std::numeric_limits<double>::infinity();
+  std::string why;
+};
+
+ModelEnd ModelEndOf(const EngineAgreement& a) {
   const bool stopped = a.reference_status == RunStatus::kAssumptionViolated;
   const bool undetermined =
       a.reference_undetermined_s && (!stopped || *a.reference_undetermined_s < a.reference_end_s);
-  const bool model_ends = stopped || undetermined;
-  const double model_end_s =
-      undetermined ? *a.reference_undetermined_s : (stopped ? a.reference_end_s : inf);
-  const std::string model_end_why =
-      undetermined ? a.reference_undetermined_detail
-                   : (a.reference_status_detail.empty() ? std::string("assumption violated")
-                                                        : a.reference_status_detail);
+  ModelEnd m;
+  m.ends = stopped || undetermined;
+  if (undetermined) m.at_s = *a.reference_undetermined_s;
+  if (!undetermined && stopped) m.at_s = a.reference_end_s;
+  m.why = undetermined ? a.reference_undetermined_detail
+                       : (a.reference_status_detail.empty() ? std::string("assumption violated")
+                                                            : a.reference_status_detail);
+  return m;
+}
 
-  // A run that is not finite failed: never an agreement. The engine's failure is its own,
-  // whatever the reference did; a reference that failed leaves nothing to compare with.
+Verdict Decided(std::string kind, bool agrees, std::string text, std::string decided_by) {
+  Verdict v;
+  v.kind = std::move(kind);
+  v.agrees = agrees;
+  v.text = std::move(text);
+  v.decided_by = std::move(decided_by);
+  return v;
+}
+
+// A run that is not finite failed: never an agreement. The engine's failure is its own,
+// whatever the reference did; a reference that failed leaves nothing to compare with.
+std::optional<Verdict> FailedRunVerdict(const EngineAgreement& a,
+                                        const std::optional<Horizons>& predictability,
+                                        const std::optional<StatisticalComparison>& statistics) {
   if (IsNonFinite(a.status)) {
-    v.kind = "violates_model";
-    v.agrees = false;
-    v.decided_by = "non_finite at t = " + Format("%.6g", a.non_finite_t_s) + " s" +
-                   (a.non_finite_what.empty() ? std::string() : " (" + a.non_finite_what + ")");
-    v.text =
-        "the engine's run failed: " + (a.status_detail.empty() ? v.decided_by : a.status_detail) +
-        "; a run that is not finite is never an agreement";
-    return v;
+    const std::string by =
+        "non_finite at t = " + Format("%.6g", a.non_finite_t_s) + " s" +
+        (a.non_finite_what.empty() ? std::string() : " (" + a.non_finite_what + ")");
+    return Decided("violates_model", false,
+                   "the engine's run failed: " + (a.status_detail.empty() ? by : a.status_detail) +
+                       "; a run that is not finite is never an agreement",
+                   by);
   }
   if (IsNonFinite(a.reference_status)) {
-    v.kind = "reference_failed";
-    v.agrees = false;
-    v.decided_by = "reference non_finite at t = " + Format("%.6g", a.reference_non_finite_t_s) +
-                   " s" +
-                   (a.reference_non_finite_what.empty() ? std::string()
-                                                        : " (" + a.reference_non_finite_what + ")");
-    v.text = "no verdict: the reference's solution failed (" +
-             (a.reference_status_detail.empty() ? v.decided_by : a.reference_status_detail) +
-             "), so there is nothing to compare the engine with";
-    return v;
+    const std::string by =
+        "reference non_finite at t = " + Format("%.6g", a.reference_non_finite_t_s) + " s" +
+        (a.reference_non_finite_what.empty() ? std::string()
+                                             : " (" + a.reference_non_finite_what + ")");
+    return Decided("reference_failed", false,
+                   "no verdict: the reference's solution failed (" +
+                       (a.reference_status_detail.empty() ? by : a.reference_status_detail) +
+                       "), so there is nothing to compare the engine with",
+                   by);
   }
   if (predictability && predictability->non_finite_members > 0) {
-    v.kind = "reference_failed";
-    v.agrees = false;
-    v.decided_by = "reference ensemble: " + std::to_string(predictability->non_finite_members) +
-                   " members non_finite";
-    v.text = "no verdict: " + std::to_string(predictability->non_finite_members) +
-             " of the reference ensemble's members failed (" + predictability->non_finite_detail +
-             "), so the reference's predictability is unknown";
-    return v;
+    return Decided("reference_failed", false,
+                   "no verdict: " + std::to_string(predictability->non_finite_members) +
+                       " of the reference ensemble's members failed (" +
+                       predictability->non_finite_detail +
+                       "), so the reference's predictability is unknown",
+                   "reference ensemble: " + std::to_string(predictability->non_finite_members) +
+                       " members non_finite");
   }
   if (statistics && statistics->engine_non_finite > 0) {
-    v.kind = "violates_model";
-    v.agrees = false;
-    v.decided_by = "non_finite in " + std::to_string(statistics->engine_non_finite) +
-                   " of its ensemble's members";
-    v.text = "the engine's run failed on " + std::to_string(statistics->engine_non_finite) +
-             " of its ensemble's members (" + statistics->engine_non_finite_detail +
-             "); a run that is not finite is never an agreement";
-    return v;
+    return Decided("violates_model", false,
+                   "the engine's run failed on " + std::to_string(statistics->engine_non_finite) +
+                       " of its ensemble's members (" + statistics->engine_non_finite_detail +
+                       "); a run that is not finite is never an agreement",
+                   "non_finite in " + std::to_string(statistics->engine_non_finite) +
+                       " of its ensemble's members");
   }
+  return std::nullopt;
+}
 
-  // 0. The engine's own integrity: a blow-up or energy gained without input decides, whatever
-  //    the angles; sliding, uplift and penetration decide where the reference's model holds.
-  //    With a finite friction the reference's model slides and lifts off (its unilateral model,
-  //    docs/sliding.md): there only penetration is forbidden, and the angles judge the rest.
-  {
-    const std::string failure = FlagsText(a, -inf, inf, {"blow_up", "energy_growth"}, true);
-    const std::vector<std::string> excluded =
-        scene.has_finite_friction() ? std::vector<std::string>{"penetration"}
-                                    : std::vector<std::string>{"sliding", "uplift", "penetration"};
-    const std::string forbidden = FlagsText(a, -inf, model_end_s, excluded, true);
-    if (!failure.empty() || !forbidden.empty() || a.status == RunStatus::kBlowUp) {
-      v.kind = "violates_model";
-      v.agrees = false;
-      std::string what = failure;
-      if (!forbidden.empty()) {
-        what += (what.empty() ? "" : "; ") + forbidden +
-                (model_ends ? ", before the reference's model ends at " +
-                                  Format("%.2f", model_end_s) + " s"
-                 : scene.has_finite_friction()
-                     ? ", while the reference's model (rigid contact) holds throughout"
-                     : ", while the reference's model (no sliding, no uplift, rigid "
-                       "contact) holds throughout");
-      }
-      if (what.empty()) what = "the run ended in a blow-up";
-      v.text = "the engine does what the model forbids: " + what;
-      v.decided_by = what.substr(0, what.find(';'));
-      return v;
+// 0. The engine's own integrity: a blow-up or energy gained without input decides, whatever
+//    the angles; sliding, uplift and penetration decide where the reference's model holds.
+//    With a finite friction the reference's model slides and lifts off (its unilateral model,
+//    docs/sliding.md): there only penetration is forbidden, and the angles judge the rest.
+std::optional<Verdict> IntegrityVerdict(const Scene& scene, const EngineAgreement& a,
+                                        const ModelEnd& model) {
+  const double inf = std::numeric_limits<double>::infinity();
+  const std::string failure = FlagsText(a, -inf, inf, {"blow_up", "energy_growth"}, true);
+  const std::vector<std::string> excluded =
+      scene.has_finite_friction() ? std::vector<std::string>{"penetration"}
+                                  : std::vector<std::string>{"sliding", "uplift", "penetration"};
+  const std::string forbidden = FlagsText(a, -inf, model.at_s, excluded, true);
+  if (failure.empty() && forbidden.empty() && a.status != RunStatus::kBlowUp) return std::nullopt;
+  std::string what = failure;
+  if (!forbidden.empty()) {
+    what +=
+        (what.empty() ? "" : "; ") + forbidden +
+        (model.ends ? ", before the reference's model ends at " + Format("%.2f", model.at_s) + " s"
+         : scene.has_finite_friction()
+             ? ", while the reference's model (rigid contact) holds throughout"
+             : ", while the reference's model (no sliding, no uplift, rigid "
+               "contact) holds throughout");
+  }
+  if (what.empty()) what = "the run ended in a blow-up";
+  return Decided("violates_model", false, "the engine does what the model forbids: " + what,
+                 what.substr(0, what.find(';')));
+}
+
+// The slip and lift agreements of the bodies that carry them, with the body's 0-based index.
+std::vector<std::pair<int, const SlipAgreement*>> Slips(const EngineAgreement& a) {
+  std::vector<std::pair<int, const SlipAgreement*>> out;
+  for (int b = 0; b < a.blocks(); ++b) {
+    for (const std::optional<SlipAgreement>* g : {&a.bodies[b].slip, &a.bodies[b].lift}) {
+      if (*g) out.emplace_back(b, &**g);
     }
   }
+  return out;
+}
 
-  if (!predictability) {
-    bool all_within = true;
-    std::string out;
-    std::string unjudged;
-    for (int b = 0; b < nb; ++b) {
-      if (!ang[b]->judged) {
-        const std::string words = NotJudgedText(b, *ang[b]) + ": " + PeakText(*ang[b]);
-        if (ang[b]->peak_within_tolerance) {
-          unjudged += "; " + words;
-        } else {
-          all_within = false;
-          out += (out.empty() ? "" : "; ") + words;
-        }
-      }
-      if (ang[b]->within_tolerance) continue;
-      all_within = false;
-      out += (out.empty() ? "" : "; ") + th(b) + " leaves the local tolerance (" +
-             Format("%.3g", ang[b]->tolerance_at_horizon_rad) + " rad there) at " +
-             Format("%.3f", ang[b]->horizon_s) + " s";
-    }
-    for (int b = 0; b < static_cast<int>(a.slip.size()); ++b) {
-      for (const bool lift : {false, true}) {
-        const SlipAgreement& g = lift ? a.lift[b] : a.slip[b];
-        if (g.within_tolerance) continue;
-        all_within = false;
-        out += (out.empty() ? "" : "; ") + SlipName(lift, b) + " leaves its tolerance (" +
-               Format("%.3g", g.tolerance_m) + " m) at " + Format("%.3f", g.horizon_s) + " s";
-      }
-    }
-    // Where the reference's model ends, its end is not an outcome to match.
-    if ((!a.overturn_agree || !a.left_support_agree) && !model_ends) {
-      all_within = false;
-      out += (out.empty() ? "" : "; ") +
-             EndText(a.overturn_block_engine, a.left_support_block_engine) +
-             " in the engine's run, " +
-             EndText(a.overturn_block_reference, a.left_support_block_reference) +
-             " in the reference's";
-    }
-    const bool angles_out = std::any_of(
-        ang.begin(), ang.end(), [](const AngleAgreement* g) { return !g->within_tolerance; });
-    v.decided_by = angles_out || PeakDecides(ang, nb).empty() ? RatioText(ang, nb, false)
-                                                              : PeakDecides(ang, nb);
-    // The same rule as with the ensemble: where the reference's model ends, it has nothing to
-    // say after that instant; what came before is said.
-    if (model_ends) {
-      v.kind = "outside_model";
-      v.agrees = false;
-      v.text = "outside the model: the reference's model ends at " + Format("%.2f", model_end_s) +
-               " s (" + model_end_why + "); pointwise until then the engine " +
-               (all_within ? "agrees with it" + unjudged : "differs: " + out) +
-               "; no reference ensemble was run";
-      v.decided_by = model_end_why;
-      return v;
-    }
-    v.kind = all_within ? "pointwise_only" : "pointwise_differs";
-    v.agrees = all_within;
-    v.text = all_within ? "agrees pointwise over the whole comparison (" +
-                              Format("%.3f", a.compared_until_s) + " s)" + unjudged +
-                              "; no reference ensemble was run, so the reference's own "
-                              "predictability was not measured"
-                        : out +
-                              "; no reference ensemble was run, so whether the reference is "
-                              "itself predictable there is unknown";
-    return v;
-  }
-
-  // 1. Before the horizon: an error there is the engine's.
-  std::string before, agree_part;
-  bool whole_run = true, peak_decided = false;
+// No ensemble was run: the pointwise comparison over the whole run decides.
+Verdict PointwiseVerdict(const EngineAgreement& a, const std::vector<const AngleAgreement*>& ang,
+                         const ModelEnd& model) {
+  const int nb = static_cast<int>(ang.size());
+  bool all_within = true;
+  std::string out;
+  std::string unjudged;
   for (int b = 0; b < nb; ++b) {
-    const std::optional<double>& hp = predictability->horizon_s[b];
+    if (!ang[b]->judged) {
+      const std::string words = NotJudgedText(b, *ang[b]) + ": " + PeakText(*ang[b]);
+      if (ang[b]->peak_within_tolerance) {
+        unjudged += "; " + words;
+      } else {
+        all_within = false;
+        out += (out.empty() ? "" : "; ") + words;
+      }
+    }
+    if (ang[b]->within_tolerance) continue;
+    all_within = false;
+    out += (out.empty() ? "" : "; ") + Name(b, *ang[b]) + " leaves the local tolerance (" +
+           Format("%.3g", ang[b]->tolerance_at_horizon_rad) + " rad there) at " +
+           Format("%.3f", ang[b]->horizon_s) + " s";
+  }
+  for (const auto& [b, g] : Slips(a)) {
+    if (g->within_tolerance) continue;
+    all_within = false;
+    out += (out.empty() ? "" : "; ") + SlipName(*g, b) + " leaves its tolerance (" +
+           Format("%.3g", g->tolerance_m) + " m) at " + Format("%.3f", g->horizon_s) + " s";
+  }
+  // Where the reference's model ends, its end is not an outcome to match.
+  if ((!a.overturn_agree || !a.left_support_agree) && !model.ends) {
+    all_within = false;
+    out +=
+        (out.empty() ? "" : "; ") + EndText(a.overturn_block_engine, a.left_support_block_engine) +
+        " in the engine's run, " +
+        EndText(a.overturn_block_reference, a.left_support_block_reference) + " in the reference's";
+  }
+  // The same rule as with the ensemble: where the reference's model ends, it has nothing to
+  // say after that instant; what came before is said.
+  if (model.ends) {
+    return Decided("outside_model", false,
+                   "outside the model: the reference's model ends at " +
+                       Format("%.2f", model.at_s) + " s (" + model.why +
+                       "); pointwise until then the engine " +
+                       (all_within ? "agrees with it" + unjudged : "differs: " + out) +
+                       "; no reference ensemble was run",
+                   model.why);
+  }
+  const bool angles_out = std::any_of(ang.begin(), ang.end(),
+                                      [](const AngleAgreement* g) { return !g->within_tolerance; });
+  const std::string by =
+      angles_out || PeakDecides(ang).empty() ? RatioText(ang, false) : PeakDecides(ang);
+  if (!all_within) {
+    return Decided("pointwise_differs", false,
+                   out +
+                       "; no reference ensemble was run, so whether the reference is "
+                       "itself predictable there is unknown",
+                   by);
+  }
+  return Decided("pointwise_only", true,
+                 "agrees pointwise over the whole comparison (" +
+                     Format("%.3f", a.compared_until_s) + " s)" + unjudged +
+                     "; no reference ensemble was run, so the reference's own "
+                     "predictability was not measured",
+                 by);
+}
+
+// What the comparison before the horizon says: the errors there (`before`: the engine's), what
+// agrees, and what decides.
+struct BeforeHorizon {
+  std::string before, agree_part;
+  bool whole_run = true;  ///< no block has a horizon: the reference is predictable throughout
+  bool angles_decide = false, peak_decides = false;
+  std::string slip_decided;
+};
+
+// Whether block b's angle agrees where the reference is predictable (to its horizon `hp`,
+// within the output interval `slack_s`).
+bool AgreesPredictable(const AngleAgreement& g, const std::optional<double>& hp, double slack_s) {
+  return g.within_tolerance || (hp && g.horizon_s >= *hp - slack_s);
+}
+
+// 1. Before the horizon: an error there is the engine's. The angles' part.
+void AnglesBeforeHorizon(const std::vector<const AngleAgreement*>& ang, const Horizons& horizons,
+                         double slack_s, BeforeHorizon* out) {
+  bool peak_decided = false;
+  for (int b = 0; b < static_cast<int>(ang.size()); ++b) {
+    const std::optional<double>& hp = horizons.horizon_s[b];
     const AngleAgreement& g = *ang[b];
-    whole_run = whole_run && !hp;
+    out->whole_run = out->whole_run && !hp;
     const std::string hp_text = hp ? Format("%.2f s", *hp) : "the end of the run";
     // A block below the floor: its peak decides where the reference is predictable throughout
     // (with a horizon, the statistics beyond it judge the peak).
     if (!g.judged) {
       const std::string words = NotJudgedText(b, g) + ": " + PeakText(g);
       if (g.peak_within_tolerance || hp) {
-        agree_part += (agree_part.empty() ? "" : "; ") + words +
-                      (hp ? " (the reference's own horizon is " + hp_text + ")" : std::string());
+        out->agree_part +=
+            (out->agree_part.empty() ? "" : "; ") + words +
+            (hp ? " (the reference's own horizon is " + hp_text + ")" : std::string());
       } else {
-        before += (before.empty() ? "" : "; ") + words +
-                  ", while the reference is predictable throughout";
+        out->before += (out->before.empty() ? "" : "; ") + words +
+                       ", while the reference is predictable throughout";
         peak_decided = true;
       }
     }
-    const bool ok = g.within_tolerance || (hp && g.horizon_s >= *hp - slack_s);
-    if (!ok) {
-      before += (before.empty() ? "" : "; ") + th(b) + " leaves the local tolerance (" +
-                Format("%.3g", g.tolerance_at_horizon_rad) + " rad there) at " +
-                Format("%.2f", g.horizon_s) + " s while the reference is predictable until " +
-                hp_text + " (max error there " + Format("%.3g", g.max_abs_error_predictable_rad) +
-                " rad, " + Format("%.3g", g.max_error_ratio_predictable) +
-                " x the local tolerance)";
+    if (!AgreesPredictable(g, hp, slack_s)) {
+      out->angles_decide = true;
+      out->before +=
+          (out->before.empty() ? "" : "; ") + Name(b, g) + " leaves the local tolerance (" +
+          Format("%.3g", g.tolerance_at_horizon_rad) + " rad there) at " +
+          Format("%.2f", g.horizon_s) + " s while the reference is predictable until " + hp_text +
+          " (max error there " + Format("%.3g", g.max_abs_error_predictable_rad) + " rad, " +
+          Format("%.3g", g.max_error_ratio_predictable) + " x the local tolerance)";
     } else {
-      agree_part += (agree_part.empty() ? "" : "; ") + th(b) + " " +
-                    (g.within_tolerance ? "within the local tolerance for the whole comparison"
-                                        : "until " + Format("%.2f", g.horizon_s) + " s") +
-                    (hp ? " (the reference's own horizon is " + hp_text + ")"
-                        : " (the reference is predictable throughout)");
+      out->agree_part += (out->agree_part.empty() ? "" : "; ") + Name(b, g) + " " +
+                         (g.within_tolerance ? "within the local tolerance for the whole comparison"
+                                             : "until " + Format("%.2f", g.horizon_s) + " s") +
+                         (hp ? " (the reference's own horizon is " + hp_text + ")"
+                             : " (the reference is predictable throughout)");
     }
   }
   // Whether the angles' pointwise errors decide (else a peak below the floor, or the slip).
-  bool angles_decide = false;
-  for (int b = 0; b < nb; ++b) {
-    const std::optional<double>& hp = predictability->horizon_s[b];
-    const AngleAgreement& g = *ang[b];
-    angles_decide = angles_decide || !(g.within_tolerance || (hp && g.horizon_s >= *hp - slack_s));
-  }
-  const bool peak_decides = peak_decided && !angles_decide;
-  // Slip and lift where the reference is predictable: on the slip's own scale.
-  std::string slip_before, slip_decided;
+  out->peak_decides = peak_decided && !out->angles_decide;
+}
+
+// 1. Before the horizon, slip and lift where the reference is predictable: on the slip's own
+// scale.
+void SlipBeforeHorizon(const EngineAgreement& a, BeforeHorizon* out) {
+  std::string slip_before;
   double slip_worst = 0.0;
-  for (int b = 0; b < static_cast<int>(a.slip.size()); ++b) {
-    for (const bool lift : {false, true}) {
-      const SlipAgreement& g = lift ? a.lift[b] : a.slip[b];
-      if (g.agrees_predictable()) {
-        agree_part += (agree_part.empty() ? "" : "; ") + SlipName(lift, b) + " within " +
-                      Format("%.3g", g.tolerance_m) + " m (max error " +
-                      Format("%.3g", g.max_abs_error_predictable_m) + " m)";
-        continue;
-      }
-      slip_before += (slip_before.empty() ? "" : "; ") + SlipName(lift, b) +
-                     " leaves its tolerance (" + Format("%.3g", g.tolerance_m) +
-                     " m: 10% of the reference's peak " + Format("%.3g", g.peak_reference_m) +
-                     " m, at least " + Format("%.3g", g.floor_m) + " m) at " +
-                     Format("%.2f", g.horizon_s) +
-                     " s where the reference is predictable (max error there " +
-                     Format("%.3g", g.max_abs_error_predictable_m) + " m, " +
-                     Format("%.3g", g.max_error_ratio_predictable) + " x the tolerance)";
-      if (g.max_error_ratio_predictable > slip_worst) {
-        slip_worst = g.max_error_ratio_predictable;
-        slip_decided = Numbered(lift ? "z" : "u", b + 1) + " error at most " +
-                       Format("%.3g", g.max_error_ratio_predictable) +
-                       " x its tolerance where the reference is predictable";
-      }
+  for (const auto& [b, g] : Slips(a)) {
+    if (g->agrees_predictable()) {
+      out->agree_part += (out->agree_part.empty() ? "" : "; ") + SlipName(*g, b) + " within " +
+                         Format("%.3g", g->tolerance_m) + " m (max error " +
+                         Format("%.3g", g->max_abs_error_predictable_m) + " m)";
+      continue;
+    }
+    slip_before += (slip_before.empty() ? "" : "; ") + SlipName(*g, b) + " leaves its tolerance (" +
+                   Format("%.3g", g->tolerance_m) + " m: 10% of the reference's peak " +
+                   Format("%.3g", g->peak_reference_m) + " m, at least " +
+                   Format("%.3g", g->floor_m) + " m) at " + Format("%.2f", g->horizon_s) +
+                   " s where the reference is predictable (max error there " +
+                   Format("%.3g", g->max_abs_error_predictable_m) + " m, " +
+                   Format("%.3g", g->max_error_ratio_predictable) + " x the tolerance)";
+    if (g->max_error_ratio_predictable > slip_worst) {
+      slip_worst = g->max_error_ratio_predictable;
+      out->slip_decided = BodyColumn(g->quantity, b + 1) + " error at most " +
+                          Format("%.3g", g->max_error_ratio_predictable) +
+                          " x its tolerance where the reference is predictable";
     }
   }
-  if (!slip_before.empty()) before += (before.empty() ? "" : "; ") + slip_before;
-  if (!before.empty()) {
-    v.kind = "differs_before_horizon";
-    v.agrees = false;
-    v.text = "an engine error: " + before;
-    v.decided_by = angles_decide  ? RatioText(ang, nb, true)
-                   : peak_decides ? PeakDecides(ang, nb)
-                                  : slip_decided;
-    return v;
-  }
-  // Overturning, or a block leaving its support, where the reference is predictable throughout
-  // is the engine's to reproduce.
-  if (whole_run && (!a.overturn_agree || !a.left_support_agree) && !model_ends) {
-    v.kind = "differs_before_horizon";
-    v.agrees = false;
-    v.text = "an engine error: " + EndText(a.overturn_block_engine, a.left_support_block_engine) +
-             " in the engine's run, " +
-             EndText(a.overturn_block_reference, a.left_support_block_reference) +
-             " in the reference's, which is predictable throughout";
-    v.decided_by = !a.overturn_agree ? "overturning" : "leaving the support";
-    return v;
-  }
-  if (a.left_support_block_reference && a.left_support_agree) {
-    agree_part += std::string(agree_part.empty() ? "" : "; ") + "block " +
-                  std::to_string(*a.left_support_block_reference) +
-                  " leaves its support in both runs" +
-                  (a.left_support_time_error_s
-                       ? " (the engine's " + Format("%+.3f", *a.left_support_time_error_s) +
-                             " s from the reference's)"
-                       : std::string());
-  }
+  if (!slip_before.empty()) out->before += (out->before.empty() ? "" : "; ") + slip_before;
+}
 
-  // 2. Where the reference stops because its assumptions end, it has nothing to say.
-  auto outside = [&](const std::string& why, double from_s) {
-    v.kind = "outside_model";
-    v.agrees = false;
-    std::string did =
-        FlagsText(a, from_s - slack_s, inf, {"sliding", "uplift", "penetration"}, false);
-    if (a.overturn_block_engine) {
-      did += (did.empty() ? "" : ", ") + std::string("overturned block ") +
-             std::to_string(*a.overturn_block_engine);
-    }
-    if (did.empty()) did = "stayed within the model's assumptions (no flag raised)";
-    v.text = "outside the model: " + why + "; the engine agrees with it until then (" + agree_part +
-             "); there the engine " + did;
-    v.decided_by = why;
-  };
-  if (model_ends) {
-    outside("the reference's model ends at " + Format("%.2f", model_end_s) + " s (" +
-                model_end_why + ")",
-            model_end_s);
-    return v;
-  }
-
-  if (whole_run) {
-    v.kind = "agrees";
-    v.agrees = true;
-    v.text = "agrees pointwise: " + agree_part;
-    v.decided_by = RatioText(ang, nb, true);
-    return v;
-  }
-  v.text = "agrees pointwise where the reference is predictable: " + agree_part;
-  // 3. Beyond the horizon: distributions.
-  if (statistics && !statistics->available && statistics->excluded > 0 &&
-      statistics->reference_members < kMinMembers) {
-    double first_h = inf;
-    for (int b = 0; b < nb; ++b) {
-      if (predictability->horizon_s[b]) first_h = std::min(first_h, *predictability->horizon_s[b]);
-    }
-    const int violated = statistics->excluded - statistics->excluded_non_finite;
-    std::string why =
-        std::to_string(violated) + " reference members stop where the model's assumptions end";
-    if (statistics->excluded_non_finite > 0) {
-      why = std::to_string(statistics->excluded) + " reference members stop (" +
-            std::to_string(violated) + " where the model's assumptions end, " +
-            std::to_string(statistics->excluded_non_finite) + " non_finite)";
-    }
-    outside("beyond the horizon (" + Format("%.2f", first_h) + " s) " + why + ", too few remain (" +
-                std::to_string(statistics->reference_members) + ")",
-            first_h);
-    return v;
-  }
-  if (!statistics || !statistics->available) {
-    v.kind = "agrees_to_horizon";
-    v.agrees = true;
-    v.text += "; beyond the horizon no statistical comparison was made (" +
-              (statistics ? statistics->unavailable_reason
-                          : std::string("no engine ensemble: compare.engine_members = 0")) +
-              ")";
-    v.decided_by = RatioText(ang, nb, true);
-    return v;
-  }
-  const StatisticalComparison& s = *statistics;
+// 3. Beyond the horizon: the ensembles' distributions decide. `v` holds the text so far.
+Verdict StatisticalVerdict(const StatisticalComparison& s, Verdict v) {
   // The family's smallest Holm-adjusted p-value decides.
   const QuantityComparison* lowest = nullptr;
   for (const QuantityComparison& q : s.quantities) {
@@ -689,6 +628,122 @@ Verdict MakeVerdict(const Scene& scene, const EngineAgreement& a,
   return v;
 }
 
+// 2. Where the reference stops because its assumptions end, it has nothing to say: what the
+// engine did from `from_s` on, after what agreed until then.
+Verdict OutsideModel(const EngineAgreement& a, const std::string& agree_part,
+                     const std::string& why, double from_s, double slack_s) {
+  std::string did = FlagsText(a, from_s - slack_s, std::numeric_limits<double>::infinity(),
+                              {"sliding", "uplift", "penetration"}, false);
+  if (a.overturn_block_engine) {
+    did += (did.empty() ? "" : ", ") + std::string("overturned block ") +
+           std::to_string(*a.overturn_block_engine);
+  }
+  if (did.empty()) did = "stayed within the model's assumptions (no flag raised)";
+  return Decided("outside_model", false,
+                 "outside the model: " + why + "; the engine agrees with it until then (" +
+                     agree_part + "); there the engine " + did,
+                 why);
+}
+
+// Too few reference members remain beyond the horizon because they stop where the model's
+// assumptions end: outside the model from the first horizon on.
+Verdict TooFewReferenceMembers(const EngineAgreement& a, const std::string& agree_part,
+                               const Horizons& horizons, const StatisticalComparison& s, int nb,
+                               double slack_s) {
+  double first_h = std::numeric_limits<double>::infinity();
+  for (int b = 0; b < nb; ++b) {
+    if (horizons.horizon_s[b]) first_h = std::min(first_h, *horizons.horizon_s[b]);
+  }
+  const int violated = s.excluded - s.excluded_non_finite;
+  std::string why =
+      std::to_string(violated) + " reference members stop where the model's assumptions end";
+  if (s.excluded_non_finite > 0) {
+    why = std::to_string(s.excluded) + " reference members stop (" + std::to_string(violated) +
+          " where the model's assumptions end, " + std::to_string(s.excluded_non_finite) +
+          " non_finite)";
+  }
+  return OutsideModel(a, agree_part,
+                      "beyond the horizon (" + Format("%.2f", first_h) + " s) " + why +
+                          ", too few remain (" + std::to_string(s.reference_members) + ")",
+                      first_h, slack_s);
+}
+
+}  // namespace
+
+Verdict MakeVerdict(const Scene& scene, const EngineAgreement& a,
+                    const std::optional<Horizons>& predictability,
+                    const std::optional<StatisticalComparison>& statistics) {
+  const int nb = a.blocks();
+  std::vector<const AngleAgreement*> ang;
+  for (int b = 1; b <= nb; ++b) ang.push_back(&a.angle(b));
+  const double slack_s = scene.run.output_interval_s;
+  const ModelEnd model = ModelEndOf(a);
+  if (auto v = FailedRunVerdict(a, predictability, statistics)) return *v;
+  if (auto v = IntegrityVerdict(scene, a, model)) return *v;
+  if (!predictability) return PointwiseVerdict(a, ang, model);
+
+  // 1. Before the horizon: an error there is the engine's.
+  BeforeHorizon bh;
+  AnglesBeforeHorizon(ang, *predictability, slack_s, &bh);
+  SlipBeforeHorizon(a, &bh);
+  if (!bh.before.empty()) {
+    return Decided("differs_before_horizon", false, "an engine error: " + bh.before,
+                   bh.angles_decide  ? RatioText(ang, true)
+                   : bh.peak_decides ? PeakDecides(ang)
+                                     : bh.slip_decided);
+  }
+  // Overturning, or a block leaving its support, where the reference is predictable throughout
+  // is the engine's to reproduce.
+  if (bh.whole_run && (!a.overturn_agree || !a.left_support_agree) && !model.ends) {
+    return Decided(
+        "differs_before_horizon", false,
+        "an engine error: " + EndText(a.overturn_block_engine, a.left_support_block_engine) +
+            " in the engine's run, " +
+            EndText(a.overturn_block_reference, a.left_support_block_reference) +
+            " in the reference's, which is predictable throughout",
+        !a.overturn_agree ? "overturning" : "leaving the support");
+  }
+  std::string& agree_part = bh.agree_part;
+  if (a.left_support_block_reference && a.left_support_agree) {
+    agree_part += std::string(agree_part.empty() ? "" : "; ") + "block " +
+                  std::to_string(*a.left_support_block_reference) +
+                  " leaves its support in both runs" +
+                  (a.left_support_time_error_s
+                       ? " (the engine's " + Format("%+.3f", *a.left_support_time_error_s) +
+                             " s from the reference's)"
+                       : std::string());
+  }
+
+  // 2. Where the reference stops because its assumptions end, it has nothing to say.
+  if (model.ends) {
+    return OutsideModel(
+        a, agree_part,
+        "the reference's model ends at " + Format("%.2f", model.at_s) + " s (" + model.why + ")",
+        model.at_s, slack_s);
+  }
+  if (bh.whole_run) {
+    return Decided("agrees", true, "agrees pointwise: " + agree_part, RatioText(ang, true));
+  }
+  Verdict v;
+  v.text = "agrees pointwise where the reference is predictable: " + agree_part;
+  // 3. Beyond the horizon: distributions.
+  if (statistics && !statistics->available && statistics->excluded > 0 &&
+      statistics->reference_members < kMinMembers) {
+    return TooFewReferenceMembers(a, agree_part, *predictability, *statistics, nb, slack_s);
+  }
+  if (!statistics || !statistics->available) {
+    v.kind = "agrees_to_horizon";
+    v.agrees = true;
+    v.text += "; beyond the horizon no statistical comparison was made (" +
+              (statistics ? statistics->unavailable_reason
+                          : std::string("no engine ensemble: compare.engine_members = 0")) +
+              ")";
+    v.decided_by = RatioText(ang, true);
+    return v;
+  }
+  return StatisticalVerdict(*statistics, v);
+}
+
 double SmallestFamilyP(const StatisticalComparison& s) {
   double p = s.overturn_p_holm;
   for (const QuantityComparison& q : s.quantities) {
@@ -733,8 +788,8 @@ nlohmann::json StatisticsJson(const StatisticalComparison& s) {
   ov["reference"] = {{"none", s.overturn_reference[0]}};
   ov["engine"] = {{"none", s.overturn_engine[0]}};
   for (int b = 1; b <= std::max(s.blocks, 2); ++b) {
-    ov["reference"][Numbered("block", b)] = s.overturn_reference[b];
-    ov["engine"][Numbered("block", b)] = s.overturn_engine[b];
+    ov["reference"][BodyColumn("block", b)] = s.overturn_reference[b];
+    ov["engine"][BodyColumn("block", b)] = s.overturn_engine[b];
   }
   tests["overturn"] = ov;
   j["tests"] = tests;

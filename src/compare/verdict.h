@@ -74,11 +74,6 @@ StatisticalComparison ComparePerturbationMembers(const std::vector<MemberOutcome
                                                  const std::vector<MemberOutcome>& engine,
                                                  std::span<const double> tolerance_rad,
                                                  double time_margin_s, double alpha = 0.05);
-/// The same for one or two blocks (`two_blocks`), `tolerance_rad` holding two entries.
-StatisticalComparison ComparePerturbationMembers(const std::vector<MemberOutcome>& reference,
-                                                 const std::vector<MemberOutcome>& engine,
-                                                 bool two_blocks, const double tolerance_rad[2],
-                                                 double time_margin_s, double alpha = 0.05);
 
 /// The verdict on one engine.
 struct Verdict {

@@ -308,11 +308,7 @@ std::vector<Bound> ParseTolerances(std::string_view text, const std::string& fil
     // The keys of this scene's comparison: theta1..thetaN and their final errors.
     const int blocks = block_count[load_key];
     EngineAgreement shape;
-    if (blocks >= 2) shape.theta2 = AngleAgreement();
-    if (blocks >= 3) {
-      shape.theta_from3.resize(blocks - 2);
-      shape.final_theta_from3_error_rad.resize(blocks - 2);
-    }
+    shape.bodies.resize(static_cast<size_t>(blocks));
     shape.verdict_kind = "agrees";  // the verdict's keys are written when a verdict is made
     nlohmann::json shape_json = AgreementJson(shape);
     shape_json["statistics"] = nullptr;  // its shape depends on the run (null: any key below)

@@ -71,9 +71,9 @@ TEST_F(CompareTest, InterpolatesTheReferenceAtTheEngineTimesNotTheNearestSample)
   // nearest-sample comparison would see |omega| * 3.7 ms, up to 1.5e-3 rad.
   const EngineRun run = FromReference(*ref_, 0.0037, 0.01, 3.99, [](double) { return 0.0; });
   const EngineAgreement a = CompareWithReference(*scene_, *ref_, run);
-  EXPECT_LT(a.theta1.max_abs_error_rad, 1e-12);
-  EXPECT_FALSE(a.theta2.has_value());
-  EXPECT_TRUE(a.theta1.within_tolerance);
+  EXPECT_LT(a.angle(1).max_abs_error_rad, 1e-12);
+  EXPECT_EQ(a.blocks(), 1);
+  EXPECT_TRUE(a.angle(1).within_tolerance);
   EXPECT_EQ(a.samples_compared, static_cast<int>(run.history.samples.size()));
 }
 
@@ -86,18 +86,18 @@ TEST_F(CompareTest, ErrorMetricsAndHorizon) {
     return 2e-3 * std::sin(2.0 * std::numbers::pi * t / 4.0);
   });
   const EngineAgreement a = CompareWithReference(s, *ref_, run);
-  EXPECT_NEAR(a.theta1.max_abs_error_rad, 2e-3, 1e-9);
-  EXPECT_NEAR(a.theta1.rms_error_rad, 2e-3 / std::sqrt(2.0), 2e-6);
-  EXPECT_FALSE(a.theta1.within_tolerance);
-  EXPECT_NEAR(a.theta1.horizon_s, 1.0 / 3.0, 1e-3);
-  EXPECT_LE(a.theta1.max_abs_error_horizon_rad, 1e-3);
-  EXPECT_NEAR(a.theta1.max_abs_error_horizon_rad, 1e-3, 1e-5);
-  EXPECT_DOUBLE_EQ(a.theta1.tolerance_rad, 1e-3);
+  EXPECT_NEAR(a.angle(1).max_abs_error_rad, 2e-3, 1e-9);
+  EXPECT_NEAR(a.angle(1).rms_error_rad, 2e-3 / std::sqrt(2.0), 2e-6);
+  EXPECT_FALSE(a.angle(1).within_tolerance);
+  EXPECT_NEAR(a.angle(1).horizon_s, 1.0 / 3.0, 1e-3);
+  EXPECT_LE(a.angle(1).max_abs_error_horizon_rad, 1e-3);
+  EXPECT_NEAR(a.angle(1).max_abs_error_horizon_rad, 1e-3, 1e-5);
+  EXPECT_DOUBLE_EQ(a.angle(1).tolerance_rad, 1e-3);
   // Default tolerance: 10% of the reference's peak |theta1| (the release angle here).
   const EngineAgreement d = CompareWithReference(*scene_, *ref_, run);
-  EXPECT_DOUBLE_EQ(d.theta1.tolerance_rad, 0.1 * ref_->summary.peak_theta_rad[0]);
-  EXPECT_TRUE(d.theta1.within_tolerance);
-  EXPECT_NEAR(d.theta1.horizon_s, 4.0, 1e-9);  // the end of the grid
+  EXPECT_DOUBLE_EQ(d.angle(1).tolerance_rad, 0.1 * ref_->summary.peak_theta_rad[0]);
+  EXPECT_TRUE(d.angle(1).within_tolerance);
+  EXPECT_NEAR(d.angle(1).horizon_s, 4.0, 1e-9);  // the end of the grid
 }
 
 TEST_F(CompareTest, PeaksAreTheOnesTheEngineMeasured) {
@@ -105,13 +105,13 @@ TEST_F(CompareTest, PeaksAreTheOnesTheEngineMeasured) {
   EngineRun run = FromReference(*ref_, 0.0, 0.01, 4.0, [](double) { return 0.0; });
   EngineAgreement a = CompareWithReference(*scene_, *ref_, run);
   // The release at t = 0 is the peak here.
-  EXPECT_NEAR(a.theta1.peak_rel_error, 0.0, 1e-12);
-  EXPECT_NEAR(a.theta1.peak_time_error_s, 0.0, 1e-12);
+  EXPECT_NEAR(a.angle(1).peak_rel_error, 0.0, 1e-12);
+  EXPECT_NEAR(a.angle(1).peak_time_error_s, 0.0, 1e-12);
   run.outcome.peak_theta_rad[0] = 1.01 * ref_->summary.peak_theta_rad[0];
   run.outcome.peak_theta_t_s[0] = ref_->summary.peak_theta_t_s[0] + 0.02;
   a = CompareWithReference(*scene_, *ref_, run);
-  EXPECT_NEAR(a.theta1.peak_rel_error, 0.01, 1e-12);
-  EXPECT_NEAR(a.theta1.peak_time_error_s, 0.02, 1e-12);
+  EXPECT_NEAR(a.angle(1).peak_rel_error, 0.01, 1e-12);
+  EXPECT_NEAR(a.angle(1).peak_time_error_s, 0.02, 1e-12);
 }
 
 Event Impact(double t, const char* kind, double w1 = -0.4, double w2 = 0.0) {
@@ -190,8 +190,8 @@ TEST_F(CompareTest, JsonAndCsvCarryTheKeysOtherToolsRead) {
   }
   run.wall_s = 0.25;
   const EngineAgreement a = CompareWithReference(two, ref, run);
-  ASSERT_TRUE(a.theta2.has_value());
-  EXPECT_NEAR(a.theta2->max_abs_error_rad, 1e-3, 1e-9);
+  ASSERT_EQ(a.blocks(), 2);
+  EXPECT_NEAR(a.angle(2).max_abs_error_rad, 1e-3, 1e-9);
   const nlohmann::json j = ComparisonJson(two, ref, 0.01, {a});
   const nlohmann::json& e = j["engines"]["bullet"];
   EXPECT_EQ(e["wall_s"], 0.25);
@@ -244,10 +244,10 @@ TEST(CompareTolerance, ABlockThatNeverMovesIsNotHeldToAToleranceOfZero) {
   }
   run.summary = nlohmann::json::object();
   const EngineAgreement a = CompareWithReference(s, ref, run);
-  EXPECT_TRUE(a.theta1.within_tolerance);
-  EXPECT_NEAR(a.theta1.horizon_s, 2.0, 1e-9);
+  EXPECT_TRUE(a.angle(1).within_tolerance);
+  EXPECT_NEAR(a.angle(1).horizon_s, 2.0, 1e-9);
   // The 10% rule still holds for a block that moves: block 2's tolerance is 10% of its peak.
-  EXPECT_DOUBLE_EQ(a.theta2->tolerance_rad, 0.1 * ref.summary.peak_theta_rad[1]);
+  EXPECT_DOUBLE_EQ(a.angle(2).tolerance_rad, 0.1 * ref.summary.peak_theta_rad[1]);
 }
 
 TEST(CompareTolerance, ErrorsAreSplitAtThePredictabilityHorizon) {
@@ -259,10 +259,10 @@ TEST(CompareTolerance, ErrorsAreSplitAtThePredictabilityHorizon) {
   CompareOptions o;
   o.predictability_horizon_s[0] = 2.0;
   const EngineAgreement a = CompareWithReference(s, ref, run, o);
-  EXPECT_NEAR(a.theta1.max_abs_error_predictable_rad, 1e-4, 1e-12);
-  EXPECT_NEAR(a.theta1.max_abs_error_beyond_rad, 3e-4, 1e-12);
-  EXPECT_NEAR(a.theta1.rms_error_beyond_rad, 3e-4, 1e-12);
-  EXPECT_NEAR(a.theta1.samples_beyond, 200, 1);  // the grid is a sum of 0.01 s steps
+  EXPECT_NEAR(a.angle(1).max_abs_error_predictable_rad, 1e-4, 1e-12);
+  EXPECT_NEAR(a.angle(1).max_abs_error_beyond_rad, 3e-4, 1e-12);
+  EXPECT_NEAR(a.angle(1).rms_error_beyond_rad, 3e-4, 1e-12);
+  EXPECT_NEAR(a.angle(1).samples_beyond, 200, 1);  // the grid is a sum of 0.01 s steps
   EXPECT_EQ(AgreementJson(a)["theta1"]["predictability_horizon_s"], 2.0);
 }
 

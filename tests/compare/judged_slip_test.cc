@@ -86,12 +86,12 @@ TEST_F(BelowTheFloor, AnEngineThatLeavesTheBlockAtRestDoesNotAgree) {
   });
   const EngineAgreement a = CompareWithReference(*scene_, *ref_, rest);
   // The pointwise check alone passes (|error| <= 0.7 floor < floor): that is the flaw.
-  EXPECT_TRUE(a.theta1.within_tolerance);
-  EXPECT_FALSE(a.theta1.judged);
-  EXPECT_NEAR(a.theta1.floor_rad, floor_, 1e-15);
+  EXPECT_TRUE(a.angle(1).within_tolerance);
+  EXPECT_FALSE(a.angle(1).judged);
+  EXPECT_NEAR(a.angle(1).floor_rad, floor_, 1e-15);
   // Its peak, 0 against 0.7 floor, is beyond 25% of the reference's (0.175 floor).
-  EXPECT_NEAR(a.theta1.peak_tolerance_rad, 0.25 * 0.7 * floor_, 1e-12 * floor_);
-  EXPECT_FALSE(a.theta1.peak_within_tolerance);
+  EXPECT_NEAR(a.angle(1).peak_tolerance_rad, 0.25 * 0.7 * floor_, 1e-12 * floor_);
+  EXPECT_FALSE(a.angle(1).peak_within_tolerance);
   EXPECT_FALSE(AgreementJson(a)["theta1"]["judged"].get<bool>());
   // Predictable throughout, and with no perturbation members run: not an agreement.
   const Verdict v = MakeVerdict(*scene_, a, Horizons{}, std::nullopt);
@@ -116,8 +116,8 @@ TEST_F(BelowTheFloor, PeaksAreComparedWhereTheModelDecides) {
   });
   const EngineAgreement a = CompareWithReference(*scene_, cut, tips);
   EXPECT_DOUBLE_EQ(a.compared_until_s, 1.0);
-  EXPECT_LE(a.theta1.peak_engine_t_s, 1.0);
-  EXPECT_TRUE(a.theta1.peak_within_tolerance) << a.theta1.peak_engine_rad;
+  EXPECT_LE(a.angle(1).peak_engine_t_s, 1.0);
+  EXPECT_TRUE(a.angle(1).peak_within_tolerance) << a.angle(1).peak_engine_rad;
   const Verdict v = MakeVerdict(*scene_, a, Horizons{}, std::nullopt);
   EXPECT_EQ(v.kind, "outside_model") << v.text;
   // The same rule without the ensemble (compare --quick).
@@ -130,8 +130,8 @@ TEST_F(BelowTheFloor, AnEngineThatRocksLikeItAgrees) {
   // The reference's own motion 10% larger: within the 25% peak tolerance and the floor.
   const EngineRun near = Engine(*ref_, 2.0, [](Sample* s) { s->theta_rad[0] *= 1.1; });
   const EngineAgreement a = CompareWithReference(*scene_, *ref_, near);
-  EXPECT_FALSE(a.theta1.judged);
-  EXPECT_TRUE(a.theta1.peak_within_tolerance);
+  EXPECT_FALSE(a.angle(1).judged);
+  EXPECT_TRUE(a.angle(1).peak_within_tolerance);
   const Verdict v = MakeVerdict(*scene_, a, Horizons{}, std::nullopt);
   EXPECT_EQ(v.kind, "agrees") << v.text;
   // The text names the block not judged point by point alone, and why.
@@ -143,7 +143,7 @@ TEST_F(BelowTheFloor, ABlockWellAboveTheFloorIsJudgedPointByPoint) {
   const Scene s = testing_util::HousnerHalfAngleRelease(2.0);
   const reference::Result ref = reference::Simulate(s, GroundMotion());
   const EngineAgreement a = CompareWithReference(s, ref, Engine(ref, 2.0, [](Sample*) {}));
-  EXPECT_TRUE(a.theta1.judged);
+  EXPECT_TRUE(a.angle(1).judged);
   EXPECT_TRUE(AgreementJson(a)["theta1"]["judged"].get<bool>());
 }
 
@@ -203,18 +203,19 @@ TEST_F(SlidesOff, SlipTwiceTheReferencesDiffersAndSlipWithinTheToleranceAgrees) 
   };
   const EngineRun twice = with_left_support(Engine(*ref_, end, [](Sample* s) { s->u_m[1] *= 2; }));
   const EngineAgreement a = CompareWithReference(*scene_, *ref_, twice);
-  ASSERT_EQ(a.slip.size(), 2u);
-  EXPECT_NEAR(a.slip[1].tolerance_m, tol, 1e-12);
+  ASSERT_EQ(a.blocks(), 2);
+  ASSERT_TRUE(a.body(2).slip.has_value());
+  EXPECT_NEAR(a.body(1 + 1).slip->tolerance_m, tol, 1e-12);
   // The largest error is the reference's slip at the engine's last sample (the end).
-  EXPECT_GT(a.slip[1].max_abs_error_m, 0.9 * peak);
-  EXPECT_FALSE(a.slip[1].within_tolerance);
+  EXPECT_GT(a.body(1 + 1).slip->max_abs_error_m, 0.9 * peak);
+  EXPECT_FALSE(a.body(1 + 1).slip->within_tolerance);
   const nlohmann::json j = AgreementJson(a);
   for (const char* key : {"max_abs_error_m", "final_reference_m", "final_engine_m", "tolerance_m"})
     EXPECT_TRUE(j["u2"].contains(key)) << key;
   EXPECT_NEAR(j["u2"]["final_engine_m"].get<double>(),
               2.0 * j["u2"]["final_reference_m"].get<double>(), 1e-12);
   // The angles are the reference's: the slip alone decides.
-  EXPECT_TRUE(a.theta2->within_tolerance);
+  EXPECT_TRUE(a.angle(2).within_tolerance);
   const Verdict v = MakeVerdict(*scene_, a, Horizons{}, std::nullopt);
   EXPECT_EQ(v.kind, "differs_before_horizon") << v.text;
   EXPECT_NE(v.text.find("u2 (slip of block 2 on block 1) leaves its tolerance"), std::string::npos)
@@ -225,8 +226,8 @@ TEST_F(SlidesOff, SlipTwiceTheReferencesDiffersAndSlipWithinTheToleranceAgrees) 
   const EngineRun close =
       with_left_support(Engine(*ref_, end, [](Sample* s) { s->u_m[1] *= 1.05; }));
   const EngineAgreement b = CompareWithReference(*scene_, *ref_, close);
-  EXPECT_TRUE(b.slip[1].within_tolerance);
-  EXPECT_LE(b.slip[1].max_abs_error_m, 0.05 * peak + 1e-12);
+  EXPECT_TRUE(b.body(1 + 1).slip->within_tolerance);
+  EXPECT_LE(b.body(1 + 1).slip->max_abs_error_m, 0.05 * peak + 1e-12);
   const Verdict w = MakeVerdict(*scene_, b, Horizons{}, std::nullopt);
   EXPECT_EQ(w.kind, "agrees") << w.text;
 }

@@ -61,14 +61,13 @@ TEST_P(StackCompareTest, AHistoryComparedWithItselfHasNoErrorOnAnyBlock) {
   ASSERT_EQ(ref.summary.blocks(), n());
   const EngineAgreement a = CompareWithReference(s, ref, FromReference(ref, n(), 0, 0.0));
   ASSERT_EQ(a.blocks(), n());
-  ASSERT_EQ(static_cast<int>(a.theta_from3.size()), n() - 2);
   for (int b = 1; b <= n(); ++b) {
     const AngleAgreement& g = a.angle(b);
     EXPECT_EQ(g.max_abs_error_rad, 0.0) << "theta" << b;
     EXPECT_EQ(g.rms_error_rad, 0.0) << "theta" << b;
     EXPECT_TRUE(g.within_tolerance) << "theta" << b;
     EXPECT_EQ(g.peak_rel_error, 0.0) << "theta" << b;
-    EXPECT_EQ(a.final_theta_error_rad(b), 0.0) << "theta" << b;
+    EXPECT_EQ(a.body(b).final_angle_error_rad, 0.0) << "theta" << b;
     // Each block's tolerance is its own rule (10% of its peak, at least 1% of its critical
     // angle), not block 1's or 2's.
     EXPECT_DOUBLE_EQ(g.tolerance_rad, AngleTolerance_rad(s, b, ref.summary.peak_theta_rad[b - 1]));
@@ -95,7 +94,7 @@ TEST_P(StackCompareTest, AnOffsetOnBlock3IsThatErrorOnBlock3Only) {
     if (b == 3) {
       EXPECT_NEAR(g.max_abs_error_rad, offset, 1e-15);
       EXPECT_NEAR(g.rms_error_rad, offset, 1e-15);
-      EXPECT_NEAR(a.final_theta_error_rad(b), offset, 1e-15);
+      EXPECT_NEAR(a.body(b).final_angle_error_rad, offset, 1e-15);
       EXPECT_FALSE(g.within_tolerance);
       EXPECT_EQ(g.horizon_s, 0.0);  // outside from the first sample
     } else {
@@ -186,7 +185,8 @@ TEST(StackPerturbation, EveryInterfaceIsPerturbedWithinItsSize) {
   s.compare.initial_rel = 0.01;
   for (int m = 0; m < 20; ++m) {
     const MemberInput in = PerturbedInput(s, GroundMotion(), m);
-    ASSERT_EQ(in.perturbation.initial_factor_from3.size(), 6u);
+    ASSERT_EQ(in.perturbation.theta_factor.size(), 5u);
+    ASSERT_EQ(in.perturbation.omega_factor.size(), 5u);
     const InitialState& p = in.scene.initial;
     EXPECT_EQ(p.theta_rad[3], p.theta_rad[2]) << "member " << m;
     for (int k = 1; k < 5; ++k) {
@@ -199,9 +199,9 @@ TEST(StackPerturbation, EveryInterfaceIsPerturbedWithinItsSize) {
     const MemberInput again = PerturbedInput(s, GroundMotion(), m);
     for (int k = 0; k < 5; ++k) EXPECT_EQ(again.scene.initial.theta_rad[k], p.theta_rad[k]);
   }
-  // One and two blocks draw exactly what they always did.
+  // A factor per body: two blocks draw two of each.
   const Scene two = StackScene(2, 1.0);
-  EXPECT_TRUE(PerturbedInput(two, GroundMotion(), 3).perturbation.initial_factor_from3.empty());
+  EXPECT_EQ(PerturbedInput(two, GroundMotion(), 3).perturbation.theta_factor.size(), 2u);
 }
 
 // The reference's perturbation members of a 3-block stack without any perturbation: every
@@ -304,8 +304,7 @@ TEST(StackStatistics, EveryBlockIsTestedAndABiasOnOneBlockIsFoundThere) {
   EXPECT_FALSE(j["tests"]["overturn"]["engine"].contains("block7"));
   Verdict v;
   EngineAgreement a;
-  a.theta2 = AngleAgreement{};
-  a.theta_from3.resize(n - 2);
+  a.bodies.resize(n);
   Horizons h;
   h.horizon_s[0] = 0.5;
   v = MakeVerdict(StackScene(n, 1.0), a, h, ov);

@@ -36,7 +36,7 @@ const double kTolerance[2] = {0.01, 0.02};  // 10% of the peaks below
 
 TEST(ComparePerturbationMembers, SameDistributionIsConsistent) {
   const auto ref = Outcomes(32, 0.1, 0.2, 0), eng = Outcomes(16, 0.1, 0.2, 3);
-  const StatisticalComparison s = ComparePerturbationMembers(ref, eng, true, kTolerance, 0.01);
+  const StatisticalComparison s = ComparePerturbationMembers(ref, eng, kTolerance, 0.01);
   ASSERT_TRUE(s.available);
   EXPECT_TRUE(s.consistent) << s.rejected.size();
   EXPECT_EQ(s.reference_members, 32);
@@ -50,7 +50,7 @@ TEST(ComparePerturbationMembers, AFivePercentPeakBiasOnATightEnsembleIsDetected)
   const auto ref = Outcomes(32, 0.1, 0.01, 0);
   auto eng = Outcomes(16, 0.1, 0.01, 3);
   for (MemberOutcome& o : eng) o.peak_rad[1] *= 1.05;
-  const StatisticalComparison s = ComparePerturbationMembers(ref, eng, true, kTolerance, 0.01);
+  const StatisticalComparison s = ComparePerturbationMembers(ref, eng, kTolerance, 0.01);
   EXPECT_FALSE(s.consistent);
   ASSERT_EQ(s.rejected.size(), 1u);
   EXPECT_EQ(s.rejected[0], "peak_theta2_rad");
@@ -61,7 +61,7 @@ TEST(ComparePerturbationMembers, DifferencesBelowTheResolutionAreNotDifferences)
   // exactly at 0: without slack KS would see D = 1.
   auto ref = Outcomes(32, 0.1, 0.2, 0), eng = Outcomes(16, 0.1, 0.2, 3);
   for (MemberOutcome& o : eng) o.residual_rad[0] = (o.member % 2 ? 1e-10 : -2e-10);
-  const StatisticalComparison s = ComparePerturbationMembers(ref, eng, true, kTolerance, 0.01);
+  const StatisticalComparison s = ComparePerturbationMembers(ref, eng, kTolerance, 0.01);
   EXPECT_TRUE(s.consistent);
   for (const QuantityComparison& q : s.quantities) {
     if (q.key == "residual_theta1_rad") {
@@ -74,7 +74,7 @@ TEST(ComparePerturbationMembers, DifferencesBelowTheResolutionAreNotDifferences)
 TEST(ComparePerturbationMembers, OverturningEveryTimeAgainstNeverIsDetected) {
   auto ref = Outcomes(32, 0.1, 0.2, 0), eng = Outcomes(16, 0.1, 0.2, 3);
   for (MemberOutcome& o : eng) o.overturned_block = 2;
-  const StatisticalComparison s = ComparePerturbationMembers(ref, eng, true, kTolerance, 0.01);
+  const StatisticalComparison s = ComparePerturbationMembers(ref, eng, kTolerance, 0.01);
   EXPECT_EQ(s.overturn_engine[2], 16);
   EXPECT_EQ(s.overturn_reference[0], 32);
   EXPECT_LT(s.overturn.p_value, 1e-10);  // 1 / C(48, 16)
@@ -84,26 +84,27 @@ TEST(ComparePerturbationMembers, OverturningEveryTimeAgainstNeverIsDetected) {
 TEST(ComparePerturbationMembers, MembersWhoseReferenceViolatedTheModelAreLeftOut) {
   auto ref = Outcomes(32, 0.1, 0.2, 0), eng = Outcomes(16, 0.1, 0.2, 3);
   ref[3].status = RunStatus::kAssumptionViolated;
-  const StatisticalComparison s = ComparePerturbationMembers(ref, eng, true, kTolerance, 0.01);
+  const StatisticalComparison s = ComparePerturbationMembers(ref, eng, kTolerance, 0.01);
   EXPECT_EQ(s.excluded, 1);
   EXPECT_EQ(s.reference_members, 31);
   EXPECT_EQ(s.engine_members, 15);
   const auto few = Outcomes(4, 0.1, 0.2, 0);
-  EXPECT_FALSE(ComparePerturbationMembers(few, few, true, kTolerance, 0.01).available);
+  EXPECT_FALSE(ComparePerturbationMembers(few, few, kTolerance, 0.01).available);
 }
 
 EngineAgreement Agreement(double horizon1, double horizon2, bool within1, bool within2) {
   EngineAgreement a;
   a.engine = "fake";
   a.compared_until_s = 30.0;
-  a.theta1.tolerance_rad = 0.01;
-  a.theta1.horizon_s = horizon1;
-  a.theta1.within_tolerance = within1;
+  a.bodies.resize(2);
+  a.angle(1).tolerance_rad = 0.01;
+  a.angle(1).horizon_s = horizon1;
+  a.angle(1).within_tolerance = within1;
   AngleAgreement t2;
   t2.tolerance_rad = 0.02;
   t2.horizon_s = horizon2;
   t2.within_tolerance = within2;
-  a.theta2 = t2;
+  a.angle(2) = t2;
   return a;
 }
 
@@ -127,15 +128,14 @@ TEST(MakeVerdict, BeyondTheHorizonTheStatisticsDecide) {
   EXPECT_EQ(MakeVerdict(s, a, h, std::nullopt).kind, "agrees_to_horizon");
   const auto ref = Outcomes(32, 0.1, 0.2, 0);
   const StatisticalComparison same =
-      ComparePerturbationMembers(ref, Outcomes(16, 0.1, 0.2, 3), true, kTolerance, 0.01);
+      ComparePerturbationMembers(ref, Outcomes(16, 0.1, 0.2, 3), kTolerance, 0.01);
   const Verdict ok = MakeVerdict(s, a, h, same);
   EXPECT_EQ(ok.kind, "agrees");
   EXPECT_TRUE(ok.agrees);
   EXPECT_NE(ok.text.find("KS p = "), std::string::npos) << ok.text;
   auto eng = Outcomes(16, 0.1, 0.2, 3);
   for (MemberOutcome& o : eng) o.overturned_block = 2;
-  const Verdict bad =
-      MakeVerdict(s, a, h, ComparePerturbationMembers(ref, eng, true, kTolerance, 0.01));
+  const Verdict bad = MakeVerdict(s, a, h, ComparePerturbationMembers(ref, eng, kTolerance, 0.01));
   EXPECT_EQ(bad.kind, "differs_beyond_horizon");
   EXPECT_NE(bad.text.find("overturning"), std::string::npos) << bad.text;
   // Predictable throughout, within the tolerance: agrees, statistics or not.
@@ -225,8 +225,8 @@ TEST(MakeVerdict, WhereTheReferenceStopsTheVerdictIsOutsideTheModel) {
   a.flag_onsets_t_s.clear();
   a.significant_flags.clear();
   a.significant_onsets_t_s.clear();
-  a.theta1.within_tolerance = false;
-  a.theta1.horizon_s = 1.0;
+  a.angle(1).within_tolerance = false;
+  a.angle(1).horizon_s = 1.0;
   EXPECT_EQ(MakeVerdict(s, a, h, std::nullopt).kind, "differs_before_horizon");
 }
 
@@ -261,7 +261,7 @@ TEST(MakeVerdict, NoValidReferenceMemberBeyondTheHorizonIsOutsideTheModel) {
   std::vector<MemberOutcome> ref = Outcomes(32, 0.1, 0.2, 0);
   for (MemberOutcome& o : ref) o.status = RunStatus::kAssumptionViolated;
   const StatisticalComparison st =
-      ComparePerturbationMembers(ref, Outcomes(16, 0.1, 0.2, 3), true, kTolerance, 0.01);
+      ComparePerturbationMembers(ref, Outcomes(16, 0.1, 0.2, 3), kTolerance, 0.01);
   ASSERT_FALSE(st.available);
   EXPECT_EQ(MakeVerdict(s, a, h, st).kind, "outside_model");
 }
@@ -283,7 +283,7 @@ TEST(ComparePerturbationMembers, TheImpactCountIsReportedButDoesNotDecide) {
   const auto ref = Outcomes(32, 0.1, 0.2, 0);
   auto eng = Outcomes(16, 0.1, 0.2, 3);
   for (MemberOutcome& o : eng) o.impacts -= 5;
-  const StatisticalComparison s = ComparePerturbationMembers(ref, eng, true, kTolerance, 0.01);
+  const StatisticalComparison s = ComparePerturbationMembers(ref, eng, kTolerance, 0.01);
   ASSERT_TRUE(s.available);
   const QuantityComparison* impacts = nullptr;
   for (const QuantityComparison& q : s.quantities) {
@@ -297,7 +297,7 @@ TEST(ComparePerturbationMembers, TheImpactCountIsReportedButDoesNotDecide) {
   for (MemberOutcome& o : eng) o.rms_rad[1] = 0.8 * 0.05;
   auto ref2 = ref;
   for (MemberOutcome& o : ref2) o.rms_rad[1] = 0.05;
-  EXPECT_FALSE(ComparePerturbationMembers(ref2, eng, true, kTolerance, 0.01).consistent);
+  EXPECT_FALSE(ComparePerturbationMembers(ref2, eng, kTolerance, 0.01).consistent);
 }
 
 TEST(VerdictPower, DetectsAFivePercentPeakBiasAtTheDefaultSizesAndRarelyFlagsAnUnbiasedEngine) {
