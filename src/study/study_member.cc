@@ -14,6 +14,7 @@
 #include "run/engine_registry.h"
 #include "run/engine_run.h"
 #include "run/reference_engine.h"
+#include "scene/body_kind.h"
 #include "util/format.h"
 
 namespace rockbench {
@@ -36,18 +37,11 @@ void SetGeometry(const Scene& scene, MemberRow* row) {
     return std::sqrt(3.0 * scene.run.gravity_mps2 /
                      (4.0 * std::hypot(b.width_m / 2.0, b.height_m / 2.0)));
   };
-  const BlockDef& b1 = scene.blocks.at(0);
-  row->p1_radps = p(b1);
-  row->alpha1_rad = std::atan2(b1.width_m, b1.height_m);
-  if (scene.block_count() >= 2) {
-    const BlockDef& b2 = scene.blocks[1];
-    row->p2_radps = p(b2);
-    row->alpha2_rad = std::atan2(b2.width_m, b2.height_m);
-  }
-  for (int k = 2; k < scene.block_count(); ++k) {
-    const BlockDef& b = scene.blocks[k];
-    row->p_from3_radps.push_back(p(b));
-    row->alpha_from3_rad.push_back(std::atan2(b.width_m, b.height_m));
+  row->p_radps.clear();
+  row->alpha_rad.clear();
+  for (const BlockDef& b : scene.blocks) {
+    row->p_radps.push_back(p(b));
+    row->alpha_rad.push_back(std::atan2(b.width_m, b.height_m));
   }
 }
 
@@ -66,10 +60,7 @@ void SetOutcome(const MemberOutcome& o, int blocks, MemberRow* row) {
   row->status = StatusText(o.status);
   row->overturned_block = o.overturned_block;
   row->overturn_t_s = o.overturn_t_s;
-  row->peak_theta1_rad = o.peak_rad[0];
-  row->peak_theta2_rad = o.peak_rad[1];
-  row->peak_theta_from3_rad.clear();
-  for (int b = 2; b < blocks; ++b) row->peak_theta_from3_rad.push_back(o.peak_rad[b]);
+  row->peak_theta_rad.assign(o.peak_rad.begin(), o.peak_rad.begin() + blocks);
   row->impacts = o.impacts;
   row->has_result = true;
 }
@@ -82,34 +73,35 @@ void RunHere(const StudyDef& study, const std::string& engine, const Scene& scen
   const EngineRun ref_run = RunEngine(std::string(kReferenceEngine), scene, motion);
   const CheckedReference& ref = *ReferenceResultOf(ref_run.extension.get());
   const MemberOutcome ref_outcome = OutcomeOf(ref_run, scene, study.min_impact_rate_radps);
-  if (IsReference(engine)) {
-    if (keep_dir) WriteEngineFiles(ref_run, *keep_dir);
-    SetOutcome(ref_outcome, scene.block_count(), row);
-    row->wall_s = ref.nominal_wall_s;
-    row->converged = ref.check && ref.check->converged;
-    return;
+  // The member's reference run is what every engine's run is compared with; the row of the
+  // engine that made it reuses it (run once) and has nothing to be compared with.
+  std::optional<EngineRun> own;
+  if (engine != ref_run.engine) {
+    // An engine member at rest after the motion can no longer start it rocking is decided.
+    SimulateOptions options;
+    options.stop_at_rest_after_s = SettledAfter_s(scene, motion);
+    own = RunEngine(engine, scene, motion, options);
   }
-  // An engine member at rest after the motion can no longer start it rocking is decided.
-  SimulateOptions options;
-  options.stop_at_rest_after_s = SettledAfter_s(scene, motion);
-  const EngineRun run = RunEngine(engine, scene, motion, options);
+  const EngineRun& run = own ? *own : ref_run;
   if (keep_dir) WriteEngineFiles(run, *keep_dir);
   SetOutcome(OutcomeOf(run, scene, study.min_impact_rate_radps), scene.block_count(), row);
-  row->wall_s = run.wall_s;
+  // A run checked against its witness says whether it converged; its wall time is the nominal
+  // run's.
+  if (const CheckedReference* checked = ReferenceResultOf(run.extension.get())) {
+    row->wall_s = checked->nominal_wall_s;
+    row->converged = checked->check && checked->check->converged;
+  } else {
+    row->wall_s = run.wall_s;
+  }
+  if (!own) return;
   row->detail = run.summary.value("status_detail", "");
   CompareOptions co;
   co.min_impact_rate_radps = study.min_impact_rate_radps;
   const EngineAgreement a = CompareWithReference(scene, ref.used(), run, co);
   MemberRow::Agreement g;
-  g.theta1_max_abs_error_rad = a.theta1.max_abs_error_rad;
-  g.theta1_horizon_s = a.theta1.horizon_s;
-  if (a.theta2) {
-    g.theta2_max_abs_error_rad = a.theta2->max_abs_error_rad;
-    g.theta2_horizon_s = a.theta2->horizon_s;
-  }
-  for (const AngleAgreement& t : a.theta_from3) {
-    g.theta_from3_max_abs_error_rad.push_back(t.max_abs_error_rad);
-    g.theta_from3_horizon_s.push_back(t.horizon_s);
+  for (const BodyAgreement& body : a.bodies) {
+    g.max_abs_error_rad.push_back(body.angle.max_abs_error_rad);
+    g.horizon_s.push_back(body.angle.horizon_s);
   }
   g.impacts_matched = a.impacts.matched;
   g.reference_impacts = a.impacts.reference_impacts;
@@ -131,7 +123,7 @@ std::optional<T> GetOptional(const nlohmann::json& j, const char* key) {
   return j.at(key).get<T>();
 }
 
-// A per-block list (blocks 3..N) of a row: absent when empty (one or two blocks).
+// A per-body list of a row: absent when empty (a run with no result).
 void PutVector(nlohmann::json& j, const char* key, const std::vector<double>& v) {
   if (!v.empty()) j[key] = v;
 }
@@ -198,16 +190,10 @@ nlohmann::json MemberRowToJson(const MemberRow& r) {
                       {"status", r.status},
                       {"detail", r.detail},
                       {"has_result", r.has_result},
-                      {"p1_radps", r.p1_radps},
-                      {"alpha1_rad", r.alpha1_rad},
                       {"overturned_block", r.overturned_block},
                       {"overturn_t_s", r.overturn_t_s},
-                      {"peak_theta1_rad", r.peak_theta1_rad},
-                      {"peak_theta2_rad", r.peak_theta2_rad},
                       {"impacts", r.impacts},
                       {"wall_s", r.wall_s}};
-  PutOptional(j, "p2_radps", r.p2_radps);
-  PutOptional(j, "alpha2_rad", r.alpha2_rad);
   PutOptional(j, "pga_g", r.pga_g);
   PutOptional(j, "pgv_mps", r.pgv_mps);
   PutOptional(j, "pgd_m", r.pgd_m);
@@ -215,21 +201,17 @@ nlohmann::json MemberRowToJson(const MemberRow& r) {
   PutOptional(j, "d5_95_s", r.d5_95_s);
   PutOptional(j, "pulse_period_s", r.pulse_period_s);
   PutOptional(j, "converged", r.converged);
-  PutVector(j, "p_from3_radps", r.p_from3_radps);
-  PutVector(j, "alpha_from3_rad", r.alpha_from3_rad);
-  PutVector(j, "peak_theta_from3_rad", r.peak_theta_from3_rad);
+  PutVector(j, "p_radps", r.p_radps);
+  PutVector(j, "alpha_rad", r.alpha_rad);
+  PutVector(j, "peak_theta_rad", r.peak_theta_rad);
   if (r.agreement) {
     const MemberRow::Agreement& a = *r.agreement;
-    nlohmann::json g = {{"theta1_max_abs_error_rad", a.theta1_max_abs_error_rad},
-                        {"theta1_horizon_s", a.theta1_horizon_s},
+    nlohmann::json g = {{"max_abs_error_rad", a.max_abs_error_rad},
+                        {"horizon_s", a.horizon_s},
                         {"impacts_matched", a.impacts_matched},
                         {"reference_impacts", a.reference_impacts}};
     PutOptional(g, "overturn_agree", a.overturn_agree);
-    PutOptional(g, "theta2_max_abs_error_rad", a.theta2_max_abs_error_rad);
-    PutOptional(g, "theta2_horizon_s", a.theta2_horizon_s);
     PutOptional(g, "reference_overturned_block", a.reference_overturned_block);
-    PutVector(g, "theta_from3_max_abs_error_rad", a.theta_from3_max_abs_error_rad);
-    PutVector(g, "theta_from3_horizon_s", a.theta_from3_horizon_s);
     j["agreement"] = g;
   }
   return j;
@@ -242,16 +224,10 @@ MemberRow MemberRowFromJson(const nlohmann::json& j) {
   r.status = j.at("status").get<std::string>();
   r.detail = j.at("detail").get<std::string>();
   r.has_result = j.at("has_result").get<bool>();
-  r.p1_radps = j.at("p1_radps").get<double>();
-  r.alpha1_rad = j.at("alpha1_rad").get<double>();
   r.overturned_block = j.at("overturned_block").get<int>();
   r.overturn_t_s = j.at("overturn_t_s").get<double>();
-  r.peak_theta1_rad = j.at("peak_theta1_rad").get<double>();
-  r.peak_theta2_rad = j.at("peak_theta2_rad").get<double>();
   r.impacts = j.at("impacts").get<int>();
   r.wall_s = j.at("wall_s").get<double>();
-  r.p2_radps = GetOptional<double>(j, "p2_radps");
-  r.alpha2_rad = GetOptional<double>(j, "alpha2_rad");
   r.pga_g = GetOptional<double>(j, "pga_g");
   r.pgv_mps = GetOptional<double>(j, "pgv_mps");
   r.pgd_m = GetOptional<double>(j, "pgd_m");
@@ -259,22 +235,18 @@ MemberRow MemberRowFromJson(const nlohmann::json& j) {
   r.d5_95_s = GetOptional<double>(j, "d5_95_s");
   r.pulse_period_s = GetOptional<double>(j, "pulse_period_s");
   r.converged = GetOptional<bool>(j, "converged");
-  r.p_from3_radps = GetVector(j, "p_from3_radps");
-  r.alpha_from3_rad = GetVector(j, "alpha_from3_rad");
-  r.peak_theta_from3_rad = GetVector(j, "peak_theta_from3_rad");
+  r.p_radps = GetVector(j, "p_radps");
+  r.alpha_rad = GetVector(j, "alpha_rad");
+  r.peak_theta_rad = GetVector(j, "peak_theta_rad");
   if (j.contains("agreement")) {
     const nlohmann::json& g = j.at("agreement");
     MemberRow::Agreement a;
-    a.theta1_max_abs_error_rad = g.at("theta1_max_abs_error_rad").get<double>();
-    a.theta1_horizon_s = g.at("theta1_horizon_s").get<double>();
+    a.max_abs_error_rad = g.at("max_abs_error_rad").get<std::vector<double>>();
+    a.horizon_s = g.at("horizon_s").get<std::vector<double>>();
     a.impacts_matched = g.at("impacts_matched").get<int>();
     a.reference_impacts = g.at("reference_impacts").get<int>();
     a.overturn_agree = GetOptional<bool>(g, "overturn_agree");
-    a.theta2_max_abs_error_rad = GetOptional<double>(g, "theta2_max_abs_error_rad");
-    a.theta2_horizon_s = GetOptional<double>(g, "theta2_horizon_s");
     a.reference_overturned_block = GetOptional<int>(g, "reference_overturned_block");
-    a.theta_from3_max_abs_error_rad = GetVector(g, "theta_from3_max_abs_error_rad");
-    a.theta_from3_horizon_s = GetVector(g, "theta_from3_horizon_s");
     r.agreement = a;
   }
   return r;
@@ -282,39 +254,39 @@ MemberRow MemberRowFromJson(const nlohmann::json& j) {
 
 namespace {
 
-// ",<stem>3<tail>,<stem>4<tail>,...,<stem>N<tail>": the columns of blocks 3..N (none for one or
-// two blocks).
-std::string From3Columns(int blocks, std::string_view stem, std::string_view tail) {
+// ",<stem>1<tail>,<stem>2<tail>,...": a per-body column of every body of the file.
+std::string BodyColumns(int bodies, std::string_view stem, std::string_view tail) {
   std::string out;
-  for (int b = 3; b <= blocks; ++b) out.append(",").append(Numbered(stem, b)).append(tail);
+  for (int b = 1; b <= bodies; ++b) out.append(",").append(BodyColumn(stem, b)).append(tail);
   return out;
 }
 
 }  // namespace
 
+int MembersCsvBodies(const StudyDef& study) {
+  return std::max(2, study.blocks);
+}
+
 std::string MembersCsvHeader(const StudyDef& study) {
+  const int nb = MembersCsvBodies(study);
   std::string h = "member";
   for (const StudyAxis& a : study.axes) h += "," + a.key;
-  std::string p_alpha;
-  for (int b = 3; b <= study.blocks; ++b) {
-    p_alpha.append(",").append(Numbered("p", b)).append("_radps,");
-    p_alpha.append(Numbered("alpha", b)).append("_rad");
+  for (int b = 1; b <= nb; ++b) {
+    h.append(",").append(BodyColumn("p", b)).append("_radps,");
+    h.append(BodyColumn("alpha", b)).append("_rad");
   }
-  h += ",p1_radps,alpha1_rad,p2_radps,alpha2_rad";
-  h += p_alpha;
   h += ",pga_g,pgv_mps,pgd_m,arias_mps,d5_95_s,"
-       "pulse_period_s,engine,status,overturned_block,overturn_t_s,peak_theta1_rad,"
-       "peak_theta2_rad";
-  h += From3Columns(study.blocks, "peak_theta", "_rad");
-  h += ",impacts,wall_s,converged,theta1_max_abs_error_rad,theta2_max_abs_error_rad";
-  h += From3Columns(study.blocks, "theta", "_max_abs_error_rad");
-  h += ",theta1_horizon_s,theta2_horizon_s";
-  h += From3Columns(study.blocks, "theta", "_horizon_s");
+       "pulse_period_s,engine,status,overturned_block,overturn_t_s";
+  h += BodyColumns(nb, "peak_theta", "_rad");
+  h += ",impacts,wall_s,converged";
+  h += BodyColumns(nb, "theta", "_max_abs_error_rad");
+  h += BodyColumns(nb, "theta", "_horizon_s");
   h += ",impacts_matched,reference_impacts,reference_overturned_block,overturn_agree,detail\n";
   return h;
 }
 
 std::string MembersCsvLine(const StudyDef& study, const MemberRow& r) {
+  const int nb = MembersCsvBodies(study);
   std::string s = std::to_string(r.member);
   const std::vector<int> idx = study.ValueIndices(r.member);
   for (size_t k = 0; k < study.axes.size(); ++k) {
@@ -326,17 +298,14 @@ std::string MembersCsvLine(const StudyDef& study, const MemberRow& r) {
     s += cell;
   };
   const bool res = r.has_result;
-  add(res ? ShortestText(r.p1_radps) : "");
-  add(res ? ShortestText(r.alpha1_rad) : "");
-  add(Cell(r.p2_radps));
-  add(Cell(r.alpha2_rad));
-  // Blocks 3..N: a row without a result (crash, error) leaves them empty.
-  const auto from3 = [&](const std::vector<double>& v, int k) {
+  // Body k's value of a per-body list; empty past the list's end (a body the member does not
+  // have, or a row without a result).
+  const auto body = [&](const std::vector<double>& v, int k) {
     add(k < static_cast<int>(v.size()) ? ShortestText(v[k]) : std::string());
   };
-  for (int k = 0; k + 3 <= study.blocks; ++k) {
-    from3(r.p_from3_radps, k);
-    from3(r.alpha_from3_rad, k);
+  for (int k = 0; k < nb; ++k) {
+    body(r.p_radps, k);
+    body(r.alpha_rad, k);
   }
   for (const auto* v :
        {&r.pga_g, &r.pgv_mps, &r.pgd_m, &r.arias_mps, &r.d5_95_s, &r.pulse_period_s}) {
@@ -346,20 +315,18 @@ std::string MembersCsvLine(const StudyDef& study, const MemberRow& r) {
   add(TextCell(r.status));
   add(res && r.overturned_block != 0 ? std::to_string(r.overturned_block) : "");
   add(res && r.overturned_block != 0 ? ShortestText(r.overturn_t_s) : "");
-  add(res ? ShortestText(r.peak_theta1_rad) : "");
-  add(res ? ShortestText(r.peak_theta2_rad) : "");
-  for (int k = 0; k + 3 <= study.blocks; ++k) from3(r.peak_theta_from3_rad, k);
+  // A run with a result has a peak for every column (0 for a body its stack does not have).
+  for (int k = 0; k < nb; ++k) {
+    const bool has = k < static_cast<int>(r.peak_theta_rad.size());
+    add(res ? ShortestText(has ? r.peak_theta_rad[k] : 0.0) : "");
+  }
   add(res ? std::to_string(r.impacts) : "");
   add(ShortestText(r.wall_s));
   add(r.converged ? (*r.converged ? "true" : "false") : "");
   if (r.agreement) {
     const MemberRow::Agreement& a = *r.agreement;
-    add(ShortestText(a.theta1_max_abs_error_rad));
-    add(Cell(a.theta2_max_abs_error_rad));
-    for (int k = 0; k + 3 <= study.blocks; ++k) from3(a.theta_from3_max_abs_error_rad, k);
-    add(ShortestText(a.theta1_horizon_s));
-    add(Cell(a.theta2_horizon_s));
-    for (int k = 0; k + 3 <= study.blocks; ++k) from3(a.theta_from3_horizon_s, k);
+    for (int k = 0; k < nb; ++k) body(a.max_abs_error_rad, k);
+    for (int k = 0; k < nb; ++k) body(a.horizon_s, k);
     add(std::to_string(a.impacts_matched));
     add(std::to_string(a.reference_impacts));
     add(a.reference_overturned_block && *a.reference_overturned_block != 0
@@ -367,7 +334,7 @@ std::string MembersCsvLine(const StudyDef& study, const MemberRow& r) {
             : "");
     add(a.overturn_agree ? (*a.overturn_agree ? "true" : "false") : "");
   } else {
-    for (int i = 0; i < 8 + 2 * std::max(0, study.blocks - 2); ++i) add("");
+    for (int i = 0; i < 4 + 2 * nb; ++i) add("");
   }
   add(TextCell(r.detail));
   s += "\n";
@@ -384,11 +351,11 @@ std::optional<RowKey> MembersCsvKey(const StudyDef& study, const std::string& li
       start = i + 1;
     }
   }
-  // member, axes, 10 member columns, engine and 17 run columns; N >= 3 blocks: 2 more member
-  // columns and 3 more run columns per block beyond the second.
-  const size_t extra = static_cast<size_t>(std::max(0, study.blocks - 2));
-  const size_t member_columns = 10 + 2 * extra;
-  const size_t expected = 1 + study.axes.size() + member_columns + 1 + 17 + 3 * extra;
+  // member, axes, the member's columns (6 and 2 per body), engine and the run's columns (11 and
+  // 3 per body).
+  const auto nb = static_cast<size_t>(MembersCsvBodies(study));
+  const size_t member_columns = 6 + 2 * nb;
+  const size_t expected = 1 + study.axes.size() + member_columns + 1 + 11 + 3 * nb;
   if (cells.size() != expected) return std::nullopt;
   RowKey key;
   const std::string& m = cells[0];

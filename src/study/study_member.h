@@ -21,18 +21,15 @@ struct MemberRow {
   /// for a run that gave no result: "crash (signal N)" | wall_limit | error.
   std::string status;
   std::string detail;  ///< why, for error, crash and wall_limit rows (one line)
-  /// Block geometry of the member: p = sqrt(3 g / 4 R) (rad/s) and alpha = atan(B / H) (rad).
-  double p1_radps = 0.0, alpha1_rad = 0.0;
-  std::optional<double> p2_radps, alpha2_rad;  ///< members of two blocks or more
-  /// N >= 3 blocks: p and alpha of blocks 3..N (block 3 at index 0); empty otherwise.
-  std::vector<double> p_from3_radps, alpha_from3_rad;
+  /// Block geometry of the member, per body (body k at k - 1): p = sqrt(3 g / 4 R) (rad/s) and
+  /// alpha = atan(B / H) (rad); empty for a run that gave no result.
+  std::vector<double> p_radps, alpha_rad;
   /// Intensity measures of the horizontal base motion over the run (none without one).
   std::optional<double> pga_g, pgv_mps, pgd_m, arias_mps, d5_95_s, pulse_period_s;
   int overturned_block = 0;  ///< 0: none (printed empty), 1..N
   double overturn_t_s = 0.0;
-  double peak_theta1_rad = 0.0, peak_theta2_rad = 0.0;
-  /// N >= 3 blocks: peak |theta_k| of blocks 3..N (block 3 at index 0); empty otherwise.
-  std::vector<double> peak_theta_from3_rad;
+  /// Per body: peak |theta_k|, rad (empty for a run that gave no result).
+  std::vector<double> peak_theta_rad;
   int impacts = 0;  ///< impacts at or above the study's min_impact_rate
   double wall_s = 0.0;
   bool has_result = false;  ///< the run gave an outcome (false for crash, wall_limit, error)
@@ -40,10 +37,8 @@ struct MemberRow {
   std::optional<bool> converged;
   /// Engine rows: the comparison with the member's reference (compare/agreement.h).
   struct Agreement {
-    double theta1_max_abs_error_rad = 0.0, theta1_horizon_s = 0.0;
-    std::optional<double> theta2_max_abs_error_rad, theta2_horizon_s;
-    /// N >= 3 blocks: the same of blocks 3..N (block 3 at index 0); empty otherwise.
-    std::vector<double> theta_from3_max_abs_error_rad, theta_from3_horizon_s;
+    /// Per body: the largest error of its angle (rad) and its horizon (s).
+    std::vector<double> max_abs_error_rad, horizon_s;
     int impacts_matched = 0, reference_impacts = 0;
     /// Both runs overturn the same block or neither does; none when the reference's model
     /// stopped (assumption_violated: it has no outcome to agree with).
@@ -68,11 +63,14 @@ nlohmann::json MemberRowToJson(const MemberRow& row);
 MemberRow MemberRowFromJson(const nlohmann::json& j);
 
 /// members.csv's header: member, one column per axis (named by its key), the member's geometry
-/// and intensity measures, then the run's columns (docs/ensemble.md lists them). A study of
-/// N >= 3 blocks (study.blocks) has the per-block columns of every block: p3_radps,alpha3_rad,
-/// ... after alpha2_rad; peak_theta3_rad, ... after peak_theta2_rad; theta3_max_abs_error_rad,
-/// ... after theta2_max_abs_error_rad; theta3_horizon_s, ... after theta2_horizon_s.
+/// and intensity measures, then the run's columns (docs/ensemble.md lists them). The per-body
+/// columns (p1_radps,alpha1_rad,p2_radps,alpha2_rad, ...; peak_theta1_rad, ...;
+/// theta1_max_abs_error_rad, ...; theta1_horizon_s, ...) are those of every body of the study
+/// (study.blocks), and of two bodies for a study of one (MembersCsvBodies).
 std::string MembersCsvHeader(const StudyDef& study);
+/// The bodies members.csv has columns for: the study's, at least two (the file's columns of
+/// one-block studies were always those of two).
+int MembersCsvBodies(const StudyDef& study);
 /// One line of members.csv (with its newline).
 std::string MembersCsvLine(const StudyDef& study, const MemberRow& row);
 

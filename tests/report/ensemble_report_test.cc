@@ -43,13 +43,13 @@ MemberRow Row(long long member, const std::string& engine, int overturned, doubl
   r.engine = engine;
   r.status = overturned ? "overturned" : "completed";
   r.overturned_block = overturned;
-  r.peak_theta1_rad = overturned ? 1.25 : 0.05;
+  r.peak_theta_rad = {overturned ? 1.25 : 0.05};
   r.impacts = impacts;
   r.pga_g = pga_g;
   r.pgv_mps = pga_g * 9.80665 * pgv_over_pga_s;
   r.has_result = true;
-  r.p1_radps = 1.9;
-  r.alpha1_rad = 0.245;
+  r.p_radps = {1.9};
+  r.alpha_rad = {0.245};
   return r;
 }
 
@@ -170,12 +170,9 @@ TEST_F(EnsembleReportTest, AThreeBlockSuiteHasAFragilityPerBlockAndEveryBlocksPe
       ++failures[block];
       MemberRow r =
           Row(seed * static_cast<long long>(pgas.size()) + j, "reference", block, pgas[j]);
-      r.p2_radps = 2.0;
-      r.alpha2_rad = 0.3;
-      r.p_from3_radps = {2.1};
-      r.alpha_from3_rad = {0.35};
-      r.peak_theta2_rad = 0.06;
-      r.peak_theta_from3_rad = {block == 3 ? 1.3 : 0.07};
+      r.p_radps = {1.9, 2.0, 2.1};
+      r.alpha_rad = {0.245, 0.3, 0.35};
+      r.peak_theta_rad = {r.peak_theta_rad[0], 0.06, block == 3 ? 1.3 : 0.07};
       rows.push_back(r);
     }
   }

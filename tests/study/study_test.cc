@@ -417,7 +417,7 @@ TEST_F(StudyTest, RowsSurviveJsonAndTheirCsvLineNamesTheirRun) {
   EXPECT_FALSE(MembersCsvKey(s, line.substr(0, line.size() - 5)));
   const MemberRow still = RunMemberHere(s, 0, "reference");
   EXPECT_EQ(still.overturned_block, 0);
-  EXPECT_EQ(still.peak_theta1_rad, 0.0);
+  EXPECT_EQ(still.peak_theta_rad.at(0), 0.0);
   EXPECT_EQ(*still.pga_g, 0.1);
   EXPECT_TRUE(*still.converged);
 }
@@ -493,11 +493,11 @@ TEST_F(StudyTest, AStudyOverBlock3WidthRuns) {
   for (int64_t m = 0; m < 2; ++m) {
     const MemberRow row = RunMemberHere(s, m, "reference");
     ASSERT_TRUE(row.has_result) << row.status << ": " << row.detail;
-    ASSERT_EQ(row.p_from3_radps.size(), 1u);
-    ASSERT_EQ(row.peak_theta_from3_rad.size(), 1u);
+    ASSERT_EQ(row.p_radps.size(), 3u);
+    ASSERT_EQ(row.peak_theta_rad.size(), 3u);
     // Block 3's alpha is its own: atan(B3 / H3) with the member's width.
-    EXPECT_DOUBLE_EQ(row.alpha_from3_rad[0], std::atan2(m == 0 ? 0.5 : 0.7, 1.8));
-    EXPECT_GT(row.peak_theta_from3_rad[0], 0.0);
+    EXPECT_DOUBLE_EQ(row.alpha_rad[2], std::atan2(m == 0 ? 0.5 : 0.7, 1.8));
+    EXPECT_GT(row.peak_theta_rad[2], 0.0);
     const std::string line = MembersCsvLine(s, row);
     EXPECT_EQ(cells(line), cells(header)) << line;
     const std::optional<RowKey> key = MembersCsvKey(s, line);
