@@ -9,6 +9,7 @@
 /// limit, so a crash or a hang becomes a row, never the end of the command. See docs/stress.md.
 /// Sources: stress_catalogue.cc (the cases), stress_run.cc (one run, and the pool of children),
 /// stress_rows.cc (a row as JSON and as CSV).
+#include <algorithm>
 #include <filesystem>
 #include <functional>
 #include <nlohmann/json.hpp>
@@ -92,9 +93,8 @@ struct StressRow {
   /// Smallest time between consecutive impacts, s; < 0 when fewer than two impacts.
   double min_event_gap_s = -1.0;
   double wall_s = 0.0;  ///< the engine's simulation wall time (process time if it failed), s
-  double peak_theta1_rad = 0.0, peak_theta2_rad = 0.0;
-  /// N >= 3 blocks: peak |theta_k| of blocks 3..N (block 3 at index 0); empty otherwise.
-  std::vector<double> peak_theta_from3_rad;
+  /// Per body (body k at k - 1): peak |theta_k|, rad; empty when the run gave none.
+  std::vector<double> peak_theta_rad;
   // Engine rows: settings.
   bool has_settings = false;
   double dt_s = 0.0;     ///< the engine's time step, s
@@ -103,14 +103,12 @@ struct StressRow {
   std::string violations;
   // Engine rows: agreement with the reference (CompareWithReference).
   bool has_agreement = false;
-  double theta1_max_abs_error_rad = 0.0, theta1_peak_rel_error = 0.0;
-  double theta2_max_abs_error_rad = 0.0, theta2_peak_rel_error = 0.0;
-  /// N >= 3 blocks: the same of blocks 3..N (block 3 at index 0); empty otherwise.
-  std::vector<double> theta_from3_max_abs_error_rad, theta_from3_peak_rel_error;
+  /// Per body: the largest error of its angle, rad, and its peak's relative error.
+  std::vector<double> max_abs_error_rad, peak_rel_error;
   int impacts_matched = 0, reference_impacts = 0;
-  /// Blocks of the case's stack as the columns count them: 2 for one or two blocks (their
+  /// Bodies of the case's stack as the columns count them: 2 for one or two bodies (their
   /// columns are the same), N for N >= 3.
-  int column_blocks() const { return 2 + static_cast<int>(peak_theta_from3_rad.size()); }
+  int column_blocks() const { return std::max(2, static_cast<int>(peak_theta_rad.size())); }
 };
 
 /// Runs one engine on one case in this process (what the child does). Never throws for

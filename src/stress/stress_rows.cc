@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "run/engine_run.h"
+#include "scene/body_kind.h"
 #include "stress/stress.h"
 #include "util/format.h"
 
@@ -54,25 +55,16 @@ nlohmann::json StressRowToJson(const StressRow& r) {
   j["impacts"] = r.impacts;
   j["min_event_gap_s"] = num(r.min_event_gap_s);
   j["wall_s"] = num(r.wall_s);
-  j["peak_theta1_rad"] = num(r.peak_theta1_rad);
-  j["peak_theta2_rad"] = num(r.peak_theta2_rad);
+  j["peak_theta_rad"] = NumList(r.peak_theta_rad);
   j["has_settings"] = r.has_settings;
   j["dt_s"] = r.dt_s;
   j["settings"] = r.settings;
   j["violations"] = r.violations;
   j["has_agreement"] = r.has_agreement;
-  j["theta1_max_abs_error_rad"] = num(r.theta1_max_abs_error_rad);
-  j["theta1_peak_rel_error"] = num(r.theta1_peak_rel_error);
-  j["theta2_max_abs_error_rad"] = num(r.theta2_max_abs_error_rad);
-  j["theta2_peak_rel_error"] = num(r.theta2_peak_rel_error);
+  j["max_abs_error_rad"] = NumList(r.max_abs_error_rad);
+  j["peak_rel_error"] = NumList(r.peak_rel_error);
   j["impacts_matched"] = r.impacts_matched;
   j["reference_impacts"] = r.reference_impacts;
-  // N >= 3 blocks only: a row of one or two blocks is the same line as before.
-  if (!r.peak_theta_from3_rad.empty()) {
-    j["peak_theta_from3_rad"] = NumList(r.peak_theta_from3_rad);
-    j["theta_from3_max_abs_error_rad"] = NumList(r.theta_from3_max_abs_error_rad);
-    j["theta_from3_peak_rel_error"] = NumList(r.theta_from3_peak_rel_error);
-  }
   return j;
 }
 
@@ -94,50 +86,47 @@ StressRow StressRowFromJson(const nlohmann::json& j) {
   r.impacts = j.at("impacts").get<int>();
   r.min_event_gap_s = num("min_event_gap_s");
   r.wall_s = num("wall_s");
-  r.peak_theta1_rad = num("peak_theta1_rad");
-  r.peak_theta2_rad = num("peak_theta2_rad");
+  r.peak_theta_rad = NumListFrom(j, "peak_theta_rad");
   r.has_settings = j.at("has_settings").get<bool>();
   r.dt_s = j.at("dt_s").get<double>();
   r.settings = j.at("settings").get<std::string>();
   r.violations = j.at("violations").get<std::string>();
   r.has_agreement = j.at("has_agreement").get<bool>();
-  r.theta1_max_abs_error_rad = num("theta1_max_abs_error_rad");
-  r.theta1_peak_rel_error = num("theta1_peak_rel_error");
-  r.theta2_max_abs_error_rad = num("theta2_max_abs_error_rad");
-  r.theta2_peak_rel_error = num("theta2_peak_rel_error");
+  r.max_abs_error_rad = NumListFrom(j, "max_abs_error_rad");
+  r.peak_rel_error = NumListFrom(j, "peak_rel_error");
   r.impacts_matched = j.at("impacts_matched").get<int>();
   r.reference_impacts = j.at("reference_impacts").get<int>();
-  r.peak_theta_from3_rad = NumListFrom(j, "peak_theta_from3_rad");
-  r.theta_from3_max_abs_error_rad = NumListFrom(j, "theta_from3_max_abs_error_rad");
-  r.theta_from3_peak_rel_error = NumListFrom(j, "theta_from3_peak_rel_error");
   return r;
 }
 
 std::string StressCsv(const std::vector<StressRow>& rows) {
   int blocks = 2;
   for (const StressRow& r : rows) blocks = std::max(blocks, r.column_blocks());
-  std::string peaks_from3, errors_from3;
-  for (int b = 3; b <= blocks; ++b) {
-    peaks_from3.append(",").append(Numbered("peak_theta", b)).append("_rad");
-    errors_from3.append(",").append(Numbered("theta", b)).append("_max_abs_error_rad,");
-    errors_from3.append(Numbered("theta", b)).append("_peak_rel_error");
+  std::string peaks, errors;
+  for (int b = 1; b <= blocks; ++b) {
+    peaks.append(",").append(BodyColumn("peak_theta", b)).append("_rad");
+    errors.append(",").append(BodyColumn("theta", b)).append("_max_abs_error_rad,");
+    errors.append(BodyColumn("theta", b)).append("_peak_rel_error");
   }
   std::string out =
       "case,engine,finished,status,nan,max_energy_gain_rel,energy_impacts,events,impacts,"
-      "min_event_gap_s,wall_s,peak_theta1_rad,peak_theta2_rad";
-  out += peaks_from3;
-  out +=
-      ",dt_s,settings,violations,theta1_max_abs_error_rad,theta1_peak_rel_error,"
-      "theta2_max_abs_error_rad,theta2_peak_rel_error";
-  out += errors_from3;
+      "min_event_gap_s,wall_s";
+  out += peaks;
+  out += ",dt_s,settings,violations";
+  out += errors;
   out += ",impacts_matched,reference_impacts,detail\n";
   auto g = [](double v) { return Format("%.6g", v); };
-  // Appends block k's cell (k = 3..blocks) of a list of blocks 3..N, after its comma: empty
-  // beyond the row's stack.
-  const auto from3 = [&](const std::vector<double>& v, int k, bool filled) {
-    const size_t i = static_cast<size_t>(k - 3);
+  // Body k's (0-based) cell of a per-body list, after its comma: empty when not `filled`, and
+  // beyond the row's stack; bodies 1 and 2 always have a value (0 for a body the stack does
+  // not have: their columns are shared by one- and two-block cases).
+  const auto body = [&](const std::vector<double>& v, int k, bool filled) {
     out += ',';
-    if (filled && i < v.size()) out += g(v[i]);
+    if (!filled) return;
+    if (k < static_cast<int>(v.size())) {
+      out += g(v[k]);
+    } else if (k < 2) {
+      out += g(0.0);
+    }
   };
   for (const StressRow& r : rows) {
     // Peaks of a run that stopped early are those of its computed part.
@@ -150,27 +139,21 @@ std::string StressCsv(const std::vector<StressRow>& rows) {
            std::to_string(r.energy_impacts) + ",";
     out += std::to_string(r.events) + "," + std::to_string(r.impacts) + ",";
     out += (r.min_event_gap_s >= 0.0 ? Format("%.6e", r.min_event_gap_s) : "") + ",";
-    out += Format("%.4f", r.wall_s) + ",";
-    out += (ran ? g(r.peak_theta1_rad) : "") + "," + (ran ? g(r.peak_theta2_rad) : "");
-    for (int b = 3; b <= blocks; ++b) from3(r.peak_theta_from3_rad, b, ran);
+    out += Format("%.4f", r.wall_s);
+    for (int k = 0; k < blocks; ++k) body(r.peak_theta_rad, k, ran);
     out += ",";
-    out += (r.has_settings
-                ? Format("%.6g", r.dt_s) + "," + Clean(r.settings) + "," + Clean(r.violations)
-                : ",,") +
-           ",";
+    out += r.has_settings
+               ? Format("%.6g", r.dt_s) + "," + Clean(r.settings) + "," + Clean(r.violations)
+               : ",,";
+    for (int k = 0; k < blocks; ++k) {
+      body(r.max_abs_error_rad, k, r.has_agreement);
+      body(r.peak_rel_error, k, r.has_agreement);
+    }
+    out += ',';
     if (r.has_agreement) {
-      out += g(r.theta1_max_abs_error_rad) + "," + g(r.theta1_peak_rel_error) + "," +
-             g(r.theta2_max_abs_error_rad) + "," + g(r.theta2_peak_rel_error);
-      for (int b = 3; b <= blocks; ++b) {
-        from3(r.theta_from3_max_abs_error_rad, b, true);
-        from3(r.theta_from3_peak_rel_error, b, true);
-      }
-      out += ',';
       out += std::to_string(r.impacts_matched) + "," + std::to_string(r.reference_impacts);
     } else {
-      out += ",,,";
-      for (int b = 3; b <= blocks; ++b) out += ",,";
-      out += ",,";
+      out += ",";
     }
     out += ',';
     out += Clean(r.detail);
