@@ -16,6 +16,7 @@
 #include "run/engine_registry.h"
 #include "run/engine_run.h"
 #include "run/wall_clock.h"
+#include "scene/body_kind.h"
 #include "util/format.h"
 
 namespace rockbench {
@@ -101,20 +102,10 @@ std::vector<SweepRow> RunSweep(const Scene& scene, const GroundMotion& motion,
     baseline_out->wall_s = SecondsSince(start);
     baseline_out->status = baseline.summary.status;
     const reference::Summary& bs = baseline.summary;
-    baseline_out->peak_theta1_rad = bs.peak_theta_rad[0];
-    baseline_out->peak_theta1_t_s = bs.peak_theta_t_s[0];
-    baseline_out->peak_theta2_rad = bs.blocks() == 2 ? bs.peak_theta_rad[1] : 0.0;
-    baseline_out->peak_theta2_t_s = bs.blocks() == 2 ? bs.peak_theta_t_s[1] : 0.0;
+    baseline_out->peak_theta_rad.assign(bs.peak_theta_rad.begin(), bs.peak_theta_rad.end());
+    baseline_out->peak_theta_t_s.assign(bs.peak_theta_t_s.begin(), bs.peak_theta_t_s.end());
     baseline_out->overturn_block = baseline.summary.overturn_block.value_or(0);
     baseline_out->overturn_t_s = baseline.summary.overturn_t_s;
-    baseline_out->two_blocks = scene.block_count() == 2;
-    baseline_out->blocks = scene.block_count();
-    baseline_out->peak_theta_from3_rad.clear();
-    baseline_out->peak_theta_from3_t_s.clear();
-    for (int b = 2; b < bs.blocks(); ++b) {
-      baseline_out->peak_theta_from3_rad.push_back(bs.peak_theta_rad[b]);
-      baseline_out->peak_theta_from3_t_s.push_back(bs.peak_theta_t_s[b]);
-    }
   }
 
   std::vector<SweepRow> rows(grid.size());
@@ -167,7 +158,7 @@ std::string SweepCsv(const std::vector<SweepRow>& rows, int blocks) {
       "engine,family,setting,time_step_s,settings,integrator,rtol,atol,rk4_step_s,status,"
       "wall_s,";
   for (int b = 1; b <= theta_blocks; ++b) {
-    const std::string th = Numbered("theta", b);
+    const std::string th = BodyColumn("theta", b);
     for (const char* col : {"_max_abs_error_rad,", "_rms_error_rad,", "_horizon_s,",
                             "_peak_rel_error,", "_peak_time_error_s,"}) {
       out.append(th).append(col);
@@ -210,12 +201,9 @@ std::string SweepCsv(const std::vector<SweepRow>& rows, int blocks) {
       continue;
     }
     const EngineAgreement& a = r.agreement;
-    const AngleAgreement& t1 = a.theta1;
-    std::snprintf(buf, sizeof buf, "%s,%.6g,%.6e,%.6e,%.9g,%.6e,%.6e,", StatusText(a.status),
-                  r.wall_s, t1.max_abs_error_rad, t1.rms_error_rad, t1.horizon_s, t1.peak_rel_error,
-                  t1.peak_time_error_s);
+    std::snprintf(buf, sizeof buf, "%s,%.6g,", StatusText(a.status), r.wall_s);
     out += buf;
-    for (int b = 2; b <= theta_blocks; ++b) {
+    for (int b = 1; b <= theta_blocks; ++b) {
       if (b <= a.blocks()) {
         const AngleAgreement& t = a.angle(b);
         std::snprintf(buf, sizeof buf, "%.6e,%.6e,%.9g,%.6e,%.6e,", t.max_abs_error_rad,
@@ -269,14 +257,12 @@ nlohmann::json SweepJson(const Scene& scene, const std::vector<std::string>& ove
   j["tight_reference"]["atol"] = kSweepTightAtol;
   j["tight_reference"]["wall_s"] = baseline.wall_s;
   j["tight_reference"]["status"] = StatusText(baseline.status);
-  j["tight_reference"]["peak_theta1_rad"] = baseline.peak_theta1_rad;
-  j["tight_reference"]["peak_theta1_t_s"] = baseline.peak_theta1_t_s;
-  j["tight_reference"]["peak_theta2_rad"] = baseline.peak_theta2_rad;
-  j["tight_reference"]["peak_theta2_t_s"] = baseline.peak_theta2_t_s;
-  for (size_t k = 0; k < baseline.peak_theta_from3_rad.size(); ++k) {
-    const std::string th = Numbered("peak_theta", static_cast<int>(k) + 3);
-    j["tight_reference"][th + "_rad"] = baseline.peak_theta_from3_rad[k];
-    j["tight_reference"][th + "_t_s"] = baseline.peak_theta_from3_t_s[k];
+  // Blocks 1 and 2 always (0 for one block's block 2), then every block of the stack.
+  for (int k = 0; k < std::max(2, baseline.blocks()); ++k) {
+    const std::string th = BodyColumn("peak_theta", k + 1);
+    const bool has = k < baseline.blocks();
+    j["tight_reference"][th + "_rad"] = has ? baseline.peak_theta_rad[k] : 0.0;
+    j["tight_reference"][th + "_t_s"] = has ? baseline.peak_theta_t_s[k] : 0.0;
   }
   if (baseline.overturn_block > 0) {
     j["tight_reference"]["overturn_block"] = baseline.overturn_block;

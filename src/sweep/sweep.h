@@ -55,16 +55,12 @@ inline constexpr double kSweepTightAtol = 1e-14;
 struct SweepBaseline {
   double wall_s = 0.0;                       ///< its wall time, s
   RunStatus status = RunStatus::kCompleted;  ///< its summary status (completed, overturned, ...)
-  double peak_theta1_rad = 0.0;              ///< peak |theta1| over the run, rad
-  double peak_theta1_t_s = 0.0;              ///< its time, s (0: the release angle is the peak)
-  double peak_theta2_rad = 0.0;              ///< peak |theta2|, rad (0 for one block)
-  double peak_theta2_t_s = 0.0;
+  /// Per body (body k at k - 1): peak |theta_k| over the run, rad, and its time, s (0: the
+  /// release angle is the peak).
+  std::vector<double> peak_theta_rad, peak_theta_t_s;
   int overturn_block = 0;  ///< 1..N when a block overturned, else 0
   double overturn_t_s = 0.0;
-  bool two_blocks = false;
-  int blocks = 1;  ///< blocks of the scene
-  /// N >= 3 blocks: peak |theta_k| and its time of blocks k = 3..N (theta3 at index 0).
-  std::vector<double> peak_theta_from3_rad, peak_theta_from3_t_s;
+  int blocks() const { return static_cast<int>(peak_theta_rad.size()); }
 };
 
 /// One row of sweep.csv.

@@ -45,32 +45,25 @@ SweepRow Bullet(const char* precision, double dt, int iterations, double wall_s,
                               {"solver_iterations", std::int64_t{iterations}}};
   r.wall_s = wall_s;
   r.agreement.status = RunStatus::kCompleted;
-  r.agreement.theta1.max_abs_error_rad = max_error_rad / 4.0;
-  r.agreement.theta1.peak_rel_error = 1e-4;
-  AngleAgreement t2;
-  t2.max_abs_error_rad = max_error_rad;
-  t2.peak_rel_error = peak_rel2;
-  r.agreement.theta2 = t2;
+  r.agreement.bodies.resize(2);
+  r.agreement.angle(1).max_abs_error_rad = max_error_rad / 4.0;
+  r.agreement.angle(1).peak_rel_error = 1e-4;
+  r.agreement.angle(2).max_abs_error_rad = max_error_rad;
+  r.agreement.angle(2).peak_rel_error = peak_rel2;
   r.agreement.overturn_agree = overturn_agree;
   return r;
 }
 
 SweepRow Dopri(double rtol, double wall_s, double max_error_rad) {
   SweepRow r = Bullet("double", 1.0, 1, wall_s, max_error_rad, 1e-9);
-  r.point = SweepPoint{};
-  r.point.engine = "reference";
-  r.point.integrator = Integrator::kDopri5;
-  r.point.rtol = rtol;
-  r.point.atol = rtol * 1e-2;
+  r.point = ReferenceTolerancePoint(Integrator::kDopri5, rtol);  // atol = rtol / 100
   r.agreement.status = RunStatus::kAtRest;
   return r;
 }
 
 SweepRow Rk4(double step_s, double wall_s, double max_error_rad) {
   SweepRow r = Dopri(1.0, wall_s, max_error_rad);
-  r.point.integrator = Integrator::kRk4;
-  r.point.rtol = r.point.atol = 0.0;
-  r.point.rk4_step_s = step_s;
+  r.point = ReferenceRk4Point(step_s);
   return r;
 }
 
@@ -93,8 +86,8 @@ std::vector<SweepRow> SyntheticRows() {
       Dopri(1e-12, 0.0030, 0.0),  // the tight reference's own setting: error 0
       Rk4(1e-3, 0.0040, 1e-11),
   };
-  rows[6].agreement.theta1.peak_rel_error = -0.015;
-  rows[7].agreement.theta2->max_abs_error_rad = NAN;
+  rows[6].agreement.angle(1).peak_rel_error = -0.015;
+  rows[7].agreement.angle(2).max_abs_error_rad = NAN;
   rows[8].error = "bullet: the stack blew up";
   return rows;
 }
@@ -115,15 +108,14 @@ fs::path WriteSweepFolder(const fs::path& dir, const std::vector<SweepRow>& rows
     SweepBaseline baseline;
     baseline.wall_s = 0.003;
     baseline.status = RunStatus::kAtRest;
-    baseline.peak_theta1_rad = 0.2;  // the release angle
-    baseline.peak_theta2_rad = 0.4;
-    baseline.peak_theta2_t_s = 1.2;
+    baseline.peak_theta_rad = {0.2, 0.4};  // block 1's: the release angle
+    baseline.peak_theta_t_s = {0.0, 1.2};
     if (overturn_t_s > 0.0) {
       baseline.status = RunStatus::kOverturned;
       baseline.overturn_block = 2;
       baseline.overturn_t_s = overturn_t_s;
-      baseline.peak_theta2_rad = 1.5707963267948966;
-      baseline.peak_theta2_t_s = overturn_t_s;
+      baseline.peak_theta_rad[1] = 1.5707963267948966;
+      baseline.peak_theta_t_s[1] = overturn_t_s;
     }
     WriteFileAtomic(dir / "sweep.json",
                     SweepJson(scene, {"run.duration=6"}, SweepOptions{}, baseline, rows).dump(2));
@@ -159,7 +151,7 @@ TEST(WorkPrecisionTest, ReadsBackWhatTheSweepWrites) {
   EXPECT_DOUBLE_EQ(r[13].rk4_step_s, 1e-3);
   // One block: the theta2 columns are empty.
   SweepRow single = Bullet("double", 1e-3, 10, 0.05, 1e-3, 0.0);
-  single.agreement.theta2.reset();
+  single.agreement.bodies.resize(1);
   const SweepRecord s = Parse({single})[0];
   EXPECT_FALSE(s.has_theta2);
   EXPECT_DOUBLE_EQ(MaxAngleError(s), 1e-3 / 4.0);
@@ -243,8 +235,8 @@ TEST(WorkPrecisionTest, HistoryCriterionBoundsTheWholeRun) {
   EXPECT_NE(c.statement.find("267 times cheaper"), std::string::npos) << c.statement;
   // One block: theta2 plays no part.
   SweepRow single = Bullet("double", 1e-3, 10, 0.05, 1.0, 0.0);
-  single.agreement.theta2.reset();
-  single.agreement.theta1.max_abs_error_rad = 1e-3;
+  single.agreement.bodies.resize(1);
+  single.agreement.angle(1).max_abs_error_rad = 1e-3;
   EXPECT_TRUE(HistoryAgreement(0.01, 0.2, 0.0).reaches(Parse({single})[0]));
   EXPECT_FALSE(HistoryAgreement(0.001, 0.2, 0.0).reaches(Parse({single})[0]));
 }
@@ -252,8 +244,8 @@ TEST(WorkPrecisionTest, HistoryCriterionBoundsTheWholeRun) {
 TEST(WorkPrecisionTest, StatementSaysNoneWhenNothingQualifies) {
   std::vector<SweepRow> rows = SyntheticRows();
   for (SweepRow& row : rows) {
-    if (row.point.engine == "bullet" && row.agreement.theta2) {
-      row.agreement.theta2->peak_rel_error = 0.02;
+    if (row.point.engine == "bullet" && row.agreement.blocks() >= 2) {
+      row.agreement.angle(2).peak_rel_error = 0.02;
     }
   }
   const CheapestSetting none = FindCheapestSetting(Parse(rows));
@@ -265,7 +257,7 @@ TEST(WorkPrecisionTest, StatementSaysNoneWhenNothingQualifies) {
   // A Bullet run qualifies but no reference is as accurate.
   rows = SyntheticRows();
   for (SweepRow& row : rows) {
-    if (row.point.engine == "reference") row.agreement.theta2->max_abs_error_rad = 1.0;
+    if (row.point.engine == "reference") row.agreement.angle(2).max_abs_error_rad = 1.0;
   }
   const CheapestSetting no_ref = FindCheapestSetting(Parse(rows));
   ASSERT_TRUE(no_ref.engine_row.has_value());
@@ -546,11 +538,7 @@ TEST_F(WorkPrecisionFilesTest, Rk4HalvingShowsOrderFour) {
   const Scene scene = ShortHousner();
   SweepOptions options;
   for (double h : {1e-2, 5e-3, 2.5e-3}) {
-    SweepPoint p;
-    p.engine = "reference";
-    p.integrator = Integrator::kRk4;
-    p.rk4_step_s = h;
-    options.points.push_back(p);
+    options.points.push_back(ReferenceRk4Point(h));
   }
   const std::vector<SweepRow> rows = RunSweep(scene, GroundMotion::FromScene(scene), options);
   WriteFileAtomic(dir_ / "rk4/sweep.csv", SweepCsv(rows));
