@@ -15,6 +15,7 @@
 #include <tuple>
 #include <utility>
 
+#include "engine/non_finite.h"
 #include "reference/mechanics.h"
 #include "reference/unilateral_run.h"
 
@@ -150,18 +151,6 @@ std::pair<double, double> ProbeExpensive(const F& fn, double t0, double f0, doub
     ++n;
   }
   return {t1, f1};
-}
-
-// A value that is not finite, in words: "NaN", "+inf" or "-inf".
-const char* NonFiniteText(double v) {
-  return std::isnan(v) ? "NaN" : (v > 0.0 ? "+inf" : "-inf");
-}
-
-// A time for a message, s, to 9 significant digits.
-std::string TimeText(double t_s) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.9g", t_s);
-  return buf;
 }
 
 double Side(Contact c) {
@@ -316,16 +305,7 @@ class Simulator {
   // An event at t from `before` (rates of `pre`) to `after` (rates of `post`).
   [[gnu::noinline]] Event NewEvent(double t, const char* kind, const Configuration& before,
                                    const Configuration& after, const Y& pre, const Y& post) const {
-    Event ev(n_);
-    ev.t_s = t;
-    ev.kind = kind;
-    ev.mode_before = before;
-    ev.mode_after = after;
-    for (int i = 0; i < n_; ++i) {
-      ev.omega_before_radps[i] = pre[kCap + i];
-      ev.omega_after_radps[i] = post[kCap + i];
-    }
-    return ev;
+    return ModeChangeEvent(n_, t, kind, before, after, pre.data() + kCap, post.data() + kCap, 1);
   }
   void Track(double t, const Y& y) {
     for (int i = 0; i < n_; ++i) {
@@ -626,7 +606,7 @@ void Simulator<Mech>::DoImpact(double t, const Y& pre, int interface) {
   if ((!ir.admissible || ir.admissible_outcomes > 1) && !sum.undetermined_from_s) {
     sum.undetermined_from_s = t;
     sum.undetermined_detail =
-        "the " + InterfaceName(interface, n_) + " impact at t = " + TimeText(t) + " s has " +
+        "the " + InterfaceName(interface, n_) + " impact at t = " + MessageTimeText(t) + " s has " +
         (ir.admissible ? std::to_string(ir.admissible_outcomes) + " admissible outcomes"
                        : std::string("no admissible outcome"));
   }
@@ -1073,11 +1053,12 @@ template <class Mech>
 void Simulator<Mech>::StopNonFinite(const NonFinite& nf, double t_bad, const Y& last) {
   Summary& sum = result_.summary;
   sum.non_finite_quantity = nf.quantity;
-  sum.non_finite_value = NonFiniteText(nf.value);
+  sum.non_finite_value = NonFiniteValueText(nf.value);
   sum.non_finite_t_s = t_bad;
   sum.non_finite_last_t_s = t_;
-  sum.status_detail = nf.quantity + " is " + sum.non_finite_value + " at t = " + TimeText(t_bad) +
-                      " s; the run stops at its last finite state, t = " + TimeText(t_) + " s";
+  sum.status_detail =
+      nf.quantity + " is " + sum.non_finite_value + " at t = " + MessageTimeText(t_bad) +
+      " s; the run stops at its last finite state, t = " + MessageTimeText(t_) + " s";
   StopWith("non_finite", last, sum.status_detail, RunStatus::kNonFinite);
 }
 

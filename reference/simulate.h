@@ -176,6 +176,13 @@ void EmitTrajectorySamples(const Trajectory& trajectory, double dt_s, double run
                            double t_end_s, bool inclusive, long* next,
                            std::vector<Sample>* samples);
 
+/// An event of a stack of n blocks at t_s, of `kind`, from mode `before` to `after`: block i's
+/// rate before is omega_before[i * stride] and after omega_after[i * stride] (rad/s). The one
+/// construction of an event for the chain's driver and the unilateral model's.
+Event ModeChangeEvent(int n, double t_s, std::string kind, const Configuration& before,
+                      const Configuration& after, const double* omega_before,
+                      const double* omega_after, int stride);
+
 /// Summary figures of a reference run.
 struct Summary {
   /// completed | overturned | at_rest | assumption_violated | non_finite | left_support

@@ -87,6 +87,21 @@ std::vector<double> Trajectory::StateAt(double t_s, bool before_event) const {
   return out;
 }
 
+Event ModeChangeEvent(int n, double t_s, std::string kind, const Configuration& before,
+                      const Configuration& after, const double* omega_before,
+                      const double* omega_after, int stride) {
+  Event ev(n);
+  ev.t_s = t_s;
+  ev.kind = std::move(kind);
+  ev.mode_before = before;
+  ev.mode_after = after;
+  for (int i = 0; i < n; ++i) {
+    ev.omega_before_radps[i] = omega_before[i * stride];
+    ev.omega_after_radps[i] = omega_after[i * stride];
+  }
+  return ev;
+}
+
 void EmitTrajectorySamples(const Trajectory& trajectory, double dt_s, double run_end_s,
                            double t_end_s, bool inclusive, long* next,
                            std::vector<Sample>* samples) {

@@ -130,6 +130,22 @@ class Runner {
   double Value(const EventFn& e, double t, const Y& y) const;
   std::vector<EventFn> Functions() const;
 
+  // Go's parts, each false when the run stopped (stated): the hand-over from the chain (the
+  // mode, or the impact, at t_), one accepted step from t_ (h its size), a finite end state,
+  // the step's earliest event (its index in fns, -1: none; *t_ev its instant), the segment up
+  // to t_seg recorded (friction's work, the trajectory, samples, peaks), the event at t_seg
+  // handled, and the end (the last sample, at rest or not).
+  bool HandOver(const std::string& reason);
+  bool AcceptedStep(double t_break, const Y& f0, Step* st, double* h);
+  bool FiniteEnd(const Y& y1, double t1);
+  int EarliestEvent(const std::vector<EventFn>& fns, double t1, const Dense& dense,
+                    double* t_ev) const;
+  void RecordSegment(const Dense& dense, double t_seg, const Y& y_end);
+  bool AtEvent(const EventFn& e, double t_seg, const Y& y_end);
+  UnilateralEnd Finish();
+  // The state at t in the step from t_ (y_ itself at t_).
+  Y At(const Dense& dense, double t) const { return t == t_ ? y_ : dense.At(t); }
+
   // The contact state from (t, y) on, from its complementarity problem; false: none (the run
   // stops, stated).
   bool NewMode(double t, const Y& y, const char* kind, const std::string& why);
@@ -381,15 +397,9 @@ template <int kCap>
 void Runner<kCap>::AddEvent(double t, const std::string& kind, const Configuration& before,
                             const Configuration& after, const Y& pre, const Y& post,
                             const std::string& note) {
-  Event ev(n_);
-  ev.t_s = t;
-  ev.kind = kind;
-  ev.mode_before = before;
-  ev.mode_after = after;
-  for (int i = 0; i < n_; ++i) {
-    ev.omega_before_radps[i] = pre[kSecond + 3 * i + 2];
-    ev.omega_after_radps[i] = post[kSecond + 3 * i + 2];
-  }
+  // Block i's rate: the third of its three velocities (x, y, phi).
+  Event ev = ModeChangeEvent(n_, t, kind, before, after, pre.data() + kSecond + 2,
+                             post.data() + kSecond + 2, 3);
   ev.energy_before_j = stack_.Energy(Q(pre), V(pre));
   ev.energy_after_j = stack_.Energy(Q(post), V(post));
   ev.note = note;
@@ -556,7 +566,7 @@ bool Runner<kCap>::Impact(int k) {
 }
 
 template <int kCap>
-UnilateralEnd Runner<kCap>::Go(const std::string& reason) {
+bool Runner<kCap>::HandOver(const std::string& reason) {
   Summary& sum = r_->summary;
   sum.unilateral_from_s = t_;
   sum.unilateral_reason = reason;
@@ -571,199 +581,194 @@ UnilateralEnd Runner<kCap>::Go(const std::string& reason) {
     // impact resolved here (Coulomb at the impulse level), then the mode after it.
     AddEvent(t_, "transition", config_, config_, y_, y_, "unilateral model from here: " + reason);
     ++sum.transitions;
-    if (!Impact(impact_interface_)) return {config_, false};
-  } else {
-    if (!NewMode(t_, y_, "", "")) return {config_, false};
-    std::string note = "unilateral model from here: " + reason;
-    const std::string ch = Changes(chain, mode_);
-    if (!ch.empty()) note += ": " + ch;
-    AddEvent(t_, "transition", config_, config_, y_, y_, note);
-    ++sum.transitions;
-    for (int k = 0; k < n_; ++k) {
-      if (mode_.any_closed(k) && mode_.slip[k] != Slip::kStick) ++sum.slip_starts;
-      if (!mode_.any_closed(k)) ++sum.lift_offs;
-    }
+    return Impact(impact_interface_);
   }
+  if (!NewMode(t_, y_, "", "")) return false;
+  std::string note = "unilateral model from here: " + reason;
+  const std::string ch = Changes(chain, mode_);
+  if (!ch.empty()) note += ": " + ch;
+  AddEvent(t_, "transition", config_, config_, y_, y_, note);
+  ++sum.transitions;
+  for (int k = 0; k < n_; ++k) {
+    if (mode_.any_closed(k) && mode_.slip[k] != Slip::kStick) ++sum.slip_starts;
+    if (!mode_.any_closed(k)) ++sum.lift_offs;
+  }
+  return true;
+}
+
+template <int kCap>
+bool Runner<kCap>::AcceptedStep(double t_break, const Y& f0, Step* st, double* h) {
+  Summary& sum = r_->summary;
   const bool dop853 = scene_.model.integrator == Integrator::kDop853;
   const double rtol = scene_.model.rtol, atol = scene_.model.atol;
   const int active = 6 * n_;
-  Y f0 = Rhs(t_, y_);
-  while (!done_ && t_ < steps_.t_end_s) {
-    // One accepted step, cut at the base motion's next kink.
-    const double t_break = std::min(motion_.next_breakpoint_after(t_), steps_.t_end_s);
-    Step st;
-    double h = 0.0;
-    while (true) {
-      h = std::min({h_, steps_.max_step_s, t_break - t_});
-      if (t_break - t_ - h < steps_.min_step_s) h = t_break - t_;
-      auto rhs = [&](double t, const Y& y) { return Rhs(t, y); };
-      st = dop853 ? Dop853Step(rhs, t_, y_, f0, h, rtol, atol, active)
-                  : Dopri5Step(rhs, t_, y_, f0, h, rtol, atol, active);
-      // A step whose error or end state is not finite is rejected (and shrunk).
-      bool finite = std::isfinite(st.err);
-      for (size_t i = 0; i < kState && finite; ++i) finite = std::isfinite(st.y1[i]);
-      const double err = finite ? st.err : 1e10;
-      const double order = dop853 ? 8.0 : 5.0;
-      const double grow =
-          err == 0.0 ? 5.0 : std::clamp(0.9 * std::pow(err, -1.0 / order), 0.2, 5.0);
-      if (err <= 1.0) {
-        ++sum.steps_accepted;
-        h_ = h * grow;
-        break;
-      }
-      ++sum.steps_rejected;
-      h_ = h * grow;
-      if (h_ < steps_.min_step_s) {
-        Stop(t_, y_, RunStatus::kAssumptionViolated, "assumption_violated",
-             "the unilateral model's step fell below its smallest at t = " + std::to_string(t_) +
-                 " s");
-        return {config_, false};
+  while (true) {
+    *h = std::min({h_, steps_.max_step_s, t_break - t_});
+    if (t_break - t_ - *h < steps_.min_step_s) *h = t_break - t_;
+    auto rhs = [&](double t, const Y& y) { return Rhs(t, y); };
+    *st = dop853 ? Dop853Step(rhs, t_, y_, f0, *h, rtol, atol, active)
+                 : Dopri5Step(rhs, t_, y_, f0, *h, rtol, atol, active);
+    // A step whose error or end state is not finite is rejected (and shrunk).
+    bool finite = std::isfinite(st->err);
+    for (size_t i = 0; i < kState && finite; ++i) finite = std::isfinite(st->y1[i]);
+    const double err = finite ? st->err : 1e10;
+    const double order = dop853 ? 8.0 : 5.0;
+    const double grow = err == 0.0 ? 5.0 : std::clamp(0.9 * std::pow(err, -1.0 / order), 0.2, 5.0);
+    if (err <= 1.0) {
+      ++sum.steps_accepted;
+      h_ = *h * grow;
+      return true;
+    }
+    ++sum.steps_rejected;
+    h_ = *h * grow;
+    if (h_ < steps_.min_step_s) {
+      Stop(t_, y_, RunStatus::kAssumptionViolated, "assumption_violated",
+           "the unilateral model's step fell below its smallest at t = " + std::to_string(t_) +
+               " s");
+      return false;
+    }
+  }
+}
+
+template <int kCap>
+bool Runner<kCap>::FiniteEnd(const Y& y1, double t1) {
+  Summary& sum = r_->summary;
+  for (size_t i = 0; i < kState; ++i) {
+    if (!std::isfinite(y1[i])) {
+      sum.non_finite_quantity = "state";
+      sum.non_finite_value = std::isnan(y1[i]) ? "NaN" : y1[i] > 0 ? "+inf" : "-inf";
+      sum.non_finite_t_s = t1;
+      sum.non_finite_last_t_s = t_;
+      Stop(t_, y_, RunStatus::kNonFinite, "non_finite",
+           "the unilateral model's state is not finite at t = " + std::to_string(t1) + " s");
+      return false;
+    }
+  }
+  return true;
+}
+
+template <int kCap>
+int Runner<kCap>::EarliestEvent(const std::vector<EventFn>& fns, double t1, const Dense& dense,
+                                double* t_ev) const {
+  double t_lo = kInf;
+  int which = -1;
+  const Y y_mid = At(dense, 0.5 * (t_ + t1));
+  for (int e = 0; e < static_cast<int>(fns.size()); ++e) {
+    auto fn = [&](double t) { return Value(fns[e], t, At(dense, t)); };
+    double t_neg = t1, f_neg = fn(t1);
+    if (!(f_neg < 0.0) && fns[e].kind == Kind::kLanding) {
+      const double fm = Value(fns[e], 0.5 * (t_ + t1), y_mid);
+      if (fm < 0.0) {
+        t_neg = 0.5 * (t_ + t1);
+        f_neg = fm;
       }
     }
-    const double t1 = t_ + h;
-    const Dense& dense = st.dense;
-    auto at = [&](double t) { return t == t_ ? y_ : dense.At(t); };
-    for (size_t i = 0; i < kState; ++i) {
-      if (!std::isfinite(st.y1[i])) {
-        sum.non_finite_quantity = "state";
-        sum.non_finite_value = std::isnan(st.y1[i]) ? "NaN" : st.y1[i] > 0 ? "+inf" : "-inf";
-        sum.non_finite_t_s = t1;
-        sum.non_finite_last_t_s = t_;
-        Stop(t_, y_, RunStatus::kNonFinite, "non_finite",
-             "the unilateral model's state is not finite at t = " + std::to_string(t1) + " s");
-        return {config_, false};
-      }
-    }
-    // The earliest event in the step: every function at the step end, the landings also at
-    // its middle (a corner that touches and leaves within one step).
-    const std::vector<EventFn> fns = Functions();
-    double t_ev = kInf, t_lo = kInf;
-    int which = -1;
-    const Y y_mid = at(0.5 * (t_ + t1));
-    for (int e = 0; e < static_cast<int>(fns.size()); ++e) {
-      auto fn = [&](double t) { return Value(fns[e], t, at(t)); };
-      double t_neg = t1, f_neg = fn(t1);
-      if (!(f_neg < 0.0) && fns[e].kind == Kind::kLanding) {
-        const double fm = Value(fns[e], 0.5 * (t_ + t1), y_mid);
-        if (fm < 0.0) {
-          t_neg = 0.5 * (t_ + t1);
-          f_neg = fm;
-        }
-      }
-      if (!(f_neg < 0.0)) continue;
-      double f_a = fn(t_);
-      if (!(f_a >= 0.0)) {
-        // Already past its tolerance at the step's start: at once.
-        if (t_ < t_lo) {
-          t_lo = t_;
-          t_ev = t_;
-          which = e;
-        }
-        continue;
-      }
-      const auto br = BrentBracket(fn, t_, t_neg, f_a, f_neg, steps_.event_tol_s);
-      if (br.first < t_lo) {
-        t_lo = br.first;
-        t_ev = br.second;
+    if (!(f_neg < 0.0)) continue;
+    double f_a = fn(t_);
+    if (!(f_a >= 0.0)) {
+      // Already past its tolerance at the step's start: at once.
+      if (t_ < t_lo) {
+        t_lo = t_;
+        *t_ev = t_;
         which = e;
-      }
-    }
-    const bool none = which < 0;
-    const double t_seg = none ? t1 : t_ev;
-    const Y y_end = none ? st.y1 : at(t_seg);
-    // Friction's work over the segment (Simpson's rule).
-    {
-      const double tm = 0.5 * (t_ + t_seg);
-      std::array<double, kCap> p0{}, pm{}, p1{};
-      const double p = (FrictionPower(t_, y_, &p0) + 4.0 * FrictionPower(tm, at(tm), &pm) +
-                        FrictionPower(t_seg, y_end, &p1)) /
-                       6.0;
-      sum.friction_work_j += std::max(0.0, p * (t_seg - t_));
-      for (int k = 0; k < n_; ++k) {
-        episode_work_j_[k] += std::max(0.0, (p0[k] + 4.0 * pm[k] + p1[k]) / 6.0 * (t_seg - t_));
-      }
-    }
-    r_->trajectory.AppendState(t_, t_seg, config_, dense, kSecond);
-    Emit(t_seg, false);
-    // Peaks: the extremes of each angle inside the segment, and its end.
-    for (int i = 0; i < n_; ++i) {
-      auto rate = [&](double t) { return at(t)[kSecond + 3 * i + 2]; };
-      const double ra = rate(t_), rb = rate(t_seg);
-      if (ra * rb < 0.0) {
-        const auto br = BrentBracket(rate, t_, t_seg, ra, rb, steps_.event_tol_s);
-        Track(br.first, at(br.first));
-      }
-    }
-    Track(t_seg, y_end);
-    NoteForces(y_end, t_seg);
-    if (none) {
-      t_ = t1;
-      y_ = st.y1;
-      f0 = st.f1;
-      if (HasClosed()) {
-        // Back on the constraints (the drift of one step), and the next step's first stage there.
-        stack_.Project(mode_, y_.data(), y_.data() + kSecond);
-        f0 = Rhs(t_, y_);
-        ArmSlipStops(y_, false);
       }
       continue;
     }
-    // The event.
-    if (std::abs(t_seg - last_event_t_) <= steps_.event_tol_s) {
-      if (++same_time_events_ > 20) {
-        Stop(t_seg, y_end, RunStatus::kAssumptionViolated, "assumption_violated",
-             "event cascade at one instant (unilateral model)");
-        return {config_, false};
-      }
-    } else {
-      same_time_events_ = 0;
+    const auto br = BrentBracket(fn, t_, t_neg, f_a, f_neg, steps_.event_tol_s);
+    if (br.first < t_lo) {
+      t_lo = br.first;
+      *t_ev = br.second;
+      which = e;
     }
-    last_event_t_ = t_seg;
-    t_ = t_seg;
-    y_ = y_end;
-    const EventFn& e = fns[which];
-    switch (e.kind) {
-      case Kind::kOverturn:
-        config_ = stack_.ConfigurationOf(mode_, Q(y_));
-        sum.overturn_block = e.k + 1;
-        sum.overturn_t_s = t_;
-        Stop(t_, y_, RunStatus::kOverturned, "overturn", "block " + std::to_string(e.k + 1));
-        return {config_, false};
-      case Kind::kLanding:
-        if (!Impact(e.k)) return {config_, false};
-        break;
-      case Kind::kEdge: {
-        const bool upper = !mode_.support_corner[e.k][e.j];
-        const std::string corner = e.j == 0 ? "right" : "left";
-        const std::string what = upper ? "block " + std::to_string(e.k + 1) + "'s " + corner +
-                                             " corner passes its support's edge"
-                                       : "its support's " + corner + " corner reaches block " +
-                                             std::to_string(e.k + 1) + "'s base end";
-        if (!stack_.Slots(e.k, Q(y_), V(y_))[e.j].exists) {
-          // Past both edges: the block has left its support (an outcome of its own, not an
-          // overturn: the block may still stand upright).
-          config_ = stack_.ConfigurationOf(mode_, Q(y_));
-          sum.left_support_block = e.k + 1;
-          sum.left_support_t_s = t_;
-          Stop(t_, y_, RunStatus::kLeftSupport, "left_support",
-               "block " + std::to_string(e.k + 1) + " slid off its support");
-          return {config_, false};
-        }
-        if (!NewMode(t_, y_, "transition", what)) return {config_, false};
-        break;
-      }
-      case Kind::kLift:
-        if (!NewMode(t_, y_, "transition", "contact opens")) return {config_, false};
-        break;
-      case Kind::kCone:
-        if (!NewMode(t_, y_, "transition", "friction cone reached")) return {config_, false};
-        break;
-      case Kind::kSlipStop:
-        if (!NewMode(t_, y_, "transition", "slip stops")) return {config_, false};
-        break;
-    }
-    f0 = Rhs(t_, y_);
   }
+  return which;
+}
+
+template <int kCap>
+void Runner<kCap>::RecordSegment(const Dense& dense, double t_seg, const Y& y_end) {
+  Summary& sum = r_->summary;
+  // Friction's work over the segment (Simpson's rule).
+  {
+    const double tm = 0.5 * (t_ + t_seg);
+    std::array<double, kCap> p0{}, pm{}, p1{};
+    const double p = (FrictionPower(t_, y_, &p0) + 4.0 * FrictionPower(tm, At(dense, tm), &pm) +
+                      FrictionPower(t_seg, y_end, &p1)) /
+                     6.0;
+    sum.friction_work_j += std::max(0.0, p * (t_seg - t_));
+    for (int k = 0; k < n_; ++k) {
+      episode_work_j_[k] += std::max(0.0, (p0[k] + 4.0 * pm[k] + p1[k]) / 6.0 * (t_seg - t_));
+    }
+  }
+  r_->trajectory.AppendState(t_, t_seg, config_, dense, kSecond);
+  Emit(t_seg, false);
+  // Peaks: the extremes of each angle inside the segment, and its end.
+  for (int i = 0; i < n_; ++i) {
+    auto rate = [&](double t) { return At(dense, t)[kSecond + 3 * i + 2]; };
+    const double ra = rate(t_), rb = rate(t_seg);
+    if (ra * rb < 0.0) {
+      const auto br = BrentBracket(rate, t_, t_seg, ra, rb, steps_.event_tol_s);
+      Track(br.first, At(dense, br.first));
+    }
+  }
+  Track(t_seg, y_end);
+  NoteForces(y_end, t_seg);
+}
+
+template <int kCap>
+bool Runner<kCap>::AtEvent(const EventFn& e, double t_seg, const Y& y_end) {
+  Summary& sum = r_->summary;
+  if (std::abs(t_seg - last_event_t_) <= steps_.event_tol_s) {
+    if (++same_time_events_ > 20) {
+      Stop(t_seg, y_end, RunStatus::kAssumptionViolated, "assumption_violated",
+           "event cascade at one instant (unilateral model)");
+      return false;
+    }
+  } else {
+    same_time_events_ = 0;
+  }
+  last_event_t_ = t_seg;
+  t_ = t_seg;
+  y_ = y_end;
+  switch (e.kind) {
+    case Kind::kOverturn:
+      config_ = stack_.ConfigurationOf(mode_, Q(y_));
+      sum.overturn_block = e.k + 1;
+      sum.overturn_t_s = t_;
+      Stop(t_, y_, RunStatus::kOverturned, "overturn", "block " + std::to_string(e.k + 1));
+      return false;
+    case Kind::kLanding:
+      return Impact(e.k);
+    case Kind::kEdge: {
+      const bool upper = !mode_.support_corner[e.k][e.j];
+      const std::string corner = e.j == 0 ? "right" : "left";
+      const std::string what = upper ? "block " + std::to_string(e.k + 1) + "'s " + corner +
+                                           " corner passes its support's edge"
+                                     : "its support's " + corner + " corner reaches block " +
+                                           std::to_string(e.k + 1) + "'s base end";
+      if (!stack_.Slots(e.k, Q(y_), V(y_))[e.j].exists) {
+        // Past both edges: the block has left its support (an outcome of its own, not an
+        // overturn: the block may still stand upright).
+        config_ = stack_.ConfigurationOf(mode_, Q(y_));
+        sum.left_support_block = e.k + 1;
+        sum.left_support_t_s = t_;
+        Stop(t_, y_, RunStatus::kLeftSupport, "left_support",
+             "block " + std::to_string(e.k + 1) + " slid off its support");
+        return false;
+      }
+      return NewMode(t_, y_, "transition", what);
+    }
+    case Kind::kLift:
+      return NewMode(t_, y_, "transition", "contact opens");
+    case Kind::kCone:
+      return NewMode(t_, y_, "transition", "friction cone reached");
+    case Kind::kSlipStop:
+      return NewMode(t_, y_, "transition", "slip stops");
+  }
+  return true;
+}
+
+template <int kCap>
+UnilateralEnd Runner<kCap>::Finish() {
   if (!done_) {
     Dense last;
     last.c[0] = y_;
@@ -778,6 +783,45 @@ UnilateralEnd Runner<kCap>::Go(const std::string& reason) {
   for (int i = 0; i < 3 * n_ && still; ++i) still = std::abs(y_[kSecond + i]) <= rate_tol_;
   end.at_rest = still && !done_;
   return end;
+}
+
+template <int kCap>
+UnilateralEnd Runner<kCap>::Go(const std::string& reason) {
+  if (!HandOver(reason)) return {config_, false};
+  Y f0 = Rhs(t_, y_);
+  while (!done_ && t_ < steps_.t_end_s) {
+    // One accepted step, cut at the base motion's next kink.
+    const double t_break = std::min(motion_.next_breakpoint_after(t_), steps_.t_end_s);
+    Step st;
+    double h = 0.0;
+    if (!AcceptedStep(t_break, f0, &st, &h)) return {config_, false};
+    const double t1 = t_ + h;
+    if (!FiniteEnd(st.y1, t1)) return {config_, false};
+    // The earliest event in the step: every function at the step end, the landings also at
+    // its middle (a corner that touches and leaves within one step).
+    const std::vector<EventFn> fns = Functions();
+    double t_ev = kInf;
+    const int which = EarliestEvent(fns, t1, st.dense, &t_ev);
+    const bool none = which < 0;
+    const double t_seg = none ? t1 : t_ev;
+    const Y y_end = none ? st.y1 : At(st.dense, t_seg);
+    RecordSegment(st.dense, t_seg, y_end);
+    if (none) {
+      t_ = t1;
+      y_ = st.y1;
+      f0 = st.f1;
+      if (HasClosed()) {
+        // Back on the constraints (the drift of one step), and the next step's first stage there.
+        stack_.Project(mode_, y_.data(), y_.data() + kSecond);
+        f0 = Rhs(t_, y_);
+        ArmSlipStops(y_, false);
+      }
+      continue;
+    }
+    if (!AtEvent(fns[which], t_seg, y_end)) return {config_, false};
+    f0 = Rhs(t_, y_);
+  }
+  return Finish();
 }
 
 }  // namespace
