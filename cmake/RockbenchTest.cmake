@@ -7,9 +7,8 @@ function(rockbench_test name)
   if(NOT T_TIMEOUT)
     set(T_TIMEOUT 300)
   endif()
-  # The sanitizers make a run 3 to 11 times slower (tests/agreement/CMakeLists.txt): the stress
-  # CLI's quick subset took 241 s alone under them and passed 300 s beside the rest of the suite
-  # (2026-11-26). A sanitizer build allows four times the limit.
+  # The sanitizers make a run 3 to 11 times slower (docs/commands.md, scripts/test.sh --sanitize): a
+  # sanitizer build allows four times the limit.
   if(ROCKBENCH_SANITIZE)
     math(EXPR T_TIMEOUT "${T_TIMEOUT} * 4")
   endif()

@@ -216,11 +216,11 @@ TEST(SyntheticMotion, TheSameSeedGivesTheSameBytesOnEveryMachine) {
   EXPECT_EQ(Fnv1a(GenerateSyntheticMotion(d)), Fnv1a(a));
   d.seed = 8;
   EXPECT_NE(Fnv1a(GenerateSyntheticMotion(d)), Fnv1a(a));
-  // The bits this definition gives (x86-64, GCC 12, 2026-11-23). Built only from IEEE-754
+  // The bits this definition gives (x86-64, GCC 12). Built only from IEEE-754
   // basic operations without contraction (synthetic_motion.h), they are the same on every
   // IEEE-754 machine: a different hash is a portability bug, not a tolerance to widen.
   EXPECT_EQ(Fnv1a(a), 0xefd35032a00677e0ull) << std::hex << Fnv1a(a);
-  // The same with the high-pass and the residual correction (the defaults; 2026-11-25).
+  // The same with the high-pass and the residual correction (the defaults).
   d.seed = 7;
   d.high_pass_hz = 0.1;
   d.zero_residuals = true;
