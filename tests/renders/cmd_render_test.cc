@@ -183,7 +183,9 @@ struct Measured {
   long max_rss_kb = 0;
 };
 
-Measured RunMeasured(const std::vector<std::string>& args) {
+// Starts `rockbench render ARGS` as a child with its stdout on /dev/null; its pid, -1 when it
+// could not start.
+pid_t SpawnRender(const std::vector<std::string>& args) {
   std::vector<std::string> argv = {ROCKBENCH_CLI, "render"};
   argv.insert(argv.end(), args.begin(), args.end());
   std::vector<char*> cargs;
@@ -193,10 +195,30 @@ Measured RunMeasured(const std::vector<std::string>& args) {
   posix_spawn_file_actions_init(&actions);
   posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
   pid_t pid = -1;
-  Measured m;
   const int rc = ::posix_spawn(&pid, cargs[0], &actions, nullptr, cargs.data(), environ);
   posix_spawn_file_actions_destroy(&actions);
-  if (rc != 0) return m;
+  return rc == 0 ? pid : -1;
+}
+
+// A test's output folder: no temporary left in it, then removed.
+void ExpectNoTemporariesAndRemove(const fs::path& out) {
+  EXPECT_EQ(Temporaries(out), std::vector<std::string>{});
+  fs::remove_all(out);
+}
+
+// A test's output folder with frames/NAME holding `text` (an earlier export's or the user's).
+fs::path FolderWithFrame(const std::string& folder, const std::string& name,
+                         const std::string& text) {
+  const fs::path out = Folder(folder);
+  fs::create_directories(out / "frames");
+  std::ofstream(out / "frames" / name) << text;
+  return out;
+}
+
+Measured RunMeasured(const std::vector<std::string>& args) {
+  Measured m;
+  const pid_t pid = SpawnRender(args);
+  if (pid < 0) return m;
   int st = 0;
   rusage usage{};
   ::wait4(pid, &st, 0, &usage);
@@ -255,8 +277,7 @@ TEST(CmdRender, WallLimitStopsTheExportWithoutPartialOutput) {
   EXPECT_FALSE(fs::exists(out / "frames"));
   EXPECT_FALSE(fs::exists(out / "animation.mp4"));
   EXPECT_FALSE(fs::exists(out / "animation.gif"));
-  EXPECT_EQ(Temporaries(out), std::vector<std::string>{});
-  fs::remove_all(out);
+  ExpectNoTemporariesAndRemove(out);
 }
 
 // A render killed with SIGKILL (no chance to tidy up) leaves no frames/ (the frames are made in
@@ -264,26 +285,14 @@ TEST(CmdRender, WallLimitStopsTheExportWithoutPartialOutput) {
 // folder (it holds the killed export's list of frames) and writes the whole sequence, replacing
 // an earlier longer one (the frames its list names).
 TEST(CmdRender, AKilledRenderLeavesNoPartialOutput) {
-  const fs::path out = Folder("killed");
-  fs::create_directories(out / "frames");
-  std::ofstream(out / "frames" / "frame_99999.png") << "an older, longer export";
+  const fs::path out = FolderWithFrame("killed", "frame_99999.png", "an older, longer export");
   std::ofstream(out / "frames" / ".rockbench-frames")
       << "# rockbench render: the frames it wrote in this folder (a file not listed is not its "
          "own)\nframe_99999.png\n";
-  std::vector<std::string> argv = {
-      ROCKBENCH_CLI, "render",     (kSource / "scenes/thesis_rinaldi228.toml").string(),
-      "--out",       out.string(), "--frames",
-      "--size",      "320x240",    "--fps",
-      "60",          "--speed",    "0.02"};
-  std::vector<char*> cargs;
-  for (std::string& a : argv) cargs.push_back(a.data());
-  cargs.push_back(nullptr);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
-  pid_t pid = -1;
-  ASSERT_EQ(::posix_spawn(&pid, cargs[0], &actions, nullptr, cargs.data(), environ), 0);
-  posix_spawn_file_actions_destroy(&actions);
+  const pid_t pid =
+      SpawnRender({(kSource / "scenes/thesis_rinaldi228.toml").string(), "--out", out.string(),
+                   "--frames", "--size", "320x240", "--fps", "60", "--speed", "0.02"});
+  ASSERT_GE(pid, 0);
   const fs::path tmp = out / (".frames.tmp" + std::to_string(pid));
   const auto start = std::chrono::steady_clock::now();
   auto frames_in = [](const fs::path& d) {
@@ -310,8 +319,7 @@ TEST(CmdRender, AKilledRenderLeavesNoPartialOutput) {
   EXPECT_FALSE(fs::exists(tmp));
   EXPECT_EQ(CountFiles(out / "frames"), 5);
   EXPECT_FALSE(fs::exists(out / "frames" / "frame_99999.png"));
-  EXPECT_EQ(Temporaries(out), std::vector<std::string>{});
-  fs::remove_all(out);
+  ExpectNoTemporariesAndRemove(out);
 }
 
 // A frames folder holding the user's own frame_*.png (no export's list names them) is refused
@@ -319,9 +327,7 @@ TEST(CmdRender, AKilledRenderLeavesNoPartialOutput) {
 // temporary frames but without its list is left alone. Files of the user's beside an earlier
 // export's frames stay when a new export replaces those.
 TEST(CmdRender, TheUsersFramesAreNeverDeleted) {
-  const fs::path out = Folder("users");
-  fs::create_directories(out / "frames");
-  std::ofstream(out / "frames" / "frame_00000.png") << "the user's";
+  const fs::path out = FolderWithFrame("users", "frame_00000.png", "the user's");
   fs::create_directories(out / ".frames.tmp999999999");
   std::ofstream(out / ".frames.tmp999999999" / "frame_00000.png") << "the user's";
   const std::string scene = (kSource / "scenes/thesis_free_rocking.toml").string();
