@@ -7,10 +7,7 @@
 #include <stdexcept>
 
 #include "compare/agreement.h"
-#include "reference/chain/stack_contacts.h"
-#include "reference/mechanics.h"
-#include "reference/thesis/geometry.h"
-#include "reference/thesis/transitions.h"
+#include "reference/stack_model.h"
 #include "run/parallel.h"
 #include "run/summary.h"
 #include "run/tolerance.h"
@@ -121,30 +118,15 @@ double SettledAfter_s(const Scene& scene, const GroundMotion& motion, double saf
   const double end_s = motion.end_s();
   if (!(end_s > 0.0)) return 0.0;
   if (!std::isfinite(end_s)) return end_s;
-  // The rest reactions: the thesis's (one or two blocks), or the pivot chain's (N >= 3).
-  const int nb = scene.block_count();
-  std::optional<reference::Geometry> geo;
-  std::optional<reference::StackContacts> chain;
-  std::vector<double> zeros(static_cast<size_t>(nb), 0.0), acc(static_cast<size_t>(nb), 0.0);
-  const Configuration rest(nb);
-  if (nb <= 2) {
-    geo = reference::MakeGeometry(scene);
-  } else {
-    chain.emplace(reference::StackGeometryOf(scene));
-  }
+  // The rest reactions by the model's contact rule (the thesis's for one or two blocks, the
+  // pivot chain's for N >= 3).
+  const reference::StackModel model(scene);
   // Whether safety times the base acceleration at t opens a face of the stack at rest.
   auto opens = [&](double t) {
     const double xg = safety * motion.xg_mps2(t);
     const double yg = motion.yg_mps2(t);
     const double yg_worst = yg - (safety - 1.0) * std::abs(yg);
-    if (chain) {
-      const reference::StackMargins m =
-          chain->Evaluate(rest, zeros.data(), zeros.data(), xg, yg_worst, acc.data());
-      return !(m.face > 0.0);
-    }
-    const reference::ContactMargins m = reference::EvaluateContacts(
-        *geo, Mode::kRest, reference::State{}, xg, yg_worst, scene.model.equations);
-    return !(m.face > 0.0);
+    return !(model.RestFaceMargin(xg, yg_worst) > 0.0);
   };
   auto analytic = [](const std::optional<MotionComponent>& c) {
     return c.has_value() && c->samples_mps2().empty();

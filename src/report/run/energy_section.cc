@@ -6,7 +6,7 @@
 
 namespace rockbench::report {
 
-void EnergySection(const RunData& run, const StackModel& model, Figures& fig) {
+void EnergySection(const RunData& run, const reference::StackModel& model, Figures& fig) {
   Page& page = *fig.page;
   page.Heading("Energy");
   GnuplotFigure f;

@@ -24,7 +24,7 @@ std::string ContactText(int k, int blocks) {
 }  // namespace
 
 // |T|/N along the reference's samples, left out where the normal force nearly vanishes.
-FrictionFacts ComputeFriction(const RunData& run, const StackModel& model,
+FrictionFacts ComputeFriction(const RunData& run, const reference::StackModel& model,
                               const GroundMotion& motion, const RunReportOptions& options) {
   const int nc = model.blocks();
   const EngineData& ref = run.engines.front();
@@ -38,7 +38,8 @@ FrictionFacts ComputeFriction(const RunData& run, const StackModel& model,
   // reaction at a sample is not the reference's, and no tension is read from it.
   const double handed_over_s = OptNumber(run.summary, "unilateral.from_t_s", run.summary_path);
   for (const Sample& s : ref.history.samples) {
-    const StackModel::Contacts c = model.Reactions(s, motion.xg_mps2(s.t_s), motion.yg_mps2(s.t_s));
+    const reference::StackModel::Contacts c =
+        model.Reactions(s, motion.xg_mps2(s.t_s), motion.yg_mps2(s.t_s));
     std::vector<double> row = {s.t_s};
     const bool chain = !(s.t_s > handed_over_s);
     for (int k = 0; k < nc; ++k) {
@@ -78,8 +79,8 @@ std::optional<std::pair<double, std::string>> EngineFriction(const RunData& run)
   return out;
 }
 
-void FrictionWarnings(const RunData& run, const StackModel& model, const FrictionFacts& facts,
-                      std::vector<std::string>& warnings) {
+void FrictionWarnings(const RunData& run, const reference::StackModel& model,
+                      const FrictionFacts& facts, std::vector<std::string>& warnings) {
   const int nc = static_cast<int>(facts.max_mu.size());
   // Friction: the largest |T|/N where the contact carries at least the option's share of the
   // weight (near N = 0, as at an uplift, the ratio grows without bound and says nothing).

@@ -9,9 +9,9 @@
 #include <vector>
 
 #include "motion/ground_motion.h"
+#include "reference/stack_model.h"
 #include "report/run/run_figures.h"
 #include "report/run/run_report.h"
-#include "report/run/stack_model.h"
 
 namespace rockbench::report {
 
@@ -27,7 +27,7 @@ struct FrictionFacts {
 };
 
 /// |T|/N along the reference's samples, left out where the normal force nearly vanishes.
-FrictionFacts ComputeFriction(const RunData& run, const StackModel& model,
+FrictionFacts ComputeFriction(const RunData& run, const reference::StackModel& model,
                               const GroundMotion& motion, const RunReportOptions& options);
 
 /// The smallest friction coefficient between the blocks (and the ground) among the run's
@@ -37,8 +37,8 @@ std::optional<std::pair<double, std::string>> EngineFriction(const RunData& run)
 
 /// Appends the warnings of the friction facts: sliding would occur at a contact (the model
 /// needs more friction than an engine has), tension (a negative normal force).
-void FrictionWarnings(const RunData& run, const StackModel& model, const FrictionFacts& facts,
-                      std::vector<std::string>& warnings);
+void FrictionWarnings(const RunData& run, const reference::StackModel& model,
+                      const FrictionFacts& facts, std::vector<std::string>& warnings);
 
 void FrictionSection(const RunData& run, const FrictionFacts& facts,
                      const RunReportOptions& options, Figures& fig);

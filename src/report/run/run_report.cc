@@ -4,6 +4,7 @@
 
 #include "files/atomic_file.h"
 #include "motion/ground_motion.h"
+#include "reference/stack_model.h"
 #include "report/common/page.h"
 #include "report/compare/agreement_section.h"
 #include "report/run/angles_section.h"
@@ -15,7 +16,6 @@
 #include "report/run/run_figures.h"
 #include "report/run/run_readers.h"
 #include "report/run/scene_section.h"
-#include "report/run/stack_model.h"
 
 namespace rockbench::report {
 
@@ -42,7 +42,7 @@ RunReportResult WriteRunReport(const fs::path& run_dir, const fs::path& out_dir,
     }
   }();
   const GroundMotion motion = GroundMotion::FromScene(run.scene);
-  const StackModel model(run.scene);
+  const reference::StackModel model(run.scene);
   RunReportResult result;
   result.name = fs::absolute(run_dir).lexically_normal().filename().string();
   if (result.name.empty())

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <set>
 
-#include "reference/thesis/geometry.h"
+#include "reference/catalogue.h"
 #include "report/common/json_keys.h"
 #include "report/common/number_text.h"
 #include "run/engine_registry.h"
@@ -162,19 +162,19 @@ void SceneSection(const RunData& run, const GroundMotion& motion, Figures& fig) 
   std::vector<std::vector<std::string>> rows;
   const int nb = s.block_count();
   if (nb <= 2) {
-    const reference::Geometry geo = reference::MakeGeometry(s);
     const BlockDef& b1 = s.blocks.at(0);
     rows.push_back({"block 1 (lower)", BlockDescription(b1, 0),
                     "H/B = " + Num(b1.height_m / b1.width_m) + ", slenderness " +
-                        Num(geo.block1.theta_c) + " rad"});
+                        Num(MakeBlockProps(b1.width_m, b1.height_m, b1.mass_kg).theta_c) + " rad"});
     const bool two = nb == 2;
     if (two) {
       const BlockDef& b2 = s.blocks[1];
       rows.push_back({"block 2 (upper)", BlockDescription(b2, 1),
                       "H/B = " + Num(b2.height_m / b2.width_m) + ", slenderness " +
-                          Num(geo.block2.theta_c) + " rad"});
-      rows.push_back({"stack", "mass " + Num(geo.M, 6) + " kg",
-                      "slenderness of the stack " + Num(geo.theta_c) + " rad"});
+                          Num(MakeBlockProps(b2.width_m, b2.height_m, b2.mass_kg).theta_c) +
+                          " rad"});
+      rows.push_back({"stack", "mass " + Num(b1.mass_kg + b2.mass_kg, 6) + " kg",
+                      "slenderness of the stack " + Num(reference::CriticalAngle_rad(s)) + " rad"});
     }
     rows.push_back({"initial state",
                     "theta1 = " + Num(s.initial.theta_rad[0]) +
