@@ -9,7 +9,8 @@
 # the comparisons without perturbation members, minutes instead of hours; use the same on both
 # sides). Wall-clock figures are replaced by "W" before comparing: JSON
 # values whose key contains "wall", "real_time" or "serial_s" (a study's serial part's wall
-# time), CSV columns whose header contains "wall" or "real_time", wall times printed on stdout
+# time) and an external engine's process measurements (read_s, monitor_s, overhead_s,
+# peak_resident_mib), CSV columns whose header contains "wall" or "real_time", wall times printed on stdout
 # and stderr, the temporary folder's name. Everything else must be identical. The check
 # normalises the recorded copy again, so a figure the normaliser learns later is blanked on both
 # sides.
@@ -36,6 +37,8 @@ path = sys.argv[1]
 text = open(path, encoding="utf-8", errors="surrogateescape").read()
 if path.endswith(".json"):
     text = re.sub(r'("[A-Za-z0-9_]*(?:wall|real_time|serial_s)[A-Za-z0-9_]*"\s*:\s*)(-?[0-9.eE+-]+|null)', r'\1"W"', text)
+    # An external engine's process measurements (docs/external-engines.md): times and memory.
+    text = re.sub(r'("(?:read_s|monitor_s|overhead_s|peak_resident_mib)"\s*:\s*)(-?[0-9.eE+-]+|null)', r'\1"W"', text)
 elif path.endswith(".csv"):
     lines = text.split("\n")
     header = next((i for i, l in enumerate(lines) if l and not l.startswith("#")), None)
