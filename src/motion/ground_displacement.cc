@@ -5,7 +5,7 @@
 #include <numbers>
 
 // The engines' kinematic drive and the intensity measures come from here: every operation
-// below is kept as it was in engines/common/engine_input.cc and scene/intensity.cc (same
+// below is kept as it was in engines/common/engine_input.cc and motion/intensity.cc (same
 // operations, same order), so that histories and measures keep their bits.
 
 namespace rockbench {

@@ -8,7 +8,7 @@
 ///   it (renders/drawn_motion.h), so that a picture shows the path a kinematic-drive engine saw.
 /// - The exact integrals of the piecewise-linear acceleration of a component, from rest, with
 ///   no correction (ExactGroundPeaks): the peak ground velocity and displacement of the
-///   intensity measures (scene/intensity.h).
+///   intensity measures (motion/intensity.h).
 #include <cstddef>
 #include <cstdint>
 #include <vector>

@@ -67,7 +67,7 @@ IntensityMeasures MeasureIntensity(const MotionComponent& c, double t_end_s) {
   }
   if (a.empty()) return im;
   // PGV and PGD: the exact integrals of the piecewise-linear acceleration, zero outside the
-  // samples (scene/ground_displacement.h); after the last sample a = 0 until t_end.
+  // samples (motion/ground_displacement.h); after the last sample a = 0 until t_end.
   const double t0 = c.t0_s();
   const double t_last = t0 + static_cast<double>(a.size() - 1) * dt;
   const GroundPeaks peaks = ExactGroundPeaks(a, dt, t_end_s - t_last);

@@ -3,7 +3,7 @@
 /// fragility studies plot against (PGA, PGV, PGD, Arias intensity, the pulse period of a pulse).
 /// Velocity and displacement are the exact integrals of the component as the simulations see it
 /// (piecewise linear between samples, from rest at t = 0), without baseline correction
-/// (ExactGroundPeaks, scene/ground_displacement.h): a processed record (PEER's) is already
+/// (ExactGroundPeaks, motion/ground_displacement.h): a processed record (PEER's) is already
 /// corrected; a raw one may drift, and its PGD says so. (The kinematic drive and the animations
 /// move the ground along IntegrateGroundPath instead, the engines' step-grid path.)
 #include <optional>

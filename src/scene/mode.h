@@ -154,7 +154,7 @@ struct TiltThresholds {
 /// right, the left corner to the left; a flat block turning faster than the rate threshold
 /// pivots on the corner on the side of its rate (it is passing through zero, or starting to
 /// rock); flat and still, it sits on its face (Contact::kFace). The one rule of the reference
-/// (reference/observables.h ModeOfState) and of the engines' monitor.
+/// (reference/thesis/observables.h ModeOfState) and of the engines' monitor.
 Contact TiltContact(double angle_rad, double rate_radps, TiltThresholds thresholds = {});
 
 /// The same rule when the angle's side is already decided (kRight, kLeft, or kFace for flat),

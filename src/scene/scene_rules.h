@@ -18,7 +18,6 @@
 
 namespace rockbench::scene_rules {
 
-
 // A physical limit of a key (scene/limits.h, docs/limits.md): the closed range [lo, hi] of the
 // value (of |value| when `magnitude`), and why.
 struct Limit {
@@ -29,33 +28,37 @@ struct Limit {
 };
 
 inline const Limit kLengthLimit{limits::kMinLength_m, limits::kMaxLength_m,
-                         "a 0.1 mm grain to a 10 km slab; docs/limits.md"};
+                                "a 0.1 mm grain to a 10 km slab; docs/limits.md"};
 inline const Limit kMassLimit{limits::kMinMass_kg, limits::kMaxMass_kg, "docs/limits.md"};
 inline const Limit kDensityLimit{limits::kMinDensity_kgpm3, limits::kMaxDensity_kgpm3,
-                          "air is 1.2, osmium 22,590; docs/limits.md"};
+                                 "air is 1.2, osmium 22,590; docs/limits.md"};
 inline const Limit kAccelLimit{0.0, limits::kMaxAccel_g,
-                        "far above any recorded ground motion (about 4 g); docs/limits.md", true};
+                               "far above any recorded ground motion (about 4 g); docs/limits.md",
+                               true};
 inline const Limit kFrequencyLimit{0.0, limits::kMaxFrequency_hz,
-                            "ground motion of structural interest is below 50 Hz; "
-                            "docs/limits.md"};
+                                   "ground motion of structural interest is below 50 Hz; "
+                                   "docs/limits.md"};
 inline const Limit kDurationLimit{0.0, limits::kMaxDuration_s, "one day; docs/limits.md"};
 inline const Limit kGravityLimit{limits::kMinGravity_mps2, limits::kMaxGravity_mps2,
-                          "Ceres 0.28, the Sun 274; docs/limits.md"};
+                                 "Ceres 0.28, the Sun 274; docs/limits.md"};
 inline const Limit kRtolLimit{limits::kMinRtol, 0.1,
-                       "below 1e-15 the error estimate is rounding noise; docs/limits.md"};
+                              "below 1e-15 the error estimate is rounding noise; docs/limits.md"};
 inline const Limit kAtolLimit{limits::kMinAtol, 0.1, "docs/limits.md"};
-inline const Limit kRateLimit{0.0, limits::kMaxRate_radps, "ten turns a second; docs/limits.md", true};
+inline const Limit kRateLimit{0.0, limits::kMaxRate_radps, "ten turns a second; docs/limits.md",
+                              true};
 inline const Limit kOverturnLimit{0.0, 1.5707963267948966,
-                           "a block tilted pi/2 lies on its side; docs/limits.md"};
+                                  "a block tilted pi/2 lies on its side; docs/limits.md"};
 inline const Limit kSamplePrecisionLimit{0.0, 100.0,
-                                  "a record's samples are known to their printed digits; "
-                                  "docs/limits.md"};
-inline const Limit kSampleIntervalLimit{1e-6, 1.0, "records are sampled at 50 to 1000 Hz; docs/limits.md"};
+                                         "a record's samples are known to their printed digits; "
+                                         "docs/limits.md"};
+inline const Limit kSampleIntervalLimit{1e-6, 1.0,
+                                        "records are sampled at 50 to 1000 Hz; docs/limits.md"};
 inline const Limit kToleranceLimit{0.0, 1.5707963267948966, "docs/limits.md"};
 // The largest finite friction coefficient: the reference's contact problem takes 1e4 for an
-// infinite one (reference/unilateral.cc, kLcpInfiniteFriction; its impact limit at mu = 1e4), so
-// above it a Coulomb friction is no slip in the model; a larger value only risks the engines'
-// arithmetic (MuJoCo's state is not finite at 1e100). No slip at all: leave friction out, or inf.
+// infinite one (reference/unilateral/unilateral.cc, kLcpInfiniteFriction; its impact limit at mu =
+// 1e4), so above it a Coulomb friction is no slip in the model; a larger value only risks the
+// engines' arithmetic (MuJoCo's state is not finite at 1e100). No slip at all: leave friction out,
+// or inf.
 inline constexpr double kMaxFiniteFriction = 1e4;
 inline const char kFrictionRange[] =
     "a number from 0 to 10000, or inf (above 1e4 the reference's contact problem treats a "
@@ -165,13 +168,13 @@ inline std::string ChoiceList(const Choices<E>& choices) {
 }
 
 inline const Choices<MotionKind> kKinds = {{"harmonic", MotionKind::kHarmonic},
-                                    {"sine_pulse", MotionKind::kSinePulse},
-                                    {"cosine_pulse", MotionKind::kCosinePulse},
-                                    {"rectangular_pulse", MotionKind::kRectangularPulse},
-                                    {"ricker", MotionKind::kRicker},
-                                    {"kanai_tajimi", MotionKind::kKanaiTajimi}};
+                                           {"sine_pulse", MotionKind::kSinePulse},
+                                           {"cosine_pulse", MotionKind::kCosinePulse},
+                                           {"rectangular_pulse", MotionKind::kRectangularPulse},
+                                           {"ricker", MotionKind::kRicker},
+                                           {"kanai_tajimi", MotionKind::kKanaiTajimi}};
 inline const Choices<SyntheticEnvelope> kEnvelopes = {{"jennings", SyntheticEnvelope::kJennings},
-                                               {"none", SyntheticEnvelope::kNone}};
+                                                      {"none", SyntheticEnvelope::kNone}};
 inline const Choices<AccelUnits> kUnits = {
     {"g", AccelUnits::kG}, {"m/s2", AccelUnits::kMps2}, {"cm/s2", AccelUnits::kCmps2}};
 

@@ -1,4 +1,4 @@
-// The ground's displacement from its acceleration (scene/ground_displacement.h): the kinematic
+// The ground's displacement from its acceleration (motion/ground_displacement.h): the kinematic
 // drive's leapfrog path and its zero-phase high-pass against closed forms, and the exact
 // piecewise-linear peaks of the intensity measures.
 #include "motion/ground_displacement.h"
