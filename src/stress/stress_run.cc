@@ -10,19 +10,17 @@
 #include <cstdio>
 #include <limits>
 #include <mutex>
-#include <optional>
 #include <thread>
 
 #include "compare/agreement.h"
 #include "engine/outcome.h"
 #include "engines/common/monitor.h"
 #include "motion/ground_motion.h"
-#include "reference/chain/stack_chain.h"
+#include "reference/catalogue.h"
 #include "reference/simulate.h"
-#include "reference/thesis/geometry.h"
-#include "reference/thesis/kinematics.h"
 #include "run/engine_registry.h"
 #include "run/engine_run.h"
+#include "run/reference_engine.h"
 #include "run/wall_clock.h"
 #include "stress/stress.h"
 #include "util/format.h"
@@ -71,82 +69,17 @@ void CountEvents(const History& h, StressRow* row) {
   }
 }
 
-// The state at an impact of one or two blocks: the angles of `at`, the rates `w`.
-reference::State ImpactState(const Sample& at, const BlockValues& w) {
-  const size_t top = at.theta_rad.size() >= 2 && w.size() >= 2 ? 1 : 0;
-  return {at.theta_rad[0], at.theta_rad[top], w[0], w[top]};
+// The potential energy of the case's whole stack tilted by `tilt_rad` about block 1's corner,
+// to first order: M g b1 tilt, J.
+double TiltEnergy_j(const Scene& scene, double tilt_rad) {
+  double mass_kg = 0.0;
+  for (const BlockDef& b : scene.blocks) mass_kg += b.mass_kg;
+  return mass_kg * scene.run.gravity_mps2 * 0.5 * scene.blocks.at(0).width_m * tilt_rad;
 }
 
-// Kinetic energy (base frame) of a state moving in configuration `c` (one or two blocks), J:
-// sum of m v_G^2 / 2 + I_G w^2 / 2, computed directly (not as total minus potential energy,
-// which would cancel digits).
-double KineticEnergy(const reference::Geometry& geo, const Configuration& c, reference::State s) {
-  const Mode mode = ModeOfConfiguration(c).value_or(Mode::kRest);
-  if (!geo.two_blocks) {
-    s.theta2 = s.theta1;
-    s.omega2 = s.omega1;
-  }
-  const reference::BodyVelocities v = reference::Velocities(geo, mode, s);
-  const double m[2] = {geo.block1.m, geo.block2.m};
-  const double IG[2] = {geo.block1.I_G, geo.block2.I_G};
-  double ke = 0.0;
-  for (int b = 0; b < (geo.two_blocks ? 2 : 1); ++b) {
-    ke += 0.5 * m[b] * reference::Dot(v.vG[b], v.vG[b]) + 0.5 * IG[b] * v.w[b] * v.w[b];
-  }
-  return ke;
-}
-
-// The kinetic energy (base frame) of the case's stack at an impact, J: KineticEnergy for one
-// and two blocks; for N >= 3 blocks the same sum from every block's motion along the pivot
-// chain (reference::StackChain::Body), the interface's closed faces taken from the
-// configuration.
-class ImpactKinetics {
- public:
-  explicit ImpactKinetics(const Scene& scene) : blocks_(scene.block_count()) {
-    if (blocks_ <= 2) {
-      geo_ = reference::MakeGeometry(scene);
-      mass_kg_ = geo_.M;
-    } else {
-      std::vector<reference::BlockSize> sizes;
-      for (const BlockDef& b : scene.blocks) {
-        sizes.push_back({b.width_m, b.height_m, b.mass_kg});
-        mass_kg_ += b.mass_kg;
-      }
-      chain_.emplace(reference::MakeStackGeometry(sizes, scene.run.gravity_mps2));
-    }
-    g_mps2_ = scene.run.gravity_mps2;
-    b1_m_ = 0.5 * scene.blocks.at(0).width_m;
-  }
-  /// At the angles of `at`, the rates `w`, in configuration `c`.
-  double operator()(const Configuration& c, const Sample& at, const BlockValues& w) {
-    if (blocks_ <= 2) return KineticEnergy(geo_, c, ImpactState(at, w));
-    const std::vector<double> theta(at.theta_rad.begin(), at.theta_rad.end());
-    const std::vector<double> omega(w.begin(), w.end());
-    chain_->Place(c, theta.data(), omega.data());
-    double ke = 0.0;
-    for (int b = 0; b < blocks_; ++b) {
-      const BodyMotion m = chain_->Body(b);
-      const BlockProps& p = chain_->geometry().blocks[static_cast<size_t>(b)];
-      ke += 0.5 * p.m * reference::Dot(m.vG, m.vG) + 0.5 * p.I_G * m.w_radps * m.w_radps;
-    }
-    return ke;
-  }
-  /// The potential energy of the whole stack tilted by `tilt_rad` about block 1's corner, to
-  /// first order: M g b1 tilt, J.
-  double TiltEnergy_j(double tilt_rad) const { return mass_kg_ * g_mps2_ * b1_m_ * tilt_rad; }
-
- private:
-  int blocks_ = 0;
-  reference::Geometry geo_;
-  std::optional<reference::StackChain> chain_;
-  double mass_kg_ = 0.0, g_mps2_ = 0.0, b1_m_ = 0.0;
-};
-
-// Peaks of every block into the row: theta1, theta2 (0 for one block) and blocks 3..N.
+// Peaks of every block into the row (block k at k - 1).
 void SetPeaks(const std::vector<double>& peaks, StressRow* row) {
-  row->peak_theta1_rad = !peaks.empty() ? peaks[0] : 0.0;
-  row->peak_theta2_rad = peaks.size() >= 2 ? peaks[1] : 0.0;
-  row->peak_theta_from3_rad.assign(peaks.begin() + std::min<size_t>(peaks.size(), 2), peaks.end());
+  row->peak_theta_rad = peaks;
 }
 
 // Linear interpolation of a history's angles at t (clamped to its ends).
@@ -175,44 +108,32 @@ void RecordGain(double gain, StressRow* row) {
   ++row->energy_impacts;
 }
 
-StressRow RunReference(const StressCase& c, StressRow row) {
-  const GroundMotion motion = GroundMotion::FromScene(c.scene);
-  const auto start = std::chrono::steady_clock::now();
-  const reference::Result r = reference::Simulate(c.scene, motion);
-  row.wall_s = SecondsSince(start);
+// Energy across each impact of a run that carries the model's dense solution (the reference's
+// extension): the configuration does not jump, so E_after - E_before is the change of kinetic
+// energy, computed directly at the impact's angles (the post-event state of the dense
+// solution) with the rates the event records before and after.
+void DenseImpactEnergies(const StressCase& c, const reference::Result& r, StressRow* row) {
+  reference::StackKinetics kinetic(c.scene);
   const reference::Summary& s = r.summary;
-  row.status = StatusText(s.status);
-  row.detail = s.status_detail;
-  // A run that ended non_finite failed (its figures are those of its finite part).
-  row.finished = !IsNonFinite(s.status);
-  SetPeaks(s.peak_theta_rad, &row);
-  row.nan = IsNonFinite(s.status) || HistoryHasNonFinite(r.history) ||
-            !std::all_of(s.peak_theta_rad.begin(), s.peak_theta_rad.end(), Finite);
-  CountEvents(r.history, &row);
-  // Energy across each impact: the configuration does not jump, so E_after - E_before is the
-  // change of kinetic energy, computed directly at the impact's angles (the post-event state of
-  // the dense solution) with the rates the event records before and after.
-  ImpactKinetics kinetic(c.scene);
   for (const Event& e : r.history.events) {
     if (!IsImpact(e)) continue;
     if (s.unilateral_from_s && e.t_s >= *s.unilateral_from_s) {
       // The unilateral model's impacts (sliding and flying blocks: the rates alone do not give
       // the kinetic energy) carry the stack's energy before and after, which only the kinetic
       // part changes: the gain relative to that energy.
-      RecordGain((e.energy_after_j - e.energy_before_j) / std::abs(e.energy_before_j), &row);
+      RecordGain((e.energy_after_j - e.energy_before_j) / std::abs(e.energy_before_j), row);
       continue;
     }
     const Sample at = r.trajectory.At(e.t_s);
-    const double ke_before = kinetic(e.mode_before, at, e.omega_before_radps);
-    const double ke_after = kinetic(e.mode_after, at, e.omega_after_radps);
+    const double ke_before = kinetic.Kinetic_j(e.mode_before, at.theta_rad, e.omega_before_radps);
+    const double ke_after = kinetic.Kinetic_j(e.mode_after, at.theta_rad, e.omega_after_radps);
     if (!(ke_before > 0.0)) continue;
-    RecordGain((ke_after - ke_before) / ke_before, &row);
+    RecordGain((ke_after - ke_before) / ke_before, row);
   }
   if (s.impacts_energy_gain > 0) {
-    row.detail += (row.detail.empty() ? "" : "; ") + std::to_string(s.impacts_energy_gain) +
-                  " impacts flagged ENERGY GAIN by the model";
+    row->detail += (row->detail.empty() ? "" : "; ") + std::to_string(s.impacts_energy_gain) +
+                   " impacts flagged ENERGY GAIN by the model";
   }
-  return row;
 }
 
 // The engines' monitor resolves tilts above MonitorConfig::angle_enter_rad (1e-5 rad); a block
@@ -220,49 +141,63 @@ StressRow RunReference(const StressCase& c, StressRow row) {
 // kinetic energy than M g b1 1e-5 are below what the monitor can see and are left out.
 const double kEngineResolvedTilt_rad = MonitorConfig{}.angle_enter_rad;
 
-StressRow RunEngineCase(const StressCase& c, const std::string& engine, StressRow row) {
+// Energy across each impact of a run that has its history alone (an engine's): the monitor
+// records E = kinetic (base frame) + potential one step before the crossing step and one step
+// after it; the scale is the kinetic energy before, from the recorded rates at the impact's
+// angles (history interpolated).
+void SampledImpactEnergies(const StressCase& c, const History& history, StressRow* row) {
+  reference::StackKinetics kinetic(c.scene);
+  const double floor_j = TiltEnergy_j(c.scene, kEngineResolvedTilt_rad);
+  for (const Event& e : history.events) {
+    if (!IsImpact(e)) continue;
+    const Sample at = AnglesAt(history, e.t_s);
+    const double ke_before = kinetic.Kinetic_j(e.mode_before, at.theta_rad, e.omega_before_radps);
+    if (!(ke_before > floor_j)) continue;
+    RecordGain((e.energy_after_j - e.energy_before_j) / ke_before, row);
+  }
+}
+
+// The row's agreement with the reference on the same scene.
+void SetAgreement(const EngineAgreement& a, StressRow* row) {
+  row->has_agreement = true;
+  for (const BodyAgreement& body : a.bodies) {
+    row->max_abs_error_rad.push_back(body.angle.max_abs_error_rad);
+    row->peak_rel_error.push_back(body.angle.peak_rel_error);
+  }
+  row->impacts_matched = a.impacts.matched;
+  row->reference_impacts = a.impacts.reference_impacts;
+}
+
+// One engine's run of the case (the reference's as any other's, through the engine
+// interface): status, peaks, events, the energy across impacts and, for a run that is not the
+// reference's own solution, its agreement with the reference.
+StressRow RunCase(const StressCase& c, const std::string& engine, StressRow row) {
   const GroundMotion motion = GroundMotion::FromScene(c.scene);
-  const EngineRun run = RunEngine(engine, c.scene, motion);
+  SimulateOptions options;
+  options.check_convergence = false;  // the stress catalogue checks the model's own solution
+  const EngineRun run = RunEngine(engine, c.scene, motion, options);
   row.wall_s = run.wall_s;
   const RunOutcome& o = run.outcome;
   row.status = StatusText(o.status);
   row.detail = run.summary.value("status_detail", "");
-  row.finished = o.status == RunStatus::kCompleted || o.status == RunStatus::kOverturned ||
-                 o.status == RunStatus::kAtRest || o.status == RunStatus::kAssumptionViolated;
+  // A run that ended non_finite or blew up failed (its figures are those of its finite part).
+  row.finished = !IsNonFinite(o.status) && o.status != RunStatus::kBlowUp;
   SetPeaks(o.peak_theta_rad, &row);
-  row.nan = IsNonFinite(o.status) || HistoryHasNonFinite(run.history);
+  row.nan = IsNonFinite(o.status) || HistoryHasNonFinite(run.history) ||
+            !std::all_of(o.peak_theta_rad.begin(), o.peak_theta_rad.end(), Finite);
   CountEvents(run.history, &row);
   std::string flags;
   for (const std::string& f : o.violations) flags += (flags.empty() ? "" : ";") + f;
   row.violations = flags.empty() ? "none" : flags;
-  // Energy across each impact: the monitor records E = kinetic (base frame) + potential one
-  // step before the crossing step and one step after it; the scale is the kinetic energy
-  // before, from the recorded rates at the impact's angles (history interpolated).
-  ImpactKinetics kinetic(c.scene);
-  const double floor_j = kinetic.TiltEnergy_j(kEngineResolvedTilt_rad);
-  for (const Event& e : run.history.events) {
-    if (!IsImpact(e)) continue;
-    const Sample at = AnglesAt(run.history, e.t_s);
-    const double ke_before = kinetic(e.mode_before, at, e.omega_before_radps);
-    if (!(ke_before > floor_j)) continue;
-    RecordGain((e.energy_after_j - e.energy_before_j) / ke_before, &row);
+  // The reference's run carries its dense solution: its own energies, and nothing to agree with.
+  if (const CheckedReference* own = ReferenceResultOf(run.extension.get())) {
+    DenseImpactEnergies(c, own->used(), &row);
+    return row;
   }
-  // Agreement with the reference on the same scene.
-  const reference::Result ref = reference::Simulate(c.scene, motion);
-  const EngineAgreement a = CompareWithReference(c.scene, ref, run);
-  row.has_agreement = true;
-  row.theta1_max_abs_error_rad = a.theta1.max_abs_error_rad;
-  row.theta1_peak_rel_error = a.theta1.peak_rel_error;
-  if (a.theta2) {
-    row.theta2_max_abs_error_rad = a.theta2->max_abs_error_rad;
-    row.theta2_peak_rel_error = a.theta2->peak_rel_error;
-  }
-  for (const AngleAgreement& k : a.theta_from3) {
-    row.theta_from3_max_abs_error_rad.push_back(k.max_abs_error_rad);
-    row.theta_from3_peak_rel_error.push_back(k.peak_rel_error);
-  }
-  row.impacts_matched = a.impacts.matched;
-  row.reference_impacts = a.impacts.reference_impacts;
+  SampledImpactEnergies(c, run.history, &row);
+  const EngineRun ref = RunEngine(TheReference().name(), c.scene, motion, options);
+  SetAgreement(CompareWithReference(c.scene, ReferenceResultOf(ref.extension.get())->used(), run),
+               &row);
   return row;
 }
 
@@ -307,8 +242,7 @@ StressRow RunStressCaseHere(const StressCase& c, const std::string& engine) {
     while (true) std::this_thread::sleep_for(std::chrono::seconds(1));
   }
   try {
-    if (IsReference(engine)) return RunReference(c, row);
-    return RunEngineCase(c, engine, row);
+    return RunCase(c, engine, row);
   } catch (const std::exception& e) {
     row.finished = false;
     row.status = "error";

@@ -4,81 +4,56 @@
 
 #include <algorithm>
 #include <atomic>
-#include <chrono>
 #include <cstdio>
 #include <exception>
 #include <fstream>
-#include <initializer_list>
 #include <mutex>
 #include <thread>
 
 #include "reference/simulate.h"
 #include "run/engine_registry.h"
 #include "run/engine_run.h"
-#include "run/wall_clock.h"
+#include "run/reference_engine.h"
 #include "scene/body_kind.h"
 #include "util/format.h"
 
 namespace rockbench {
 
 std::vector<SweepPoint> SweepGrid(bool quick, const std::vector<std::string>& engines) {
+  // The engines named, then the reference every row is compared with; each once, at its last
+  // place.
+  std::vector<std::string> names = engines;
+  names.push_back(TheReference().name());
   std::vector<SweepPoint> grid;
-  for (const std::string& name : engines) {
-    const Engine* engine = FindEngine(name);
+  for (size_t k = 0; k < names.size(); ++k) {
+    if (std::find(names.begin() + static_cast<std::ptrdiff_t>(k) + 1, names.end(), names[k]) !=
+        names.end()) {
+      continue;
+    }
+    const Engine* engine = FindEngine(names[k]);
     if (engine == nullptr) continue;
     for (SweepSetting& setting : engine->SweepGrid(quick)) {
       SweepPoint s;
-      s.engine = name;
+      s.engine = names[k];
       s.setting = std::move(setting);
       grid.push_back(std::move(s));
     }
   }
-  // An adaptive pair at each rtol, with atol a hundredth of it.
-  auto add_adaptive = [&grid](Integrator integrator, std::initializer_list<double> rtols) {
-    for (double rtol : rtols) {
-      SweepPoint s;
-      s.engine = "reference";
-      s.integrator = integrator;
-      s.rtol = rtol;
-      s.atol = rtol * 1e-2;
-      grid.push_back(s);
-    }
-  };
-  if (quick) {
-    add_adaptive(Integrator::kDopri5, {1e-4, 1e-6, 1e-8});
-  } else {
-    add_adaptive(Integrator::kDopri5, {1e-4, 1e-6, 1e-8, 1e-10, 1e-12});
-    // The higher-order pair on the full grid only, from rtol 1e-6 to the default.
-    add_adaptive(Integrator::kDop853, {1e-6, 1e-8, 1e-10, 1e-12});
-  }
-  const std::vector<double> rk4 =
-      quick ? std::vector<double>{1e-3} : std::vector<double>{1e-2, 1e-3, 1e-4};
-  for (double h : rk4) grid.push_back(ReferenceRk4Point(h));
   return grid;
 }
 
 SweepPoint ReferenceRk4Point(double step_s) {
-  SweepPoint s;
-  s.engine = "reference";
-  s.integrator = Integrator::kRk4;
-  s.rk4_step_s = step_s;
-  return s;
+  return {TheReference().name(), ReferenceEngine::Rk4Point(step_s)};
+}
+
+SweepPoint ReferenceTolerancePoint(Integrator integrator, double rtol) {
+  return {TheReference().name(), ReferenceEngine::TolerancePoint(integrator, rtol)};
 }
 
 Scene SceneForPoint(const Scene& base, const SweepPoint& p) {
-  Scene s = base;
-  if (!IsReference(p.engine)) {
-    for (const auto& [key, value] : p.setting.settings) SetEngineSetting(s, p.engine, key, value);
-  } else {
-    s.model.integrator = p.integrator;
-    if (p.integrator != Integrator::kRk4) {
-      s.model.rtol = p.rtol;
-      s.model.atol = p.atol;
-    } else {
-      s.model.step_s = p.rk4_step_s;
-    }
-  }
-  return s;
+  const Engine* engine = FindEngine(p.engine);
+  if (engine == nullptr) throw SceneError("unknown engine '" + p.engine + "'");
+  return engine->SceneForSetting(base, p.setting);
 }
 
 std::vector<SweepRow> RunSweep(const Scene& scene, const GroundMotion& motion,
@@ -96,10 +71,12 @@ std::vector<SweepRow> RunSweep(const Scene& scene, const GroundMotion& motion,
   tight.model.integrator = Integrator::kDopri5;
   tight.model.rtol = kSweepTightRtol;
   tight.model.atol = kSweepTightAtol;
-  const auto start = std::chrono::steady_clock::now();
-  const reference::Result baseline = reference::Simulate(tight, motion);
+  SimulateOptions tight_options;
+  tight_options.check_convergence = false;  // the tight run is itself the check
+  const EngineResult tight_run = TheReference().Simulate(tight, motion, tight_options);
+  const reference::Result& baseline = ReferenceResultOf(tight_run.extension.get())->used();
   if (baseline_out) {
-    baseline_out->wall_s = SecondsSince(start);
+    baseline_out->wall_s = tight_run.wall_s;
     baseline_out->status = baseline.summary.status;
     const reference::Summary& bs = baseline.summary;
     baseline_out->peak_theta_rad.assign(bs.peak_theta_rad.begin(), bs.peak_theta_rad.end());
@@ -150,6 +127,37 @@ std::vector<SweepRow> RunSweep(const Scene& scene, const GroundMotion& motion,
   return rows;
 }
 
+namespace {
+
+// A point's columns engine, family, setting, time_step_s, settings, integrator, rtol, atol,
+// rk4_step_s (each followed by its comma): an engine's table settings (besides its step), or
+// the integrator settings of a point that has them (the reference's).
+std::string PointColumns(const SweepPoint& p) {
+  char buf[1024];
+  const SweepSetting& st = p.setting;
+  if (!st.integrator) {
+    std::string settings;
+    for (const auto& [key, value] : st.settings) {
+      if (key == "time_step") continue;
+      settings += (settings.empty() ? "" : ";") + key + "=" + SettingText(value);
+    }
+    std::erase(settings, '"');
+    std::snprintf(buf, sizeof buf, "%s,%s,%s,%.9g,%s,,,,,", p.engine.c_str(), st.family.c_str(),
+                  st.label.c_str(), st.time_step_s, settings.c_str());
+  } else if (st.integrator->integrator != Integrator::kRk4) {
+    std::snprintf(buf, sizeof buf, "%s,%s,%s,,,%s,%.3g,%.3g,,", p.engine.c_str(), st.family.c_str(),
+                  st.label.c_str(), IntegratorName(st.integrator->integrator), st.integrator->rtol,
+                  st.integrator->atol);
+  } else {
+    std::snprintf(buf, sizeof buf, "%s,%s,%s,,,%s,,,%.9g,", p.engine.c_str(), st.family.c_str(),
+                  st.label.c_str(), IntegratorName(st.integrator->integrator),
+                  st.integrator->step_s);
+  }
+  return buf;
+}
+
+}  // namespace
+
 std::string SweepCsv(const std::vector<SweepRow>& rows, int blocks) {
   // The theta columns of blocks 1 and 2 always (one block's theta2 columns empty), and of
   // blocks 3..N when the stack has them.
@@ -169,27 +177,7 @@ std::string SweepCsv(const std::vector<SweepRow>& rows, int blocks) {
       "overturn_agree,final_agree,error\n";
   char buf[1024];
   for (const SweepRow& r : rows) {
-    const SweepPoint& p = r.point;
-    if (!IsReference(p.engine)) {
-      std::string settings;
-      for (const auto& [key, value] : p.setting.settings) {
-        if (key == "time_step") continue;
-        settings += (settings.empty() ? "" : ";") + key + "=" + SettingText(value);
-      }
-      std::erase(settings, '"');
-      std::snprintf(buf, sizeof buf, "%s,%s,%s,%.9g,%s,,,,,", p.engine.c_str(),
-                    p.setting.family.c_str(), p.setting.label.c_str(), p.setting.time_step_s,
-                    settings.c_str());
-    } else if (p.integrator != Integrator::kRk4) {
-      std::snprintf(buf, sizeof buf, "reference,reference %s,%s,,,%s,%.3g,%.3g,,",
-                    IntegratorName(p.integrator), TimeStepLabel(p.rtol).c_str(),
-                    IntegratorName(p.integrator), p.rtol, p.atol);
-    } else {
-      std::snprintf(buf, sizeof buf, "reference,reference RK4,%s,,,%s,,,%.9g,",
-                    TimeStepLabel(p.rk4_step_s).c_str(), IntegratorName(p.integrator),
-                    p.rk4_step_s);
-    }
-    out += buf;
+    out += PointColumns(r.point);
     if (!r.error.empty()) {
       // Keep the CSV one line per row: no commas or newlines inside the message.
       std::string msg = r.error;

@@ -16,25 +16,24 @@
 
 namespace rockbench {
 
-/// One grid point.
+/// One grid point: an engine and one point of its grid (Engine::SweepGrid).
 struct SweepPoint {
   std::string engine;  ///< a registered engine's name, or "reference"
-  /// Engines: the point of the engine's grid (family, label, time step, settings).
+  /// The point: family, label, time step and the engine's table settings, or the integrator
+  /// settings of an engine that has them (the reference's tolerances and steps).
   SweepSetting setting;
-  // Reference.
-  Integrator integrator = Integrator::kDopri5;
-  double rtol = 0.0, atol = 0.0;  ///< dopri5 tolerances
-  double rk4_step_s = 0.0;        ///< rk4 fixed step, s
 };
 
 /// The grid, in row order: every engine of `engines` with its own grid (Engine::SweepGrid),
-/// then the reference: full, dopri5 rtol 1e-4 ... 1e-12 (atol = rtol / 100) and RK4 steps
-/// 1e-2, 1e-3, 1e-4 s; quick, dopri5 rtol 1e-4, 1e-6, 1e-8 and RK4 1e-3 s.
+/// then the reference's (ReferenceEngine::SweepGrid: its tolerances and RK4 steps), each engine
+/// once (the reference, always swept, last).
 std::vector<SweepPoint> SweepGrid(bool quick, const std::vector<std::string>& engines);
 /// The reference's fixed-step RK4 at `step_s` (s): a point of the grid, or a chosen one.
 SweepPoint ReferenceRk4Point(double step_s);
+/// The reference's adaptive pair `integrator` at `rtol` (atol = rtol / 100).
+SweepPoint ReferenceTolerancePoint(Integrator integrator, double rtol);
 
-/// The scene of a grid point: `base` with the point's settings.
+/// The scene of a grid point: `base` with the point's settings (Engine::SceneForSetting).
 Scene SceneForPoint(const Scene& base, const SweepPoint& point);
 
 struct SweepOptions {

@@ -70,15 +70,20 @@ TEST(SweepTest, GridSpansTheRequestedRanges) {
     if (p.engine != "reference") {
       EXPECT_GT(p.setting.time_step_s, 0.0);
       EXPECT_FALSE(p.setting.family.empty());
-    } else if (p.integrator == Integrator::kDopri5) {
-      rtols.insert(p.rtol);
-      EXPECT_DOUBLE_EQ(p.atol, p.rtol * 1e-2);
-    } else if (p.integrator == Integrator::kDop853) {
-      rtols_dop853.insert(p.rtol);
-      EXPECT_DOUBLE_EQ(p.atol, p.rtol * 1e-2);
+      EXPECT_FALSE(p.setting.integrator.has_value());
+      continue;
+    }
+    ASSERT_TRUE(p.setting.integrator.has_value());
+    const IntegratorSetting& i = *p.setting.integrator;
+    if (i.integrator == Integrator::kDopri5) {
+      rtols.insert(i.rtol);
+      EXPECT_DOUBLE_EQ(i.atol, i.rtol * 1e-2);
+    } else if (i.integrator == Integrator::kDop853) {
+      rtols_dop853.insert(i.rtol);
+      EXPECT_DOUBLE_EQ(i.atol, i.rtol * 1e-2);
     } else {
       ++rk4;
-      EXPECT_GT(p.rk4_step_s, 0.0);
+      EXPECT_GT(i.step_s, 0.0);
     }
   }
   EXPECT_DOUBLE_EQ(*rtols.rbegin(), 1e-4);
@@ -87,9 +92,16 @@ TEST(SweepTest, GridSpansTheRequestedRanges) {
   // dop853 on the full grid only, from rtol 1e-6 to the default.
   EXPECT_EQ(rtols_dop853, (std::set<double>{1e-6, 1e-8, 1e-10, 1e-12}));
   EXPECT_EQ(full.size(), engine_points + rtols.size() + rtols_dop853.size() + 3);
-  // Quick is a subset; without engines only reference rows remain.
+  // Quick is a subset; without engines only reference rows remain, and naming the reference
+  // among the engines adds no second set of its points (it stays last).
   EXPECT_LT(SweepGrid(true, BuiltEngineNames()).size(), full.size());
-  for (const SweepPoint& p : SweepGrid(true, {})) EXPECT_EQ(p.engine, "reference");
+  const std::vector<SweepPoint> alone = SweepGrid(true, {});
+  for (const SweepPoint& p : alone) EXPECT_EQ(p.engine, "reference");
+  std::vector<std::string> named = BuiltEngineNames();
+  named.insert(named.begin(), "reference");
+  const std::vector<SweepPoint> with_name = SweepGrid(true, named);
+  EXPECT_EQ(with_name.size(), SweepGrid(true, BuiltEngineNames()).size());
+  EXPECT_EQ(with_name.back().engine, "reference");
 }
 
 TEST(SweepTest, BulletGridSpansItsStepsIterationsAndPrecisions) {
@@ -123,12 +135,16 @@ TEST(SweepTest, PointSettingsGoIntoTheScene) {
   EXPECT_EQ(std::get<std::int64_t>(t.values.at("solver_iterations").value), 7);
   // The rest of the scene is kept.
   EXPECT_EQ(std::get<double>(t.values.at("split_impulse_threshold").value), 0.0);
-  SweepPoint r;
-  r.engine = "reference";
-  r.integrator = Integrator::kRk4;
-  r.rk4_step_s = 1e-3;
+  const SweepPoint r = ReferenceRk4Point(1e-3);
   EXPECT_EQ(SceneForPoint(ShortHousner(), r).model.integrator, Integrator::kRk4);
   EXPECT_EQ(SceneForPoint(ShortHousner(), r).model.step_s, 1e-3);
+  // An adaptive point sets its tolerances and keeps the scene's step; it leaves no engine table.
+  const Scene d = SceneForPoint(ShortHousner(), ReferenceTolerancePoint(Integrator::kDop853, 1e-6));
+  EXPECT_EQ(d.model.integrator, Integrator::kDop853);
+  EXPECT_EQ(d.model.rtol, 1e-6);
+  EXPECT_EQ(d.model.atol, 1e-8);
+  EXPECT_EQ(d.model.step_s, ShortHousner().model.step_s);
+  EXPECT_EQ(d.engine_tables.count("reference"), 0u);
 }
 
 bool HaveBullet() {
@@ -196,14 +212,9 @@ TEST(SweepTest, CsvHasOneRowPerRunAndAFixedWidth) {
   ok.agreement.status = RunStatus::kCompleted;
   ok.agreement.bodies.resize(2);
   SweepRow ref;
-  ref.point.engine = "reference";
-  ref.point.integrator = Integrator::kDopri5;
-  ref.point.rtol = 1e-6;
-  ref.point.atol = 1e-8;
+  ref.point = ReferenceTolerancePoint(Integrator::kDopri5, 1e-6);
   SweepRow bad;
-  bad.point.engine = "reference";
-  bad.point.integrator = Integrator::kRk4;
-  bad.point.rk4_step_s = 1e-2;
+  bad.point = ReferenceRk4Point(1e-2);
   bad.error = "failed, badly\nsecond line";
   const std::vector<std::string> lines = Lines(SweepCsv({ok, ref, bad}));
   ASSERT_EQ(lines.size(), 4u);
@@ -215,6 +226,8 @@ TEST(SweepTest, CsvHasOneRowPerRunAndAFixedWidth) {
       << lines[1];
   EXPECT_EQ(lines[2].rfind("reference,reference dopri5,1e-6,,,dopri5,1e-06,1e-08,,", 0), 0u)
       << lines[2];
+  // An RK4 point shows its step in rk4_step_s, no time step or tolerances.
+  EXPECT_EQ(lines[3].rfind("reference,reference RK4,1e-2,,,rk4,,,0.01,error", 0), 0u) << lines[3];
   EXPECT_NE(lines[3].find("failed; badly second line"), std::string::npos) << lines[3];
 }
 
@@ -224,8 +237,8 @@ TEST(SweepTest, ChosenPointsReplaceTheGrid) {
   SweepBaseline baseline;
   const std::vector<SweepRow> rows = RunSweep(ShortHousner(), GroundMotion(), o, {}, &baseline);
   ASSERT_EQ(rows.size(), 2u);
-  EXPECT_EQ(rows[0].point.rk4_step_s, 1e-2);
-  EXPECT_EQ(rows[1].point.rk4_step_s, 5e-3);
+  EXPECT_EQ(rows[0].point.setting.integrator->step_s, 1e-2);
+  EXPECT_EQ(rows[1].point.setting.integrator->step_s, 5e-3);
   // RK4 is fourth order: halving the step divides the error by about 16 (measured 18).
   const double e0 = rows[0].agreement.angle(1).max_abs_error_rad;
   const double e1 = rows[1].agreement.angle(1).max_abs_error_rad;
