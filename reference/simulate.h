@@ -183,8 +183,9 @@ Event ModeChangeEvent(int n, double t_s, std::string kind, const Configuration& 
                       const Configuration& after, const double* omega_before,
                       const double* omega_after, int stride);
 
-/// Summary figures of a reference run.
-struct Summary {
+/// Summary figures of a reference run: its peaks and impacts (PeaksAndImpacts, as every run's
+/// outcome) and what the model alone counts.
+struct Summary : PeaksAndImpacts {
   /// completed | overturned | at_rest | assumption_violated | non_finite | left_support
   RunStatus status = RunStatus::kCompleted;
   std::string status_detail;  ///< why, for assumption_violated and non_finite
@@ -200,12 +201,9 @@ struct Summary {
   /// status left_support), 2..N, and when, s. Not an overturn.
   std::optional<int> left_support_block;
   double left_support_t_s = 0.0;
-  /// Peak |theta_k| and its time, one entry per block (block k at k - 1).
-  std::vector<double> peak_theta_rad, peak_theta_t_s;
-  /// Per interface, one entry per block: [0] block 1 (or the stack) on the ground, [k] block
-  /// k + 1 on block k. Impacts there; the largest |T|/N the contact needed; its smallest normal
-  /// reaction over the step ends, N (+infinity when the run took no step).
-  std::vector<int> impacts_at;
+  /// Per interface, one entry per block as impacts_at (PeaksAndImpacts): the largest |T|/N the
+  /// contact needed; its smallest normal reaction over the step ends, N (+infinity when the run
+  /// took no step).
   std::vector<double> friction_required;
   std::vector<double> min_normal_n;
   int impacts_inadmissible = 0;  ///< no thesis outcome was admissible (see README)
@@ -235,21 +233,9 @@ struct Summary {
   Summary() = default;
   /// The summary of a run of `blocks` blocks before it starts.
   explicit Summary(int blocks)
-      : peak_theta_rad(static_cast<size_t>(blocks), 0.0),
-        peak_theta_t_s(static_cast<size_t>(blocks), 0.0),
-        impacts_at(static_cast<size_t>(blocks), 0),
+      : PeaksAndImpacts(blocks),
         friction_required(static_cast<size_t>(blocks), 0.0),
         min_normal_n(static_cast<size_t>(blocks), std::numeric_limits<double>::infinity()) {}
-  int blocks() const { return static_cast<int>(peak_theta_rad.size()); }
-  /// Impacts of block 1 (or the stack) on the ground.
-  int impacts_ground() const { return impacts_at.empty() ? 0 : impacts_at[0]; }
-  /// Impacts at every interface between blocks.
-  int impacts_interface() const { return impacts() - impacts_ground(); }
-  int impacts() const {
-    int n = 0;
-    for (const int i : impacts_at) n += i;
-    return n;
-  }
 };
 
 struct Result {

@@ -68,11 +68,10 @@ struct Box2dWorld::Callbacks final : public b2ContactFilter, public b2ContactLis
 };
 
 Box2dWorld::Box2dWorld(const EngineInput& input, const Box2dSettings& settings)
-    : in_(input), s_(settings) {
+    : WorldBase(input, settings) {
   CheckInput(in_);
   dt_ = in_.time_step_s;
   scale_ = s_.length_scale;
-  kinematic_ = in_.drive_kind == DriveKind::kKinematic;
   const double s = scale_;
   const int n = in_.block_count();
 

@@ -11,6 +11,7 @@
 #include "engines/box2d/box2d_settings.h"
 #include "engines/common/engine_input.h"
 #include "engines/common/monitor.h"
+#include "engines/common/world_base.h"
 
 // Box2D's types, declared here so that this header does not pull in Box2D.
 class b2World;
@@ -33,14 +34,12 @@ namespace rockbench::box2d_engine {
 /// Threads: a b2World is self-contained. Box2D 2.4's only process-wide state is the statistics
 /// counters of its distance and time-of-impact routines (b2_gjkCalls, b2_toiCalls, ...), which it
 /// writes and never reads for a result. One world must not be used by two threads at once.
-class Box2dWorld {
+class Box2dWorld : WorldBase<Box2dSettings> {
  public:
   /// Throws std::invalid_argument for a block too small for the skin (a half size of at most
   /// b2_polygonRadius / s) or an input that does not fit the drive.
   Box2dWorld(const EngineInput& input, const Box2dSettings& settings);
   ~Box2dWorld();
-  Box2dWorld(const Box2dWorld&) = delete;
-  Box2dWorld& operator=(const Box2dWorld&) = delete;
 
   /// Sets the base motion for step n (from t_n to t_{n+1}). Inertial drive: gravity
   /// s (-xg''(t_n), -(g + yg''(t_n))). Kinematic drive: the ground at s u(t_n) moving with
@@ -63,11 +62,8 @@ class Box2dWorld {
  private:
   struct Callbacks;  // the contact filter and listener (box2d_world.cc)
 
-  const EngineInput& in_;
-  Box2dSettings s_;
   double dt_ = 0.0;
-  double scale_ = 1.0;  // Box2D metres per metre of the scene
-  bool kinematic_ = false;
+  double scale_ = 1.0;              // Box2D metres per metre of the scene
   double ground_half_depth_ = 0.0;  // Box2D's metres
   // Where Box2D's origin is in the scaled base frame (kinematic drive: it follows the ground;
   // inertial: zero), Box2D's metres.

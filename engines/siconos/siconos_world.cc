@@ -42,10 +42,9 @@ void ReadBody(const SiconosBodyState& st, BodyReadout* out) {
 }  // namespace
 
 SiconosWorld::SiconosWorld(const EngineInput& input, const SiconosSettings& settings)
-    : in_(input), s_(settings) {
+    : WorldBase(input, settings) {
   // The settings' ranges are the [siconos] schema's (siconos_settings.cc), checked when the
   // table was resolved; the step is the input's, checked by MakeEngineInput.
-  kinematic_ = in_.drive_kind == DriveKind::kKinematic;
   const size_t samples = static_cast<size_t>(in_.steps) + 1;
   if (kinematic_ && (in_.drive.ux_m.size() < samples || in_.drive.uy_m.size() < samples)) {
     throw std::invalid_argument("siconos: kinematic drive without ground displacement samples");

@@ -8,6 +8,7 @@
 
 #include "engines/common/engine_input.h"
 #include "engines/common/monitor.h"
+#include "engines/common/world_base.h"
 #include "engines/siconos/siconos_settings.h"
 
 namespace rockbench::siconos_engine {
@@ -19,12 +20,10 @@ class SiconosSystem;
 /// k's on block k - 1's top face (only neighbours meet). One or two blocks: a stack of more is
 /// refused (siconos_world.cc says why). Keeps a reference to `input`, which must
 /// outlive it. Throws std::invalid_argument for settings it cannot take (naming the key).
-class SiconosWorld {
+class SiconosWorld : WorldBase<SiconosSettings> {
  public:
   SiconosWorld(const EngineInput& input, const SiconosSettings& settings);
   ~SiconosWorld();
-  SiconosWorld(const SiconosWorld&) = delete;
-  SiconosWorld& operator=(const SiconosWorld&) = delete;
 
   /// Sets the base motion for step n (from t_n to t_{n+1}). Inertial drive: each block's
   /// external force m (-xg''(t_n), -(g + yg''(t_n))), constant over the step (a
@@ -46,9 +45,6 @@ class SiconosWorld {
   nlohmann::json Diagnostics() const;
 
  private:
-  const EngineInput& in_;
-  SiconosSettings s_;
-  bool kinematic_ = false;
   bool failed_ = false;
   std::unique_ptr<SiconosSystem> sys_;
 };

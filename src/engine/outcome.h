@@ -47,7 +47,39 @@ NLOHMANN_JSON_SERIALIZE_ENUM(RunStatus, {{RunStatus::kCompleted, "completed"},
                                          {RunStatus::kNonFinite, "non_finite"},
                                          {RunStatus::kLeftSupport, "left_support"}})
 
-struct RunOutcome {
+/// Every block's peak tilt and every interface's impact count: what a run's outcome
+/// (RunOutcome) and the reference's own summary (reference::Summary) both tally, one entry per
+/// block.
+struct PeaksAndImpacts {
+  /// Largest |theta_k| and when (s), one entry per block (block k at k - 1).
+  std::vector<double> peak_theta_rad, peak_theta_t_s;
+  /// Impacts per interface, one entry per block: [0] block 1 (or the whole stack) on the
+  /// ground, [k] block k + 1 on block k.
+  std::vector<int> impacts_at;
+
+  /// No blocks (fill it, or build it for a number of blocks).
+  PeaksAndImpacts() = default;
+  /// `blocks` blocks: no peak, no impact.
+  explicit PeaksAndImpacts(int blocks)
+      : peak_theta_rad(static_cast<size_t>(blocks), 0.0),
+        peak_theta_t_s(static_cast<size_t>(blocks), 0.0),
+        impacts_at(static_cast<size_t>(blocks), 0) {}
+
+  int blocks() const { return static_cast<int>(peak_theta_rad.size()); }
+  /// Impacts of block 1 (or the whole stack) on the ground.
+  int impacts_ground() const { return impacts_at.empty() ? 0 : impacts_at[0]; }
+  /// Impacts at every interface between blocks.
+  int impacts_interface() const { return impacts() - impacts_ground(); }
+  int impacts() const {
+    int n = 0;
+    for (const int i : impacts_at) n += i;
+    return n;
+  }
+};
+
+/// How a run ended, its peaks and impacts (PeaksAndImpacts) and, for engines, what the model
+/// forbids that the run did.
+struct RunOutcome : PeaksAndImpacts {
   RunStatus status = RunStatus::kCompleted;  ///< how the run ended
   int overturned_block = 0;                  ///< 0: none; 1..N: the block that overturned first
   double overturn_t_s = std::numeric_limits<double>::quiet_NaN();
@@ -56,11 +88,6 @@ struct RunOutcome {
   /// When it did, s (NaN: none).
   double left_support_t_s = std::numeric_limits<double>::quiet_NaN();
   double end_t_s = 0.0;  ///< last simulated time, s
-  /// Largest |theta_k| and when (s), one entry per block (block k at k - 1).
-  std::vector<double> peak_theta_rad, peak_theta_t_s;
-  /// Impacts per interface, one entry per block: [0] block 1 on the ground, [k] block k + 1 on
-  /// block k.
-  std::vector<int> impacts_at;
   /// Engines: the flags their monitor raised ("sliding", "uplift", "penetration",
   /// "energy_growth", "blow_up"), in that order; empty for the reference.
   std::vector<std::string> violations;
@@ -75,21 +102,8 @@ struct RunOutcome {
   /// No blocks (fill it, or build it for a number of blocks).
   RunOutcome() = default;
   /// The outcome of a run of `blocks` blocks: no peak, no impact.
-  explicit RunOutcome(int blocks)
-      : peak_theta_rad(static_cast<size_t>(blocks), 0.0),
-        peak_theta_t_s(static_cast<size_t>(blocks), 0.0),
-        impacts_at(static_cast<size_t>(blocks), 0) {}
+  explicit RunOutcome(int blocks) : PeaksAndImpacts(blocks) {}
 
-  int blocks() const { return static_cast<int>(peak_theta_rad.size()); }
-  /// Impacts of block 1 on the ground.
-  int impacts_ground() const { return impacts_at.empty() ? 0 : impacts_at[0]; }
-  /// Impacts at every interface between blocks.
-  int impacts_interface() const { return impacts() - impacts_ground(); }
-  int impacts() const {
-    int n = 0;
-    for (const int i : impacts_at) n += i;
-    return n;
-  }
   bool overturned() const { return overturned_block != 0; }
   bool left_support() const { return left_support_block != 0; }
 };
