@@ -220,6 +220,18 @@ struct DartWorld::Impl {
 
   Impl(const EngineInput& input, const DartSettings& settings) : in(input), s(settings) {}
 
+  // The world with the settings' LCP solvers (counted) and collision detector; its solver.
+  dart::constraint::BoxedLcpConstraintSolver* MakeWorld();
+  // Ground: a box whose top face is y = 0 in the base frame, much wider than the stack (`size`
+  // the largest half size of a block, `depth` its largest depth, m). An immobile skeleton
+  // (never integrated, never pushed by contacts) on a 2-D translational joint whose coordinates
+  // and rates the kinematic drive sets each step; contacts see its velocity.
+  void MakeGround(double ground_mu, double size, double depth);
+  // Blocks, placed by the pivot chain in the base frame then shifted with the ground, with
+  // their shapes' friction coefficients (ShapeFrictions).
+  void MakeBlocks(const std::vector<double>& base_mu, const std::vector<double>& top_mu);
+  // Which pairs may touch: neighbours only, and a block's base only its support's upper face.
+  void FilterContacts(dart::constraint::BoxedLcpConstraintSolver* solver);
   // Block `name` (its skeleton into *skel) with its base shape of friction `base_mu` and, when
   // top_mu is a number, a top shape of friction top_mu (the same box).
   dart::dynamics::BodyNode* MakeBlock(const std::string& name, const BlockDef& def,
@@ -262,9 +274,124 @@ dart::dynamics::BodyNode* DartWorld::Impl::MakeBlock(const std::string& name, co
   return body;
 }
 
+dart::constraint::BoxedLcpConstraintSolver* DartWorld::Impl::MakeWorld() {
+  world = dart::simulation::World::create("rockbench");
+  world->setTimeStep(dt);
+  world->setGravity(Eigen::Vector3d(0.0, -in.run.gravity_mps2, 0.0));
+
+  auto* solver =
+      dynamic_cast<dart::constraint::BoxedLcpConstraintSolver*>(world->getConstraintSolver());
+  if (solver == nullptr) throw std::logic_error("dart: the world's solver is not a boxed LCP");
+  dart::constraint::PgsBoxedLcpSolver::Option pgs_option;
+  pgs_option.mMaxIteration = s.pgs_iterations;
+  auto make_pgs = [&] {
+    auto pgs = std::make_shared<dart::constraint::PgsBoxedLcpSolver>();
+    pgs->setOption(pgs_option);
+    return pgs;
+  };
+  std::shared_ptr<dart::constraint::BoxedLcpSolver> primary;
+  if (s.lcp_solver == DartLcpSolver::kPgs) {
+    primary = make_pgs();
+  } else {
+    primary = std::make_shared<dart::constraint::DantzigBoxedLcpSolver>();
+  }
+  solver->setBoxedLcpSolver(
+      std::make_shared<CountingLcpSolver>(primary, &primary_calls, &primary_failures));
+  if (s.lcp_solver == DartLcpSolver::kDantzig && s.pgs_fallback) {
+    solver->setSecondaryBoxedLcpSolver(
+        std::make_shared<CountingLcpSolver>(make_pgs(), &fallback_calls, &fallback_failures));
+  } else {
+    solver->setSecondaryBoxedLcpSolver(nullptr);
+  }
+  if (s.collision == DartCollision::kFcl) {
+    auto fcl = dart::collision::FCLCollisionDetector::create();
+    fcl->setPrimitiveShapeType(dart::collision::FCLCollisionDetector::PRIMITIVE);
+    fcl->setContactPointComputationMethod(dart::collision::FCLCollisionDetector::DART);
+    solver->setCollisionDetector(fcl);
+  } else {
+    solver->setCollisionDetector(dart::collision::DARTCollisionDetector::create());
+  }
+  solver->getCollisionOption().maxNumContacts = static_cast<std::size_t>(s.max_contacts);
+  return solver;
+}
+
+void DartWorld::Impl::MakeGround(double ground_mu, double size, double depth) {
+  using namespace dart::dynamics;
+  ground_skel = Skeleton::create("ground");
+  TranslationalJoint2D::Properties jp;
+  jp.mName = "ground_xy";
+  auto [joint, body] = ground_skel->createJointAndBodyNodePair<TranslationalJoint2D>(nullptr, jp);
+  joint->setXYPlane();
+  auto shape = std::make_shared<BoxShape>(
+      Eigen::Vector3d(80.0 * size, s.ground_depth_m, 2.0 * (depth + 1.0)));
+  ShapeNode* node =
+      body->createShapeNodeWith<CollisionAspect, DynamicsAspect>(shape, "ground_shape");
+  node->getDynamicsAspect()->setFrictionCoeff(ground_mu);
+  node->getDynamicsAspect()->setRestitutionCoeff(s.restitution);
+  ground_shape = node;
+  // The box's centre is half its thickness below the body frame, the ground's reference point.
+  Eigen::Isometry3d offset = Eigen::Isometry3d::Identity();
+  offset.translation() = Eigen::Vector3d(0.0, -0.5 * s.ground_depth_m, 0.0);
+  node->setRelativeTransform(offset);
+  ground_skel->setMobile(false);
+  ground = body;
+  if (kinematic) {
+    joint->setPositions(Eigen::Vector2d(in.drive.ux_m.front(), in.drive.uy_m.front()));
+    joint->setVelocities(Eigen::Vector2d(in.drive.ux0_mps, in.drive.uy0_mps));
+  }
+  world->addSkeleton(ground_skel);
+}
+
+void DartWorld::Impl::MakeBlocks(const std::vector<double>& base_mu,
+                                 const std::vector<double>& top_mu) {
+  const int n = in.block_count();
+  const StackPlacement place = PlaceStack(in.blocks, in.initial);
+  const double ux0 = kinematic ? in.drive.ux_m.front() : 0.0;
+  const double uy0 = kinematic ? in.drive.uy_m.front() : 0.0;
+  const double gvx = kinematic ? in.drive.ux0_mps : 0.0;
+  const double gvy = kinematic ? in.drive.uy0_mps : 0.0;
+  skels.resize(static_cast<size_t>(n));
+  for (int k = 0; k < n; ++k) {
+    blocks.push_back(MakeBlock(std::string("block") + std::to_string(k + 1), in.blocks[k],
+                               place.blocks[k], ux0, uy0, gvx, gvy, base_mu[k], top_mu[k],
+                               &skels[k]));
+    z.push_back(blocks[k]->getCOM().z());
+  }
+}
+
+void DartWorld::Impl::FilterContacts(dart::constraint::BoxedLcpConstraintSolver* solver) {
+  const int n = in.block_count();
+  if (n >= 3) {
+    // Three or more blocks: contacts between neighbours only (block 1 and the ground, block k
+    // and block k - 1), as the model: every other pair on the collision filter's blacklist. (Two
+    // blocks keep block 2 and the ground, as before issue 23.)
+    auto& option = solver->getCollisionOption();
+    auto filter =
+        std::dynamic_pointer_cast<dart::collision::BodyNodeCollisionFilter>(option.collisionFilter);
+    if (!filter) {
+      filter = std::make_shared<dart::collision::BodyNodeCollisionFilter>();
+      option.collisionFilter = filter;
+    }
+    for (int k = 1; k < n; ++k) filter->addBodyNodePairToBlackList(ground, blocks[k]);
+    for (int i = 0; i < n; ++i) {
+      for (int j = i + 2; j < n; ++j) filter->addBodyNodePairToBlackList(blocks[i], blocks[j]);
+    }
+  }
+  if (std::any_of(top_shapes.begin(), top_shapes.end(), [](auto* p) { return p != nullptr; })) {
+    // A block with a top shape: each block's base meets its support's upper face only (a top
+    // shape needs three or more blocks, whose other pairs the blacklist above leaves out).
+    auto& option = solver->getCollisionOption();
+    auto filter = std::make_shared<ShapePairFilter>(option.collisionFilter);
+    filter->Allow(ground_shape, base_shapes[0]);
+    for (int k = 1; k < n; ++k) {
+      filter->Allow(top_shapes[k - 1] ? top_shapes[k - 1] : base_shapes[k - 1], base_shapes[k]);
+    }
+    option.collisionFilter = filter;
+  }
+}
+
 DartWorld::DartWorld(const EngineInput& input, const DartSettings& settings)
     : impl_(std::make_unique<Impl>(input, settings)) {
-  using namespace dart::dynamics;
   Impl& m = *impl_;
   // The settings' ranges are the [dart] schema's (dart_settings.cc), checked when the table
   // was resolved; the step is the input's, checked by MakeEngineInput.
@@ -274,44 +401,7 @@ DartWorld::DartWorld(const EngineInput& input, const DartSettings& settings)
   if (m.kinematic && (m.in.drive.ux_m.size() < samples || m.in.drive.uy_m.size() < samples)) {
     throw std::invalid_argument("dart: kinematic drive without ground displacement samples");
   }
-
-  m.world = dart::simulation::World::create("rockbench");
-  m.world->setTimeStep(m.dt);
-  m.world->setGravity(Eigen::Vector3d(0.0, -m.in.run.gravity_mps2, 0.0));
-
-  auto* solver =
-      dynamic_cast<dart::constraint::BoxedLcpConstraintSolver*>(m.world->getConstraintSolver());
-  if (solver == nullptr) throw std::logic_error("dart: the world's solver is not a boxed LCP");
-  dart::constraint::PgsBoxedLcpSolver::Option pgs_option;
-  pgs_option.mMaxIteration = m.s.pgs_iterations;
-  auto make_pgs = [&] {
-    auto pgs = std::make_shared<dart::constraint::PgsBoxedLcpSolver>();
-    pgs->setOption(pgs_option);
-    return pgs;
-  };
-  std::shared_ptr<dart::constraint::BoxedLcpSolver> primary;
-  if (m.s.lcp_solver == DartLcpSolver::kPgs) {
-    primary = make_pgs();
-  } else {
-    primary = std::make_shared<dart::constraint::DantzigBoxedLcpSolver>();
-  }
-  solver->setBoxedLcpSolver(
-      std::make_shared<CountingLcpSolver>(primary, &m.primary_calls, &m.primary_failures));
-  if (m.s.lcp_solver == DartLcpSolver::kDantzig && m.s.pgs_fallback) {
-    solver->setSecondaryBoxedLcpSolver(
-        std::make_shared<CountingLcpSolver>(make_pgs(), &m.fallback_calls, &m.fallback_failures));
-  } else {
-    solver->setSecondaryBoxedLcpSolver(nullptr);
-  }
-  if (m.s.collision == DartCollision::kFcl) {
-    auto fcl = dart::collision::FCLCollisionDetector::create();
-    fcl->setPrimitiveShapeType(dart::collision::FCLCollisionDetector::PRIMITIVE);
-    fcl->setContactPointComputationMethod(dart::collision::FCLCollisionDetector::DART);
-    solver->setCollisionDetector(fcl);
-  } else {
-    solver->setCollisionDetector(dart::collision::DARTCollisionDetector::create());
-  }
-  solver->getCollisionOption().maxNumContacts = static_cast<std::size_t>(m.s.max_contacts);
+  dart::constraint::BoxedLcpConstraintSolver* solver = m.MakeWorld();
 
   // Friction from the scene: each interface's coefficient (the block's where finite, else the
   // settings'), given by the shapes' coefficients under DART's rule (ShapeFrictions).
@@ -325,77 +415,9 @@ DartWorld::DartWorld(const EngineInput& input, const DartSettings& settings)
     depth = std::max(depth, def.depth_m);
   }
 
-  // Ground: a box whose top face is y = 0 in the base frame, much wider than the stack. An
-  // immobile skeleton (never integrated, never pushed by contacts) on a 2-D translational joint
-  // whose coordinates and rates the kinematic drive sets each step; contacts see its velocity.
-  {
-    m.ground_skel = Skeleton::create("ground");
-    TranslationalJoint2D::Properties jp;
-    jp.mName = "ground_xy";
-    auto [joint, body] =
-        m.ground_skel->createJointAndBodyNodePair<TranslationalJoint2D>(nullptr, jp);
-    joint->setXYPlane();
-    auto shape = std::make_shared<BoxShape>(
-        Eigen::Vector3d(80.0 * size, m.s.ground_depth_m, 2.0 * (depth + 1.0)));
-    ShapeNode* node =
-        body->createShapeNodeWith<CollisionAspect, DynamicsAspect>(shape, "ground_shape");
-    node->getDynamicsAspect()->setFrictionCoeff(friction.ground);
-    node->getDynamicsAspect()->setRestitutionCoeff(m.s.restitution);
-    m.ground_shape = node;
-    // The box's centre is half its thickness below the body frame, the ground's reference point.
-    Eigen::Isometry3d offset = Eigen::Isometry3d::Identity();
-    offset.translation() = Eigen::Vector3d(0.0, -0.5 * m.s.ground_depth_m, 0.0);
-    node->setRelativeTransform(offset);
-    m.ground_skel->setMobile(false);
-    m.ground = body;
-    if (m.kinematic) {
-      joint->setPositions(Eigen::Vector2d(m.in.drive.ux_m.front(), m.in.drive.uy_m.front()));
-      joint->setVelocities(Eigen::Vector2d(m.in.drive.ux0_mps, m.in.drive.uy0_mps));
-    }
-    m.world->addSkeleton(m.ground_skel);
-  }
-
-  // Blocks, placed by the pivot chain in the base frame then shifted with the ground.
-  const StackPlacement place = PlaceStack(m.in.blocks, m.in.initial);
-  const double ux0 = m.kinematic ? m.in.drive.ux_m.front() : 0.0;
-  const double uy0 = m.kinematic ? m.in.drive.uy_m.front() : 0.0;
-  const double gvx = m.kinematic ? m.in.drive.ux0_mps : 0.0;
-  const double gvy = m.kinematic ? m.in.drive.uy0_mps : 0.0;
-  m.skels.resize(static_cast<size_t>(n));
-  for (int k = 0; k < n; ++k) {
-    m.blocks.push_back(m.MakeBlock(std::string("block") + std::to_string(k + 1), m.in.blocks[k],
-                                   place.blocks[k], ux0, uy0, gvx, gvy, friction.base[k],
-                                   friction.top[k], &m.skels[k]));
-    m.z.push_back(m.blocks[k]->getCOM().z());
-  }
-  if (n >= 3) {
-    // Three or more blocks: contacts between neighbours only (block 1 and the ground, block k
-    // and block k - 1), as the model: every other pair on the collision filter's blacklist. (Two
-    // blocks keep block 2 and the ground, as before issue 23.)
-    auto& option = solver->getCollisionOption();
-    auto filter =
-        std::dynamic_pointer_cast<dart::collision::BodyNodeCollisionFilter>(option.collisionFilter);
-    if (!filter) {
-      filter = std::make_shared<dart::collision::BodyNodeCollisionFilter>();
-      option.collisionFilter = filter;
-    }
-    for (int k = 1; k < n; ++k) filter->addBodyNodePairToBlackList(m.ground, m.blocks[k]);
-    for (int i = 0; i < n; ++i) {
-      for (int j = i + 2; j < n; ++j) filter->addBodyNodePairToBlackList(m.blocks[i], m.blocks[j]);
-    }
-  }
-  if (std::any_of(m.top_shapes.begin(), m.top_shapes.end(), [](auto* p) { return p != nullptr; })) {
-    // A block with a top shape: each block's base meets its support's upper face only (a top
-    // shape needs three or more blocks, whose other pairs the blacklist above leaves out).
-    auto& option = solver->getCollisionOption();
-    auto filter = std::make_shared<ShapePairFilter>(option.collisionFilter);
-    filter->Allow(m.ground_shape, m.base_shapes[0]);
-    for (int k = 1; k < n; ++k) {
-      filter->Allow(m.top_shapes[k - 1] ? m.top_shapes[k - 1] : m.base_shapes[k - 1],
-                    m.base_shapes[k]);
-    }
-    option.collisionFilter = filter;
-  }
+  m.MakeGround(friction.ground, size, depth);
+  m.MakeBlocks(friction.base, friction.top);
+  m.FilterContacts(solver);
 
   AcquireContactParams({m.s.erp, m.s.error_allowance_m, m.s.max_erv_mps, m.s.cfm});
   m.params_acquired = true;

@@ -172,25 +172,70 @@ StackImpactOutcome StackContacts::EvaluateImpact(const Configuration& before,
   return out;
 }
 
-StackImpact StackContacts::ResolveImpact(const Configuration& before, const double* theta,
-                                         const double* omega_minus, int k_impact,
-                                         double rest_rate_rel) {
+Configuration StackContacts::Settled(const StackImpactOutcome& o, const double* theta,
+                                     double rest_rate_rel) const {
   const int n = size();
-  StackImpact res;
-  chain_.Place(before, theta, omega_minus);
-  res.energy_before_j = chain_.Energy();
-  // The baseline: the landing interface rebounds onto its other corner, the rest as before.
-  Configuration base = before;
-  const Contact rebound = Other(before[k_impact]);
-  base.set(k_impact, rebound);
-  free_.clear();
+  Configuration settled = o.config;
   for (int k = 0; k < n; ++k) {
-    if (k == k_impact || before[k] == Contact::kFace) free_.push_back(k);
+    if (settled[k] == Contact::kFace || RelativeAngle(theta, k) != 0.0) continue;
+    if (std::abs(RelativeRate(o.omega_radps.data(), k)) < RestRate(k, rest_rate_rel)) {
+      settled.set(k, Contact::kFace);
+    }
   }
-  const int nfree = static_cast<int>(free_.size());
+  return settled;
+}
+
+/// One impact's search over the candidate configurations (ResolveImpact): the candidates in
+/// its order, what it has found so far (the pick, the first admissible in velocities, the
+/// fallback) and, when exhaustive, the different admissible motions.
+struct StackContacts::ImpactSearch {
+  StackContacts& contacts;
+  const Configuration& before;
+  const double* theta;
+  const double* omega_minus;
+  int k_impact;
+  double rest_rate_rel;
+  StackImpact& res;
+  int n = 0;
+  // The baseline: the landing interface rebounds onto its other corner, the rest as before.
+  Configuration base;
+  Contact rebound = Contact::kRight;
+  int nfree = 0;
+  Configuration c;  // the candidate being built
+  bool capped = false;
+  bool have_pick = false, have_velocity = false, have_fallback = false;
+  StackImpactOutcome pick, first_velocity, fallback;
+  // The different motions (rates after the rest rule) of the admissible outcomes found, when
+  // the search is exhaustive, and their configurations' names.
+  double rate_scale = 1e-300;
+  std::vector<std::vector<double>> motions;
+  std::string names;
+
+  ImpactSearch(StackContacts& owner, const Configuration& before_mode, const double* theta_rad,
+               const double* omega, int k, double rest_rel, StackImpact& result)
+      : contacts(owner),
+        before(before_mode),
+        theta(theta_rad),
+        omega_minus(omega),
+        k_impact(k),
+        rest_rate_rel(rest_rel),
+        res(result),
+        n(owner.size()) {
+    base = before;
+    rebound = Other(before[k_impact]);
+    base.set(k_impact, rebound);
+    contacts.free_.clear();
+    for (int j = 0; j < n; ++j) {
+      if (j == k_impact || before[j] == Contact::kFace) contacts.free_.push_back(j);
+    }
+    nfree = static_cast<int>(contacts.free_.size());
+    for (int i = 0; i < n; ++i) rate_scale += std::abs(omega_minus[i]);
+    c = base;
+  }
+
   // Each free interface's other options: the landing one closes; a closed one opens, on the
   // rebound's side first.
-  auto changes = [&](int k, Contact* opts) -> int {
+  int Changes(int k, Contact* opts) const {
     if (k == k_impact) {
       opts[0] = Contact::kFace;
       return 1;
@@ -198,113 +243,127 @@ StackImpact StackContacts::ResolveImpact(const Configuration& before, const doub
     opts[0] = rebound;
     opts[1] = Other(rebound);
     return 2;
-  };
-  bool have_pick = false, have_velocity = false, have_fallback = false;
-  StackImpactOutcome pick, first_velocity, fallback;
-  // The rest rule: an interface that opens from a zero gap too slowly stays closed.
-  auto settle = [&](const StackImpactOutcome& o) -> Configuration {
-    Configuration settled = o.config;
-    for (int k = 0; k < n; ++k) {
-      if (settled[k] == Contact::kFace || RelativeAngle(theta, k) != 0.0) continue;
-      if (std::abs(RelativeRate(o.omega_radps.data(), k)) < RestRate(k, rest_rate_rel)) {
-        settled.set(k, Contact::kFace);
-      }
-    }
-    return settled;
-  };
-  // The different motions (rates after the rest rule) of the admissible outcomes found, when
-  // the search is exhaustive.
-  double rate_scale = 1e-300;
-  for (int i = 0; i < n; ++i) rate_scale += std::abs(omega_minus[i]);
-  std::vector<std::vector<double>> motions;
-  std::string names;
-  auto add_motion = [&](const StackImpactOutcome& o) {
-    const Configuration s = settle(o);
+  }
+
+  // Counts the motion of an admissible outcome (after the rest rule) unless one found already
+  // leaves the same rates.
+  void AddMotion(const StackImpactOutcome& o) {
+    const Configuration s = contacts.Settled(o, theta, rest_rate_rel);
     const std::vector<double> w =
-        s == o.config ? o.omega_radps : EvaluateImpact(before, s, theta, omega_minus).omega_radps;
+        s == o.config ? o.omega_radps
+                      : contacts.EvaluateImpact(before, s, theta, omega_minus).omega_radps;
     for (const auto& m : motions) {
       if (SameImpactMotion(m.data(), w.data(), n, rate_scale)) return;
     }
     motions.push_back(w);
     if (!names.empty()) names += ' ';
     names += ConfigurationName(o.config);
-  };
-  Configuration c = base;
-  bool capped = false;
-  // Returns true to stop: the search's cap without an admissible outcome, or the uniqueness
-  // check's budget after one.
-  std::function<bool(int, int)> search = [&](int pos, int left) -> bool {
-    if (pos == nfree) {
-      if (left != 0) return false;
-      if (++res.candidates_tried > kMaxCandidates) {
-        // Without an outcome the search is capped; with one, its uniqueness check stops.
-        if (have_pick) {
-          res.uniqueness_checked = false;
-        } else {
-          capped = true;
-        }
-        return true;
+  }
+
+  // Evaluates the complete candidate c. Returns true to stop: the search's cap without an
+  // admissible outcome, or the uniqueness check's budget after one.
+  bool TryCandidate() {
+    if (++res.candidates_tried > kMaxCandidates) {
+      // Without an outcome the search is capped; with one, its uniqueness check stops.
+      if (have_pick) {
+        res.uniqueness_checked = false;
+      } else {
+        capped = true;
       }
-      StackImpactOutcome o = EvaluateImpact(before, c, theta, omega_minus);
-      if (o.velocity_admissible && o.impulse_admissible) {
-        if (exhaustive_) add_motion(o);
-        if (!have_pick) {
-          pick = std::move(o);
-          have_pick = true;
-          // At most one motion is admissible (StackContacts::set_exhaustive).
-          res.uniqueness_checked = exhaustive_;
-          return !exhaustive_;
-        }
-        return false;
-      }
-      if (have_pick) return false;
-      if (o.velocity_admissible && !have_velocity) {
-        first_velocity = o;
-        have_velocity = true;
-      }
-      // Nothing separates: the fewest open interfaces (the last such in the order).
-      if (!have_fallback || o.config.open_count() <= fallback.config.open_count()) {
-        fallback = std::move(o);
-        have_fallback = true;
+      return true;
+    }
+    StackImpactOutcome o = contacts.EvaluateImpact(before, c, theta, omega_minus);
+    if (o.velocity_admissible && o.impulse_admissible) {
+      if (contacts.exhaustive_) AddMotion(o);
+      if (!have_pick) {
+        pick = std::move(o);
+        have_pick = true;
+        // At most one motion is admissible (StackContacts::set_exhaustive).
+        res.uniqueness_checked = contacts.exhaustive_;
+        return !contacts.exhaustive_;
       }
       return false;
     }
-    const int k = free_[pos];
+    if (have_pick) return false;
+    if (o.velocity_admissible && !have_velocity) {
+      first_velocity = o;
+      have_velocity = true;
+    }
+    // Nothing separates: the fewest open interfaces (the last such in the order).
+    if (!have_fallback || o.config.open_count() <= fallback.config.open_count()) {
+      fallback = std::move(o);
+      have_fallback = true;
+    }
+    return false;
+  }
+
+  // The candidates that change `left` more of the free interfaces from pos on. Returns true to
+  // stop (TryCandidate).
+  bool Search(int pos, int left) {
+    if (pos == nfree) {
+      if (left != 0) return false;
+      return TryCandidate();
+    }
+    const int k = contacts.free_[pos];
     if (left > 0) {
       Contact opts[2];
-      const int m = changes(k, opts);
+      const int m = Changes(k, opts);
       for (int i = 0; i < m; ++i) {
         c.set(k, opts[i]);
-        if (search(pos + 1, left - 1)) return true;
+        if (Search(pos + 1, left - 1)) return true;
       }
     }
     if (nfree - pos > left) {
       c.set(k, base[k]);
-      if (search(pos + 1, left)) return true;
+      if (Search(pos + 1, left)) return true;
     }
     return false;
-  };
-  for (int d = 0; d <= nfree; ++d) {
-    if (search(0, d)) break;
   }
-  std::string note;
-  res.admissible_outcomes = exhaustive_ ? static_cast<int>(motions.size()) : have_pick ? 1 : 0;
-  if (!have_pick) {
-    res.admissible = false;
-    note = capped ? "inadmissible: no admissible outcome among the first " +
-                        std::to_string(kMaxCandidates) + " (search stopped)"
-                  : "inadmissible: no outcome both separates and pushes";
-    pick = have_velocity ? first_velocity : fallback;
-  } else if (motions.size() > 1) {
-    note = "ambiguous: " + std::to_string(motions.size()) + " admissible outcomes (" + names +
-           "); chose " + ConfigurationName(pick.config);
+
+  // Fewest changes from the baseline first.
+  void Run() {
+    for (int d = 0; d <= nfree; ++d) {
+      if (Search(0, d)) break;
+    }
   }
-  if (exhaustive_ && have_pick && !res.uniqueness_checked) {
-    note += std::string(note.empty() ? "" : "; ") + "uniqueness checked on the first " +
-            std::to_string(kMaxCandidates) + " candidates only";
+
+  // What the search needs said: no admissible outcome, several, or a uniqueness check cut
+  // short. Sets res.admissible_outcomes and res.admissible, and the pick when none was found.
+  std::string Note() {
+    std::string note;
+    res.admissible_outcomes = contacts.exhaustive_ ? static_cast<int>(motions.size())
+                              : have_pick          ? 1
+                                                   : 0;
+    if (!have_pick) {
+      res.admissible = false;
+      note = capped ? "inadmissible: no admissible outcome among the first " +
+                          std::to_string(kMaxCandidates) + " (search stopped)"
+                    : "inadmissible: no outcome both separates and pushes";
+      pick = have_velocity ? first_velocity : fallback;
+    } else if (motions.size() > 1) {
+      note = "ambiguous: " + std::to_string(motions.size()) + " admissible outcomes (" + names +
+             "); chose " + ConfigurationName(pick.config);
+    }
+    if (contacts.exhaustive_ && have_pick && !res.uniqueness_checked) {
+      note += std::string(note.empty() ? "" : "; ") + "uniqueness checked on the first " +
+              std::to_string(kMaxCandidates) + " candidates only";
+    }
+    return note;
   }
-  res.chosen = std::move(pick);
-  const Configuration settled = settle(res.chosen);
+};
+
+StackImpact StackContacts::ResolveImpact(const Configuration& before, const double* theta,
+                                         const double* omega_minus, int k_impact,
+                                         double rest_rate_rel) {
+  StackImpact res;
+  chain_.Place(before, theta, omega_minus);
+  res.energy_before_j = chain_.Energy();
+  ImpactSearch search(*this, before, theta, omega_minus, k_impact, rest_rate_rel, res);
+  search.Run();
+  std::string note = search.Note();
+  res.chosen = std::move(search.pick);
+  // The rest rule: an interface that opens from a zero gap too slowly stays closed.
+  const Configuration settled = Settled(res.chosen, theta, rest_rate_rel);
   if (settled != res.chosen.config) {
     res.settled = true;
     res.chosen = EvaluateImpact(before, settled, theta, omega_minus);

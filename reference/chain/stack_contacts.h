@@ -127,6 +127,12 @@ class StackContacts {
   void set_exhaustive(bool exhaustive) { exhaustive_ = exhaustive; }
 
  private:
+  struct ImpactSearch;  // one impact's search over candidates (stack_contacts.cc)
+
+  // The rest rule applied to outcome o at theta: an interface that opens from a zero gap
+  // slower than RestRate stays closed.
+  Configuration Settled(const StackImpactOutcome& o, const double* theta_rad,
+                        double rest_rate_rel) const;
   StackImpactOutcome EvaluateImpact(const Configuration& before, const Configuration& after,
                                     const double* theta_rad, const double* omega_minus);
 

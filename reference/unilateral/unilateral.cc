@@ -650,20 +650,10 @@ std::vector<std::vector<ContactOption>> UnilateralStack::Options(
   return options;
 }
 
-bool UnilateralStack::LemkeMode(const Problem& p, const ContactMode& hint, bool limit_slip,
-                                ContactMode* mode, int* pivots) const {
-  // The force columns: per slot in contact its normal force (with the friction of a slip under
-  // way, or a limit slip's friction), per interface with static friction its tangential force
-  // at its first slot in contact. Each scaled by its row's norm in the mass metric.
-  struct Force {
-    int k, j;
-    bool tangential;
-    std::array<double, 6> dir, row;
-    double kappa, scale;
-    int var;  // its LCP variable (tangential: T+, then T- and, finite mu, sigma)
-  };
-  std::vector<Force> f;
-  int nv = 0;
+std::vector<UnilateralStack::ForceColumn> UnilateralStack::ForceColumns(const Problem& p,
+                                                                        int* nv) const {
+  std::vector<ForceColumn> f;
+  *nv = 0;
   for (int k = 0; k < n_; ++k) {
     const double mu = blocks_[k].friction;
     const int slipping = p.slipping[k];
@@ -672,7 +662,7 @@ bool UnilateralStack::LemkeMode(const Problem& p, const ContactMode& hint, bool 
       if (!p.zero[k][j]) continue;
       if (ref < 0) ref = j;
       const SlotKinematics& s = p.slots[k][j];
-      Force c{k, j, false, s.wn, s.wn, s.kappa_n, 1.0, nv++};
+      ForceColumn c{k, j, false, s.wn, s.wn, s.kappa_n, 1.0, (*nv)++};
       if (slipping != 0 && std::isinf(mu)) {
         for (int i = 0; i < 6; ++i) c.dir[i] = -slipping * s.wt[i];
       } else if (slipping != 0 && mu > 0.0) {
@@ -682,32 +672,44 @@ bool UnilateralStack::LemkeMode(const Problem& p, const ContactMode& hint, bool 
     }
     if (ref >= 0 && slipping == 0 && mu > 0.0) {
       const SlotKinematics& s = p.slots[k][ref];
-      f.push_back({k, ref, true, s.wt, s.wt, s.kappa_t, 1.0, nv});
-      nv += 3;
+      f.push_back({k, ref, true, s.wt, s.wt, s.kappa_t, 1.0, *nv});
+      *nv += 3;
     }
   }
-  const int m = static_cast<int>(f.size());
-  if (m == 0) {
-    *mode = ContactMode(n_);
-    return true;
-  }
-  std::vector<double> A(static_cast<size_t>(m * m), 0.0), b(static_cast<size_t>(m));
+  return f;
+}
+
+double UnilateralStack::ScaledCouplings(const Problem& p, std::vector<ForceColumn>* f,
+                                        std::vector<double>* A, std::vector<double>* b) const {
+  std::vector<ForceColumn>& fc = *f;
+  const int m = static_cast<int>(fc.size());
+  A->assign(static_cast<size_t>(m * m), 0.0);
+  b->assign(static_cast<size_t>(m), 0.0);
   for (int r = 0; r < m; ++r) {
-    f[r].scale = 1.0 / std::sqrt(Coupling(f[r].k, f[r].row, f[r].k, f[r].row));
+    fc[r].scale = 1.0 / std::sqrt(Coupling(fc[r].k, fc[r].row, fc[r].k, fc[r].row));
   }
   double b_max = 0.0;
   for (int r = 0; r < m; ++r) {
     for (int c = 0; c < m; ++c) {
-      if (std::abs(f[r].k - f[c].k) > 1) continue;
-      A[r * m + c] = f[r].scale * Coupling(f[r].k, f[r].row, f[c].k, f[c].dir) * f[c].scale;
+      if (std::abs(fc[r].k - fc[c].k) > 1) continue;
+      (*A)[r * m + c] =
+          fc[r].scale * Coupling(fc[r].k, fc[r].row, fc[c].k, fc[c].dir) * fc[c].scale;
     }
-    b[r] = f[r].scale * (RowTimes(f[r].row, f[r].k, p.base.data()) + (p.impact ? 0.0 : f[r].kappa));
-    b_max = std::max(b_max, std::abs(b[r]));
+    (*b)[r] = fc[r].scale *
+              (RowTimes(fc[r].row, fc[r].k, p.base.data()) + (p.impact ? 0.0 : fc[r].kappa));
+    b_max = std::max(b_max, std::abs((*b)[r]));
   }
-  // The LCP: z = (scaled normal forces; per tangential force T+, T-, sigma), w = M z + q:
-  // w_n = A_n. F + b_n; w_+ = A_t. F + b_t + sigma; w_- = -(A_t. F + b_t) + sigma;
-  // w_sigma = mu sum_j (s_j / s_t) N_j - T+ - T-, F the forces (T = T+ - T-).
-  std::vector<double> M(static_cast<size_t>(nv * nv), 0.0), q(static_cast<size_t>(nv), 0.0);
+  return b_max;
+}
+
+void UnilateralStack::ForceLcp(const std::vector<ForceColumn>& f, const std::vector<double>& A,
+                               const std::vector<double>& b, int nv, std::vector<double>* M_out,
+                               std::vector<double>* q_out) const {
+  const int m = static_cast<int>(f.size());
+  std::vector<double>& M = *M_out;
+  std::vector<double>& q = *q_out;
+  M.assign(static_cast<size_t>(nv * nv), 0.0);
+  q.assign(static_cast<size_t>(nv), 0.0);
   auto Mat = [&](int i, int j) -> double& { return M[static_cast<size_t>(i * nv + j)]; };
   auto add_row = [&](int var, int r, double sign) {
     for (int c = 0; c < m; ++c) {
@@ -737,8 +739,15 @@ bool UnilateralStack::LemkeMode(const Problem& p, const ContactMode& hint, bool 
     Mat(sg, tp) = -1.0;
     Mat(sg, tm) = -1.0;
   }
-  // Where Lemke ends on a ray, two more covering vectors (Lemke's path depends on it): the
-  // rows' own sizes, and a fixed spread.
+}
+
+namespace {
+
+// Lemke's method on LCP(M, q) of nv variables; where it ends on a ray, two more covering vectors
+// (Lemke's path depends on it): the rows' own sizes (relative to b_max), and a fixed spread.
+// Adds the pivots of every attempt to *pivots.
+LcpResult SolveLemkeCovered(const std::vector<double>& M, const std::vector<double>& q, int nv,
+                            double b_max, int* pivots) {
   LcpResult lcp = SolveLcpLemke(M, q, nv);
   *pivots = lcp.pivots;
   for (int attempt = 0; attempt < 2 && lcp.status != LcpStatus::kSolved; ++attempt) {
@@ -750,22 +759,27 @@ bool UnilateralStack::LemkeMode(const Problem& p, const ContactMode& hint, bool 
     lcp = SolveLcpLemke(M, q, nv, 0, cover);
     *pivots += lcp.pivots;
   }
-  if (lcp.status != LcpStatus::kSolved) return false;
-  // The mode: a slot is closed where its force is positive, open where it separates, the hint's
-  // where both are zero (to 1e-9 of the problem's scale); a slip where sigma (the slip rate's
-  // size) is positive, its direction against the friction force.
+  return lcp;
+}
+
+}  // namespace
+
+void UnilateralStack::ModeOfLcp(const Problem& p, const ContactMode& hint, bool limit_slip,
+                                const std::vector<ForceColumn>& f, const std::vector<double>& z,
+                                const std::vector<double>& w, double b_max,
+                                ContactMode* mode) const {
   double z_max = 0.0;
-  for (const double z : lcp.z) z_max = std::max(z_max, z);
+  for (const double zi : z) z_max = std::max(z_max, zi);
   const double tol = 1e-9 * std::max(b_max, z_max);
   *mode = ContactMode(n_);
   for (int k = 0; k < n_; ++k) {
     mode->support_corner[k] = {!p.slots[k][0].upper_corner, !p.slots[k][1].upper_corner};
   }
-  for (const Force& c : f) {
+  for (const ForceColumn& c : f) {
     if (c.tangential) continue;
-    const double z = lcp.z[c.var], w = lcp.w[c.var];
+    const double zc = z[c.var], wc = w[c.var];
     const bool hinted = c.k < static_cast<int>(hint.closed.size()) && hint.closed[c.k][c.j];
-    mode->closed[c.k][c.j] = z > tol || (w <= tol && hinted);
+    mode->closed[c.k][c.j] = zc > tol || (wc <= tol && hinted);
   }
   for (int k = 0; k < n_; ++k) {
     if (!mode->any_closed(k)) continue;
@@ -776,9 +790,9 @@ bool UnilateralStack::LemkeMode(const Problem& p, const ContactMode& hint, bool 
       mode->slip[k] = Slip::kRight;
     }
   }
-  for (const Force& c : f) {
+  for (const ForceColumn& c : f) {
     if (!c.tangential || !mode->any_closed(c.k)) continue;
-    const double tp = lcp.z[c.var], tm = lcp.z[c.var + 1], sigma = lcp.z[c.var + 2];
+    const double tp = z[c.var], tm = z[c.var + 1], sigma = z[c.var + 2];
     const bool slips = sigma > tol;
     const Slip dir = tp > tm ? Slip::kLeft : Slip::kRight;  // friction + t: a slip to the left
     if (!std::isinf(blocks_[c.k].friction)) {
@@ -787,6 +801,22 @@ bool UnilateralStack::LemkeMode(const Problem& p, const ContactMode& hint, bool 
       mode->slip[c.k] = dir;
     }
   }
+}
+
+bool UnilateralStack::LemkeMode(const Problem& p, const ContactMode& hint, bool limit_slip,
+                                ContactMode* mode, int* pivots) const {
+  int nv = 0;
+  std::vector<ForceColumn> f = ForceColumns(p, &nv);
+  if (f.empty()) {
+    *mode = ContactMode(n_);
+    return true;
+  }
+  std::vector<double> A, b, M, q;
+  const double b_max = ScaledCouplings(p, &f, &A, &b);
+  ForceLcp(f, A, b, nv, &M, &q);
+  const LcpResult lcp = SolveLemkeCovered(M, q, nv, b_max, pivots);
+  if (lcp.status != LcpStatus::kSolved) return false;
+  ModeOfLcp(p, hint, limit_slip, f, lcp.z, lcp.w, b_max, mode);
   return true;
 }
 

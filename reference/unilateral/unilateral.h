@@ -255,6 +255,37 @@ class UnilateralStack {
                       bool exhaustive, long cap) const;
   // `mode`'s equations solved and its conditions checked: false when singular or violated.
   bool Check(const Problem& p, const ContactMode& mode, ModeSolution* sol) const;
+  // A force column of p's LCP: per slot in contact its normal force (with the friction of a
+  // slip under way, or a limit slip's friction), per interface with static friction its
+  // tangential force at its first slot in contact; the directions of its force (dir) and row,
+  // the row's curvature term, and its scale (1 / the row's norm in the mass metric).
+  struct ForceColumn {
+    int k, j;
+    bool tangential;
+    std::array<double, 6> dir, row;
+    double kappa, scale;
+    int var;  // its LCP variable (tangential: T+, then T- and, finite mu, sigma)
+  };
+  // p's force columns (scale 1) and the number of the LCP's variables, *nv.
+  std::vector<ForceColumn> ForceColumns(const Problem& p, int* nv) const;
+  // Each column's scale, and the scaled couplings A (m x m, row-major: a row's coupling with
+  // every force of its own or a neighbouring interface) and rows' values b at zero force;
+  // returns the largest |b|.
+  double ScaledCouplings(const Problem& p, std::vector<ForceColumn>* f, std::vector<double>* A,
+                         std::vector<double>* b) const;
+  // The LCP of the forces: z = (scaled normal forces; per tangential force T+, T-, sigma),
+  // w = M z + q: w_n = A_n. F + b_n; w_+ = A_t. F + b_t + sigma; w_- = -(A_t. F + b_t) + sigma;
+  // w_sigma = mu sum_j (s_j / s_t) N_j - T+ - T-, F the forces (T = T+ - T-).
+  void ForceLcp(const std::vector<ForceColumn>& f, const std::vector<double>& A,
+                const std::vector<double>& b, int nv, std::vector<double>* M,
+                std::vector<double>* q) const;
+  // The mode of the LCP's solution (z, w): a slot is closed where its force is positive, open
+  // where it separates, the hint's where both are zero (to 1e-9 of the problem's scale); a
+  // slip where sigma (the slip rate's size) is positive, its direction against the friction
+  // force.
+  void ModeOfLcp(const Problem& p, const ContactMode& hint, bool limit_slip,
+                 const std::vector<ForceColumn>& f, const std::vector<double>& z,
+                 const std::vector<double>& w, double b_max, ContactMode* mode) const;
   // Lemke's method on p's LCP: the mode its solution gives (false: Lemke found none).
   bool LemkeMode(const Problem& p, const ContactMode& hint, bool limit_slip, ContactMode* mode,
                  int* pivots) const;
