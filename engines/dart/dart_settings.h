@@ -2,8 +2,7 @@
 /// Settings of the DART engine (DART 6.12, Debian libdart-dev). Every field says its unit, DART's
 /// own default and why ours differs. The namespace is not `dart`, which is DART's own.
 ///
-/// Measured with engines/dart/dart_probe.cc (Housner's block 0.4 m x 1.2 m released from half
-/// its critical angle, 2.5 s; the thesis's free-rocking stack, 3 s): see the notes per field.
+/// The measurements behind ours are in docs/engine-measurements.md, DART.
 #include <cstdint>
 #include <string>
 
@@ -39,25 +38,24 @@ const char* DartLcpSolverName(DartLcpSolver s);
 /// The [dart] settings besides the time step, which is EngineInput::time_step_s (DART's default
 /// 1e-3 s, World::setTimeStep; ours is the project's 1e-4 s: DART is first order in dt here, a
 /// landing corner being seen once it penetrates and the semi-implicit Euler step leading the
-/// angle by half a step, and at 1e-4 s the angle error is about 1e-4 rad on both probe scenes).
+/// angle by half a step; measured: docs/engine-measurements.md, DART).
 struct DartSettings {
   /// Collision detector. DART's default: FCL. Ours: DART's own, whose box-box gives exactly the
-  /// corner-edge and face contacts rocking needs; FCL (primitive boxes) measured as accurate
-  /// (no better, no worse beyond step-to-step scatter).
+  /// corner-edge and face contacts rocking needs; FCL (primitive boxes) is no more accurate
+  /// (measured: docs/engine-measurements.md, DART).
   DartCollision collision = DartCollision::kDart;
 
   /// Boxed LCP solver. DART's default: Dantzig, with PGS as a fallback. Ours: the same.
   /// Dantzig alone is not usable on the stack: the planar joints leave the contacts'
   /// out-of-plane friction rows empty and make the rows of the points at z = +-depth/2 equal,
-  /// and Dantzig gives up on, or returns NaN for, 12-22% of the stack's steps (DART then zeroes
-  /// the impulses: without the fallback the stack's angle error is 0.4 rad at dt 1e-4 s). PGS as
-  /// the only solver measured as accurate as Dantzig + PGS.
+  /// and Dantzig gives up on, or returns NaN for, many of the stack's steps (DART then zeroes
+  /// the impulses). Measured: docs/engine-measurements.md, DART.
   DartLcpSolver lcp_solver = DartLcpSolver::kDantzig;
   /// Whether PGS solves a contact group when Dantzig fails (DART runs Dantzig with early
   /// termination when a fallback is set). DART's default: yes. Ours: yes (see lcp_solver).
   bool pgs_fallback = true;
-  /// PGS iterations (PGS as the solver or the fallback). DART's default 30. Ours: the same;
-  /// 200 and 1000 changed nothing beyond scatter.
+  /// PGS iterations (PGS as the solver or the fallback). DART's default 30. Ours: the same
+  /// (more change nothing: docs/engine-measurements.md, DART).
   int pgs_iterations = 30;
 
   /// Restitution coefficient of every body (DART uses the product of the two bodies'). DART's
@@ -66,15 +64,15 @@ struct DartSettings {
   /// Friction coefficient of every body (DART uses the smaller of the two bodies'; the cone is
   /// DART's 2-direction pyramid). DART's default 1. Ours: 10: the model assumes no sliding, and
   /// the thesis stack needs |T|/N up to 1.28 at the interface (reference's
-  /// friction_required_interface); with DART's 1 block 2 slides 9 mm and the angle error grows
-  /// 100-fold. 10 and 1000 measured the same.
+  /// friction_required_interface), and with DART's 1 block 2 slides (measured:
+  /// docs/engine-measurements.md, DART).
   double friction = 10.0;
 
   /// Contact error reduction parameter: a penetration d deeper than the allowance is pushed out
   /// with the velocity target min(erp * (d - allowance) / dt, max_erv) (Baumgarte;
   /// ContactConstraint::setErrorReductionParameter, process-wide). DART's default 0.01. Ours:
-  /// the same. 0 leaves every landing corner's penetration in place (the stack sinks 7e-5 m at
-  /// dt 1e-4 s instead of 2e-5 m, and its error doubles at 1e-5 s); 0.1 and 1 are no better.
+  /// the same. 0 leaves every landing corner's penetration in place; larger values are no
+  /// better (measured: docs/engine-measurements.md, DART).
   double erp = 0.01;
   /// Penetration tolerated without correction, m (ContactConstraint::setErrorAllowance,
   /// process-wide). DART's default 0. Ours: 0: an allowance lets the corners rest that deep,
@@ -83,17 +81,17 @@ struct DartSettings {
   /// Cap on the penetration-correction velocity, m/s
   /// (ContactConstraint::setMaxErrorReductionVelocity, process-wide). DART's default 1e-3 m/s.
   /// Ours: the same. A correction velocity v launches a block v^2 / 2g high: 5e-8 m at 1e-3 m/s,
-  /// far below the monitor's 1e-5 m uplift tolerance; with a cap of 1 m/s (erp 0.2) the block
-  /// flies up to 9e-5 m after every impact.
+  /// far below the monitor's 1e-5 m uplift tolerance (a larger cap: docs/engine-measurements.md,
+  /// DART).
   double max_erv_mps = 1e-3;
   /// Constraint force mixing, relative: DART multiplies each diagonal entry of the LCP matrix by
   /// (1 + cfm) (ContactConstraint::setConstraintForceMixing, process-wide; DART refuses less
-  /// than 1e-9, so the schema does). DART's default 1e-5. Ours: the same (1e-9 measured the
-  /// same).
+  /// than 1e-9, so the schema does). DART's default 1e-5. Ours: the same
+  /// (docs/engine-measurements.md, DART).
   double cfm = 1e-5;
   /// Largest number of contacts the collision query returns per step, over all pairs
   /// (CollisionOption::maxNumContacts; DART 6.12 has no per-pair limit). DART's default 1000.
-  /// Ours: the same; box-box gives at most 4 per pair, 8 in all for two blocks (measured).
+  /// Ours: the same; box-box gives at most 4 per pair.
   int max_contacts = 1000;
 
   /// Ground box thickness, m (the ground is a box whose top face is y = 0; as Bullet's).

@@ -1,9 +1,8 @@
 #pragma once
 /// Settings of the MuJoCo engine (2.2.2): ours, with MuJoCo's own default beside each and why
 /// ours differs. Free of MuJoCo headers. Each maps onto an MJCF <option> or <geom> attribute
-/// (MujocoWorld::Settings() lists the values in use). Measurements quoted here are from
-/// engines/mujoco/mujoco_probe.cc (Housner's block 0.4 m x 1.2 m from alpha / 2, 2.5 s, against
-/// its exact solution; the thesis's stack, 3 s, against the reference model).
+/// (MujocoWorld::Settings() lists the values in use). The measurements behind ours are in
+/// docs/engine-measurements.md, MuJoCo.
 #include <array>
 #include <string_view>
 
@@ -22,15 +21,13 @@ enum class ContactModel {
   /// solref = (stiff_timeconst_steps * dt, stiff_dampratio), solimp = stiff_solimp. With the
   /// time constant at 2 dt, b dt = 1: a landing corner's approach velocity is removed in one
   /// step, the plastic impact of the rigid model (no restitution; Housner's energy loss comes
-  /// from the geometry alone). Converges to the rigid model as dt falls (measured: Housner's
-  /// block 3.8e-3 / 2.5e-4 / 4.8e-5 rad at dt 1e-3 / 1e-4 / 1e-5 s; the stack 5.9e-3 / 2.9e-4 /
-  /// 2.1e-5 rad).
+  /// from the geometry alone). Converges to the rigid model as dt falls (measured:
+  /// docs/engine-measurements.md, MuJoCo).
   kStiff,
   /// MuJoCo's own: solref (0.02 s, 1), solimp (0.9, 0.95, 0.001 m, 0.5, 2), whatever the step.
   /// A 20 ms spring under each corner: 2.7 mm (block) to 6 mm (stack) of penetration, an
-  /// impact spread over ~20 ms, errors that do not shrink with dt (measured: Housner's block
-  /// 3.2e-3 / 2.0e-3 / 2.1e-3 rad, the stack 4.2e-3 / 3.8e-3 / 3.9e-3 rad at dt 1e-3 / 1e-4 /
-  /// 1e-5 s). Kept to show what MuJoCo's defaults do.
+  /// impact spread over ~20 ms, errors that do not shrink with dt (measured:
+  /// docs/engine-measurements.md, MuJoCo). Kept to show what MuJoCo's defaults do.
   kMujocoDefault,
 };
 
@@ -58,55 +55,49 @@ struct MujocoSettings {
   /// the time constant at 2 dt the stiffness term k r turns the penetration a landing corner
   /// makes within its step (up to v dt) into a rebound velocity of up to v / (4 dampratio^2),
   /// whatever dt: at 1 that is a restitution of up to 25% at the landing corner, which the
-  /// rigid model does not have (measured at 1: rate ratios 0.81-0.84 instead of Housner's 0.85
-  /// even at dt 1e-6, the stack airborne by 1 mm and 1.1e-2 rad off at dt 1e-5). At 10 the
-  /// rebound is below 0.25% and the penetration is recovered over 4 dampratio^2 = 400 steps
-  /// (40 ms at dt 1e-4; the penetration itself is O(v dt): 2e-5 m at dt 1e-4). Measured 3 to 30
-  /// give the same errors within their scatter; 100 leaves penetration from coarse steps.
+  /// rigid model does not have. At 10 the rebound is below 0.25% and the penetration is
+  /// recovered over 4 dampratio^2 = 400 steps (the penetration itself is O(v dt)). Measured:
+  /// docs/engine-measurements.md, MuJoCo.
   double stiff_dampratio = 10.0;
   /// kStiff: solimp (dmin, dmax, width m, midpoint, power). MuJoCo default
   /// (0.9, 0.95, 0.001 m, 0.5, 2): 5-10% of the constraint force left unenforced, which shows
-  /// as creep (slip 1.5e-5 m at dt 1e-4, 4 times ours) and softer impacts (rate ratio 0.843
-  /// against Housner's 0.850, at every dt). Ours: the impedance
-  /// at MuJoCo's largest, mjMAXIMP = 0.9999, at every penetration (width, midpoint and power
-  /// then play no part): the rigid model's contact. (0.99, 0.9999, 1e-4 m) measured the same
-  /// within the scatter.
+  /// as creep and softer impacts. Ours: the impedance at MuJoCo's largest, mjMAXIMP = 0.9999, at
+  /// every penetration (width, midpoint and power then play no part): the rigid model's contact
+  /// (measured: docs/engine-measurements.md, MuJoCo).
   std::array<double, 5> stiff_solimp = {0.9999, 0.9999, 0.001, 0.5, 2.0};
 
-  /// Constraint solver. MuJoCo default Newton (kept: converges in at most 6 iterations here; CG
-  /// hits the iteration limit on the stack (2-3 times slower), PGS on both scenes (7-15 times
-  /// slower), neither more accurate).
+  /// Constraint solver. MuJoCo default Newton (kept: CG and PGS are slower and no more
+  /// accurate here; measured: docs/engine-measurements.md, MuJoCo).
   Solver solver = Solver::kNewton;
   /// Maximum solver iterations. MuJoCo default 100 (kept: Newton stops at the tolerance long
   /// before).
   int iterations = 100;
-  /// Solver tolerance (relative cost improvement), dimensionless. MuJoCo default 1e-8 (kept:
-  /// 1e-10 gives Housner's block the same errors to 4 digits).
+  /// Solver tolerance (relative cost improvement), dimensionless. MuJoCo default 1e-8 (kept: a
+  /// smaller one changes nothing measurable; docs/engine-measurements.md, MuJoCo).
   double tolerance = 1e-8;
   /// Integrator. MuJoCo default Euler (semi-implicit; kept: the error is the contacts' O(dt)
-  /// either way; RK4 re-solves the contacts in each of its 4 stages, costs 3-7 times as much
-  /// and was not consistently more accurate at equal dt; implicit is Euler when nothing has
-  /// joint damping, as here).
+  /// either way; RK4 re-solves the contacts in each of its 4 stages and costs several times as
+  /// much (docs/engine-measurements.md, MuJoCo); implicit is Euler when nothing has joint
+  /// damping, as here).
   Integrator integrator = Integrator::kEuler;
   /// Friction cone. MuJoCo default pyramidal. Ours elliptic: a pyramidal cone's edges mix the
   /// normal with friction times the tangent, so their regularisation grows with the friction
-  /// squared and a large friction softens the normal contact (measured with friction 10 and
-  /// MuJoCo's default solimp: the block sinks 0.33 m; with the stiff solimp the impacts lose
-  /// almost nothing, ratio 0.98). The elliptic cone keeps normal and friction rows apart.
+  /// squared and a large friction softens the normal contact (measured:
+  /// docs/engine-measurements.md, MuJoCo). The elliptic cone keeps normal and friction rows
+  /// apart.
   Cone cone = Cone::kElliptic;
-  /// Ratio of friction to normal impedance, dimensionless. MuJoCo default 1 (kept: 10 measured
-  /// the same, the slip is already far below the monitor's flag).
+  /// Ratio of friction to normal impedance, dimensionless. MuJoCo default 1 (kept: the slip is
+  /// already far below the monitor's flag; docs/engine-measurements.md, MuJoCo).
   double impratio = 1.0;
   /// Coulomb friction coefficient of every geom (MuJoCo takes the larger of the two geoms').
   /// MuJoCo default 1. Ours 10: the rigid model assumes no sliding, and the reference needs a
   /// friction ratio of 0.70 at the ground and 1.28 at the interface for the thesis's stack
-  /// (0.24 for Housner's block), which MuJoCo's 1 would not give. Measured 3 or 100 the same
-  /// within the scatter (elliptic cone).
+  /// (0.24 for Housner's block), which MuJoCo's 1 would not give (docs/engine-measurements.md,
+  /// MuJoCo).
   double friction = 10.0;
   /// Noslip post-iterations (remove the friction constraints' soft creep). MuJoCo default 0
-  /// (kept: the slip measured with the stiff contact is 2e-6 m at the ground and 1.5e-5 m at
-  /// the interface at dt 1e-4, far below the monitor's flag of 1e-3 of the width; 10 noslip
-  /// iterations change the errors by nothing measurable and cost a second solve).
+  /// (kept: the slip with the stiff contact is far below the monitor's flag of 1e-3 of the
+  /// width, and noslip iterations cost a second solve; docs/engine-measurements.md, MuJoCo).
   int noslip_iterations = 0;
   /// Noslip tolerance, dimensionless. MuJoCo default 1e-6 (kept).
   double noslip_tolerance = 1e-6;

@@ -3,9 +3,7 @@
 /// numerics only, not siconos mechanics, see engines/siconos/CMakeLists.txt). Every field says
 /// its unit, Siconos's own default and why ours differs.
 ///
-/// Measured with `rockbench compare` on Housner's block (scenes/housner_free_rocking.toml) and
-/// the thesis's free-rocking stack (scenes/thesis_free_rocking.toml): see the notes per field
-/// and docs/engines.md.
+/// The measurements behind ours are in docs/engine-measurements.md, Siconos.
 #include <string>
 
 #include "engines/common/engine_input.h"
@@ -34,10 +32,9 @@ struct SiconosSettings {
   double friction = 10.0;
   /// Numerics solver of the 2-D frictional contact problem. Siconos's default for
   /// FrictionContact is the 3-D NSGS id (FrictionContact(dim = 3)); for dimension 2 ours is
-  /// the 2-D NSGS. Lemke (the problem as an LCP) is not usable at the onset of rocking: on the
-  /// slow ramp (conformance UpliftStartsAtTheStaticThreshold) the step where a corner unloads
-  /// gets a spurious rate of +2.6e-2 rad/s the wrong way and the block then rocks 12% too far
-  /// (4.0e-3 rad off the reference; enumeration: 1.0e-3 rad; NSGS: 4.1e-6 rad, as Bullet).
+  /// the 2-D NSGS. Lemke (the problem as an LCP) is not usable at the onset of rocking: the step
+  /// where a corner unloads gets a spurious rate the wrong way (measured:
+  /// docs/engine-measurements.md, Siconos).
   SiconosSolver solver = SiconosSolver::kNsgs;
   /// Solver tolerance and iteration cap (SolverOptions dparam[TOL], iparam[MAX_ITER]).
   /// Siconos's defaults: NSGS 1e-4 / 1000, Lemke 1e-6 / 10000. Ours: 1e-8 / 1000 (then Lemke): the
@@ -46,17 +43,16 @@ struct SiconosSettings {
   int solver_max_iterations = 1000;
   /// Whether a step whose NSGS did not converge within solver_max_iterations is solved again
   /// by Lemke (exact). Siconos has no fallback (TimeStepping keeps the unconverged impulses).
-  /// Ours: yes. With m2/m1 = 1000 (stress catalogue) NSGS converges on no step: 10000
-  /// iterations per step hold the angles to 2e-5 rad at 8 s per simulated second, 1000 alone
-  /// give 1.1e-3 rad with sliding and uplift, 1000 and Lemke after them 2e-5 rad at 1/5 the
-  /// cost. On the shipped scenes no step needs more than 634 iterations.
+  /// Ours: yes: with a mass ratio of 1000 (stress catalogue) NSGS converges on no step, and
+  /// Lemke after it is as accurate as ten times the iterations at a fraction of the cost
+  /// (measured: docs/engine-measurements.md, Siconos).
   bool lemke_fallback = true;
   /// TimeStepping's Newton loop (setNewtonOptions). Siconos's default: SICONOS_TS_NONLINEAR,
   /// iterations until the dynamical systems' residual converges; a LagrangianLinearTIDS has
   /// none and the relations' residual is not checked by default, so it stops after one
-  /// iteration (measured on every scene), with the contact Jacobians at the step's start. Ours:
-  /// SICONOS_TS_LINEAR, the same single iteration without the loop's residual bookkeeping: the
-  /// same angles to the last digit, 1.2x faster (Kobe, 4 s: 3.1 s against 3.8 s).
+  /// iteration, with the contact Jacobians at the step's start. Ours: SICONOS_TS_LINEAR, the same
+  /// single iteration without the loop's residual bookkeeping: the same angles, faster
+  /// (measured: docs/engine-measurements.md, Siconos).
   bool newton_linear = true;
   /// MoreauJeanOSI's constraint activation threshold, m: a contact whose gap predicted at the
   /// step's end is below it enters the step's contact problem. Siconos's default: 0. Ours: the
