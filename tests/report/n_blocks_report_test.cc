@@ -269,9 +269,9 @@ TEST_F(StackReportTest, ASweepOfThreeBlocksCarriesBlock3) {
       ParseSweepCsv(Slurp(base_ / "sweep" / "sweep.csv"), base_ / "sweep" / "sweep.csv");
   ASSERT_FALSE(rows.empty());
   for (const SweepRecord& r : rows) {
-    ASSERT_EQ(r.theta_from3_max_abs_error_rad.size(), 1u) << r.line;
-    EXPECT_GE(MaxAngleError(r), r.theta_from3_max_abs_error_rad[0]);
-    EXPECT_GE(MaxAngleError(r), r.theta1_max_abs_error_rad);
+    ASSERT_EQ(r.bodies.size(), 3u) << r.line;
+    EXPECT_GE(MaxAngleError(r), r.bodies[2].max_abs_error_rad);
+    EXPECT_GE(MaxAngleError(r), r.bodies[0].max_abs_error_rad);
   }
   const fs::path page = WriteSweepReport(base_ / "sweep", base_ / "out");
   const std::string md = Slurp(page / "report.md");

@@ -5,6 +5,7 @@
 #include <map>
 
 #include "run/engine_registry.h"
+#include "scene/body_kind.h"
 #include "util/format.h"
 
 namespace rockbench::report {
@@ -51,61 +52,54 @@ std::optional<double> ObservedOrder(const SweepRecord& coarse, const SweepRecord
   return std::log(ec / ef) / std::log(sc / sf);
 }
 
-AgreementCriterion PeakAgreement(double tolerance, bool two_blocks, int blocks) {
+AgreementCriterion PeakAgreement(double tolerance, int blocks) {
   AgreementCriterion c;
   c.name = Format("%g", tolerance * 100.0) + "% peak-angle agreement";
-  const std::string which =
-      blocks >= 3  ? std::string(" for every block (theta1 to ") + Numbered("theta", blocks) + ")"
-      : two_blocks ? " for theta1 and theta2"
-                   : " for theta1";
+  const std::string which = blocks >= 3
+                                ? " for every block (theta1 to " + BodyColumn("theta", blocks) + ")"
+                            : blocks == 2 ? std::string(" for theta1 and theta2")
+                                          : std::string(" for theta1");
   c.definition = "|peak relative error| <= " + Format("%g", tolerance * 100.0) + "%" + which +
                  ", and the same overturn outcome as the reference";
   c.reaches = [tolerance](const SweepRecord& r) { return ReachesPeakAgreement(r, tolerance); };
   return c;
 }
 
-AgreementCriterion HistoryAgreement(double fraction, double peak_theta1_rad, double peak_theta2_rad,
-                                    const std::vector<double>& peaks_from3_rad) {
+AgreementCriterion HistoryAgreement(double fraction, const std::vector<double>& peak_theta_rad) {
   AgreementCriterion c;
-  const double bound1 = fraction * peak_theta1_rad, bound2 = fraction * peak_theta2_rad;
-  std::vector<double> bounds_from3;
-  std::string from3_text;
-  for (size_t k = 0; k < peaks_from3_rad.size(); ++k) {
-    bounds_from3.push_back(fraction * peaks_from3_rad[k]);
-    from3_text += ", " + Format("%.3g", bounds_from3.back()) + " rad for " +
-                  Numbered("theta", static_cast<int>(k) + 3);
+  // Each body's bound, none for a body after the first whose peak is 0 (one block's body 2 in
+  // sweep.json, or a body that does not move: no scale to be within a fraction of).
+  std::vector<std::optional<double>> bounds_rad;
+  std::string bounds_text;
+  for (size_t k = 0; k < peak_theta_rad.size(); ++k) {
+    if (k > 0 && !(peak_theta_rad[k] > 0.0)) {
+      bounds_rad.push_back(std::nullopt);
+      continue;
+    }
+    bounds_rad.push_back(fraction * peak_theta_rad[k]);
+    bounds_text += std::string(k > 0 ? ", " : "") + Format("%.3g", *bounds_rad.back()) +
+                   " rad for " + BodyColumn("theta", static_cast<int>(k) + 1);
   }
   c.name = Format("%g", fraction * 100.0) + "% history agreement";
   c.definition = "max |angle error| over the whole run <= " + Format("%g", fraction * 100.0) +
-                 "% of the reference's peak angle: " + Format("%.3g", bound1) + " rad for theta1" +
-                 (peak_theta2_rad > 0.0 ? ", " + Format("%.3g", bound2) + " rad for theta2" : "") +
-                 from3_text + "; and the same overturn outcome";
-  c.reaches = [bound1, bound2, two = peak_theta2_rad > 0.0, bounds_from3](const SweepRecord& r) {
+                 "% of the reference's peak angle: " + bounds_text +
+                 "; and the same overturn outcome";
+  c.reaches = [bounds_rad](const SweepRecord& r) {
     if (!r.failure.empty() || !r.overturn_agree) return false;
-    if (r.theta1_max_abs_error_rad > bound1) return false;
-    for (size_t k = 0; k < bounds_from3.size() && k < r.theta_from3_max_abs_error_rad.size(); ++k) {
-      if (r.theta_from3_max_abs_error_rad[k] > bounds_from3[k]) return false;
+    for (size_t k = 0; k < bounds_rad.size() && k < r.bodies.size(); ++k) {
+      if (bounds_rad[k] && r.bodies[k].max_abs_error_rad > *bounds_rad[k]) return false;
     }
-    return !two || !r.has_theta2 || r.theta2_max_abs_error_rad <= bound2;
+    return true;
   };
   return c;
 }
 
 CheapestSetting FindCheapestSetting(const std::vector<SweepRecord>& rows, double peak_tolerance,
                                     const std::string& engine) {
+  // The stack's blocks: the most bodies a row has (0 when every row failed).
   int blocks = 0;
-  for (const SweepRecord& r : rows) {
-    if (!r.theta_from3_max_abs_error_rad.empty()) {
-      blocks = std::max(blocks, 2 + static_cast<int>(r.theta_from3_max_abs_error_rad.size()));
-    }
-  }
-  return FindCheapestSetting(
-      rows,
-      PeakAgreement(
-          peak_tolerance,
-          std::any_of(rows.begin(), rows.end(), [](const SweepRecord& r) { return r.has_theta2; }),
-          blocks),
-      engine);
+  for (const SweepRecord& r : rows) blocks = std::max(blocks, static_cast<int>(r.bodies.size()));
+  return FindCheapestSetting(rows, PeakAgreement(peak_tolerance, blocks), engine);
 }
 
 std::vector<std::string> SweepEngines(const std::vector<SweepRecord>& rows) {
@@ -168,9 +162,9 @@ CheapestSetting FindCheapestSetting(const std::vector<SweepRecord>& rows,
     out.statement +=
         " The reference reaches the same or better accuracy (max angle error, the "
         "max |error| over the run" +
-        std::string(!b.theta_from3_max_abs_error_rad.empty() ? " (the largest of every block's)"
-                    : b.has_theta2 ? " (the larger of theta1's and theta2's)"
-                                   : "") +
+        std::string(b.bodies.size() >= 3   ? " (the largest of every block's)"
+                    : b.bodies.size() == 2 ? " (the larger of theta1's and theta2's)"
+                                           : "") +
         ", <= the " + engine + " run's, and the same criterion) with " +
         SweepSettingDescription(r) + " at " + Format("%.3g", r.wall_s) +
         " s wall (max angle error " + Format("%.2e", MaxAngleError(r)) + " rad), " +

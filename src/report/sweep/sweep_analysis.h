@@ -23,15 +23,14 @@ struct AgreementCriterion {
   std::function<bool(const SweepRecord&)> reaches;
 };
 
-/// The criterion: ReachesPeakAgreement(r, tolerance). `blocks` >= 3: the definition
-/// names every block (theta1 .. thetaN); else `two_blocks` says one or two.
-AgreementCriterion PeakAgreement(double tolerance, bool two_blocks, int blocks = 0);
-/// A stricter one on the whole history: max |theta_i error| over the run <= fraction x the
-/// reference's peak |theta_i| for each block (peak_theta2_rad 0: one block), and the same
-/// overturn outcome.
-/// `peaks_from3_rad`: N >= 3 blocks, the peaks of blocks 3..N (their bounds likewise).
-AgreementCriterion HistoryAgreement(double fraction, double peak_theta1_rad, double peak_theta2_rad,
-                                    const std::vector<double>& peaks_from3_rad = {});
+/// The criterion: ReachesPeakAgreement(r, tolerance). `blocks`: the stack's blocks, which
+/// the definition names (theta1; theta1 and theta2; every block, theta1 to thetaN).
+AgreementCriterion PeakAgreement(double tolerance, int blocks);
+/// A stricter one on the whole history: max |theta_k error| over the run <= fraction x the
+/// reference's peak |theta_k| for each body k (`peak_theta_rad`, rad, body k at k - 1; a body
+/// after the first with a peak of 0, such as one block's body 2 in sweep.json, has no bound),
+/// and the same overturn outcome.
+AgreementCriterion HistoryAgreement(double fraction, const std::vector<double>& peak_theta_rad);
 
 /// The cheapest setting of one engine reaching a criterion, and the cheapest reference setting
 /// with the same or better accuracy: max angle error <= the engine run's, and it reaches the
@@ -47,7 +46,7 @@ struct CheapestSetting {
 CheapestSetting FindCheapestSetting(const std::vector<SweepRecord>& rows,
                                     const AgreementCriterion& criterion,
                                     const std::string& engine = "");
-/// With PeakAgreement(peak_tolerance, any row has theta2).
+/// With PeakAgreement(peak_tolerance, the most bodies of a row).
 CheapestSetting FindCheapestSetting(const std::vector<SweepRecord>& rows,
                                     double peak_tolerance = 0.01, const std::string& engine = "");
 /// The engines of the rows, in the order they first appear.

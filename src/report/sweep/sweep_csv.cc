@@ -8,6 +8,7 @@
 
 #include "report/common/names.h"
 #include "run/engine_registry.h"
+#include "scene/body_kind.h"
 #include "scene/limits.h"
 #include "scene/mode.h"
 #include "util/format.h"
@@ -168,69 +169,68 @@ void ReadRunSettings(const RowReader& rd, SweepRecord& r) {
   }
 }
 
-// The results of a run that did not fail: wall time, errors, impacts, agreement flags; marks the
-// row failed when a result is not finite or the wall time not positive.
-void ReadRunResults(const RowReader& rd, SweepRecord& r) {
-  if (r.status.empty()) rd.Fail("status", "expected the run's status, got an empty field");
-  struct NumberColumn {
-    const char* name;
-    double* value;
-  };
-  const std::vector<NumberColumn> numbers = {
-      {"wall_s", &r.wall_s},
-      {"theta1_max_abs_error_rad", &r.theta1_max_abs_error_rad},
-      {"theta1_rms_error_rad", &r.theta1_rms_error_rad},
-      {"theta1_horizon_s", &r.theta1_horizon_s},
-      {"theta1_peak_rel_error", &r.theta1_peak_rel_error},
-      {"theta1_peak_time_error_s", &r.theta1_peak_time_error_s},
-      {"max_abs_impact_time_error_s", &r.max_abs_impact_time_error_s}};
-  const std::vector<NumberColumn> theta2 = {
-      {"theta2_max_abs_error_rad", &r.theta2_max_abs_error_rad},
-      {"theta2_rms_error_rad", &r.theta2_rms_error_rad},
-      {"theta2_horizon_s", &r.theta2_horizon_s},
-      {"theta2_peak_rel_error", &r.theta2_peak_rel_error},
-      {"theta2_peak_time_error_s", &r.theta2_peak_time_error_s}};
-  for (const NumberColumn& c : numbers) *c.value = rd.Number(c.name);
-  // The theta2 columns: all filled (two blocks) or all empty (one block).
+// A number column of a row and where it goes.
+struct NumberColumn {
+  std::string name;
+  double* value;
+};
+
+// Body `body`'s five columns (thetaK_max_abs_error_rad, ...), in the file's order.
+std::vector<NumberColumn> BodyColumns(int body, SweepBodyErrors& e) {
+  const std::string th = BodyColumn("theta", body);
+  return {{th + "_max_abs_error_rad", &e.max_abs_error_rad},
+          {th + "_rms_error_rad", &e.rms_error_rad},
+          {th + "_horizon_s", &e.horizon_s},
+          {th + "_peak_rel_error", &e.peak_rel_error},
+          {th + "_peak_time_error_s", &e.peak_time_error_s}};
+}
+
+// Whether body 2's columns are filled: all (two or more blocks) or none (one block); a row
+// with some of them empty is an error.
+bool SecondBodyFilled(const RowReader& rd) {
+  SweepBodyErrors unused;
+  const std::vector<NumberColumn> columns = BodyColumns(2, unused);
   int filled = 0;
-  for (const NumberColumn& c : theta2) filled += rd.Text(c.name).empty() ? 0 : 1;
-  if (filled != 0 && filled != static_cast<int>(theta2.size())) {
-    for (const NumberColumn& c : theta2) {
+  for (const NumberColumn& c : columns) filled += rd.Text(c.name).empty() ? 0 : 1;
+  if (filled != 0 && filled != static_cast<int>(columns.size())) {
+    for (const NumberColumn& c : columns) {
       if (rd.Text(c.name).empty()) rd.Fail(c.name, "empty while other theta2 columns are set");
     }
   }
-  r.has_theta2 = filled > 0;
-  if (r.has_theta2) {
-    for (const NumberColumn& c : theta2) *c.value = rd.Number(c.name);
+  return filled > 0;
+}
+
+// The results of a run that did not fail: wall time, each body's errors, impacts, agreement
+// flags; marks the row failed when a result is not finite or the wall time not positive.
+void ReadRunResults(const RowReader& rd, SweepRecord& r) {
+  if (r.status.empty()) rd.Fail("status", "expected the run's status, got an empty field");
+  // Bodies 1 and 2 (when filled), then 3, 4, ... as long as the file has their columns.
+  int bodies = SecondBodyFilled(rd) ? 2 : 1;
+  while (bodies >= 2 && bodies < kMaxBlocks &&
+         rd.Has(BodyColumn("theta", bodies + 1) + "_max_abs_error_rad")) {
+    ++bodies;
   }
-  // N >= 3 blocks: theta3_*, theta4_*, ... as long as the file has them.
-  std::vector<std::string> from3_names;
-  for (int b = 3; b <= kMaxBlocks && rd.Has(Numbered("theta", b) + "_max_abs_error_rad"); ++b) {
-    const std::string th = Numbered("theta", b);
-    r.theta_from3_max_abs_error_rad.push_back(rd.Number(th + "_max_abs_error_rad"));
-    r.theta_from3_peak_rel_error.push_back(rd.Number(th + "_peak_rel_error"));
-    from3_names.push_back(th + "_max_abs_error_rad");
-    from3_names.push_back(th + "_peak_rel_error");
+  r.bodies.resize(static_cast<size_t>(bodies));
+  // In the order a non-finite value is reported: wall time, body 1, the impact time, the rest.
+  std::vector<NumberColumn> numbers = {{"wall_s", &r.wall_s}};
+  for (NumberColumn& c : BodyColumns(1, r.bodies[0])) numbers.push_back(std::move(c));
+  numbers.push_back({"max_abs_impact_time_error_s", &r.max_abs_impact_time_error_s});
+  for (int b = 2; b <= bodies; ++b) {
+    for (NumberColumn& c : BodyColumns(b, r.bodies[static_cast<size_t>(b - 1)])) {
+      numbers.push_back(std::move(c));
+    }
   }
+  for (const NumberColumn& c : numbers) *c.value = rd.Number(c.name);
   r.impacts_reference = rd.Integer("impacts_reference", 0);
   r.impacts_engine = rd.Integer("impacts_engine", 0);
   r.impacts_matched = rd.Integer("impacts_matched", 0);
   r.overturn_agree = rd.Flag("overturn_agree");
   r.final_agree = rd.Flag("final_agree");
   // Non-finite results: the run is listed, not plotted.
-  std::vector<NumberColumn> all = numbers;
-  if (r.has_theta2) all.insert(all.end(), theta2.begin(), theta2.end());
-  for (const NumberColumn& c : all) {
+  for (const NumberColumn& c : numbers) {
     if (!std::isfinite(*c.value)) {
-      r.failure = std::string("non-finite ") + c.name + " (" + rd.Text(c.name) + ")";
+      r.failure = "non-finite " + c.name + " (" + rd.Text(c.name) + ")";
       break;
-    }
-  }
-  for (size_t k = 0; k < from3_names.size() && r.failure.empty(); ++k) {
-    const double v =
-        k % 2 == 0 ? r.theta_from3_max_abs_error_rad[k / 2] : r.theta_from3_peak_rel_error[k / 2];
-    if (!std::isfinite(v)) {
-      r.failure = "non-finite " + from3_names[k] + " (" + rd.Text(from3_names[k]) + ")";
     }
   }
   if (r.failure.empty() && !(r.wall_s > 0.0)) r.failure = "wall_s is not positive";
@@ -285,16 +285,15 @@ std::string SweepSettingLabel(const SweepRecord& r) {
 }
 
 double MaxAngleError(const SweepRecord& r) {
-  double e = r.has_theta2 ? std::max(r.theta1_max_abs_error_rad, r.theta2_max_abs_error_rad)
-                          : r.theta1_max_abs_error_rad;
-  for (const double v : r.theta_from3_max_abs_error_rad) e = std::max(e, v);
+  // From body 1's (as read: a non-finite value stays), none for a failed row.
+  double e = r.bodies.empty() ? 0.0 : r.bodies[0].max_abs_error_rad;
+  for (const SweepBodyErrors& b : r.bodies) e = std::max(e, b.max_abs_error_rad);
   return e;
 }
 
 double MaxPeakRelError(const SweepRecord& r) {
-  const double a = std::fabs(r.theta1_peak_rel_error);
-  double e = r.has_theta2 ? std::max(a, std::fabs(r.theta2_peak_rel_error)) : a;
-  for (const double v : r.theta_from3_peak_rel_error) e = std::max(e, std::fabs(v));
+  double e = r.bodies.empty() ? 0.0 : std::fabs(r.bodies[0].peak_rel_error);
+  for (const SweepBodyErrors& b : r.bodies) e = std::max(e, std::fabs(b.peak_rel_error));
   return e;
 }
 

@@ -1,11 +1,21 @@
 #pragma once
 /// sweep.csv read back: one record per run, with what the work-precision report derives from a
 /// single record (its family, its setting's label and value, its largest errors).
+#include <algorithm>
 #include <filesystem>
 #include <string>
 #include <vector>
 
 namespace rockbench::report {
+
+/// One body's angle errors against the tight reference: sweep.csv's thetaK_* columns of body K.
+struct SweepBodyErrors {
+  double max_abs_error_rad = 0.0;  ///< max |angle error| over the run, rad
+  double rms_error_rad = 0.0;      ///< rad
+  double horizon_s = 0.0;          ///< s
+  double peak_rel_error = 0.0;     ///< the peak angle's relative error
+  double peak_time_error_s = 0.0;  ///< s
+};
 
 /// One row of sweep.csv as read back (columns as src/sweep/sweep.h's SweepCsv writes them).
 struct SweepRecord {
@@ -20,14 +30,9 @@ struct SweepRecord {
   double rk4_step_s = 0.0;  ///< s
   std::string status;       ///< the run's status, "error" for a failed run
   double wall_s = 0.0;      ///< s
-  double theta1_max_abs_error_rad = 0.0, theta1_rms_error_rad = 0.0, theta1_horizon_s = 0.0;
-  double theta1_peak_rel_error = 0.0, theta1_peak_time_error_s = 0.0;
-  bool has_theta2 = false;  ///< two-block scene (the theta2 columns are filled)
-  double theta2_max_abs_error_rad = 0.0, theta2_rms_error_rad = 0.0, theta2_horizon_s = 0.0;
-  double theta2_peak_rel_error = 0.0, theta2_peak_time_error_s = 0.0;
-  /// N >= 3 blocks (the file has theta3_* ... thetaN_* columns): blocks 3..N's max |angle error|
-  /// and peak relative error (block 3 at index 0); empty for one or two blocks.
-  std::vector<double> theta_from3_max_abs_error_rad, theta_from3_peak_rel_error;
+  /// Per body (body k at k - 1): its angle's errors, from the thetaK_* columns; one body when
+  /// the theta2 columns are empty (one block), none for a failed row.
+  std::vector<SweepBodyErrors> bodies;
   int impacts_reference = 0, impacts_engine = 0, impacts_matched = 0;
   double max_abs_impact_time_error_s = 0.0;
   bool overturn_agree = false, final_agree = false;
@@ -35,6 +40,9 @@ struct SweepRecord {
   /// Why the row is not plotted: empty for a usable row; the error message, or the column
   /// holding a non-finite value.
   std::string failure;
+  /// Bodies as the columns count them: 2 for one or two bodies (their columns are the same), N
+  /// for N >= 3.
+  int column_blocks() const { return std::max(2, static_cast<int>(bodies.size())); }
 };
 
 /// Parses sweep.csv text; `path` names the file in messages. Throws std::runtime_error
@@ -51,9 +59,9 @@ std::string SweepFamily(const SweepRecord& r);
 std::string SweepSettingLabel(const SweepRecord& r);
 /// The varying setting's value (time step s, rtol, or step s): smaller is finer.
 double SweepSettingValue(const SweepRecord& r);
-/// Max over theta1 (and theta2, ..., thetaN) of the max |angle error| over the run, rad.
+/// Max over the bodies of the max |angle error| over the run, rad.
 double MaxAngleError(const SweepRecord& r);
-/// Max over theta1 (and theta2, ..., thetaN) of |peak relative error|.
+/// Max over the bodies of |peak relative error|.
 double MaxPeakRelError(const SweepRecord& r);
 /// A record's setting in words: "Bullet double (50 iterations), time step 1e-3 s", "reference
 /// dopri5, rtol 1e-8", "reference RK4, step 1e-3 s".

@@ -13,6 +13,7 @@
 #include "report/common/gnuplot.h"
 #include "report/common/page.h"
 #include "run/engine_registry.h"
+#include "scene/body_kind.h"
 #include "scene/history.h"
 #include "scene/mode.h"
 #include "util/format.h"
@@ -65,11 +66,10 @@ struct SweepInfo {
   int repeat = 1, threads = 0;
   double tight_wall_s = 0.0;
   std::string tight_status;
-  double tight_peak1 = 0.0, tight_peak2 = 0.0;        // rad
-  double tight_peak1_t = -1.0, tight_peak2_t = -1.0;  // s; -1: not recorded
-  int overturn_block = 0;                             // 1..N; 0: none
-  // N >= 3 blocks: the tight reference's peaks of blocks 3..N (block 3 at index 0), rad.
-  std::vector<double> tight_peak_from3;
+  // The tight reference's peak |theta| of each body (body k at k - 1; sweep.json gives
+  // bodies 1 and 2 always, one block's body 2 as 0), rad, and when (-1: not recorded), s.
+  std::vector<double> tight_peak_rad, tight_peak_t_s;
+  int overturn_block = 0;  // 1..N; 0: none
   double overturn_t_s = 0.0;
   // The simulated span a run covers: runs stop when a block overturns (the reference's
   // overturn time stands for every run's), else the scene's duration. The real-time mark.
@@ -80,12 +80,14 @@ struct SweepInfo {
   std::string machine;
 };
 
-// ", peak |theta3| X rad, ..." of the tight reference's blocks 3..N; empty for one or two.
-std::string PeaksFrom3Text(const SweepInfo& info) {
+// "peak |theta1| X rad, peak |theta2| Y rad, ..." of the tight reference's bodies; body 2 is
+// left out when its peak is 0 (one block).
+std::string PeaksText(const SweepInfo& info) {
   std::string out;
-  for (size_t k = 0; k < info.tight_peak_from3.size(); ++k) {
-    out.append(", peak |").append(Numbered("theta", static_cast<int>(k) + 3)).append("| ");
-    out.append(Format("%.4g", info.tight_peak_from3[k])).append(" rad");
+  for (size_t k = 0; k < info.tight_peak_rad.size(); ++k) {
+    if (k == 1 && !(info.tight_peak_rad[k] > 0.0)) continue;
+    out.append(k > 0 ? ", peak |" : "peak |").append(BodyColumn("theta", static_cast<int>(k) + 1));
+    out.append("| ").append(Format("%.4g", info.tight_peak_rad[k])).append(" rad");
   }
   return out;
 }
@@ -106,12 +108,12 @@ SweepInfo ReadSweepInfo(const fs::path& path) {
     const nlohmann::json& t = j.at("tight_reference");
     info.tight_wall_s = t.value("wall_s", 0.0);
     info.tight_status = t.value("status", "");
-    info.tight_peak1 = t.value("peak_theta1_rad", 0.0);
-    info.tight_peak2 = t.value("peak_theta2_rad", 0.0);
-    info.tight_peak1_t = t.value("peak_theta1_t_s", -1.0);
-    info.tight_peak2_t = t.value("peak_theta2_t_s", -1.0);
-    for (int b = 3; b <= kMaxBlocks && t.contains(Numbered("peak_theta", b) + "_rad"); ++b) {
-      info.tight_peak_from3.push_back(t.value(Numbered("peak_theta", b) + "_rad", 0.0));
+    // Bodies 1 and 2 always (0 and not recorded when absent), then 3, 4, ... as present.
+    for (int b = 1; b <= kMaxBlocks && (b <= 2 || t.contains(BodyColumn("peak_theta", b) + "_rad"));
+         ++b) {
+      const std::string th = BodyColumn("peak_theta", b);
+      info.tight_peak_rad.push_back(t.value(th + "_rad", 0.0));
+      info.tight_peak_t_s.push_back(t.value(th + "_t_s", -1.0));
     }
     if (t.contains("overturn_block") && t.at("overturn_block").is_number_integer()) {
       info.overturn_block = t.at("overturn_block").get<int>();
@@ -278,10 +280,7 @@ void SweepSection(const fs::path& sweep_dir, const std::vector<SweepRecord>& row
              : std::to_string(info.threads) + " worker thread" + (info.threads == 1 ? "" : "s")) +
         " (runs sharing cores read slower than alone). Machine: " + info.machine +
         ". The tight reference took " + Format("%.3g", info.tight_wall_s) + " s (status " +
-        info.tight_status + ", peak |theta1| " + Format("%.4g", info.tight_peak1) + " rad" +
-        (info.tight_peak2 > 0.0 ? ", peak |theta2| " + Format("%.4g", info.tight_peak2) + " rad"
-                                : std::string()) +
-        PeaksFrom3Text(info) +
+        info.tight_status + ", " + PeaksText(info) +
         (info.overturn_block > 0
              ? ", block " + std::to_string(info.overturn_block) + " overturns at " +
                    Format("%.4g", info.overturn_t_s) + " s, where every run that overturns stops"
@@ -308,10 +307,11 @@ void StatementSection(const std::vector<SweepRecord>& rows, const SweepInfo& inf
   // When the peak criterion cannot tell runs apart, say so, and give a stricter one.
   if (info.present) {
     std::vector<std::string> caveats;
-    const double peak_t[2] = {info.tight_peak1_t, info.tight_peak2_t};
-    const double peak[2] = {info.tight_peak1, info.tight_peak2};
+    // Bodies 1 and 2 (the caveats as the report has always given them).
+    const std::vector<double>& peak = info.tight_peak_rad;
+    const std::vector<double>& peak_t = info.tight_peak_t_s;
     for (int b = 0; b < 2; ++b) {
-      const std::string theta = "theta" + std::to_string(b + 1);
+      const std::string theta = BodyColumn("theta", b + 1);
       if (info.overturn_block == b + 1) {
         caveats.push_back("block " + std::to_string(b + 1) + " overturns, so " + theta +
                           "'s peak is the overturn angle, which every run that overturns "
@@ -332,11 +332,8 @@ void StatementSection(const std::vector<SweepRecord>& rows, const SweepInfo& inf
       page.Paragraph("A stricter criterion, on the whole history:");
     }
     for (const std::string& engine : SweepEngines(rows)) {
-      page.Paragraph(FindCheapestSetting(rows,
-                                         HistoryAgreement(0.01, info.tight_peak1, info.tight_peak2,
-                                                          info.tight_peak_from3),
-                                         engine)
-                         .statement);
+      page.Paragraph(
+          FindCheapestSetting(rows, HistoryAgreement(0.01, info.tight_peak_rad), engine).statement);
     }
   }
   page.Paragraph(
@@ -352,8 +349,7 @@ void RankingSection(const std::vector<SweepRecord>& rows, const SweepInfo& info,
   const std::vector<double> fractions = {0.1, 0.01, 0.001};
   std::vector<AgreementCriterion> levels;
   for (double f : fractions) {
-    levels.push_back(
-        HistoryAgreement(f, info.tight_peak1, info.tight_peak2, info.tight_peak_from3));
+    levels.push_back(HistoryAgreement(f, info.tight_peak_rad));
   }
   const std::vector<EngineAtLevels> ranked = RankAtEqualAccuracy(rows, levels, 1);
   if (ranked.empty()) return;
@@ -408,12 +404,10 @@ void RankingSection(const std::vector<SweepRecord>& rows, const SweepInfo& info,
 }
 
 // The blocks of the sweep's stack: 2 for one or two blocks (their columns are the same), N
-// for a row with blocks 3..N's errors.
+// for a row with N >= 3 bodies.
 int SweepBlocks(const std::vector<SweepRecord>& rows) {
   int blocks = 2;
-  for (const SweepRecord& r : rows) {
-    blocks = std::max(blocks, 2 + static_cast<int>(r.theta_from3_max_abs_error_rad.size()));
-  }
+  for (const SweepRecord& r : rows) blocks = std::max(blocks, r.column_blocks());
   return blocks;
 }
 
@@ -474,14 +468,20 @@ void FiguresSection(const std::vector<SweepRecord>& rows, const SweepInfo& info,
   }
 }
 
-// The largest |value| of blocks 3..N of a row, "%.2e (θk)"; empty for one or two blocks.
-std::string LargestFrom3(const std::vector<double>& values) {
-  if (values.empty()) return "";
-  size_t w = 0;
-  for (size_t k = 1; k < values.size(); ++k) {
-    if (std::fabs(values[k]) > std::fabs(values[w])) w = k;
+// A body's error as the table of all runs shows it, "%.2e"; empty when the row lacks the body.
+std::string BodyCell(const SweepRecord& r, int body, double SweepBodyErrors::*error) {
+  if (body > static_cast<int>(r.bodies.size())) return "";
+  return Format("%.2e", r.bodies[static_cast<size_t>(body - 1)].*error);
+}
+
+// The largest |error| of bodies 3..N of a row, "%.2e (θk)"; empty for one or two bodies.
+std::string LargestFromThirdBody(const SweepRecord& r, double SweepBodyErrors::*error) {
+  if (r.bodies.size() < 3) return "";
+  size_t w = 2;
+  for (size_t k = 3; k < r.bodies.size(); ++k) {
+    if (std::fabs(r.bodies[k].*error) > std::fabs(r.bodies[w].*error)) w = k;
   }
-  return Format("%.2e", values[w]) + " (θ" + std::to_string(w + 3) + ")";
+  return Format("%.2e", r.bodies[w].*error) + " (θ" + std::to_string(w + 1) + ")";
 }
 
 // Every usable run by family, with the observed order of convergence.
@@ -506,17 +506,16 @@ void RunsSection(const std::vector<SweepRecord>& rows, double duration, Page& pa
       const SweepRecord& r = rows[indices[k]];
       std::optional<double> order;
       if (k > 0) order = ObservedOrder(rows[indices[k - 1]], r);
-      std::vector<std::string> cells = {
-          family,
-          SweepSettingLabel(r),
-          Format("%.3g", r.wall_s),
-          duration > 0.0 ? Format("%.3g", duration / r.wall_s) : "",
-          Format("%.2e", r.theta1_max_abs_error_rad),
-          r.has_theta2 ? Format("%.2e", r.theta2_max_abs_error_rad) : ""};
-      if (many) cells.push_back(LargestFrom3(r.theta_from3_max_abs_error_rad));
-      cells.push_back(Format("%.2e", r.theta1_peak_rel_error));
-      cells.push_back(r.has_theta2 ? Format("%.2e", r.theta2_peak_rel_error) : "");
-      if (many) cells.push_back(LargestFrom3(r.theta_from3_peak_rel_error));
+      std::vector<std::string> cells = {family,
+                                        SweepSettingLabel(r),
+                                        Format("%.3g", r.wall_s),
+                                        duration > 0.0 ? Format("%.3g", duration / r.wall_s) : "",
+                                        BodyCell(r, 1, &SweepBodyErrors::max_abs_error_rad),
+                                        BodyCell(r, 2, &SweepBodyErrors::max_abs_error_rad)};
+      if (many) cells.push_back(LargestFromThirdBody(r, &SweepBodyErrors::max_abs_error_rad));
+      cells.push_back(BodyCell(r, 1, &SweepBodyErrors::peak_rel_error));
+      cells.push_back(BodyCell(r, 2, &SweepBodyErrors::peak_rel_error));
+      if (many) cells.push_back(LargestFromThirdBody(r, &SweepBodyErrors::peak_rel_error));
       for (std::string c :
            {std::to_string(r.impacts_matched) + "/" + std::to_string(r.impacts_reference),
             std::string(r.overturn_agree ? "yes" : "no"),
