@@ -266,6 +266,8 @@ void CheckEngineName(const std::string& name) {
   const auto expected = [] {
     return " (expected \"reference\" or one of: " + KnownList() + ", one name per entry)";
   };
+  // The reference is an engine of every build (FindEngine knows it apart from the registry).
+  if (FindEngine(name) == &TheReference()) return;
   for (const RegisteredEngine& e : EngineRegistry()) {
     if (e.name != name) continue;
     if (e.engine == nullptr) {

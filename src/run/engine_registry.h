@@ -64,11 +64,11 @@ std::vector<std::string> ParseEngineList(const std::string& text);
 /// empty when the list names the reference alone. Throws as ParseEngineList.
 std::vector<std::string> ParseEnginesBesideReference(const std::string& text);
 
-/// Checks one engine name that a file (not the user) lists, as a study's `engines` does: a
-/// built engine of the build or of a registry file the user owns. Throws SceneError (without
-/// a place: the caller adds the file and key) for a text that is no single engine name ("all",
-/// "bullet,ode", " bullet"), an unknown or left-out engine, and a scene-brought engine the user
-/// has not named, saying how to opt in.
+/// Checks one engine name that a file (not the user) lists, as a study's `engines` does: the
+/// reference, or a built engine of the build or of a registry file the user owns. Throws SceneError
+/// (without a place: the caller adds the file and key) for a text that is no single engine name
+/// ("all", "bullet,ode", " bullet"), an unknown or left-out engine, and a scene-brought engine the
+/// user has not named, saying how to opt in.
 void CheckEngineName(const std::string& name);
 
 /// How to opt in to the scene-brought engine `name` ("name it on the command line: --engines

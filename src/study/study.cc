@@ -268,9 +268,9 @@ void CheckEngines(const StudyDef& s, const toml::node& node) {
       throw SceneError(Where(s.path, node) + ": engines: \"" + Excerpt(e) + "\" listed twice");
     }
     seen.push_back(e);
-    if (IsReference(e)) continue;
-    // One engine name per entry, of the build or of a registry file the user owns: "all", a
-    // comma-joined list and an engine the study's scene brings are refused here, not row by row.
+    // One engine name per entry, the reference or an engine of the build or of a registry file
+    // the user owns: "all", a comma-joined list and an engine the study's scene brings are
+    // refused here, not row by row.
     try {
       CheckEngineName(e);
     } catch (const SceneError& err) {
