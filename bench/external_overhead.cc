@@ -17,6 +17,7 @@
 #include "engines/external/protocol.h"
 #include "motion/ground_motion.h"
 #include "run/engine_run.h"
+#include "tests/common/bullet_steps.h"
 
 using namespace rockbench;
 
@@ -31,16 +32,7 @@ void Measure(const std::string& file, const std::string& dt) {
   const Scene s = LoadScene(file, {"bullet.time_step=" + dt});
   const GroundMotion motion = GroundMotion::FromScene(s);
   const bullet::BulletInput in = bullet::MakeBulletInput(s, motion);
-  std::vector<StepReadout> steps;
-  {
-    bullet::RockingWorld world(in);
-    steps.push_back(world.Read(0));
-    for (std::int64_t n = 0; n < in.steps; ++n) {
-      world.ApplyDrive(n);
-      world.Step();
-      steps.push_back(world.Read(n + 1));
-    }
-  }
+  const std::vector<StepReadout> steps = testing_util::RecordBulletSteps(in);
   const auto dir = std::filesystem::temp_directory_path() / "rockbench_external_overhead";
   std::filesystem::create_directories(dir);
   const auto saved = dir / "bullet_poses.csv";

@@ -10,15 +10,10 @@
 #include <string>
 #include <vector>
 
+#include "tests/common/one_block_scene.h"
+
 namespace rockbench::bullet {
 namespace {
-
-Scene OneBlock() {
-  Scene s;
-  s.blocks = {{1.0, 4.0, 1.0, 10000.0, 0.0}};
-  s.run.duration_s = 1.0;
-  return s;
-}
 
 TEST(EngineInputTest, RejectsImpossibleSettingsNamingTheKey) {
   // Each bad value is refused naming where it was set and the key (bullet.<key>), with what was
@@ -47,7 +42,7 @@ TEST(EngineInputTest, RejectsImpossibleSettingsNamingTheKey) {
       {"split_impulse", 1.0},
   };
   for (const Case& c : cases) {
-    Scene s = OneBlock();
+    Scene s = testing_util::OneBlockScene();
     s.path = "scenes/x.toml";
     SetEngineSetting(s, "bullet", c.key, c.value);
     try {
@@ -61,7 +56,7 @@ TEST(EngineInputTest, RejectsImpossibleSettingsNamingTheKey) {
     }
   }
   // An unknown key names the known ones.
-  Scene s = OneBlock();
+  Scene s = testing_util::OneBlockScene();
   SetEngineSetting(s, "bullet", "time_stp", 1e-3);
   try {
     MakeBulletInput(s, GroundMotion());

@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "common/engine_suite.h"
 #include "common/error_of.h"
 #include "common/scratch_dir_test.h"
 #include "engine/outcome.h"
@@ -41,13 +42,6 @@ bm::RockingBody HousnerBlock() {
 
 const fs::path kScenes = fs::path(ROCKBENCH_SOURCE_DIR) / "scenes";
 constexpr double kStep_s = 1e-4;
-
-std::vector<std::string> Engines() {
-  std::vector<std::string> names = BuiltEngineNames();
-  // The suite must not pass by having nothing to run: Bullet is a required dependency.
-  if (names.empty()) names.push_back("no engine built");
-  return names;
-}
 
 class EngineConformance : public testing_util::ScratchDirTest,
                           public ::testing::WithParamInterface<std::string> {
@@ -506,12 +500,9 @@ TEST_P(EngineConformance, FiveDrumsAtRestStayAtRest) {
   RecordProperty("max_drift_m", std::to_string(drift));
 }
 
-INSTANTIATE_TEST_SUITE_P(BuiltEngines, EngineConformance, ::testing::ValuesIn(Engines()),
-                         [](const ::testing::TestParamInfo<std::string>& info) {
-                           std::string n = info.param;
-                           std::replace(n.begin(), n.end(), ' ', '_');
-                           return n;
-                         });
+INSTANTIATE_TEST_SUITE_P(BuiltEngines, EngineConformance,
+                         ::testing::ValuesIn(testing_util::SuiteEngines()),
+                         testing_util::EngineTestName);
 
 }  // namespace
 }  // namespace rockbench

@@ -14,19 +14,13 @@
 #include "renders/drawn_motion.h"
 #include "scene/stack_pose.h"
 #include "tests/common/initial_state.h"
+#include "tests/common/one_block_scene.h"
 
 namespace rockbench {
 namespace {
 
-Scene OneBlock() {
-  Scene s;
-  s.blocks = {{1.0, 4.0, 1.0, 10000.0, 0.0}};
-  s.run.duration_s = 1.0;
-  return s;
-}
-
 Scene HarmonicScene(double duration_s) {
-  Scene s = OneBlock();
+  Scene s = testing_util::OneBlockScene();
   s.run.duration_s = duration_s;
   MotionDef h;
   h.key = "base.horizontal";
@@ -45,7 +39,7 @@ double SecondDifference(const std::vector<double>& u, double v_before, double dt
 }
 
 TEST(EngineDrive, SamplesTheBaseMotionAtTheStepStarts) {
-  Scene s = OneBlock();
+  Scene s = testing_util::OneBlockScene();
   s.run.duration_s = 0.0105;  // not a multiple of dt: 11 steps
   GroundMotion m;
   m.set_horizontal(MotionComponent::FromSamples({0.0, 1.0}, 0.01, 0.0, "ramp"));
@@ -60,14 +54,14 @@ TEST(EngineDrive, SamplesTheBaseMotionAtTheStepStarts) {
   EXPECT_TRUE(in.drive.ux_m.empty());  // inertial drive: no ground displacement
   EXPECT_DOUBLE_EQ(in.motion_end_s, 0.01);
   // No base motion: nothing stored, the drive reads zeros.
-  const EngineInput still =
-      MakeEngineInput(OneBlock(), GroundMotion(), "test", 1e-4, DriveKind::kInertial, 0.0);
+  const EngineInput still = MakeEngineInput(testing_util::OneBlockScene(), GroundMotion(), "test",
+                                            1e-4, DriveKind::kInertial, 0.0);
   EXPECT_TRUE(still.drive.ax_mps2.empty());
   EXPECT_EQ(still.steps, 10000);
 }
 
 TEST(EngineDrive, RefusesATimeStepOfTooManyStepsNamingTheEnginesKey) {
-  Scene s = OneBlock();
+  Scene s = testing_util::OneBlockScene();
   s.path = "scenes/x.toml";
   for (const double dt : {0.0, -1e-3, 1e-12}) {
     try {
@@ -141,7 +135,7 @@ TEST(EngineDrive, TheAnimationDrawsTheGroundTheKinematicEngineWasDrivenWith) {
 
 TEST(EngineDrive, InitialPosesAreThePivotChains) {
   // The poses an engine starts from are scene/stack_pose.h's, for the input's blocks and state.
-  Scene s = OneBlock();
+  Scene s = testing_util::OneBlockScene();
   s.blocks.resize(1);
   s.blocks.push_back(BlockDef{0.6, 2.0, 1.0, 1000.0, 0.0});
   s.initial = testing_util::Initial(0.1, 0.25, 0.0, 0.5);
@@ -162,7 +156,7 @@ TEST(EngineDrive, InitialPosesAreThePivotChains) {
 
 TEST(EngineDrive, TheInputCarriesEveryBlockOfAnNBlockStack) {
   // Six drums: the input holds the scene's blocks and state, bottom first.
-  Scene s = OneBlock();
+  Scene s = testing_util::OneBlockScene();
   s.blocks.assign(6, BlockDef{0.9, 0.85, 0.9, 0.9 * 0.85 * 0.9 * 2700.0, 2700.0});
   for (int k = 0; k < 6; ++k) s.initial.theta_rad[k] = 0.05;
   s.initial.omega_radps[5] = -0.1;

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "common/engine_suite.h"
 #include "common/housner_scene.h"
 #include "files/history_csv.h"
 #include "motion/ground_motion.h"
@@ -25,13 +26,6 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kStep_s = 1e-4;  // every engine's default step
-
-std::vector<std::string> Engines() {
-  std::vector<std::string> names = BuiltEngineNames();
-  // The suite must not pass by having nothing to run: Bullet is a required dependency.
-  if (names.empty()) names.push_back("no engine built");
-  return names;
-}
 
 // Newmark's sliding block: B = 2 m, H = 1 m, 1000 kg, mu = 0.2 on the ground, at rest under a
 // horizontal rectangular pulse of 0.5 g for 0.4 s from 0.1 s; 2 s, g = 9.81 m/s^2. It never
@@ -244,12 +238,9 @@ TEST_P(EngineFriction, EachInterfaceHasItsOwnCoefficient) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(BuiltEngines, EngineFriction, ::testing::ValuesIn(Engines()),
-                         [](const ::testing::TestParamInfo<std::string>& info) {
-                           std::string n = info.param;
-                           std::replace(n.begin(), n.end(), ' ', '_');
-                           return n;
-                         });
+INSTANTIATE_TEST_SUITE_P(BuiltEngines, EngineFriction,
+                         ::testing::ValuesIn(testing_util::SuiteEngines()),
+                         testing_util::EngineTestName);
 
 }  // namespace
 }  // namespace rockbench

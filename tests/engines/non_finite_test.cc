@@ -11,6 +11,8 @@
 #include <string>
 #include <vector>
 
+#include "common/engine_suite.h"
+#include "common/spike_motion.h"
 #include "common/thesis_scene.h"
 #include "compare/agreement.h"
 #include "compare/perturbation_members.h"
@@ -26,25 +28,9 @@
 namespace rockbench {
 namespace {
 
-constexpr double kG = 9.80665;  // m/s^2, standard gravity
-constexpr double kDt = 0.01;    // s, the record's sample interval
-
-std::vector<std::string> Engines() {
-  std::vector<std::string> names = BuiltEngineNames();
-  // The suite must not pass by having nothing to run: Bullet is a required dependency.
-  if (names.empty()) names.push_back("no engine built");
-  return names;
-}
-
-// A 2 s record, zero but for one sample of `peak_g` (in g) at t = index * kDt: the acceleration
-// ramps up from (index - 1) kDt.
-GroundMotion Spike(double peak_g, int index) {
-  std::vector<double> a(200, 0.0);
-  a[index] = peak_g * kG;
-  GroundMotion m;
-  m.set_horizontal(MotionComponent::FromSamples(std::move(a), kDt, 0.0, "spike"));
-  return m;
-}
+constexpr double kG = testing_util::kStandardGravity_mps2;
+constexpr double kDt = testing_util::kSpikeDt_s;  // s, the spike record's sample interval
+using testing_util::Spike;
 
 // Every number in a JSON document is finite (nlohmann keeps a NaN as a number in memory and
 // writes it as null: either way it would be a result that is not one).
@@ -226,8 +212,9 @@ TEST(NonFiniteHarness, FailedEnsembleMembersAreNeverAnAgreement) {
   EXPECT_EQ(v.decided_by, "reference ensemble: 1 members non_finite");
 }
 
-INSTANTIATE_TEST_SUITE_P(BuiltEngines, EngineNonFinite, ::testing::ValuesIn(Engines()),
-                         [](const auto& info) { return info.param; });
+INSTANTIATE_TEST_SUITE_P(BuiltEngines, EngineNonFinite,
+                         ::testing::ValuesIn(testing_util::SuiteEngines()),
+                         testing_util::EngineTestName);
 
 }  // namespace
 }  // namespace rockbench

@@ -12,6 +12,7 @@
 #include <fstream>
 #include <string>
 
+#include "common/bullet_steps.h"
 #include "common/error_of.h"
 #include "common/scratch_dir_test.h"
 #include "compare/agreement.h"
@@ -396,16 +397,7 @@ TEST_F(ReplayTest, ReplayingBulletsStepsGivesBulletsHistory) {
   const GroundMotion motion = GroundMotion::FromScene(s);
   const EngineRun bullet = RunEngine("bullet", s, motion);
   const bullet::BulletInput in = bullet::MakeBulletInput(s, motion);
-  std::vector<StepReadout> steps;
-  {
-    bullet::RockingWorld world(in);
-    steps.push_back(world.Read(0));
-    for (std::int64_t n = 0; n < in.steps; ++n) {
-      world.ApplyDrive(n);
-      world.Step();
-      steps.push_back(world.Read(n + 1));
-    }
-  }
+  const std::vector<StepReadout> steps = testing_util::RecordBulletSteps(in);
   const auto saved = dir_ / "bullet_poses.csv";
   {
     std::ofstream out(saved);

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "common/spike_motion.h"
 #include "common/thesis_scene.h"
 #include "motion/ground_motion.h"
 #include "reference/simulate.h"
@@ -18,17 +19,9 @@
 namespace rockbench::reference {
 namespace {
 
-constexpr double kG = 9.80665;  // m/s^2, standard gravity
-constexpr double kDt = 0.01;    // s, the records' sample interval
-
-// A record zero everywhere but one sample of `peak_g` (in g) at t = index * kDt, 2 s long.
-GroundMotion Spike(double peak_g, int index) {
-  std::vector<double> a(200, 0.0);
-  a[index] = peak_g * kG;
-  GroundMotion m;
-  m.set_horizontal(MotionComponent::FromSamples(std::move(a), kDt, 0.0, "spike"));
-  return m;
-}
+constexpr double kG = testing_util::kStandardGravity_mps2;
+constexpr double kDt = testing_util::kSpikeDt_s;  // s, the spike record's sample interval
+using testing_util::Spike;
 
 Scene OneBlockAtRest() {
   Scene sc;
