@@ -28,7 +28,6 @@
 namespace rockbench {
 namespace {
 
-constexpr double kG = testing_util::kStandardGravity_mps2;
 constexpr double kDt = testing_util::kSpikeDt_s;  // s, the spike record's sample interval
 using testing_util::Spike;
 

@@ -19,7 +19,6 @@
 namespace rockbench::reference {
 namespace {
 
-constexpr double kG = testing_util::kStandardGravity_mps2;
 constexpr double kDt = testing_util::kSpikeDt_s;  // s, the spike record's sample interval
 using testing_util::Spike;
 
