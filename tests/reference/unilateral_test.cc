@@ -254,6 +254,18 @@ TEST(UnilateralStack, PainleveCasesAreStated) {
 // (rounding: 1e-12 of it). With infinite friction the impact is the chain's (the post-impact
 // velocities conserve the generalized momenta; checked against the chain in
 // InfiniteFrictionFollowsTheChain).
+// Interface k's random contact (face, right or left corner, a third each) into *c, and block
+// k's angle on it: a tilt of up to 0.2 rad the pivot's way relative to `below`, block k - 1's
+// angle (none on the face), rad.
+double RandomPivot(int k, double below, std::mt19937_64& rng, Configuration* c) {
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  const double r = u(rng);
+  c->set(k, r < 0.33 ? Contact::kFace : r < 0.66 ? Contact::kRight : Contact::kLeft);
+  const double rel =
+      (*c)[k] == Contact::kFace ? 0.0 : ((*c)[k] == Contact::kRight ? 1 : -1) * 0.2 * u(rng);
+  return below + rel;
+}
+
 TEST(UnilateralStack, ImpactsNeverAddEnergy) {
   std::mt19937_64 rng(24);
   std::uniform_real_distribution<double> u(0.0, 1.0);
@@ -274,11 +286,7 @@ TEST(UnilateralStack, ImpactsNeverAddEnergy) {
     std::vector<double> th(n), om(n, 0.0);
     double below = 0.0;
     for (int k = 0; k < n; ++k) {
-      const double r = u(rng);
-      c.set(k, r < 0.33 ? Contact::kFace : r < 0.66 ? Contact::kRight : Contact::kLeft);
-      const double rel =
-          c[k] == Contact::kFace ? 0.0 : (c[k] == Contact::kRight ? 1 : -1) * 0.2 * u(rng);
-      th[k] = below + rel;
+      th[k] = RandomPivot(k, below, rng, &c);
       below = th[k];
     }
     std::vector<double> q(3 * n), v(3 * n);
@@ -325,11 +333,7 @@ RandomStack MakeRandomStack(int n, std::mt19937_64& rng, bool chain_rates) {
   std::vector<double> th(n), om(n);
   double below = 0.0;
   for (int k = 0; k < n; ++k) {
-    const double r = u(rng);
-    c.set(k, r < 0.33 ? Contact::kFace : r < 0.66 ? Contact::kRight : Contact::kLeft);
-    const double rel =
-        c[k] == Contact::kFace ? 0.0 : (c[k] == Contact::kRight ? 1 : -1) * 0.2 * u(rng);
-    th[k] = below + rel;
+    th[k] = RandomPivot(k, below, rng, &c);
     below = th[k];
     om[k] = c[k] == Contact::kFace && k == 0 ? 0.0 : 2.0 * u(rng) - 1.0;
   }
