@@ -42,20 +42,23 @@ std::string Value(double v, const std::string& unit) {
 
 }  // namespace
 
-StatisticalComparison ComparePerturbationMembers(const std::vector<MemberOutcome>& reference,
-                                                 const std::vector<MemberOutcome>& engine,
-                                                 std::span<const double> tolerance_rad,
-                                                 double time_margin_s, double alpha) {
-  StatisticalComparison s;
-  s.alpha = alpha;
-  const int nb = std::clamp(static_cast<int>(tolerance_rad.size()), 1, kMaxBlocks);
-  s.blocks = nb;
+namespace {
+
+// The members each side's tests use: the reference's valid members, and the engine's members
+// whose reference run is valid and that did not fail; counts what is left out in `s`.
+struct ValidMembers {
+  std::vector<const MemberOutcome*> reference, engine;
+};
+
+ValidMembers SelectValidMembers(const std::vector<MemberOutcome>& reference,
+                                const std::vector<MemberOutcome>& engine,
+                                StatisticalComparison& s) {
+  ValidMembers m;
   // Members whose reference run stopped on a violated assumption have no reference outcome;
   // the engine's run on the same inputs is left out with them.
-  std::vector<const MemberOutcome*> ref, eng;
   for (const MemberOutcome& o : reference) {
     if (o.valid()) {
-      ref.push_back(&o);
+      m.reference.push_back(&o);
     } else {
       ++s.excluded;
       if (IsNonFinite(o.status)) ++s.excluded_non_finite;
@@ -70,78 +73,84 @@ StatisticalComparison ComparePerturbationMembers(const std::vector<MemberOutcome
   for (const MemberOutcome& o : engine) {
     const bool ref_valid = o.member >= 0 && o.member < static_cast<int>(reference.size()) &&
                            reference[o.member].valid();
-    if (ref_valid && !IsNonFinite(o.status)) eng.push_back(&o);
+    if (ref_valid && !IsNonFinite(o.status)) m.engine.push_back(&o);
   }
-  s.reference_members = static_cast<int>(ref.size());
-  s.engine_members = static_cast<int>(eng.size());
-  if (s.reference_members < kMinMembers || s.engine_members < kMinMembers) {
-    s.unavailable_reason = "too few members with a valid reference run (" +
-                           std::to_string(s.reference_members) + " reference, " +
-                           std::to_string(s.engine_members) + " engine; at least " +
-                           std::to_string(kMinMembers) + " each)";
-    return s;
-  }
-  s.available = true;
+  s.reference_members = static_cast<int>(m.reference.size());
+  s.engine_members = static_cast<int>(m.engine.size());
+  return m;
+}
 
-  auto add = [&](std::string key, std::string label, std::string unit, double margin, auto value,
-                 auto include) {
-    QuantityComparison q;
-    q.key = std::move(key);
-    q.label = std::move(label);
-    q.unit = std::move(unit);
-    q.margin = margin;
-    for (const MemberOutcome* o : ref) {
-      if (include(*o)) q.reference.push_back(value(*o));
-    }
-    for (const MemberOutcome* o : eng) {
-      if (include(*o)) q.engine.push_back(value(*o));
-    }
-    q.ks = stats::KolmogorovSmirnovSlackTest(q.reference, q.engine, margin);
-    q.ad = stats::AndersonDarlingTest(q.reference, q.engine);
-    s.quantities.push_back(std::move(q));
-  };
-  for (int b = 0; b < nb; ++b) {
-    const std::string th = BodyColumn("theta", b + 1);
-    const double tol = tolerance_rad[b];
-    add(
-        "peak_" + th + "_rad", "peak |" + th + "|", "rad", 0.1 * tol,
-        [b](const MemberOutcome& o) { return o.peak_rad[b]; },
-        [](const MemberOutcome&) { return true; });
+// One quantity of every member: `value` of the members `include` keeps, on both sides, with
+// its two-sample tests.
+template <typename Value, typename Include>
+QuantityComparison CompareQuantity(const ValidMembers& m, std::string key, std::string label,
+                                   std::string unit, double margin, Value value, Include include) {
+  QuantityComparison q;
+  q.key = std::move(key);
+  q.label = std::move(label);
+  q.unit = std::move(unit);
+  q.margin = margin;
+  for (const MemberOutcome* o : m.reference) {
+    if (include(*o)) q.reference.push_back(value(*o));
   }
-  for (int b = 0; b < nb; ++b) {
+  for (const MemberOutcome* o : m.engine) {
+    if (include(*o)) q.engine.push_back(value(*o));
+  }
+  q.ks = stats::KolmogorovSmirnovSlackTest(q.reference, q.engine, margin);
+  q.ad = stats::AndersonDarlingTest(q.reference, q.engine);
+  return q;
+}
+
+// The compared quantities, in the table's order: every body's peak, its time, RMS, then the
+// impacts (outside the family), then every body's residual.
+std::vector<QuantityComparison> CompareQuantities(const ValidMembers& m,
+                                                  std::span<const double> tolerance_rad, int blocks,
+                                                  double time_margin_s) {
+  std::vector<QuantityComparison> out;
+  const auto always = [](const MemberOutcome&) { return true; };
+  for (int b = 0; b < blocks; ++b) {
+    const std::string th = BodyColumn("theta", b + 1);
+    out.push_back(CompareQuantity(
+        m, "peak_" + th + "_rad", "peak |" + th + "|", "rad", 0.1 * tolerance_rad[b],
+        [b](const MemberOutcome& o) { return o.peak_rad[b]; }, always));
+  }
+  for (int b = 0; b < blocks; ++b) {
     const std::string th = BodyColumn("theta", b + 1);
     const double tol = tolerance_rad[b];
     // The time of the largest excursion means something only for a block that moved.
-    add(
-        "peak_" + th + "_t_s", "time of the largest |" + th + "|", "s", time_margin_s,
+    out.push_back(CompareQuantity(
+        m, "peak_" + th + "_t_s", "time of the largest |" + th + "|", "s", time_margin_s,
         [b](const MemberOutcome& o) { return o.peak_t_s[b]; },
-        [b, tol](const MemberOutcome& o) { return o.peak_rad[b] > tol; });
+        [b, tol](const MemberOutcome& o) { return o.peak_rad[b] > tol; }));
   }
-  for (int b = 0; b < nb; ++b) {
+  for (int b = 0; b < blocks; ++b) {
     const std::string th = BodyColumn("theta", b + 1);
-    add(
-        "rms_" + th + "_rad", "RMS " + th, "rad", 0.1 * tolerance_rad[b],
-        [b](const MemberOutcome& o) { return o.rms_rad[b]; },
-        [](const MemberOutcome&) { return true; });
+    out.push_back(CompareQuantity(
+        m, "rms_" + th + "_rad", "RMS " + th, "rad", 0.1 * tolerance_rad[b],
+        [b](const MemberOutcome& o) { return o.rms_rad[b]; }, always));
   }
-  add(
-      "impacts", "impacts", "", 0.0,
-      [](const MemberOutcome& o) { return static_cast<double>(o.impacts); },
-      [](const MemberOutcome&) { return true; });
-  s.quantities.back().in_family = false;
-  for (int b = 0; b < nb; ++b) {
+  out.push_back(CompareQuantity(
+      m, "impacts", "impacts", "", 0.0,
+      [](const MemberOutcome& o) { return static_cast<double>(o.impacts); }, always));
+  out.back().in_family = false;
+  for (int b = 0; b < blocks; ++b) {
     const std::string th = BodyColumn("theta", b + 1);
-    add(
-        "residual_" + th + "_rad", "residual " + th, "rad", 0.1 * tolerance_rad[b],
-        [b](const MemberOutcome& o) { return o.residual_rad[b]; },
-        [](const MemberOutcome&) { return true; });
+    out.push_back(CompareQuantity(
+        m, "residual_" + th + "_rad", "residual " + th, "rad", 0.1 * tolerance_rad[b],
+        [b](const MemberOutcome& o) { return o.residual_rad[b]; }, always));
   }
+  return out;
+}
+
+// Which block overturned (none, block 1 .. block N) in each ensemble, and the exact test of
+// the two rows of counts.
+void CompareOverturning(const ValidMembers& m, StatisticalComparison& s) {
   // Categories: none, block 1 .. block N (one or two blocks: none, block 1, block 2).
-  const int categories = std::max(nb, 2) + 1;
-  for (const MemberOutcome* o : ref) {
+  const int categories = std::max(s.blocks, 2) + 1;
+  for (const MemberOutcome* o : m.reference) {
     ++s.overturn_reference[std::clamp(o->overturned_block, 0, categories - 1)];
   }
-  for (const MemberOutcome* o : eng) {
+  for (const MemberOutcome* o : m.engine) {
     ++s.overturn_engine[std::clamp(o->overturned_block, 0, categories - 1)];
   }
   // Categories that occur in neither ensemble are dropped (a column of zeros has no table).
@@ -161,8 +170,11 @@ StatisticalComparison ComparePerturbationMembers(const std::vector<MemberOutcome
     s.overturn.n_b = s.engine_members;
     s.overturn.method = "exact (one outcome in both ensembles)";
   }
+}
 
-  // One family: every defined KS p-value and the overturning test.
+// One family: every defined KS p-value and the overturning test, Holm-adjusted; the rejected
+// keys and the verdict.
+void JudgeFamily(StatisticalComparison& s) {
   std::vector<double> p;
   for (const QuantityComparison& q : s.quantities) {
     if (q.in_family) p.push_back(q.ks.p_value);
@@ -176,12 +188,36 @@ StatisticalComparison ComparePerturbationMembers(const std::vector<MemberOutcome
       continue;
     }
     q.p_holm = holm[next++];
-    if (!std::isnan(q.p_holm) && q.p_holm <= alpha) s.rejected.push_back(q.key);
+    if (!std::isnan(q.p_holm) && q.p_holm <= s.alpha) s.rejected.push_back(q.key);
   }
   s.overturn_p_holm = holm.back();
-  if (!std::isnan(s.overturn_p_holm) && s.overturn_p_holm <= alpha)
+  if (!std::isnan(s.overturn_p_holm) && s.overturn_p_holm <= s.alpha) {
     s.rejected.push_back("overturn");
+  }
   s.consistent = s.rejected.empty();
+}
+
+}  // namespace
+
+StatisticalComparison ComparePerturbationMembers(const std::vector<MemberOutcome>& reference,
+                                                 const std::vector<MemberOutcome>& engine,
+                                                 std::span<const double> tolerance_rad,
+                                                 double time_margin_s, double alpha) {
+  StatisticalComparison s;
+  s.alpha = alpha;
+  s.blocks = std::clamp(static_cast<int>(tolerance_rad.size()), 1, kMaxBlocks);
+  const ValidMembers members = SelectValidMembers(reference, engine, s);
+  if (s.reference_members < kMinMembers || s.engine_members < kMinMembers) {
+    s.unavailable_reason = "too few members with a valid reference run (" +
+                           std::to_string(s.reference_members) + " reference, " +
+                           std::to_string(s.engine_members) + " engine; at least " +
+                           std::to_string(kMinMembers) + " each)";
+    return s;
+  }
+  s.available = true;
+  s.quantities = CompareQuantities(members, tolerance_rad, s.blocks, time_margin_s);
+  CompareOverturning(members, s);
+  JudgeFamily(s);
   return s;
 }
 

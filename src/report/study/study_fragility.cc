@@ -111,6 +111,101 @@ void BlockFragilityTable(const EnsembleData& d, const std::vector<std::string>& 
              table);
 }
 
+// The members grouped by motion (GroupLabel), in the order the groups first appear; the runs
+// without an outcome or a PGA counted per engine.
+struct Groups {
+  std::map<std::string, GroupData> data;
+  std::vector<std::string> order;
+  std::map<std::string, int> left_out;  // engine -> runs left out
+};
+
+Groups GroupMembers(const EnsembleData& d) {
+  const std::vector<int> motion = MotionAxisColumns(d);
+  Groups groups;
+  for (const EnsembleRecord& r : d.records) {
+    const std::string g = GroupLabel(d, r, motion);
+    if (!groups.data.count(g)) groups.order.push_back(g);
+    if (!r.usable() || !r.pga_g || !(*r.pga_g > 0.0)) {
+      ++groups.left_out[r.engine];
+      continue;
+    }
+    groups.data[g].members[r.member][r.engine] = {*r.pga_g, r.overturned_block != 0};
+    groups.data[g].overturned_block[r.engine].push_back({*r.pga_g, r.overturned_block});
+  }
+  return groups;
+}
+
+// One run's curves in a group's figure: the fraction of members overturned at each PGA and,
+// when fitted, the fit with its band up to 1.1 `max_pga` (g); adds the data files to `fig` and
+// the plot clauses to `plots`.
+void PlotRun(const std::string& e, const std::vector<stats::FragilityPoint>& points,
+             const stats::LognormalFragility& fit, double max_pga, int colour, GnuplotFigure& fig,
+             std::string& plots) {
+  // Empirical fractions per PGA value (a record scaled to a target PGA measures it back
+  // to within rounding: 6 significant digits make one bin).
+  std::map<double, std::pair<int, int>> bins;
+  for (const auto& p : points) {
+    const double key = std::stod(Num(p.im, 6));
+    bins[key].first += p.failed;
+    bins[key].second += 1;
+  }
+  std::string pts, curve;
+  for (const auto& [x, c] : bins) {
+    pts += Num(x, 10) + " " + Num(static_cast<double>(c.first) / c.second, 10) + "\n";
+  }
+  if (fit.available) {
+    for (int k = 1; k <= 200; ++k) {
+      const double x = 1.1 * max_pga * k / 200.0;
+      const double lo = stats::FragilityAt({true, "", fit.median_hi, fit.beta}, x);
+      const double hi = stats::FragilityAt({true, "", fit.median_lo, fit.beta}, x);
+      curve += Num(x, 10) + " " + Num(stats::FragilityAt(fit, x), 10) + " " + Num(lo, 10) + " " +
+               Num(hi, 10) + "\n";
+    }
+  }
+  const std::string pf = fig.name + "_" + e + "_points.dat";
+  fig.data_files.push_back({pf, pts});
+  const std::string lc = " lc " + std::to_string(colour);
+  plots += (plots.empty() ? "" : ", ") + GnuplotQuote(pf) + " using 1:2 with points pt 7" + lc +
+           " title " + GnuplotQuote(e + " (fraction)");
+  if (fit.available) {
+    const std::string cf = fig.name + "_" + e + "_fit.dat";
+    fig.data_files.push_back({cf, curve});
+    plots += ", " + GnuplotQuote(cf) + " using 1:3:4 with filledcurves" + lc + " notitle, " +
+             GnuplotQuote(cf) + " using 1:2 with lines lw 2" + lc + " title " +
+             GnuplotQuote(e + " (lognormal fit)");
+  }
+}
+
+// Engine `e`'s median PGA of overturning against the reference's on the members of group `g`
+// where both have an outcome: the table's cell (the paired bootstrap's difference, or "no
+// paired fit"), and a finding in words.
+std::string PairedMedianCell(const std::string& g, const std::string& e,
+                             const PointsByMember<stats::FragilityPoint>& members,
+                             std::vector<std::string>& findings) {
+  const auto [a, b] = PairedWithReference(members, e);
+  const MedianDifference md = PairedDifference(a, b, 400);
+  if (std::isnan(md.lo)) return "no paired fit";
+  int same = 0;
+  for (size_t i = 0; i < a.size(); ++i) same += a[i].failed == b[i].failed;
+  const bool differs = md.lo > 0.0 || md.hi < 0.0;
+  std::string f = e + (g.empty() ? std::string() : " (" + g + ")") + ", on the " +
+                  std::to_string(a.size()) + " members where both runs have an " +
+                  "outcome (the same outcome on " + std::to_string(same) +
+                  "): median PGA of overturning " + FitText(stats::FitLognormalFragility(b, 1000)) +
+                  " against the reference's " + FitText(stats::FitLognormalFragility(a, 1000)) +
+                  "; the difference, " + Num(md.estimate, 3) + " g [" + Num(md.lo, 3) + ", " +
+                  Num(md.hi, 3) + "], ";
+  if (same == static_cast<int>(a.size())) {
+    f += "is zero: the two curves are the same.";
+  } else if (differs) {
+    f += "excludes zero: the engine's fragility curve differs from the reference's.";
+  } else {
+    f += "contains zero: no difference is detected with these members.";
+  }
+  findings.push_back(f);
+  return Num(md.estimate, 3) + " g [" + Num(md.lo, 3) + ", " + Num(md.hi, 3) + "]";
+}
+
 }  // namespace
 
 std::vector<int> MotionAxisColumns(const EnsembleData& d) {
@@ -137,32 +232,19 @@ void FragilitySection(const EnsembleData& d, const std::filesystem::path& fig_di
       "of a paired bootstrap (the same members drawn for both, 400 resamples). Points: the "
       "fraction of members overturned at each PGA of the study; lines: the fits; band: the "
       "fit's curve at the two ends of its median's interval.");
-  const std::vector<int> motion = MotionAxisColumns(d);
-  std::map<std::string, GroupData> groups;
-  std::vector<std::string> order;
-  std::map<std::string, int> left_out;  // engine -> runs left out
-  for (const EnsembleRecord& r : d.records) {
-    const std::string g = GroupLabel(d, r, motion);
-    if (!groups.count(g)) order.push_back(g);
-    if (!r.usable() || !r.pga_g || !(*r.pga_g > 0.0)) {
-      ++left_out[r.engine];
-      continue;
-    }
-    groups[g].members[r.member][r.engine] = {*r.pga_g, r.overturned_block != 0};
-    groups[g].overturned_block[r.engine].push_back({*r.pga_g, r.overturned_block});
-  }
+  Groups groups = GroupMembers(d);
   std::vector<std::vector<std::string>> table;
   int index = 0;
-  for (const std::string& g : order) {
+  for (const std::string& g : groups.order) {
     GnuplotFigure fig;
     fig.name = "fragility_" + std::to_string(index++);
-    std::string script =
+    const std::string script =
         "set xlabel \"PGA (g)\"\nset ylabel \"P(overturn)\"\nset yrange [-0.02:1.02]\n"
         "set key left top\nset style fill transparent solid 0.15 noborder\n";
     std::string plots;
-    std::vector<stats::FragilityPoint> ref_points;
+    bool reference_plotted = false;
     std::map<std::string, std::vector<stats::FragilityPoint>> by_engine;
-    for (const auto& [m, runs] : groups[g].members) {
+    for (const auto& [m, runs] : groups.data[g].members) {
       for (const auto& [e, p] : runs) by_engine[e].push_back(p);
     }
     double max_pga = 0.0;
@@ -174,76 +256,15 @@ void FragilitySection(const EnsembleData& d, const std::filesystem::path& fig_di
       const auto it = by_engine.find(e);
       if (it == by_engine.end()) continue;
       const stats::LognormalFragility fit = stats::FitLognormalFragility(it->second, 1000);
-      // Empirical fractions per PGA value (a record scaled to a target PGA measures it back
-      // to within rounding: 6 significant digits make one bin).
-      std::map<double, std::pair<int, int>> bins;
-      for (const auto& p : it->second) {
-        const double key = std::stod(Num(p.im, 6));
-        bins[key].first += p.failed;
-        bins[key].second += 1;
-      }
-      std::string pts, curve;
-      for (const auto& [x, c] : bins) {
-        pts += Num(x, 10) + " " + Num(static_cast<double>(c.first) / c.second, 10) + "\n";
-      }
-      if (fit.available) {
-        for (int k = 1; k <= 200; ++k) {
-          const double x = 1.1 * max_pga * k / 200.0;
-          const double lo = stats::FragilityAt({true, "", fit.median_hi, fit.beta}, x);
-          const double hi = stats::FragilityAt({true, "", fit.median_lo, fit.beta}, x);
-          curve += Num(x, 10) + " " + Num(stats::FragilityAt(fit, x), 10) + " " + Num(lo, 10) +
-                   " " + Num(hi, 10) + "\n";
-        }
-      }
-      const std::string pf = fig.name + "_" + e + "_points.dat";
-      fig.data_files.push_back({pf, pts});
-      const std::string lc = " lc " + std::to_string(colour);
-      plots += (plots.empty() ? "" : ", ") + GnuplotQuote(pf) + " using 1:2 with points pt 7" + lc +
-               " title " + GnuplotQuote(e + " (fraction)");
-      if (fit.available) {
-        const std::string cf = fig.name + "_" + e + "_fit.dat";
-        fig.data_files.push_back({cf, curve});
-        plots += ", " + GnuplotQuote(cf) + " using 1:3:4 with filledcurves" + lc + " notitle, " +
-                 GnuplotQuote(cf) + " using 1:2 with lines lw 2" + lc + " title " +
-                 GnuplotQuote(e + " (lognormal fit)");
-      }
-      ++colour;
-      std::string diff = "";
-      if (IsReference(e)) {
-        ref_points = it->second;
-      }
+      PlotRun(e, it->second, fit, max_pga, colour++, fig, plots);
+      // The reference's row, then each engine's against it (once the reference has points).
+      if (IsReference(e)) reference_plotted = !it->second.empty();
+      const std::string paired = !IsReference(e) && reference_plotted
+                                     ? PairedMedianCell(g, e, groups.data[g].members, findings)
+                                     : "";
       table.push_back({g.empty() ? "all" : g, e, std::to_string(fit.n),
                        std::to_string(fit.failures), FitText(fit),
-                       fit.available ? Num(fit.beta, 3) : "", diff});
-      if (!IsReference(e) && !ref_points.empty()) {
-        const auto [a, b] = PairedWithReference(groups[g].members, e);
-        const MedianDifference md = PairedDifference(a, b, 400);
-        int same = 0;
-        for (size_t i = 0; i < a.size(); ++i) same += a[i].failed == b[i].failed;
-        if (!std::isnan(md.lo)) {
-          table.back().back() =
-              Num(md.estimate, 3) + " g [" + Num(md.lo, 3) + ", " + Num(md.hi, 3) + "]";
-          const bool differs = md.lo > 0.0 || md.hi < 0.0;
-          std::string f =
-              e + (g.empty() ? std::string() : " (" + g + ")") + ", on the " +
-              std::to_string(a.size()) + " members where both runs have an " +
-              "outcome (the same outcome on " + std::to_string(same) +
-              "): median PGA of overturning " + FitText(stats::FitLognormalFragility(b, 1000)) +
-              " against the reference's " + FitText(stats::FitLognormalFragility(a, 1000)) +
-              "; the difference, " + Num(md.estimate, 3) + " g [" + Num(md.lo, 3) + ", " +
-              Num(md.hi, 3) + "], ";
-          if (same == static_cast<int>(a.size())) {
-            f += "is zero: the two curves are the same.";
-          } else if (differs) {
-            f += "excludes zero: the engine's fragility curve differs from the reference's.";
-          } else {
-            f += "contains zero: no difference is detected with these members.";
-          }
-          findings.push_back(f);
-        } else {
-          table.back().back() = "no paired fit";
-        }
-      }
+                       fit.available ? Num(fit.beta, 3) : "", paired});
     }
     fig.script = script + "plot " + plots + "\n";
     RenderGnuplot(fig_dir, fig);
@@ -253,9 +274,9 @@ void FragilitySection(const EnsembleData& d, const std::filesystem::path& fig_di
   page.Table({"group", "run", "members", "overturned", "median PGA [95%]", "beta",
               "median - reference's [95%, paired]"},
              table);
-  if (d.blocks >= 3) BlockFragilityTable(d, order, groups, page);
+  if (d.blocks >= 3) BlockFragilityTable(d, groups.order, groups.data, page);
   std::string out;
-  for (const auto& [e, n] : left_out) {
+  for (const auto& [e, n] : groups.left_out) {
     out += (out.empty() ? "" : "; ") + e + " " + std::to_string(n);
   }
   if (!out.empty()) {
