@@ -1,6 +1,5 @@
 #include "files/history_csv.h"
 
-
 #include <algorithm>
 #include <cerrno>
 #include <charconv>
@@ -108,7 +107,10 @@ std::string HistoryCsvHeader(int blocks, bool slip_and_lift) {
 std::string KindHistoryCsvHeader(const BodyKind& kind, int blocks) {
   std::string out = "t";
   for (const StateQuantity& q : kind.state) {
-    for (int k = 1; k <= blocks; ++k) out += "," + BodyColumn(q.stem, k);
+    for (int k = 1; k <= blocks; ++k) {
+      out += ',';
+      out += BodyColumn(q.stem, k);
+    }
   }
   return out + ",mode";
 }
@@ -227,6 +229,17 @@ std::optional<std::pair<std::string, int>> KindOfHeader(const std::string& line,
   return std::nullopt;
 }
 
+// Cell i of a history row as a number; `fail` (which throws) names the column otherwise.
+template <typename Fail>
+double NumberCell(const std::vector<std::string_view>& cells, size_t i, const Fail& fail) {
+  const std::optional<double> x = ParseNumberCell(cells[i]);
+  if (!x) {
+    fail("column " + std::to_string(i + 1) + ": expected a number, got '" + std::string(cells[i]) +
+         "'");
+  }
+  return *x;
+}
+
 // One row of a history of `kind` bodies: t, each quantity for every body, the configuration.
 template <typename Fail>
 Sample KindSample(const std::vector<std::string_view>& cells, const BodyKind& kind, int blocks,
@@ -235,15 +248,11 @@ Sample KindSample(const std::vector<std::string_view>& cells, const BodyKind& ki
   const size_t n = static_cast<size_t>(blocks);
   const size_t mode_col = cells.size() - 1;
   for (size_t i = 0; i < mode_col; ++i) {
-    const std::optional<double> x = ParseNumberCell(cells[i]);
-    if (!x) {
-      fail("column " + std::to_string(i + 1) + ": expected a number, got '" +
-           std::string(cells[i]) + "'");
-    }
+    const double x = NumberCell(cells, i, fail);
     if (i == 0) {
-      s.t_s = *x;
+      s.t_s = x;
     } else {
-      s.state[(i - 1) / n][(i - 1) % n] = *x;
+      s.state[(i - 1) / n][(i - 1) % n] = x;
     }
   }
   const std::optional<Configuration> mode = ParseConfiguration(cells[mode_col], blocks);
@@ -311,21 +320,17 @@ History ReadHistoryCsv(const std::filesystem::path& path) {
     const size_t mode_col = h.slip_and_lift ? 1 + 2 * n : want - 1;
     for (size_t i = 0; i < want; ++i) {
       if (i == mode_col) continue;
-      const std::optional<double> x = ParseNumberCell(cells[i]);
-      if (!x) {
-        fail("column " + std::to_string(i + 1) + ": expected a number, got '" +
-             std::string(cells[i]) + "'");
-      }
+      const double x = NumberCell(cells, i, fail);
       if (i == 0) {
-        s.t_s = *x;
+        s.t_s = x;
       } else if (i <= n) {
-        s.theta_rad[i - 1] = *x;
+        s.theta_rad[i - 1] = x;
       } else if (i <= 2 * n) {
-        s.omega_radps[i - 1 - n] = *x;
+        s.omega_radps[i - 1 - n] = x;
       } else if (i <= 3 * n + 1) {
-        s.u_m[i - 2 - 2 * n] = *x;
+        s.u_m[i - 2 - 2 * n] = x;
       } else {
-        s.z_m[i - 2 - 3 * n] = *x;
+        s.z_m[i - 2 - 3 * n] = x;
       }
     }
     const std::optional<Configuration> mode = ParseConfiguration(cells[mode_col], h.blocks);

@@ -17,6 +17,7 @@
 #include "scene/engine_settings.h"
 #include "scene/scene.h"
 #include "tests/common/error_of.h"
+#include "tests/common/scene_text.h"
 
 namespace rockbench {
 namespace {
@@ -27,18 +28,8 @@ namespace fs = std::filesystem;
   EXPECT_NE(std::string(haystack).find(needle), std::string::npos) \
       << "'" << (needle) << "' not in '" << (haystack) << "'"
 
-std::string ErrorOf(const std::string& text, const std::vector<std::string>& overrides = {}) {
-  try {
-    ParseScene(text, "scenes/x.toml", overrides);
-  } catch (const SceneError& e) {
-    return e.what();
-  }
-  return "";
-}
-
-const std::string kBlocks =
-    "[block1]\nwidth = 1.25\nheight = 1.25\ndensity = 2500.0\n"
-    "[block2]\nwidth = 1.0\nheight = 2.5\ndensity = 2500.0\n";
+// A valid two-block scene; tests append or edit tables.
+const std::string& kBlocks = testing_util::kThesisBlocksToml;
 const std::string kHarmonic =
     "[base.horizontal]\nkind = \"harmonic\"\namplitude_g = 0.3\nfrequency_hz = 2.0\n";
 
@@ -73,10 +64,10 @@ TEST(SceneLimits, EveryLimitedKeyNamesItsLimit) {
       {"base.horizontal.start_s=1e12", "base.horizontal.start_s: expected"},
   };
   const std::string scene = kBlocks + kHarmonic;
-  ASSERT_EQ(ErrorOf(scene), "");
+  ASSERT_EQ(testing_util::SceneErrorOf(scene), "");
   for (const Case& c : cases) {
     SCOPED_TRACE(c.set);
-    const std::string e = ErrorOf(scene, {c.set});
+    const std::string e = testing_util::SceneErrorOf(scene, {c.set});
     EXPECT_CONTAINS(e, "scenes/x.toml: override \"" + c.set + "\"");
     EXPECT_CONTAINS(e, c.piece);
   }
@@ -84,22 +75,22 @@ TEST(SceneLimits, EveryLimitedKeyNamesItsLimit) {
 
 // A value in the file is named with its line.
 TEST(SceneLimits, AFileValueIsNamedWithItsLine) {
-  const std::string e =
-      ErrorOf("[block1]\nwidth = 1.25\nheight = 5e-324\ndensity = 2500.0\n" + kHarmonic);
+  const std::string e = testing_util::SceneErrorOf(
+      "[block1]\nwidth = 1.25\nheight = 5e-324\ndensity = 2500.0\n" + kHarmonic);
   EXPECT_CONTAINS(e, "scenes/x.toml:3: block1.height:");
   EXPECT_CONTAINS(e, "got 5e-324");
 }
 
 // amplitude_g and scale are each within the limit, their product is not: the scale is named.
 TEST(SceneLimits, AnOverflowingScaleIsNamed) {
-  const std::string e = ErrorOf(kBlocks + kHarmonic + "scale = 1e307\n");
+  const std::string e = testing_util::SceneErrorOf(kBlocks + kHarmonic + "scale = 1e307\n");
   EXPECT_CONTAINS(e, "base.horizontal.scale: amplitude_g * scale = 3e+306 g");
   EXPECT_CONTAINS(e, "expected an acceleration (g) with magnitude at most 100 (far above");
 }
 
 // A mass given by density is checked as a mass.
 TEST(SceneLimits, AMassFromDensityIsWithinTheMassLimit) {
-  const std::string e = ErrorOf(
+  const std::string e = testing_util::SceneErrorOf(
       "[block1]\nwidth = 10000\nheight = 10000\ndepth = 10000\ndensity = 100000\n" + kHarmonic);
   EXPECT_CONTAINS(e, "block1.density: density * width * height * depth = 1e+17 kg");
 }
@@ -109,15 +100,16 @@ TEST(SceneLimits, AMassFromDensityIsWithinTheMassLimit) {
 TEST(SceneLimits, TheStackRulesAreTheReaders) {
   const std::string single =
       "[block1]\nwidth = 0.2\nheight = 1.0\ndensity = 2000.0\n[initial]\ntheta1 = 2.0\n";
-  const std::string e = ErrorOf(single);
+  const std::string e = testing_util::SceneErrorOf(single);
   EXPECT_CONTAINS(e,
                   "scenes/x.toml:6: initial.theta1: expected |theta1| below "
                   "model.overturn_angle (1.5707963267948966 rad");
   EXPECT_CONTAINS(e, "got 2");
   // With a smaller overturn angle the same rule follows it.
-  EXPECT_CONTAINS(ErrorOf(kBlocks + "[initial]\ntheta2 = 0.5\n[model]\noverturn_angle = 0.4\n"),
+  EXPECT_CONTAINS(testing_util::SceneErrorOf(
+                      kBlocks + "[initial]\ntheta2 = 0.5\n[model]\noverturn_angle = 0.4\n"),
                   "initial.theta2: expected |theta2| below model.overturn_angle (0.4 rad");
-  EXPECT_CONTAINS(ErrorOf(kBlocks, {"block2.width=1.5"}),
+  EXPECT_CONTAINS(testing_util::SceneErrorOf(kBlocks, {"block2.width=1.5"}),
                   "block2.width: expected at most block1.width (1.25 m");
   // A scene built in code gets the same rules from ValidateScene.
   Scene s = ParseScene(kBlocks, "scenes/x.toml");
@@ -133,11 +125,12 @@ TEST(SceneLimits, TheStackRulesAreTheReaders) {
 // Messages echo a long value as a short excerpt.
 TEST(SceneLimits, LongValuesAreCutToAnExcerpt) {
   const std::string huge(1 << 20, 'x');
-  const std::string e = ErrorOf(kBlocks + "[model]\nintegrator = \"" + huge + "\"\n");
+  const std::string e =
+      testing_util::SceneErrorOf(kBlocks + "[model]\nintegrator = \"" + huge + "\"\n");
   EXPECT_CONTAINS(e, "model.integrator: expected \"dopri5\", \"dop853\" or \"rk4\", got \"xxx");
   EXPECT_CONTAINS(e, "... (1048576 bytes)");
   EXPECT_LT(e.size(), 400u);
-  const std::string o = ErrorOf(kBlocks, {"block1." + huge + "=1"});
+  const std::string o = testing_util::SceneErrorOf(kBlocks, {"block1." + huge + "=1"});
   EXPECT_LT(o.size(), 400u);
   EXPECT_CONTAINS(o, "unknown key");
   EXPECT_EQ(Excerpt(std::string_view("a\rb\n\t\0\x01", 7)), "a\\rb\\n\\t\\0\\x01");
@@ -301,7 +294,7 @@ TEST(SceneLimits, EngineNumbersAreBounded) {
   EXPECT_EQ(error("impratio = 1e6\nfriction = inf\n"), "");
   EXPECT_CONTAINS(error("friction = 1e7\n"), "fake.friction: expected a number >= 0, or inf");
   // compare.sample_precision: at most 100 half-digits (1e300 made every member non-finite).
-  EXPECT_CONTAINS(ErrorOf(kBlocks, {"compare.sample_precision=1e300"}),
+  EXPECT_CONTAINS(testing_util::SceneErrorOf(kBlocks, {"compare.sample_precision=1e300"}),
                   "compare.sample_precision: expected a number >= 0 at most 100");
 }
 

@@ -11,6 +11,7 @@
 
 #include "motion/ground_motion.h"
 #include "tests/common/error_of.h"
+#include "tests/common/scene_text.h"
 
 namespace rockbench {
 namespace {
@@ -21,21 +22,8 @@ const fs::path kRoot = fs::path(ROCKBENCH_SOURCE_DIR);
 const fs::path kScenes = kRoot / "scenes";
 const fs::path kRecords = kRoot / "records";
 
-// The message of the SceneError that parsing `text` throws ("" when it parses).
-std::string ErrorOf(const std::string& text, const std::vector<std::string>& overrides = {},
-                    const fs::path& path = "scenes/x.toml") {
-  try {
-    ParseScene(text, path, overrides);
-  } catch (const SceneError& e) {
-    return e.what();
-  }
-  return "";
-}
-
 // A valid two-block scene; tests append or edit tables.
-const std::string kBlocks =
-    "[block1]\nwidth = 1.25\nheight = 1.25\ndensity = 2500.0\n"
-    "[block2]\nwidth = 1.0\nheight = 2.5\ndensity = 2500.0\n";
+const std::string& kBlocks = testing_util::kThesisBlocksToml;
 
 #define EXPECT_CONTAINS(haystack, needle)                          \
   EXPECT_NE(std::string(haystack).find(needle), std::string::npos) \
@@ -281,12 +269,13 @@ TEST(Parse, PlainRecordWithUnitsAndDt) {
 }
 
 TEST(Errors, TheMessageOfTheIssue) {
-  EXPECT_EQ(ErrorOf("title = \"x\"\n[block1]\nheight = 1.0\nwidth = -1\ndensity = 2500\n"),
+  EXPECT_EQ(testing_util::SceneErrorOf(
+                "title = \"x\"\n[block1]\nheight = 1.0\nwidth = -1\ndensity = 2500\n"),
             "scenes/x.toml:4: block1.width: expected a positive number (m), got -1");
 }
 
 TEST(Errors, UnknownKeysAndTables) {
-  const std::string e1 = ErrorOf(kBlocks + "[run]\nduration = 3\nduraton = 4\n");
+  const std::string e1 = testing_util::SceneErrorOf(kBlocks + "[run]\nduration = 3\nduraton = 4\n");
   EXPECT_CONTAINS(e1, "scenes/x.toml:11:");
   EXPECT_CONTAINS(e1, "run.duraton");
   EXPECT_CONTAINS(e1, "unknown key");
@@ -296,18 +285,19 @@ TEST(Errors, UnknownKeysAndTables) {
   ASSERT_EQ(t.engine_tables.count("blok3"), 1u);
   EXPECT_EQ(t.engine_tables.at("blok3").where, "scenes/x.toml:10");
   EXPECT_EQ(t.engine_tables.at("blok3").values.at("width").where, "scenes/x.toml:11");
-  const std::string e3 = ErrorOf(kBlocks +
-                                 "[base.horizontal]\nkind = \"harmonic\"\n"
-                                 "amplitude_g = 0.1\nfrequency = 2\n");
+  const std::string e3 = testing_util::SceneErrorOf(kBlocks +
+                                                    "[base.horizontal]\nkind = \"harmonic\"\n"
+                                                    "amplitude_g = 0.1\nfrequency = 2\n");
   EXPECT_CONTAINS(e3, "scenes/x.toml:12:");
   EXPECT_CONTAINS(e3, "base.horizontal.frequency");
-  const std::string e4 = ErrorOf(kBlocks + "[base.sideways]\nkind = \"harmonic\"\n");
+  const std::string e4 =
+      testing_util::SceneErrorOf(kBlocks + "[base.sideways]\nkind = \"harmonic\"\n");
   EXPECT_CONTAINS(e4, "scenes/x.toml:9:");
   EXPECT_CONTAINS(e4, "base.sideways");
 }
 
 TEST(Errors, TomlSyntaxErrorHasLineAndColumn) {
-  const std::string e = ErrorOf("[block1]\nwidth = 1.0\nheight = = 2\n");
+  const std::string e = testing_util::SceneErrorOf("[block1]\nwidth = 1.0\nheight = = 2\n");
   EXPECT_CONTAINS(e, "scenes/x.toml:3:");
   EXPECT_CONTAINS(e, "TOML syntax error");
   // file:line:column
@@ -486,7 +476,7 @@ TEST(Errors, Validation) {
   };
   for (const BadCase& c : cases) {
     SCOPED_TRACE(c.name);
-    const std::string e = ErrorOf(c.text, {}, kScenes / "x.toml");
+    const std::string e = testing_util::SceneErrorOf(c.text, {}, kScenes / "x.toml");
     ASSERT_FALSE(e.empty()) << "no error";
     EXPECT_EQ(e.rfind((kScenes / "x.toml").string() + c.where, 0), 0u) << e;
     for (const auto& piece : c.pieces) EXPECT_CONTAINS(e, piece);
@@ -527,23 +517,25 @@ TEST(Overrides, CreateMissingTablesAndKeys) {
 }
 
 TEST(Overrides, Errors) {
-  const std::string unknown = ErrorOf(kBlocks, {"run.duraton=3"});
+  const std::string unknown = testing_util::SceneErrorOf(kBlocks, {"run.duraton=3"});
   EXPECT_CONTAINS(unknown, "override \"run.duraton=3\"");
   EXPECT_CONTAINS(unknown, "unknown key run.duraton");
   // A two-part key may be an engine's (checked by the harness); a deeper one may not.
-  EXPECT_EQ(ErrorOf(kBlocks, {"nosuch.key=1"}), "");
-  EXPECT_CONTAINS(ErrorOf(kBlocks, {"nosuch.key.deeper=1"}), "unknown key nosuch");
-  EXPECT_CONTAINS(ErrorOf(kBlocks, {"run"}), "expected key=value");
-  EXPECT_CONTAINS(ErrorOf(kBlocks, {"run=3"}), "is a table");
-  EXPECT_CONTAINS(ErrorOf(kBlocks, {"title.x=3"}), "title is not a table");
+  EXPECT_EQ(testing_util::SceneErrorOf(kBlocks, {"nosuch.key=1"}), "");
+  EXPECT_CONTAINS(testing_util::SceneErrorOf(kBlocks, {"nosuch.key.deeper=1"}),
+                  "unknown key nosuch");
+  EXPECT_CONTAINS(testing_util::SceneErrorOf(kBlocks, {"run"}), "expected key=value");
+  EXPECT_CONTAINS(testing_util::SceneErrorOf(kBlocks, {"run=3"}), "is a table");
+  EXPECT_CONTAINS(testing_util::SceneErrorOf(kBlocks, {"title.x=3"}), "title is not a table");
   // A bad value names the override, the key and what was expected.
-  const std::string bad = ErrorOf(kBlocks, {"run.duration=-2"});
+  const std::string bad = testing_util::SceneErrorOf(kBlocks, {"run.duration=-2"});
   EXPECT_CONTAINS(bad,
                   "scenes/x.toml: override \"run.duration=-2\": run.duration: expected a "
                   "positive number (s), got -2");
-  EXPECT_CONTAINS(ErrorOf(kBlocks, {"model.integrator=euler"}), "got \"euler\"");
+  EXPECT_CONTAINS(testing_util::SceneErrorOf(kBlocks, {"model.integrator=euler"}), "got \"euler\"");
   // An override that makes a single-block scene set theta2 is refused like the file would be.
-  EXPECT_CONTAINS(ErrorOf("[block1]\nwidth = 1\nheight = 1\nmass = 1\n", {"initial.theta2=0.1"}),
+  EXPECT_CONTAINS(testing_util::SceneErrorOf("[block1]\nwidth = 1\nheight = 1\nmass = 1\n",
+                                             {"initial.theta2=0.1"}),
                   "single-block");
 }
 
@@ -666,17 +658,21 @@ TEST(BlockTables, TheLegacyTablesGiveTheSameScene) {
 }
 
 TEST(BlockTables, BothStylesInOneFileAreAnError) {
-  const std::string e = ErrorOf("[block1]\nwidth = 1\nheight = 1\nmass = 1\n" + BlockTables(2));
+  const std::string e =
+      testing_util::SceneErrorOf("[block1]\nwidth = 1\nheight = 1\nmass = 1\n" + BlockTables(2));
   EXPECT_CONTAINS(e, "scenes/x.toml:1: block1: a [block1] table beside [[block]] tables");
   EXPECT_CONTAINS(e, "not both");
-  EXPECT_CONTAINS(ErrorOf(BlockTables(2) + "[block2]\nwidth = 1\nheight = 1\nmass = 1\n"),
-                  "block2: a [block2] table beside [[block]] tables");
+  EXPECT_CONTAINS(
+      testing_util::SceneErrorOf(BlockTables(2) + "[block2]\nwidth = 1\nheight = 1\nmass = 1\n"),
+      "block2: a [block2] table beside [[block]] tables");
   // A [block3] table is not an engine's: more than two blocks are [[block]] tables.
-  EXPECT_CONTAINS(ErrorOf(kBlocks + "[block3]\nwidth = 1\nheight = 1\nmass = 1\n"),
-                  "block3: unknown table: [block1] and [block2] give one or two blocks");
+  EXPECT_CONTAINS(
+      testing_util::SceneErrorOf(kBlocks + "[block3]\nwidth = 1\nheight = 1\nmass = 1\n"),
+      "block3: unknown table: [block1] and [block2] give one or two blocks");
   // block = ... that is not an array of tables.
-  EXPECT_CONTAINS(ErrorOf("block = 3\n"), "block: expected [[block]] tables");
-  EXPECT_CONTAINS(ErrorOf("block = []\n"), "block: expected at least one [[block]] table");
+  EXPECT_CONTAINS(testing_util::SceneErrorOf("block = 3\n"), "block: expected [[block]] tables");
+  EXPECT_CONTAINS(testing_util::SceneErrorOf("block = []\n"),
+                  "block: expected at least one [[block]] table");
 }
 
 // A block's friction (issue 24): >= 0 or inf, infinite when absent; a finite one needs the
@@ -693,39 +689,44 @@ TEST(BlockTables, FrictionIsNonNegativeAndNeedsAStackTheUnilateralModelTakes) {
       std::isinf(ParseScene("[block1]\nwidth = 1\nheight = 2\nmass = 100\nfriction = inf\n", "")
                      .blocks[0]
                      .friction));
-  EXPECT_EQ(ErrorOf("[block1]\nwidth = 1\nheight = 2\nmass = 100\nfriction = -0.1\n"),
-            "scenes/x.toml:5: block1.friction: expected a number >= 0 or inf, got -0.1");
-  EXPECT_CONTAINS(ErrorOf("[block1]\nwidth = 1\nheight = 2\nmass = 100\nfriction = nan\n"),
-                  "block1.friction: expected a number >= 0 or inf");
-  EXPECT_CONTAINS(ErrorOf(BlockTables(kUnilateralMaxBlocks + 1) + "friction = 0.5\n"),
-                  "block" + std::to_string(kUnilateralMaxBlocks + 1) +
-                      ".friction: a finite friction needs the unilateral model");
+  EXPECT_EQ(
+      testing_util::SceneErrorOf("[block1]\nwidth = 1\nheight = 2\nmass = 100\nfriction = -0.1\n"),
+      "scenes/x.toml:5: block1.friction: expected a number >= 0 or inf, got -0.1");
+  EXPECT_CONTAINS(
+      testing_util::SceneErrorOf("[block1]\nwidth = 1\nheight = 2\nmass = 100\nfriction = nan\n"),
+      "block1.friction: expected a number >= 0 or inf");
+  EXPECT_CONTAINS(
+      testing_util::SceneErrorOf(BlockTables(kUnilateralMaxBlocks + 1) + "friction = 0.5\n"),
+      "block" + std::to_string(kUnilateralMaxBlocks + 1) +
+          ".friction: a finite friction needs the unilateral model");
 }
 
 TEST(BlockTables, AnErrorNamesTheBlockByItsIndex) {
   // Lines: block 1 is lines 1-4, block 2 lines 5-8, block 3 lines 9-12.
   const std::string three = BlockTables(2) + "[[block]]\nwidth = -1\nheight = 2\ndensity = 10\n";
-  EXPECT_EQ(ErrorOf(three),
+  EXPECT_EQ(testing_util::SceneErrorOf(three),
             "scenes/x.toml:10: block3.width: expected a positive number (m), got -1");
-  EXPECT_CONTAINS(ErrorOf(BlockTables(2) + "[[block]]\nwidth = 1\ndensity = 10\n"),
-                  "block3.height: missing; expected a positive number (m)");
-  EXPECT_CONTAINS(ErrorOf(BlockTables(2) + "[[block]]\nwidth = 1\nheight = 1\n"),
+  EXPECT_CONTAINS(
+      testing_util::SceneErrorOf(BlockTables(2) + "[[block]]\nwidth = 1\ndensity = 10\n"),
+      "block3.height: missing; expected a positive number (m)");
+  EXPECT_CONTAINS(testing_util::SceneErrorOf(BlockTables(2) + "[[block]]\nwidth = 1\nheight = 1\n"),
                   "block3: missing density (kg/m^3) or mass (kg)");
-  EXPECT_CONTAINS(ErrorOf(BlockTables(2) + "[[block]]\nwidth = 1\nheight = 1\nmass = 1\nfoo = 2\n"),
+  EXPECT_CONTAINS(testing_util::SceneErrorOf(
+                      BlockTables(2) + "[[block]]\nwidth = 1\nheight = 1\nmass = 1\nfoo = 2\n"),
                   "block3.foo: unknown key (expected one of: width, height, density, mass, depth, "
                   "friction, shape)");
 }
 
 TEST(BlockTables, EveryBlockIsNoWiderThanTheOneBelow) {
   const std::string wide = BlockTables(2) + "[[block]]\nwidth = 1.5\nheight = 1\nmass = 1\n";
-  EXPECT_EQ(ErrorOf(wide),
+  EXPECT_EQ(testing_util::SceneErrorOf(wide),
             "scenes/x.toml:10: block3.width: expected at most block2.width (1 m: block 3 would "
             "pivot outside block 2's top face, which the model does not describe), got 1.5");
   // Today's message for block 2, either style.
   const std::string legacy =
       "[block1]\nwidth = 1\nheight = 1\nmass = 1\n"
       "[block2]\nwidth = 2\nheight = 1\nmass = 1\n";
-  EXPECT_EQ(ErrorOf(legacy),
+  EXPECT_EQ(testing_util::SceneErrorOf(legacy),
             "scenes/x.toml:6: block2.width: expected at most block1.width (1 m: block 2 would "
             "pivot outside block 1's top face, which the model does not describe), got 2");
   Scene s = ParseScene(BlockTables(4), "");
@@ -735,8 +736,8 @@ TEST(BlockTables, EveryBlockIsNoWiderThanTheOneBelow) {
 }
 
 TEST(BlockTables, AtMostMaxBlocks) {
-  EXPECT_EQ(ErrorOf(BlockTables(kMaxBlocks)), "");
-  const std::string e = ErrorOf(BlockTables(kMaxBlocks + 1));
+  EXPECT_EQ(testing_util::SceneErrorOf(BlockTables(kMaxBlocks)), "");
+  const std::string e = testing_util::SceneErrorOf(BlockTables(kMaxBlocks + 1));
   EXPECT_CONTAINS(e, "scenes/x.toml:257: block: expected at most 64 [[block]] tables");
   EXPECT_CONTAINS(e, "got 65");
   Scene s;
@@ -762,26 +763,28 @@ TEST(InitialArrays, OneEntryPerBlock) {
 }
 
 TEST(InitialArrays, TheLengthMustBeTheBlockCount) {
-  EXPECT_EQ(ErrorOf(BlockTables(3) + "[initial]\ntheta = [0.1, 0.2]\n"),
+  EXPECT_EQ(testing_util::SceneErrorOf(BlockTables(3) + "[initial]\ntheta = [0.1, 0.2]\n"),
             "scenes/x.toml:14: initial.theta: expected an array of 3 numbers (rad, one per "
             "block, bottom first): the scene has 3 blocks, got 2 entries");
-  EXPECT_CONTAINS(ErrorOf(kBlocks + "[initial]\nomega = [0.1, 0.2, 0.3]\n"),
+  EXPECT_CONTAINS(testing_util::SceneErrorOf(kBlocks + "[initial]\nomega = [0.1, 0.2, 0.3]\n"),
                   "initial.omega: expected an array of 2 numbers (rad/s, one per block, bottom "
                   "first): the scene has 2 blocks, got 3 entries");
-  EXPECT_CONTAINS(ErrorOf(BlockTables(3) + "[initial]\ntheta = 0.1\n"),
+  EXPECT_CONTAINS(testing_util::SceneErrorOf(BlockTables(3) + "[initial]\ntheta = 0.1\n"),
                   "initial.theta: expected an array of 3 numbers");
-  EXPECT_CONTAINS(ErrorOf(BlockTables(3) + "[initial]\ntheta = [0.1, \"x\", 0]\n"),
-                  "initial.theta2: expected a finite number (rad) (entry 2 of initial.theta), "
-                  "got \"x\"");
+  EXPECT_CONTAINS(
+      testing_util::SceneErrorOf(BlockTables(3) + "[initial]\ntheta = [0.1, \"x\", 0]\n"),
+      "initial.theta2: expected a finite number (rad) (entry 2 of initial.theta), "
+      "got \"x\"");
   // Each entry is held to today's rules, named by its block.
-  EXPECT_CONTAINS(ErrorOf(BlockTables(3) + "[initial]\nomega = [0, 0, 200]\n"),
+  EXPECT_CONTAINS(testing_util::SceneErrorOf(BlockTables(3) + "[initial]\nomega = [0, 0, 200]\n"),
                   "initial.omega3: expected a finite number (rad/s) with magnitude at most");
-  EXPECT_CONTAINS(ErrorOf(BlockTables(3) + "[initial]\ntheta = [0, 0, 2]\n"),
+  EXPECT_CONTAINS(testing_util::SceneErrorOf(BlockTables(3) + "[initial]\ntheta = [0, 0, 2]\n"),
                   "initial.theta3: expected |theta3| below model.overturn_angle");
 }
 
 TEST(InitialArrays, AnArrayAndAPerBlockKeyOfOneQuantityAreAnError) {
-  EXPECT_EQ(ErrorOf(BlockTables(3) + "[initial]\ntheta = [0.1, 0.2, 0.3]\ntheta2 = 0.2\n"),
+  EXPECT_EQ(testing_util::SceneErrorOf(BlockTables(3) +
+                                       "[initial]\ntheta = [0.1, 0.2, 0.3]\ntheta2 = 0.2\n"),
             "scenes/x.toml:15: initial.theta2: give either initial.theta (an array, one entry "
             "per block) or initial.theta2, not both");
   // An array of one quantity and per-block keys of the other are fine.
@@ -796,14 +799,15 @@ TEST(InitialArrays, PerBlockKeysOfAnyBlock) {
   EXPECT_EQ(s.initial.omega_radps[0], -0.5);
   EXPECT_EQ(s.initial.theta_rad[0], 0.0);
   // A block the scene does not have.
-  EXPECT_EQ(ErrorOf(BlockTables(3) + "[initial]\ntheta4 = 0.1\n"),
+  EXPECT_EQ(testing_util::SceneErrorOf(BlockTables(3) + "[initial]\ntheta4 = 0.1\n"),
             "scenes/x.toml:14: initial.theta4: not allowed: the scene has 3 blocks (no block 4)");
-  EXPECT_CONTAINS(ErrorOf(kBlocks + "[initial]\nomega3 = 0.1\n"),
+  EXPECT_CONTAINS(testing_util::SceneErrorOf(kBlocks + "[initial]\nomega3 = 0.1\n"),
                   "initial.omega3: not allowed: the scene has 2 blocks (no block 3)");
   // One block: today's message, whichever style.
-  EXPECT_CONTAINS(ErrorOf("[[block]]\nwidth = 1\nheight = 1\nmass = 1\n[initial]\ntheta2 = 0.1\n"),
+  EXPECT_CONTAINS(testing_util::SceneErrorOf(
+                      "[[block]]\nwidth = 1\nheight = 1\nmass = 1\n[initial]\ntheta2 = 0.1\n"),
                   "initial.theta2: not allowed in a single-block scene (there is no [block2])");
-  EXPECT_CONTAINS(ErrorOf(BlockTables(3) + "[initial]\nphi = 1\n"),
+  EXPECT_CONTAINS(testing_util::SceneErrorOf(BlockTables(3) + "[initial]\nphi = 1\n"),
                   "initial.phi: unknown key (expected one of: theta1 to theta3, omega1 to omega3, "
                   "theta, omega)");
   // Built in code: the entries beyond the block count must be zero, named by their key.
@@ -823,16 +827,18 @@ TEST(Overrides, BlockKOfEitherStyle) {
   const Scene l = ParseScene(kBlocks, "", {"block2.width=0.5"});
   EXPECT_EQ(l.blocks[1].width_m, 0.5);
   // A block the scene does not have: the key and the block count.
-  EXPECT_EQ(ErrorOf(kBlocks, {"block3.width=0.5"}),
+  EXPECT_EQ(testing_util::SceneErrorOf(kBlocks, {"block3.width=0.5"}),
             "scenes/x.toml: override \"block3.width=0.5\": block3.width: no block 3 (the scene "
             "has 2 blocks)");
-  EXPECT_CONTAINS(ErrorOf(BlockTables(3), {"block4.height=1"}),
+  EXPECT_CONTAINS(testing_util::SceneErrorOf(BlockTables(3), {"block4.height=1"}),
                   "block4.height: no block 4 (the scene has 3 blocks)");
-  EXPECT_CONTAINS(ErrorOf(BlockTables(3), {"block3.size=1"}), "unknown key block3.size");
-  EXPECT_CONTAINS(ErrorOf(BlockTables(3), {"block3=1"}), "block3 is a table");
-  EXPECT_CONTAINS(ErrorOf(BlockTables(3), {"block.width=1"}), "set by their index: blockK.key");
+  EXPECT_CONTAINS(testing_util::SceneErrorOf(BlockTables(3), {"block3.size=1"}),
+                  "unknown key block3.size");
+  EXPECT_CONTAINS(testing_util::SceneErrorOf(BlockTables(3), {"block3=1"}), "block3 is a table");
+  EXPECT_CONTAINS(testing_util::SceneErrorOf(BlockTables(3), {"block.width=1"}),
+                  "set by their index: blockK.key");
   // A bad value of an override names the override and the block.
-  EXPECT_CONTAINS(ErrorOf(BlockTables(3), {"block3.width=-1"}),
+  EXPECT_CONTAINS(testing_util::SceneErrorOf(BlockTables(3), {"block3.width=-1"}),
                   "override \"block3.width=-1\": block3.width: expected a positive number (m)");
   // [initial]'s per-block keys and arrays.
   const Scene i =
