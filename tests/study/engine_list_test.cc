@@ -8,6 +8,7 @@
 
 #include "common/scratch_dir_test.h"
 #include "common/shell_test.h"
+#include "common/sine_pulse_block.h"
 #include "scene/scene.h"
 #include "study/study.h"
 
@@ -18,10 +19,7 @@ class StudyEngineListTest : public testing_util::ScratchDirTest {
  protected:
   void SetUp() override {
     ScratchDirTest::SetUp();
-    Write("block.toml",
-          "[block1]\nwidth = 0.4\nheight = 1.2\ndensity = 2000.0\n"
-          "[base.horizontal]\nkind = \"sine_pulse\"\namplitude_g = 0.3\nfrequency_hz = 2.0\n"
-          "[run]\nduration = 0.2\n");
+    Write("block.toml", testing_util::SinePulseBlockToml("0.2"));
   }
   // The message LoadStudy throws for a study of these engines (the list on line 2).
   std::string Error(const std::string& engines, const std::string& scene = "block.toml") {

@@ -10,22 +10,13 @@
 #include <random>
 #include <vector>
 
+#include "common/normal_cdf.h"
+
 namespace rockbench::stats {
 namespace {
 
-double Phi(double z) {
-  return 0.5 * std::erfc(-z / std::sqrt(2.0));
-}
-
-// Phi^-1 by bisection (independent of GSL's).
-double PhiInverse(double p) {
-  double lo = -40, hi = 40;
-  for (int i = 0; i < 200; ++i) {
-    const double mid = 0.5 * (lo + hi);
-    (Phi(mid) < p ? lo : hi) = mid;
-  }
-  return 0.5 * (lo + hi);
-}
+using testing_util::Phi;
+using testing_util::PhiInverse;
 
 void AddLevel(std::vector<SurfacePoint>& pts, double pga, double ratio, int n, int failed) {
   for (int i = 0; i < n; ++i) pts.push_back({pga, ratio, i < failed});

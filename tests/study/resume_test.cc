@@ -20,6 +20,7 @@
 
 #include "common/scratch_dir_test.h"
 #include "common/shell_test.h"
+#include "common/sine_pulse_block.h"
 
 extern char** environ;
 
@@ -99,10 +100,7 @@ class ResumeTest : public testing_util::ScratchDirTest {
   void SetUp() override {
     ScratchDirTest::SetUp();
     // A 0.4 x 1.2 m block under a 2 Hz sine pulse for 0.5 s: the reference alone, six members.
-    Write("block.toml",
-          "[block1]\nwidth = 0.4\nheight = 1.2\ndensity = 2000.0\n"
-          "[base.horizontal]\nkind = \"sine_pulse\"\namplitude_g = 0.3\nfrequency_hz = 2.0\n"
-          "[run]\nduration = 0.5\n");
+    Write("block.toml", testing_util::SinePulseBlockToml("0.5"));
     study_ = Write("study.toml", StudyText("0.1, 0.2, 0.3, 0.4, 0.5, 0.6")).string();
     out_ = dir_ / "out";
     const auto r = Rockbench("ensemble " + study_ + " --out " + out_.string() + " --jobs 2");

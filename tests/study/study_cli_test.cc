@@ -20,6 +20,7 @@
 
 #include "common/scratch_dir_test.h"
 #include "common/shell_test.h"
+#include "common/sine_pulse_block.h"
 
 extern char** environ;
 
@@ -67,10 +68,7 @@ class EnsembleCliTest : public testing_util::ScratchDirTest {
     ScratchDirTest::SetUp();
     // A 0.4 x 1.2 m block under a sine pulse: small amplitudes leave it at rest, middle ones
     // rock it, large ones overturn it; 2 s of simulated time.
-    Write("block.toml",
-          "[block1]\nwidth = 0.4\nheight = 1.2\ndensity = 2000.0\n"
-          "[base.horizontal]\nkind = \"sine_pulse\"\namplitude_g = 0.3\nfrequency_hz = 2.0\n"
-          "[run]\nduration = 2.0\n[bullet]\ntime_step = 2e-4\n");
+    Write("block.toml", testing_util::SinePulseBlockToml("2.0", "[bullet]\ntime_step = 2e-4\n"));
     study_ = Write("study.toml",
                    "scene = \"block.toml\"\nengines = [\"reference\", \"bullet\"]\n"
                    "wall_limit_s = 60\n"

@@ -15,6 +15,7 @@
 
 #include "common/scratch_dir_test.h"
 #include "common/shell_test.h"
+#include "common/sine_pulse_block.h"
 #include "common/stack_scene.h"
 #include "motion/ground_motion.h"
 #include "motion/intensity.h"
@@ -29,10 +30,7 @@ class StudyTest : public testing_util::ScratchDirTest {
  protected:
   void SetUp() override {
     ScratchDirTest::SetUp();
-    Write("block.toml",
-          "[block1]\nwidth = 0.4\nheight = 1.2\ndensity = 2000.0\n"
-          "[base.horizontal]\nkind = \"sine_pulse\"\namplitude_g = 0.3\nfrequency_hz = 2.0\n"
-          "[run]\nduration = 2.0\n");
+    Write("block.toml", testing_util::SinePulseBlockToml("2.0"));
   }
   std::string Error(const std::string& study_text) {
     try {
