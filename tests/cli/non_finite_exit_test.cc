@@ -23,6 +23,7 @@
 #include "cli/commands.h"
 #include "motion/ground_motion.h"
 #include "scene/scene.h"
+#include "tests/common/json_checks.h"
 
 namespace {
 
@@ -59,17 +60,6 @@ std::string Slurp(const fs::path& p) {
   std::stringstream ss;
   ss << f.rdbuf();
   return ss.str();
-}
-
-// Every number in a JSON document is finite (a NaN read back from a file is null: that too).
-bool AllFinite(const nlohmann::json& j) {
-  if (j.is_number_float()) return std::isfinite(j.get<double>());
-  if (j.is_structured()) {
-    for (const auto& v : j) {
-      if (!AllFinite(v)) return false;
-    }
-  }
-  return true;
 }
 
 // A CSV written by rockbench holds no field that reads as a number that is not finite ("nan",
@@ -143,7 +133,7 @@ TEST_F(NonFiniteExitTest, RunExitsWithRunFailedAndWritesOnlyTheComputedPart) {
     EXPECT_GT(t, 0.49 - 1e-9);
     EXPECT_LE(t, 0.50 + 1e-9);
   }
-  EXPECT_TRUE(AllFinite(s)) << s.dump(2);
+  EXPECT_TRUE(testing_util::AllFinite(s)) << s.dump(2);
   for (const char* f : {"reference/history.csv", "reference/events.csv", "bullet/history.csv",
                         "bullet/events.csv"}) {
     EXPECT_TRUE(CsvFinite(dir_ / f)) << f;
@@ -173,8 +163,8 @@ TEST_F(NonFiniteExitTest, CompareExitsWithRunFailedAndStatesNoAgreement) {
   EXPECT_FALSE(b["agrees"].get<bool>());
   EXPECT_EQ(b["verdict_decided_by"].get<std::string>().rfind("non_finite at t = ", 0), 0u);
   EXPECT_TRUE(c["predictability"].is_null());
-  EXPECT_TRUE(AllFinite(c)) << c.dump(2);
-  EXPECT_TRUE(AllFinite(nlohmann::json::parse(Slurp(dir_ / "summary.json"))));
+  EXPECT_TRUE(testing_util::AllFinite(c)) << c.dump(2);
+  EXPECT_TRUE(testing_util::AllFinite(nlohmann::json::parse(Slurp(dir_ / "summary.json"))));
   EXPECT_TRUE(CsvFinite(dir_ / "comparison.csv"));
 }
 

@@ -24,24 +24,13 @@
 #include "run/reference_engine.h"
 #include "run/summary.h"
 #include "scene/history.h"
+#include "tests/common/json_checks.h"
 
 namespace rockbench {
 namespace {
 
 constexpr double kDt = testing_util::kSpikeDt_s;  // s, the spike record's sample interval
 using testing_util::Spike;
-
-// Every number in a JSON document is finite (nlohmann keeps a NaN as a number in memory and
-// writes it as null: either way it would be a result that is not one).
-bool AllFinite(const nlohmann::json& j) {
-  if (j.is_number_float()) return std::isfinite(j.get<double>());
-  if (j.is_structured()) {
-    for (const auto& v : j) {
-      if (!AllFinite(v)) return false;
-    }
-  }
-  return true;
-}
 
 bool Finite(const Sample& s) {
   return std::isfinite(s.t_s) && std::isfinite(s.theta_rad[0]) && std::isfinite(s.theta_rad[1]) &&
@@ -100,7 +89,7 @@ TEST_P(EngineNonFinite, AnAbsurdSpikeEndsTheRunAtItsLastFiniteState) {
     }
   }
   EXPECT_TRUE(has_event);
-  EXPECT_TRUE(AllFinite(j)) << j.dump(2);
+  EXPECT_TRUE(testing_util::AllFinite(j)) << j.dump(2);
   EXPECT_TRUE(std::isfinite(run.outcome.peak_theta_rad[0]));
   EXPECT_TRUE(std::isfinite(run.outcome.peak_theta_rad[1]));
   EXPECT_LE(run.outcome.peak_theta_t_s[0], last_s);
@@ -169,7 +158,7 @@ TEST(NonFiniteHarness, TheWitnessNeverHidesAFailure) {
   EXPECT_EQ(run.summary["status"], "non_finite");
   EXPECT_EQ(run.summary["convergence"]["used"], "witness");
   EXPECT_TRUE(run.summary.contains("non_finite"));
-  EXPECT_TRUE(AllFinite(run.summary)) << run.summary.dump(2);
+  EXPECT_TRUE(testing_util::AllFinite(run.summary)) << run.summary.dump(2);
   EXPECT_EQ(NonFiniteText(run).rfind("reference: ", 0), 0u);
   for (const Sample& smp : run.history.samples) EXPECT_TRUE(Finite(smp)) << smp.t_s;
 }

@@ -18,8 +18,7 @@
 
 #include "common/scratch_dir_test.h"
 #include "common/shell_test.h"
-
-extern char** environ;
+#include "common/spawn_quiet.h"
 
 namespace rockbench {
 namespace {
@@ -141,17 +140,8 @@ TEST_F(FailingEngineTest, SigtermEndsTheEngineAndItsSetsidHelper) {
   fs::create_directories(out);
   std::vector<std::string> argv = {ROCKBENCH_EXE, "compare", scene.string(), "--engines",
                                    "sleepy",      "--quick", "--out",        out.string()};
-  std::vector<char*> cargs;
-  for (std::string& a : argv) cargs.push_back(a.data());
-  cargs.push_back(nullptr);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
-  posix_spawn_file_actions_addopen(&actions, 2, (dir_ / "err.txt").c_str(),
-                                   O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  pid_t pid = -1;
-  ASSERT_EQ(::posix_spawn(&pid, cargs[0], &actions, nullptr, cargs.data(), environ), 0);
-  posix_spawn_file_actions_destroy(&actions);
+  const pid_t pid = testing_util::SpawnQuiet(argv, dir_ / "err.txt");
+  ASSERT_GT(pid, 0);
   // The user's files, named as rockbench's temporaries would be.
   const std::string tmp = ".tmp." + std::to_string(pid);
   std::ofstream(out / ("x" + tmp)) << "the user's";

@@ -24,8 +24,7 @@
 #include "scene/scene.h"
 #include "tests/common/sample.h"
 #include "tests/common/shell_test.h"
-
-extern char** environ;
+#include "tests/common/spawn_quiet.h"
 
 namespace rockbench::renders {
 namespace {
@@ -188,16 +187,7 @@ struct Measured {
 pid_t SpawnRender(const std::vector<std::string>& args) {
   std::vector<std::string> argv = {ROCKBENCH_CLI, "render"};
   argv.insert(argv.end(), args.begin(), args.end());
-  std::vector<char*> cargs;
-  for (std::string& a : argv) cargs.push_back(a.data());
-  cargs.push_back(nullptr);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
-  pid_t pid = -1;
-  const int rc = ::posix_spawn(&pid, cargs[0], &actions, nullptr, cargs.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  return rc == 0 ? pid : -1;
+  return testing_util::SpawnQuiet(std::move(argv));
 }
 
 // A test's output folder: no temporary left in it, then removed.
