@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <cstdlib>
 
+#include "scene/body_kind.h"
+
 namespace rockbench {
 
 std::string TimeStepLabel(double dt_s) {
@@ -102,6 +104,27 @@ std::string Engine::SummaryLine(const EngineResult& r) const {
                 o.peak_theta_t_s.empty() ? 0.0 : o.peak_theta_t_s[0], o.impacts(),
                 flags.empty() ? "none" : flags.c_str(), r.wall_s * 1e3);
   return line;
+}
+
+std::vector<std::string> Engine::body_shapes() const {
+  return {PlanarBlockKind().shape};
+}
+
+void CheckBuildsBodies(const Engine& engine, const Scene& scene) {
+  if (scene.blocks.empty()) return;
+  const std::string& shape = scene.blocks.front().shape;
+  const std::vector<std::string> builds = engine.body_shapes();
+  if (std::find(builds.begin(), builds.end(), shape) != builds.end()) return;
+  std::string list;
+  for (const std::string& b : builds) {
+    if (!list.empty()) list += ", ";
+    list += '"';
+    list += b;
+    list += '"';
+  }
+  throw SceneError((scene.path.empty() ? std::string("scene") : scene.path.string()) +
+                   ": block1.shape: the engine '" + engine.name() + "' builds bodies of shape " +
+                   list + ", not \"" + shape + "\"");
 }
 
 }  // namespace rockbench

@@ -124,6 +124,9 @@ class Engine {
   /// Where its part of a run's summary.json goes (a JSON pointer): "/engines/<name>" by
   /// default; "" for the top level (the reference's, the file's own subject).
   virtual std::string SummaryPointer() const;
+  /// The body kinds it builds (BodyKind::shape, scene/body_kind.h): the planar rigid block
+  /// unless it says otherwise. RunEngine refuses a scene of another kind (CheckBuildsBodies).
+  virtual std::vector<std::string> body_shapes() const;
   /// Simulates the scene under `motion`. Physics outcomes never throw (a blow-up is a status);
   /// throws SceneError for settings the engine cannot run (naming the key).
   virtual EngineResult Simulate(const Scene& scene, const GroundMotion& motion,
@@ -132,5 +135,9 @@ class Engine {
   /// |theta1| 0.15 rad at 0.000 s, 54 impacts, flags: none, 2.31e+03 ms".
   virtual std::string SummaryLine(const EngineResult& result) const;
 };
+
+/// Throws SceneError (naming the scene's file, block1.shape, the engine and the kinds it builds)
+/// when `engine` does not build the bodies of `scene`.
+void CheckBuildsBodies(const Engine& engine, const Scene& scene);
 
 }  // namespace rockbench

@@ -21,6 +21,7 @@ EngineRun RunEngine(const std::string& name, const Scene& scene, const GroundMot
     ParseEngineList(name);  // throws, naming what this build has and what it left out
     throw SceneError("unknown engine '" + name + "'");
   }
+  CheckBuildsBodies(*engine, scene);
   EngineResult result = engine->Simulate(scene, motion, options);
   EngineRun run;
   run.engine = name;

@@ -15,6 +15,7 @@
 #include "files/atomic_file.h"
 #include "files/history_csv.h"
 #include "motion/ground_motion.h"
+#include "run/engine_run.h"
 #include "scene/scene.h"
 #include "tests/common/error_of.h"
 #include "tests/common/scratch_dir_test.h"
@@ -56,6 +57,7 @@ class PendulumEngine : public Engine {
   }
   std::vector<SweepSetting> SweepGrid(bool) const override { return {}; }
   std::vector<SweepSetting> StressGrid() const override { return {}; }
+  std::vector<std::string> body_shapes() const override { return {"test_pendulum"}; }
   EngineResult Simulate(const Scene& scene, const GroundMotion&,
                         const SimulateOptions&) const override {
     const int n = scene.block_count();
@@ -139,7 +141,14 @@ TEST_F(MadeUpBody, IsCarriedFromTheSceneToTheComparison) {
   ASSERT_EQ(scene.block_count(), 2);
   EXPECT_EQ(scene.blocks[1].shape, "test_pendulum");
   const GroundMotion motion = GroundMotion::FromScene(scene);
-  const EngineResult run = PendulumEngine(1e-3).Simulate(scene, motion, {});
+  // An engine builds the kinds it says; the planar engines and the reference refuse it.
+  const PendulumEngine engine(1e-3);
+  EXPECT_EQ(ErrorOf([&] { CheckBuildsBodies(engine, scene); }), "no error");
+  EXPECT_EQ(ErrorOf([&] { RunEngine("reference", scene, motion); }),
+            (dir_ / "pendulum.toml").string() +
+                ": block1.shape: the engine 'reference' builds bodies of shape \"block\", not "
+                "\"test_pendulum\"");
+  const EngineResult run = engine.Simulate(scene, motion, {});
 
   // The history file: the kind's columns, every body's, and back.
   const std::string csv = HistoryToCsv(run.history);
