@@ -47,14 +47,6 @@ std::string Faulty(const std::string& mode) {
   return "[\"python3\", \"" + kFaulty + "\", \"" + mode + "\"]";
 }
 
-bool Running(int pid) {
-  std::ifstream in("/proc/" + std::to_string(pid) + "/stat");
-  std::string stat;
-  if (!std::getline(in, stat)) return false;
-  const size_t close = stat.rfind(')');
-  return close != std::string::npos && stat[close + 2] != 'Z';
-}
-
 class FailingEngineTest : public testing_util::ScratchDirTest {};
 
 // good, bad (exits 3), good2: both good engines are compared and written; bad is a verdict line
@@ -167,11 +159,11 @@ TEST_F(FailingEngineTest, SigtermEndsTheEngineAndItsSetsidHelper) {
             std::string::npos)
       << ReadFile(dir_ / "err.txt");
   // Ended before rockbench exited; its zombie is reaped by init (2 s on a loaded machine).
-  for (int i = 0; i < 100 && Running(helper); ++i) {
+  for (int i = 0; i < 100 && testing_util::ProcessRuns(helper); ++i) {
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
-  EXPECT_FALSE(Running(helper)) << "the setsid helper outlived rockbench";
-  if (Running(helper)) ::kill(helper, SIGKILL);
+  EXPECT_FALSE(testing_util::ProcessRuns(helper)) << "the setsid helper outlived rockbench";
+  if (testing_util::ProcessRuns(helper)) ::kill(helper, SIGKILL);
   EXPECT_FALSE(fs::exists(folder)) << folder;
   EXPECT_EQ(ReadFile(out / ("x" + tmp)), "the user's");
   EXPECT_EQ(ReadFile(out / ("reference" + tmp) / "keep.txt"), "the user's");

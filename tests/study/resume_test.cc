@@ -21,6 +21,7 @@
 #include "common/scratch_dir_test.h"
 #include "common/shell_test.h"
 #include "common/sine_pulse_block.h"
+#include "common/spawn_quiet.h"
 
 extern char** environ;
 
@@ -68,15 +69,6 @@ std::string WithCell(const std::string& line, size_t column, const std::string& 
   std::string out;
   for (size_t i = 0; i < cells.size(); ++i) out += (i ? "," : "") + cells[i];
   return out + "\n";
-}
-
-// Whether process `pid` runs (a zombie does not).
-bool Running(int pid) {
-  std::ifstream in("/proc/" + std::to_string(pid) + "/stat");
-  std::string stat;
-  if (!std::getline(in, stat)) return false;
-  const size_t close = stat.rfind(')');
-  return close != std::string::npos && stat[close + 2] != 'Z';
 }
 
 // The processes whose parent is `pid`.
@@ -282,9 +274,10 @@ TEST_F(ResumeTest, ASecondWriterIsRefusedAndSigtermEndsTheWorkers) {
   ASSERT_EQ(::waitpid(first, &status, 0), first);
   EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGTERM) << status;
   for (const int w : workers) {
-    EXPECT_FALSE(Running(w)) << "worker " << w << " outlived the study: "
-                             << ReadFile("/proc/" + std::to_string(w) + "/stat")
-                             << ReadFile("/proc/" + std::to_string(w) + "/cmdline");
+    EXPECT_FALSE(testing_util::ProcessRuns(w))
+        << "worker " << w
+        << " outlived the study: " << ReadFile("/proc/" + std::to_string(w) + "/stat")
+        << ReadFile("/proc/" + std::to_string(w) + "/cmdline");
   }
   for (const auto& e : fs::recursive_directory_iterator(out_)) {
     const std::string name = e.path().filename().string();
