@@ -445,7 +445,7 @@ TEST(RankEngines, VerdictThenHorizonCappedAtPredictabilityThenCost) {
   in.comparison = &c;
   in.comparison_path = "comparison.json";
   in.engines = order;
-  in.two_blocks = true;
+  in.blocks = 2;
   Page page("t");
   WriteVerdictSection(in, page);
   const std::string md = page.Markdown();

@@ -99,7 +99,6 @@ std::optional<EnsembleBand> ReadEnsembleBand(const fs::path& csv) {
   int nb = 0;
   while (nb < kMaxBlocks && (nb == 0 || column(Numbered("theta", nb + 1) + "_lo") >= 0)) ++nb;
   band.blocks = nb;
-  band.two_blocks = nb == 2;
   band.lo_rad.resize(std::max(nb, 2));
   band.hi_rad.resize(std::max(nb, 2));
   band.spread_rad.resize(std::max(nb, 2));

@@ -45,7 +45,6 @@ std::optional<Predictability> ReadPredictability(const nlohmann::json&,
 
 /// reference/ensemble_band.csv on the output grid, rad.
 struct EnsembleBand {
-  bool two_blocks = false;
   int blocks = 1;  ///< the blocks of the file's columns
   std::vector<double> t_s;
   /// Per block (block k at k - 1), one entry per block, at least two (one block's second

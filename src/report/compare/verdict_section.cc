@@ -21,7 +21,7 @@ std::string Theta(int b) {
 }
 
 int Blocks(const VerdictInput& in) {
-  return in.blocks > 0 ? in.blocks : in.two_blocks ? 2 : 1;
+  return in.blocks > 0 ? in.blocks : 1;
 }
 
 std::string Rad(double v) {

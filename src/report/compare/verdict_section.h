@@ -23,10 +23,8 @@ struct VerdictInput {
   /// summary.json: its "convergence" is read when comparison.json has none.
   const nlohmann::json* summary = nullptr;
   std::filesystem::path summary_path;
-  std::vector<std::string> engines;  ///< the compared engines, in page order
-  bool two_blocks = false;
-  /// The stack's blocks; 0: from two_blocks (two or one).
-  int blocks = 0;
+  std::vector<std::string> engines;              ///< the compared engines, in page order
+  int blocks = 1;                                ///< the stack's blocks
   std::optional<Predictability> predictability;  ///< nullopt: no reference ensemble was run
 };
 

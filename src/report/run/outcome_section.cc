@@ -208,7 +208,6 @@ void VerdictSection(const RunData& run, Page& page, RunReportResult& result) {
   in.summary = &run.summary;
   in.summary_path = run.summary_path;
   for (size_t i = 1; i < run.engines.size(); ++i) in.engines.push_back(run.engines[i].name);
-  in.two_blocks = run.scene.block_count() == 2;
   in.blocks = run.scene.block_count();
   in.predictability = run.predictability;
   for (std::string& w : WriteVerdictSection(in, page)) result.warnings.push_back(std::move(w));

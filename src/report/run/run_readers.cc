@@ -31,9 +31,8 @@ void ReadReferenceEnsemble(RunData& run) {
   }
   const fs::path csv = run.dir / "reference" / "ensemble_band.csv";
   run.band = ReadEnsembleBand(csv);
-  // One block or two: the file's theta2 columns say two. N >= 3: every block's columns.
-  const bool band_differs =
-      run.band && (nb <= 2 ? run.band->two_blocks != (nb == 2) : run.band->blocks != nb);
+  // The file's theta columns say how many blocks it has.
+  const bool band_differs = run.band && run.band->blocks != nb;
   if (band_differs) {
     throw std::runtime_error(csv.string() + ": has " + BlocksText(run.band->blocks) +
                              " but the scene " + run.scene.path.string() + " has " +
