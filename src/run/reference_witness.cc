@@ -8,6 +8,7 @@
 
 #include "run/summary.h"
 #include "run/wall_clock.h"
+#include "scene/body_kind.h"
 #include "scene/limits.h"
 #include "util/format.h"
 
@@ -109,7 +110,7 @@ nlohmann::json ConvergenceJson(const Scene& scene, const ConvergenceCheck& c) {
   j["tolerance_rad"] = nlohmann::json::object();
   const int nb = std::min(scene.block_count(), static_cast<int>(c.tolerance_rad.size()));
   for (int b = 0; b < nb; ++b) {
-    const std::string th = Numbered("theta", b + 1);
+    const std::string th = BodyColumn("theta", b + 1);
     j["max_abs_diff_rad_per_block"][th] = c.max_abs_diff_rad[b];
     j["tolerance_rad"][th] = c.tolerance_rad[b];
   }

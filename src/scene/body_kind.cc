@@ -31,7 +31,10 @@ const BodyKind& PlanarBlockKind() {
 }
 
 std::string BodyColumn(std::string_view stem, int body) {
-  return std::string(stem) + std::to_string(body);
+  // Appended: GCC 12 warns, wrongly, on std::string + std::string here (-Wrestrict).
+  std::string out(stem);
+  out += std::to_string(body);
+  return out;
 }
 
 void RegisterBodyKind(const BodyKind& kind) {

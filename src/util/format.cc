@@ -17,10 +17,4 @@ double RoundTime_s(double t_s) {
   return std::strtod(Format("%.9f", t_s).c_str(), nullptr);
 }
 
-std::string Numbered(std::string_view stem, int k) {
-  std::string out(stem);
-  out += std::to_string(k);
-  return out;
-}
-
 }  // namespace rockbench

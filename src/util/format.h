@@ -12,8 +12,4 @@ std::string Format(const char* printf_format, double v);
 /// computed in binary (614 * 0.01 = 6.140000000000001) is written as 6.14. Output only.
 double RoundTime_s(double t_s);
 
-/// `stem` followed by the number `k`: Numbered("theta", 3) -> "theta3" (the per-block keys of
-/// N-block outputs). Built by appending: GCC 12 warns, wrongly, on "literal" + std::string.
-std::string Numbered(std::string_view stem, int k);
-
 }  // namespace rockbench

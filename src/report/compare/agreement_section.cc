@@ -8,6 +8,7 @@
 #include "report/common/number_text.h"
 #include "run/engine_registry.h"
 #include "run/tolerance.h"
+#include "scene/body_kind.h"
 #include "util/format.h"
 
 namespace rockbench::report {
@@ -51,7 +52,7 @@ void MetricsTable(const RunData& run, Page& page) {
     const std::string k = "engines." + e.name;
     if (Find(c, k) == nullptr) continue;
     for (int b = 1; b <= run.scene.block_count(); ++b) {
-      const std::string kb = k + "." + Numbered("theta", b);
+      const std::string kb = k + "." + BodyColumn("theta", b);
       const bool within = OptBool(c, kb + ".within_tolerance", file);
       // A block below the floor (judged false): no relative peak error (its reference peak may
       // be zero), the absolute one and the peak judgement instead.
@@ -93,9 +94,9 @@ void MetricsTable(const RunData& run, Page& page) {
     // Slip and lift (u1.., z1..), where the histories carry them.
     for (int b = 1; b <= run.scene.block_count(); ++b) {
       for (const char* q : {"u", "z"}) {
-        const std::string kq = k + "." + Numbered(q, b);
+        const std::string kq = k + "." + BodyColumn(q, b);
         if (Find(c, kq) == nullptr) continue;
-        slips.push_back({e.name, Numbered(q, b) + (q[0] == 'u' ? " (slip)" : " (lift)"),
+        slips.push_back({e.name, BodyColumn(q, b) + (q[0] == 'u' ? " (slip)" : " (lift)"),
                          Num(NeedNumber(c, kq + ".max_abs_error_m", file), 3),
                          Num(NeedNumber(c, kq + ".tolerance_m", file), 3),
                          Num(OptNumber(c, kq + ".peak_reference_m", file), 4),
@@ -226,7 +227,7 @@ void ErrorFigure(const RunData& run, const RunReportOptions& options, Figures& f
   const auto header = [nb](const char* stem, const char* tail) {
     std::string h = "# t_s";
     for (int b = 1; b <= nb; ++b)
-      h.append(" ").append(stem).append(Numbered("theta", b)).append(tail);
+      h.append(" ").append(stem).append(BodyColumn("theta", b)).append(tail);
     return h + "\n";
   };
   GnuplotFigure f;

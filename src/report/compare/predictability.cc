@@ -9,6 +9,7 @@
 
 #include "files/atomic_file.h"
 #include "report/common/json_keys.h"
+#include "scene/body_kind.h"
 #include "scene/history.h"
 #include "scene/limits.h"
 #include "scene/mode.h"
@@ -65,7 +66,7 @@ std::optional<Predictability> ReadPredictability(const json& comparison, const f
   out.tolerance_rad.assign(std::max(nb, 2), Predictability::kNaN);
   out.spread_rad.assign(std::max(nb, 2), Predictability::kNaN);
   for (int b = 0; b < nb; ++b) {
-    const std::string th = Numbered("theta", b + 1);
+    const std::string th = BodyColumn("theta", b + 1);
     const double h = OptNumber(*p, "horizon_s." + th, file);
     if (!std::isnan(h)) out.horizon_s[b] = h;
     out.tolerance_rad[b] = OptNumber(*p, "tolerance_rad." + th, file);
@@ -97,13 +98,13 @@ std::optional<EnsembleBand> ReadEnsembleBand(const fs::path& csv) {
   std::vector<std::string> names = {"t"};
   std::vector<std::vector<double>*> targets = {&band.t_s};
   int nb = 0;
-  while (nb < kMaxBlocks && (nb == 0 || column(Numbered("theta", nb + 1) + "_lo") >= 0)) ++nb;
+  while (nb < kMaxBlocks && (nb == 0 || column(BodyColumn("theta", nb + 1) + "_lo") >= 0)) ++nb;
   band.blocks = nb;
   band.lo_rad.resize(std::max(nb, 2));
   band.hi_rad.resize(std::max(nb, 2));
   band.spread_rad.resize(std::max(nb, 2));
   for (int b = 0; b < nb; ++b) {
-    const std::string th = Numbered("theta", b + 1);
+    const std::string th = BodyColumn("theta", b + 1);
     for (const char* tail : {"_lo", "_hi", "_spread"}) names.push_back(th + tail);
     targets.push_back(&band.lo_rad[b]);
     targets.push_back(&band.hi_rad[b]);

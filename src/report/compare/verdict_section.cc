@@ -7,6 +7,7 @@
 #include "compare/verdict.h"
 #include "report/common/json_keys.h"
 #include "report/common/number_text.h"
+#include "scene/body_kind.h"
 #include "scene/mode.h"
 #include "util/format.h"
 
@@ -17,7 +18,7 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 std::string Theta(int b) {
-  return Numbered("theta", b + 1);
+  return BodyColumn("theta", b + 1);
 }
 
 int Blocks(const VerdictInput& in) {
@@ -315,7 +316,7 @@ std::string Spread(const json& t, const std::string& side, const fs::path& file)
     // none, block 1, block 2 always; block 3 ... as long as the counts have them.
     std::string out = "none " + Num(OptNumber(*s, "none", file));
     for (int b = 1; b <= kMaxBlocks; ++b) {
-      const std::string key = Numbered("block", b);
+      const std::string key = BodyColumn("block", b);
       if (b > 2 && Find(*s, key) == nullptr) break;
       out += ", block " + std::to_string(b) + " " + Num(OptNumber(*s, key, file));
     }

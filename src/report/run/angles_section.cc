@@ -1,6 +1,7 @@
 #include "report/run/angles_section.h"
 
 #include "report/common/number_text.h"
+#include "scene/body_kind.h"
 #include "util/format.h"
 
 namespace rockbench::report {
@@ -34,7 +35,7 @@ void AnglesFigure(const RunData& run, Figures& fig) {
   f.height_px = PanelsHeight_px(nb);
   for (const EngineData& e : run.engines) {
     std::string dat = "# t_s";
-    for (int b = 1; b <= nb; ++b) dat.append(" ").append(Numbered("theta", b)).append("_rad");
+    for (int b = 1; b <= nb; ++b) dat.append(" ").append(BodyColumn("theta", b)).append("_rad");
     dat += "\n";
     for (const Sample& s : e.history.samples) {
       AppendDat(dat, s.t_s);
@@ -51,7 +52,7 @@ void AnglesFigure(const RunData& run, Figures& fig) {
     std::string header = "# t_s";
     std::vector<const std::vector<double>*> columns;
     for (int k = 0; k < nb; ++k) {
-      const std::string th = Numbered("theta", k + 1);
+      const std::string th = BodyColumn("theta", k + 1);
       header.append(" ").append(th).append("_lo_rad ").append(th).append("_hi_rad");
       columns.push_back(&b.lo_rad[k]);
       columns.push_back(&b.hi_rad[k]);

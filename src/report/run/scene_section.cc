@@ -8,6 +8,7 @@
 #include "report/common/json_keys.h"
 #include "report/common/number_text.h"
 #include "run/engine_registry.h"
+#include "scene/body_kind.h"
 #include "scene/rigid_block.h"
 #include "util/format.h"
 
@@ -207,8 +208,8 @@ void SceneSection(const RunData& run, const GroundMotion& motion, Figures& fig) 
                         Num(std::atan2(0.5 * s.blocks[0].width_m, h_stack)) + " rad"});
     for (int k = 0; k < nb; ++k) {
       rows.push_back({"initial state, block " + std::to_string(k + 1),
-                      Numbered("theta", k + 1) + " = " + Num(s.initial.theta_rad[k]) + " rad, " +
-                          Numbered("omega", k + 1) + " = " + Num(s.initial.omega_radps[k]) +
+                      BodyColumn("theta", k + 1) + " = " + Num(s.initial.theta_rad[k]) + " rad, " +
+                          BodyColumn("omega", k + 1) + " = " + Num(s.initial.omega_radps[k]) +
                           " rad/s",
                       k == 0 ? "theta > 0: tilted to the right" : ""});
     }

@@ -8,6 +8,7 @@
 #include "files/atomic_file.h"
 #include "report/common/names.h"
 #include "report/run/run_report.h"
+#include "scene/body_kind.h"
 #include "scene/history.h"
 #include "scene/limits.h"
 #include "scene/mode.h"
@@ -88,7 +89,7 @@ EnsembleData ReadEnsemble(const std::filesystem::path& dir) {
     if (!col.count(a)) throw ReportInputError(csv.string() + ":1: no column for axis " + a);
   }
   // N >= 3 blocks: peak_theta3_rad, ... as long as the header has them.
-  while (d.blocks < kMaxBlocks && col.count(Numbered("peak_theta", d.blocks + 1) + "_rad")) {
+  while (d.blocks < kMaxBlocks && col.count(BodyColumn("peak_theta", d.blocks + 1) + "_rad")) {
     ++d.blocks;
   }
   for (int n = 2; std::getline(in, line); ++n) {
@@ -123,7 +124,7 @@ EnsembleData ReadEnsemble(const std::filesystem::path& dir) {
     r.peak_theta_rad = {r.peak_theta1_rad, r.peak_theta2_rad};
     for (int b = 3; b <= d.blocks; ++b) {
       r.peak_theta_rad.push_back(
-          Number(c[col[Numbered("peak_theta", b) + "_rad"]], where).value_or(0.0));
+          Number(c[col[BodyColumn("peak_theta", b) + "_rad"]], where).value_or(0.0));
     }
     r.overturned_block = static_cast<int>(Number(c[col["overturned_block"]], where).value_or(0));
     r.wall_s = Number(c[col["wall_s"]], where).value_or(0.0);
