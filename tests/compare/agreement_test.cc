@@ -14,6 +14,7 @@
 #include "reference/simulate.h"
 #include "tests/common/housner_scene.h"
 #include "tests/common/initial_state.h"
+#include "tests/common/reference_suite.h"
 
 namespace rockbench {
 namespace {
@@ -50,21 +51,10 @@ EngineRun FromReference(const reference::Result& ref, double t0, double dt, doub
   return run;
 }
 
-class CompareTest : public ::testing::Test {
+class CompareTest : public testing_util::ReferenceSuite<CompareTest> {
  protected:
-  static void SetUpTestSuite() {
-    scene_ = new Scene(Housner());
-    ref_ = new reference::Result(reference::Simulate(*scene_, GroundMotion()));
-  }
-  static void TearDownTestSuite() {
-    delete ref_;
-    delete scene_;
-  }
-  static Scene* scene_;
-  static reference::Result* ref_;
+  static void SetUpTestSuite() { RunReference(Housner()); }
 };
-Scene* CompareTest::scene_ = nullptr;
-reference::Result* CompareTest::ref_ = nullptr;
 
 TEST_F(CompareTest, InterpolatesTheReferenceAtTheEngineTimesNotTheNearestSample) {
   // Engine samples 3.7 ms off the reference's 10 ms grid, exact values: no error at all. A

@@ -14,6 +14,7 @@
 #include "motion/ground_motion.h"
 #include "reference/simulate.h"
 #include "tests/common/housner_scene.h"
+#include "tests/common/reference_suite.h"
 
 namespace rockbench {
 namespace {
@@ -57,25 +58,16 @@ EngineRun Engine(const reference::Result& ref, double t_end, Edit edit) {
 // Housner's block released from 0.7 x its tolerance floor (1% of alpha): its whole motion,
 // peak 0.7 floor (the release: free rocking only loses energy), is below the floor, so a block
 // that never moves stays within the pointwise tolerance.
-class BelowTheFloor : public ::testing::Test {
+class BelowTheFloor : public testing_util::ReferenceSuite<BelowTheFloor> {
  protected:
   static void SetUpTestSuite() {
-    scene_ = new Scene(testing_util::HousnerHalfAngleRelease(2.0));
-    floor_ = 0.01 * Alpha(scene_->blocks[0]);
-    scene_->initial.theta_rad[0] = 0.7 * floor_;
-    ref_ = new reference::Result(reference::Simulate(*scene_, GroundMotion()));
+    Scene scene = testing_util::HousnerHalfAngleRelease(2.0);
+    floor_ = 0.01 * Alpha(scene.blocks[0]);
+    scene.initial.theta_rad[0] = 0.7 * floor_;
+    RunReference(std::move(scene));
   }
-  static void TearDownTestSuite() {
-    delete ref_;
-    delete scene_;
-  }
-  static Scene* scene_;
-  static reference::Result* ref_;
-  static double floor_;
+  static inline double floor_ = 0.0;
 };
-Scene* BelowTheFloor::scene_ = nullptr;
-reference::Result* BelowTheFloor::ref_ = nullptr;
-double BelowTheFloor::floor_ = 0.0;
 
 TEST_F(BelowTheFloor, AnEngineThatLeavesTheBlockAtRestDoesNotAgree) {
   // The release is the peak (to the rounding of the integration, 1e-12 of it).
