@@ -1,16 +1,13 @@
 #include "scene/synthetic_motion_def.h"
 
 #include <cmath>
-#include <cstdio>
+
+#include "util/format.h"
 
 namespace rockbench {
 namespace {
 
-std::string Num(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%g", v);
-  return buf;
-}
+std::string Num(double v) { return Format("%g", v); }
 
 }  // namespace
 
