@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <string_view>
 
+#include "compare/angle_error.h"
 #include "run/tolerance.h"
 #include "scene/body_kind.h"
 #include "util/format.h"
@@ -42,13 +43,6 @@ std::vector<const Event*> Impacts(const History& h, double min_rate, int* all) {
   return out;
 }
 
-// Body b's (0-based) value of the angle `stem` in a sample of `history`: the planar block's
-// theta directly (the run's hot loop), another quantity through the body's kind.
-double AngleValue(const History& history, const Sample& s, const std::string& stem, int b) {
-  if (stem == "theta") return s.theta_rad[static_cast<size_t>(b)];
-  return StateValue(history, s, stem, b + 1);
-}
-
 // Peak |theta_i| and its time, measured by the run itself (at every step for the engines).
 void EnginePeak(const EngineRun& run, int block, double* peak, double* t) {
   const RunOutcome& o = run.outcome;
@@ -57,15 +51,15 @@ void EnginePeak(const EngineRun& run, int block, double* peak, double* t) {
   *t = has ? o.peak_theta_t_s[block - 1] : 0.0;
 }
 
-// The largest |angle| `stem` of a body (0-based) over a history's samples up to until_s, and
-// when.
-void SampledPeak(const History& h, const std::string& stem, int block, double until_s, double* peak,
-                 double* t) {
+// The largest |angle| of a body (0-based) read by `angle` over a history's samples up to
+// until_s, and when.
+void SampledPeak(const History& h, const StateQuantityReader& angle, int block, double until_s,
+                 double* peak, double* t) {
   *peak = 0.0;
   *t = 0.0;
   for (const Sample& x : h.samples) {
     if (x.t_s > until_s + 1e-12) break;
-    const double v = std::abs(AngleValue(h, x, stem, block));
+    const double v = std::abs(angle(x, block + 1));
     if (v > *peak) {
       *peak = v;
       *t = x.t_s;
@@ -301,48 +295,6 @@ double ComparedUntil_s(const reference::Result& ref, const EngineRun& run) {
   return until;
 }
 
-// Sums of squared errors of one angle over the compared samples: all, before its horizon,
-// before and beyond the reference's predictability horizon.
-struct SquaredErrors {
-  double all = 0.0, horizon = 0.0, predictable = 0.0, beyond = 0.0;
-  int n_horizon = 0, n_predictable = 0;
-};
-
-// Accounts one sample's error `e` (rad) at t_s, whose local tolerance is `tol`, to angle `g`.
-void AddAngleError(double t_s, double e, double tol, double predictability_horizon_s,
-                   AngleAgreement* g, SquaredErrors* sq) {
-  g->max_abs_error_rad = std::max(g->max_abs_error_rad, e);
-  sq->all += e * e;
-  if (t_s <= predictability_horizon_s) {
-    g->max_abs_error_predictable_rad = std::max(g->max_abs_error_predictable_rad, e);
-    sq->predictable += e * e;
-    ++sq->n_predictable;
-  } else {
-    g->max_abs_error_beyond_rad = std::max(g->max_abs_error_beyond_rad, e);
-    sq->beyond += e * e;
-    ++g->samples_beyond;
-  }
-  // The error on the scale of the motion at that time.
-  const double ratio = e / tol;
-  if (ratio > g->max_error_ratio) {
-    g->max_error_ratio = ratio;
-    g->max_error_ratio_t_s = t_s;
-  }
-  if (t_s <= predictability_horizon_s) {
-    g->max_error_ratio_predictable = std::max(g->max_error_ratio_predictable, ratio);
-  }
-  if (g->within_tolerance && e > tol) {
-    g->within_tolerance = false;
-    g->horizon_s = t_s;
-    g->tolerance_at_horizon_rad = tol;
-  }
-  if (g->within_tolerance) {
-    g->max_abs_error_horizon_rad = std::max(g->max_abs_error_horizon_rad, e);
-    sq->horizon += e * e;
-    ++sq->n_horizon;
-  }
-}
-
 // Body b's (0-based) peaks over the compared window, their errors and its impacts. Peaks are
 // compared over the compared window: where the reference's model stopped, or stopped deciding,
 // before a run's end, the peaks after that instant are not the model's.
@@ -353,10 +305,12 @@ void ComparePeaks(const reference::Result& ref, const EngineRun& run, int b, dou
   g->peak_reference_t_s = rs.peak_theta_t_s[b];
   EnginePeak(run, b + 1, &g->peak_engine_rad, &g->peak_engine_t_s);
   if (g->peak_engine_t_s > until) {
-    SampledPeak(run.history, g->quantity, b, until, &g->peak_engine_rad, &g->peak_engine_t_s);
+    const StateQuantityReader angle(run.history, g->quantity);
+    SampledPeak(run.history, angle, b, until, &g->peak_engine_rad, &g->peak_engine_t_s);
   }
   if (g->peak_reference_t_s > until) {
-    SampledPeak(ref.history, g->quantity, b, until, &g->peak_reference_rad, &g->peak_reference_t_s);
+    const StateQuantityReader angle(ref.history, g->quantity);
+    SampledPeak(ref.history, angle, b, until, &g->peak_reference_rad, &g->peak_reference_t_s);
   }
   const double peak_ref = g->peak_reference_rad;
   g->peak_rel_error = peak_ref > 0.0 ? (g->peak_engine_rad - peak_ref) / peak_ref : 0.0;
@@ -388,30 +342,27 @@ std::vector<AngleAgreement> CompareAngles(const Scene& scene, const reference::R
     ang[b].floor_rad = profile[b].fixed_rad ? *profile[b].fixed_rad : profile[b].floor_rad;
     ang[b].judged = !(ang[b].floor_rad * kJudgedPeakOverFloor > rs.peak_theta_rad[b]);
   }
-  std::vector<SquaredErrors> sq(nb);
+  std::vector<AngleErrorSums> sums;
+  std::vector<StateQuantityReader> run_angle, ref_angle;
+  for (int b = 0; b < nb; ++b) {
+    sums.emplace_back(options.predictability_horizon_s[b]);
+    run_angle.emplace_back(run.history, ang[b].quantity);
+    ref_angle.emplace_back(ref.history, ang[b].quantity);
+  }
   int n = 0;
   for (const Sample& s : run.history.samples) {
     if (s.t_s > until + 1e-12) break;
     const Sample r = ref.trajectory.At(s.t_s);
     ++n;
     for (int b = 0; b < nb; ++b) {
-      const std::string& q = ang[b].quantity;
-      const double e =
-          std::abs(AngleValue(run.history, s, q, b) - AngleValue(ref.history, r, q, b));
-      AddAngleError(s.t_s, e, profile[b].At(s.t_s), options.predictability_horizon_s[b], &ang[b],
-                    &sq[b]);
+      const double e = std::abs(run_angle[b](s, b + 1) - ref_angle[b](r, b + 1));
+      sums[b].Add(s.t_s, e, profile[b].At(s.t_s), &ang[b]);
     }
   }
   *samples_compared = n;
   for (int b = 0; b < nb; ++b) {
     AngleAgreement& g = ang[b];
-    g.rms_error_rad = n > 0 ? std::sqrt(sq[b].all / n) : 0.0;
-    g.rms_error_horizon_rad =
-        sq[b].n_horizon > 0 ? std::sqrt(sq[b].horizon / sq[b].n_horizon) : 0.0;
-    g.rms_error_predictable_rad =
-        sq[b].n_predictable > 0 ? std::sqrt(sq[b].predictable / sq[b].n_predictable) : 0.0;
-    g.rms_error_beyond_rad =
-        g.samples_beyond > 0 ? std::sqrt(sq[b].beyond / g.samples_beyond) : 0.0;
+    sums[b].Finish(&g);
     ComparePeaks(ref, run, b, until, options.min_impact_rate_radps, &g);
   }
   return ang;
@@ -609,8 +560,8 @@ void CompareFinalState(const reference::Result& ref, const EngineRun& run, doubl
   for (int b = 0; b < a->blocks(); ++b) {
     BodyAgreement& body = a->bodies[b];
     const std::string& q = body.angle.quantity;
-    body.final_angle_error_rad =
-        AngleValue(run.history, *last, q, b) - AngleValue(ref.history, r, q, b);
+    body.final_angle_error_rad = StateQuantityReader(run.history, q)(*last, b + 1) -
+                                 StateQuantityReader(ref.history, q)(r, b + 1);
     a->final_agree =
         a->final_agree && std::abs(body.final_angle_error_rad) <= body.angle.tolerance_rad;
   }

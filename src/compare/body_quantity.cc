@@ -2,8 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
+
+#include "compare/angle_error.h"
 
 namespace rockbench {
 
@@ -14,38 +17,19 @@ AngleAgreement CompareBodyQuantity(const History& engine, std::string_view stem,
     throw std::invalid_argument("no body " + std::to_string(body) + " in a history of " +
                                 std::to_string(engine.blocks));
   }
+  const StateQuantityReader value_of(engine, stem);
   AngleAgreement a;
   a.quantity = std::string(stem);
   a.tolerance_rad = a.tolerance_min_rad = a.floor_rad = tolerance_rad;
   a.horizon_s = until_s;
   a.peak_tolerance_rad = tolerance_rad;
-  double sum2 = 0.0, sum2_horizon = 0.0;
-  int n = 0, n_horizon = 0;
-  bool crossed = false;
+  // Everything is predictable here: the reference is a given function.
+  AngleErrorSums sums(std::numeric_limits<double>::infinity());
   for (const Sample& s : engine.samples) {
     if (s.t_s > until_s) break;
-    const double value = StateValue(engine, s, stem, body);
+    const double value = value_of(s, body);
     const double expected = reference(s.t_s);
-    const double error = std::abs(value - expected);
-    ++n;
-    sum2 += error * error;
-    if (error > a.max_abs_error_rad) a.max_abs_error_rad = error;
-    const double ratio = error / tolerance_rad;
-    if (ratio > a.max_error_ratio) {
-      a.max_error_ratio = ratio;
-      a.max_error_ratio_t_s = s.t_s;
-    }
-    if (!crossed && error > tolerance_rad) {
-      crossed = true;
-      a.within_tolerance = false;
-      a.horizon_s = s.t_s;
-      a.tolerance_at_horizon_rad = tolerance_rad;
-    }
-    if (!crossed) {
-      ++n_horizon;
-      sum2_horizon += error * error;
-      a.max_abs_error_horizon_rad = std::max(a.max_abs_error_horizon_rad, error);
-    }
+    sums.Add(s.t_s, std::abs(value - expected), tolerance_rad, &a);
     if (std::abs(expected) > a.peak_reference_rad) {
       a.peak_reference_rad = std::abs(expected);
       a.peak_reference_t_s = s.t_s;
@@ -55,12 +39,7 @@ AngleAgreement CompareBodyQuantity(const History& engine, std::string_view stem,
       a.peak_engine_t_s = s.t_s;
     }
   }
-  a.rms_error_rad = n > 0 ? std::sqrt(sum2 / n) : 0.0;
-  a.rms_error_horizon_rad = n_horizon > 0 ? std::sqrt(sum2_horizon / n_horizon) : 0.0;
-  // Everything is predictable here: the reference is a given function.
-  a.max_error_ratio_predictable = a.max_error_ratio;
-  a.max_abs_error_predictable_rad = a.max_abs_error_rad;
-  a.rms_error_predictable_rad = a.rms_error_rad;
+  sums.Finish(&a);
   if (a.peak_reference_rad > 0.0) {
     a.peak_rel_error = (a.peak_engine_rad - a.peak_reference_rad) / a.peak_reference_rad;
   }

@@ -6,6 +6,7 @@
 #include <cstdlib>
 
 #include "scene/body_kind.h"
+#include "util/format.h"
 
 namespace rockbench {
 
@@ -115,16 +116,9 @@ void CheckBuildsBodies(const Engine& engine, const Scene& scene) {
   const std::string& shape = scene.blocks.front().shape;
   const std::vector<std::string> builds = engine.body_shapes();
   if (std::find(builds.begin(), builds.end(), shape) != builds.end()) return;
-  std::string list;
-  for (const std::string& b : builds) {
-    if (!list.empty()) list += ", ";
-    list += '"';
-    list += b;
-    list += '"';
-  }
   throw SceneError((scene.path.empty() ? std::string("scene") : scene.path.string()) +
                    ": block1.shape: the engine '" + engine.name() + "' builds bodies of shape " +
-                   list + ", not \"" + shape + "\"");
+                   QuotedList(builds) + ", not \"" + shape + "\"");
 }
 
 }  // namespace rockbench

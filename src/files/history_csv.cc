@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <initializer_list>
 #include <optional>
 #include <sstream>
 #include <stdexcept>
@@ -90,28 +91,32 @@ void AppendConfiguration(std::string& out, const Configuration& c) {
 
 }  // namespace
 
-std::string HistoryCsvHeader(int blocks, bool slip_and_lift) {
-  std::string out = "t";
-  for (const char* q : {",theta", ",omega"}) {
-    for (int k = 1; k <= blocks; ++k) out += q + std::to_string(k);
-  }
-  out += ",mode";
-  if (slip_and_lift) {
-    for (const char* q : {",u", ",z"}) {
-      for (int k = 1; k <= blocks; ++k) out += q + std::to_string(k);
+namespace {
+
+// Every body's column of each quantity `stems`, quantity by quantity: ",theta1,theta2".
+void AppendBodyColumns(std::initializer_list<std::string_view> stems, int blocks,
+                       std::string* out) {
+  for (std::string_view stem : stems) {
+    for (int k = 1; k <= blocks; ++k) {
+      *out += ',';
+      *out += BodyColumn(stem, k);
     }
   }
+}
+
+}  // namespace
+
+std::string HistoryCsvHeader(int blocks, bool slip_and_lift) {
+  std::string out = "t";
+  AppendBodyColumns({"theta", "omega"}, blocks, &out);
+  out += ",mode";
+  if (slip_and_lift) AppendBodyColumns({"u", "z"}, blocks, &out);
   return out;
 }
 
 std::string KindHistoryCsvHeader(const BodyKind& kind, int blocks) {
   std::string out = "t";
-  for (const StateQuantity& q : kind.state) {
-    for (int k = 1; k <= blocks; ++k) {
-      out += ',';
-      out += BodyColumn(q.stem, k);
-    }
-  }
+  for (const StateQuantity& q : kind.state) AppendBodyColumns({q.stem}, blocks, &out);
   return out + ",mode";
 }
 

@@ -75,9 +75,19 @@ struct History {
   std::string shape = "block";
 };
 
-/// Body `body`'s (1-based) value of quantity `stem` in `sample` of `history`: theta, omega, u and
-/// z of a planar block, or a quantity of the history's body kind. Throws std::invalid_argument
-/// for a quantity the kind does not have.
-double StateValue(const History& history, const Sample& sample, std::string_view stem, int body);
+/// A quantity of a history's bodies (theta, omega, u and z of a planar block, or a quantity of
+/// the history's body kind), its kind looked up once: reading a sample is then an index.
+class StateQuantityReader {
+ public:
+  /// Throws std::invalid_argument when the kind of `history`'s bodies has no quantity `stem`.
+  StateQuantityReader(const History& history, std::string_view stem);
+  /// Body `body`'s (1-based) value in `sample`.
+  double operator()(const Sample& sample, int body) const;
+
+ private:
+  enum class Field { kTheta, kOmega, kSlip, kLift, kState };
+  Field field_ = Field::kTheta;
+  size_t state_index_ = 0;  // the kind's quantity, for kState
+};
 
 }  // namespace rockbench

@@ -1,5 +1,3 @@
-#include "scene/scene.h"
-
 #include <toml++/toml.h>
 
 #include <algorithm>
@@ -15,8 +13,9 @@
 
 #include "scene/body_kind.h"
 #include "scene/limits.h"
-
+#include "scene/scene.h"
 #include "scene/scene_rules.h"
+#include "util/format.h"
 
 namespace rockbench {
 namespace {
@@ -444,13 +443,8 @@ class Reader {
     BlockDef b;
     if (auto shape = String(t, prefix, "shape", "a body kind's name")) {
       if (FindBodyKind(*shape) == nullptr) {
-        std::string known;
-        for (const std::string& k : BodyShapes()) {
-          if (!known.empty()) known += ", ";
-          known += Quote(k);
-        }
         Fail(Join(prefix, "shape"), t.get("shape"),
-             "expected a body kind (" + known + "), got \"" + *shape + "\"");
+             "expected a body kind (" + QuotedList(BodyShapes()) + "), got " + Quote(*shape));
       }
       b.shape = *shape;
     }

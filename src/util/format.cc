@@ -17,4 +17,15 @@ double RoundTime_s(double t_s) {
   return std::strtod(Format("%.9f", t_s).c_str(), nullptr);
 }
 
+std::string QuotedList(const std::vector<std::string>& names) {
+  std::string out;
+  for (const std::string& name : names) {
+    if (!out.empty()) out += ", ";
+    out += '"';
+    out += name;
+    out += '"';
+  }
+  return out;
+}
+
 }  // namespace rockbench
