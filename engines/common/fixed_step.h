@@ -1,8 +1,8 @@
 #pragma once
 /// The run loop every fixed-step engine shares: apply the base motion for step n, step, let the
-/// monitor read the state, stop when it says so. A World has ApplyDrive(n), Step() and Read(n)
-/// (see engines/bullet/rocking_world.h).
+/// monitor read the state, stop when it says so. What it needs of a world is FixedStepWorld.
 #include <chrono>
+#include <concepts>
 #include <cstdint>
 #include <memory>
 #include <stdexcept>
@@ -14,9 +14,25 @@
 
 namespace rockbench {
 
+/// What the run loop needs of an engine's world, the same for every fixed-step engine (each
+/// world's header says only what its engine does in them):
+/// - ApplyDrive(n): sets the base motion for step n, from t_n to t_{n+1};
+/// - Step(): takes that one step;
+/// - Read(n): the state after n steps (Read(0): the initial state), whose time is n dt;
+/// - Settings(): the settings in use, summary.json's "settings";
+/// - Diagnostics(), where the world keeps them: what the engine did of note, summary.json's
+///   "diagnostics".
+template <typename World>
+concept FixedStepWorld = requires(World& world, const World& read_only, std::int64_t n) {
+  world.ApplyDrive(n);
+  world.Step();
+  { read_only.Read(n) } -> std::same_as<StepReadout>;
+  { read_only.Settings() } -> std::convertible_to<nlohmann::json>;
+};
+
 /// Runs `world` for input.steps steps (or until the monitor stops it) and returns the history,
 /// the outcome and the monitor's summary with the wall time and the real-time factor.
-template <typename World>
+template <FixedStepWorld World>
 EngineResult RunFixedStepWorld(const EngineInput& input, World& world,
                                const MonitorConfig& monitor_config = {}) {
   const auto start = std::chrono::steady_clock::now();
@@ -43,7 +59,7 @@ EngineResult RunFixedStepWorld(const EngineInput& input, World& world,
 /// RunFixedStepWorld, with summary.json's parts every engine writes: "engine", "settings"
 /// (World::Settings()), "diagnostics" (World::Diagnostics(), for a world that keeps them) and,
 /// for the kinematic drive, "kinematic".
-template <typename World>
+template <FixedStepWorld World>
 EngineResult RunEngineWorld(const std::string& engine, const EngineInput& input, World& world) {
   EngineResult out = RunFixedStepWorld(input, world);
   out.summary["engine"] = engine;
@@ -57,7 +73,7 @@ EngineResult RunEngineWorld(const std::string& engine, const EngineInput& input,
 
 /// Builds World(input, settings) and runs it with RunEngineWorld. A setting the world cannot
 /// take (std::invalid_argument) is a SceneError naming the scene file.
-template <typename World, typename Settings>
+template <FixedStepWorld World, typename Settings>
 EngineResult SimulateWorld(const std::string& engine, const Scene& scene, const EngineInput& input,
                            const Settings& settings) {
   std::unique_ptr<World> world;
