@@ -120,7 +120,49 @@ MotionComponent MotionComponent::FromSynthetic(const MotionDef& def) {
   return c;
 }
 
+MotionComponent MotionComponent::FromRecord(const MotionDef& def, RecordData rec, AccelUnits units,
+                                            std::string source) {
+  // Every sample within the physical limit, after units and scale (scene/limits.h): a file's
+  // named by its file, line and number, samples' by their key and index.
+  for (size_t i = 0; i < rec.values.size(); ++i) {
+    const std::string problem = SampleAccelProblem(def, units, rec.values[i]);
+    if (problem.empty()) continue;
+    if (def.from_samples()) {
+      throw SceneError(def.key + ".samples[" + std::to_string(i) + "]" + problem);
+    }
+    std::string line;
+    if (i < rec.lines.size()) line.append(":").append(std::to_string(rec.lines[i]));
+    throw SceneError(def.file.string() + line + ": sample " + std::to_string(i + 1) + problem);
+  }
+  const double factor = AccelUnitsToMps2(units) * def.scale;
+  for (double& v : rec.values) v *= factor;
+  for (double& r : rec.resolution) r *= std::abs(factor);
+  MotionComponent c = FromSamples(std::move(rec.values), rec.dt_s, rec.t0_s + def.start_s,
+                                  std::move(source), std::move(rec.resolution));
+  c.info_.format = rec.format;
+  return c;
+}
+
 MotionComponent MotionComponent::FromDef(const MotionDef& def) {
+  if (def.kind == MotionKind::kFile && !def.samples.empty()) {
+    if (!def.file.empty()) {
+      throw SceneError(def.key +
+                       ": give one of file, kind or samples, not several (file and "
+                       "samples)");
+    }
+    if (!def.units_given) {
+      throw SceneError(def.key +
+                       ".units: samples must state their units: \"g\", \"m/s2\" or "
+                       "\"cm/s2\"");
+    }
+    RecordData rec = SampledRecord(def.samples, def.dt_s, def.key);
+    const std::string source = "samples (" + std::to_string(def.samples.size()) + " values)";
+    return FromRecord(def, std::move(rec), def.units, source);
+  }
+  if (def.kind != MotionKind::kFile && !def.samples.empty()) {
+    throw SceneError(def.key + ": give one of file, kind or samples, not several (kind = \"" +
+                     std::string(MotionKindName(def.kind)) + "\" and samples)");
+  }
   if (def.kind == MotionKind::kFile) {
     const bool at2 = IsAt2File(def.file);
     RecordData rec = at2 ? ReadAt2(def.file) : ReadPlain(def.file, def.dt_s);
@@ -150,34 +192,8 @@ MotionComponent MotionComponent::FromDef(const MotionDef& def) {
                        ".units: a plain record file must state its units: \"g\", \"m/s2\" or "
                        "\"cm/s2\"");
     }
-    const double factor = AccelUnitsToMps2(units) * def.scale;
-    // Every sample within the physical limit, after units and scale (scene/limits.h).
-    const double max_mps2 = limits::kMaxAccel_g * kStandardGravity_mps2;
-    for (size_t i = 0; i < rec.values.size(); ++i) {
-      const double a = rec.values[i] * factor;
-      if (std::abs(a) <= max_mps2) continue;
-      std::string line;
-      if (i < rec.lines.size()) line.append(":").append(std::to_string(rec.lines[i]));
-      const std::string scaled =
-          def.scale != 1.0 ? " times " + def.key + ".scale = " + ShortestText(def.scale) : "";
-      char in_g[32];
-      std::snprintf(in_g, sizeof in_g, "%.6g", a / kStandardGravity_mps2);
-      const bool same = def.scale == 1.0 && units == AccelUnits::kG;
-      throw SceneError(def.file.string() + line + ": sample " + std::to_string(i + 1) + " = " +
-                       ShortestText(rec.values[i]) + " " + std::string(AccelUnitsName(units)) +
-                       scaled + (same ? "" : " is " + std::string(in_g) + " g") +
-                       "; expected an acceleration with magnitude at most " +
-                       ShortestText(limits::kMaxAccel_g) +
-                       " g (far above any recorded ground motion, about 4 g; docs/limits.md)");
-    }
-    for (double& v : rec.values) v *= factor;
-    for (double& r : rec.resolution) r *= std::abs(factor);
-    const std::string source =
-        def.file_as_written.empty() ? def.file.string() : def.file_as_written;
-    MotionComponent c = FromSamples(std::move(rec.values), rec.dt_s, rec.t0_s + def.start_s, source,
-                                    std::move(rec.resolution));
-    c.info_.format = rec.format;
-    return c;
+    std::string source = def.file_as_written.empty() ? def.file.string() : def.file_as_written;
+    return FromRecord(def, std::move(rec), units, std::move(source));
   }
   if (def.kind == MotionKind::kKanaiTajimi) return FromSynthetic(def);
   MotionComponent c;

@@ -11,6 +11,8 @@
 
 namespace rockbench {
 
+struct RecordData;
+
 /// What was read: reported in summary.json as base.horizontal / base.vertical.
 struct MotionInfo {
   std::string source;       ///< file path as written in the scene, or "harmonic", ...
@@ -105,6 +107,12 @@ class MotionComponent {
   double window_s() const { return duration_s_; }
 
  private:
+  /// A record read (a file's, or def.samples as SampledRecord makes them) in `units`: checked
+  /// against the acceleration limit, times the units and def.scale, first sample at its t0 plus
+  /// def.start_s; info().format the record's.
+  static MotionComponent FromRecord(const MotionDef& def, RecordData rec, AccelUnits units,
+                                    std::string source);
+
   MotionKind kind_ = MotionKind::kFile;
   std::vector<double> samples_;     // m/s^2
   std::vector<double> resolution_;  // m/s^2, empty or one per sample
@@ -146,7 +154,7 @@ struct RecordData {
   std::vector<int> lines;          ///< the file line of each value
   double dt_s = 0.0;
   double t0_s = 0.0;   ///< time of the first sample in the file (two-column files)
-  std::string format;  ///< "AT2", "plain-2col", "plain-1col"
+  std::string format;  ///< "AT2", "plain-2col", "plain-1col" or "samples" (SampledRecord)
   /// AT2: the acceleration units its header declares ("... IN UNITS OF G", "... CM/S/S", ...);
   /// nullopt when no header line declares units.
   std::optional<AccelUnits> header_units;
@@ -163,6 +171,13 @@ RecordData ReadAt2(const std::filesystem::path& path);
 /// Reads a plain file: two columns (t, a) or one column (a, dt given by dt_s > 0), with optional
 /// non-numeric header lines. Throws SceneError.
 RecordData ReadPlain(const std::filesystem::path& path, double dt_s);
+
+/// A record given by its values (MotionDef::samples, in their units) at sample interval dt_s:
+/// what ParsePlain reads from a one-column file holding each value's shortest text
+/// (ShortestText), the same values and the printed resolution of those texts; format "samples".
+/// Throws SceneError naming `key` (".samples", ".dt") for fewer than 2 values, a non-finite one,
+/// an interval outside 1e-6 to 1 s or a record longer than a day.
+RecordData SampledRecord(const std::vector<double>& values, double dt_s, const std::string& key);
 
 /// ReadAt2 and ReadPlain on a file's text already in memory; `path` names it in messages.
 RecordData ParseAt2(const std::string& text, const std::filesystem::path& path);

@@ -565,4 +565,40 @@ RecordData ParsePlain(const std::string& text, const std::filesystem::path& path
   return TimeColumnRecord(std::move(rec), times, line_of, path, dt_s);
 }
 
+RecordData SampledRecord(const std::vector<double>& values, double dt_s, const std::string& key) {
+  if (values.size() < 2) {
+    throw SceneError(key +
+                     ".samples: expected at least 2 samples (a record lasts from its first "
+                     "sample to its last), got " +
+                     std::to_string(values.size()));
+  }
+  if (!(dt_s > 0.0) || !std::isfinite(dt_s)) {
+    throw SceneError(key + ".dt: samples need their sample interval: a positive number (s), got " +
+                     ShortestText(dt_s));
+  }
+  if (const std::string problem = SampleIntervalProblem(dt_s); !problem.empty()) {
+    throw SceneError(key + ".dt: dt = " + ShortestText(dt_s) + " s: " + problem);
+  }
+  if (static_cast<double>(values.size() - 1) * dt_s > limits::kMaxDuration_s) {
+    throw SceneError(key + ".samples: " + std::to_string(values.size()) +
+                     " samples at dt = " + ShortestText(dt_s) + " s last more than a day (" +
+                     ShortestText(limits::kMaxDuration_s) + " s; docs/limits.md)");
+  }
+  RecordData rec;
+  rec.format = "samples";
+  rec.dt_s = dt_s;
+  rec.values.reserve(values.size());
+  rec.resolution.reserve(values.size());
+  for (size_t i = 0; i < values.size(); ++i) {
+    if (!std::isfinite(values[i])) {
+      throw SceneError(key + ".samples[" + std::to_string(i) + "]: expected a finite number, got " +
+                       ShortestText(values[i]));
+    }
+    // The resolution a one-column file of the shortest texts has: the same reading of a token.
+    rec.values.push_back(values[i]);
+    rec.resolution.push_back(PrintedResolution(ShortestText(values[i])));
+  }
+  return rec;
+}
+
 }  // namespace rockbench

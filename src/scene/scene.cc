@@ -118,6 +118,18 @@ std::string ShortestText(double v) {
   return std::string(buf.data(), res.ptr);
 }
 
+std::string SampleAccelProblem(const MotionDef& def, AccelUnits units, double value) {
+  const double a_mps2 = value * (AccelUnitsToMps2(units) * def.scale);
+  if (std::abs(a_mps2) <= limits::kMaxAccel_g * kStandardGravity_mps2) return "";
+  const std::string scaled =
+      def.scale != 1.0 ? " times " + def.key + ".scale = " + ShortestText(def.scale) : "";
+  const bool same = def.scale == 1.0 && units == AccelUnits::kG;
+  return " = " + ShortestText(value) + " " + std::string(AccelUnitsName(units)) + scaled +
+         (same ? "" : " is " + GText(a_mps2 / kStandardGravity_mps2) + " g") +
+         "; expected an acceleration with magnitude at most " + ShortestText(limits::kMaxAccel_g) +
+         " g (far above any recorded ground motion, about 4 g; docs/limits.md)";
+}
+
 namespace {
 
 // The checks of ValidateScene, one group of keys a method, in the order a reader meets them;
@@ -242,6 +254,14 @@ class Validator {
     const std::string p = d.key.empty() ? std::string("base") : d.key;
     check(p + ".scale", d.scale, Rule::kFinite, "");
     limit(p + ".start_s", d.start_s, kDurationLimit, Rule::kNonNegative, "s");
+    if (d.kind != MotionKind::kFile && !d.samples.empty()) {
+      fail(p, "give one of file, kind or samples, not several (kind = \"" +
+                  std::string(MotionKindName(d.kind)) + "\" and samples)");
+    }
+    if (d.kind == MotionKind::kFile && !d.samples.empty()) {
+      Samples(d, p);
+      return;
+    }
     if (d.kind == MotionKind::kFile) {
       if (d.file.empty()) fail(p + ".file", "expected a file path");
       if (const std::string problem = InputFileProblem(d.file, "record file"); !problem.empty()) {
@@ -277,6 +297,38 @@ class Validator {
                d.duration_s != std::numeric_limits<double>::infinity()) {
       // A harmonic lasts duration_s, or forever (+inf, the default).
       limit(p + ".duration_s", d.duration_s, kDurationLimit, Rule::kPositive, "s");
+    }
+  }
+
+  // A record given by its samples: no file, at least two finite samples within the acceleration
+  // limit, their units and interval, at most a day long.
+  void Samples(const MotionDef& d, const std::string& p) const {
+    if (!d.file.empty())
+      fail(p, "give one of file, kind or samples, not several (file and samples)");
+    const size_t n = d.samples.size();
+    if (n < 2) {
+      fail(p + ".samples",
+           "expected at least 2 samples (a record lasts from its first sample to "
+           "its last), got " +
+               std::to_string(n));
+    }
+    if (!d.units_given) {
+      fail(p + ".units", "missing; samples must state their units: " + ChoiceList(kUnits));
+    }
+    if (d.dt_s == 0.0) fail(p + ".dt", "missing; samples need their sample interval dt (s)");
+    limit(p + ".dt", d.dt_s, kSampleIntervalLimit, Rule::kPositive, "s");
+    for (size_t i = 0; i < n; ++i) {
+      const std::string key = p + ".samples[" + std::to_string(i) + "]";
+      check(key, d.samples[i], Rule::kFinite, "");
+      if (const std::string problem = SampleAccelProblem(d, d.units, d.samples[i]);
+          !problem.empty()) {
+        throw SceneError(file_ + ": " + key + problem);
+      }
+    }
+    if (static_cast<double>(n - 1) * d.dt_s > limits::kMaxDuration_s) {
+      fail(p + ".samples", std::to_string(n) + " samples at dt = " + ShortestText(d.dt_s) +
+                               " s last more than a day (" + ShortestText(limits::kMaxDuration_s) +
+                               " s; docs/limits.md)");
     }
   }
 

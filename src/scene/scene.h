@@ -58,17 +58,22 @@ enum class MotionKind {
   kKanaiTajimi,  ///< synthetic: filtered white noise with an envelope (synthetic_motion.h)
 };
 
-/// One component of base motion: a record file or an analytic kind. Acceleration is positive to
-/// the right (+x) for horizontal and upwards (+y) for vertical.
+/// One component of base motion: a record (a file, or its samples given in the scene) or an
+/// analytic kind. Acceleration is positive to the right (+x) for horizontal and upwards (+y) for
+/// vertical.
 struct MotionDef {
   std::string key;  ///< "base.horizontal" or "base.vertical" (for messages)
+  /// kFile: a sampled record, read from `file` or, when `file` is empty, given by `samples`.
   MotionKind kind = MotionKind::kFile;
   std::filesystem::path file;   ///< resolved path (relative paths are relative to the scene)
   std::string file_as_written;  ///< the path as the scene wrote it
+  /// `samples = [...]`: the record's values in `units`, one every dt_s from start_s (kind kFile,
+  /// `file` empty); the same record as a one-column file of their shortest texts (ShortestText).
+  std::vector<double> samples;
   AccelUnits units = AccelUnits::kG;
-  bool units_given = false;   ///< false: AT2 -> g; plain files need units
+  bool units_given = false;   ///< false: AT2 -> g; plain files and samples need units
   double scale = 1.0;         ///< multiplies the acceleration
-  double dt_s = 0.0;          ///< sample interval of a one-column file (0: not given)
+  double dt_s = 0.0;          ///< sample interval of a one-column file or samples (0: not given)
   double amplitude_g = 0.0;   ///< analytic kinds: amplitude A, in g
   double frequency_hz = 0.0;  ///< analytic kinds: frequency f
   double duration_s = std::numeric_limits<double>::infinity();  ///< harmonic/rectangular length
@@ -80,7 +85,17 @@ struct MotionDef {
 
   /// The synthetic process to generate: `synthetic` with its target peak amplitude_g, in m/s^2.
   SyntheticMotionDef SyntheticProcess() const;
+  /// Whether the record is given by `samples` (kind kFile, no file).
+  bool from_samples() const {
+    return kind == MotionKind::kFile && file.empty() && !samples.empty();
+  }
 };
+
+/// Why a record's sample `value` (in `units`, times def.scale) is beyond the physical
+/// acceleration limit (limits::kMaxAccel_g), or "" within it: " = VALUE UNITS[ times
+/// KEY.scale = S][ is A g]; expected an acceleration with magnitude at most 100 g (...)", to
+/// follow the sample's name ("FILE:LINE: sample 4", "base.horizontal.samples[3]").
+std::string SampleAccelProblem(const MotionDef& def, AccelUnits units, double value);
 
 struct RunConfig {
   double duration_s = 10.0;         ///< simulated time, s

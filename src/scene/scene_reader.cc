@@ -55,6 +55,7 @@ const std::map<std::string, KeyList, std::less<>>& Schema() {
                                  {"shape", false}};
   static const KeyList kMotion = {{"file", false},
                                   {"kind", false},
+                                  {"samples", false},
                                   {"units", false},
                                   {"scale", false},
                                   {"dt", false},
@@ -531,6 +532,62 @@ class Reader {
     if (!problem.empty()) Fail(prefix, &t, problem);
   }
 
+  // samples = [...]: a record given by its values, with its units and dt (kind kFile, no file);
+  // each value a finite number within the acceleration limit after units and scale.
+  void ReadSamples(const toml::table& t, const std::string& prefix, const toml::node& node,
+                   MotionDef* m) const {
+    m->kind = MotionKind::kFile;
+    const std::string key = prefix + ".samples";
+    const toml::array* values = node.as_array();
+    if (values == nullptr) {
+      Fail(key, &node,
+           "expected an array of numbers (the acceleration in units, one every dt), got " +
+               Describe(node));
+    }
+    for (const char* name : {"amplitude_g", "frequency_hz", "duration_s"}) {
+      Forbid(t, prefix, name, "only for analytic kinds (kind = ...), not for samples");
+    }
+    for (const char* name : kSyntheticOnlyKeys) {
+      Forbid(t, prefix, name, "only for kind = \"kanai_tajimi\", not for samples");
+    }
+    if (auto u = Enum(t, prefix, "units", kUnits)) {
+      m->units = *u;
+      m->units_given = true;
+    } else {
+      Fail(prefix + ".units", &t, "missing; samples must state their units: " + ChoiceList(kUnits));
+    }
+    if (t.get("dt") == nullptr) {
+      Fail(prefix + ".dt", &t, "missing; samples need their sample interval: dt = ... (s)");
+    }
+    m->dt_s = *Number(t, prefix, "dt", Rule::kPositive, "s", &kSampleIntervalLimit);
+    m->samples.reserve(values->size());
+    for (size_t i = 0; i < values->size(); ++i) {
+      const toml::node& v = *values->get(i);
+      // An override's value has no line of the scene: Loc names the override by its key.
+      const auto fail = [&](const std::string& msg) {
+        throw SceneError(Loc(key, &v) + ": " + key + "[" + std::to_string(i) + "]" + msg);
+      };
+      double a = 0.0;
+      if (auto f = v.as_floating_point()) {
+        a = f->get();
+      } else if (auto n = v.as_integer()) {
+        a = static_cast<double>(n->get());
+      } else {
+        fail(": expected a finite number, got " + Describe(v));
+      }
+      if (!std::isfinite(a)) fail(": expected a finite number, got " + ShortestText(a));
+      if (const std::string problem = SampleAccelProblem(*m, m->units, a); !problem.empty()) {
+        fail(problem);
+      }
+      m->samples.push_back(a);
+    }
+    if (m->samples.size() < 2) {
+      Fail(key, &node,
+           "expected at least 2 samples (a record lasts from its first sample to its last), got " +
+               std::to_string(m->samples.size()));
+    }
+  }
+
   MotionDef ReadMotion(const toml::table& t, const std::string& prefix,
                        const std::filesystem::path& scene_path) const {
     MotionDef m;
@@ -538,15 +595,25 @@ class Reader {
     auto file = String(t, prefix, "file", "a file path");
     const std::string kinds = ChoiceList(kKinds);
     const toml::node* kind_node = t.get("kind");
+    const toml::node* samples_node = t.get("samples");
     if (file && kind_node != nullptr) {
       Fail(prefix, &t, "give either file or kind, not both");
     }
-    if (!file && kind_node == nullptr) {
-      Fail(prefix, &t, "missing file = \"...\" or kind = " + kinds);
+    if (samples_node != nullptr && (file || kind_node != nullptr)) {
+      Fail(prefix, &t,
+           std::string("give one of file, kind or samples, not several (") +
+               (file ? "file" : "kind") + " and samples)");
+    }
+    if (!file && kind_node == nullptr && samples_node == nullptr) {
+      Fail(prefix, &t, "missing file = \"...\", samples = [...] or kind = " + kinds);
     }
     m.scale = Number(t, prefix, "scale", Rule::kFinite, "").value_or(1.0);
     m.start_s =
         Number(t, prefix, "start_s", Rule::kNonNegative, "s", &kDurationLimit).value_or(0.0);
+    if (samples_node != nullptr) {
+      ReadSamples(t, prefix, *samples_node, &m);
+      return m;
+    }
     if (file) {
       m.kind = MotionKind::kFile;
       if (file->empty()) Fail(prefix + ".file", t.get("file"), "expected a file path, got \"\"");
