@@ -54,6 +54,23 @@ TEST_F(SamplesSceneTest, ReadsNumbersAndIntegers) {
   EXPECT_EQ(g.horizontal()->t0_s(), 0.5);
 }
 
+TEST_F(SamplesSceneTest, TheExampleOfScenesMd) {
+  // docs/scenes.md's triangle: 0, 0.3, 0, -0.3, 0 g every 0.125 s from 0.5 s, linear between.
+  const Scene s = ParseScene(kBlock +
+                                 "samples = [0.0, 0.3, 0.0, -0.3, 0.0]\nunits = \"g\"\ndt = "
+                                 "0.125\nstart_s = 0.5\n",
+                             "scene.toml");
+  const GroundMotion g = GroundMotion::FromScene(s);
+  const MotionComponent& h = *g.horizontal();
+  EXPECT_EQ(h.end_s(), 1.0);
+  EXPECT_EQ(h.info().peak_g, 0.3 * kStandardGravity_mps2 / kStandardGravity_mps2);
+  EXPECT_EQ(h.info().peak_t_s, 0.625);
+  // Half way up the first ramp: 0.15 g (1e-15 m/s^2: the interpolation's rounding).
+  EXPECT_NEAR(h.accel_mps2(0.5625), 0.15 * kStandardGravity_mps2, 1e-15);
+  EXPECT_EQ(h.accel_mps2(0.5 - 1e-9), 0.0);
+  EXPECT_EQ(h.accel_mps2(1.0 + 1e-9), 0.0);
+}
+
 TEST_F(SamplesSceneTest, EachSampleIsAFiniteNumberNamedByItsIndexAndLine) {
   // Lines 6-13: units, dt and the array, one sample a line.
   const std::string head = "units = \"g\"\ndt = 0.01\nsamples = [\n  0.0,\n  0.1,\n  -0.2,\n";
