@@ -57,3 +57,25 @@ if(ROCKBENCH_WITH_OSMESA)
   endif()
   set(ROCKBENCH_HAVE_OSMESA ON)
 endif()
+
+# The Python module (python/, docs/python.md): pybind11 from Debian (pybind11-dev) for the
+# system's Python 3 (/usr/bin/python3 where it exists, whatever python3 comes first on PATH:
+# Debian's numpy, pandas and matplotlib are installed for it). Missing: left out, and said so.
+set(ROCKBENCH_HAVE_PYTHON OFF)
+if(ROCKBENCH_BUILD_PYTHON)
+  if(NOT DEFINED Python3_EXECUTABLE AND EXISTS /usr/bin/python3)
+    set(Python3_EXECUTABLE /usr/bin/python3 CACHE FILEPATH "The Python of the rockbench module")
+  endif()
+  find_package(Python3 3.9 QUIET COMPONENTS Interpreter Development.Module)
+  set(PYBIND11_FINDPYTHON ON)
+  find_package(pybind11 2.6 QUIET CONFIG)
+  if(NOT Python3_FOUND)
+    message(STATUS "rockbench: Python module left out (python3-dev not found)")
+  elseif(NOT pybind11_FOUND)
+    message(STATUS "rockbench: Python module left out (pybind11-dev not found)")
+  else()
+    set(ROCKBENCH_HAVE_PYTHON ON)
+    message(STATUS "rockbench: Python module: built for ${Python3_EXECUTABLE} "
+                   "(Python ${Python3_VERSION}, pybind11 ${pybind11_VERSION})")
+  endif()
+endif()

@@ -11,6 +11,7 @@
 #include "engine/engine.h"
 #include "engines/common/engine_input.h"
 #include "engines/common/monitor.h"
+#include "util/stop_request.h"
 
 namespace rockbench {
 
@@ -39,6 +40,8 @@ EngineResult RunFixedStepWorld(const EngineInput& input, World& world,
   Monitor monitor(input, monitor_config);
   monitor.Start(world.Read(0));
   for (std::int64_t n = 0; n < input.steps; ++n) {
+    // An embedding program's stop request (util/stop_request.h), every 1024 steps.
+    if ((n & 1023) == 0) ThrowIfStopRequested();
     world.ApplyDrive(n);
     world.Step();
     if (!monitor.Step(n + 1, world.Read(n + 1))) break;

@@ -44,10 +44,6 @@ struct EnsembleCliOptions {
   long long crash_member = -1, hang_member = -1;
 };
 
-double Now_s() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
-
 // The worker: runs on standard input, rows on standard output.
 void RunWorker(const StudyDef& study, const EnsembleCliOptions& opt) {
   std::optional<std::filesystem::path> keep;
@@ -91,29 +87,6 @@ void List(const StudyDef& study) {
                 a.values.front().text.c_str(), a.values.back().text.c_str(),
                 a.derived ? ", derived" : "");
   }
-}
-
-void WriteStudyJson(const StudyDef& study, const std::filesystem::path& dir, int ranks, int jobs,
-                    double wall_s, double serial_s, int64_t resumed_rows) {
-  nlohmann::json j = {{"study", study.path.string()},
-                      {"title", study.title},
-                      {"scene", study.scene_path.string()},
-                      {"members", study.member_count()},
-                      {"engines", study.engines},
-                      {"ranks", ranks},
-                      {"jobs_per_rank", jobs},
-                      {"wall_s", wall_s},
-                      {"serial_s", serial_s},
-                      {"rows_resumed", resumed_rows}};
-  // N >= 3 blocks: how many (members.csv has their columns); one and two blocks: no key.
-  if (study.blocks >= 3) j["blocks"] = study.blocks;
-  for (const StudyAxis& a : study.axes) {
-    nlohmann::json values = nlohmann::json::array();
-    for (const AxisValue& v : a.values) values.push_back(v.text);
-    j["axes"].push_back({{"key", a.key}, {"values", values}, {"derived", a.derived}});
-  }
-  // Written to a registered temporary name and renamed (util/wall_limit.h).
-  WriteFileAtomic(dir / "study.json", j.dump(2) + "\n");
 }
 
 void RunStudy(const EnsembleCliOptions& opt, double start_s) {
@@ -163,6 +136,25 @@ void RunStudy(const EnsembleCliOptions& opt, double start_s) {
   if (opt.hang_member >= 0) {
     pool.extra_worker_args = {"--selftest-hang-member", std::to_string(opt.hang_member)};
   }
+  if (!session) {
+    LocalStudyOptions local;
+    local.out_dir = dir;
+    local.resume = opt.resume;
+    local.pool = pool;
+    local.note = [](const std::string& note) {
+      std::fprintf(stderr, "rockbench ensemble: note: %s\n", note.c_str());
+    };
+    ProgressLine line("ensemble");
+    local.progress = [&line](int64_t done, int64_t total) {
+      line.Update(static_cast<int>(done), static_cast<int>(total));
+    };
+    RunStudyHere(study, local, start_s);
+    std::fprintf(stderr, "ensemble: %lld members x %zu runs in %s\n",
+                 static_cast<long long>(study.member_count()), study.engines.size(),
+                 (dir / "members.csv").string().c_str());
+    return;
+  }
+  // Under MPI: rank 0 holds the journal, every rank runs a pool.
   if (!root) {
     session->Barrier();  // rank 0 has opened the journal (and created the folder)
     std::unique_ptr<StudyScheduler> s = MakeMpiRankScheduler(*session);
@@ -174,7 +166,6 @@ void RunStudy(const EnsembleCliOptions& opt, double start_s) {
   try {
     opened = std::make_unique<MembersJournal>(study, dir, opt.resume);
   } catch (const std::exception& e) {
-    if (!session) throw;
     std::fprintf(stderr, "rockbench ensemble: %s\n", e.what());
     session->Abort(kExitBadInput);  // the other ranks wait for rank 0
   }
@@ -184,25 +175,21 @@ void RunStudy(const EnsembleCliOptions& opt, double start_s) {
     std::fprintf(stderr, "rockbench ensemble: note: %s\n", note.c_str());
   }
   std::vector<StudyTask> tasks = PendingTasks(study, journal);
-  const double serial_start_s = Now_s() - start_s;
+  const double serial_start_s = StudyClock_s() - start_s;
   ProgressLine line("ensemble");
   auto progress = [&](int64_t done, int64_t total) {
     line.Update(static_cast<int>(done), static_cast<int>(total));
   };
-  std::unique_ptr<StudyScheduler> s;
-  if (session) {
-    session->Barrier();
-    s = MakeMpiRootScheduler(*session, std::move(tasks), journal, progress);
-  } else {
-    s = std::make_unique<LocalScheduler>(std::move(tasks), journal, progress);
-  }
+  session->Barrier();
+  std::unique_ptr<StudyScheduler> s =
+      MakeMpiRootScheduler(*session, std::move(tasks), journal, progress);
   RunWorkerPool(study, *s, pool);
-  const double merge_start_s = Now_s();
+  const double merge_start_s = StudyClock_s();
   journal.Finish();
-  const double merge_s = Now_s() - merge_start_s;
-  WriteStudyJson(study, dir, ranks, jobs, Now_s() - start_s, serial_start_s + merge_s,
+  const double merge_s = StudyClock_s() - merge_start_s;
+  WriteStudyJson(study, dir, ranks, jobs, StudyClock_s() - start_s, serial_start_s + merge_s,
                  journal.rows_at_open());
-  if (session) session->Barrier();
+  session->Barrier();
   std::fprintf(stderr, "ensemble: %lld members x %zu runs in %s\n",
                static_cast<long long>(study.member_count()), study.engines.size(),
                (dir / "members.csv").string().c_str());
@@ -227,7 +214,7 @@ void RegisterEnsemble(CLI::App& app) {
   cmd->add_option("--selftest-hang-member", opt->hang_member)->group("");
   AddLimitOptions(cmd, &opt->limits);
   cmd->callback([opt] {
-    const double start_s = Now_s();
+    const double start_s = StudyClock_s();
     try {
       RunStudy(*opt, start_s);
     } catch (const std::bad_alloc&) {

@@ -12,6 +12,7 @@
 #include "run/engine_registry.h"
 #include "run/engine_run.h"
 #include "run/resource_estimate.h"
+#include "run/summary.h"
 #include "scene/history.h"
 #include "scene/scene.h"
 
@@ -43,15 +44,12 @@ void Execute(const RunOptions& opt) {
   }
   const std::filesystem::path out(opt.out);
   std::filesystem::create_directories(out);
-  nlohmann::json summary;
-  summary["scene"] = {{"path", std::filesystem::absolute(opt.scene).lexically_normal().string()},
-                      {"overrides", opt.overrides},
-                      {"two_blocks", scene.block_count() == 2}};
-  summary["base"] = BaseMotionJson(motion);
   std::vector<std::string> failed;        // runs that ended non_finite
   std::vector<std::string> undetermined;  // runs whose model stopped deciding the motion
+  std::vector<EngineRun> runs;
   for (const std::string& name : opt.engines) {
-    const EngineRun run = RunEngine(name, scene, motion);
+    runs.push_back(RunEngine(name, scene, motion));
+    const EngineRun& run = runs.back();
     if (const std::string f = NonFiniteText(run); !f.empty()) failed.push_back(f);
     if (const auto u = run.summary.find("undetermined"); u != run.summary.end() && u->is_object()) {
       undetermined.push_back(
@@ -59,9 +57,11 @@ void Execute(const RunOptions& opt) {
           "; the history after it is one admissible outcome the rule chose");
     }
     WriteEngineFiles(run, out);
-    AddRunSummary(summary, run);
     std::printf("%s\n", run.one_line.c_str());
   }
+  std::vector<const EngineRun*> written;
+  for (const EngineRun& run : runs) written.push_back(&run);
+  const nlohmann::json summary = RunSummaryJson(opt.scene, opt.overrides, scene, motion, written);
   WriteFileAtomic(out / "summary.json", summary.dump(2) + "\n");
   std::printf("outputs in %s (summary.json", out.string().c_str());
   for (const std::string& name : opt.engines) std::printf(", %s/history.csv", name.c_str());

@@ -156,6 +156,15 @@ MotionComponent MotionComponent::FromDef(const MotionDef& def) {
                        "\"cm/s2\"");
     }
     RecordData rec = SampledRecord(def.samples, def.dt_s, def.key);
+    // A stated resolution replaces the one of the samples' shortest texts.
+    if (def.samples_resolution) {
+      if (!(*def.samples_resolution >= 0.0) || !std::isfinite(*def.samples_resolution)) {
+        throw SceneError(def.key +
+                         ".resolution: expected a number >= 0 (in the samples' units), got " +
+                         ShortestText(*def.samples_resolution));
+      }
+      rec.resolution.assign(rec.values.size(), *def.samples_resolution);
+    }
     const std::string source = "samples (" + std::to_string(def.samples.size()) + " values)";
     return FromRecord(def, std::move(rec), def.units, source);
   }

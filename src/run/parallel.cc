@@ -11,6 +11,8 @@
 #include <thread>
 #include <vector>
 
+#include "util/stop_request.h"
+
 namespace rockbench {
 namespace {
 
@@ -37,6 +39,8 @@ void ParallelFor(int n, int threads, const std::function<void(int)>& job,
       const int i = next.fetch_add(1);
       if (i >= n) return;
       try {
+        // No new job once a stop is requested (util/stop_request.h).
+        ThrowIfStopRequested();
         job(i);
       } catch (...) {
         std::lock_guard<std::mutex> lock(mutex);

@@ -8,7 +8,8 @@ namespace rockbench {
 
 /// Calls job(i) for i in [0, n) on `threads` threads (0: the hardware's). Each index runs once;
 /// results go wherever job(i) writes them (a slot per index keeps them in order, whatever the
-/// thread count). The first exception thrown by a job is rethrown after every thread stopped.
+/// thread count). The first exception thrown by a job is rethrown after every thread stopped;
+/// once a stop is requested (util/stop_request.h) no job starts, and StopRequested is thrown.
 void ParallelFor(int n, int threads, const std::function<void(int)>& job,
                  const std::function<void(int done, int total)>& progress = {});
 

@@ -137,4 +137,19 @@ RunOutcome ReferenceOutcome(const reference::Result& result) {
   return o;
 }
 
+nlohmann::json RunSummaryJson(const std::filesystem::path& scene_path,
+                              const std::vector<std::string>& overrides, const Scene& scene,
+                              const GroundMotion& motion,
+                              const std::vector<const EngineRun*>& runs) {
+  nlohmann::json summary;
+  const std::string path = scene_path.empty()
+                               ? std::string()
+                               : std::filesystem::absolute(scene_path).lexically_normal().string();
+  summary["scene"] = {
+      {"path", path}, {"overrides", overrides}, {"two_blocks", scene.block_count() == 2}};
+  summary["base"] = BaseMotionJson(motion);
+  for (const EngineRun* run : runs) AddRunSummary(summary, *run);
+  return summary;
+}
+
 }  // namespace rockbench

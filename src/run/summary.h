@@ -1,10 +1,14 @@
 #pragma once
 /// summary.json of a run: the base motion as read and the reference model's figures.
+#include <filesystem>
 #include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
 
 #include "engine/outcome.h"
 #include "motion/ground_motion.h"
 #include "reference/simulate.h"
+#include "run/engine_run.h"
 #include "scene/scene.h"
 
 namespace rockbench {
@@ -18,5 +22,13 @@ nlohmann::json ReferenceSummaryJson(const Scene& scene, const reference::Result&
 
 /// The model options used, as written in summary.json's "model" object.
 nlohmann::json ModelOptionsJson(const ModelConfig& model);
+
+/// summary.json of `rockbench run` (and of the Python module's run): the scene (its absolute
+/// path, "" for a scene given as text, and the overrides), the base motion as read, and each
+/// run's part where its engine says (AddRunSummary), in the order given.
+nlohmann::json RunSummaryJson(const std::filesystem::path& scene_path,
+                              const std::vector<std::string>& overrides, const Scene& scene,
+                              const GroundMotion& motion,
+                              const std::vector<const EngineRun*>& runs);
 
 }  // namespace rockbench

@@ -258,6 +258,9 @@ class Validator {
       fail(p, "give one of file, kind or samples, not several (kind = \"" +
                   std::string(MotionKindName(d.kind)) + "\" and samples)");
     }
+    if (d.samples_resolution && d.samples.empty()) {
+      fail(p + ".resolution", "only for samples = [...]");
+    }
     if (d.kind == MotionKind::kFile && !d.samples.empty()) {
       Samples(d, p);
       return;
@@ -316,6 +319,9 @@ class Validator {
       fail(p + ".units", "missing; samples must state their units: " + ChoiceList(kUnits));
     }
     if (d.dt_s == 0.0) fail(p + ".dt", "missing; samples need their sample interval dt (s)");
+    if (d.samples_resolution) {
+      check(p + ".resolution", *d.samples_resolution, Rule::kNonNegative, "in the samples' units");
+    }
     limit(p + ".dt", d.dt_s, kSampleIntervalLimit, Rule::kPositive, "s");
     for (size_t i = 0; i < n; ++i) {
       const std::string key = p + ".samples[" + std::to_string(i) + "]";

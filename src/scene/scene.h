@@ -70,6 +70,10 @@ struct MotionDef {
   /// `samples = [...]`: the record's values in `units`, one every dt_s from start_s (kind kFile,
   /// `file` empty); the same record as a one-column file of their shortest texts (ShortestText).
   std::vector<double> samples;
+  /// `resolution = R` with samples: every sample is known to +-R/2 (in `units`; 0: exact, as
+  /// computed samples are), which compare.sample_precision perturbs. Absent: one unit of the
+  /// last digit of each sample's shortest decimal text, as a one-column file of those texts.
+  std::optional<double> samples_resolution;
   AccelUnits units = AccelUnits::kG;
   bool units_given = false;   ///< false: AT2 -> g; plain files and samples need units
   double scale = 1.0;         ///< multiplies the acceleration

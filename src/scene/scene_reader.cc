@@ -56,6 +56,7 @@ const std::map<std::string, KeyList, std::less<>>& Schema() {
   static const KeyList kMotion = {{"file", false},
                                   {"kind", false},
                                   {"samples", false},
+                                  {"resolution", false},
                                   {"units", false},
                                   {"scale", false},
                                   {"dt", false},
@@ -560,6 +561,8 @@ class Reader {
       Fail(prefix + ".dt", &t, "missing; samples need their sample interval: dt = ... (s)");
     }
     m->dt_s = *Number(t, prefix, "dt", Rule::kPositive, "s", &kSampleIntervalLimit);
+    m->samples_resolution =
+        Number(t, prefix, "resolution", Rule::kNonNegative, "in the samples' units");
     m->samples.reserve(values->size());
     for (size_t i = 0; i < values->size(); ++i) {
       const toml::node& v = *values->get(i);
@@ -624,6 +627,8 @@ class Reader {
         Fail(prefix + ".file", t.get("file"), problem);
       }
       const std::string why = "only for analytic kinds (kind = ...), not for a record file";
+      Forbid(t, prefix, "resolution",
+             "only for samples = [...]: a file's samples are known to their printed digits");
       Forbid(t, prefix, "amplitude_g", why);
       Forbid(t, prefix, "frequency_hz", why);
       Forbid(t, prefix, "duration_s", why);
@@ -648,6 +653,8 @@ class Reader {
     m.kind = *Enum(t, prefix, "kind", kKinds);
     const std::string kind_name(MotionKindName(m.kind));
     Forbid(t, prefix, "units", "not used by kind = \"" + kind_name + "\" (amplitude_g is in g)");
+    Forbid(t, prefix, "resolution",
+           "only for samples = [...], not for kind = \"" + kind_name + "\"");
     if (m.kind == MotionKind::kKanaiTajimi) {
       ReadSynthetic(t, prefix, &m);
       return m;

@@ -20,6 +20,7 @@
 #include "run/engine_run.h"
 #include "scene/history.h"
 #include "scene/limits.h"
+#include "util/stop_request.h"
 #include "util/subprocess.h"
 #include "util/wall_limit.h"
 
@@ -107,6 +108,16 @@ class Pool {
   void Run() {
     bool exhausted = false;
     while (true) {
+      // An embedding program's stop request (util/stop_request.h): a busy worker gets SIGTERM,
+      // whose handler ends its engines and removes its temporary files; its run has no row.
+      if (StopWasRequested()) {
+        for (Worker& w : workers_) {
+          if (w.task && w.process.running()) w.process.Kill(SIGTERM);
+          if (w.process.started()) StopWorker(w, false);
+          w.task.reset();
+        }
+        throw StopRequested();
+      }
       scheduler_.Service();
       for (Worker& w : workers_) {
         if (exhausted || w.task) continue;
@@ -608,6 +619,50 @@ void LocalScheduler::Done(const MemberRow& row) {
   journal_.Append(row);
   ++done_;
   if (progress_) progress_(done_, static_cast<int64_t>(tasks_.size()));
+}
+
+void WriteStudyJson(const StudyDef& study, const std::filesystem::path& dir, int ranks, int jobs,
+                    double wall_s, double serial_s, int64_t resumed_rows) {
+  nlohmann::json j = {{"study", study.path.string()},
+                      {"title", study.title},
+                      {"scene", study.scene_path.string()},
+                      {"members", study.member_count()},
+                      {"engines", study.engines},
+                      {"ranks", ranks},
+                      {"jobs_per_rank", jobs},
+                      {"wall_s", wall_s},
+                      {"serial_s", serial_s},
+                      {"rows_resumed", resumed_rows}};
+  // N >= 3 blocks: how many (members.csv has their columns); one and two blocks: no key.
+  if (study.blocks >= 3) j["blocks"] = study.blocks;
+  for (const StudyAxis& a : study.axes) {
+    nlohmann::json values = nlohmann::json::array();
+    for (const AxisValue& v : a.values) values.push_back(v.text);
+    j["axes"].push_back({{"key", a.key}, {"values", values}, {"derived", a.derived}});
+  }
+  // Written to a registered temporary name and renamed (util/wall_limit.h).
+  WriteFileAtomic(dir / "study.json", j.dump(2) + "\n");
+}
+
+double StudyClock_s() {
+  return Now_s();
+}
+
+void RunStudyHere(const StudyDef& study, const LocalStudyOptions& options, double start_s) {
+  MembersJournal journal(study, options.out_dir, options.resume);
+  // What the resume let through (a blank line, a row cut short, a second row of a run).
+  if (options.note) {
+    for (const std::string& note : journal.notes()) options.note(note);
+  }
+  std::vector<StudyTask> tasks = PendingTasks(study, journal);
+  const double serial_start_s = StudyClock_s() - start_s;
+  LocalScheduler scheduler(std::move(tasks), journal, options.progress);
+  RunWorkerPool(study, scheduler, options.pool);
+  const double merge_start_s = StudyClock_s();
+  journal.Finish();
+  const double merge_s = StudyClock_s() - merge_start_s;
+  WriteStudyJson(study, options.out_dir, 1, options.pool.jobs, StudyClock_s() - start_s,
+                 serial_start_s + merge_s, journal.rows_at_open());
 }
 
 }  // namespace rockbench

@@ -130,4 +130,29 @@ class LocalScheduler : public StudyScheduler {
   std::function<void(int64_t, int64_t)> progress_;
 };
 
+/// Writes DIR/study.json (atomically): the study, its members, engines and axes, how it ran
+/// (ranks, jobs per rank), its wall time and serial part (s), and the rows a resume kept.
+void WriteStudyJson(const StudyDef& study, const std::filesystem::path& dir, int ranks, int jobs,
+                    double wall_s, double serial_s, int64_t resumed_rows);
+
+/// How RunStudyHere runs a study.
+struct LocalStudyOptions {
+  std::filesystem::path out_dir;  ///< members.csv, members.lock, members.study, study.json
+  bool resume = false;            ///< go on with out_dir/members.csv (MembersJournal)
+  WorkerPoolOptions pool;         ///< its jobs (>= 1), worker program, kept histories
+  /// Called with each note of the resume (MembersJournal::notes), and with runs done / total.
+  std::function<void(const std::string& note)> note;
+  std::function<void(int64_t done, int64_t total)> progress;
+};
+
+/// Runs a study on this machine, as `rockbench ensemble` does without MPI: opens the journal,
+/// runs the pending runs on the worker pool, rewrites members.csv in member order and writes
+/// study.json. `start_s` is the steady-clock time (s) the study's wall time counts from. A stop
+/// request (util/stop_request.h) ends the workers and throws StopRequested, leaving the
+/// journal's whole rows for a resume. Throws SceneError as MembersJournal and the pool do.
+void RunStudyHere(const StudyDef& study, const LocalStudyOptions& options, double start_s);
+
+/// The steady clock, s (the start of RunStudyHere's wall time).
+double StudyClock_s();
+
 }  // namespace rockbench

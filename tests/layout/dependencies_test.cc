@@ -107,6 +107,9 @@ const std::vector<FolderRule> kRules = {
     {"src/cli",
      {"cli", "report", "study", "sweep", "stress", "compare", "run", "statistics", "reference",
       "engines", "renders", "engine", "motion", "files", "scene", "util"}},
+    // The Python module's core: a front end as the CLI is, on the harness's folders.
+    {"python",
+     {"study", "compare", "run", "statistics", "engine", "motion", "files", "scene", "util"}},
 };
 
 // Whether `dir` (absolute) is a folder with a rule of its own.
@@ -138,7 +141,9 @@ TEST(Layout, EveryCodeFolderHasARule) {
   for (const auto& e : fs::directory_iterator(kRoot / "src")) {
     if (e.is_directory()) folders.push_back(e.path());
   }
-  for (const char* top : {"reference", "engines", "renders"}) folders.push_back(kRoot / top);
+  for (const char* top : {"reference", "engines", "renders", "python"}) {
+    folders.push_back(kRoot / top);
+  }
   for (const auto& e : fs::directory_iterator(kRoot / "reference")) {
     if (e.is_directory()) folders.push_back(e.path());
   }
@@ -159,7 +164,7 @@ TEST(Layout, EveryCodeFolderHasARule) {
 // data and not counted).
 TEST(Layout, NoFolderHoldsMoreThan25Files) {
   constexpr int kMaxFiles = 25;
-  for (const char* top : {"src", "reference", "engines", "renders", "tests", "bench"}) {
+  for (const char* top : {"src", "reference", "engines", "renders", "tests", "bench", "python"}) {
     std::vector<fs::path> dirs = {kRoot / top};
     for (const auto& e : fs::recursive_directory_iterator(kRoot / top)) {
       // A fuzzer's corpus is data, one input a file.

@@ -54,6 +54,27 @@ TEST_F(SamplesSceneTest, ReadsNumbersAndIntegers) {
   EXPECT_EQ(g.horizontal()->t0_s(), 0.5);
 }
 
+TEST_F(SamplesSceneTest, ResolutionOnlyForSamplesAndNotNegative) {
+  const std::string samples = "units = \"g\"\ndt = 0.01\nsamples = [0, 0.1]\n";
+  const Scene s = ParseScene(kBlock + samples + "resolution = 0\n", "scene.toml");
+  ASSERT_TRUE(s.horizontal->samples_resolution);
+  EXPECT_EQ(*s.horizontal->samples_resolution, 0.0);
+  EXPECT_FALSE(ParseScene(kBlock + samples, "scene.toml").horizontal->samples_resolution);
+  const std::string negative = ParseError(samples + "resolution = -0.001\n");
+  EXPECT_TRUE(Starts(negative, "scene.toml:9: base.horizontal.resolution: expected a number >= 0"))
+      << negative;
+  const std::string analytic =
+      ParseError("kind = \"harmonic\"\namplitude_g = 0.1\nfrequency_hz = 1\nresolution = 0\n");
+  EXPECT_NE(analytic.find("base.horizontal.resolution"), std::string::npos) << analytic;
+  EXPECT_NE(analytic.find("only for samples"), std::string::npos) << analytic;
+  // A scene built in code: ValidateScene refuses a resolution without samples.
+  Scene built = ParseScene(kBlock + "kind = \"harmonic\"\namplitude_g = 0.1\nfrequency_hz = 1\n",
+                           "scene.toml");
+  built.horizontal->samples_resolution = 0.0;
+  const std::string code = ErrorOf([&] { ValidateScene(built); });
+  EXPECT_NE(code.find("base.horizontal.resolution: only for samples"), std::string::npos) << code;
+}
+
 TEST_F(SamplesSceneTest, TheExampleOfScenesMd) {
   // docs/scenes.md's triangle: 0, 0.3, 0, -0.3, 0 g every 0.125 s from 0.5 s, linear between.
   const Scene s = ParseScene(kBlock +
