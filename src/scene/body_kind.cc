@@ -48,8 +48,8 @@ void RegisterBodyKind(const BodyKind& kind) {
     }
     for (size_t j = 0; j < i; ++j) {
       if (kind.state[i].stem == kind.state[j].stem) {
-        throw std::invalid_argument("body kind '" + kind.shape + "' names '" +
-                                    kind.state[i].stem + "' twice");
+        throw std::invalid_argument("body kind '" + kind.shape + "' names '" + kind.state[i].stem +
+                                    "' twice");
       }
     }
   }

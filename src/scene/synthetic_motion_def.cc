@@ -7,7 +7,9 @@
 namespace rockbench {
 namespace {
 
-std::string Num(double v) { return Format("%g", v); }
+std::string Num(double v) {
+  return Format("%g", v);
+}
 
 }  // namespace
 
