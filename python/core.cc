@@ -5,8 +5,10 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -60,18 +62,27 @@ PyScene ParseSceneText(const std::string& text, const std::string& path,
   return s;
 }
 
-// A run's result: its history's columns and files' text, its summary.json, its status.
-py::dict RunResultDict(const EngineRun& run, const nlohmann::json& summary) {
+// A run kept in C++: its history's columns and files are made when Python asks for them.
+struct RunRecord {
+  EngineRun run;
+};
+
+// A run's result: its record, its summary.json, its status and timings.
+py::dict RunResultDict(EngineRun run, const nlohmann::json& summary, double core_s) {
   py::dict out;
   out["engine"] = run.engine;
   out["status"] = StatusText(run.outcome.status);
-  out["history"] = HistoryColumns(run.history);
-  out["history_csv"] = HistoryToCsv(run.history);
-  out["events_csv"] = EventsToCsv(run.history);
   out["summary_json"] = summary.dump(2) + "\n";
   out["one_line"] = run.one_line;
   out["wall_s"] = run.wall_s;
+  out["core_s"] = core_s;
+  out["record"] = std::make_shared<RunRecord>(RunRecord{std::move(run)});
   return out;
+}
+
+// The steady clock, s.
+double Clock_s() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 
 // What `rockbench run` says on stderr of the base motion as read: padded components.
@@ -92,12 +103,15 @@ py::dict Run(const PyScene& s, const std::string& engine) {
   CheckEngineTables(s.scene);
   std::optional<GroundMotion> motion;
   std::optional<EngineRun> run;
+  double core_s = 0.0;
   RunInterruptibly([&] {
+    const double start_s = Clock_s();
     motion.emplace(GroundMotion::FromScene(s.scene));
     run.emplace(RunEngine(engine, s.scene, *motion));
+    core_s = Clock_s() - start_s;
   });
   const nlohmann::json summary = RunSummaryJson(s.path, s.overrides, s.scene, *motion, {&*run});
-  py::dict out = RunResultDict(*run, summary);
+  py::dict out = RunResultDict(std::move(*run), summary, core_s);
   out["notes"] = MotionNotes(*motion);
   return out;
 }
@@ -142,8 +156,10 @@ py::dict Compare(const PyScene& s, const std::string& engines_text, int jobs,
   out["comparison_json"] = run->comparison.dump(2) + "\n";
   py::dict runs;
   runs[py::str(run->reference_run.engine)] =
-      RunResultDict(run->reference_run, run->reference_run.summary);
-  for (const EngineRun& r : run->engine_runs) runs[py::str(r.engine)] = RunResultDict(r, r.summary);
+      RunResultDict(run->reference_run, run->reference_run.summary, run->reference_run.wall_s);
+  for (const EngineRun& r : run->engine_runs) {
+    runs[py::str(r.engine)] = RunResultDict(r, r.summary, r.wall_s);
+  }
   out["runs"] = runs;
   out["failures"] = run->failures;
   py::dict failed;
@@ -219,6 +235,10 @@ PYBIND11_MODULE(_core, m) {
   py::register_exception<SceneError>(m, "SceneError", PyExc_ValueError);
   py::register_exception<StopRequested>(m, "StopRequested", PyExc_KeyboardInterrupt);
 
+  py::class_<RunRecord, std::shared_ptr<RunRecord>>(m, "RunRecord")
+      .def("history_columns", [](const RunRecord& r) { return HistoryColumns(r.run.history); })
+      .def("history_csv", [](const RunRecord& r) { return HistoryToCsv(r.run.history); })
+      .def("events_csv", [](const RunRecord& r) { return EventsToCsv(r.run.history); });
   py::class_<PyScene>(m, "Scene")
       .def_property_readonly("toml_text", [](const PyScene& s) { return s.toml_text; })
       .def_property_readonly("path", [](const PyScene& s) { return s.path; })

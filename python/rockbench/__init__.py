@@ -277,7 +277,7 @@ def _csv_columns(text: str) -> dict:
     """A CSV text's columns: numbers as float64 arrays, anything else as a list of str."""
     rows = list(csv.reader(io.StringIO(text)))
     if not rows:
-        return {}
+        return {"t": np.zeros(0)}
     header, body = rows[0], rows[1:]
     out = {}
     for i, name in enumerate(header):
@@ -291,41 +291,55 @@ def _csv_columns(text: str) -> dict:
 
 class Result:
     """One engine's run: .history (History), .events (events.csv's columns), .summary
-    (summary.json as a dict), .status ("completed", "overturned", ... docs/outputs.md)."""
+    (summary.json as a dict), .status ("completed", "overturned", ... docs/outputs.md). The
+    history's arrays and the files' text are made when first asked for."""
 
     def __init__(self, d: dict):
         self.engine: str = d["engine"]
         self.status: str = d["status"]
-        self.history = History(d["history"])
-        self.events = History(_csv_columns(d["events_csv"])) if d["events_csv"] else {}
         self.summary: dict = json.loads(d["summary_json"])
         self.one_line: str = d["one_line"]
         self.wall_s: float = d["wall_s"]
-        self._files = {
-            "history.csv": d["history_csv"],
-            "events.csv": d["events_csv"],
-        }
+        # The C++ time of the call's work (the ground motion and the engine's run), s.
+        self.core_s: float = d["core_s"]
+        self._record = d["record"]
         self._summary_json = d["summary_json"]
+        self._history = None
+        self._events = None
+
+    @property
+    def history(self) -> History:
+        """history.csv's columns: r.history["theta1"] (rad), r.history["t"] (s), ..."""
+        if self._history is None:
+            self._history = History(self._record.history_columns())
+        return self._history
+
+    @property
+    def events(self) -> History:
+        """events.csv's columns (impacts, transitions, initiations, rest, overturn, ...)."""
+        if self._events is None:
+            self._events = History(_csv_columns(self.events_csv()))
+        return self._events
 
     def history_csv(self) -> str:
         """history.csv's text, byte for byte the command line's."""
-        return self._files["history.csv"]
+        return self._record.history_csv()
 
     def events_csv(self) -> str:
         """events.csv's text, byte for byte the command line's."""
-        return self._files["events.csv"]
+        return self._record.events_csv()
 
     def save(self, out_dir) -> None:
         """Writes OUT/<engine>/history.csv and events.csv, and OUT/summary.json, as `rockbench
         run --out OUT` does: each to a temporary name, renamed when complete."""
         folder = os.path.join(os.fspath(out_dir), self.engine)
         os.makedirs(folder, exist_ok=True)
-        for name, text in self._files.items():
-            _write_atomic(os.path.join(folder, name), text)
+        _write_atomic(os.path.join(folder, "history.csv"), self.history_csv())
+        _write_atomic(os.path.join(folder, "events.csv"), self.events_csv())
         _write_atomic(os.path.join(os.fspath(out_dir), "summary.json"), self._summary_json)
 
     def __repr__(self) -> str:
-        return f"<rockbench.Result {self.engine}: {self.status}, {self.history.samples} samples>"
+        return f"<rockbench.Result {self.engine}: {self.status}>"
 
 
 def _write_atomic(path: str, text: str) -> None:
