@@ -4,7 +4,8 @@
    rockbench.run(scene) against the C++ time of its work inside the call (Result.core_s: the
    ground motion and the engine's run), the difference being what Python adds (the scene's
    checks, the thread, the GIL, the summary). Then the same with the history's arrays read.
-2. A study of 1,000 members (one block under one-sine pulses, the reference): `rockbench
+2. A study of 1,000 members (scenes/studies/pulse_block.toml's block under one-sine pulses
+   of amplitudes 0.2 to 1 g, the reference): `rockbench
    ensemble` against rockbench.study, the same jobs, alternated, the rate in runs per second.
 
     PYTHONPATH=build/python python3 bench/python_overhead.py [--members 1000] [--jobs 2]
@@ -22,20 +23,8 @@ import rockbench
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 EXE = os.environ.get("ROCKBENCH_EXE", os.path.join(ROOT, "build", "src", "cli", "rockbench"))
 
-BLOCK = """[block1]
-width = 0.3
-height = 1.2
-density = 2000.0
-
-[base.horizontal]
-kind = "sine_pulse"
-amplitude_g = 0.3
-frequency_hz = 1.0
-
-[run]
-duration = 6.0
-output_interval = 0.01
-"""
+# The base scene of the pulse studies: a 1 m x 4 m block under a one-sine pulse, for 12 s.
+BLOCK = os.path.join(ROOT, "scenes", "studies", "pulse_block.toml")
 
 
 def run_overhead(repeats):
@@ -64,12 +53,10 @@ def run_overhead(repeats):
 
 def study_rate(members, jobs, rounds):
     folder = tempfile.mkdtemp(prefix="rockbench_bench_")
-    with open(os.path.join(folder, "block.toml"), "w") as f:
-        f.write(BLOCK)
     values = ", ".join(f"{0.2 + 0.8 * i / members:.6f}" for i in range(members))
     study = os.path.join(folder, "study.toml")
     with open(study, "w") as f:
-        f.write(f'scene = "block.toml"\nengines = ["reference"]\n\n[[axis]]\n'
+        f.write(f'scene = "{BLOCK}"\nengines = ["reference"]\n\n[[axis]]\n'
                 f'key = "base.horizontal.amplitude_g"\nvalues = [{values}]\n')
     cli_s, py_s = [], []
     for k in range(rounds):

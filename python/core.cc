@@ -85,20 +85,6 @@ double Clock_s() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 
-// What `rockbench run` says on stderr of the base motion as read: padded components.
-std::vector<std::string> MotionNotes(const GroundMotion& motion) {
-  std::vector<std::string> notes;
-  for (const char* name : {"horizontal", "vertical"}) {
-    const auto& c = std::string(name) == "horizontal" ? motion.horizontal() : motion.vertical();
-    if (c && c->info().padded_samples > 0) {
-      notes.push_back("base." + std::string(name) + " padded with " +
-                      std::to_string(c->info().padded_samples) +
-                      " zero samples to match the other component's length");
-    }
-  }
-  return notes;
-}
-
 py::dict Run(const PyScene& s, const std::string& engine) {
   CheckEngineTables(s.scene);
   std::optional<GroundMotion> motion;
@@ -112,7 +98,7 @@ py::dict Run(const PyScene& s, const std::string& engine) {
   });
   const nlohmann::json summary = RunSummaryJson(s.path, s.overrides, s.scene, *motion, {&*run});
   py::dict out = RunResultDict(std::move(*run), summary, core_s);
-  out["notes"] = MotionNotes(*motion);
+  out["notes"] = PaddingNotes(*motion);
   return out;
 }
 

@@ -36,7 +36,8 @@ nlohmann::json MotionJson(const MotionDef& m) {
   j["kind"] = std::string(MotionKindName(m.kind));
   j["scale"] = m.scale;
   if (m.kind == MotionKind::kFile || m.kind == MotionKind::kKanaiTajimi) {
-    if (m.kind == MotionKind::kFile) j["file"] = m.file.filename().string();
+    // A record given by its samples has no file: the input's sampled motion is the record.
+    if (m.kind == MotionKind::kFile && !m.from_samples()) j["file"] = m.file.filename().string();
     j["analytic"] = false;
     return j;
   }

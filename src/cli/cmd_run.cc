@@ -33,14 +33,8 @@ void Execute(const RunOptions& opt) {
   CheckEngineTables(scene);
   CheckRunEstimate(EstimateRun(scene, opt.engines, 0, 0, 1), budget, opt.scene);
   const GroundMotion motion = GroundMotion::FromScene(scene);
-  for (const char* comp : {"horizontal", "vertical"}) {
-    const auto& c = std::string(comp) == "horizontal" ? motion.horizontal() : motion.vertical();
-    if (c && c->info().padded_samples > 0) {
-      std::fprintf(stderr,
-                   "rockbench: base.%s padded with %d zero samples to match the other "
-                   "component's length\n",
-                   comp, c->info().padded_samples);
-    }
+  for (const std::string& note : PaddingNotes(motion)) {
+    std::fprintf(stderr, "rockbench: %s\n", note.c_str());
   }
   const std::filesystem::path out(opt.out);
   std::filesystem::create_directories(out);

@@ -95,7 +95,13 @@ struct MotionSize {
 
 MotionSize SizeOf(const MotionDef& m) {
   MotionSize size;
-  if (m.kind == MotionKind::kFile) {
+  if (m.from_samples()) {
+    // Given in the scene: its samples are already in memory once (the scene's copy).
+    size.samples = static_cast<double>(m.samples.size());
+    size.bytes = size.samples * kSyntheticSampleBytes;
+    size.key = m.key + ".samples";
+    size.what = Count(size.samples) + " samples given in the scene";
+  } else if (m.kind == MotionKind::kFile) {
     std::error_code ec;
     const auto bytes = std::filesystem::file_size(m.file, ec);
     const double b = ec ? 0.0 : static_cast<double>(bytes);

@@ -152,4 +152,17 @@ nlohmann::json RunSummaryJson(const std::filesystem::path& scene_path,
   return summary;
 }
 
+std::vector<std::string> PaddingNotes(const GroundMotion& motion) {
+  std::vector<std::string> notes;
+  for (const char* name : {"horizontal", "vertical"}) {
+    const auto& c = std::string(name) == "horizontal" ? motion.horizontal() : motion.vertical();
+    if (c && c->info().padded_samples > 0) {
+      notes.push_back("base." + std::string(name) + " padded with " +
+                      std::to_string(c->info().padded_samples) +
+                      " zero samples to match the other component's length");
+    }
+  }
+  return notes;
+}
+
 }  // namespace rockbench

@@ -31,4 +31,8 @@ nlohmann::json RunSummaryJson(const std::filesystem::path& scene_path,
                               const GroundMotion& motion,
                               const std::vector<const EngineRun*>& runs);
 
+/// What `run` says of the base motion as read, one line each: "base.vertical padded with 60
+/// zero samples to match the other component's length" for each padded component.
+std::vector<std::string> PaddingNotes(const GroundMotion& motion);
+
 }  // namespace rockbench
