@@ -178,7 +178,8 @@ TEST_F(SamplesTest, SameMotionAsAPlainFileInGWithScaleStartAndPadding) {
 
 TEST_F(SamplesTest, AStatedResolutionIsEverySamplesWhateverItsText) {
   // resolution = R (in units) replaces the texts' digits: 0 for exact, computed samples. In
-  // cm/s^2 with scale -3: R 0.01 m/s^2 * 3 for every sample, the exact 0 and 12 included.
+  // cm/s^2 with scale -3: R * (0.01 m/s^2 * 3) for every sample, the exact 0 and 12 included
+  // (the product the reader makes: the resolution times the units' factor and |scale|).
   MotionDef d;
   d.key = "base.horizontal";
   d.samples = {0.0, 0.012, 12.0};
@@ -189,14 +190,16 @@ TEST_F(SamplesTest, AStatedResolutionIsEverySamplesWhateverItsText) {
   d.samples_resolution = 0.5;
   const MotionComponent stated = MotionComponent::FromDef(d);
   ASSERT_EQ(stated.sample_resolution_mps2().size(), 3u);
-  for (double r : stated.sample_resolution_mps2()) EXPECT_EQ(r, 0.5 * 0.01 * 3.0);
+  const double factor = 0.01 * 3.0;
+  for (double r : stated.sample_resolution_mps2()) EXPECT_EQ(r, 0.5 * factor);
   d.samples_resolution = 0.0;
-  for (double r : MotionComponent::FromDef(d).sample_resolution_mps2()) EXPECT_EQ(r, 0.0);
+  const MotionComponent exact = MotionComponent::FromDef(d);
+  for (double r : exact.sample_resolution_mps2()) EXPECT_EQ(r, 0.0);
   // Without it, the texts' digits: "0" and "12" are known to 1 unit, "0.012" to 0.001.
   d.samples_resolution.reset();
   const MotionComponent digits = MotionComponent::FromDef(d);
-  EXPECT_EQ(digits.sample_resolution_mps2()[0], 1.0 * 0.01 * 3.0);
-  EXPECT_EQ(digits.sample_resolution_mps2()[1], 1e-3 * 0.01 * 3.0);
+  EXPECT_EQ(digits.sample_resolution_mps2()[0], 1.0 * factor);
+  EXPECT_EQ(digits.sample_resolution_mps2()[1], 1e-3 * factor);
   // The accelerations are the same either way.
   EXPECT_EQ(digits.samples_mps2(), stated.samples_mps2());
 }
