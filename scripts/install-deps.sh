@@ -6,8 +6,9 @@
 # symbolizer) are for scripts/fuzz.sh and the test fuzz_short. python3 runs the Python example
 # engine (examples/python_housner) and its tests. pybind11-dev and python3-dev build the Python
 # module (python/, docs/python.md); numpy is its arrays, pandas its DataFrames, pytest its tests,
-# nbclient, nbformat and ipykernel run the notebook (examples/notebooks), matplotlib draws it. Then the external engines' own packages: Node.js
-# (Debian's nodejs and npm, only where no `node` is installed: a newer Node from elsewhere is kept)
+# nbclient, nbformat and ipykernel run the notebook (examples/notebooks), matplotlib draws it;
+# the Python tests look for left-over workers with procps's pgrep. Then the external engines'
+# own packages: Node.js (Debian's nodejs and npm, only where no `node` is installed: a newer Node from elsewhere is kept)
 # and `npm ci` in engines/rapier (skipped while node_modules matches the lockfile).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -20,7 +21,7 @@ packages=(build-essential cmake pkg-config
   gnuplot-nox chromium
   clang-14 libclang-rt-14-dev llvm-14
   python3 python3-dev pybind11-dev python3-pybind11 python3-numpy python3-pandas python3-pytest
-  python3-matplotlib python3-nbclient python3-nbformat python3-ipykernel)
+  python3-matplotlib python3-nbclient python3-nbformat python3-ipykernel procps)
 command -v node >/dev/null 2>&1 || packages+=(nodejs npm)
 missing=()
 for p in "${packages[@]}"; do
