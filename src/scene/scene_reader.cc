@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <sstream>
 #include <utility>
 
@@ -38,6 +39,13 @@ std::string Describe(const toml::node& node) {
   if (node.is_array()) return "an array";
   if (node.is_table()) return "a table";
   return "a date/time";
+}
+
+// A TOML number as a double: a float, or an integer; nullopt for any other value.
+std::optional<double> AsNumber(const toml::node& node) {
+  if (auto f = node.as_floating_point()) return f->get();
+  if (auto i = node.as_integer()) return static_cast<double>(i->get());
+  return std::nullopt;
 }
 
 // The keys only kind = "kanai_tajimi" reads (ReadSynthetic): a record file and every other kind
@@ -238,14 +246,10 @@ class Reader {
     const toml::node* node = t.get(name);
     if (node == nullptr) return std::nullopt;
     const std::string key = Join(prefix, name);
-    double v = 0.0;
-    if (auto f = node->as_floating_point()) {
-      v = f->get();
-    } else if (auto i = node->as_integer()) {
-      v = static_cast<double>(i->get());
-    } else {
+    const std::optional<double> number = AsNumber(*node);
+    if (!number)
       Fail(key, node, "expected " + Expectation(rule, unit) + ", got " + Describe(*node));
-    }
+    const double v = *number;
     if (!Satisfies(v, rule)) {
       Fail(key, node, "expected " + Expectation(rule, unit) + ", got " + ShortestText(v));
     }
@@ -570,14 +574,9 @@ class Reader {
       const auto fail = [&](const std::string& msg) {
         throw SceneError(Loc(key, &v) + ": " + key + "[" + std::to_string(i) + "]" + msg);
       };
-      double a = 0.0;
-      if (auto f = v.as_floating_point()) {
-        a = f->get();
-      } else if (auto n = v.as_integer()) {
-        a = static_cast<double>(n->get());
-      } else {
-        fail(": expected a finite number, got " + Describe(v));
-      }
+      const std::optional<double> number = AsNumber(v);
+      if (!number) fail(": expected a finite number, got " + Describe(v));
+      const double a = *number;
       if (!std::isfinite(a)) fail(": expected a finite number, got " + ShortestText(a));
       if (const std::string problem = SampleAccelProblem(*m, m->units, a); !problem.empty()) {
         fail(problem);
@@ -762,14 +761,9 @@ class Reader {
                        " (entry " + std::to_string(k) + " of initial." + std::string(quantity) +
                        "), got " + got);
     };
-    double v = 0.0;
-    if (auto f = node.as_floating_point()) {
-      v = f->get();
-    } else if (auto i = node.as_integer()) {
-      v = static_cast<double>(i->get());
-    } else {
-      fail(Describe(node));
-    }
+    const std::optional<double> number = AsNumber(node);
+    if (!number) fail(Describe(node));
+    const double v = *number;
     if (!Satisfies(v, Rule::kFinite) || (rate && !Within(v, kRateLimit))) fail(ShortestText(v));
     return v;
   }
