@@ -9,14 +9,14 @@
 #include <thread>
 #include <vector>
 
-#include "scene/body_kind.h"
+#include "files/history_csv.h"
 #include "scene/mode.h"
 #include "util/stop_request.h"
 
 namespace rockbench::python {
 namespace {
 
-// One column of body `body` (1-based) of quantity `stem` over every sample.
+// One column of body `body` (1-based) of `quantity` over every sample.
 py::array_t<double> Column(const History& history, const StateQuantityReader& quantity, int body) {
   py::array_t<double> out(static_cast<py::ssize_t>(history.samples.size()));
   auto view = out.mutable_unchecked<1>();
@@ -26,37 +26,53 @@ py::array_t<double> Column(const History& history, const StateQuantityReader& qu
   return out;
 }
 
-// Every body's column of quantity `stem`, in body order.
-void AddBodyColumns(const History& history, const std::string& stem, py::dict* out) {
-  const StateQuantityReader quantity(history, stem);
-  for (int k = 1; k <= history.blocks; ++k) {
-    (*out)[py::str(BodyColumn(stem, k))] = Column(history, quantity, k);
+// The names of history.csv's columns, in its order: its header, as the file's writer makes it
+// (files/history_csv.h) for a history of these bodies.
+std::vector<std::string> CsvColumns(const History& history) {
+  History empty;
+  empty.blocks = history.blocks;
+  empty.slip_and_lift = history.slip_and_lift;
+  empty.shape = history.shape;
+  const std::string text = HistoryToCsv(empty);
+  std::vector<std::string> names;
+  std::string name;
+  for (const char c : text.substr(0, text.find('\n'))) {
+    if (c == ',') {
+      names.push_back(name);
+      name.clear();
+    } else {
+      name += c;
+    }
   }
+  names.push_back(name);
+  return names;
 }
 
 }  // namespace
 
 py::dict HistoryColumns(const History& history) {
   py::dict out;
-  py::array_t<double> t(static_cast<py::ssize_t>(history.samples.size()));
-  auto tv = t.mutable_unchecked<1>();
-  for (size_t i = 0; i < history.samples.size(); ++i) {
-    tv(static_cast<py::ssize_t>(i)) = history.samples[i].t_s;
+  for (const std::string& name : CsvColumns(history)) {
+    if (name == "mode") {
+      py::list mode;
+      for (const Sample& s : history.samples) mode.append(py::str(ConfigurationName(s.mode)));
+      out["mode"] = mode;
+      continue;
+    }
+    if (name == "t") {
+      py::array_t<double> t(static_cast<py::ssize_t>(history.samples.size()));
+      auto view = t.mutable_unchecked<1>();
+      for (size_t i = 0; i < history.samples.size(); ++i) {
+        view(static_cast<py::ssize_t>(i)) = history.samples[i].t_s;
+      }
+      out["t"] = t;
+      continue;
+    }
+    // A body's column: the quantity's stem, then the body's number (BodyColumn).
+    const size_t digits = name.find_last_not_of("0123456789") + 1;
+    const StateQuantityReader quantity(history, name.substr(0, digits));
+    out[py::str(name)] = Column(history, quantity, std::stoi(name.substr(digits)));
   }
-  out["t"] = t;
-  // The columns in history.csv's order (files/history_csv.h).
-  std::vector<std::string> before_mode, after_mode;
-  if (history.shape == PlanarBlockKind().shape) {
-    before_mode = {"theta", "omega"};
-    if (history.slip_and_lift) after_mode = {"u", "z"};
-  } else if (const BodyKind* kind = FindBodyKind(history.shape)) {
-    for (const StateQuantity& q : kind->state) before_mode.push_back(q.stem);
-  }
-  for (const std::string& stem : before_mode) AddBodyColumns(history, stem, &out);
-  py::list mode;
-  for (const Sample& s : history.samples) mode.append(py::str(ConfigurationName(s.mode)));
-  out["mode"] = mode;
-  for (const std::string& stem : after_mode) AddBodyColumns(history, stem, &out);
   return out;
 }
 
