@@ -48,21 +48,6 @@ struct CompareCliOptions {
   LimitOptions limits;
 };
 
-// The engines of --engines, without "reference" (always run: the others are compared with it).
-std::vector<std::string> CheckedEngines(const std::string& requested) {
-  std::string list;
-  for (size_t start = 0; start <= requested.size();) {
-    const size_t comma = requested.find(',', start);
-    const std::string name =
-        requested.substr(start, comma == std::string::npos ? comma : comma - start);
-    if (!IsReference(name)) list += (list.empty() ? "" : ",") + name;
-    if (comma == std::string::npos) break;
-    start = comma + 1;
-  }
-  if (list.empty()) return {};
-  return ParseEngineList(list);
-}
-
 // Writes the comparison's files into `out`, each to a temporary name renamed when complete:
 // every run's history, the perturbation members' files, comparison.json, comparison.csv and
 // summary.json.
@@ -181,7 +166,7 @@ void Execute(const CompareCliOptions& opt) {
   const ResourceBudget budget = StartLimits(opt.limits, opt.out, "compare");
   const Scene scene = LoadScene(opt.scene, overrides);
   CheckEngineTables(scene);
-  const std::vector<std::string> engines = CheckedEngines(opt.engines);
+  const std::vector<std::string> engines = ParseEnginesBesideReference(opt.engines);
   // An engine the scene brings runs only when the user names it: said, with how to opt in.
   std::fputs(NotRunNote(engines).c_str(), stderr);
   const int threads =
