@@ -13,6 +13,8 @@
 #include <stdexcept>
 #include <string_view>
 
+#include "util/format.h"
+
 namespace rockbench {
 namespace {
 
@@ -65,12 +67,17 @@ constexpr const char* kEventsCsvHeader =
     "t,kind,mode_before,mode_after,omega1_before,omega2_before,omega1_after,omega2_after,"
     "energy_before_j,energy_after_j,note";
 
-// The header of events.csv for `blocks` blocks: kEventsCsvHeader for one or two.
-std::string EventsCsvHeader(int blocks) {
-  if (blocks <= 2) return kEventsCsvHeader;
+// The header of events.csv for `blocks` blocks: kEventsCsvHeader for one or two planar
+// blocks; every body's rate `rate_stem` before and after.
+std::string EventsCsvHeader(int blocks, std::string_view rate_stem = "omega") {
+  if (blocks <= 2 && rate_stem == "omega") return kEventsCsvHeader;
   std::string out = "t,kind,mode_before,mode_after";
   for (const char* when : {"_before", "_after"}) {
-    for (int k = 1; k <= blocks; ++k) out += ",omega" + std::to_string(k) + when;
+    for (int k = 1; k <= blocks; ++k) {
+      out += ',';
+      out += BodyColumn(rate_stem, k);
+      out += when;
+    }
   }
   return out + ",energy_before_j,energy_after_j,note";
 }
@@ -82,6 +89,30 @@ void AppendConfiguration(std::string& out, const Configuration& c) {
   } else {
     out += ConfigurationName(c);
   }
+}
+
+// A configuration of bodies of `kind`: its own contact names for one body, when it has them.
+void AppendKindConfiguration(std::string& out, const Configuration& c, const BodyKind& kind) {
+  if (c.size() == 1 && !kind.contact_names.empty()) {
+    out += kind.contact_names[static_cast<size_t>(c[0])];
+    return;
+  }
+  AppendConfiguration(out, c);
+}
+
+// The inverse of AppendKindConfiguration for a stack of `blocks` bodies of `kind`.
+std::optional<Configuration> ParseKindConfiguration(std::string_view text, int blocks,
+                                                    const BodyKind& kind) {
+  if (blocks == 1 && !kind.contact_names.empty()) {
+    for (size_t i = 0; i < kind.contact_names.size(); ++i) {
+      if (kind.contact_names[i] != text) continue;
+      Configuration c(1);
+      c.set(0, static_cast<Contact>(i));
+      return c;
+    }
+    return std::nullopt;
+  }
+  return ParseConfiguration(text, blocks);
 }
 
 [[noreturn]] void Inconsistent(const char* what, double t_s, int got, int blocks) {
@@ -140,7 +171,7 @@ std::string KindHistoryToCsv(const History& history, const BodyKind& kind) {
       }
     }
     out += ',';
-    AppendConfiguration(out, s.mode);
+    AppendKindConfiguration(out, s.mode, kind);
     out += '\n';
   }
   return out;
@@ -188,23 +219,26 @@ std::string HistoryToCsv(const History& history) {
 
 std::string EventsToCsv(const History& history) {
   const int n = history.blocks;
-  std::string out = EventsCsvHeader(n) + "\n";
+  const BodyKind* kind = FindBodyKind(history.shape);
+  if (!kind) throw std::invalid_argument("events: unknown body kind '" + history.shape + "'");
+  const bool planar = kind == &PlanarBlockKind();
+  std::string out = EventsCsvHeader(n, kind->event_rate_stem) + "\n";
   for (const Event& e : history.events) {
     if (e.blocks() != n || static_cast<int>(e.omega_after_radps.size()) != n) {
       Inconsistent("events: an event", e.t_s, e.blocks(), n);
     }
     AppendTime(out, e.t_s);
     out += ',' + CsvCell(e.kind) + ',';
-    AppendConfiguration(out, e.mode_before);
+    AppendKindConfiguration(out, e.mode_before, *kind);
     out += ',';
-    AppendConfiguration(out, e.mode_after);
+    AppendKindConfiguration(out, e.mode_after, *kind);
     for (const BlockValues* v : {&e.omega_before_radps, &e.omega_after_radps}) {
       for (const double x : *v) {
         out += ',';
         AppendValue(out, x);
       }
-      // One block keeps the two-block columns: its omega2 is written as 0.
-      if (n == 1) {
+      // One planar block keeps the two-block columns: its omega2 is written as 0.
+      if (n == 1 && planar) {
         out += ',';
         AppendValue(out, 0.0);
       }
@@ -260,9 +294,12 @@ Sample KindSample(const std::vector<std::string_view>& cells, const BodyKind& ki
       s.state[(i - 1) / n][(i - 1) % n] = x;
     }
   }
-  const std::optional<Configuration> mode = ParseConfiguration(cells[mode_col], blocks);
+  const std::optional<Configuration> mode = ParseKindConfiguration(cells[mode_col], blocks, kind);
   if (!mode) {
-    fail("expected a configuration (one letter f, r or l per body), got '" +
+    fail((kind.contact_names.empty() || blocks != 1
+              ? std::string("expected a configuration (one letter f, r or l per body)")
+              : "expected a mode (" + QuotedList(kind.contact_names) + ")") +
+         ", got '" +
          std::string(cells[mode_col]) + "'");
   }
   s.mode = *mode;

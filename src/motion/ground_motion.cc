@@ -210,6 +210,7 @@ MotionComponent MotionComponent::FromDef(const MotionDef& def) {
   c.t0_ = def.start_s;
   c.amplitude_mps2_ = def.amplitude_g * kStandardGravity_mps2 * def.scale;
   c.frequency_hz_ = def.frequency_hz;
+  c.phase_rad_ = def.phase_deg * (kPi / 180.0);
   c.duration_s_ = AnalyticLength(def);
   c.info_.source = std::string(MotionKindName(def.kind));
   c.info_.format = "analytic";
@@ -218,13 +219,18 @@ MotionComponent MotionComponent::FromDef(const MotionDef& def) {
   const double amp_g = std::abs(def.amplitude_g * def.scale);
   switch (def.kind) {
     case MotionKind::kHarmonic: {
-      const double quarter = 0.25 / def.frequency_hz;
-      if (c.duration_s_ >= quarter) {
+      // The first crest: where the phase 2 pi f tau + phase first reaches pi/2 modulo pi.
+      const double w = 2.0 * kPi * def.frequency_hz;
+      const double crest = std::fmod(std::fmod(0.5 * kPi - c.phase_rad_, kPi) + kPi, kPi) / w;
+      if (c.duration_s_ >= crest) {
         c.info_.peak_g = amp_g;
-        c.info_.peak_t_s = c.t0_ + quarter;
+        c.info_.peak_t_s = c.t0_ + crest;
       } else {
-        c.info_.peak_g = amp_g * std::sin(2.0 * kPi * def.frequency_hz * c.duration_s_);
-        c.info_.peak_t_s = c.t0_ + c.duration_s_;
+        // No crest inside: |sin| is largest at an end of the window.
+        const double at_start = std::abs(std::sin(c.phase_rad_));
+        const double at_end = std::abs(std::sin(w * c.duration_s_ + c.phase_rad_));
+        c.info_.peak_g = amp_g * std::max(at_start, at_end);
+        c.info_.peak_t_s = c.t0_ + (at_end > at_start ? c.duration_s_ : 0.0);
       }
       break;
     }
@@ -272,6 +278,7 @@ double MotionComponent::accel_mps2(double t_s) const {
   const double w = 2.0 * kPi * frequency_hz_;
   switch (kind_) {
     case MotionKind::kHarmonic:
+      return amplitude_mps2_ * std::sin(w * tau + phase_rad_);
     case MotionKind::kSinePulse:
       return amplitude_mps2_ * std::sin(w * tau);
     case MotionKind::kCosinePulse:
@@ -404,13 +411,17 @@ GroundMotion GroundMotion::FromScene(const Scene& scene) {
     }
   };
   if (scene.horizontal) g.horizontal_ = build(*scene.horizontal);
+  if (scene.transverse) g.transverse_ = build(*scene.transverse);
   if (scene.vertical) g.vertical_ = build(*scene.vertical);
-  // Two records of different lengths: the shorter gets zeros at its end.
-  if (g.horizontal_ && g.vertical_ && !g.horizontal_->samples_mps2().empty() &&
-      !g.vertical_->samples_mps2().empty()) {
-    const double end = std::max(g.horizontal_->end_s(), g.vertical_->end_s());
-    g.horizontal_->pad_to(end);
-    g.vertical_->pad_to(end);
+  // Records of different lengths: the shorter ones get zeros at their end.
+  std::vector<MotionComponent*> records;
+  for (std::optional<MotionComponent>* c : {&g.horizontal_, &g.transverse_, &g.vertical_}) {
+    if (*c && !(*c)->samples_mps2().empty()) records.push_back(&**c);
+  }
+  if (records.size() >= 2) {
+    double end = 0.0;
+    for (const MotionComponent* c : records) end = std::max(end, c->end_s());
+    for (MotionComponent* c : records) c->pad_to(end);
   }
   return g;
 }
@@ -418,6 +429,7 @@ GroundMotion GroundMotion::FromScene(const Scene& scene) {
 double GroundMotion::next_breakpoint_after(double t_s) const {
   double next = kInf;
   if (horizontal_) next = std::min(next, horizontal_->next_breakpoint_after(t_s));
+  if (transverse_) next = std::min(next, transverse_->next_breakpoint_after(t_s));
   if (vertical_) next = std::min(next, vertical_->next_breakpoint_after(t_s));
   return next;
 }
@@ -425,6 +437,7 @@ double GroundMotion::next_breakpoint_after(double t_s) const {
 double GroundMotion::end_s() const {
   double end = 0.0;
   if (horizontal_) end = std::max(end, horizontal_->end_s());
+  if (transverse_) end = std::max(end, transverse_->end_s());
   if (vertical_) end = std::max(end, vertical_->end_s());
   return end;
 }

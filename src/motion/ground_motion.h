@@ -1,5 +1,6 @@
 #pragma once
-/// Base (ground) motion: horizontal and vertical acceleration histories xg''(t), yg''(t).
+/// Base (ground) motion: acceleration histories along +x (horizontal), +y (transverse, 3-D
+/// bodies only) and up (vertical).
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -33,7 +34,8 @@ struct MotionInfo {
 /// its last; at exactly a sample time it is that sample. Analytic kinds, with A = amplitude_g *
 /// scale * kStandardGravity_mps2 (g is standard gravity, whatever the scene's [run] gravity),
 /// f = frequency_hz, t0 = start_s, zero outside the closed window given:
-/// - harmonic:          A sin(2 pi f (t - t0))            on [t0, t0 + duration_s] (default inf)
+/// - harmonic:          A sin(2 pi f (t - t0) + phase)    on [t0, t0 + duration_s] (default inf;
+///                                                        phase = phase_deg, default 0)
 /// - sine_pulse:        A sin(2 pi f (t - t0))            on [t0, t0 + 1/f]
 /// - cosine_pulse:      A cos(2 pi f (t - t0))            on [t0, t0 + 1/f]
 /// - rectangular_pulse: A                                 on [t0, t0 + duration_s]
@@ -118,33 +120,41 @@ class MotionComponent {
   std::vector<double> resolution_;  // m/s^2, empty or one per sample
   double t0_ = 0.0, dt_ = 0.0;
   double amplitude_mps2_ = 0.0, frequency_hz_ = 0.0, duration_s_ = 0.0;
+  double phase_rad_ = 0.0;  // harmonic only
   MotionInfo info_;
 };
 
-/// The base motion of a scene: optional horizontal and vertical components.
+/// The base motion of a scene: optional horizontal, transverse and vertical components.
 class GroundMotion {
  public:
   GroundMotion() = default;
-  /// Builds both components of a scene (none when the scene has no [base] table). Components of
-  /// different lengths are padded with zeros to the longer one (info().padded_samples says so).
+  /// Builds the scene's components (none when the scene has no [base] table). Records of
+  /// different lengths are padded with zeros to the longest (info().padded_samples says so).
   static GroundMotion FromScene(const Scene& scene);
 
   double xg_mps2(double t_s) const { return horizontal_ ? horizontal_->accel_mps2(t_s) : 0.0; }
   double yg_mps2(double t_s) const { return vertical_ ? vertical_->accel_mps2(t_s) : 0.0; }
-  /// The earliest kink of either component strictly after t_s; +inf if none.
+  /// The transverse component (+y, a 3-D body's second horizontal direction), m/s^2.
+  double transverse_mps2(double t_s) const {
+    return transverse_ ? transverse_->accel_mps2(t_s) : 0.0;
+  }
+  /// The earliest kink of any component strictly after t_s; +inf if none.
   double next_breakpoint_after(double t_s) const;
-  /// Time after which both components are zero (0 for no motion, +inf for endless harmonic).
+  /// Time after which every component is zero (0 for no motion, +inf for endless harmonic).
   double end_s() const;
   bool has_horizontal() const { return horizontal_.has_value(); }
   bool has_vertical() const { return vertical_.has_value(); }
-  bool empty() const { return !horizontal_ && !vertical_; }
+  bool has_transverse() const { return transverse_.has_value(); }
+  bool empty() const { return !horizontal_ && !transverse_ && !vertical_; }
   const std::optional<MotionComponent>& horizontal() const { return horizontal_; }
   const std::optional<MotionComponent>& vertical() const { return vertical_; }
+  const std::optional<MotionComponent>& transverse() const { return transverse_; }
+  void set_transverse(MotionComponent c) { transverse_ = std::move(c); }
   void set_horizontal(MotionComponent c) { horizontal_ = std::move(c); }
   void set_vertical(MotionComponent c) { vertical_ = std::move(c); }
 
  private:
-  std::optional<MotionComponent> horizontal_, vertical_;
+  std::optional<MotionComponent> horizontal_, transverse_, vertical_;
 };
 
 /// A record as read from a file, before units and scale.

@@ -5,6 +5,7 @@
 #include <initializer_list>
 #include <vector>
 
+#include "run/cylinder_reference.h"
 #include "run/summary.h"
 
 namespace rockbench {
@@ -68,8 +69,13 @@ Scene ReferenceEngine::SceneForSetting(const Scene& base, const SweepSetting& se
   return s;
 }
 
+std::vector<std::string> ReferenceEngine::body_shapes() const {
+  return {"block", std::string(kCylinderShape)};
+}
+
 EngineResult ReferenceEngine::Simulate(const Scene& scene, const GroundMotion& motion,
                                        const SimulateOptions& options) const {
+  if (scene.three_dimensional()) return SimulateCylinderReference(scene, motion, options);
   auto extension = std::make_shared<ReferenceExtension>();
   extension->checked = RunCheckedReference(scene, motion, options.check_convergence);
   const CheckedReference& checked = extension->checked;
@@ -85,6 +91,10 @@ EngineResult ReferenceEngine::Simulate(const Scene& scene, const GroundMotion& m
 }
 
 std::string ReferenceEngine::SummaryLine(const EngineResult& result) const {
+  if (const auto* cylinder =
+          dynamic_cast<const CylinderReferenceExtension*>(result.extension.get())) {
+    return CylinderSummaryLine(*cylinder);
+  }
   const CheckedReference& checked = *ReferenceResultOf(result.extension.get());
   const reference::Summary& s = checked.used().summary;
   // Every block's peak (block 2's is 0 for one block).

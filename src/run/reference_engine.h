@@ -34,6 +34,8 @@ class ReferenceEngine final : public Engine {
   Scene SceneForSetting(const Scene& base, const SweepSetting& setting) const override;
   /// The top level: summary.json is the reference's run, the engines' beside it.
   std::string SummaryPointer() const override { return ""; }
+  /// The planar block (the thesis's model) and the cylinder (reference/cylinder_run.h).
+  std::vector<std::string> body_shapes() const override;
   /// A point of its grid: an adaptive pair at `rtol` (atol = rtol / 100), family "reference
   /// dopri5" or "reference dop853", labelled by the rtol.
   static SweepSetting TolerancePoint(Integrator integrator, double rtol);

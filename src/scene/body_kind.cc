@@ -17,7 +17,18 @@ struct Registry {
 Registry& TheRegistry() {
   static Registry* r = [] {
     auto* reg = new Registry;
-    reg->kinds.push_back({"block", {{"theta", "rad", true}, {"omega", "rad/s", false}}});
+    reg->kinds.push_back({"block", {{"theta", "rad", true}, {"omega", "rad/s", false}}, {}, "omega"});
+    reg->kinds.push_back({std::string(kCylinderShape),
+                          {{"tilt", "rad", false},
+                           {"azimuth", "rad", false},
+                           {"spin", "rad", false},
+                           {"tilt_x", "rad", true},
+                           {"tilt_y", "rad", true},
+                           {"tilt_rate", "rad/s", false},
+                           {"azimuth_rate", "rad/s", false},
+                           {"spin_rate", "rad/s", false}},
+                          {"rest", "rim", "rim"},
+                          "tilt_rate"});
     return reg;
   }();
   return *r;
@@ -28,6 +39,11 @@ Registry& TheRegistry() {
 const BodyKind& PlanarBlockKind() {
   static const BodyKind& planar = *FindBodyKind("block");
   return planar;
+}
+
+const BodyKind& CylinderKind() {
+  static const BodyKind& cylinder = *FindBodyKind(kCylinderShape);
+  return cylinder;
 }
 
 std::string BodyColumn(std::string_view stem, int body) {

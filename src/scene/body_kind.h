@@ -25,11 +25,24 @@ struct StateQuantity {
 struct BodyKind {
   std::string shape;                 ///< the [[block]] table's `shape`
   std::vector<StateQuantity> state;  ///< the quantities of its state, in column order
+  /// The mode column's text of a one-body stack whose contact is its face, one side's support
+  /// or the other's (Contact's order), when the kind names them: a cylinder's "rest" and "rim".
+  /// Empty: the planar block's names (ConfigurationName).
+  std::vector<std::string> contact_names;
+  /// The stem of the rate that events.csv carries before and after an event ("omega1_before").
+  std::string event_rate_stem = "omega";
 };
 
 /// The planar rigid block (shape "block"): theta (rad, compared) and omega (rad/s). Its slip u
 /// and lift z (m) are carried when the scene tracks them (Scene::tracks_slip_and_lift).
 const BodyKind& PlanarBlockKind();
+
+/// The solid circular cylinder rocking and rolling in 3-D on a rim point (shape "cylinder",
+/// docs/three-d.md): tilt, azimuth, spin (rad); tilt_x = tilt cos(azimuth) and tilt_y = tilt
+/// sin(azimuth) (rad, the compared angles: continuous through upright); the rates of tilt,
+/// azimuth and spin (rad/s). Its mode is "rest" (on its face) or "rim" (on a rim point).
+const BodyKind& CylinderKind();
+inline constexpr std::string_view kCylinderShape = "cylinder";
 
 /// The name of body `body`'s (1-based) quantity `stem`: BodyColumn("theta", 3) is "theta3".
 /// Every per-body column of a file and key of a summary is made by it.

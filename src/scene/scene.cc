@@ -10,6 +10,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <map>
+#include <numbers>
 #include <sstream>
 #include <utility>
 
@@ -103,6 +104,17 @@ double AccelUnitsToMps2(AccelUnits units) {
   return 1.0;
 }
 
+double BodyVolume_m3(const BlockDef& body) {
+  if (body.shape == kCylinderShape) {
+    return 0.25 * std::numbers::pi * body.diameter_m * body.diameter_m * body.height_m;
+  }
+  return body.width_m * body.height_m * body.depth_m;
+}
+
+bool Scene::three_dimensional() const {
+  return !blocks.empty() && blocks[0].shape == kCylinderShape;
+}
+
 bool Scene::has_finite_friction() const {
   for (const BlockDef& b : blocks) {
     if (std::isfinite(b.friction)) return true;
@@ -159,6 +171,7 @@ class Validator {
                  Excerpt(scene.blocks[0].shape) + "\"), got \"" + Excerpt(shape) + "\"");
       }
     }
+    if (scene.three_dimensional()) Cylinder();
     for (int k = 2; k <= n; ++k) {
       if (scene.blocks[k - 1].width_m > scene.blocks[k - 2].width_m) {
         fail("block" + std::to_string(k) + ".width", WiderThanBelow(scene, k));
@@ -166,10 +179,50 @@ class Validator {
     }
   }
 
+  // A cylinder: one body, its diameter its width and depth; its initial state in its own keys,
+  // the tilt >= 0 and below the overturn angle; no transverse motion for a planar scene.
+  void Cylinder() const {
+    const BlockDef& b = scene_.blocks[0];
+    if (n_ != 1) {
+      fail("block2", "a cylinder stands alone: the 3-D model is one cylinder on its base, got " +
+                         std::to_string(n_) + " bodies");
+    }
+    limit("block1.diameter", b.diameter_m, kLengthLimit, Rule::kPositive, "m");
+    if (b.width_m != b.diameter_m || b.depth_m != b.diameter_m) {
+      fail("block1.diameter", "a cylinder's width and depth are its diameter (" +
+                                  ShortestText(b.diameter_m) + " m), got " +
+                                  ShortestText(b.width_m) + " and " + ShortestText(b.depth_m));
+    }
+    const InitialState& in = scene_.initial;
+    if (in.theta_rad[0] != 0.0 || in.omega_radps[0] != 0.0) {
+      fail("initial.theta1", "not used by a cylinder (its state: tilt, azimuth and their rates)");
+    }
+    const double tilt = in.tilt_rad[0];
+    if (!(tilt >= 0.0 && tilt < scene_.model.overturn_rad)) {
+      fail("initial.tilt", "expected a tilt >= 0 and below model.overturn_angle (" +
+                               ShortestText(scene_.model.overturn_rad) + " rad), got " +
+                               ShortestText(tilt));
+    }
+    check("initial.azimuth", in.azimuth_rad[0], Rule::kFinite, "rad");
+    limit("initial.tilt_rate", in.tilt_rate_radps[0], kRateLimit, Rule::kFinite, "rad/s");
+    limit("initial.azimuth_rate", in.azimuth_rate_radps[0], kRateLimit, Rule::kFinite, "rad/s");
+    limit("initial.spin_rate", in.spin_rate_radps[0], kRateLimit, Rule::kFinite, "rad/s");
+  }
+
   // The initial angles are finite and the rates within their limit.
   void InitialRates() const {
     const int n = n_;
     const InitialState& in = scene_.initial;
+    if (!scene_.three_dimensional()) {
+      for (int k = 1; k <= kMaxBlocks; ++k) {
+        if (in.tilt_rad[k - 1] != 0.0 || in.azimuth_rad[k - 1] != 0.0 ||
+            in.tilt_rate_radps[k - 1] != 0.0 || in.azimuth_rate_radps[k - 1] != 0.0 ||
+            in.spin_rate_radps[k - 1] != 0.0) {
+          fail("initial.tilt", "only for a cylinder (shape = \"cylinder\"); a block's state is "
+                               "theta and omega");
+        }
+      }
+    }
     for (int k = 1; k <= n; ++k) {
       const std::string i = std::to_string(k);
       check("initial.theta" + i, in.theta_rad[k - 1], Rule::kFinite, "rad");
@@ -253,6 +306,10 @@ class Validator {
   void Motion(const MotionDef& d) const {
     const std::string p = d.key.empty() ? std::string("base") : d.key;
     check(p + ".scale", d.scale, Rule::kFinite, "");
+    check(p + ".phase_deg", d.phase_deg, Rule::kFinite, "degrees");
+    if (d.phase_deg != 0.0 && d.kind != MotionKind::kHarmonic) {
+      fail(p + ".phase_deg", "only for kind = \"harmonic\"");
+    }
     limit(p + ".start_s", d.start_s, kDurationLimit, Rule::kNonNegative, "s");
     if (d.kind != MotionKind::kFile && !d.samples.empty()) {
       fail(p, "give one of file, kind or samples, not several (kind = \"" +
@@ -355,6 +412,12 @@ class Validator {
     limit("model.atol", m.atol, kAtolLimit, Rule::kPositive, "rad, rad/s");
     check("model.step", m.step_s, Rule::kPositive, "s");
     check("model.rest_rate_rel", m.rest_rate_rel, Rule::kNonNegative, "");
+    check("model.landing_clearance_rel", m.landing_clearance_rel, Rule::kNonNegative, "");
+    if (m.landing_clearance_rel > 0.5) {
+      fail("model.landing_clearance_rel",
+           "expected a clearance relative to the diameter from 0 to 0.5, got " +
+               ShortestText(m.landing_clearance_rel));
+    }
     const CompareConfig& c = scene.compare;
     if (c.tolerance_rad) {
       limit("compare.tolerance", *c.tolerance_rad, kToleranceLimit, Rule::kPositive, "rad");
@@ -414,7 +477,11 @@ void ValidateScene(const Scene& scene) {
   v.InitialRates();
   v.Model();
   v.InitialAngles();
-  for (const auto* m : {&scene.horizontal, &scene.vertical}) {
+  if (scene.transverse && !scene.three_dimensional()) {
+    throw SceneError(FileLabel(scene.path) +
+                     ": base.transverse: only for bodies rocking in 3-D (shape = \"cylinder\")");
+  }
+  for (const auto* m : {&scene.horizontal, &scene.transverse, &scene.vertical}) {
     if (*m) v.Motion(**m);
   }
   v.RunAndCompare();

@@ -18,12 +18,16 @@
 
 namespace rockbench {
 
-/// One rectangular rigid block. Planar dynamics depend on width, height and mass only.
+/// One rigid body of a stack: a rectangular block (planar dynamics depend on width, height and
+/// mass only), or a solid circular cylinder (shape "cylinder", one body, rocking in 3-D).
 struct BlockDef {
-  double width_m = 0.0;        ///< full width B = 2b, m
+  double width_m = 0.0;        ///< full width B = 2b, m (a cylinder's: its diameter)
   double height_m = 0.0;       ///< full height H = 2h, m
-  double depth_m = 1.0;        ///< out-of-plane depth, m (used with density, and for 3-D engines)
-  double mass_kg = 0.0;        ///< mass, kg (given, or density * width * height * depth)
+  double depth_m = 1.0;        ///< out-of-plane depth, m (a cylinder's: its diameter)
+  /// A cylinder's diameter D, m (0 for a block). Its width and depth are D too: the bounding
+  /// box, and the planar section of its planar limit (critical angle atan(D / H)).
+  double diameter_m = 0.0;
+  double mass_kg = 0.0;  ///< mass, kg (given, or density times the volume)
   double density_kgpm3 = 0.0;  ///< density, kg/m^3 (0 when the scene gave the mass)
   /// Coulomb friction coefficient between this block's base and its support (the ground for
   /// block 1, the block below otherwise), dimensionless, >= 0; infinity (the default, the key
@@ -34,6 +38,9 @@ struct BlockDef {
   std::string shape = "block";
 };
 
+/// A body's volume, m^3: width * height * depth for a block, pi D^2 H / 4 for a cylinder.
+double BodyVolume_m3(const BlockDef& body);
+
 /// Initial state, thesis sign convention (theta > 0 tilts right about the right-hand corner):
 /// block k's absolute angle and rate at index k - 1 (bottom first). A fixed capacity on purpose:
 /// code that sets an entry (initial.theta_rad[1]) can never write out of bounds. The entries at
@@ -41,6 +48,14 @@ struct BlockDef {
 struct InitialState {
   std::array<double, kMaxBlocks> theta_rad{};    ///< rad
   std::array<double, kMaxBlocks> omega_radps{};  ///< rad/s
+  /// A cylinder's state (shape "cylinder"; zero for blocks), docs/three-d.md: the tilt of its
+  /// axis from vertical (>= 0), the azimuth toward which its top leans (from +x toward +y), and
+  /// the rates of tilt, azimuth and spin about its axis.
+  std::array<double, kMaxBlocks> tilt_rad{};              ///< rad, >= 0
+  std::array<double, kMaxBlocks> azimuth_rad{};           ///< rad
+  std::array<double, kMaxBlocks> tilt_rate_radps{};       ///< rad/s
+  std::array<double, kMaxBlocks> azimuth_rate_radps{};    ///< rad/s
+  std::array<double, kMaxBlocks> spin_rate_radps{};       ///< rad/s
 
   /// At rest. (Declared, so that the old four-number braces {theta1, theta2, omega1, omega2}
   /// no longer compile: they would fill theta_rad.)
@@ -59,10 +74,10 @@ enum class MotionKind {
 };
 
 /// One component of base motion: a record (a file, or its samples given in the scene) or an
-/// analytic kind. Acceleration is positive to the right (+x) for horizontal and upwards (+y) for
-/// vertical.
+/// analytic kind. Acceleration is positive along +x (to the right) for horizontal, +y for
+/// transverse (3-D bodies) and upwards for vertical.
 struct MotionDef {
-  std::string key;  ///< "base.horizontal" or "base.vertical" (for messages)
+  std::string key;  ///< "base.horizontal", "base.transverse" or "base.vertical" (for messages)
   /// kFile: a sampled record, read from `file` or, when `file` is empty, given by `samples`.
   MotionKind kind = MotionKind::kFile;
   std::filesystem::path file;   ///< resolved path (relative paths are relative to the scene)
@@ -82,6 +97,9 @@ struct MotionDef {
   double frequency_hz = 0.0;  ///< analytic kinds: frequency f
   double duration_s = std::numeric_limits<double>::infinity();  ///< harmonic/rectangular length
   double start_s = 0.0;  ///< first sample time / pulse start t0
+  /// kind = "harmonic": its phase, degrees: A sin(2 pi f (t - t0) + phase). Two harmonics a
+  /// quarter period apart (phase_deg 0 and 90) make a rotating field.
+  double phase_deg = 0.0;
   /// kind = "kanai_tajimi": the process, its envelope, sampling and seed. amplitude_g, when
   /// given, is the generated record's peak (its intensity then plays no part); the peak is read
   /// from amplitude_g alone (SyntheticProcess), never from synthetic.target_peak_mps2.
@@ -137,6 +155,12 @@ struct ModelConfig {
   /// "thesis" (one or two blocks) or "chain" (any N); absent: the thesis's equations for one or
   /// two blocks, the chain beyond (docs/n-blocks.md).
   Formulation formulation = Formulation::kAuto;
+  /// A cylinder (docs/three-d.md): a pass near upright lands its face when the far rim's
+  /// clearance 2 R sin(tilt) falls to landing_clearance_rel * D, i.e. at the downward crossing
+  /// of tilt = asin(landing_clearance_rel); a motion that keeps one vertical plane lands at tilt
+  /// 0 exactly, as the planar model. 0: only at tilt 0 (a pass with azimuthal motion then
+  /// never lands: it rolls round the rim).
+  double landing_clearance_rel = 1e-4;
 };
 
 /// Comparison settings ([compare] table).
@@ -187,6 +211,8 @@ struct Scene {
   std::vector<BlockDef> blocks;
   InitialState initial;
   std::optional<MotionDef> horizontal;
+  /// The second horizontal component, along +y ([base.transverse]): bodies rocking in 3-D only.
+  std::optional<MotionDef> transverse;
   std::optional<MotionDef> vertical;
   RunConfig run;
   ModelConfig model;
@@ -199,6 +225,8 @@ struct Scene {
 
   /// Number of blocks of the stack.
   int block_count() const { return static_cast<int>(blocks.size()); }
+  /// Whether the bodies rock in three dimensions (a cylinder), not in the x-z plane.
+  bool three_dimensional() const;
   /// Whether some interface has a finite friction coefficient.
   bool has_finite_friction() const;
   /// Whether the motion may leave the thesis's assumptions: a finite friction somewhere or a

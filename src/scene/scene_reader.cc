@@ -60,7 +60,7 @@ using KeyList = std::vector<std::pair<std::string_view, bool>>;
 const std::map<std::string, KeyList, std::less<>>& Schema() {
   static const KeyList kBlock = {{"width", false}, {"height", false}, {"density", false},
                                  {"mass", false},  {"depth", false},  {"friction", false},
-                                 {"shape", false}};
+                                 {"shape", false}, {"diameter", false}};
   static const KeyList kMotion = {{"file", false},
                                   {"kind", false},
                                   {"samples", false},
@@ -72,6 +72,7 @@ const std::map<std::string, KeyList, std::less<>>& Schema() {
                                   {"frequency_hz", false},
                                   {"duration_s", false},
                                   {"start_s", false},
+                                  {"phase_deg", false},
                                   // kind = "kanai_tajimi"
                                   {"intensity", false},
                                   {"ground_frequency_hz", false},
@@ -101,8 +102,9 @@ const std::map<std::string, KeyList, std::less<>>& Schema() {
       {"block2", kBlock},
       // [initial] takes theta, omega and thetaK, omegaK for any K (ParseInitialKey).
       {"initial", {}},
-      {"base", {{"horizontal", true}, {"vertical", true}}},
+      {"base", {{"horizontal", true}, {"transverse", true}, {"vertical", true}}},
       {"base.horizontal", kMotion},
+      {"base.transverse", kMotion},
       {"base.vertical", kMotion},
       {"run", {{"duration", false}, {"output_interval", false}, {"gravity", false}}},
       {"model",
@@ -116,7 +118,8 @@ const std::map<std::string, KeyList, std::less<>>& Schema() {
         {"rest_rate", false},  // removed: an error naming rest_rate_rel
         {"rest_rate_rel", false},
         {"check_transitions", false},
-        {"formulation", false}}},
+        {"formulation", false},
+        {"landing_clearance_rel", false}}},
       {"compare",
        {{"tolerance", false},
         {"members", false},
@@ -144,10 +147,25 @@ int BlockIndexOf(std::string_view name) {
   return k;
 }
 
+// A cylinder's [initial] arrays (one entry per body), with their units.
+constexpr std::array<std::pair<std::string_view, std::string_view>, 5> kCylinderInitial = {{
+    {"tilt", "rad"},
+    {"azimuth", "rad"},
+    {"tilt_rate", "rad/s"},
+    {"azimuth_rate", "rad/s"},
+    {"spin_rate", "rad/s"},
+}};
+
 // The keys of [initial]: "theta" and "omega" (arrays, one entry per block) and "thetaK",
-// "omegaK" (K = 1..kMaxBlocks, no leading zero). *quantity is "theta" or "omega", *block K (0
-// for the array).
+// "omegaK" (K = 1..kMaxBlocks, no leading zero), and a cylinder's arrays (kCylinderInitial).
+// *quantity is the quantity, *block K (0 for an array).
 bool ParseInitialKey(std::string_view name, std::string_view* quantity, int* block) {
+  for (const auto& [q, unit] : kCylinderInitial) {
+    if (name != q) continue;
+    *quantity = q;
+    *block = 0;
+    return true;
+  }
   for (const std::string_view q : {std::string_view("theta"), std::string_view("omega")}) {
     if (name.substr(0, q.size()) != q) continue;
     const std::string_view digits = name.substr(q.size());
@@ -167,8 +185,14 @@ bool ParseInitialKey(std::string_view name, std::string_view* quantity, int* blo
   return false;
 }
 
-// "theta1, theta2, omega1, omega2, theta, omega" for up to two blocks; the ranges beyond.
-std::string InitialKeyList(int blocks) {
+// "theta1, theta2, omega1, omega2, theta, omega" for up to two blocks; the ranges beyond; a
+// cylinder's arrays.
+std::string InitialKeyList(int blocks, bool cylinder) {
+  if (cylinder) {
+    std::string out;
+    for (const auto& [q, unit] : kCylinderInitial) out += (out.empty() ? "" : ", ") + std::string(q);
+    return out;
+  }
   if (blocks <= 2) return "theta1, theta2, omega1, omega2, theta, omega";
   const std::string n = std::to_string(blocks);
   return "theta1 to theta" + n + ", omega1 to omega" + n + ", theta, omega";
@@ -214,13 +238,16 @@ class Reader {
       for (const auto& [name, is_table] : allowed) known = known || name == k.str();
       std::string_view quantity;
       int block = 0;
-      if (initial) known = ParseInitialKey(k.str(), &quantity, &block);
+      if (initial) {
+        known = ParseInitialKey(k.str(), &quantity, &block) &&
+                (quantity == "theta" || quantity == "omega") != cylinder_;
+      }
       if (known || (prefix.empty() && v.is_table())) continue;
       std::string list;
       for (const auto& [name, is_table] : allowed) {
         list += (list.empty() ? "" : ", ") + std::string(name);
       }
-      if (initial) list = InitialKeyList(blocks_);
+      if (initial) list = InitialKeyList(blocks_, cylinder_);
       const std::string key = Excerpt(Join(prefix, k.str()));
       std::string loc = file_;
       if (k.source().begin.line > 0) loc += ":" + std::to_string(k.source().begin.line);
@@ -454,9 +481,23 @@ class Reader {
       }
       b.shape = *shape;
     }
-    b.width_m = RequiredNumber(t, prefix, "width", Rule::kPositive, "m", &kLengthLimit);
+    const bool cylinder = b.shape == kCylinderShape;
+    if (cylinder) {
+      // A cylinder's size is its diameter and height; its width and depth are the diameter.
+      for (const char* name : {"width", "depth"}) {
+        Forbid(t, prefix, name, "not used by shape = \"cylinder\" (give its diameter)");
+      }
+      b.diameter_m = RequiredNumber(t, prefix, "diameter", Rule::kPositive, "m", &kLengthLimit);
+      b.width_m = b.depth_m = b.diameter_m;
+    } else {
+      Forbid(t, prefix, "diameter",
+             "only for shape = \"cylinder\" (a block's size is its width, height and depth)");
+      b.width_m = RequiredNumber(t, prefix, "width", Rule::kPositive, "m", &kLengthLimit);
+    }
     b.height_m = RequiredNumber(t, prefix, "height", Rule::kPositive, "m", &kLengthLimit);
-    b.depth_m = Number(t, prefix, "depth", Rule::kPositive, "m", &kLengthLimit).value_or(1.0);
+    if (!cylinder) {
+      b.depth_m = Number(t, prefix, "depth", Rule::kPositive, "m", &kLengthLimit).value_or(1.0);
+    }
     b.friction = Number(t, prefix, "friction", Rule::kNonNegativeOrInfinite, "")
                      .value_or(std::numeric_limits<double>::infinity());
     if (std::isfinite(b.friction) && b.friction > kMaxFiniteFriction) {
@@ -473,10 +514,12 @@ class Reader {
     }
     if (density) {
       b.density_kgpm3 = *density;
-      b.mass_kg = *density * b.width_m * b.height_m * b.depth_m;
+      b.mass_kg = *density * BodyVolume_m3(b);
       if (!Within(b.mass_kg, kMassLimit)) {
         Fail(prefix + ".density", t.get("density"),
-             "density * width * height * depth = " + ShortestText(b.mass_kg) +
+             std::string(cylinder ? "density * pi diameter^2 height / 4"
+                                  : "density * width * height * depth") +
+                 " = " + ShortestText(b.mass_kg) +
                  " kg; expected a mass" + LimitText(kMassLimit));
       }
     } else {
@@ -610,6 +653,11 @@ class Reader {
       Fail(prefix, &t, "missing file = \"...\", samples = [...] or kind = " + kinds);
     }
     m.scale = Number(t, prefix, "scale", Rule::kFinite, "").value_or(1.0);
+    if (t.get("phase_deg") != nullptr && (kind_node == nullptr || !kind_node->is_string() ||
+                                          kind_node->as_string()->get() != "harmonic")) {
+      Fail(prefix + ".phase_deg", t.get("phase_deg"), "only for kind = \"harmonic\"");
+    }
+    m.phase_deg = Number(t, prefix, "phase_deg", Rule::kFinite, "degrees").value_or(0.0);
     m.start_s =
         Number(t, prefix, "start_s", Rule::kNonNegative, "s", &kDurationLimit).value_or(0.0);
     if (samples_node != nullptr) {
@@ -735,6 +783,11 @@ class Reader {
              "every body of a stack is of one kind: block1 is \"" + s->blocks.front().shape +
                  "\", expected the same, got \"" + s->blocks.back().shape + "\"");
       }
+      if (k == 1 && s->blocks.front().shape == kCylinderShape) {
+        Fail(prefix, &t,
+             "a cylinder stands alone: the 3-D model is one cylinder on its base "
+             "(docs/three-d.md), got a second body");
+      }
     }
   }
 
@@ -772,6 +825,10 @@ class Reader {
   // omega = [...] (one entry per block), or thetaK and omegaK (K = 1..N); not both ways for one
   // quantity. No key of a block the scene does not have.
   void ReadInitial(const toml::table& in, Scene* s) const {
+    if (cylinder_) {
+      ReadCylinderInitial(in, s);
+      return;
+    }
     const int n = s->block_count();
     const toml::array* arrays[2] = {nullptr, nullptr};
     for (int q = 0; q < 2; ++q) {
@@ -809,6 +866,48 @@ class Reader {
         (q == 0 ? s->initial.theta_rad : s->initial.omega_radps)[k - 1] = v.value_or(0.0);
       }
       if (k == 1) ForbidBeyond(in, n);
+    }
+  }
+
+  // A cylinder's [initial]: arrays tilt, azimuth, tilt_rate, azimuth_rate, spin_rate (one entry
+  // per body), each optional (0); the tilt is a magnitude (>= 0), the azimuth its direction.
+  void ReadCylinderInitial(const toml::table& in, Scene* s) const {
+    const int n = s->block_count();
+    InitialState& init = s->initial;
+    const std::array<std::array<double, kMaxBlocks>*, 5> into = {
+        &init.tilt_rad, &init.azimuth_rad, &init.tilt_rate_radps, &init.azimuth_rate_radps,
+        &init.spin_rate_radps};
+    for (size_t q = 0; q < kCylinderInitial.size(); ++q) {
+      const auto& [quantity, unit] = kCylinderInitial[q];
+      const std::string key = "initial." + std::string(quantity);
+      const toml::node* node = in.get(quantity);
+      if (node == nullptr) continue;
+      const std::string what = "an array of " + std::to_string(n) + " numbers (" +
+                               std::string(unit) + ", one per body)";
+      const toml::array* array = node->as_array();
+      if (array == nullptr) Fail(key, node, "expected " + what + ", got " + Describe(*node));
+      if (array->size() != static_cast<size_t>(n)) {
+        Fail(key, node,
+             "expected " + what + ", got " + std::to_string(array->size()) +
+                 (array->size() == 1 ? " entry" : " entries"));
+      }
+      for (int k = 1; k <= n; ++k) {
+        const toml::node& entry = (*array)[static_cast<size_t>(k - 1)];
+        const std::optional<double> v = AsNumber(entry);
+        const bool rate = unit == "rad/s";
+        const bool ok = v && std::isfinite(*v) && (!rate || Within(*v, kRateLimit)) &&
+                        (quantity != "tilt" || *v >= 0.0);
+        if (!ok) {
+          const std::string expected =
+              quantity == "tilt" ? "a tilt >= 0 (rad; the azimuth gives its direction)"
+                                 : Expectation(Rule::kFinite, unit) +
+                                       (rate ? LimitText(kRateLimit) : std::string());
+          Fail(key, node,
+               "entry " + std::to_string(k) + ": expected " + expected + ", got " +
+                   (v ? ShortestText(*v) : Describe(entry)));
+        }
+        (*into[q])[static_cast<size_t>(k - 1)] = *v;
+      }
     }
   }
 
@@ -879,6 +978,19 @@ class Reader {
     m.rest_rate_rel =
         Number(model, "model", "rest_rate_rel", Rule::kNonNegative, "").value_or(m.rest_rate_rel);
     m.check_transitions = Bool(model, "model", "check_transitions").value_or(m.check_transitions);
+    if (const toml::node* node = model.get("landing_clearance_rel")) {
+      if (!cylinder_) {
+        Fail("model.landing_clearance_rel", node,
+             "only for a cylinder (shape = \"cylinder\"): a block lands at theta = 0");
+      }
+      m.landing_clearance_rel =
+          *Number(model, "model", "landing_clearance_rel", Rule::kNonNegative, "");
+      if (m.landing_clearance_rel > 0.5) {
+        Fail("model.landing_clearance_rel", node,
+             "expected a clearance relative to the diameter from 0 to 0.5, got " +
+                 ShortestText(m.landing_clearance_rel));
+      }
+    }
     m.formulation = Enum(model, "model", "formulation",
                          Choices<Formulation>{{"thesis", Formulation::kThesis},
                                               {"chain", Formulation::kChain},
@@ -919,6 +1031,12 @@ class Reader {
     }
     const toml::node* in = root.get("initial");
     const toml::table* it = in != nullptr ? in->as_table() : nullptr;
+    if (cylinder_ && s.initial.tilt_rad[0] >= s.model.overturn_rad) {
+      Fail("initial.tilt", it != nullptr ? it->get("tilt") : nullptr,
+           "expected a tilt below model.overturn_angle (" + ShortestText(s.model.overturn_rad) +
+               " rad; the cylinder would have overturned), got " +
+               ShortestText(s.initial.tilt_rad[0]));
+    }
     for (int k = 1; k <= s.block_count(); ++k) {
       const double v = s.initial.theta_rad[k - 1];
       if (std::abs(v) < s.model.overturn_rad) continue;
@@ -953,12 +1071,21 @@ class Reader {
 
     ReadBlocks(root, &s);
     blocks_ = s.block_count();
+    cylinder_ = s.three_dimensional();
 
     if (const toml::table* in = Table(root, "", "initial")) ReadInitial(*in, &s);
 
     if (const toml::table* base = Table(root, "", "base")) {
       if (const toml::table* h = Table(*base, "base", "horizontal")) {
         s.horizontal = ReadMotion(*h, "base.horizontal", path);
+      }
+      if (const toml::table* y = Table(*base, "base", "transverse")) {
+        if (!cylinder_) {
+          Fail("base.transverse", base->get("transverse"),
+               "only for bodies rocking in 3-D (shape = \"cylinder\"): a block rocks in the "
+               "x-z plane under [base.horizontal] and [base.vertical]");
+        }
+        s.transverse = ReadMotion(*y, "base.transverse", path);
       }
       if (const toml::table* v = Table(*base, "base", "vertical")) {
         s.vertical = ReadMotion(*v, "base.vertical", path);
@@ -978,6 +1105,7 @@ class Reader {
   std::string file_;
   std::map<std::string, std::string> overrides_;  // dotted key -> override text
   int blocks_ = 0;                                // the scene's blocks, once read
+  bool cylinder_ = false;                         // a cylinder scene, once its blocks are read
 };
 
 // Applies "key=value" overrides to the parsed tree; returns dotted key -> override text.
