@@ -113,6 +113,10 @@ EngineInput MakeEngineInput(const Scene& scene, const GroundMotion& motion,
   const size_t n = static_cast<size_t>(in.steps);
   DriveSamples& d = in.drive;
   if (!motion.empty()) SampleGroundAcceleration(motion, dt, n, &d.ax_mps2, &d.ay_mps2);
+  if (motion.has_transverse()) {
+    d.at_mps2.resize(n);
+    for (size_t i = 0; i < n; ++i) d.at_mps2[i] = motion.transverse_mps2(static_cast<double>(i) * dt);
+  }
   if (drive == DriveKind::kKinematic) {
     const std::vector<double> zeros(d.ax_mps2.empty() ? n : 0, 0.0);
     const std::vector<double>& ax = d.ax_mps2.empty() ? zeros : d.ax_mps2;
@@ -126,6 +130,11 @@ EngineInput MakeEngineInput(const Scene& scene, const GroundMotion& motion,
     d.uy_m = std::move(py.u_m);
     d.ux0_mps = px.velocity_before_mps;
     d.uy0_mps = py.velocity_before_mps;
+    if (!d.at_mps2.empty()) {
+      GroundPath pt = IntegrateGroundPath(d.at_mps2, dt, fc);
+      d.ut_m = std::move(pt.u_m);
+      d.ut0_mps = pt.velocity_before_mps;
+    }
     d.raw_peak_x_m = px.raw_peak_m;
     d.raw_peak_y_m = py.raw_peak_m;
     // What the correction changed: the drive's acceleration against the record's.

@@ -23,9 +23,16 @@ struct DriveSamples {
   /// evaluated at t_n (the leapfrog force time of Bullet's symplectic Euler step). Empty when
   /// the scene has no base motion (all zero).
   std::vector<double> ax_mps2, ay_mps2;
+  /// Inertial drive: the transverse base acceleration (+y of a 3-D body's world, the scene's
+  /// [base.transverse]) during step n, m/s^2; empty when the scene has none.
+  std::vector<double> at_mps2;
   /// Kinematic drive: ground displacement at t_n (n = 0..steps), m, after baseline correction
   /// (IntegrateGroundPath, scene/ground_displacement.h). Empty for the inertial drive.
   std::vector<double> ux_m, uy_m;
+  /// Kinematic drive: the transverse ground displacement at t_n, m (empty without a transverse
+  /// component), and its velocity before step 0, m/s.
+  std::vector<double> ut_m;
+  double ut0_mps = 0.0;
   /// Kinematic drive: ground velocity before step 0 (so that the blocks start at rest relative
   /// to the ground), m/s.
   double ux0_mps = 0.0, uy0_mps = 0.0;
