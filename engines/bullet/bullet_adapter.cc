@@ -6,9 +6,11 @@
 #include <memory>
 #include <stdexcept>
 
+#include "engines/bullet/bullet_cylinder.h"
 #include "engines/bullet/bullet_engine.h"
 #include "engines/bullet/bullet_settings.h"
 #include "engines/bullet/float_helper.h"
+#include "scene/body_kind.h"
 
 namespace rockbench {
 namespace bullet {
@@ -32,6 +34,11 @@ class BulletEngine final : public Engine {
   }
 
   const EngineSettingsSchema& settings_schema() const override { return BulletSettingsSchema(); }
+
+  /// The planar block and, in double precision, the cylinder (cylinder_world.h).
+  std::vector<std::string> body_shapes() const override {
+    return {PlanarBlockKind().shape, std::string(kCylinderShape)};
+  }
 
   std::vector<SweepSetting> SweepGrid(bool quick) const override {
     const std::vector<double> steps =
@@ -87,7 +94,15 @@ class BulletEngine final : public Engine {
                         const SimulateOptions& options) const override {
     const BulletInput input = MakeBulletInput(scene, motion, options.stop_at_rest_after_s);
     EngineResult out;
-    if (input.config.precision == BulletPrecision::kDouble) {
+    if (scene.three_dimensional()) {
+      // The cylinder: in process, double precision only (the float helper builds blocks).
+      if (input.config.precision != BulletPrecision::kDouble) {
+        throw SceneError((scene.path.empty() ? std::string("scene") : scene.path.string()) +
+                         ": bullet.precision: the cylinder (block1.shape = \"cylinder\") is "
+                         "built in double precision only; \"float\" builds blocks");
+      }
+      out = SimulateCylinder(input);
+    } else if (input.config.precision == BulletPrecision::kDouble) {
       out = bullet::Simulate(input);
     } else {
       try {

@@ -1,0 +1,231 @@
+#include "engines/bullet/cylinder_world.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "engines/bullet/bullet_cylinder.h"
+#include "engines/bullet/bullet_engine.h"
+
+namespace rockbench::bullet {
+namespace {
+
+// The ground plane z = 0 with a bounded box (+-kHalfSize_m across, +-1 m in z) in place of
+// btStaticPlaneShape's infinite one: Bullet takes a moving (kinematic) body with a box beyond
+// 1e6 m out of the simulation ("Overflow in AABB"). Its shape type is still the static plane's,
+// so the cylinder meets it through the convex-plane algorithm.
+class BoundedPlaneShape final : public btStaticPlaneShape {
+ public:
+  static constexpr double kHalfSize_m = 1e4;
+  BoundedPlaneShape() : btStaticPlaneShape(btVector3(0, 0, 1), 0) {}
+  void getAabb(const btTransform& t, btVector3& aabb_min, btVector3& aabb_max) const override {
+    const btVector3 half{btScalar(kHalfSize_m), btScalar(kHalfSize_m), btScalar(1)};
+    btTransformAabb(-half, half, 0, t, aabb_min, aabb_max);
+  }
+};
+
+Vec3d Minus(const Vec3d& a, const Vec3d& b) {
+  return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
+}
+
+btVector3 Bt(const Vec3d& v) {
+  return btVector3(btScalar(v[0]), btScalar(v[1]), btScalar(v[2]));
+}
+
+}  // namespace
+
+BulletCylinderWorld::BulletCylinderWorld(const BulletInput& input)
+    : in_(input), body_(CylinderBodyOf(input)) {
+  const BulletConfig& c = in_.config;
+  dt_ = in_.time_step_s;
+  kinematic_ = in_.drive_kind == DriveKind::kKinematic;
+
+  collision_config_ = std::make_unique<btDefaultCollisionConfiguration>();
+  dispatcher_ = std::make_unique<btCollisionDispatcher>(collision_config_.get());
+  broadphase_ = std::make_unique<btDbvtBroadphase>();
+  solver_ = std::make_unique<btSequentialImpulseConstraintSolver>();
+  world_ = std::make_unique<btDiscreteDynamicsWorld>(dispatcher_.get(), broadphase_.get(),
+                                                     solver_.get(), collision_config_.get());
+  // The solver as for the blocks (RockingWorld): the same keys, the same Bullet values.
+  btContactSolverInfo& si = world_->getSolverInfo();
+  si.m_numIterations = c.solver_iterations;
+  si.m_erp = btScalar(c.erp);
+  si.m_erp2 = btScalar(c.erp2);
+  si.m_splitImpulse = c.split_impulse ? 1 : 0;
+  si.m_splitImpulsePenetrationThreshold = btScalar(c.split_impulse_threshold);
+  si.m_restitutionVelocityThreshold = btScalar(c.restitution_velocity_threshold);
+  si.m_timeStep = btScalar(dt_);
+  world_->setGravity(btVector3(0, 0, btScalar(-in_.run.gravity_mps2)));
+
+  // Friction: Bullet's contact coefficient is the product of the two bodies' values (clamped at
+  // 10). The scene's finite coefficient goes on the cylinder over a ground of 1, so that the
+  // product is that coefficient exactly; otherwise both take the table's value, as the blocks.
+  const bool scene_friction = std::isfinite(body_.friction);
+  cylinder_friction_ = scene_friction ? body_.friction : c.friction;
+  ground_friction_ = scene_friction ? 1.0 : c.friction;
+
+  // Ground: the plane z = 0 at the base's displacement (kinematic drive) or at rest.
+  ground_shape_ = std::make_unique<BoundedPlaneShape>();
+  const Vec3d u0 = kinematic_ ? CylinderBaseDisplacement(in_, 0) : Vec3d{};
+  {
+    btRigidBody::btRigidBodyConstructionInfo info(0, nullptr, ground_shape_.get(),
+                                                  btVector3(0, 0, 0));
+    info.m_startWorldTransform = GroundTransform(u0);
+    info.m_friction = btScalar(ground_friction_);
+    info.m_restitution = btScalar(c.restitution);
+    info.m_rollingFriction = btScalar(c.rolling_friction);
+    ground_ = std::make_unique<btRigidBody>(info);
+    if (kinematic_) {
+      // As RockingWorld's ground: kinematic, not static (a static body is a fixed solver body).
+      ground_->setCollisionFlags(
+          (ground_->getCollisionFlags() & ~btCollisionObject::CF_STATIC_OBJECT) |
+          btCollisionObject::CF_KINEMATIC_OBJECT);
+      ground_->setActivationState(DISABLE_DEACTIVATION);
+    }
+    world_->addRigidBody(ground_.get());
+  }
+
+  // The cylinder: exact radius and half-height (no margin unless the table sets one), the mass
+  // and central inertia of CylinderBodyOf, the start pose shifted with the ground.
+  shape_ = std::make_unique<btCylinderShapeZ>(
+      btVector3(btScalar(body_.radius_m), btScalar(body_.radius_m), btScalar(body_.half_height_m)));
+  shape_->setMargin(btScalar(c.margin_m));
+  const btVector3 inertia(btScalar(body_.inertia_transverse_kgm2),
+                          btScalar(body_.inertia_transverse_kgm2),
+                          btScalar(body_.inertia_axial_kgm2));
+  const CylinderPose start = CylinderStartPose(in_);
+  const Vec3d v0 = kinematic_ ? CylinderBaseVelocityBefore(in_) : Vec3d{};
+  btTransform pose;
+  const Mat3d& q = start.rotation;
+  pose.setBasis(btMatrix3x3(btScalar(q[0]), btScalar(q[1]), btScalar(q[2]), btScalar(q[3]),
+                            btScalar(q[4]), btScalar(q[5]), btScalar(q[6]), btScalar(q[7]),
+                            btScalar(q[8])));
+  pose.setOrigin(Bt(start.centre_m) + Bt(u0));
+  btRigidBody::btRigidBodyConstructionInfo info(btScalar(body_.mass_kg), nullptr, shape_.get(),
+                                                inertia);
+  info.m_startWorldTransform = pose;
+  info.m_friction = btScalar(cylinder_friction_);
+  info.m_restitution = btScalar(c.restitution);
+  info.m_rollingFriction = btScalar(c.rolling_friction);
+  info.m_linearDamping = 0;
+  info.m_angularDamping = 0;
+  cylinder_ = std::make_unique<btRigidBody>(info);
+  // Bullet's default gyroscopic term (implicit, body frame), named here because the wobble
+  // depends on it.
+  cylinder_->setFlags(BT_ENABLE_GYROSCOPIC_FORCE_IMPLICIT_BODY);
+  cylinder_->setActivationState(DISABLE_DEACTIVATION);
+  cylinder_->setLinearVelocity(Bt(start.velocity_mps) + Bt(v0));
+  cylinder_->setAngularVelocity(Bt(start.omega_radps));
+  world_->addRigidBody(cylinder_.get());
+}
+
+BulletCylinderWorld::~BulletCylinderWorld() {
+  if (cylinder_) world_->removeRigidBody(cylinder_.get());
+  if (ground_) world_->removeRigidBody(ground_.get());
+}
+
+btTransform BulletCylinderWorld::GroundTransform(const Vec3d& u_m) const {
+  btTransform t;
+  t.setIdentity();
+  t.setOrigin(Bt(u_m));
+  return t;
+}
+
+void BulletCylinderWorld::ApplyDrive(std::int64_t n) {
+  next_step_ = n;
+  if (!kinematic_) {
+    // The exact equivalent of a translating base: effective gravity in the base frame.
+    const Vec3d a = CylinderDriveAccel(in_, n);
+    world_->setGravity(
+        btVector3(btScalar(-a[0]), btScalar(-a[1]), btScalar(-(in_.run.gravity_mps2 + a[2]))));
+    return;
+  }
+  // Kinematic, as RockingWorld::ApplyDrive: the interpolation pose one step behind makes the
+  // ground's velocity (u_{n+1} - u_n) / dt while collision detection sees it at u_n.
+  const Vec3d u = CylinderBaseDisplacement(in_, n), next = CylinderBaseDisplacement(in_, n + 1);
+  ground_->setWorldTransform(GroundTransform(u));
+  ground_->setInterpolationWorldTransform(
+      GroundTransform({2.0 * u[0] - next[0], 2.0 * u[1] - next[1], 2.0 * u[2] - next[2]}));
+}
+
+void BulletCylinderWorld::Step() {
+  world_->stepSimulation(btScalar(dt_), 0);
+  steps_done_ = next_step_ + 1;
+}
+
+CylinderPose BulletCylinderWorld::ReadPose() const {
+  const btTransform& t = cylinder_->getCenterOfMassTransform();
+  const btMatrix3x3& r = t.getBasis();
+  CylinderPose p;
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) p.rotation[3 * i + j] = double(r[i][j]);
+    p.centre_m[i] = double(t.getOrigin()[i]);
+    p.velocity_mps[i] = double(cylinder_->getLinearVelocity()[i]);
+    p.omega_radps[i] = double(cylinder_->getAngularVelocity()[i]);
+  }
+  if (kinematic_) {
+    // The base after steps_done_ steps: at u_n, moving as in the step that ended there.
+    const std::int64_t n = steps_done_;
+    const Vec3d u = CylinderBaseDisplacement(in_, n);
+    Vec3d v = CylinderBaseVelocityBefore(in_);
+    if (n >= 1) {
+      const Vec3d before = CylinderBaseDisplacement(in_, n - 1);
+      for (int i = 0; i < 3; ++i) v[i] = (u[i] - before[i]) / dt_;
+    }
+    p.centre_m = Minus(p.centre_m, u);
+    p.velocity_mps = Minus(p.velocity_mps, v);
+  }
+  return p;
+}
+
+nlohmann::json BulletCylinderWorld::Settings() const {
+  const BulletConfig& c = in_.config;
+  const btContactSolverInfo& si = world_->getSolverInfo();
+  nlohmann::json j;
+  j["precision"] = CompiledPrecision();
+  j["drive"] = kinematic_ ? "kinematic" : "inertial";
+  j["time_step_s"] = in_.time_step_s;
+  j["output_interval_s"] = in_.run.output_interval_s;
+  j["substeps_per_sample"] = std::max(1.0, std::round(in_.run.output_interval_s / dt_));
+  j["solver_iterations"] = c.solver_iterations;
+  j["erp"] = c.erp;
+  j["erp2"] = c.erp2;
+  j["split_impulse"] = c.split_impulse;
+  j["split_impulse_threshold"] = c.split_impulse_threshold;
+  j["restitution"] = c.restitution;
+  j["restitution_combined"] = c.restitution * c.restitution;
+  j["friction"] = c.friction;
+  j["cylinder_friction"] = cylinder_friction_;
+  j["ground_friction"] = ground_friction_;
+  // Bullet multiplies the two bodies' values and clamps the product at 10.
+  j["friction_combined"] = std::min(10.0, cylinder_friction_ * ground_friction_);
+  j["rolling_friction"] = c.rolling_friction;
+  j["restitution_velocity_threshold"] = c.restitution_velocity_threshold;
+  j["margin_m"] = c.margin_m;
+  j["kinematic_highpass_hz"] = in_.kinematic_highpass_hz;
+  j["shape"] = "btCylinderShapeZ";
+  j["ground"] = "btStaticPlaneShape z = 0";
+  j["contact"] = "convex-plane: the cylinder's support point (exact rim), one a step";
+  j["mass_kg"] = body_.mass_kg;
+  j["inertia_kgm2"] = {body_.inertia_transverse_kgm2, body_.inertia_transverse_kgm2,
+                       body_.inertia_axial_kgm2};
+  j["gyroscopic"] = "implicit (body)";
+  j["deactivation"] = "disabled";
+  j["warmstarting_factor"] = double(si.m_warmstartingFactor);
+  j["solver_mode"] = si.m_solverMode;
+  j["bullet_version"] = btGetVersion();
+  return j;
+}
+
+EngineResult SimulateCylinder(const BulletInput& input) {
+  if (input.config.precision != BulletPrecision::kDouble ||
+      std::string(CompiledPrecision()) != "double") {
+    throw std::invalid_argument("bullet: the cylinder is built in double precision only");
+  }
+  BulletCylinderWorld world(input);
+  static_assert(CylinderWorld<BulletCylinderWorld>);
+  return RunCylinderWorld("bullet", input, world);
+}
+
+}  // namespace rockbench::bullet
