@@ -27,13 +27,18 @@ constexpr double kMaxStepRel = 0.25;
 constexpr double kUprightStepRel = 1e-6;
 // A step below this, in time scales, stops the run (a pass too close to upright to integrate).
 constexpr double kMinStepRel = 1e-14;
+// The tilt an onset from rest starts from, rad (Onset).
+constexpr double kOnsetTilt_rad = 1e-12;
 // A local minimum of the tilt below this fraction of the critical angle is a pass near upright.
 constexpr double kPassTiltRel = 0.01;
 
-// The integrated state on the rim: tilt, azimuth offset from the segment's reference azimuth,
-// spin, and their rates.
+// The integrated state on the rim: the tilt vector (u, v) = theta (cos, sin) of the azimuth
+// measured from the segment's reference azimuth, the total turn chi = azimuth + spin, the
+// tilt vector's velocity and the axial rate w3 = psi' + phi' cos theta. Unlike the angles, these
+// have regular equations through upright (where the azimuth has no value and its rate grows as
+// 1 / theta^2 in a pass near upright): onsets, landings and passes integrate smoothly.
 using Y = VecN<6>;
-enum : size_t { kTheta, kDphi, kPsi, kThetaDot, kPhiDot, kPsiDot };
+enum : size_t { kU, kV, kChi, kUDot, kVDot, kW3 };
 
 // cos and sin of an angle, exact at multiples of pi/2 (within 1e-12 of one), so that a planar
 // motion's transverse arm is exactly 0.
@@ -89,30 +94,23 @@ class Run {
                  (!motion_.has_horizontal() || s0 == 0.0 || (tilt0 == 0.0 && rate0 == 0.0));
     sum.landing_tilt_rad = sum.planar ? 0.0 : std::asin(cfg_.landing_clearance_rel);
     azimuth_ref_ = azimuth0;
+    last_azimuth_ = azimuth0;
     cos_ref_ = c0;
     sin_ref_ = s0;
     psi_ = 0.0;
     if (tilt0 == 0.0 && rate0 == 0.0) {
       on_rim_ = false;
     } else {
+      // Upright with a negative tilt rate: the tilt vector moves away from the azimuth (the
+      // same motion about the opposite rim point); the azimuth rate has no meaning there.
       on_rim_ = true;
-      y_ = {tilt0, 0.0, 0.0, rate0, in.azimuth_rate_radps[0], in.spin_rate_radps[0]};
-      if (tilt0 == 0.0) {
-        // Upright and tipping: a negative rate is the same motion about the opposite rim point.
-        if (rate0 < 0.0) {
-          azimuth_ref_ += kPi;
-          cos_ref_ = -cos_ref_;
-          sin_ref_ = -sin_ref_;
-          y_[kThetaDot] = -rate0;
-        }
-        // The azimuth rate that keeps phi'' finite (the axial rate as given).
-        const double w3 = in.spin_rate_radps[0] + in.azimuth_rate_radps[0];
-        y_[kPhiDot] = UprightAzimuthRate(body_, y_[kThetaDot], w3, APerp(Accel(0.0)));
-        y_[kPsiDot] = w3 - y_[kPhiDot];
-        h_ = kUprightStepRel * t_scale_;
-      } else {
-        h_ = 1e-3 * t_scale_;
-      }
+      y_ = {tilt0,
+            0.0,
+            azimuth0,
+            rate0,
+            tilt0 * in.azimuth_rate_radps[0],
+            in.spin_rate_radps[0] + in.azimuth_rate_radps[0] * std::cos(tilt0)};
+      h_ = (tilt0 == 0.0 ? kUprightStepRel : 1e-3) * t_scale_;
     }
     Emit(0.0);
     next_output_ = 1;
@@ -133,30 +131,65 @@ class Run {
   BaseAccel Accel(double t) const {
     return {motion_.xg_mps2(t), motion_.transverse_mps2(t), motion_.yg_mps2(t)};
   }
-  // The transverse field across the reference azimuth.
-  double APerp(const BaseAccel& a) const { return -a[0] * sin_ref_ + a[1] * cos_ref_; }
-
-  // The rim state of an integrated state: the azimuth's cosine and sine from the reference's.
-  RimState StateOf(const Y& y) const {
-    RimState s;
-    s.theta = y[kTheta];
-    s.theta_dot = y[kThetaDot];
-    s.phi_dot = y[kPhiDot];
-    s.psi_dot = y[kPsiDot];
-    if (y[kDphi] == 0.0) {
-      s.cos_phi = cos_ref_;
-      s.sin_phi = sin_ref_;
-    } else {
-      const double c = std::cos(y[kDphi]), sn = std::sin(y[kDphi]);
-      s.cos_phi = cos_ref_ * c - sin_ref_ * sn;
-      s.sin_phi = sin_ref_ * c + cos_ref_ * sn;
+  // The polar view of a tilt vector state: the rim state (its azimuth's cosine and sine from
+  // the reference's and the vector's direction), the direction in the reference's frame, and
+  // the tilt vector's speed across its direction, theta phi' (each quantity divides by theta
+  // once at most, so that nothing underflows to 0/0 just off upright).
+  struct Polar {
+    RimState rim;
+    double dir_cos = 1.0, dir_sin = 0.0, across = 0.0;
+  };
+  Polar PolarOf(const Y& y) const {
+    Polar p;
+    RimState& s = p.rim;
+    const double u = y[kU], v = y[kV], ud = y[kUDot], vd = y[kVDot];
+    s.theta = std::hypot(u, v);
+    if (s.theta > 0.0) {
+      p.dir_cos = u / s.theta;
+      p.dir_sin = v / s.theta;
+      s.theta_dot = p.dir_cos * ud + p.dir_sin * vd;
+      p.across = p.dir_cos * vd - p.dir_sin * ud;
+      s.phi_dot = p.across / s.theta;
+    } else if (const double speed = std::hypot(ud, vd); speed > 0.0) {
+      // Upright: the direction is the velocity's.
+      p.dir_cos = ud / speed;
+      p.dir_sin = vd / speed;
+      s.theta_dot = speed;
     }
-    return s;
+    s.psi_dot = y[kW3] - s.phi_dot * std::cos(s.theta);
+    s.cos_phi = cos_ref_ * p.dir_cos - sin_ref_ * p.dir_sin;
+    s.sin_phi = sin_ref_ * p.dir_cos + cos_ref_ * p.dir_sin;
+    return p;
+  }
+  RimState StateOf(const Y& y) const { return PolarOf(y).rim; }
+
+  // The tilt vector's equations from the rim's: radial theta'' - theta phi'^2, tangential
+  // theta phi'' + 2 theta' phi', turned into the reference's frame; chi' = w3 + phi' (1 - cos).
+  Y Rhs(double t, const Y& y) const {
+    const Polar p = PolarOf(y);
+    const RimState& s = p.rim;
+    const RimDynamics d = Dynamics(body_, s, Accel(t));
+    double radial = d.theta_ddot, tangential = d.theta_phi_ddot, turn = 0.0;
+    if (s.theta > 0.0) {
+      radial -= p.across * s.phi_dot;
+      tangential += 2.0 * s.theta_dot * s.phi_dot;
+      // phi' (1 - cos theta) = across (2 sin^2(theta / 2) / theta).
+      const double half = std::sin(0.5 * s.theta);
+      turn = p.across * 2.0 * half * (half / s.theta);
+    }
+    return {y[kUDot],
+            y[kVDot],
+            y[kW3] + turn,
+            radial * p.dir_cos - tangential * p.dir_sin,
+            radial * p.dir_sin + tangential * p.dir_cos,
+            d.axial_rate_dot};
   }
 
-  Y Rhs(double t, const Y& y) const {
-    const RimDynamics d = Dynamics(body_, StateOf(y), Accel(t));
-    return {y[kThetaDot], y[kPhiDot], y[kPsiDot], d.theta_ddot, d.phi_ddot, d.psi_ddot};
+  // The azimuth of a state, continuous with the last row's (the last's when upright).
+  double AzimuthOf(const Y& y) const {
+    if (y[kU] == 0.0 && y[kV] == 0.0) return last_azimuth_;
+    const double a = azimuth_ref_ + std::atan2(y[kV], y[kU]);
+    return a + 2.0 * kPi * std::round((last_azimuth_ - a) / (2.0 * kPi));
   }
 
   // The history's row of an integrated state (on the rim) or of the rest (upright, still).
@@ -169,14 +202,15 @@ class Run {
     double tilt_x = 0.0, tilt_y = 0.0;
     if (y != nullptr) {
       const RimState s = StateOf(*y);
-      cs.tilt_rad = (*y)[kTheta];
-      cs.azimuth_rad = azimuth_ref_ + (*y)[kDphi];
-      cs.spin_rad = (*y)[kPsi];
-      cs.tilt_rate_radps = (*y)[kThetaDot];
-      cs.azimuth_rate_radps = (*y)[kPhiDot];
-      cs.spin_rate_radps = (*y)[kPsiDot];
-      tilt_x = cs.tilt_rad * s.cos_phi;
-      tilt_y = cs.tilt_rad * s.sin_phi;
+      cs.tilt_rad = s.theta;
+      cs.azimuth_rad = AzimuthOf(*y);
+      cs.spin_rad = (*y)[kChi] - cs.azimuth_rad;
+      cs.tilt_rate_radps = s.theta_dot;
+      cs.azimuth_rate_radps = s.phi_dot;
+      cs.spin_rate_radps = s.psi_dot;
+      // The tilt vector in the world, exact on the reference's cosine and sine.
+      tilt_x = (*y)[kU] * cos_ref_ - (*y)[kV] * sin_ref_;
+      tilt_y = (*y)[kU] * sin_ref_ + (*y)[kV] * cos_ref_;
       out.mode.set(0, Contact::kRight);
     }
     const double values[8] = {
@@ -189,6 +223,7 @@ class Run {
   void Emit(double t, const Y* y = nullptr) {
     Sample row = RowOf(t, on_rim_ ? (y != nullptr ? y : &y_) : nullptr);
     const double tilt = row.state[0][0];
+    last_azimuth_ = row.state[1][0];
     CylinderSummary& sum = result_.summary;
     if (tilt > sum.peak_tilt_rad) {
       sum.peak_tilt_rad = tilt;
@@ -267,7 +302,8 @@ class Run {
       }
       if (h < kMinStepRel * t_scale_) {
         Stop(RunStatus::kAssumptionViolated,
-             "the step fell below 1e-14 time scales at tilt " + std::to_string(y_[kTheta]) +
+             "the step fell below 1e-14 time scales at tilt " +
+                 std::to_string(std::hypot(y_[kU], y_[kV])) +
                  " rad (a pass too close to upright for model.landing_clearance_rel)");
         return;
       }
@@ -293,9 +329,10 @@ class Run {
       const Y y = dense.At(t);
       switch (kind) {
         case kLand:
-          return y[kTheta] - theta_land;
+          // A planar motion lands at u = 0 (v stays 0), any other at the clearance tilt.
+          return sum.planar ? y[kU] : std::hypot(y[kU], y[kV]) - theta_land;
         case kOverturn:
-          return cfg_.overturn_rad - y[kTheta];
+          return cfg_.overturn_rad - std::hypot(y[kU], y[kV]);
         default: {
           const RimDynamics d = Dynamics(body_, StateOf(y), Accel(t));
           if (kind == kLift) return d.force_n[2] / weight;
@@ -338,13 +375,14 @@ class Run {
       const RimDynamics d = Dynamics(body_, StateOf(y_end), Accel(first_kind >= 0 ? first_lo : t1));
       sum.friction_needed = std::max(sum.friction_needed, d.friction_needed());
       sum.min_normal_rel = std::min(sum.min_normal_rel, d.force_n[2] / weight);
-      if (y_[kThetaDot] < 0.0 && y_end[kThetaDot] >= 0.0 &&
-          y_end[kTheta] < kPassTiltRel * body_.critical_angle_rad()) {
+      const RimState before = StateOf(y_), after = StateOf(y_end);
+      if (before.theta_dot < 0.0 && after.theta_dot >= 0.0 &&
+          after.theta < kPassTiltRel * body_.critical_angle_rad()) {
         ++sum.passes;
-        sum.min_pass_tilt_rad = std::min(sum.min_pass_tilt_rad, y_end[kTheta]);
+        sum.min_pass_tilt_rad = std::min(sum.min_pass_tilt_rad, after.theta);
       }
-      if (y_end[kTheta] > sum.peak_tilt_rad) {
-        sum.peak_tilt_rad = y_end[kTheta];
+      if (after.theta > sum.peak_tilt_rad) {
+        sum.peak_tilt_rad = after.theta;
         sum.peak_tilt_t_s = first_kind >= 0 ? first_lo : t1;
       }
     }
@@ -355,11 +393,14 @@ class Run {
       return;
     }
     t_ = first_t;
-    y_ = dense.At(first_t);
+    // A landing's state is the one still on the lean's side (the bracket's other end, within
+    // the event width): its tilt rate points down toward upright.
+    y_ = dense.At(first_kind == kLand ? first_lo : first_t);
     // A lift-off beyond the critical angle with the tilt still rising is the fall's: the rim
     // lets go of the base as the cylinder topples (gravity no longer restores it).
-    const bool falling =
-        first_kind == kLift && y_[kTheta] > body_.critical_angle_rad() && y_[kThetaDot] > 0.0;
+    const RimState at_event = StateOf(y_);
+    const bool falling = first_kind == kLift && at_event.theta > body_.critical_angle_rad() &&
+                         at_event.theta_dot > 0.0;
     if (first_kind == kOverturn || falling) {
       const RimState s = StateOf(y_);
       sum.overturn_t_s = t_;
@@ -368,12 +409,12 @@ class Run {
       const double e = Energy(body_, s);
       std::string note = "azimuth " + std::to_string(sum.overturn_azimuth_rad) + " rad";
       if (falling) {
-        note += "; the rim lifted off at tilt " + std::to_string(y_[kTheta]) +
+        note += "; the rim lifted off at tilt " + std::to_string(at_event.theta) +
                 " rad beyond the critical angle " + std::to_string(body_.critical_angle_rad()) +
                 " rad while tilting away: counted as the overturn";
       }
-      AddEvent(t_, "overturn", Contact::kRight, Contact::kRight, y_[kThetaDot], y_[kThetaDot], e, e,
-               note);
+      AddEvent(t_, "overturn", Contact::kRight, Contact::kRight, at_event.theta_dot,
+               at_event.theta_dot, e, e, note);
       Stop(RunStatus::kOverturned, "");
       return;
     }
@@ -388,8 +429,8 @@ class Run {
             first_kind == kLift ? "lift-off: the rim's normal force would pull"
                                 : "slip: the rolling needs more friction than block1.friction = " +
                                       std::to_string(mu);
-        AddEvent(t_, "assumption_violated", Contact::kRight, Contact::kRight, y_[kThetaDot],
-                 y_[kThetaDot], e, e, why);
+        AddEvent(t_, "assumption_violated", Contact::kRight, Contact::kRight, at_event.theta_dot,
+                 at_event.theta_dot, e, e, why);
         Stop(RunStatus::kAssumptionViolated, why + " at t = " + std::to_string(t_) + " s");
         return;
       }
@@ -400,11 +441,11 @@ class Run {
   void Landed() {
     CylinderSummary& sum = result_.summary;
     const RimState pre = StateOf(y_);
-    const BaseAccel a = Accel(t_);
-    const Landing l = Land(body_, pre, a);
+    const Landing l = Land(body_, pre);
     ++sum.landings;
     const double e_before = Energy(body_, pre);
-    const double phi_pre = azimuth_ref_ + y_[kDphi];
+    const double phi_pre = AzimuthOf(y_);
+    const double chi = y_[kChi];
     if (l.theta_dot <= rest_rate_) {
       // Rest on the face: the face's friction holds the spin too.
       ++sum.rests;
@@ -412,7 +453,7 @@ class Run {
       azimuth_ref_ = phi_pre;
       cos_ref_ = pre.cos_phi;
       sin_ref_ = pre.sin_phi;
-      psi_ = y_[kPsi];
+      psi_ = chi - phi_pre;
       const double e_after = Energy(body_, RimState{});
       AddEvent(t_, "ground_impact", Contact::kRight, Contact::kFace, pre.theta_dot, 0.0, e_before,
                e_after, "rest");
@@ -422,9 +463,11 @@ class Run {
     // The half-turn of the azimuth, exact on its cosine and sine; the column's value within
     // (-pi, pi] (a planar rocking's lean alternates between two azimuths, not a drift).
     azimuth_ref_ = Wrapped(phi_pre + kPi);
+    last_azimuth_ = azimuth_ref_;
     cos_ref_ = -pre.cos_phi;
     sin_ref_ = -pre.sin_phi;
-    y_ = {0.0, 0.0, y_[kPsi] - kPi, l.theta_dot, l.phi_dot, l.psi_dot};
+    // Upright, the tilt vector leaving toward the new azimuth.
+    y_ = {0.0, 0.0, chi, l.theta_dot, 0.0, l.axial_rate};
     const double e_after = Energy(body_, StateOf(y_));
     AddEvent(t_, "ground_impact", Contact::kRight, Contact::kRight, pre.theta_dot, l.theta_dot,
              e_before, e_after, pre.theta > 0.0 ? "landed at the clearance tilt" : "");
@@ -505,8 +548,13 @@ class Run {
     azimuth_ref_ = std::atan2(sin_ref_, cos_ref_);
     // Continuous with the azimuth the rest kept: the same direction within a half-turn.
     azimuth_ref_ += 2.0 * kPi * std::round((previous - azimuth_ref_) / (2.0 * kPi));
+    last_azimuth_ = azimuth_ref_;
     on_rim_ = true;
-    y_ = {0.0, 0.0, psi_, 0.0, 0.0, 0.0};
+    // The rim model has no direction at upright and no rate at the onset: it starts at a tilt
+    // of kOnsetTilt_rad toward the azimuth, still, where the restoring moment has its direction
+    // (an offset far below any tolerance; from exactly upright the integrator's stages would
+    // turn the azimuth by the roundoff of an acceleration that is itself ~0 at the onset).
+    y_ = {kOnsetTilt_rad, 0.0, azimuth_ref_ + psi_, 0.0, 0.0, 0.0};
     h_ = kUprightStepRel * t_scale_;
     AddEvent(t_, "initiation", Contact::kFace, Contact::kRight, 0.0, 0.0, 0.0, 0.0, "");
     EmitEvent();
@@ -534,6 +582,7 @@ class Run {
   double t_ = 0.0, h_ = 0.0;
   Y y_{};
   double azimuth_ref_ = 0.0, cos_ref_ = 1.0, sin_ref_ = 0.0, psi_ = 0.0;
+  double last_azimuth_ = 0.0;  // the last row's azimuth (the unwrapping's anchor)
   long next_output_ = 0;
   double break_from_ = -kInf, break_at_ = -kInf;
 };

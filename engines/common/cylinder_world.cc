@@ -147,7 +147,8 @@ bool CylinderMonitor::Step(std::int64_t n, const CylinderPose& pose) {
     peak_tilt_t_s_ = t;
   }
   // A pass near upright: the tilt turns from falling to rising low down.
-  if (prev_tilt_rate_ < 0.0 && s.tilt_rate_radps >= 0.0 && s.tilt_rad < 0.01 * alpha_rad_) {
+  if (on_rim_ && prev_tilt_rate_ < 0.0 && s.tilt_rate_radps >= 0.0 &&
+      s.tilt_rad > config_.tilt_enter_rad && s.tilt_rad < 0.01 * alpha_rad_) {
     ++passes_;
   }
   prev_tilt_rate_ = s.tilt_rate_radps;
@@ -171,7 +172,11 @@ bool CylinderMonitor::Step(std::int64_t n, const CylinderPose& pose) {
     }
     const Vec3d w_cross = Cross(pose.omega_radps, lever);
     const double vx = pose.velocity_mps[0] + w_cross[0], vy = pose.velocity_mps[1] + w_cross[1];
-    slip_m_ += std::hypot(vx, vy) * dt;
+    // The net displacement of the contact relative to the base beyond rolling (a vector sum:
+    // the contact's noise and the step's lag along a turning rim cancel, a sliding does not).
+    slip_x_m_ += vx * dt;
+    slip_y_m_ += vy * dt;
+    slip_m_ = std::max(slip_m_, std::hypot(slip_x_m_, slip_y_m_));
     if (slip_m_ > config_.slip_flag_rel * 2.0 * body_.radius_m) Flag(kSliding, t, slip_m_);
   }
   const double fastest = std::max({std::abs(pose.omega_radps[0]), std::abs(pose.omega_radps[1]),

@@ -71,7 +71,8 @@ struct CylinderMonitorConfig {
   /// On the rim once the tilt exceeds tilt_enter_rad; back on the face below tilt_leave_rad
   /// (hysteresis above the engines' noise, as the planar monitor's).
   double tilt_enter_rad = 1e-5, tilt_leave_rad = 5e-6;
-  /// Flags: the rim's contact point slid further than slip_flag_rel * D ("sliding"); the
+  /// Flags: the rim's contact point slid (its net displacement beyond rolling) further than
+  /// slip_flag_rel * D ("sliding"); the
   /// lowest rim point higher than uplift_tol_m over the base while on the rim ("uplift": a
   /// bounce); deeper than penetration_flag_m below it ("penetration").
   double slip_flag_rel = 1e-3, uplift_tol_m = 1e-5, penetration_flag_m = 1e-4;
@@ -118,6 +119,7 @@ class CylinderMonitor {
   int passes_ = 0;
   double prev_tilt_rate_ = 0.0;
   double slip_m_ = 0.0, max_uplift_m_ = 0.0, max_penetration_m_ = 0.0;
+  double slip_x_m_ = 0.0, slip_y_m_ = 0.0;  // the contact's net displacement, m
   // sliding, uplift, penetration, blow_up: first time raised (NaN: never), first significant.
   double flag_t_[4], significant_t_[4];
 };

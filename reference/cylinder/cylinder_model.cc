@@ -83,9 +83,12 @@ RimDynamics Dynamics(const CylinderBody& body, const RimState& s, const BaseAcce
   d.theta_ddot = b2 / ic.pivot;
   const double w1_dot = (ic.c * b1 - ic.b * b3) / ic.delta;
   const double w3_dot = (ic.a * b3 - ic.b * b1) / ic.delta;
-  // phi'' = -(w1' + phi' theta' cos theta) / sin theta; at sin theta = 0 its limit, which the
-  // caller's phi' makes finite (0 here: the Taylor start carries the motion off upright).
-  d.phi_ddot = st != 0.0 ? -(w1_dot + pd * td * ct) / st : 0.0;
+  // phi'' = -(w1' + phi' theta' cos theta) / sin theta; theta phi'' has the limit
+  // -(w1' + phi' theta') at theta = 0 (theta / sin theta -> 1).
+  const double numerator = w1_dot + pd * td * ct;
+  d.theta_phi_ddot = -(st != 0.0 ? s.theta / st : 1.0) * numerator;
+  d.axial_rate_dot = w3_dot;
+  d.phi_ddot = st != 0.0 ? -numerator / st : 0.0;
   d.psi_ddot = w3_dot - d.phi_ddot * ct + pd * td * st;
 
   // The contact force F = m (a_G - G), a_G = omega_dot x r + omega x (Omega x r) in the frame.
@@ -122,15 +125,7 @@ double PlanarRestitution(const CylinderBody& body) {
   return 1.0 - 2.0 * m * r * r / body.pivot_inertia_kgm2();
 }
 
-double UprightAzimuthRate(const CylinderBody& body, double theta_dot, double axial_rate,
-                          double a_perp_mps2) {
-  const ContactInertia ic = ContactInertiaOf(body);
-  const double ia = body.inertia_axial_kgm2();
-  return ia * (ic.c * theta_dot * axial_rate - body.mass_kg * body.half_height_m * a_perp_mps2) /
-         (2.0 * ic.delta * theta_dot);
-}
-
-Landing Land(const CylinderBody& body, const RimState& s, const BaseAccel& a) {
+Landing Land(const CylinderBody& body, const RimState& s) {
   const ContactInertia ic = ContactInertiaOf(body);
   const double m = body.mass_kg, r = body.radius_m, h = body.half_height_m;
   const double ia = body.inertia_axial_kgm2();
@@ -147,12 +142,6 @@ Landing Land(const CylinderBody& body, const RimState& s, const BaseAccel& a) {
       0.5 * (ic.a * w1 * w1 + 2.0 * ic.b * w1 * w3 + ic.c * w3 * w3 + ic.pivot * w2 * w2);
   const double kinetic_after = 0.5 * (ic.pivot * w2_after * w2_after + ic.c * w3_after * w3_after);
   l.energy_lost_j = kinetic_before - kinetic_after;
-  if (l.theta_dot > 0.0) {
-    // The transverse field along the new azimuth (phi + pi) is minus the old one's.
-    const double a_perp_new = -(-a[0] * s.sin_phi + a[1] * s.cos_phi);
-    l.phi_dot = UprightAzimuthRate(body, l.theta_dot, w3_after, a_perp_new);
-  }
-  l.psi_dot = w3_after - l.phi_dot;
   return l;
 }
 

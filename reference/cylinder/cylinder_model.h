@@ -47,6 +47,10 @@ using BaseAccel = std::array<double, 3>;
 /// The accelerations of the angles on a rim point, and the contact force.
 struct RimDynamics {
   double theta_ddot = 0.0, phi_ddot = 0.0, psi_ddot = 0.0;  ///< rad/s^2
+  /// The parts that stay finite at theta = 0, for the tilt vector's equations
+  /// (reference/cylinder_run.cc): theta phi'' (its limit at theta = 0) and the rate of the
+  /// axial rate w3 = psi' + phi' cos theta, rad/s^2.
+  double theta_phi_ddot = 0.0, axial_rate_dot = 0.0;
   /// The contact force on the cylinder, world components, N: normal force_n = force[2],
   /// tangential (force[0], force[1]).
   std::array<double, 3> force_n{};
@@ -55,9 +59,9 @@ struct RimDynamics {
 };
 
 /// The equations of motion on the rim (docs/cylinder-3d.md section 2a): I_C omega_c' = b in the
-/// tilt frame, solved in closed form. phi'' divides by sin theta: at theta = 0 it is the limit
-/// only when phi' has the value that keeps it finite (LandingAzimuthRate); the caller starts a
-/// motion from upright with a Taylor step (StartFromUpright).
+/// tilt frame, solved in closed form. phi'' and psi'' divide by sin theta (0 at theta = 0);
+/// theta_phi_ddot and axial_rate_dot do not: near upright the caller integrates the tilt vector
+/// (theta cos phi, theta sin phi), whose equations are regular there.
 RimDynamics Dynamics(const CylinderBody& body, const RimState& s, const BaseAccel& a);
 
 /// Kinetic plus potential energy in the frame translating with the base, J (the potential of
@@ -72,23 +76,16 @@ double Energy(const CylinderBody& body, const RimState& s);
 struct Landing {
   double theta_dot = 0.0;      ///< the tilt rate about the new rim point (>= 0 when it rocks on)
   double axial_rate = 0.0;     ///< w3 = psi' + phi' cos theta after the impact, rad/s
-  double phi_dot = 0.0;        ///< the azimuth rate a start from upright needs (finite phi'')
-  double psi_dot = 0.0;        ///< axial_rate - phi_dot
   double energy_lost_j = 0.0;  ///< kinetic energy before minus after (>= 0)
 };
-/// The landing of state `s` (its tilt rate < 0, about to land) under base acceleration `a`
-/// (the transverse part along the new pivot enters the azimuth rate the start needs).
-Landing Land(const CylinderBody& body, const RimState& s, const BaseAccel& a);
+/// The landing of state `s` (its tilt rate < 0, about to land). The cylinder goes on from
+/// upright, its tilt vector moving at theta_dot toward the new azimuth (at upright the tilt
+/// vector's direction is its velocity's: no azimuth rate).
+Landing Land(const CylinderBody& body, const RimState& s);
 
 /// The planar limit's coefficient of restitution of the tilt rate, 1 - 2 m R^2 / I_O: what Land
 /// gives with no azimuth or spin rate (negative for a squat cylinder: it lands flat).
 double PlanarRestitution(const CylinderBody& body);
-
-/// The azimuth rate that keeps phi'' finite just after a start from upright at tilt rate
-/// theta_dot > 0 with axial rate w3, under the transverse acceleration a_perp along the
-/// azimuth (docs/cylinder-3d.md section 5, "phi'+ is not free").
-double UprightAzimuthRate(const CylinderBody& body, double theta_dot, double axial_rate,
-                          double a_perp_mps2);
 
 /// Onset from rest on the face (docs/cylinder-3d.md section 4.4): h |a_h| - R (g + a_z), m^2/s^2,
 /// the tipping moment per unit mass of the horizontal field a_h about the rim point away from

@@ -116,9 +116,16 @@ void CheckBuildsBodies(const Engine& engine, const Scene& scene) {
   const std::string& shape = scene.blocks.front().shape;
   const std::vector<std::string> builds = engine.body_shapes();
   if (std::find(builds.begin(), builds.end(), shape) != builds.end()) return;
+  // A planar engine facing a body that rocks in 3-D says so.
+  const bool three_d = std::find(builds.begin(), builds.end(), std::string(kCylinderShape)) !=
+                       builds.end();
+  const std::string why = shape == kCylinderShape && !three_d
+                              ? " (a cylinder rocks in three dimensions; this engine simulates "
+                                "bodies in the x-z plane only)"
+                              : "";
   throw SceneError((scene.path.empty() ? std::string("scene") : scene.path.string()) +
                    ": block1.shape: the engine '" + engine.name() + "' builds bodies of shape " +
-                   QuotedList(builds) + ", not \"" + shape + "\"");
+                   QuotedList(builds) + ", not \"" + shape + "\"" + why);
 }
 
 }  // namespace rockbench

@@ -30,7 +30,8 @@ using testing_util::ErrorOf;
 // initial swing from [initial] theta.
 const BodyKind& Pendulum() {
   static const BodyKind& kind = [] {
-    RegisterBodyKind({"test_pendulum", {{"swing", "rad", true}, {"swing_rate", "rad/s", false}}});
+    RegisterBodyKind(
+        {"test_pendulum", {{"swing", "rad", true}, {"swing_rate", "rad/s", false}}, {}, "omega"});
     return *FindBodyKind("test_pendulum");
   }();
   return kind;
@@ -105,11 +106,11 @@ TEST(BodyKind, ColumnsAreNamedOnceAndKindsAreChecked) {
   EXPECT_EQ(PlanarBlockKind().shape, "block");
   Pendulum();
   EXPECT_EQ(ErrorOf([] {
-              RegisterBodyKind({"test_pendulum", {{"a", "rad", true}}});
+              RegisterBodyKind({"test_pendulum", {{"a", "rad", true}}, {}, "omega"});
             }),
             "body kind 'test_pendulum' is already registered");
   EXPECT_EQ(ErrorOf([] {
-              RegisterBodyKind({"twice", {{"a", "rad"}, {"a", "rad"}}});
+              RegisterBodyKind({"twice", {{"a", "rad"}, {"a", "rad"}}, {}, "omega"});
             }),
             "body kind 'twice' names 'a' twice");
   // The scene names the kind by the [[block]] table's shape, one kind a stack.
@@ -119,7 +120,7 @@ TEST(BodyKind, ColumnsAreNamedOnceAndKindsAreChecked) {
                   "density = 1\n",
                   "x.toml");
             }),
-            "x.toml:2: block1.shape: expected a body kind (\"block\", \"test_pendulum\"), got "
+            "x.toml:2: block1.shape: expected a body kind (\"block\", \"cylinder\", \"test_pendulum\"), got "
             "\"sphere\"");
   EXPECT_NE(ErrorOf([] {
               ParseScene(
@@ -146,7 +147,7 @@ TEST_F(MadeUpBody, IsCarriedFromTheSceneToTheComparison) {
   EXPECT_EQ(ErrorOf([&] { CheckBuildsBodies(engine, scene); }), "no error");
   EXPECT_EQ(ErrorOf([&] { RunEngine("reference", scene, motion); }),
             (dir_ / "pendulum.toml").string() +
-                ": block1.shape: the engine 'reference' builds bodies of shape \"block\", not "
+                ": block1.shape: the engine 'reference' builds bodies of shape \"block\", \"cylinder\", not "
                 "\"test_pendulum\"");
   const EngineResult run = engine.Simulate(scene, motion, {});
 
