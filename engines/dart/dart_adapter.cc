@@ -3,10 +3,16 @@
 #include <cstdio>
 #include <dart/config.hpp>
 #include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
 
+#include "engines/common/cylinder_world.h"
 #include "engines/common/fixed_step.h"
+#include "engines/dart/dart_cylinder_world.h"
 #include "engines/dart/dart_settings.h"
 #include "engines/dart/dart_world.h"
+#include "scene/body_kind.h"
 
 namespace rockbench {
 namespace dart_engine {
@@ -35,15 +41,39 @@ class DartEngine final : public Engine {
 
   std::vector<SweepSetting> StressGrid() const override { return Families().StandardStress(); }
 
+  std::vector<std::string> body_shapes() const override {
+    return {PlanarBlockKind().shape, std::string(kCylinderShape)};
+  }
+
   EngineResult Simulate(const Scene& scene, const GroundMotion& motion,
                         const SimulateOptions& options) const override {
     const DartRun run = MakeDartRun(scene, motion, options.stop_at_rest_after_s);
-    EngineResult out = SimulateWorld<DartWorld>("dart", scene, run.input, run.settings);
+    EngineResult out = scene.three_dimensional()
+                           ? SimulateCylinder(scene, run)
+                           : SimulateWorld<DartWorld>("dart", scene, run.input, run.settings);
     char line[160];
     std::snprintf(line, sizeof line, "%s, %s, dt %.3g s",
                   DartLcpSolverName(run.settings.lcp_solver), DriveKindName(run.input.drive_kind),
                   run.input.time_step_s);
     out.settings_line = line;
+    return out;
+  }
+
+ private:
+  // The cylinder (scene.three_dimensional()): DartCylinderWorld run by the shared cylinder
+  // loop, with the summary's parts every DART run writes (diagnostics; kinematic).
+  static EngineResult SimulateCylinder(const Scene& scene, const DartRun& run) {
+    std::unique_ptr<DartCylinderWorld> world;
+    try {
+      world = std::make_unique<DartCylinderWorld>(run.input, run.settings);
+    } catch (const std::invalid_argument& e) {
+      throw SceneError(scene.path.string() + ": " + e.what());
+    }
+    EngineResult out = RunCylinderWorld("dart", run.input, *world);
+    out.summary["diagnostics"] = world->Diagnostics();
+    if (run.input.drive_kind == DriveKind::kKinematic) {
+      out.summary["kinematic"] = KinematicDriveJson(run.input);
+    }
     return out;
   }
 };

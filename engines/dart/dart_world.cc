@@ -4,13 +4,9 @@
 #include <cmath>
 #include <dart/collision/CollisionFilter.hpp>
 #include <dart/collision/CollisionObject.hpp>
-#include <dart/collision/dart/DARTCollisionDetector.hpp>
-#include <dart/collision/fcl/FCLCollisionDetector.hpp>
 #include <dart/config.hpp>
 #include <dart/constraint/BoxedLcpConstraintSolver.hpp>
 #include <dart/constraint/ContactConstraint.hpp>
-#include <dart/constraint/DantzigBoxedLcpSolver.hpp>
-#include <dart/constraint/PgsBoxedLcpSolver.hpp>
 #include <dart/dynamics/BodyNode.hpp>
 #include <dart/dynamics/BoxShape.hpp>
 #include <dart/dynamics/PlanarJoint.hpp>
@@ -20,13 +16,13 @@
 #include <dart/simulation/World.hpp>
 #include <functional>
 #include <limits>
-#include <mutex>
 #include <set>
 #include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "engines/dart/dart_solver.h"
 #include "scene/stack_pose.h"
 
 namespace rockbench::dart_engine {
@@ -40,79 +36,6 @@ const char* DartLcpSolverName(DartLcpSolver s) {
 }
 
 namespace {
-
-// DART's contact parameters are static members of ContactConstraint: one set per process.
-// Worlds alive at the same time must agree on them (checked under this lock); while any world
-// lives, nobody changes them, so the steps read them without a lock.
-struct ContactParams {
-  double erp = 0.0, allowance = 0.0, max_erv = 0.0, cfm = 0.0;
-  bool operator==(const ContactParams&) const = default;
-};
-std::mutex g_contact_mutex;
-int g_live_worlds = 0;
-ContactParams g_live_params;
-
-void AcquireContactParams(const ContactParams& p) {
-  std::lock_guard<std::mutex> lock(g_contact_mutex);
-  if (g_live_worlds > 0 && !(p == g_live_params)) {
-    throw std::invalid_argument(
-        "dart: contact erp, error allowance, max erv and cfm are process-wide in DART 6 "
-        "(ContactConstraint statics); another DART world alive in this process uses other "
-        "values");
-  }
-  if (g_live_worlds == 0) {
-    using dart::constraint::ContactConstraint;
-    ContactConstraint::setErrorReductionParameter(p.erp);
-    ContactConstraint::setErrorAllowance(p.allowance);
-    ContactConstraint::setMaxErrorReductionVelocity(p.max_erv);
-    ContactConstraint::setConstraintForceMixing(p.cfm);
-    g_live_params = p;
-  }
-  ++g_live_worlds;
-}
-
-void ReleaseContactParams() {
-  std::lock_guard<std::mutex> lock(g_contact_mutex);
-  --g_live_worlds;
-}
-
-// Forwards to a boxed LCP solver and counts its calls and failures (a failure of the primary
-// solver is when DART hands the problem to the fallback).
-class CountingLcpSolver final : public dart::constraint::BoxedLcpSolver {
- public:
-  CountingLcpSolver(std::shared_ptr<dart::constraint::BoxedLcpSolver> inner, std::int64_t* calls,
-                    std::int64_t* failures)
-      : inner_(std::move(inner)), calls_(calls), failures_(failures) {}
-
-  const std::string& getType() const override {
-    static const std::string type = "rockbench::CountingLcpSolver";
-    return type;
-  }
-  bool solve(int n, double* A, double* x, double* b, int nub, double* lo, double* hi, int* findex,
-             bool earlyTermination) override {
-    ++*calls_;
-    const bool ok = inner_->solve(n, A, x, b, nub, lo, hi, findex, earlyTermination);
-    if (!ok) ++*failures_;
-    return ok;
-  }
-  // Debian's libdart 6.12 is built without NDEBUG: its BoxedLcpSolver has the debug-only
-  // virtual canSolve, which its asserts call. Declared whatever our NDEBUG says, so that this
-  // class's vtable has the slot the library expects.
-#ifndef NDEBUG
-  bool canSolve(int n, const double* A) override {
-    return inner_->canSolve(n, A);
-  }
-#else
-  virtual bool canSolve(int /*n*/, const double* /*A*/) {
-    return true;
-  }
-#endif
-
- private:
-  std::shared_ptr<dart::constraint::BoxedLcpSolver> inner_;
-  std::int64_t* calls_;
-  std::int64_t* failures_;
-};
 
 // Friction from the scene. DART 6.12 has no coefficient per pair of shapes: a contact takes the
 // smaller of its two shapes' coefficients (ContactConstraint). Each interface k (block k + 1 on
@@ -212,10 +135,11 @@ struct DartWorld::Impl {
   // too; ShapeFrictions).
   dart::dynamics::ShapeNode* ground_shape = nullptr;
   std::vector<dart::dynamics::ShapeNode*> base_shapes, top_shapes;
-  bool params_acquired = false;
+  // The process-wide contact parameters, taken once the world is built.
+  std::unique_ptr<DartContactParams> params;
   // Diagnostics.
-  std::int64_t steps = 0, primary_calls = 0, primary_failures = 0, fallback_calls = 0,
-               fallback_failures = 0;
+  std::int64_t steps = 0;
+  DartLcpCounts lcp;
   std::size_t max_contacts_seen = 0, max_contacts_step = 0;
 
   Impl(const EngineInput& input, const DartSettings& settings) : in(input), s(settings) {}
@@ -279,40 +203,7 @@ dart::constraint::BoxedLcpConstraintSolver* DartWorld::Impl::MakeWorld() {
   world->setTimeStep(dt);
   world->setGravity(Eigen::Vector3d(0.0, -in.run.gravity_mps2, 0.0));
 
-  auto* solver =
-      dynamic_cast<dart::constraint::BoxedLcpConstraintSolver*>(world->getConstraintSolver());
-  if (solver == nullptr) throw std::logic_error("dart: the world's solver is not a boxed LCP");
-  dart::constraint::PgsBoxedLcpSolver::Option pgs_option;
-  pgs_option.mMaxIteration = s.pgs_iterations;
-  auto make_pgs = [&] {
-    auto pgs = std::make_shared<dart::constraint::PgsBoxedLcpSolver>();
-    pgs->setOption(pgs_option);
-    return pgs;
-  };
-  std::shared_ptr<dart::constraint::BoxedLcpSolver> primary;
-  if (s.lcp_solver == DartLcpSolver::kPgs) {
-    primary = make_pgs();
-  } else {
-    primary = std::make_shared<dart::constraint::DantzigBoxedLcpSolver>();
-  }
-  solver->setBoxedLcpSolver(
-      std::make_shared<CountingLcpSolver>(primary, &primary_calls, &primary_failures));
-  if (s.lcp_solver == DartLcpSolver::kDantzig && s.pgs_fallback) {
-    solver->setSecondaryBoxedLcpSolver(
-        std::make_shared<CountingLcpSolver>(make_pgs(), &fallback_calls, &fallback_failures));
-  } else {
-    solver->setSecondaryBoxedLcpSolver(nullptr);
-  }
-  if (s.collision == DartCollision::kFcl) {
-    auto fcl = dart::collision::FCLCollisionDetector::create();
-    fcl->setPrimitiveShapeType(dart::collision::FCLCollisionDetector::PRIMITIVE);
-    fcl->setContactPointComputationMethod(dart::collision::FCLCollisionDetector::DART);
-    solver->setCollisionDetector(fcl);
-  } else {
-    solver->setCollisionDetector(dart::collision::DARTCollisionDetector::create());
-  }
-  solver->getCollisionOption().maxNumContacts = static_cast<std::size_t>(s.max_contacts);
-  return solver;
+  return ConfigureDartSolver(*world, s, &lcp);
 }
 
 void DartWorld::Impl::MakeGround(double ground_mu, double size, double depth) {
@@ -419,13 +310,10 @@ DartWorld::DartWorld(const EngineInput& input, const DartSettings& settings)
   m.MakeBlocks(friction.base, friction.top);
   m.FilterContacts(solver);
 
-  AcquireContactParams({m.s.erp, m.s.error_allowance_m, m.s.max_erv_mps, m.s.cfm});
-  m.params_acquired = true;
+  m.params = std::make_unique<DartContactParams>(m.s);
 }
 
-DartWorld::~DartWorld() {
-  if (impl_ && impl_->params_acquired) ReleaseContactParams();
-}
+DartWorld::~DartWorld() = default;
 
 void DartWorld::ApplyDrive(std::int64_t n) {
   Impl& m = *impl_;
@@ -484,10 +372,10 @@ nlohmann::json DartWorld::Diagnostics() const {
   nlohmann::json j;
   j["steps"] = m.steps;
   j["max_contacts"] = m.max_contacts_seen;
-  j["lcp_solves"] = m.primary_calls;
-  j["lcp_primary_failures"] = m.primary_failures;
-  j["lcp_fallback_solves"] = m.fallback_calls;
-  j["lcp_fallback_failures"] = m.fallback_failures;
+  j["lcp_solves"] = m.lcp.primary_calls;
+  j["lcp_primary_failures"] = m.lcp.primary_failures;
+  j["lcp_fallback_solves"] = m.lcp.fallback_calls;
+  j["lcp_fallback_failures"] = m.lcp.fallback_failures;
   return j;
 }
 
