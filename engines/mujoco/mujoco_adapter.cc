@@ -1,13 +1,20 @@
 // MuJoCo behind the engine interface (src/scene/engine.h): MujocoWorld stepped by the shared
-// fixed-step loop, watched by the shared monitor.
+// fixed-step loop, watched by the shared monitor; the cylinder, MujocoCylinderWorld, by the
+// cylinder's run loop (engines/common/cylinder_world.h).
 #include <mujoco/mujoco.h>
 
 #include <cstdio>
 #include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
 
+#include "engines/common/cylinder_world.h"
 #include "engines/common/fixed_step.h"
+#include "engines/mujoco/mujoco_cylinder_world.h"
 #include "engines/mujoco/mujoco_settings.h"
 #include "engines/mujoco/mujoco_world.h"
+#include "scene/body_kind.h"
 
 namespace rockbench {
 namespace mujoco {
@@ -38,6 +45,11 @@ class MujocoEngine final : public Engine {
 
   const EngineSettingsSchema& settings_schema() const override { return MujocoSettingsSchema(); }
 
+  /// The planar block and the cylinder (mujoco_cylinder_world.h).
+  std::vector<std::string> body_shapes() const override {
+    return {PlanarBlockKind().shape, std::string(kCylinderShape)};
+  }
+
   std::vector<SweepSetting> SweepGrid(bool quick) const override {
     return Families().StandardSweep(quick, 2e-3);
   }
@@ -50,12 +62,29 @@ class MujocoEngine final : public Engine {
   EngineResult Simulate(const Scene& scene, const GroundMotion& motion,
                         const SimulateOptions& options) const override {
     const MujocoRun run = MakeMujocoRun(scene, motion, options.stop_at_rest_after_s);
-    EngineResult out = SimulateWorld<MujocoWorld>("mujoco", scene, run.input, run.settings);
+    EngineResult out = scene.three_dimensional()
+                           ? SimulateCylinder(scene, run)
+                           : SimulateWorld<MujocoWorld>("mujoco", scene, run.input, run.settings);
     char line[160];
     std::snprintf(line, sizeof line, "%s contact, %s, dt %.3g s",
                   std::string(ContactModelName(run.settings.contact)).c_str(),
                   DriveKindName(run.input.drive_kind), run.input.time_step_s);
     out.settings_line = line;
+    return out;
+  }
+
+ private:
+  // The cylinder, with the same settings and input; a setting the world cannot take is a
+  // SceneError naming the scene file (as SimulateWorld's).
+  static EngineResult SimulateCylinder(const Scene& scene, const MujocoRun& run) {
+    std::unique_ptr<MujocoCylinderWorld> world;
+    try {
+      world = std::make_unique<MujocoCylinderWorld>(run.input, run.settings);
+    } catch (const std::invalid_argument& e) {
+      throw SceneError(scene.path.string() + ": " + e.what());
+    }
+    EngineResult out = RunCylinderWorld("mujoco", run.input, *world);
+    out.summary["diagnostics"] = world->Diagnostics();
     return out;
   }
 };

@@ -4,14 +4,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
-#include <cstring>
 #include <limits>
-#include <memory>
-#include <mutex>
 #include <stdexcept>
 #include <string>
 
+#include "engines/mujoco/mujoco_mjcf.h"
 #include "scene/stack_pose.h"
 
 // Kinematic drive. A moving ground in MuJoCo would be a mocap body (or a body welded to one).
@@ -28,85 +25,12 @@
 namespace rockbench::mujoco {
 namespace {
 
-// mj_loadXML parses into a global (the model mj_saveLastXML writes) and compiles with MuJoCo's
-// error handlers; serialise it.
-std::mutex& CompileMutex() {
-  static std::mutex mutex;
-  return mutex;
-}
-
-// MuJoCo's default warning handler prints to stdout and appends to MUJOCO_LOG.TXT in the working
-// directory. The warnings it would print (buffers full, bad numbers) are counted in
-// mjData::warning, which Diagnostics() reports; so they are dropped here, once, unless the
-// program installed a handler of its own.
-void QuietWarning(const char*) {}
-void InstallQuietWarningHandler() {
-  static std::once_flag once;
-  std::call_once(once, [] {
-    if (mju_user_warning == nullptr) mju_user_warning = QuietWarning;
-  });
-}
-
-std::string Num(double v) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  return buf;
-}
-
-const char* MjcfIntegrator(Integrator i) {
-  switch (i) {
-    case Integrator::kEuler:
-      return "Euler";
-    case Integrator::kRK4:
-      return "RK4";
-    case Integrator::kImplicit:
-      return "implicit";
-  }
-  return "Euler";
-}
-const char* MjcfSolver(Solver s) {
-  switch (s) {
-    case Solver::kNewton:
-      return "Newton";
-    case Solver::kCG:
-      return "CG";
-    case Solver::kPGS:
-      return "PGS";
-  }
-  return "Newton";
-}
-
-struct ContactParams {
-  double solref[2];
-  double solimp[5];
-};
-
-// The contact's parameters at the step dt_s (s).
-ContactParams ContactParamsOf(const MujocoSettings& s, double dt_s) {
-  if (s.contact == ContactModel::kMujocoDefault) {
-    return {{0.02, 1.0}, {0.9, 0.95, 0.001, 0.5, 2.0}};
-  }
-  ContactParams p{{s.stiff_timeconst_steps * dt_s, s.stiff_dampratio}, {}};
-  for (int i = 0; i < 5; ++i) p.solimp[i] = s.stiff_solimp[i];
-  return p;
-}
-
-void Check(bool ok, const std::string& what) {
-  if (!ok) throw std::invalid_argument("mujoco: " + what);
-}
-
 // The settings' ranges are the [mujoco] schema's (mujoco_settings.cc, which also refuses the
 // kinematic drive), checked when the table was resolved; the step is the input's, checked by
 // MakeEngineInput. What is left: the stiff contact's solimp, a constant no key sets, and the
 // blocks.
 void CheckModel(const EngineInput& in, const MujocoSettings& s) {
-  const auto& si = s.stiff_solimp;
-  // MuJoCo would clamp impedances outside [mjMINIMP, mjMAXIMP] silently.
-  Check(si[0] >= mjMINIMP && si[0] <= mjMAXIMP && si[1] >= mjMINIMP && si[1] <= mjMAXIMP,
-        "stiff_solimp: dmin and dmax must lie in [0.0001, 0.9999] (MuJoCo's mjMINIMP, "
-        "mjMAXIMP)");
-  Check(si[2] >= 0.0 && si[3] > 0.0 && si[3] < 1.0 && si[4] >= 1.0,
-        "stiff_solimp: expected width >= 0, midpoint in (0, 1), power >= 1");
+  CheckSolimp(s);
   auto block_ok = [](const BlockDef& b) {
     return b.width_m > 0.0 && b.height_m > 0.0 && b.depth_m > 0.0 && b.mass_kg > 0.0;
   };
@@ -215,26 +139,6 @@ std::string ModelMjcf(const EngineInput& in, const MujocoSettings& s) {
   if (!contact.empty()) x += std::string("  <contact>\n") + contact + "  </contact>\n";
   x += "</mujoco>\n";
   return x;
-}
-
-mjModel* CompileMjcf(const std::string& xml) {
-  static constexpr const char* kFile = "rockbench_mujoco.xml";
-  auto vfs = std::make_unique<mjVFS>();  // 2 MB of file names: not on the stack
-  mj_defaultVFS(vfs.get());
-  if (mj_makeEmptyFileVFS(vfs.get(), kFile, static_cast<int>(xml.size())) != 0) {
-    throw std::runtime_error("mujoco: cannot make the model's virtual file");
-  }
-  const int i = mj_findFileVFS(vfs.get(), kFile);
-  std::memcpy(vfs->filedata[i], xml.data(), xml.size());
-  char error[1000] = "";
-  mjModel* m = nullptr;
-  {
-    std::lock_guard<std::mutex> lock(CompileMutex());
-    m = mj_loadXML(kFile, vfs.get(), error, sizeof error);
-  }
-  mj_deleteVFS(vfs.get());
-  if (!m) throw std::runtime_error(std::string("mujoco: model does not compile: ") + error);
-  return m;
 }
 
 int JointQpos(const mjModel* m, const std::string& name, int* qvel_adr) {
