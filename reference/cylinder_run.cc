@@ -280,7 +280,8 @@ class Run {
     double h = rk4 ? cfg_.step_s : std::min(h_, kMaxStepRel * t_scale_);
     h = std::min({h, break_at_ - t_, t_end_ - t_});
     const auto rhs = [this](double t, const Y& y) { return Rhs(t, y); };
-    const Y f0 = Rhs(t_, y_);
+    // First same as last: the previous step's f(t1, y1) when nothing changed the state since.
+    const Y f0 = continued_ ? f1_ : Rhs(t_, y_);
     auto attempt = [&](double hh) {
       return rk4      ? Rk4Step(rhs, t_, y_, f0, hh)
              : dop853 ? Dop853Step(rhs, t_, y_, f0, hh, cfg_.rtol, cfg_.atol)
@@ -344,13 +345,22 @@ class Run {
     double first_t = kInf;
     int first_kind = -1;
     double first_lo = 0.0;
+    // The forces' margins (a solve of the rim's equations each) at every other sample, from
+    // the previous step's end when the state continues it.
     double prev[kKinds];
-    for (int k = 0; k < kKinds; ++k) prev[k] = (k == kSlip && !check_slip) ? 1.0 : g(k, t0);
+    for (int k = 0; k < kKinds; ++k) {
+      if (k == kSlip && !check_slip) {
+        prev[k] = 1.0;
+      } else {
+        prev[k] = continued_ && k >= kLift ? force_margin_[k - kLift] : g(k, t0);
+      }
+    }
     for (int i = 1; i <= kEventSamples && first_kind < 0; ++i) {
       const double ti = i == kEventSamples ? t1 : t0 + h * i / kEventSamples;
-      const double ti_prev = t0 + h * (i - 1) / kEventSamples;
       for (int k = 0; k < kKinds; ++k) {
         if (k == kSlip && !check_slip) continue;
+        if (k >= kLift && i % 2 != 0) continue;
+        const double ti_prev = t0 + h * (i - (k >= kLift ? 2 : 1)) / kEventSamples;
         const double gi = g(k, ti);
         // A landing or an overturn crosses from > 0 to <= 0; a force from >= 0 to < 0.
         const bool crossed =
@@ -385,6 +395,12 @@ class Run {
         sum.peak_tilt_rad = after.theta;
         sum.peak_tilt_t_s = first_kind >= 0 ? first_lo : t1;
       }
+    }
+    continued_ = first_kind < 0;
+    if (continued_) {
+      f1_ = st.f1;
+      force_margin_[0] = prev[kLift];
+      force_margin_[1] = prev[kSlip];
     }
     if (first_kind < 0) {
       t_ = t1;
@@ -583,6 +599,11 @@ class Run {
   Y y_{};
   double azimuth_ref_ = 0.0, cos_ref_ = 1.0, sin_ref_ = 0.0, psi_ = 0.0;
   double last_azimuth_ = 0.0;  // the last row's azimuth (the unwrapping's anchor)
+  // Whether y_ is the last step's end, unchanged: then f1_ is f(t_, y_) and force_margin_ the
+  // lift-off and slip margins there.
+  bool continued_ = false;
+  Y f1_{};
+  double force_margin_[2] = {1.0, 1.0};
   long next_output_ = 0;
   double break_from_ = -kInf, break_at_ = -kInf;
 };

@@ -165,6 +165,7 @@ void Execute(const CompareCliOptions& opt) {
   }
   const ResourceBudget budget = StartLimits(opt.limits, opt.out, "compare");
   const Scene scene = LoadScene(opt.scene, overrides);
+  RequirePlanarBodies(scene, "compare");
   CheckEngineTables(scene);
   const std::vector<std::string> engines = ParseEnginesBesideReference(opt.engines);
   // An engine the scene brings runs only when the user names it: said, with how to opt in.

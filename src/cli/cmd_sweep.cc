@@ -37,6 +37,7 @@ struct SweepCliOptions {
 void Execute(const SweepCliOptions& opt) {
   const ResourceBudget budget = StartLimits(opt.limits, opt.out, "sweep");
   const Scene scene = LoadScene(opt.scene, opt.overrides);
+  RequirePlanarBodies(scene, "sweep");
   CheckEngineTables(scene);
   // The engines beside the reference (always swept); none: `--engines reference`, a stack the
   // engines do not simulate yet.

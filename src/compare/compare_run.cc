@@ -285,6 +285,7 @@ CompareRun RunCompare(const Scene& scene, const GroundMotion& motion,
   const std::function<void(const std::string&)> log = [&](const std::string& line) {
     if (options.log) options.log(line);
   };
+  RequirePlanarBodies(scene, "compare");
   CompareRun out;
   const CompareOptions base;
   RunReference(scene, motion, log, &out);

@@ -29,6 +29,14 @@ void RequireAtMostTwoBlocks(const Scene& scene, std::string_view who) {
                    std::to_string(n) + " blocks) are not simulated yet (issue 23); 1 or 2 blocks");
 }
 
+void RequirePlanarBodies(const Scene& scene, std::string_view who) {
+  if (!scene.three_dimensional()) return;
+  throw SceneError(FileLabel(scene.path) + ": block1.shape: " + std::string(who) +
+                   " takes planar blocks only so far; a cylinder (a body rocking in 3-D) is run "
+                   "by `rockbench run SCENE -e reference -e ENGINE`, which writes both histories "
+                   "(docs/three-d.md)");
+}
+
 bool IsAt2File(const std::filesystem::path& file) {
   std::string ext = file.extension().string();
   for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));

@@ -262,6 +262,12 @@ void ValidateScene(const Scene& scene);
 /// part ("reference model", "engine bullet", "render", ...).
 void RequireAtMostTwoBlocks(const Scene& scene, std::string_view who);
 
+/// The entry check of a part of the harness that compares, sweeps, studies, draws or reports
+/// planar blocks only: throws SceneError "FILE: block1.shape: WHO: ..." for a scene of a body
+/// rocking in 3-D (a cylinder), which `rockbench run` runs with the reference and the 3-D engines
+/// (docs/three-d.md).
+void RequirePlanarBodies(const Scene& scene, std::string_view who);
+
 /// True when a record file is read as PEER AT2: its name ends in ".AT2" (any case). Any other
 /// file is read as a plain column file.
 bool IsAt2File(const std::filesystem::path& file);

@@ -406,6 +406,7 @@ Scene BuildScene(const StudyDef& study, const std::vector<int>& idx, size_t set_
     if (!a.derived) overrides.push_back(a.key + "=" + a.values[idx[k]].toml);
   }
   Scene scene = LoadScene(study.scene_path, overrides);
+  RequirePlanarBodies(scene, "a study");
   // Derived axes in their fixed order: geometry first, then what depends on it.
   for (const std::string& key : DerivedKeys()) {
     for (size_t k = 0; k < axis_count; ++k) {

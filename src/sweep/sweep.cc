@@ -59,6 +59,7 @@ Scene SceneForPoint(const Scene& base, const SweepPoint& p) {
 std::vector<SweepRow> RunSweep(const Scene& scene, const GroundMotion& motion,
                                const SweepOptions& options, const SweepProgress& progress,
                                SweepBaseline* baseline_out) {
+  RequirePlanarBodies(scene, "sweep");
   if (options.repeat < 1) throw SceneError("--repeat: expected a positive integer");
   if (options.threads < 0) throw SceneError("--threads: expected a non-negative integer");
   const std::vector<SweepPoint> grid =

@@ -136,7 +136,8 @@ TEST_P(CylinderEngines, FreeWobblingFollowsTheReference) {
   double worst = 0.0;
   StateQuantityReader ex(r.history, "tilt_x"), ey(r.history, "tilt_y");
   for (const Sample& s : r.history.samples) {
-    worst = std::max(worst, std::hypot(ex(s, 1) - ValueAt(rx, s.t_s), ey(s, 1) - ValueAt(ry, s.t_s)));
+    worst =
+        std::max(worst, std::hypot(ex(s, 1) - ValueAt(rx, s.t_s), ey(s, 1) - ValueAt(ry, s.t_s)));
   }
   EXPECT_LT(worst, 0.01);
 }

@@ -83,6 +83,7 @@ void ReadSummaryAndScene(const fs::path& run_dir, RunData& run) {
                              "and friction");
   }
   run.scene = LoadScene(scene_path, run.overrides);
+  RequirePlanarBodies(run.scene, "report");
 }
 
 // The reference's and every engine's history.csv and events.csv, with colour and label.
