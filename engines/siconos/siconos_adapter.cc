@@ -4,9 +4,11 @@
 #include <memory>
 
 #include "engines/common/fixed_step.h"
+#include "engines/siconos/siconos_cylinder_world.h"
 #include "engines/siconos/siconos_settings.h"
 #include "engines/siconos/siconos_system.h"
 #include "engines/siconos/siconos_world.h"
+#include "scene/body_kind.h"
 
 namespace rockbench {
 namespace siconos_engine {
@@ -30,6 +32,11 @@ class SiconosEngine final : public Engine {
 
   const EngineSettingsSchema& settings_schema() const override { return SiconosSettingsSchema(); }
 
+  /// The planar block and the cylinder (siconos_cylinder_world.h).
+  std::vector<std::string> body_shapes() const override {
+    return {PlanarBlockKind().shape, std::string(kCylinderShape)};
+  }
+
   std::vector<SweepSetting> SweepGrid(bool quick) const override {
     return Families().StandardSweep(quick, 5e-3);
   }
@@ -39,7 +46,9 @@ class SiconosEngine final : public Engine {
   EngineResult Simulate(const Scene& scene, const GroundMotion& motion,
                         const SimulateOptions& options) const override {
     const SiconosRun run = MakeSiconosRun(scene, motion, options.stop_at_rest_after_s);
-    EngineResult out = SimulateWorld<SiconosWorld>("siconos", scene, run.input, run.settings);
+    EngineResult out = scene.three_dimensional()
+                           ? SimulateCylinder(scene.path.string(), run.input, run.settings)
+                           : SimulateWorld<SiconosWorld>("siconos", scene, run.input, run.settings);
     char line[160];
     std::snprintf(line, sizeof line, "Moreau-Jean theta %.3g, %s, %s, dt %.3g s",
                   run.settings.theta, SiconosSolverName(run.settings.solver),
