@@ -4,15 +4,20 @@
 /// as ours: no axis mapping).
 ///
 /// MuJoCo collides a cylinder with a plane in closed form (mjc_PlaneCylinder, not the convex
-/// libccd path): the first contact is the exact lowest rim point, so the contact of a cylinder
-/// rocking or rolling on its rim is a point of the true circle, whatever the azimuth; a second
-/// one is the rim point above it on the other face (the cylinder on its side); and when the
-/// bottom face comes within the contact's reach, two more at +-120 degrees from the lowest rim
-/// point (an equilateral triangle inscribed in the bottom rim, with the lowest point). So the
-/// face stands on three rim points, one of them always on the side it leans to: its edge in the
-/// direction of tipping is the true rim (the onset's lever is R). A landing face first meets
-/// the ground at the two triangle points half a radius from the centre on the far side, then at
-/// the far rim point (docs/engines.md, MuJoCo).
+/// libccd path, so the multiccd flag plays no part): the first contact is the exact lowest rim
+/// point, so the contact of a cylinder rocking or rolling on its rim is a point of the true
+/// circle, whatever the azimuth; a second one is the rim point above it on the other face (the
+/// cylinder on its side); and when the bottom face comes within the contact's reach, two more
+/// at +-120 degrees from the lowest rim point (an equilateral triangle inscribed in the bottom
+/// rim, with the lowest point). So the face stands on three rim points, one of them always on
+/// the side it leans to: its edge in the direction of tipping is the true rim (the onset's lever
+/// is R). A landing face meets the ground on the two triangle points (half a radius behind the
+/// centre) only in the step around tilt 0; once the tilt has changed side, the lowest
+/// point is the far rim point (one step with three contacts per landing of free rocking, at
+/// steps of 1e-3 to 1e-5 s). An N-sided mesh hull (plane-convex: the deepest vertex and up to 3
+/// more) would follow free wobbling several times worse than this geom even at N = 128, and a
+/// hull's rocking is exact only in the planes of its vertices (measured:
+/// docs/engine-measurements.md, MuJoCo).
 ///
 /// The base motion is the inertial drive (gravity (-a_x, -a_y, -(g + a_z)) each step); the
 /// kinematic drive is refused, as for blocks (mujoco_world.cc: a mocap ground has no velocity in
