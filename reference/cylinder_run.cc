@@ -21,6 +21,8 @@ constexpr double kEventTolRel = 1e-12;
 // Event functions are sampled at this many points of every step (a sign change between two
 // is located by Brent's method).
 constexpr int kEventSamples = 8;
+// The forces' margins (lift-off, slip) are sampled at every this many event samples.
+constexpr int kForceSampleEvery = 4;
 // The longest step, in time scales: at least kEventSamples event samples per quarter T.
 constexpr double kMaxStepRel = 0.25;
 // The first step after a start from upright, in time scales; the controller grows it.
@@ -326,6 +328,8 @@ class Run {
     const double mu = scene_.blocks[0].friction;
     const double weight = body_.mass_kg * body_.gravity_mps2;
     enum Kind { kLand, kOverturn, kLift, kSlip, kKinds };
+    RimDynamics solved;
+    double solved_t = std::numeric_limits<double>::quiet_NaN();
     const auto g = [&](int kind, double t) {
       const Y y = dense.At(t);
       switch (kind) {
@@ -335,7 +339,12 @@ class Run {
         case kOverturn:
           return cfg_.overturn_rad - std::hypot(y[kU], y[kV]);
         default: {
-          const RimDynamics d = Dynamics(body_, StateOf(y), Accel(t));
+          // Lift-off and slip at one time share one solve.
+          if (t != solved_t) {
+            solved = Dynamics(body_, StateOf(y), Accel(t));
+            solved_t = t;
+          }
+          const RimDynamics& d = solved;
           if (kind == kLift) return d.force_n[2] / weight;
           return (mu * d.force_n[2] - std::hypot(d.force_n[0], d.force_n[1])) / weight;
         }
@@ -345,8 +354,8 @@ class Run {
     double first_t = kInf;
     int first_kind = -1;
     double first_lo = 0.0;
-    // The forces' margins (a solve of the rim's equations each) at every other sample, from
-    // the previous step's end when the state continues it.
+    // The forces' margins (a solve of the rim's equations each) at every kForceSampleEvery-th
+    // sample, from the previous step's end when the state continues it.
     double prev[kKinds];
     for (int k = 0; k < kKinds; ++k) {
       if (k == kSlip && !check_slip) {
@@ -359,8 +368,8 @@ class Run {
       const double ti = i == kEventSamples ? t1 : t0 + h * i / kEventSamples;
       for (int k = 0; k < kKinds; ++k) {
         if (k == kSlip && !check_slip) continue;
-        if (k >= kLift && i % 2 != 0) continue;
-        const double ti_prev = t0 + h * (i - (k >= kLift ? 2 : 1)) / kEventSamples;
+        if (k >= kLift && i % kForceSampleEvery != 0) continue;
+        const double ti_prev = t0 + h * (i - (k >= kLift ? kForceSampleEvery : 1)) / kEventSamples;
         const double gi = g(k, ti);
         // A landing or an overturn crosses from > 0 to <= 0; a force from >= 0 to < 0.
         const bool crossed =
@@ -382,7 +391,10 @@ class Run {
     // Step-end figures: the friction the rolling needs, the normal force, passes near upright.
     const Y y_end = first_kind >= 0 ? dense.At(first_lo) : st.y1;
     {
-      const RimDynamics d = Dynamics(body_, StateOf(y_end), Accel(first_kind >= 0 ? first_lo : t1));
+      const double t_end_of_step = first_kind >= 0 ? first_lo : t1;
+      const RimDynamics d = t_end_of_step == solved_t
+                                ? solved
+                                : Dynamics(body_, StateOf(y_end), Accel(t_end_of_step));
       sum.friction_needed = std::max(sum.friction_needed, d.friction_needed());
       sum.min_normal_rel = std::min(sum.min_normal_rel, d.force_n[2] / weight);
       const RimState before = StateOf(y_), after = StateOf(y_end);

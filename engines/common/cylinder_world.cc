@@ -147,8 +147,15 @@ bool CylinderMonitor::Step(std::int64_t n, const CylinderPose& pose) {
     peak_tilt_t_s_ = t;
   }
   // A pass near upright: the tilt turns from falling to rising low down.
-  if (on_rim_ && prev_tilt_rate_ < 0.0 && s.tilt_rate_radps >= 0.0 &&
-      s.tilt_rad > config_.tilt_enter_rad && s.tilt_rad < 0.01 * alpha_rad_) {
+  // A pass near upright: the tilt vector turns through it (a landing in planar rocking, whose
+  // crossing step may end on the face), or the tilt turns from falling to rising low down on the
+  // rim (a roll round it).
+  // (Above the noise of a cylinder resting on its face: one of the two tilts beyond the rim's.)
+  const bool flipped =
+      s.tilt_x_rad() * last_.tilt_x_rad() + s.tilt_y_rad() * last_.tilt_y_rad() < 0.0 &&
+      std::max(s.tilt_rad, last_.tilt_rad) > config_.tilt_enter_rad;
+  if (flipped || (on_rim_ && prev_tilt_rate_ < 0.0 && s.tilt_rate_radps >= 0.0 &&
+                  s.tilt_rad > config_.tilt_enter_rad && s.tilt_rad < 0.01 * alpha_rad_)) {
     ++passes_;
   }
   prev_tilt_rate_ = s.tilt_rate_radps;
