@@ -1,11 +1,15 @@
 // ODE behind the engine interface (src/scene/engine.h): OdeWorld stepped by the shared
-// fixed-step loop, watched by the shared monitor.
+// fixed-step loop, watched by the shared monitor; the cylinder (a 3-D scene) in
+// OdeCylinderWorld, run by the shared cylinder loop.
 #include <ode/ode.h>
 
 #include <cstdio>
 #include <memory>
+#include <stdexcept>
 
+#include "engines/common/cylinder_world.h"
 #include "engines/common/fixed_step.h"
+#include "engines/ode/ode_cylinder_world.h"
 #include "engines/ode/ode_settings.h"
 #include "engines/ode/ode_world.h"
 
@@ -44,14 +48,35 @@ class OdeEngine final : public Engine {
 
   std::vector<SweepSetting> StressGrid() const override { return Families().StandardStress(); }
 
+  std::vector<std::string> body_shapes() const override { return {"block", "cylinder"}; }
+
   EngineResult Simulate(const Scene& scene, const GroundMotion& motion,
                         const SimulateOptions& options) const override {
     const OdeRun run = MakeOdeRun(scene, motion, options.stop_at_rest_after_s);
-    EngineResult out = SimulateWorld<OdeWorld>("ode", scene, run.input, run.settings);
+    EngineResult out = scene.three_dimensional()
+                           ? SimulateCylinder(scene, run)
+                           : SimulateWorld<OdeWorld>("ode", scene, run.input, run.settings);
     char line[160];
     std::snprintf(line, sizeof line, "%s, %s, dt %.3g s", OdeStepperName(run.settings.stepper),
                   DriveKindName(run.input.drive_kind), run.input.time_step_s);
     out.settings_line = line;
+    return out;
+  }
+
+ private:
+  // The cylinder's run (the same settings and input as the blocks'). A setting the world cannot
+  // take is a SceneError naming the scene file, as SimulateWorld's.
+  static EngineResult SimulateCylinder(const Scene& scene, const OdeRun& run) {
+    std::unique_ptr<OdeCylinderWorld> world;
+    try {
+      world = std::make_unique<OdeCylinderWorld>(run.input, run.settings);
+    } catch (const std::invalid_argument& e) {
+      throw SceneError(scene.path.string() + ": " + e.what());
+    }
+    EngineResult out = RunCylinderWorld("ode", run.input, *world);
+    if (run.input.drive_kind == DriveKind::kKinematic) {
+      out.summary["kinematic"] = KinematicDriveJson(run.input);
+    }
     return out;
   }
 };

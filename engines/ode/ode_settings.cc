@@ -44,6 +44,9 @@ const SettingsTable<OdeSettings>& OdeTable() {
               "contact points per box pair; 8 (no culling) keeps a face's four corners");
     t.Flag("finite_rotation", &S::finite_rotation, "false",
            "exact rotation of a step instead of the tangent update");
+    t.Flag("cylinder_upright_rim", &S::cylinder_upright_rim, "false (its collider as it is)",
+           "cylinder only: within 4.5e-4 rad of upright, contact at the lowest rim point (ODE's "
+           "collider makes none until the face's centre is under the plane)");
     t.Number("ground_depth", &S::ground_depth_m, R::kPositive, "m", "-", "ground box thickness");
     AddKinematicHighpassSetting(t.unbound());
     return t;

@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "engines/ode/ode_library.h"
 #include "scene/stack_pose.h"
 
 #if !defined(dDOUBLE)
@@ -31,35 +32,6 @@ constexpr double kMaxStepRotation_rad = 1e100;
 // |v| of a 3-vector (+inf past the range of a double: then the bound is exceeded anyway).
 double Norm2(const dReal* v) {
   return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-}
-
-// Process-wide ODE library state. dInitODE2 / dCloseODE use an unguarded static counter in
-// ODE 0.16, and ODE's documentation allows dInitODE2 only once until dCloseODE: the first live
-// world initialises the library, the last one closes it, under this mutex. The same mutex
-// guards dAllocateODEDataForThread (whose bookkeeping is global in a build without TLS).
-std::mutex g_ode_mutex;
-int g_ode_worlds = 0;
-
-void AcquireOde() {
-  std::lock_guard<std::mutex> lock(g_ode_mutex);
-  if (g_ode_worlds == 0 && !dInitODE2(0)) throw std::runtime_error("ode: dInitODE2 failed");
-  ++g_ode_worlds;
-  if (!dAllocateODEDataForThread(dAllocateMaskAll)) {
-    if (--g_ode_worlds == 0) dCloseODE();
-    throw std::runtime_error("ode: dAllocateODEDataForThread failed");
-  }
-}
-
-void ReleaseOde() {
-  std::lock_guard<std::mutex> lock(g_ode_mutex);
-  if (--g_ode_worlds == 0) dCloseODE();
-}
-
-void AllocateForThisThread() {
-  std::lock_guard<std::mutex> lock(g_ode_mutex);
-  if (!dAllocateODEDataForThread(dAllocateMaskAll)) {
-    throw std::runtime_error("ode: dAllocateODEDataForThread failed");
-  }
 }
 
 void ReadBody(dBodyID body, BodyReadout* out) {
@@ -308,8 +280,7 @@ void OdeWorld::Step() {
     // (dRandInt). Each world keeps its own generator state and steps with it under a lock, so a
     // run does not depend on what other worlds, in this thread or another, drew before it
     // (measured before this: the same sweep gave different errors from run to run).
-    static std::mutex quick_step_mutex;
-    std::lock_guard<std::mutex> lock(quick_step_mutex);
+    std::lock_guard<std::mutex> lock(QuickStepMutex());
     dRandSetSeed(rand_seed_);
     ok = dWorldQuickStep(world_, dt_);
     rand_seed_ = dRandGetSeed();
