@@ -24,10 +24,7 @@ struct BlockDef {
   double width_m = 0.0;        ///< full width B = 2b, m (a cylinder's: its diameter)
   double height_m = 0.0;       ///< full height H = 2h, m
   double depth_m = 1.0;        ///< out-of-plane depth, m (a cylinder's: its diameter)
-  /// A cylinder's diameter D, m (0 for a block). Its width and depth are D too: the bounding
-  /// box, and the planar section of its planar limit (critical angle atan(D / H)).
-  double diameter_m = 0.0;
-  double mass_kg = 0.0;  ///< mass, kg (given, or density times the volume)
+  double mass_kg = 0.0;        ///< mass, kg (given, or density times the volume)
   double density_kgpm3 = 0.0;  ///< density, kg/m^3 (0 when the scene gave the mass)
   /// Coulomb friction coefficient between this block's base and its support (the ground for
   /// block 1, the block below otherwise), dimensionless, >= 0; infinity (the default, the key
@@ -36,6 +33,10 @@ struct BlockDef {
   /// The body's kind (`shape`, scene/body_kind.h): "block", the planar rigid block, unless the
   /// table names another registered kind. Every body of a stack is of one kind.
   std::string shape = "block";
+  /// A cylinder's diameter D, m (0 for a block). Its width and depth are D too: the bounding
+  /// box, and the planar section of its planar limit (critical angle atan(D / H)). Last, so that
+  /// a block's fields keep their order (width, height, depth, mass, density, ...).
+  double diameter_m = 0.0;
 };
 
 /// A body's volume, m^3: width * height * depth for a block, pi D^2 H / 4 for a cylinder.
@@ -51,11 +52,11 @@ struct InitialState {
   /// A cylinder's state (shape "cylinder"; zero for blocks), docs/three-d.md: the tilt of its
   /// axis from vertical (>= 0), the azimuth toward which its top leans (from +x toward +y), and
   /// the rates of tilt, azimuth and spin about its axis.
-  std::array<double, kMaxBlocks> tilt_rad{};              ///< rad, >= 0
-  std::array<double, kMaxBlocks> azimuth_rad{};           ///< rad
-  std::array<double, kMaxBlocks> tilt_rate_radps{};       ///< rad/s
-  std::array<double, kMaxBlocks> azimuth_rate_radps{};    ///< rad/s
-  std::array<double, kMaxBlocks> spin_rate_radps{};       ///< rad/s
+  std::array<double, kMaxBlocks> tilt_rad{};            ///< rad, >= 0
+  std::array<double, kMaxBlocks> azimuth_rad{};         ///< rad
+  std::array<double, kMaxBlocks> tilt_rate_radps{};     ///< rad/s
+  std::array<double, kMaxBlocks> azimuth_rate_radps{};  ///< rad/s
+  std::array<double, kMaxBlocks> spin_rate_radps{};     ///< rad/s
 
   /// At rest. (Declared, so that the old four-number braces {theta1, theta2, omega1, omega2}
   /// no longer compile: they would fill theta_rad.)

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 #include <random>
 #include <string>
@@ -101,6 +102,8 @@ TEST(CylinderModel, EqualsTheWorldFrameFormulationPointwise) {
     const double force_scale = std::max(body.mass_kg * kG, o.contact_force_N.norm());
     worst_force = std::max(worst_force, (f - o.contact_force_N).norm() / force_scale);
   }
+  std::printf("measured: pointwise, angular acceleration %.2g, contact force %.2g (relative)\n",
+              worst_accel, worst_force);
   EXPECT_LT(worst_accel, 1e-11);
   EXPECT_LT(worst_force, 1e-11);
 }
@@ -175,6 +178,8 @@ TEST(CylinderRun, EqualsTheWorldFrameFormulationOverSecondsOfWobbling) {
       worst = std::max(worst, std::hypot(ref_x[i].second - o[i].tilt_x_rad(),
                                          ref_y[i].second - o[i].tilt_y_rad()));
     }
+    std::printf("measured: phi0' = %g%s, max |tilt vector difference| %.2g rad over 4 s\n",
+                c.phi_rate, c.base.empty() ? "" : " (forced)", worst);
     EXPECT_LT(worst, 1e-10) << "phi0' = " << c.phi_rate;
   }
 }
@@ -202,6 +207,8 @@ TEST(CylinderRun, FreeRollingConservesEnergy) {
       if (&s == &r.history.samples.front()) e0 = e;
       worst = std::max(worst, std::abs(e - e0));
     }
+    std::printf("measured: phi0' = %g, energy drift %.2g of the energy over 4 s\n", phi_rate,
+                worst / e0);
     EXPECT_LT(worst, 1e-10 * e0) << phi_rate;
   }
 }
@@ -285,7 +292,11 @@ TEST(CylinderRun, PlanarLimitIsThePlanarBodyWithImpacts) {
     if (e.kind == "ground_impact") landings.push_back(e.t_s);
   }
   ASSERT_EQ(landings.size(), impacts.size());
-  for (size_t i = 0; i < impacts.size(); ++i) EXPECT_NEAR(landings[i], impacts[i], 1e-9) << i;
+  double worst_t = 0.0;
+  for (size_t i = 0; i < impacts.size(); ++i) {
+    EXPECT_NEAR(landings[i], impacts[i], 1e-9) << i;
+    worst_t = std::max(worst_t, std::abs(landings[i] - impacts[i]));
+  }
   // The rows at output times (every event row is at another time).
   StateQuantityReader tilt_x(r.history, "tilt_x"), tilt_y(r.history, "tilt_y");
   double worst = 0.0;
@@ -298,6 +309,8 @@ TEST(CylinderRun, PlanarLimitIsThePlanarBodyWithImpacts) {
     worst = std::max(worst, std::abs(tilt_x(s, 1) - planar[static_cast<size_t>(k)]));
     ++matched;
   }
+  std::printf("measured: planar limit, %zu landings within %.2g s, max |tilt_x - planar| %.2g rad\n",
+              impacts.size(), worst_t, worst);
   EXPECT_GE(matched, 600u);
   EXPECT_LT(worst, 1e-10);
 }
@@ -388,6 +401,8 @@ TEST(CylinderRun, RotatingTheGroundMotionRotatesTheAzimuth) {
     worst_azimuth = std::max(worst_azimuth, std::abs(pb[i].second - pa[i].second - beta));
     worst_spin = std::max(worst_spin, std::abs(sa[i].second - sb[i].second));
   }
+  std::printf("measured: rotation by 0.7 rad, tilt %.2g, azimuth - 0.7 %.2g, spin %.2g rad\n",
+              worst_tilt, worst_azimuth, worst_spin);
   EXPECT_LT(worst_tilt, 1e-10);
   EXPECT_LT(worst_azimuth, 1e-10);
   EXPECT_LT(worst_spin, 1e-10);
@@ -453,6 +468,8 @@ TEST(CylinderRun, LandingClearanceDecidesAPassNearUpright) {
   EXPECT_EQ(rolls.summary.landings, 0);
   EXPECT_FALSE(rolls.summary.planar);
   ASSERT_GE(rolls.summary.passes, 1);
+  std::printf("measured: pass near upright, min tilt %.4g rad, peak after %.10g rad\n",
+              rolls.summary.min_pass_tilt_rad, rolls.summary.peak_tilt_rad);
   EXPECT_NEAR(rolls.summary.min_pass_tilt_rad, 1.32e-5, 0.02e-5);
   EXPECT_NEAR(rolls.summary.peak_tilt_rad, 0.1, 1e-9);
   const CylinderResult lands = run(1e-4);
