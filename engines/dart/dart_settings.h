@@ -14,6 +14,9 @@ namespace rockbench::dart_engine {
 /// DART's collision detectors that handle box-box pairs and are installed with libdart-dev.
 /// (DART's Bullet and ODE detectors are separate packages, libdart-collision-bullet-dev and
 /// libdart-collision-ode-dev, not installed here: not offered.)
+/// The cylinder (dart_cylinder_world.h) takes its shape from the detector: DART's own has no
+/// cylinder (a 64-sided prism of boxes stands for it); FCL meshes DART's CylinderShape with 16
+/// slices.
 enum class DartCollision {
   /// dart::collision::DARTCollisionDetector: ODE's dBoxBox clipping (a corner edge on a face
   /// gives its 2 end points, a face on a face 4).
