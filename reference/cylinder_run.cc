@@ -327,7 +327,7 @@ class Run {
     const double theta_land = sum.landing_tilt_rad;
     const double mu = scene_.blocks[0].friction;
     const double weight = body_.mass_kg * body_.gravity_mps2;
-    enum Kind { kLand, kOverturn, kLift, kSlip, kKinds };
+    enum Kind { kLand, kOverturn, kApex, kLift, kSlip, kKinds };
     RimDynamics solved;
     double solved_t = std::numeric_limits<double>::quiet_NaN();
     const auto g = [&](int kind, double t) {
@@ -338,6 +338,11 @@ class Run {
           return sum.planar ? y[kU] : std::hypot(y[kU], y[kV]) - theta_land;
         case kOverturn:
           return cfg_.overturn_rad - std::hypot(y[kU], y[kV]);
+        case kApex:
+          // A rebound whose apex stays within the landing clearance (its tilt rate turning
+          // down below the landing tilt): the face never left the base.
+          if (sum.planar || std::hypot(y[kU], y[kV]) >= theta_land) return 1.0;
+          return StateOf(y).theta_dot;
         default: {
           // Lift-off and slip at one time share one solve.
           if (t != solved_t) {
@@ -373,7 +378,10 @@ class Run {
         const double gi = g(k, ti);
         // A landing or an overturn crosses from > 0 to <= 0; a force from >= 0 to < 0.
         const bool crossed =
-            k <= kOverturn ? (prev[k] > 0.0 && gi <= 0.0) : (prev[k] >= 0.0 && gi < 0.0);
+            k <= kApex ? (prev[k] > 0.0 && gi <= 0.0 &&
+                          (k != kApex ||
+                           std::hypot(dense.At(ti_prev)[kU], dense.At(ti_prev)[kV]) < theta_land))
+                       : (prev[k] >= 0.0 && gi < 0.0);
         if (crossed && ti < first_t) {
           const auto fn = [&](double t) { return g(k, t); };
           const auto br = BrentBracket(fn, ti_prev, ti, prev[k], gi, event_tol_);
@@ -450,6 +458,9 @@ class Run {
       case kLand:
         Landed();
         return;
+      case kApex:
+        RestsWithinClearance();
+        return;
       default: {
         EmitEvent();
         const double e = Energy(body_, StateOf(y_));
@@ -501,6 +512,24 @@ class Run {
              e_before, e_after, pre.theta > 0.0 ? "landed at the clearance tilt" : "");
     EmitEvent();
     h_ = kUprightStepRel * t_scale_;
+  }
+
+  // A rebound that turns back within the landing clearance: the cylinder rests on its face (its
+  // spin held by the face's friction, as after a landing that rests).
+  void RestsWithinClearance() {
+    CylinderSummary& sum = result_.summary;
+    const RimState pre = StateOf(y_);
+    ++sum.rests;
+    const double e_before = Energy(body_, pre);
+    const double phi = AzimuthOf(y_);
+    on_rim_ = false;
+    azimuth_ref_ = phi;
+    cos_ref_ = pre.cos_phi;
+    sin_ref_ = pre.sin_phi;
+    psi_ = y_[kChi] - phi;
+    AddEvent(t_, "rest", Contact::kRight, Contact::kFace, pre.theta_dot, 0.0, e_before,
+             Energy(body_, RimState{}), "the rebound turned back within the landing clearance");
+    EmitEvent();
   }
 
   // At rest on the face until the field tips it (OnsetMargin > 0), lifts it or slides it.

@@ -477,6 +477,23 @@ TEST(CylinderRun, LandingClearanceDecidesAPassNearUpright) {
   EXPECT_EQ(lands.history.events.front().note, "landed at the clearance tilt");
 }
 
+// A rebound that turns back within the landing clearance rests: its face never left the base
+// by more than the clearance (without the rule it would wobble below the landing tilt, never
+// crossing it again). Released at 0.012 rad with an azimuth rate (not planar) and a clearance of
+// 0.01 (landing tilt 0.0100002 rad): it lands once, rebounds by e and turns back below 0.01.
+TEST(CylinderRun, AReboundWithinTheClearanceRests) {
+  const CylinderResult r = RunScene(CylinderScene(
+      "[initial]\ntilt = [0.012]\nazimuth_rate = [0.2]\n[run]\nduration = 3\n"
+      "[model]\nlanding_clearance_rel = 0.01\n"));
+  ASSERT_EQ(r.summary.status, RunStatus::kAtRest) << r.summary.status_detail;
+  EXPECT_EQ(r.summary.landings, 1);
+  EXPECT_EQ(r.summary.rests, 1);
+  ASSERT_EQ(r.history.events.size(), 2u);
+  EXPECT_EQ(r.history.events[1].kind, "rest");
+  EXPECT_EQ(r.history.events[1].note, "the rebound turned back within the landing clearance");
+  EXPECT_LE(r.summary.peak_tilt_rad, 0.012 + 1e-12);
+}
+
 // Overturn: released beyond the critical angle with no field, the cylinder falls toward its
 // azimuth and the run says when and where.
 TEST(CylinderRun, OverturnSaysTheTimeAndTheAzimuth) {

@@ -79,7 +79,8 @@ TEST(CylinderScene, PhasedHarmonicPeakInAShortWindow) {
                      "[base.horizontal]\nkind = \"harmonic\"\namplitude_g = 1\nfrequency_hz = 1\n"
                      "phase_deg = 30\nduration_s = 0.1\n",
                  "c.toml");
-  const MotionInfo& i = GroundMotion::FromScene(s).horizontal()->info();
+  const GroundMotion motion = GroundMotion::FromScene(s);
+  const MotionInfo& i = motion.horizontal()->info();
   // sin(30 deg) = 0.5 at the start, sin(30 + 36 deg) = 0.9135 at the end; the crest at 60 deg
   // (t = 1/6 s) is outside.
   EXPECT_NEAR(i.peak_g, std::sin(66 * kPi / 180), 1e-12);
