@@ -16,7 +16,7 @@ using rockbench::LoadScene;
 using rockbench::Scene;
 
 void RunScene(benchmark::State& state, const std::string& file) {
-  const Scene scene = LoadScene(std::string(ROCKBENCH_SOURCE_DIR) + "/scenes/" + file);
+  const Scene scene = LoadScene(std::string(ROCKBENCH_SOURCE_DIR) + "/scenes/three_d/" + file);
   const GroundMotion motion = GroundMotion::FromScene(scene);
   long steps = 0;
   for (auto _ : state) {

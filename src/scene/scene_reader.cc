@@ -58,8 +58,8 @@ constexpr std::array<const char*, 12> kSyntheticOnlyKeys = {
 // Allowed keys of every table; a key listed with `true` is a sub-table.
 using KeyList = std::vector<std::pair<std::string_view, bool>>;
 const std::map<std::string, KeyList, std::less<>>& Schema() {
-  static const KeyList kBlock = {{"width", false}, {"height", false}, {"density", false},
-                                 {"mass", false},  {"depth", false},  {"friction", false},
+  static const KeyList kBlock = {{"width", false}, {"height", false},  {"density", false},
+                                 {"mass", false},  {"depth", false},   {"friction", false},
                                  {"shape", false}, {"diameter", false}};
   static const KeyList kMotion = {{"file", false},
                                   {"kind", false},
@@ -190,7 +190,8 @@ bool ParseInitialKey(std::string_view name, std::string_view* quantity, int* blo
 std::string InitialKeyList(int blocks, bool cylinder) {
   if (cylinder) {
     std::string out;
-    for (const auto& [q, unit] : kCylinderInitial) out += (out.empty() ? "" : ", ") + std::string(q);
+    for (const auto& [q, unit] : kCylinderInitial)
+      out += (out.empty() ? "" : ", ") + std::string(q);
     return out;
   }
   if (blocks <= 2) return "theta1, theta2, omega1, omega2, theta, omega";
@@ -514,13 +515,15 @@ class Reader {
     }
     if (density) {
       b.density_kgpm3 = *density;
-      b.mass_kg = *density * BodyVolume_m3(b);
+      // A block's mass as it always was (density * width * height * depth, in that order: the
+      // same bits); a cylinder's from its volume.
+      b.mass_kg =
+          cylinder ? *density * BodyVolume_m3(b) : *density * b.width_m * b.height_m * b.depth_m;
       if (!Within(b.mass_kg, kMassLimit)) {
         Fail(prefix + ".density", t.get("density"),
              std::string(cylinder ? "density * pi diameter^2 height / 4"
                                   : "density * width * height * depth") +
-                 " = " + ShortestText(b.mass_kg) +
-                 " kg; expected a mass" + LimitText(kMassLimit));
+                 " = " + ShortestText(b.mass_kg) + " kg; expected a mass" + LimitText(kMassLimit));
       }
     } else {
       b.density_kgpm3 = 0.0;
@@ -882,8 +885,8 @@ class Reader {
       const std::string key = "initial." + std::string(quantity);
       const toml::node* node = in.get(quantity);
       if (node == nullptr) continue;
-      const std::string what = "an array of " + std::to_string(n) + " numbers (" +
-                               std::string(unit) + ", one per body)";
+      const std::string what =
+          "an array of " + std::to_string(n) + " numbers (" + std::string(unit) + ", one per body)";
       const toml::array* array = node->as_array();
       if (array == nullptr) Fail(key, node, "expected " + what + ", got " + Describe(*node));
       if (array->size() != static_cast<size_t>(n)) {
@@ -898,10 +901,10 @@ class Reader {
         const bool ok = v && std::isfinite(*v) && (!rate || Within(*v, kRateLimit)) &&
                         (quantity != "tilt" || *v >= 0.0);
         if (!ok) {
-          const std::string expected =
-              quantity == "tilt" ? "a tilt >= 0 (rad; the azimuth gives its direction)"
-                                 : Expectation(Rule::kFinite, unit) +
-                                       (rate ? LimitText(kRateLimit) : std::string());
+          const std::string expected = quantity == "tilt"
+                                           ? "a tilt >= 0 (rad; the azimuth gives its direction)"
+                                           : Expectation(Rule::kFinite, unit) +
+                                                 (rate ? LimitText(kRateLimit) : std::string());
           Fail(key, node,
                "entry " + std::to_string(k) + ": expected " + expected + ", got " +
                    (v ? ShortestText(*v) : Describe(entry)));

@@ -714,7 +714,7 @@ TEST(BlockTables, AnErrorNamesTheBlockByItsIndex) {
   EXPECT_CONTAINS(testing_util::SceneErrorOf(
                       BlockTables(2) + "[[block]]\nwidth = 1\nheight = 1\nmass = 1\nfoo = 2\n"),
                   "block3.foo: unknown key (expected one of: width, height, density, mass, depth, "
-                  "friction, shape)");
+                  "friction, shape, diameter)");
 }
 
 TEST(BlockTables, EveryBlockIsNoWiderThanTheOneBelow) {

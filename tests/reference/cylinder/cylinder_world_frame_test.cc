@@ -5,7 +5,7 @@
 // motion about the vertical rotates the motion. Integration: Dormand-Prince 8(5,3) steps from
 // reference/integration/integrator.h with a step-size controller written here; the quaternion is
 // never renormalised (Derivative normalises a copy to build the rotation).
-#include "reference/cylinder_world_frame.h"
+#include "reference/cylinder/cylinder_world_frame.h"
 
 #include <gtest/gtest.h>
 

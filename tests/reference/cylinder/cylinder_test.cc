@@ -15,7 +15,7 @@
 #include "motion/ground_motion.h"
 #include "reference/cylinder/cylinder_model.h"
 #include "reference/cylinder_run.h"
-#include "reference/cylinder_world_frame.h"
+#include "reference/cylinder/cylinder_world_frame.h"
 #include "reference/integration/integrator.h"
 #include "scene/body_kind.h"
 #include "scene/scene.h"
