@@ -554,6 +554,7 @@ PoseRows ReadPoses(const std::string& engine, const std::filesystem::path& file,
   bool header = false;
   const double out_dt = input.time_step_s * static_cast<double>(every);
   std::vector<StepReadout> rows;
+  std::vector<std::int64_t> row_lines;  // the file line of each row
   double t_prev = -std::numeric_limits<double>::infinity();
   size_t pos = 0;
   while (pos < text.size()) {
@@ -622,6 +623,7 @@ PoseRows ReadPoses(const std::string& engine, const std::filesystem::path& file,
     }
     t_prev = t;
     rows.push_back(RowReadout(h, v, blocks, t_expected));
+    row_lines.push_back(line_no);
   }
   if (!header) Fail(engine, file, line_no, "empty poses file: expected a header line");
   if (out.stopped_at_line == 0 && static_cast<std::int64_t>(rows.size()) < expected) {
@@ -635,7 +637,24 @@ PoseRows ReadPoses(const std::string& engine, const std::filesystem::path& file,
   }
   // The finite rows (a last row with a fault is not read by the monitor).
   const size_t finite = rows.size() - (out.stopped_at_line != 0 ? 1 : 0);
-  if (!out.velocities_given && finite > 0) DifferenceVelocities(input, finite, &rows);
+  if (!out.velocities_given && finite > 0) {
+    DifferenceVelocities(input, finite, &rows);
+    // Finite poses can still difference to a velocity that is not (positions near 1e308 m): the
+    // first such row ends the run as a value that is not finite would.
+    for (size_t i = 0; i < finite; ++i) {
+      bool bad = false;
+      for (const BodyReadout& b : rows[i].blocks) {
+        bad = bad || !std::isfinite(b.vx_mps) || !std::isfinite(b.vy_mps) ||
+              !std::isfinite(b.w_radps);
+      }
+      if (!bad) continue;
+      rows.resize(i + 1);
+      rows[i].engine_fault = engine + ": " + file.string() + ":" + std::to_string(row_lines[i]) +
+                             ": the velocity differenced from the poses is not finite";
+      out.stopped_at_line = row_lines[i];
+      break;
+    }
+  }
   out.rows = std::move(rows);
   return out;
 }
