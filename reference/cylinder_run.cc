@@ -486,17 +486,7 @@ class Run {
     const double phi_pre = AzimuthOf(y_);
     const double chi = y_[kChi];
     if (l.theta_dot <= rest_rate_) {
-      // Rest on the face: the face's friction holds the spin too.
-      ++sum.rests;
-      on_rim_ = false;
-      azimuth_ref_ = phi_pre;
-      cos_ref_ = pre.cos_phi;
-      sin_ref_ = pre.sin_phi;
-      psi_ = chi - phi_pre;
-      const double e_after = Energy(body_, RimState{});
-      AddEvent(t_, "ground_impact", Contact::kRight, Contact::kFace, pre.theta_dot, 0.0, e_before,
-               e_after, "rest");
-      EmitEvent();
+      ComeToRest("ground_impact", "rest");
       return;
     }
     // The half-turn of the azimuth, exact on its cosine and sine; the column's value within
@@ -517,18 +507,22 @@ class Run {
   // A rebound that turns back within the landing clearance: the cylinder rests on its face (its
   // spin held by the face's friction, as after a landing that rests).
   void RestsWithinClearance() {
-    CylinderSummary& sum = result_.summary;
+    ComeToRest("rest", "the rebound turned back within the landing clearance");
+  }
+
+  // From the rim at y_ to rest on the face, keeping the azimuth and the spin (the face's
+  // friction holds the spin too), with an event of `kind` and `note`.
+  void ComeToRest(const char* kind, const char* note) {
     const RimState pre = StateOf(y_);
-    ++sum.rests;
-    const double e_before = Energy(body_, pre);
     const double phi = AzimuthOf(y_);
+    ++result_.summary.rests;
     on_rim_ = false;
     azimuth_ref_ = phi;
     cos_ref_ = pre.cos_phi;
     sin_ref_ = pre.sin_phi;
     psi_ = y_[kChi] - phi;
-    AddEvent(t_, "rest", Contact::kRight, Contact::kFace, pre.theta_dot, 0.0, e_before,
-             Energy(body_, RimState{}), "the rebound turned back within the landing clearance");
+    AddEvent(t_, kind, Contact::kRight, Contact::kFace, pre.theta_dot, 0.0, Energy(body_, pre),
+             Energy(body_, RimState{}), note);
     EmitEvent();
   }
 

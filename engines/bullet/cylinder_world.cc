@@ -168,11 +168,7 @@ CylinderPose BulletCylinderWorld::ReadPose() const {
     // The base after steps_done_ steps: at u_n, moving as in the step that ended there.
     const std::int64_t n = steps_done_;
     const Vec3d u = CylinderBaseDisplacement(in_, n);
-    Vec3d v = CylinderBaseVelocityBefore(in_);
-    if (n >= 1) {
-      const Vec3d before = CylinderBaseDisplacement(in_, n - 1);
-      for (int i = 0; i < 3; ++i) v[i] = (u[i] - before[i]) / dt_;
-    }
+    const Vec3d v = CylinderBaseVelocityAfter(in_, n);
     p.centre_m = Minus(p.centre_m, u);
     p.velocity_mps = Minus(p.velocity_mps, v);
   }

@@ -86,6 +86,15 @@ Vec3d CylinderBaseVelocityBefore(const EngineInput& input) {
   return {d.ux0_mps, d.ut0_mps, d.uy0_mps};
 }
 
+Vec3d CylinderBaseVelocityAfter(const EngineInput& input, std::int64_t n) {
+  if (n < 1) return CylinderBaseVelocityBefore(input);
+  const Vec3d u = CylinderBaseDisplacement(input, n),
+              before = CylinderBaseDisplacement(input, n - 1);
+  Vec3d v;
+  for (int i = 0; i < 3; ++i) v[i] = (u[i] - before[i]) / input.time_step_s;
+  return v;
+}
+
 CylinderMonitor::CylinderMonitor(const EngineInput& input, CylinderMonitorConfig config)
     : input_(input),
       config_(config),

@@ -9,7 +9,9 @@
 #include <concepts>
 #include <cstdint>
 #include <limits>
+#include <memory>
 #include <nlohmann/json.hpp>
+#include <stdexcept>
 #include <string>
 
 #include "engine/engine.h"
@@ -51,6 +53,9 @@ Vec3d CylinderDriveAccel(const EngineInput& input, std::int64_t n);
 Vec3d CylinderBaseDisplacement(const EngineInput& input, std::int64_t n);
 /// The base velocity before step 0 (kinematic drive), world, m/s.
 Vec3d CylinderBaseVelocityBefore(const EngineInput& input);
+/// The base velocity in the step that ended at t_n, (u_n - u_(n-1)) / dt (kinematic drive;
+/// CylinderBaseVelocityBefore for n = 0), world, m/s.
+Vec3d CylinderBaseVelocityAfter(const EngineInput& input, std::int64_t n);
 
 /// What the run loop needs of an engine's cylinder world:
 /// - ApplyDrive(n): sets the base motion for step n (CylinderDriveAccel or the ground path);
@@ -124,7 +129,9 @@ class CylinderMonitor {
   double flag_t_[4], significant_t_[4];
 };
 
-/// Runs `world` for input.steps steps (or until the monitor stops it).
+/// Runs `world` for input.steps steps (or until the monitor stops it), with summary.json's parts
+/// every engine run writes, as RunEngineWorld's: "engine", "settings", "diagnostics" (for a world
+/// that keeps them) and, for the kinematic drive, "kinematic".
 template <CylinderWorld World>
 EngineResult RunCylinderWorld(const std::string& engine, const EngineInput& input, World& world,
                               const CylinderMonitorConfig& config = {}) {
@@ -146,10 +153,27 @@ EngineResult RunCylinderWorld(const std::string& engine, const EngineInput& inpu
   r.summary["settings"] = world.Settings();
   r.summary["wall_s"] = wall_s;
   r.summary["real_time_factor"] = wall_s > 0.0 ? monitor.last_t_s() / wall_s : 0.0;
+  if constexpr (requires { world.Diagnostics(); }) r.summary["diagnostics"] = world.Diagnostics();
+  if (input.drive_kind == DriveKind::kKinematic) r.summary["kinematic"] = KinematicDriveJson(input);
   r.outcome = monitor.Outcome();
   r.wall_s = wall_s;
   r.history = monitor.TakeHistory();
   return r;
+}
+
+/// Builds World(input, settings) and runs it with RunCylinderWorld, as SimulateWorld does for
+/// the planar worlds: a setting the world cannot take (std::invalid_argument) is a SceneError
+/// naming `scene_path`.
+template <CylinderWorld World, typename Settings>
+EngineResult SimulateCylinderWorld(const std::string& engine, const std::string& scene_path,
+                                   const EngineInput& input, const Settings& settings) {
+  std::unique_ptr<World> world;
+  try {
+    world = std::make_unique<World>(input, settings);
+  } catch (const std::invalid_argument& e) {
+    throw SceneError(scene_path + ": " + e.what());
+  }
+  return RunCylinderWorld(engine, input, *world);
 }
 
 }  // namespace rockbench

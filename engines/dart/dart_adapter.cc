@@ -63,18 +63,8 @@ class DartEngine final : public Engine {
   // The cylinder (scene.three_dimensional()): DartCylinderWorld run by the shared cylinder
   // loop, with the summary's parts every DART run writes (diagnostics; kinematic).
   static EngineResult SimulateCylinder(const Scene& scene, const DartRun& run) {
-    std::unique_ptr<DartCylinderWorld> world;
-    try {
-      world = std::make_unique<DartCylinderWorld>(run.input, run.settings);
-    } catch (const std::invalid_argument& e) {
-      throw SceneError(scene.path.string() + ": " + e.what());
-    }
-    EngineResult out = RunCylinderWorld("dart", run.input, *world);
-    out.summary["diagnostics"] = world->Diagnostics();
-    if (run.input.drive_kind == DriveKind::kKinematic) {
-      out.summary["kinematic"] = KinematicDriveJson(run.input);
-    }
-    return out;
+    return SimulateCylinderWorld<DartCylinderWorld>("dart", scene.path.string(), run.input,
+                                                    run.settings);
   }
 };
 

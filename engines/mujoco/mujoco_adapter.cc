@@ -77,15 +77,8 @@ class MujocoEngine final : public Engine {
   // The cylinder, with the same settings and input; a setting the world cannot take is a
   // SceneError naming the scene file (as SimulateWorld's).
   static EngineResult SimulateCylinder(const Scene& scene, const MujocoRun& run) {
-    std::unique_ptr<MujocoCylinderWorld> world;
-    try {
-      world = std::make_unique<MujocoCylinderWorld>(run.input, run.settings);
-    } catch (const std::invalid_argument& e) {
-      throw SceneError(scene.path.string() + ": " + e.what());
-    }
-    EngineResult out = RunCylinderWorld("mujoco", run.input, *world);
-    out.summary["diagnostics"] = world->Diagnostics();
-    return out;
+    return SimulateCylinderWorld<MujocoCylinderWorld>("mujoco", scene.path.string(), run.input,
+                                                      run.settings);
   }
 };
 

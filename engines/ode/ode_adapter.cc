@@ -67,17 +67,8 @@ class OdeEngine final : public Engine {
   // The cylinder's run (the same settings and input as the blocks'). A setting the world cannot
   // take is a SceneError naming the scene file, as SimulateWorld's.
   static EngineResult SimulateCylinder(const Scene& scene, const OdeRun& run) {
-    std::unique_ptr<OdeCylinderWorld> world;
-    try {
-      world = std::make_unique<OdeCylinderWorld>(run.input, run.settings);
-    } catch (const std::invalid_argument& e) {
-      throw SceneError(scene.path.string() + ": " + e.what());
-    }
-    EngineResult out = RunCylinderWorld("ode", run.input, *world);
-    if (run.input.drive_kind == DriveKind::kKinematic) {
-      out.summary["kinematic"] = KinematicDriveJson(run.input);
-    }
-    return out;
+    return SimulateCylinderWorld<OdeCylinderWorld>("ode", scene.path.string(), run.input,
+                                                   run.settings);
   }
 };
 

@@ -93,11 +93,7 @@ CylinderPose SiconosCylinderWorld::ReadPose() const {
     // The base after steps_done_ steps: at u_n, moving as in the step that ended there.
     const std::int64_t n = steps_done_;
     const Vec3d u = CylinderBaseDisplacement(in_, n);
-    Vec3d v = CylinderBaseVelocityBefore(in_);
-    if (n >= 1) {
-      const Vec3d before = CylinderBaseDisplacement(in_, n - 1);
-      for (int i = 0; i < 3; ++i) v[i] = (u[i] - before[i]) / in_.time_step_s;
-    }
+    const Vec3d v = CylinderBaseVelocityAfter(in_, n);
     for (int i = 0; i < 3; ++i) {
       p.centre_m[i] -= u[i];
       p.velocity_mps[i] -= v[i];
@@ -161,16 +157,8 @@ nlohmann::json SiconosCylinderWorld::Diagnostics() const {
 
 EngineResult SimulateCylinder(const std::string& scene_path, const EngineInput& input,
                               const SiconosSettings& settings) {
-  std::unique_ptr<SiconosCylinderWorld> world;
-  try {
-    world = std::make_unique<SiconosCylinderWorld>(input, settings);
-  } catch (const std::invalid_argument& e) {
-    throw SceneError(scene_path + ": " + e.what());
-  }
   static_assert(CylinderWorld<SiconosCylinderWorld>);
-  EngineResult r = RunCylinderWorld("siconos", input, *world);
-  r.summary["diagnostics"] = world->Diagnostics();
-  return r;
+  return SimulateCylinderWorld<SiconosCylinderWorld>("siconos", scene_path, input, settings);
 }
 
 }  // namespace rockbench::siconos_engine
