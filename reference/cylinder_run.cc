@@ -56,12 +56,6 @@ std::pair<double, double> CosSin(double angle_rad) {
   return {std::cos(angle_rad), std::sin(angle_rad)};
 }
 
-double Wrapped(double angle_rad) {
-  double a = std::remainder(angle_rad, 2.0 * kPi);
-  if (a <= -kPi) a += 2.0 * kPi;
-  return a;
-}
-
 class Run {
  public:
   Run(const Scene& scene, const GroundMotion& motion)
@@ -440,7 +434,7 @@ class Run {
     if (first_kind == kOverturn || falling) {
       const RimState s = StateOf(y_);
       sum.overturn_t_s = t_;
-      sum.overturn_azimuth_rad = Wrapped(std::atan2(s.sin_phi, s.cos_phi));
+      sum.overturn_azimuth_rad = WrappedAzimuth_rad(std::atan2(s.sin_phi, s.cos_phi));
       EmitEvent();
       const double e = Energy(body_, s);
       std::string note = "azimuth " + std::to_string(sum.overturn_azimuth_rad) + " rad";
@@ -491,7 +485,7 @@ class Run {
     }
     // The half-turn of the azimuth, exact on its cosine and sine; the column's value within
     // (-pi, pi] (a planar rocking's lean alternates between two azimuths, not a drift).
-    azimuth_ref_ = Wrapped(phi_pre + kPi);
+    azimuth_ref_ = WrappedAzimuth_rad(phi_pre + kPi);
     last_azimuth_ = azimuth_ref_;
     cos_ref_ = -pre.cos_phi;
     sin_ref_ = -pre.sin_phi;

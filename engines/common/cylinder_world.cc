@@ -35,11 +35,6 @@ bool Finite(const CylinderPose& p) {
   return true;
 }
 
-double Wrapped(double a) {
-  a = std::remainder(a, 2.0 * std::numbers::pi);
-  return a <= -std::numbers::pi ? a + 2.0 * std::numbers::pi : a;
-}
-
 }  // namespace
 
 CylinderBodyDef CylinderBodyOf(const EngineInput& input) {
@@ -210,7 +205,7 @@ bool CylinderMonitor::Step(std::int64_t n, const CylinderPose& pose) {
   if (s.tilt_rad >= input_.overturn_rad) {
     const double frac = (input_.overturn_rad - last_.tilt_rad) / (s.tilt_rad - last_.tilt_rad);
     overturn_t_s_ = t - dt + std::clamp(frac, 0.0, 1.0) * dt;
-    overturn_azimuth_rad_ = Wrapped(s.azimuth_rad);
+    overturn_azimuth_rad_ = WrappedAzimuth_rad(s.azimuth_rad);
     status_ = RunStatus::kOverturned;
     history_.samples.push_back(Row(t, s));
     last_ = s;

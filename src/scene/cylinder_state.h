@@ -35,6 +35,9 @@ Mat3d CylinderRotation(const CylinderState& state);
 /// The angular velocity, world components, rad/s, of a state's angles and rates.
 Vec3d CylinderAngularVelocity(const CylinderState& state);
 
+/// An azimuth as summaries and a landing's new lean give it: the same direction within (-pi, pi].
+double WrappedAzimuth_rad(double azimuth_rad);
+
 /// The state of a rotation (row-major, body -> world, body z the axis) and angular velocity
 /// (world, rad/s). `previous`, when given, is the state one output earlier: the azimuth and spin
 /// are unwrapped to be continuous with it (within pi), and an upright pose (sin tilt below
@@ -78,6 +81,11 @@ inline double Unwrapped(double angle, double near) {
 }
 
 }  // namespace cylinder_state_detail
+
+inline double WrappedAzimuth_rad(double azimuth_rad) {
+  const double a = std::remainder(azimuth_rad, 2.0 * cylinder_state_detail::kPi);
+  return a <= -cylinder_state_detail::kPi ? a + 2.0 * cylinder_state_detail::kPi : a;
+}
 
 inline double CylinderState::tilt_x_rad() const {
   return tilt_rad * std::cos(azimuth_rad);
