@@ -102,6 +102,28 @@ Vec2 BaseDisplacement::At(double t_s) const {
   return {at(x_m_), at(y_m_)};
 }
 
+void BaseDisplacement::SetTransverse(std::vector<double> transverse_m) {
+  if (!transverse_m.empty() && transverse_m.size() != x_m_.size()) {
+    throw std::invalid_argument("BaseDisplacement: the transverse samples differ in length");
+  }
+  t_m_ = std::move(transverse_m);
+}
+
+void BaseDisplacement::SetTransverse(TransverseFunction f) {
+  transverse_function_ = std::move(f);
+}
+
+double BaseDisplacement::TransverseAt(double t_s) const {
+  if (transverse_function_) return transverse_function_(t_s);
+  if (t_m_.empty()) return 0.0;
+  const double u = (t_s - t0_s_) / dt_s_;
+  if (u <= 0.0) return t_m_.front();
+  if (u >= static_cast<double>(t_m_.size() - 1)) return t_m_.back();
+  const size_t i = static_cast<size_t>(u);
+  const double w = u - static_cast<double>(i);
+  return t_m_[i] + w * (t_m_[i + 1] - t_m_[i]);
+}
+
 namespace {
 
 // The window the path is integrated over: [0, t_end], and with a high-pass (a zero-phase
@@ -175,7 +197,17 @@ BaseDisplacement IntegrateBaseDisplacement(const GroundMotion& motion, double t_
   std::vector<double> y = motion.has_vertical()
                               ? IntegrateGroundPath(ay, dt_s, config.highpass_hz).u_m
                               : std::vector<double>{};
-  return BaseDisplacement::FromSamples(0.0, dt_s, std::move(x), std::move(y));
+  BaseDisplacement d = BaseDisplacement::FromSamples(0.0, dt_s, std::move(x), std::move(y));
+  if (motion.has_transverse()) {
+    // A 3-D scene's +y, sampled as MakeEngineInput samples the engines' at_mps2.
+    ay = std::vector<double>();
+    std::vector<double> at(steps);
+    for (size_t i = 0; i < steps; ++i) {
+      at[i] = motion.transverse_mps2(static_cast<double>(i) * dt_s);
+    }
+    d.SetTransverse(IntegrateGroundPath(at, dt_s, config.highpass_hz).u_m);
+  }
+  return d;
 }
 
 Vec2 Camera::ToPixel(Vec2 w) const {

@@ -43,10 +43,12 @@ DrawnStack PoseFor(const Scene& scene, double theta1_rad, double theta2_rad, Vec
 /// sample. Throws std::invalid_argument for an empty history.
 Sample StateAt(const History& history, double t_s);
 
-/// Base (ground) displacement x_g(t), y_g(t), m: none, sampled, or any callable.
+/// Base (ground) displacement x_g(t), y_g(t), m: none, sampled, or any callable; for a 3-D
+/// scene (a cylinder) also the transverse displacement along +y ([base.transverse]).
 class BaseDisplacement {
  public:
   using Function = std::function<Vec2(double t_s)>;
+  using TransverseFunction = std::function<double(double t_s)>;
   /// No displacement (the ground stays put).
   BaseDisplacement() = default;
   /// Sampled at t0_s + k dt_s; linear between samples, held beyond the ends. x_m and y_m have
@@ -55,13 +57,24 @@ class BaseDisplacement {
                                       std::vector<double> y_m);
   static BaseDisplacement FromFunction(Function f);
 
+  /// The transverse displacement (a 3-D scene's +y), m: sampled on this displacement's grid
+  /// (the same length as x_m; linear between samples, held beyond the ends), or any callable.
+  /// Throws std::invalid_argument for samples of another length.
+  void SetTransverse(std::vector<double> transverse_m);
+  void SetTransverse(TransverseFunction f);
+
+  /// x_g (along +x) and y_g (vertical, up), m.
   Vec2 At(double t_s) const;
-  bool empty() const { return !function_ && x_m_.empty(); }
+  /// The transverse displacement (along +y of a 3-D scene), m; 0 without one.
+  double TransverseAt(double t_s) const;
+  bool empty() const { return !function_ && x_m_.empty() && !has_transverse(); }
+  bool has_transverse() const { return transverse_function_ || !t_m_.empty(); }
 
  private:
   Function function_;
+  TransverseFunction transverse_function_;
   double t0_s_ = 0.0, dt_s_ = 0.0;
-  std::vector<double> x_m_, y_m_;
+  std::vector<double> x_m_, y_m_, t_m_;
 };
 
 /// The kinematic drive's settings the base displacement is integrated with
@@ -89,7 +102,9 @@ BaseIntegrationConfig BaseIntegrationFor(const Scene& scene);
 /// kinematic-drive engine with these settings (IntegrateGroundPath: the acceleration sampled on
 /// the grid t_n = n dt, leapfrog double integration from rest, then the zero-phase Butterworth
 /// high-pass when highpass_hz > 0), x_g(0) = y_g(0) = 0, linear between the grid's points. No
-/// vertical component gives no vertical displacement; empty motion an empty displacement.
+/// vertical component gives no vertical displacement; empty motion an empty displacement. A
+/// transverse component ([base.transverse], a 3-D scene's +y) gives the transverse displacement
+/// by the same rule (the engines' ut_m, engines/common/engine_input.h).
 BaseDisplacement IntegrateBaseDisplacement(const GroundMotion& motion, double t_end_s,
                                            const BaseIntegrationConfig& config = {});
 /// Samples IntegrateBaseDisplacement holds per component for this motion up to t_end_s, as a

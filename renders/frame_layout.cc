@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "renders/cylinder_scene.h"
 #include "renders/limits.h"
 #include "renders/renderer.h"
 
@@ -167,6 +168,10 @@ FrameLayout ComputeLayout(const Scene& scene, const std::vector<Track>& tracks,
   CheckImageSize(config);
   FrameLayout lay;
   const std::vector<const History*> histories = TimeWindow(tracks, config, lay);
+  if (scene.three_dimensional()) {
+    PlaceCylinderLayout(scene, tracks, base, config, lay);
+    return lay;
+  }
 
   const int h = config.height_px;
   const int n = static_cast<int>(tracks.size());

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "renders/cylinder_painter.h"
 #include "renders/gl_context.h"
 #include "scene/mode.h"
 
@@ -147,6 +148,8 @@ struct FrameRenderer::Impl {
   Palette palette;
   std::unique_ptr<Font> font;
   std::unique_ptr<GlContext> gl;
+  /// A cylinder scene's drawing (renders/cylinder_painter.h); null for planar blocks.
+  std::unique_ptr<CylinderPainter> cylinder;
 
   double line_w() const { return std::max(1.0, config.height_px / 480.0); }
 
@@ -540,18 +543,30 @@ FrameRenderer::FrameRenderer(const Scene& scene, std::vector<Track> tracks, Base
   }
   impl_->gl = CreateGlContext(impl_->config.width_px * impl_->config.supersample,
                               impl_->config.height_px * impl_->config.supersample);
+  if (impl_->scene.three_dimensional()) {
+    impl_->cylinder = std::make_unique<CylinderPainter>(
+        impl_->scene, impl_->tracks, impl_->base, impl_->config, impl_->layout, impl_->palette);
+  }
 }
 
 FrameRenderer::~FrameRenderer() = default;
 
 void FrameRenderer::Render(double t_s, Image* out) {
   impl_->gl->MakeCurrent();
-  impl_->DrawGl(t_s);
+  if (impl_->cylinder) {
+    impl_->cylinder->DrawGl(t_s);
+  } else {
+    impl_->DrawGl(t_s);
+  }
   const uint8_t* pixels = impl_->gl->Finish();
   out->width_px = impl_->config.width_px;
   out->height_px = impl_->config.height_px;
   DownsampleFlip(pixels, impl_->config.supersample, out);
-  if (impl_->font) impl_->DrawText(t_s, out);
+  if (impl_->font && impl_->cylinder) {
+    impl_->cylinder->DrawText(t_s, impl_->font.get(), out);
+  } else if (impl_->font) {
+    impl_->DrawText(t_s, out);
+  }
 }
 
 Image FrameRenderer::Render(double t_s) {

@@ -1,7 +1,8 @@
 #pragma once
 /// Frames of a scene's motion: the ground and the blocks (any number of them) at a time of one or
 /// more engines' histories, with the base displacement, text (time, mode, angles) and a strip
-/// chart of the angles. Draws with legacy GL into an off-screen context (gl_context.h),
+/// chart of the angles; a cylinder in perspective with the top view of its axis's path
+/// (renders/cylinder_scene.h). Draws with legacy GL into an off-screen context (gl_context.h),
 /// supersampled and box-filtered down for anti-aliased edges; text is drawn with FreeType on the
 /// final pixels.
 #include <array>
@@ -15,6 +16,7 @@
 
 #include "renders/drawn_motion.h"
 #include "renders/image.h"
+#include "renders/perspective.h"
 #include "renders/text.h"
 #include "scene/history.h"
 #include "scene/scene.h"
@@ -75,6 +77,15 @@ struct FrameLayout {
   /// axis. Empty for one or two blocks (one axis, `chart`, with a trace per block).
   std::vector<PixelRect> chart_panels;
   double chart_theta_max_rad = 0.0;  ///< the chart's y range is +-this, rad (every panel's)
+  /// A cylinder scene (docs/renders.md "The cylinder"; `views` is then empty): the perspective
+  /// views (overlay: one; side: one per track, left to right, each below its view_labels).
+  std::vector<PerspectiveCamera> perspective_views;
+  /// A cylinder scene with a chart: the square top view of the axis's path (tilt_y up against
+  /// tilt_x to the right, the same scale on both), its plot area; has_top_view says it is drawn.
+  bool has_top_view = false;
+  PixelRect top_view;
+  double top_view_range_rad = 0.0;  ///< the top view's axes span +-this, rad
+  double ground_half_side_m = 0.0;  ///< a cylinder scene's base plane: half its side, m
 };
 
 /// The layout of frames for these inputs (throws std::invalid_argument for a bad config or no

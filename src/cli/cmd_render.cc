@@ -281,7 +281,6 @@ Motion MotionOfRunFolder(const RenderOptions& opt, const fs::path& input) {
   }
   Motion m;
   m.scene = RunFolderScene(input);
-  RequirePlanarBodies(m.scene, "render");
   std::vector<std::string> names = opt.engines.empty() ? RunFolderEngines(input) : opt.engines;
   if (names.empty()) Fail(kExitBadInput, opt.input + ": no <engine>/history.csv in this folder");
   for (const std::string& name : names) {
@@ -303,7 +302,6 @@ Motion MotionOfScene(const RenderOptions& opt, const fs::path& input,
                      const ResourceBudget& budget) {
   Motion m;
   m.scene = LoadScene(input, opt.overrides);
-  RequirePlanarBodies(m.scene, "render");
   const std::vector<std::string> names =
       opt.engines.empty() ? std::vector<std::string>{"reference"} : opt.engines;
   // The runs' memory and time, estimated from the scene before anything is simulated.
