@@ -83,9 +83,11 @@ void List(const StudyDef& study) {
   }
   std::printf(")\n");
   for (const StudyAxis& a : study.axes) {
-    std::printf("  %s: %zu values (%s ... %s)%s\n", a.key.c_str(), a.values.size(),
+    const std::string zipped =
+        a.zip_with >= 0 ? ", zipped with " + study.axes[a.zip_with].key : std::string();
+    std::printf("  %s: %zu values (%s ... %s)%s%s\n", a.key.c_str(), a.values.size(),
                 a.values.front().text.c_str(), a.values.back().text.c_str(),
-                a.derived ? ", derived" : "");
+                a.derived ? ", derived" : "", zipped.c_str());
   }
 }
 

@@ -101,4 +101,56 @@ IntensityMeasures MeasureIntensity(const MotionComponent& c, double t_end_s) {
   return im;
 }
 
+namespace {
+
+// The times MeasureIntensity reads a component at over [0, t_end_s]: a record's samples up to
+// its last at or before t_end_s, an analytic kind's SampleAnalytic points.
+std::vector<double> IntensityTimes(const MotionComponent& c, double t_end_s) {
+  std::vector<double> t;
+  if (c.kind() == MotionKind::kFile) {
+    const size_t n = c.samples_mps2().size();
+    const double dt = c.dt_s();
+    if (n == 0 || c.t0_s() >= t_end_s) return t;
+    size_t keep = n;
+    const double t_last = c.t0_s() + static_cast<double>(n) * dt - dt;
+    if (t_last > t_end_s) {
+      keep = std::min(static_cast<size_t>(std::floor((t_end_s - c.t0_s()) / dt)) + 1, n);
+    }
+    t.reserve(keep);
+    for (size_t i = 0; i < keep; ++i) t.push_back(c.t0_s() + static_cast<double>(i) * dt);
+    return t;
+  }
+  double dt = 0.0;
+  const size_t n = SampleAnalytic(c, t_end_s, &dt).size();
+  const double end = std::min(c.t0_s() + c.window_s(), t_end_s);
+  for (size_t i = 0; i < n; ++i) {
+    t.push_back(i + 1 == n ? end : c.t0_s() + static_cast<double>(i) * dt);
+  }
+  return t;
+}
+
+}  // namespace
+
+ResultantPeak MeasureResultantPga(const std::optional<MotionComponent>& x,
+                                  const std::optional<MotionComponent>& y, double t_end_s) {
+  if (!(t_end_s > 0.0) || !std::isfinite(t_end_s)) {
+    throw std::invalid_argument("intensity measures need a positive finite end time (s)");
+  }
+  ResultantPeak peak;
+  const auto at = [](const std::optional<MotionComponent>& c, double t) {
+    return c ? c->accel_mps2(t) : 0.0;
+  };
+  for (const std::optional<MotionComponent>* c : {&x, &y}) {
+    if (!*c) continue;
+    for (const double t : IntensityTimes(**c, t_end_s)) {
+      const double a = std::hypot(at(x, t), at(y, t));
+      if (a > peak.pga_mps2 || (a == peak.pga_mps2 && a > 0.0 && t < peak.t_s)) {
+        peak.pga_mps2 = a;
+        peak.t_s = t;
+      }
+    }
+  }
+  return peak;
+}
+
 }  // namespace rockbench

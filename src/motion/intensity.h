@@ -35,4 +35,22 @@ struct IntensityMeasures {
 /// non-positive or non-finite t_end_s.
 IntensityMeasures MeasureIntensity(const MotionComponent& component, double t_end_s);
 
+/// The peak of the horizontal resultant of two components (x: [base.horizontal], y:
+/// [base.transverse]; either may be absent: zero).
+struct ResultantPeak {
+  double pga_mps2 = 0.0;  ///< max over t of sqrt(a_x(t)^2 + a_y(t)^2), m/s^2
+  double t_s = 0.0;       ///< its time (the first if several), s
+};
+
+/// The peak resultant over [0, t_end_s], on the times MeasureIntensity reads each component at
+/// (a record's samples up to its last at or before t_end_s; an analytic kind's 4000 points per
+/// period), each component taken at the other's times too (accel_mps2). Between two consecutive
+/// times of that union both components are linear for records, so |a|^2, a sum of squares of
+/// linear functions, is convex there and its maximum is at one of them: the peak of two records
+/// is exact (to rounding), whatever their sample intervals. With one component it is that
+/// component's PGA, MeasureIntensity's. Throws std::invalid_argument for a non-positive or
+/// non-finite t_end_s.
+ResultantPeak MeasureResultantPga(const std::optional<MotionComponent>& x,
+                                  const std::optional<MotionComponent>& y, double t_end_s);
+
 }  // namespace rockbench

@@ -10,12 +10,14 @@
 #include <cmath>
 #include <fstream>
 #include <limits>
+#include <optional>
 #include <sstream>
 
 #include "motion/ground_motion.h"
 #include "motion/intensity.h"
 #include "run/engine_registry.h"
 #include "run/resource_estimate.h"
+#include "scene/body_kind.h"
 #include "scene/limits.h"
 
 namespace rockbench {
@@ -78,9 +80,9 @@ void CheckPathText(const std::string& text, const std::string& where, const std:
 }
 
 const std::vector<std::string>& DerivedKeys() {
-  static const std::vector<std::string> keys = {"size_factor", "pulse.frequency_ratio",
-                                                "pulse.amplitude_ratio", "base.horizontal.pga_g",
-                                                "base.horizontal.pgv_mps"};
+  static const std::vector<std::string> keys = {
+      "size_factor",           "pulse.frequency_ratio",   "pulse.amplitude_ratio",
+      "base.horizontal.pga_g", "base.horizontal.pgv_mps", "base.pga_resultant_g"};
   return keys;
 }
 
@@ -150,14 +152,15 @@ AxisValue ValueOf(const toml::node& v, const std::string& key, const std::filesy
   return a;
 }
 
+// `earlier`: the axes read before this one (the axis `zip_with` names is one of them).
 StudyAxis ReadAxis(const toml::table& t, const std::filesystem::path& file,
-                   const std::filesystem::path& dir) {
+                   const std::filesystem::path& dir, const std::vector<StudyAxis>& earlier) {
   const std::string where = Where(file, t);
   for (const auto& [k, v] : t) {
     const std::string name(k.str());
-    if (name != "key" && name != "values" && name != "glob") {
+    if (name != "key" && name != "values" && name != "glob" && name != "zip_with") {
       throw SceneError(Where(file, v) + ": [[axis]] " + Excerpt(name) +
-                       ": unknown key (expected one of: key, values, glob)");
+                       ": unknown key (expected one of: key, values, glob, zip_with)");
     }
   }
   StudyAxis axis;
@@ -168,12 +171,31 @@ StudyAxis ReadAxis(const toml::table& t, const std::filesystem::path& file,
     throw SceneError(where +
                      ": [[axis]] key: expected a scene key (as --set takes it) or one of: "
                      "size_factor, pulse.frequency_ratio, pulse.amplitude_ratio, "
-                     "base.horizontal.pga_g, base.horizontal.pgv_mps" +
+                     "base.horizontal.pga_g, base.horizontal.pgv_mps, base.pga_resultant_g" +
                      (key && !key->empty() ? ", got \"" + Excerpt(*key) + "\"" : std::string()));
   }
   CheckText(*key, where, "[[axis]] key");
   axis.key = *key;
   axis.derived = IsDerived(axis.key);
+  // zip_with: an earlier axis of its own (not itself paired with another).
+  if (const toml::node* z = t.get("zip_with")) {
+    const auto name = z->value<std::string>();
+    const auto it = name ? std::find_if(earlier.begin(), earlier.end(),
+                                        [&](const StudyAxis& a) { return a.key == *name; })
+                         : earlier.end();
+    if (it == earlier.end() || it->zip_with >= 0) {
+      std::string keys;
+      for (const StudyAxis& a : earlier) {
+        if (a.zip_with < 0) keys += (keys.empty() ? "" : ", ") + a.key;
+      }
+      throw SceneError(Where(file, *z) + ": axis " + axis.key +
+                       ": zip_with: expected the key of an earlier axis that is not itself "
+                       "zipped (" +
+                       (keys.empty() ? std::string("none") : Excerpt(keys, 300)) + ")" +
+                       (name ? ", got \"" + Excerpt(*name) + "\"" : std::string()));
+    }
+    axis.zip_with = static_cast<int>(it - earlier.begin());
+  }
   const toml::array* values = t["values"].as_array();
   const auto glob = t["glob"].value<std::string>();
   if ((values != nullptr) == glob.has_value()) {
@@ -256,10 +278,13 @@ void CheckEngines(const StudyDef& s, const toml::node& node) {
   // The external engines the study's scene names ([external.<name>]) are registered (their
   // tables are checked) but run only when a registry file the user owns names them too. A scene
   // that cannot be read is said later, with its member's context.
+  std::optional<Scene> scene;
   if (!s.scene_path.empty()) {
     try {
-      RegisterExternalEngines(LoadScene(s.scene_path));
+      scene = LoadScene(s.scene_path);
+      RegisterExternalEngines(*scene);
     } catch (const SceneError&) {
+      scene.reset();
     }
   }
   std::vector<std::string> seen;
@@ -275,6 +300,26 @@ void CheckEngines(const StudyDef& s, const toml::node& node) {
       CheckEngineName(e);
     } catch (const SceneError& err) {
       throw SceneError(Where(s.path, node) + ": engines: " + err.what());
+    }
+    // An engine that does not build the scene's body (a planar engine facing a cylinder) is
+    // refused here, before any member is built or run.
+    const Engine* engine = scene ? FindEngine(e) : nullptr;
+    if (engine != nullptr && !scene->blocks.empty()) {
+      const std::string& shape = scene->blocks.front().shape;
+      const std::vector<std::string> builds = engine->body_shapes();
+      if (std::find(builds.begin(), builds.end(), shape) == builds.end()) {
+        std::string list;
+        for (const std::string& b : builds) list += (list.empty() ? "\"" : ", \"") + b + "\"";
+        throw SceneError(Where(s.path, node) + ": engines: \"" + e + "\" builds bodies of shape " +
+                         list + ", not the " + shape + " of the study's scene " +
+                         Shown(s.scene_path.string()) +
+                         (shape == kCylinderShape
+                              ? " (a cylinder rocks in three dimensions; this engine simulates "
+                                "bodies in the x-z plane only): a cylinder study runs the "
+                                "reference and the 3-D engines (bullet, ode, mujoco, dart, "
+                                "siconos)"
+                              : ""));
+      }
     }
   }
   if (s.engines.empty()) {
@@ -316,7 +361,7 @@ void ReadTop(const toml::table& root, StudyDef* s) {
       if (axes == nullptr) throw SceneError(Where(s->path, v) + ": axis: expected [[axis]] tables");
       for (const toml::node& a : *axes) {
         if (!a.is_table()) throw SceneError(Where(s->path, a) + ": axis: expected [[axis]] tables");
-        s->axes.push_back(ReadAxis(*a.as_table(), s->path, dir));
+        s->axes.push_back(ReadAxis(*a.as_table(), s->path, dir, s->axes));
       }
     } else {
       throw SceneError(Where(s->path, v) + ": " + Excerpt(name) +
@@ -341,8 +386,28 @@ void ApplyDerived(const std::string& key, double v, Scene* scene) {
       b.width_m *= v;
       b.height_m *= v;
       b.depth_m *= v;
+      b.diameter_m *= v;  // a cylinder's (0 for a block)
       b.mass_kg *= v * v * v;
     }
+    return;
+  }
+  if (key == "base.pga_resultant_g") {
+    // Both horizontal components by one factor: the resultant's peak scales with it exactly.
+    std::optional<MotionComponent> x, y;
+    if (scene->horizontal) x = MotionComponent::FromDef(*scene->horizontal);
+    if (scene->transverse) y = MotionComponent::FromDef(*scene->transverse);
+    if (!x && !y) {
+      throw SceneError(scene->path.string() + ": axis " + key +
+                       ": the scene has no [base.horizontal] or [base.transverse]");
+    }
+    const double now =
+        MeasureResultantPga(x, y, scene->run.duration_s).pga_mps2 / kStandardGravity_mps2;
+    if (!(now > 0.0)) {
+      throw SceneError(scene->path.string() + ": axis " + key +
+                       ": the horizontal motion is zero; it cannot be scaled to a target");
+    }
+    if (scene->horizontal) scene->horizontal->scale *= v / now;
+    if (scene->transverse) scene->transverse->scale *= v / now;
     return;
   }
   if (!scene->horizontal) {
@@ -375,7 +440,9 @@ int64_t StudyDef::member_count() const {
   if (axes.empty()) return 1;
   if (combine == StudyCombine::kZip) return static_cast<int64_t>(axes.front().values.size());
   int64_t n = 1;
-  for (const StudyAxis& a : axes) n *= static_cast<int64_t>(a.values.size());
+  for (const StudyAxis& a : axes) {
+    if (a.zip_with < 0) n *= static_cast<int64_t>(a.values.size());
+  }
   return n;
 }
 
@@ -386,9 +453,14 @@ std::vector<int> StudyDef::ValueIndices(int64_t member) const {
     return idx;
   }
   for (size_t k = axes.size(); k-- > 0;) {
+    if (axes[k].zip_with >= 0) continue;
     const auto n = static_cast<int64_t>(axes[k].values.size());
     idx[k] = static_cast<int>(member % n);
     member /= n;
+  }
+  // A zipped axis takes its partner's index (an earlier axis, not itself zipped).
+  for (size_t k = 0; k < axes.size(); ++k) {
+    if (axes[k].zip_with >= 0) idx[k] = idx[static_cast<size_t>(axes[k].zip_with)];
   }
   return idx;
 }
@@ -406,7 +478,6 @@ Scene BuildScene(const StudyDef& study, const std::vector<int>& idx, size_t set_
     if (!a.derived) overrides.push_back(a.key + "=" + a.values[idx[k]].toml);
   }
   Scene scene = LoadScene(study.scene_path, overrides);
-  RequirePlanarBodies(scene, "a study");
   // Derived axes in their fixed order: geometry first, then what depends on it.
   for (const std::string& key : DerivedKeys()) {
     for (size_t k = 0; k < axis_count; ++k) {
@@ -531,12 +602,37 @@ StudyDef ParseStudy(const std::string& text, const std::filesystem::path& path, 
       }
     }
   }
+  // zip_with pairs the values of two axes of a product, one to one.
+  for (const StudyAxis& a : s.axes) {
+    if (a.zip_with < 0) continue;
+    const StudyAxis& partner = s.axes[static_cast<size_t>(a.zip_with)];
+    if (s.combine == StudyCombine::kZip) {
+      throw SceneError(Where(path, a.line) + ": axis " + a.key +
+                       ": zip_with: every axis of combine = \"zip\" is zipped already");
+    }
+    if (a.values.size() != partner.values.size()) {
+      throw SceneError(Where(path, a.line) + ": axis " + a.key + ": zip_with = \"" + partner.key +
+                       "\": " + std::to_string(a.values.size()) + " values, axis " + partner.key +
+                       " " + std::to_string(partner.values.size()) + " (expected equal)");
+    }
+  }
+  // The resultant's scaling sets the x component's scale too: one of the two only.
+  for (const StudyAxis& a : s.axes) {
+    if (a.key != "base.pga_resultant_g") continue;
+    for (const StudyAxis& b : s.axes) {
+      if (b.key == "base.horizontal.pga_g" || b.key == "base.horizontal.pgv_mps") {
+        throw SceneError(Where(path, a.line) + ": axis base.pga_resultant_g scales " +
+                         "[base.horizontal] too: not with axis " + b.key + " (line " +
+                         std::to_string(b.line) + ")");
+      }
+    }
+  }
   // The study's size, before member_count() multiplies the axes' lengths (in doubles: no
   // overflow).
   double members = 1.0;
   std::string sizes;
   for (const StudyAxis& a : s.axes) {
-    if (s.combine == StudyCombine::kProduct || &a == &s.axes.front()) {
+    if ((s.combine == StudyCombine::kProduct && a.zip_with < 0) || &a == &s.axes.front()) {
       members *= static_cast<double>(a.values.size());
     }
     sizes += (sizes.empty()                     ? ""
@@ -555,13 +651,18 @@ StudyDef ParseStudy(const std::string& text, const std::filesystem::path& path, 
   }
   // Every axis key, and with kEveryValue every value, is checked by building the members that
   // hold them: member 0, and the members that differ from it on one axis (zip: every member).
-  s.blocks = MemberScene(s, 0).block_count();
+  {
+    const Scene first = MemberScene(s, 0);
+    s.blocks = first.block_count();
+    s.cylinder = first.three_dimensional();
+  }
   if (check == StudyCheck::kEveryValue) {
     if (s.combine == StudyCombine::kZip) {
       for (int64_t m = 1; m < s.member_count(); ++m) MemberScene(s, m);
     } else {
       int64_t stride = 1;
       for (size_t k = s.axes.size(); k-- > 0;) {
+        if (s.axes[k].zip_with >= 0) continue;  // its values go with its partner's
         const auto n = static_cast<int64_t>(s.axes[k].values.size());
         for (int64_t j = 1; j < n; ++j) MemberScene(s, j * stride);
         stride *= n;

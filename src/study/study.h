@@ -31,12 +31,22 @@ struct AxisValue {
 ///   alpha1 = atan(B1 / H1) (the uplift acceleration of block 1 alone).
 /// - `base.horizontal.pga_g` / `base.horizontal.pgv_mps`: the horizontal component scaled (its
 ///   `scale` multiplied) so that its PGA (in g0 = 9.80665 m/s^2) or PGV over the run equals
-///   the value.
+///   the value. In a cylinder scene with a [base.transverse] component: the x component alone.
+/// - `base.pga_resultant_g`: both horizontal components ([base.horizontal] and
+///   [base.transverse]) scaled by one factor so that the peak of their resultant over the run,
+///   max over t of sqrt(a_x(t)^2 + a_y(t)^2) in g0 (MeasureResultantPga), equals the value; the
+///   ratio of the two components is kept. Refused beside `base.horizontal.pga_g` or `pgv_mps`.
+///
+/// With `zip_with = "KEY"` an axis takes the value index of the earlier axis KEY in every
+/// member (its values paired with KEY's, one to one: a record's two components) instead of
+/// adding a dimension to the product.
 struct StudyAxis {
   std::string key;
   std::vector<AxisValue> values;
   bool derived = false;
   int line = 0;  ///< the line of its [[axis]] table in the study file (messages)
+  /// The index of the earlier axis whose value index this one takes (`zip_with`); -1: none.
+  int zip_with = -1;
 };
 
 /// Most runs (members x engines) a study may have. A run takes a worker between a few
@@ -69,6 +79,10 @@ struct StudyDef {
   double min_impact_rate_radps = 0.02;
   /// Blocks of every member's stack (member 0's: no key an axis or `set` takes changes it).
   int blocks = 1;
+  /// Member 0's body is a cylinder rocking in 3-D (docs/three-d.md): every member's must be,
+  /// every run is the reference or an engine that builds cylinders, and members.csv has the
+  /// cylinder's columns (MembersCsvHeader).
+  bool cylinder = false;
 
   int64_t member_count() const;
   /// Member i's value index on every axis.
@@ -86,7 +100,8 @@ enum class StudyCheck {
 };
 
 /// Reads a study file. Errors (SceneError) name the file, line and key and what was expected:
-/// unknown keys, an engine not registered or not built, an empty axis, a scene key or value
+/// unknown keys, an engine not registered or not built, an engine that does not build the base
+/// scene's body (box2d for a cylinder), an empty axis, a scene key or value
 /// the scene refuses (naming the axis and value, or the `set` entry, that gave it), a study of
 /// more than kMaxStudyRuns runs, control characters or an impossible path in a file name.
 StudyDef LoadStudy(const std::filesystem::path& path, StudyCheck check = StudyCheck::kEveryValue);

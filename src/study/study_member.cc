@@ -11,6 +11,7 @@
 #include "compare/perturbation_members.h"
 #include "motion/ground_motion.h"
 #include "motion/intensity.h"
+#include "run/cylinder_reference.h"
 #include "run/engine_registry.h"
 #include "run/engine_run.h"
 #include "run/reference_engine.h"
@@ -54,6 +55,61 @@ void SetIntensity(const Scene& scene, const GroundMotion& motion, MemberRow* row
   row->arias_mps = im.arias_mps;
   row->d5_95_s = im.significant_duration_s;
   row->pulse_period_s = im.pulse_period_s;
+}
+
+// A cylinder's p = sqrt(m g R_c / I_O), its planar limit's (docs/three-d.md): I_O = I_t +
+// m (R^2 + h^2) = m (15 R^2 + 4 H^2) / 12 about a rim point, R_c = sqrt(R^2 + h^2), R = D / 2,
+// h = H / 2; alpha = atan(D / H).
+void SetCylinderGeometry(const Scene& scene, MemberRow* row) {
+  const BlockDef& b = scene.blocks.front();
+  const double r = b.diameter_m / 2.0, h = b.height_m / 2.0;
+  const double i_o_per_m = (15.0 * r * r + 4.0 * b.height_m * b.height_m) / 12.0;
+  row->p_radps = {std::sqrt(scene.run.gravity_mps2 * std::hypot(r, h) / i_o_per_m)};
+  row->alpha_rad = {std::atan2(b.diameter_m, b.height_m)};
+}
+
+// The run of a cylinder member: the reference (with its witness) or the engine, the overturn's
+// time and azimuth from its summary, and an engine's overturn against the member's reference.
+void RunCylinderHere(const std::string& engine, const Scene& scene,
+                     const std::optional<std::filesystem::path>& keep_dir, MemberRow* row) {
+  SetCylinderGeometry(scene, row);
+  const GroundMotion motion = GroundMotion::FromScene(scene);
+  SetIntensity(scene, motion, row);
+  row->pga_resultant_g =
+      MeasureResultantPga(motion.horizontal(), motion.transverse(), scene.run.duration_s).pga_mps2 /
+      kStandardGravity_mps2;
+  const EngineRun ref_run = RunEngine(std::string(kReferenceEngine), scene, motion);
+  std::optional<EngineRun> own;
+  if (engine != ref_run.engine) own = RunEngine(engine, scene, motion);
+  const EngineRun& run = own ? *own : ref_run;
+  if (keep_dir) WriteEngineFiles(run, *keep_dir);
+  const RunOutcome& o = run.outcome;
+  row->status = StatusText(o.status);
+  row->detail = run.summary.is_object() ? run.summary.value("status_detail", "") : "";
+  row->overturned_block = o.overturned() ? 1 : 0;
+  // An overturned cylinder's peak is the overturn angle, whatever step an engine stopped on
+  // past it (as OutcomeOf does for blocks).
+  row->peak_theta_rad = {o.overturned() ? scene.model.overturn_rad : o.peak_theta_rad.at(0)};
+  if (o.overturned()) {
+    row->overturn_t_s = o.overturn_t_s;
+    const nlohmann::json& over = run.summary.at("overturn");
+    row->overturn_azimuth_rad = over.at("azimuth_rad").get<double>();
+  }
+  row->has_result = true;
+  if (const auto* ext = dynamic_cast<const CylinderReferenceExtension*>(run.extension.get())) {
+    row->wall_s = ext->nominal_wall_s;
+    row->converged = ext->witness.has_value() && ext->converged();
+  } else {
+    row->wall_s = run.wall_s;
+  }
+  if (!own) return;
+  MemberRow::Agreement g;
+  const RunStatus ref_status = ref_run.outcome.status;
+  if (ref_status != RunStatus::kAssumptionViolated && !IsNonFinite(ref_status)) {
+    g.reference_overturned_block = ref_run.outcome.overturned() ? 1 : 0;
+    g.overturn_agree = *g.reference_overturned_block == row->overturned_block;
+  }
+  row->agreement = g;
 }
 
 void SetOutcome(const MemberOutcome& o, int blocks, MemberRow* row) {
@@ -158,9 +214,19 @@ MemberRow RunMemberHere(const StudyDef& study, int64_t member, const std::string
                      MemberText(study, member) + ": " + std::to_string(scene->block_count()) +
                          " blocks, the study's members have " + std::to_string(study.blocks));
   }
+  if (scene->three_dimensional() != study.cylinder) {
+    return FailedRow(
+        member, engine, "error",
+        MemberText(study, member) + ": a " + (study.cylinder ? "planar body" : "cylinder") +
+            ", the study's members are " + (study.cylinder ? "cylinders" : "planar bodies"));
+  }
   // The run: an error names the member and its values before the message.
   try {
-    RunHere(study, engine, *scene, keep_dir, &row);
+    if (study.cylinder) {
+      RunCylinderHere(engine, *scene, keep_dir, &row);
+    } else {
+      RunHere(study, engine, *scene, keep_dir, &row);
+    }
   } catch (const std::bad_alloc&) {
     return FailedRow(member, engine, "error",
                      "out of memory (std::bad_alloc) in the " + engine + " run of " +
@@ -201,6 +267,8 @@ nlohmann::json MemberRowToJson(const MemberRow& r) {
   PutOptional(j, "d5_95_s", r.d5_95_s);
   PutOptional(j, "pulse_period_s", r.pulse_period_s);
   PutOptional(j, "converged", r.converged);
+  PutOptional(j, "pga_resultant_g", r.pga_resultant_g);
+  PutOptional(j, "overturn_azimuth_rad", r.overturn_azimuth_rad);
   PutVector(j, "p_radps", r.p_radps);
   PutVector(j, "alpha_rad", r.alpha_rad);
   PutVector(j, "peak_theta_rad", r.peak_theta_rad);
@@ -235,6 +303,8 @@ MemberRow MemberRowFromJson(const nlohmann::json& j) {
   r.d5_95_s = GetOptional<double>(j, "d5_95_s");
   r.pulse_period_s = GetOptional<double>(j, "pulse_period_s");
   r.converged = GetOptional<bool>(j, "converged");
+  r.pga_resultant_g = GetOptional<double>(j, "pga_resultant_g");
+  r.overturn_azimuth_rad = GetOptional<double>(j, "overturn_azimuth_rad");
   r.p_radps = GetVector(j, "p_radps");
   r.alpha_rad = GetVector(j, "alpha_rad");
   r.peak_theta_rad = GetVector(j, "peak_theta_rad");
@@ -267,7 +337,60 @@ int MembersCsvBodies(const StudyDef& study) {
   return std::max(2, study.blocks);
 }
 
+namespace {
+
+// A cylinder study's header (one body; the tilt for theta, the overturn's azimuth, the
+// resultant's PGA; no impacts or angle errors: an engine cannot tell a landing from a roll round
+// the rim, and the comparison does not take a cylinder yet).
+std::string CylinderCsvHeader(const StudyDef& study) {
+  std::string h = "member";
+  for (const StudyAxis& a : study.axes) h += "," + a.key;
+  h += ",p1_radps,alpha1_rad,pga_g,pga_resultant_g,pgv_mps,pgd_m,arias_mps,d5_95_s,"
+       "pulse_period_s,engine,status,overturned_block,overturn_t_s,overturn_azimuth_rad,"
+       "peak_tilt1_rad,wall_s,converged,reference_overturned_block,overturn_agree,detail\n";
+  return h;
+}
+
+std::string CylinderCsvLine(const StudyDef& study, const MemberRow& r) {
+  std::string s = std::to_string(r.member);
+  const std::vector<int> idx = study.ValueIndices(r.member);
+  for (size_t k = 0; k < study.axes.size(); ++k) {
+    s += ",";
+    s += TextCell(study.axes[k].values[idx[k]].text);
+  }
+  const auto add = [&](const std::string& cell) {
+    s += ",";
+    s += cell;
+  };
+  const bool res = r.has_result;
+  add(r.p_radps.empty() ? "" : ShortestText(r.p_radps[0]));
+  add(r.alpha_rad.empty() ? "" : ShortestText(r.alpha_rad[0]));
+  for (const auto* v : {&r.pga_g, &r.pga_resultant_g, &r.pgv_mps, &r.pgd_m, &r.arias_mps,
+                        &r.d5_95_s, &r.pulse_period_s}) {
+    add(Cell(*v));
+  }
+  add(r.engine);
+  add(TextCell(r.status));
+  const bool over = res && r.overturned_block != 0;
+  add(over ? "1" : "");
+  add(over ? ShortestText(r.overturn_t_s) : "");
+  add(over ? Cell(r.overturn_azimuth_rad) : "");
+  add(res && !r.peak_theta_rad.empty() ? ShortestText(r.peak_theta_rad[0]) : "");
+  add(ShortestText(r.wall_s));
+  add(r.converged ? (*r.converged ? "true" : "false") : "");
+  const bool ref = r.agreement && r.agreement->reference_overturned_block;
+  add(ref && *r.agreement->reference_overturned_block != 0 ? "1" : "");
+  add(r.agreement && r.agreement->overturn_agree ? (*r.agreement->overturn_agree ? "true" : "false")
+                                                 : "");
+  add(TextCell(r.detail));
+  s += "\n";
+  return s;
+}
+
+}  // namespace
+
 std::string MembersCsvHeader(const StudyDef& study) {
+  if (study.cylinder) return CylinderCsvHeader(study);
   const int nb = MembersCsvBodies(study);
   std::string h = "member";
   for (const StudyAxis& a : study.axes) h += "," + a.key;
@@ -286,6 +409,7 @@ std::string MembersCsvHeader(const StudyDef& study) {
 }
 
 std::string MembersCsvLine(const StudyDef& study, const MemberRow& r) {
+  if (study.cylinder) return CylinderCsvLine(study, r);
   const int nb = MembersCsvBodies(study);
   std::string s = std::to_string(r.member);
   const std::vector<int> idx = study.ValueIndices(r.member);
@@ -354,8 +478,10 @@ std::optional<RowKey> MembersCsvKey(const StudyDef& study, const std::string& li
   // member, axes, the member's columns (6 and 2 per body), engine and the run's columns (11 and
   // 3 per body).
   const auto nb = static_cast<size_t>(MembersCsvBodies(study));
-  const size_t member_columns = 6 + 2 * nb;
-  const size_t expected = 1 + study.axes.size() + member_columns + 1 + 11 + 3 * nb;
+  // A cylinder study: member, axes, 9 member columns, engine and 10 run columns.
+  const size_t member_columns = study.cylinder ? 9 : 6 + 2 * nb;
+  const size_t expected = study.cylinder ? 1 + study.axes.size() + member_columns + 1 + 10
+                                         : 1 + study.axes.size() + member_columns + 1 + 11 + 3 * nb;
   if (cells.size() != expected) return std::nullopt;
   RowKey key;
   const std::string& m = cells[0];

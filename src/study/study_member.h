@@ -26,6 +26,13 @@ struct MemberRow {
   std::vector<double> p_radps, alpha_rad;
   /// Intensity measures of the horizontal base motion over the run (none without one).
   std::optional<double> pga_g, pgv_mps, pgd_m, arias_mps, d5_95_s, pulse_period_s;
+  /// Cylinder rows: the peak of the horizontal resultant of [base.horizontal] and
+  /// [base.transverse] over the run, max over t of sqrt(a_x^2 + a_y^2), in g0
+  /// (MeasureResultantPga); none in planar rows.
+  std::optional<double> pga_resultant_g;
+  /// Cylinder rows of an overturned run: the azimuth the top fell toward, within (-pi, pi] (rad,
+  /// from +x toward +y; summary.json's overturn.azimuth_rad).
+  std::optional<double> overturn_azimuth_rad;
   int overturned_block = 0;  ///< 0: none (printed empty), 1..N
   double overturn_t_s = 0.0;
   /// Per body: peak |theta_k|, rad (empty for a run that gave no result).
@@ -63,7 +70,11 @@ nlohmann::json MemberRowToJson(const MemberRow& row);
 MemberRow MemberRowFromJson(const nlohmann::json& j);
 
 /// members.csv's header: member, one column per axis (named by its key), the member's geometry
-/// and intensity measures, then the run's columns (docs/ensemble.md lists them). The per-body
+/// and intensity measures, then the run's columns (docs/ensemble.md lists them). A cylinder
+/// study (StudyDef::cylinder) has the cylinder's columns: p1_radps, alpha1_rad, the intensity
+/// measures with pga_resultant_g, engine, status, overturned_block, overturn_t_s,
+/// overturn_azimuth_rad, peak_tilt1_rad, wall_s, converged, reference_overturned_block,
+/// overturn_agree, detail. The per-body
 /// columns (p1_radps,alpha1_rad,p2_radps,alpha2_rad, ...; peak_theta1_rad, ...;
 /// theta1_max_abs_error_rad, ...; theta1_horizon_s, ...) are those of every body of the study
 /// (study.blocks), and of two bodies for a study of one (MembersCsvBodies).

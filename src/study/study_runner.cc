@@ -494,6 +494,15 @@ std::string StudyInputsText(const StudyDef& study) {
   for (const std::string& o : study.overrides) t += "set = " + nlohmann::json(o).dump() + "\n";
   t += std::string("combine = ") + (study.combine == StudyCombine::kZip ? "zip" : "product") + "\n";
   t += "blocks = " + std::to_string(study.blocks) + "\n";
+  // A cylinder study says so (a planar study's file has no such line).
+  if (study.cylinder) t += "body = cylinder\n";
+  // Paired axes (zip_with): how the values were paired is an input the rows show only in part.
+  for (const StudyAxis& a : study.axes) {
+    if (a.zip_with >= 0) {
+      t += "zip_with = " + nlohmann::json(a.key + " with " + study.axes[a.zip_with].key).dump() +
+           "\n";
+    }
+  }
   t += "min_impact_rate_radps = " + ShortestText(study.min_impact_rate_radps) + "\n";
   return t;
 }
@@ -635,10 +644,14 @@ void WriteStudyJson(const StudyDef& study, const std::filesystem::path& dir, int
                       {"rows_resumed", resumed_rows}};
   // N >= 3 blocks: how many (members.csv has their columns); one and two blocks: no key.
   if (study.blocks >= 3) j["blocks"] = study.blocks;
+  // A cylinder study: its body (a planar study has no key).
+  if (study.cylinder) j["body"] = "cylinder";
   for (const StudyAxis& a : study.axes) {
     nlohmann::json values = nlohmann::json::array();
     for (const AxisValue& v : a.values) values.push_back(v.text);
-    j["axes"].push_back({{"key", a.key}, {"values", values}, {"derived", a.derived}});
+    nlohmann::json axis = {{"key", a.key}, {"values", values}, {"derived", a.derived}};
+    if (a.zip_with >= 0) axis["zip_with"] = study.axes[a.zip_with].key;
+    j["axes"].push_back(axis);
   }
   // Written to a registered temporary name and renamed (util/wall_limit.h).
   WriteFileAtomic(dir / "study.json", j.dump(2) + "\n");

@@ -78,18 +78,28 @@ EnsembleData ReadEnsemble(const std::filesystem::path& dir) {
   const std::vector<std::string> header = SplitCsv(line);
   std::map<std::string, size_t> col;
   for (size_t i = 0; i < header.size(); ++i) col[header[i]] = i;
-  for (const char* need :
-       {"member", "engine", "status", "overturned_block", "peak_theta1_rad", "peak_theta2_rad",
-        "wall_s", "impacts", "pga_g", "pgv_mps", "pulse_period_s", "p1_radps", "alpha1_rad"}) {
+  // A cylinder study's file (study/study_member.h): the tilt for theta, one body.
+  d.cylinder = col.count("peak_tilt1_rad") > 0;
+  const std::vector<const char*> planar_columns = {
+      "member",    "engine",  "status", "overturned_block", "peak_theta1_rad", "peak_theta2_rad",
+      "wall_s",    "impacts", "pga_g",  "pgv_mps",          "pulse_period_s",  "p1_radps",
+      "alpha1_rad"};
+  const std::vector<const char*> cylinder_columns = {
+      "member",         "engine",   "status",     "overturned_block",    "overturn_t_s",
+      "peak_tilt1_rad", "wall_s",   "pga_g",      "pga_resultant_g",     "pgv_mps",
+      "pulse_period_s", "p1_radps", "alpha1_rad", "overturn_azimuth_rad"};
+  for (const char* need : d.cylinder ? cylinder_columns : planar_columns) {
     if (!col.count(need)) {
       throw ReportInputError(csv.string() + ":1: no column " + need);
     }
   }
+  if (d.cylinder) d.blocks = 1;
   for (const std::string& a : d.axes) {
     if (!col.count(a)) throw ReportInputError(csv.string() + ":1: no column for axis " + a);
   }
   // N >= 3 blocks: peak_theta3_rad, ... as long as the header has them.
-  while (d.blocks < kMaxBlocks && col.count(BodyColumn("peak_theta", d.blocks + 1) + "_rad")) {
+  while (!d.cylinder && d.blocks < kMaxBlocks &&
+         col.count(BodyColumn("peak_theta", d.blocks + 1) + "_rad")) {
     ++d.blocks;
   }
   for (int n = 2; std::getline(in, line); ++n) {
@@ -117,18 +127,26 @@ EnsembleData ReadEnsemble(const std::filesystem::path& dir) {
     r.pulse_period_s = Number(c[col["pulse_period_s"]], where);
     r.p1_radps = Number(c[col["p1_radps"]], where);
     r.alpha1_rad = Number(c[col["alpha1_rad"]], where);
-    const std::optional<double> peak1 = Number(c[col["peak_theta1_rad"]], where);
+    const std::optional<double> peak1 =
+        Number(c[col[d.cylinder ? "peak_tilt1_rad" : "peak_theta1_rad"]], where);
     r.has_result = peak1.has_value();
     r.peak_theta1_rad = peak1.value_or(0.0);
-    r.peak_theta2_rad = Number(c[col["peak_theta2_rad"]], where).value_or(0.0);
-    r.peak_theta_rad = {r.peak_theta1_rad, r.peak_theta2_rad};
-    for (int b = 3; b <= d.blocks; ++b) {
-      r.peak_theta_rad.push_back(
-          Number(c[col[BodyColumn("peak_theta", b) + "_rad"]], where).value_or(0.0));
+    if (d.cylinder) {
+      r.peak_theta_rad = {r.peak_theta1_rad};
+      r.pga_resultant_g = Number(c[col["pga_resultant_g"]], where);
+      r.overturn_azimuth_rad = Number(c[col["overturn_azimuth_rad"]], where);
+      r.overturn_t_s = Number(c[col["overturn_t_s"]], where).value_or(0.0);
+    } else {
+      r.peak_theta2_rad = Number(c[col["peak_theta2_rad"]], where).value_or(0.0);
+      r.peak_theta_rad = {r.peak_theta1_rad, r.peak_theta2_rad};
+      for (int b = 3; b <= d.blocks; ++b) {
+        r.peak_theta_rad.push_back(
+            Number(c[col[BodyColumn("peak_theta", b) + "_rad"]], where).value_or(0.0));
+      }
+      r.impacts = static_cast<int>(Number(c[col["impacts"]], where).value_or(0));
     }
     r.overturned_block = static_cast<int>(Number(c[col["overturned_block"]], where).value_or(0));
     r.wall_s = Number(c[col["wall_s"]], where).value_or(0.0);
-    r.impacts = static_cast<int>(Number(c[col["impacts"]], where).value_or(0));
     d.records.push_back(std::move(r));
   }
   return d;

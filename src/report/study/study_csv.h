@@ -23,7 +23,11 @@ struct EnsembleRecord {
   /// two: peak_theta1_rad, peak_theta2_rad, then peak_theta3_rad ... of N >= 3 blocks).
   std::vector<double> peak_theta_rad;
   int impacts = 0;
-  bool has_result = false;  ///< the run gave an outcome (not crash, wall_limit, error)
+  /// A cylinder study's rows: the peak of the horizontal resultant (g; the fragility's
+  /// intensity measure) and an overturn's azimuth (rad). peak_theta1_rad holds the peak tilt.
+  std::optional<double> pga_resultant_g, overturn_azimuth_rad;
+  double overturn_t_s = 0.0;  ///< when overturned_block != 0, s
+  bool has_result = false;    ///< the run gave an outcome (not crash, wall_limit, error)
   /// The run's outcome can be used: it has a result, the model's assumptions held and its state
   /// stayed finite (status non_finite: the run failed).
   bool usable() const {
@@ -40,10 +44,20 @@ struct EnsembleData {
   /// same), N for one with the peak_theta3_rad ... peak_thetaN_rad columns.
   int blocks = 2;
   int ranks = 1, jobs = 1;
+  /// A study of a cylinder rocking in 3-D (members.csv's cylinder columns: peak_tilt1_rad,
+  /// pga_resultant_g, overturn_azimuth_rad); blocks is then 1.
+  bool cylinder = false;
   double wall_s = 0.0, serial_s = 0.0;
   std::vector<EnsembleRecord> records;  ///< in file order (member, then engine)
   /// The column of `key` among the axes; -1 when the study has no such axis.
   int Axis(const std::string& key) const;
+  /// The intensity measure fragility curves and scatter plots use: a cylinder's resultant PGA
+  /// (pga_resultant_g), a planar row's pga_g.
+  std::optional<double> Pga_g(const EnsembleRecord& r) const {
+    return cylinder ? r.pga_resultant_g : r.pga_g;
+  }
+  /// Its name in figures and tables: "resultant PGA" or "PGA".
+  std::string PgaName() const { return cylinder ? "resultant PGA" : "PGA"; }
 };
 
 /// True when DIR holds an ensemble (study.json and members.csv).

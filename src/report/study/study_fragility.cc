@@ -20,9 +20,10 @@ namespace {
 // Axes that choose or scale the motion: the rest are the geometry (and settings) groups.
 const std::vector<std::string>& MotionAxes() {
   static const std::vector<std::string> keys = {
-      "base.horizontal.file",    "base.horizontal.seed",     "base.horizontal.pga_g",
-      "base.horizontal.pgv_mps", "base.horizontal.scale",    "base.horizontal.amplitude_g",
-      "pulse.amplitude_ratio",   "base.horizontal.intensity"};
+      "base.horizontal.file",    "base.horizontal.seed",      "base.horizontal.pga_g",
+      "base.horizontal.pgv_mps", "base.horizontal.scale",     "base.horizontal.amplitude_g",
+      "pulse.amplitude_ratio",   "base.horizontal.intensity", "base.transverse.file",
+      "base.transverse.scale",   "base.pga_resultant_g"};
   return keys;
 }
 
@@ -125,12 +126,13 @@ Groups GroupMembers(const EnsembleData& d) {
   for (const EnsembleRecord& r : d.records) {
     const std::string g = GroupLabel(d, r, motion);
     if (!groups.data.count(g)) groups.order.push_back(g);
-    if (!r.usable() || !r.pga_g || !(*r.pga_g > 0.0)) {
+    const std::optional<double> pga = d.Pga_g(r);
+    if (!r.usable() || !pga || !(*pga > 0.0)) {
       ++groups.left_out[r.engine];
       continue;
     }
-    groups.data[g].members[r.member][r.engine] = {*r.pga_g, r.overturned_block != 0};
-    groups.data[g].overturned_block[r.engine].push_back({*r.pga_g, r.overturned_block});
+    groups.data[g].members[r.member][r.engine] = {*pga, r.overturned_block != 0};
+    groups.data[g].overturned_block[r.engine].push_back({*pga, r.overturned_block});
   }
   return groups;
 }
@@ -223,6 +225,14 @@ bool HasMotionSuite(const EnsembleData& d) {
 void FragilitySection(const EnsembleData& d, const std::filesystem::path& fig_dir, Page& page,
                       std::vector<std::string>& findings) {
   page.Heading("Fragility curves");
+  if (d.cylinder) {
+    page.Paragraph(
+        "The body is a cylinder rocking, rolling and wobbling in 3-D (docs/three-d.md): "
+        "overturned = its tilt reached the overturn angle (model.overturn_angle), toward any "
+        "azimuth. The intensity measure is the peak of the horizontal resultant, max over t of "
+        "sqrt(a_x(t)^2 + a_y(t)^2) in g (members.csv's pga_resultant_g): \"PGA\" below is "
+        "that resultant PGA.");
+  }
   page.Paragraph(
       "P(overturn | PGA), the lognormal form Phi(ln(PGA / median) / beta) fitted by maximum "
       "likelihood (Baker 2015) to the members whose run has an outcome (runs where the "
@@ -238,9 +248,9 @@ void FragilitySection(const EnsembleData& d, const std::filesystem::path& fig_di
   for (const std::string& g : groups.order) {
     GnuplotFigure fig;
     fig.name = "fragility_" + std::to_string(index++);
-    const std::string script =
-        "set xlabel \"PGA (g)\"\nset ylabel \"P(overturn)\"\nset yrange [-0.02:1.02]\n"
-        "set key left top\nset style fill transparent solid 0.15 noborder\n";
+    const std::string script = "set xlabel \"" + d.PgaName() +
+                               " (g)\"\nset ylabel \"P(overturn)\"\nset yrange [-0.02:1.02]\n"
+                               "set key left top\nset style fill transparent solid 0.15 noborder\n";
     std::string plots;
     bool reference_plotted = false;
     std::map<std::string, std::vector<stats::FragilityPoint>> by_engine;
@@ -269,7 +279,7 @@ void FragilitySection(const EnsembleData& d, const std::filesystem::path& fig_di
     fig.script = script + "plot " + plots + "\n";
     RenderGnuplot(fig_dir, fig);
     page.Figure(std::filesystem::path("figures") / (fig.name + ".svg"),
-                "Fragility over PGA" + (g.empty() ? std::string() : ": " + g));
+                "Fragility over " + d.PgaName() + (g.empty() ? std::string() : ": " + g));
   }
   page.Table({"group", "run", "members", "overturned", "median PGA [95%]", "beta",
               "median - reference's [95%, paired]"},
@@ -290,8 +300,9 @@ namespace {
 // Draws a figure of peak angles (log y, `ylabel`) against PGA from its `plots` and puts it on
 // the page with its caption.
 void DrawScatter(GnuplotFigure& fig, const std::string& plots, const std::string& ylabel,
-                 const std::string& caption, const std::filesystem::path& fig_dir, Page& page) {
-  fig.script = "set logscale y\nset xlabel \"PGA (g)\"\nset ylabel \"";
+                 const std::string& caption, const std::filesystem::path& fig_dir, Page& page,
+                 const std::string& xlabel = "PGA") {
+  fig.script = "set logscale y\nset xlabel \"" + xlabel + " (g)\"\nset ylabel \"";
   fig.script += ylabel + "\"\nset key left top\nplot " + plots + "\n";
   RenderGnuplot(fig_dir, fig);
   page.Figure(std::filesystem::path("figures") / (fig.name + ".svg"), caption);
@@ -347,7 +358,7 @@ void BlocksScatter(const EnsembleData& d, const std::filesystem::path& fig_dir, 
 }  // namespace
 
 void ScatterSection(const EnsembleData& d, const std::filesystem::path& fig_dir, Page& page) {
-  page.Heading("Peak angle against PGA");
+  page.Heading(d.cylinder ? "Peak tilt against resultant PGA" : "Peak angle against PGA");
   if (d.blocks >= 3) {
     BlocksScatter(d, fig_dir, page);
     return;
@@ -359,8 +370,9 @@ void ScatterSection(const EnsembleData& d, const std::filesystem::path& fig_dir,
   for (const std::string& e : d.engines) {
     std::string data;
     for (const EnsembleRecord& r : d.records) {
-      if (r.engine != e || !r.usable() || !r.pga_g || !(r.peak_theta1_rad > 0.0)) continue;
-      data += Num(*r.pga_g, 10) + " " + Num(r.peak_theta1_rad, 10) + "\n";
+      const std::optional<double> pga = d.Pga_g(r);
+      if (r.engine != e || !r.usable() || !pga || !(r.peak_theta1_rad > 0.0)) continue;
+      data += Num(*pga, 10) + " " + Num(r.peak_theta1_rad, 10) + "\n";
     }
     if (data.empty()) continue;
     const std::string f = fig.name + "_" + e + ".dat";
@@ -372,6 +384,14 @@ void ScatterSection(const EnsembleData& d, const std::filesystem::path& fig_dir,
   }
   if (plots.empty()) {
     page.Paragraph("No run rocked: nothing to draw.");
+    return;
+  }
+  if (d.cylinder) {
+    DrawScatter(fig, plots, "peak tilt (rad)",
+                "Peak tilt of the cylinder in every run that rocked against the resultant PGA of "
+                "its motion (an overturned cylinder at its overturn angle); runs at rest are left "
+                "out of the log axis.",
+                fig_dir, page, d.PgaName());
     return;
   }
   DrawScatter(fig, plots, "peak |theta1| (rad)",

@@ -2,6 +2,7 @@
 #include "report/study/study_report.h"
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 
 #include "files/atomic_file.h"
@@ -44,6 +45,68 @@ void StudySection(const EnsembleData& d, Page& page) {
         {e, std::to_string(n), statuses, n > 0 ? Num(wall[e] / n * 1e3, 3) + " ms" : ""});
   }
   page.Table({"run", "runs", "statuses", "mean wall time per run"}, rows);
+}
+
+// A cylinder study: per engine, on the members where both it and the reference have an outcome,
+// how often the overturn agrees, and where both overturned, by how much its time and its
+// azimuth (the direction of the fall) differ from the reference's.
+void CylinderSection(const EnsembleData& d, Page& page, std::vector<std::string>& findings) {
+  if (!d.cylinder) return;
+  page.Heading("Cylinder: overturns against the reference");
+  page.Paragraph(
+      "The body is a cylinder rocking, rolling and wobbling in 3-D (docs/three-d.md); overturned "
+      "= its tilt reached the overturn angle (model.overturn_angle), toward the azimuth given "
+      "(from +x toward +y). Per engine, on the members where both it and the reference have an "
+      "outcome: the members with the same outcome, and where both overturned the median and "
+      "largest difference of the overturn's time and of its azimuth (wrapped to [0, pi]).");
+  std::map<long long, const EnsembleRecord*> reference;
+  for (const EnsembleRecord& r : d.records) {
+    if (r.engine == "reference" && r.usable()) reference[r.member] = &r;
+  }
+  std::vector<std::vector<std::string>> rows;
+  for (const std::string& e : d.engines) {
+    if (e == "reference") continue;
+    int both = 0, same = 0;
+    std::vector<double> dt, dphi;
+    for (const EnsembleRecord& r : d.records) {
+      if (r.engine != e || !r.usable()) continue;
+      const auto it = reference.find(r.member);
+      if (it == reference.end()) continue;
+      const EnsembleRecord& ref = *it->second;
+      ++both;
+      same += (r.overturned_block != 0) == (ref.overturned_block != 0);
+      if (r.overturned_block != 0 && ref.overturned_block != 0) {
+        dt.push_back(std::abs(r.overturn_t_s - ref.overturn_t_s));
+        if (r.overturn_azimuth_rad && ref.overturn_azimuth_rad) {
+          const double a = std::remainder(*r.overturn_azimuth_rad - *ref.overturn_azimuth_rad,
+                                          2.0 * 3.14159265358979323846);
+          dphi.push_back(std::abs(a));
+        }
+      }
+    }
+    const auto median = [](const std::vector<double>& v) {
+      return v.empty() ? std::string() : Num(stats::Median(v), 3);
+    };
+    const auto largest = [](const std::vector<double>& v) {
+      return v.empty() ? std::string() : Num(*std::max_element(v.begin(), v.end()), 3);
+    };
+    rows.push_back({e, std::to_string(both), std::to_string(same), std::to_string(dt.size()),
+                    median(dt), largest(dt), median(dphi), largest(dphi)});
+    if (both > 0) {
+      findings.push_back(e + " (cylinder): the reference's outcome (overturned or not) on " +
+                         std::to_string(same) + " of " + std::to_string(both) + " members" +
+                         (dt.empty() ? std::string(".")
+                                     : "; where both overturned (" + std::to_string(dt.size()) +
+                                           "), the overturn's time differs by " + median(dt) +
+                                           " s (median; at most " + largest(dt) +
+                                           " s) and its azimuth by " + median(dphi) +
+                                           " rad (median; at most " + largest(dphi) + " rad)."));
+    }
+  }
+  page.Table({"run", "members (both with an outcome)", "same outcome", "both overturned",
+              "median |dt| (s)", "largest |dt| (s)", "median |d azimuth| (rad)",
+              "largest |d azimuth| (rad)"},
+             rows);
 }
 
 }  // namespace
@@ -116,9 +179,15 @@ std::filesystem::path WriteEnsembleReport(const std::filesystem::path& ensemble_
   if (HasSpectrumAxes(d)) SpectraSection(d, fig_dir, body, findings);
   if (HasMotionSuite(d)) {
     FragilitySection(d, fig_dir, body, findings);
-    FragilitySurfaceSection(d, fig_dir, body, findings);
+    // The two-parameter surface pairs PGA with PGV / PGA of one component: not drawn over a
+    // cylinder's resultant PGA.
+    if (!d.cylinder) FragilitySurfaceSection(d, fig_dir, body, findings);
   }
-  if (d.Axis("base.horizontal.pga_g") >= 0 || HasMotionSuite(d)) ScatterSection(d, fig_dir, body);
+  CylinderSection(d, body, findings);
+  if (d.Axis("base.horizontal.pga_g") >= 0 || d.Axis("base.pga_resultant_g") >= 0 ||
+      HasMotionSuite(d)) {
+    ScatterSection(d, fig_dir, body);
+  }
   page.Heading("In plain words");
   if (findings.empty()) {
     page.Paragraph(
