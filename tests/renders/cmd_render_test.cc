@@ -18,6 +18,7 @@
 
 #include "files/atomic_file.h"
 #include "files/history_csv.h"
+#include "motion/ground_motion.h"
 #include "renders/limits.h"
 #include "renders/renderer.h"
 #include "scene/history.h"
@@ -112,6 +113,41 @@ TEST(CmdRender, RunFolderIsDrawnFromItsHistories) {
   // The same frame drawn directly from the same files.
   const auto direct = DirectRenderer(dir, {"reference", "other"}, Layout::kSide);
   EXPECT_EQ(ReadPng(out / "frames" / "frame_00004.png").rgb, direct->Render(0.4).rgb);
+  fs::remove_all(dir);
+}
+
+TEST(CmdRender, ACylinderRunFolderIsDrawnWithItsBaseMovingInXAndY) {
+  // `rockbench run` of the rotating harmonic (both horizontal components), then drawn from its
+  // folder: every frame is the direct render of its history with the base displacement of the
+  // scene's three components (the transverse one included).
+  const fs::path dir = Folder("cylinder");
+  const fs::path scene_path = kSource / "scenes/three_d/cylinder_rotating_harmonic.toml";
+  const Result run = testing_util::Shell(std::string(ROCKBENCH_CLI) + " run " +
+                                         scene_path.string() + " --out " + dir.string());
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const fs::path out = dir / "pictures";
+  const Result r =
+      RunCli(dir.string() + " --out " + out.string() + " --frames --size 320x240 --fps 2");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  ASSERT_EQ(CountFiles(out / "frames"), 12);  // 6 s at 2 frames a second
+  const Scene scene = LoadScene(scene_path);
+  const History h = ReadHistoryCsv(dir / "reference" / "history.csv");
+  const BaseDisplacement base = IntegrateBaseDisplacement(
+      GroundMotion::FromScene(scene), h.samples.back().t_s, BaseIntegrationFor(scene));
+  ASSERT_TRUE(base.has_transverse());
+  EXPECT_NE(base.TransverseAt(1.5), 0.0);
+  RenderConfig cfg;
+  cfg.width_px = 320;
+  cfg.height_px = 240;
+  cfg.title = scene.title;
+  FrameRenderer direct(scene, {{"reference", h}}, base, cfg);
+  EXPECT_EQ(ReadPng(out / "frames" / "frame_00003.png").rgb, direct.Render(1.5).rgb);
+  // Without the transverse displacement the frame differs: the CLI drew it.
+  BaseDisplacement no_y = IntegrateBaseDisplacement(
+      GroundMotion::FromScene(scene), h.samples.back().t_s, BaseIntegrationFor(scene));
+  no_y.SetTransverse(std::vector<double>{});
+  FrameRenderer without(scene, {{"reference", h}}, no_y, cfg);
+  EXPECT_NE(ReadPng(out / "frames" / "frame_00003.png").rgb, without.Render(1.5).rgb);
   fs::remove_all(dir);
 }
 
