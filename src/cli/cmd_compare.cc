@@ -20,6 +20,7 @@
 #include "compare/compare_run.h"
 #include "compare/perturbation_members.h"
 #include "compare/verdict.h"
+#include "engine/engine.h"
 #include "files/atomic_file.h"
 #include "motion/ground_motion.h"
 #include "reference/simulate.h"
@@ -56,12 +57,17 @@ void WriteCompareFiles(const CompareCliOptions& opt, const std::vector<std::stri
                        const std::filesystem::path& out) {
   const int nb = scene.block_count();
   WriteEngineFiles(run.reference_run, out);
+  const bool cylinder = run.cylinder_reference() != nullptr;
+  // Each ensemble's members: a cylinder's with its transverse factor and fall azimuth.
+  const auto outcomes_csv = [&](const std::vector<MemberOutcome>& outcomes) {
+    const std::vector<MemberPerturbation>& p = run.perturbation_members->perturbations;
+    return cylinder ? CylinderOutcomesCsv(outcomes, p) : OutcomesCsv(outcomes, p, nb);
+  };
   if (run.perturbation_members) {
     WriteFileAtomic(out / "reference" / "ensemble_band.csv",
                     PerturbationBandCsv(*run.perturbation_members));
     WriteFileAtomic(out / "reference" / "ensemble.csv",
-                    OutcomesCsv(run.perturbation_members->outcomes,
-                                run.perturbation_members->perturbations, nb));
+                    outcomes_csv(run.perturbation_members->outcomes));
   }
   nlohmann::json summary;
   summary["scene"] = {{"path", std::filesystem::absolute(opt.scene).lexically_normal().string()},
@@ -80,9 +86,7 @@ void WriteCompareFiles(const CompareCliOptions& opt, const std::vector<std::stri
     summary["engines"][name] = run.engine_runs[k].summary;
     written.push_back(name);
     if (!run.engine_outcomes[k].empty()) {
-      WriteFileAtomic(
-          out / name / "ensemble.csv",
-          OutcomesCsv(run.engine_outcomes[k], run.perturbation_members->perturbations, nb));
+      WriteFileAtomic(out / name / "ensemble.csv", outcomes_csv(run.engine_outcomes[k]));
     }
   }
   summary["engines_written"] = written;
@@ -94,9 +98,15 @@ void WriteCompareFiles(const CompareCliOptions& opt, const std::vector<std::stri
 
 // Prints one engine's agreement: every body's angle, slip and lift, the impacts (faster than
 // `min_impact_rate_radps`), the outcomes and the final state.
-void PrintAgreement(const EngineAgreement& a, double min_impact_rate_radps) {
+void PrintAgreement(const EngineAgreement& a, double min_impact_rate_radps, bool cylinder) {
+  // Every compared angle (a cylinder's tilt_x1 and tilt_y1), with its body.
+  std::vector<std::pair<int, const AngleAgreement*>> angles;
   for (int b = 1; b <= a.blocks(); ++b) {
-    const AngleAgreement& g = a.angle(b);
+    angles.emplace_back(b, &a.angle(b));
+    for (const AngleAgreement& g : a.body(b).more_angles) angles.emplace_back(b, &g);
+  }
+  for (const auto& [b, gp] : angles) {
+    const AngleAgreement& g = *gp;
     std::printf(
         "  %s %s: max error %.3g rad (%.3g where the reference is predictable: %.3g x the "
         "local tolerance), RMS %.3g rad, within the local tolerance until %.3f s, ",
@@ -135,14 +145,17 @@ void PrintAgreement(const EngineAgreement& a, double min_impact_rate_radps) {
           g.final_engine_m, g.final_reference_m);
     }
   }
-  std::printf(
-      "  %s impacts faster than %g rad/s: %d of %d matched (engine %d; all impacts: "
-      "reference %d, engine %d), max time error %.3g ms%s%s\n",
-      a.engine.c_str(), min_impact_rate_radps, a.impacts.matched, a.impacts.reference_impacts,
-      a.impacts.engine_impacts, a.impacts.reference_impacts_all, a.impacts.engine_impacts_all,
-      a.impacts.max_abs_time_error_s * 1e3,
-      a.impacts.first_mismatch.empty() ? "" : "; first mismatch: ",
-      a.impacts.first_mismatch.c_str());
+  // A cylinder's landings are not matched one by one (each summary counts them).
+  if (!cylinder) {
+    std::printf(
+        "  %s impacts faster than %g rad/s: %d of %d matched (engine %d; all impacts: "
+        "reference %d, engine %d), max time error %.3g ms%s%s\n",
+        a.engine.c_str(), min_impact_rate_radps, a.impacts.matched, a.impacts.reference_impacts,
+        a.impacts.engine_impacts, a.impacts.reference_impacts_all, a.impacts.engine_impacts_all,
+        a.impacts.max_abs_time_error_s * 1e3,
+        a.impacts.first_mismatch.empty() ? "" : "; first mismatch: ",
+        a.impacts.first_mismatch.c_str());
+  }
   // Leaving the support is named where either run had a block leave it.
   const bool left = a.left_support_block_reference || a.left_support_block_engine;
   // Outcomes after the instant the model stops deciding are not compared (agreement.h).
@@ -150,8 +163,18 @@ void PrintAgreement(const EngineAgreement& a, double min_impact_rate_radps) {
                                   ? Format(" up to %.4f s (the model does not decide after it)",
                                            *a.reference_undetermined_s)
                                   : std::string();
-  std::printf("  %s overturning %s%s%s%s, final state %s\n", a.engine.c_str(),
-              a.overturn_agree ? "agrees" : "DIFFERS", left ? ", leaving the support " : "",
+  // A cylinder's fall: toward which azimuth in each run.
+  std::string fall;
+  if (a.overturn_azimuth_reference_rad || a.overturn_azimuth_engine_rad) {
+    const auto az = [](const std::optional<double>& v) {
+      return v ? Format("%+.3f rad", *v) : std::string("none");
+    };
+    fall = " (fall azimuth: engine " + az(a.overturn_azimuth_engine_rad) + ", reference " +
+           az(a.overturn_azimuth_reference_rad) + ")";
+  }
+  std::printf("  %s overturning %s%s%s%s%s, final state %s\n", a.engine.c_str(),
+              a.overturn_agree ? "agrees" : "DIFFERS", fall.c_str(),
+              left ? ", leaving the support " : "",
               !left ? "" : (a.left_support_agree ? "agrees" : "DIFFERS"), decided.c_str(),
               a.final_agree ? "agrees" : "DIFFERS");
 }
@@ -165,9 +188,22 @@ void Execute(const CompareCliOptions& opt) {
   }
   const ResourceBudget budget = StartLimits(opt.limits, opt.out, "compare");
   const Scene scene = LoadScene(opt.scene, overrides);
-  RequirePlanarBodies(scene, "compare");
   CheckEngineTables(scene);
-  const std::vector<std::string> engines = ParseEnginesBesideReference(opt.engines);
+  std::vector<std::string> engines = ParseEnginesBesideReference(opt.engines);
+  // "all" on a scene whose bodies an engine does not build (a cylinder in a planar engine): that
+  // engine is left out, and said why; named on its own, it fails as any engine that cannot run.
+  if (opt.engines == "all") {
+    std::vector<std::string> builds;
+    for (const std::string& name : engines) {
+      try {
+        if (const Engine* engine = FindEngine(name)) CheckBuildsBodies(*engine, scene);
+        builds.push_back(name);
+      } catch (const SceneError& e) {
+        std::fprintf(stderr, "rockbench: compare: not run: %s\n", e.what());
+      }
+    }
+    engines = builds;
+  }
   // An engine the scene brings runs only when the user names it: said, with how to opt in.
   std::fputs(NotRunNote(engines).c_str(), stderr);
   const int threads =
@@ -189,7 +225,11 @@ void Execute(const CompareCliOptions& opt) {
   WriteCompareFiles(opt, overrides, scene, motion, run, out);
   const std::vector<EngineAgreement>& agreements = run.agreements;
   for (const EngineAgreement& a : agreements) {
-    PrintAgreement(a, run.comparison.value("impact_min_rate_radps", 0.0));
+    PrintAgreement(a,
+                   run.comparison["impact_min_rate_radps"].is_number()
+                       ? run.comparison["impact_min_rate_radps"].get<double>()
+                       : 0.0,
+                   run.cylinder_reference() != nullptr);
   }
   for (const EngineAgreement& a : agreements) {
     std::printf("verdict %s: %s: %s\n", a.engine.c_str(), VerdictLabel(a.verdict_kind).c_str(),
@@ -224,7 +264,9 @@ void Execute(const CompareCliOptions& opt) {
     }
     throw CLI::RuntimeError(kExitRunFailed);
   }
-  // The reference's model stopped deciding the motion: said, and exit 5 as `run`.
+  // The reference's model stopped deciding the motion: said, and exit 5 as `run`. (A cylinder's
+  // landing has one outcome.)
+  if (run.cylinder_reference()) return;
   const reference::Summary& rs = run.reference().used().summary;
   if (rs.undetermined_from_s) {
     std::fflush(stdout);

@@ -576,7 +576,7 @@ EngineAgreement CompareWithReference(const Scene& scene, const reference::Result
   const double until = ComparedUntil_s(ref, run);
   a.compared_until_s = until;
   for (AngleAgreement& g : CompareAngles(scene, ref, run, until, options, &a.samples_compared)) {
-    a.bodies.push_back(BodyAgreement{std::move(g), 0.0, std::nullopt, std::nullopt});
+    a.bodies.push_back(BodyAgreement{std::move(g), 0.0, std::nullopt, std::nullopt, {}});
   }
   if (ref.history.slip_and_lift && run.history.slip_and_lift) {
     CompareSlipAndLift(scene, ref, run, until, options, &a.bodies);
@@ -585,6 +585,15 @@ EngineAgreement CompareWithReference(const Scene& scene, const reference::Result
   CompareOutcomes(ref.summary, run, &a);
   CompareFinalState(ref, run, until, &a);
   return a;
+}
+
+std::vector<const AngleAgreement*> EngineAgreement::compared_angles() const {
+  std::vector<const AngleAgreement*> out;
+  for (const BodyAgreement& body : bodies) {
+    out.push_back(&body.angle);
+    for (const AngleAgreement& g : body.more_angles) out.push_back(&g);
+  }
+  return out;
 }
 
 nlohmann::json AgreementJson(const EngineAgreement& a) {
@@ -597,6 +606,7 @@ nlohmann::json AgreementJson(const EngineAgreement& a) {
   for (int b = 1; b <= a.blocks(); ++b) {
     const BodyAgreement& body = a.body(b);
     j[BodyColumn(body.angle.quantity, b)] = AngleJson(body.angle);
+    for (const AngleAgreement& g : body.more_angles) j[g.name] = AngleJson(g);
     for (const std::optional<SlipAgreement>* g : {&body.slip, &body.lift}) {
       if (*g) j[BodyColumn((*g)->quantity, b)] = SlipJson(**g);
     }
@@ -618,6 +628,19 @@ nlohmann::json AgreementJson(const EngineAgreement& a) {
       a.overturn_block_reference ? nlohmann::json(*a.overturn_block_reference) : nullptr;
   ov["engine_block"] = a.overturn_block_engine ? nlohmann::json(*a.overturn_block_engine) : nullptr;
   ov["time_error_s"] = a.overturn_time_error_s ? nlohmann::json(*a.overturn_time_error_s) : nullptr;
+  // A cylinder's fall direction (planar blocks fall in their plane: no key).
+  if (a.overturn_azimuth_reference_rad || a.overturn_azimuth_engine_rad) {
+    const auto opt = [](const std::optional<double>& v) {
+      return v ? nlohmann::json(*v) : nlohmann::json(nullptr);
+    };
+    ov["reference_azimuth_rad"] = opt(a.overturn_azimuth_reference_rad);
+    ov["engine_azimuth_rad"] = opt(a.overturn_azimuth_engine_rad);
+    ov["azimuth_error_rad"] =
+        a.overturn_azimuth_reference_rad && a.overturn_azimuth_engine_rad
+            ? nlohmann::json(std::remainder(
+                  *a.overturn_azimuth_engine_rad - *a.overturn_azimuth_reference_rad, 2.0 * M_PI))
+            : nlohmann::json(nullptr);
+  }
   j["overturn"] = ov;
   nlohmann::json off;
   off["agree"] = a.left_support_agree;
@@ -633,6 +656,9 @@ nlohmann::json AgreementJson(const EngineAgreement& a) {
                 {"engine", a.final_mode_engine}};
   for (int b = 1; b <= a.blocks(); ++b) {
     j["final"][BodyColumn(a.angle(b).quantity, b) + "_error_rad"] = a.body(b).final_angle_error_rad;
+    for (const AngleAgreement& g : a.body(b).more_angles) {
+      j["final"][g.name + "_error_rad"] = g.final_error_rad;
+    }
   }
   j["violations"] = a.violations;
   if (!a.verdict_kind.empty()) {
@@ -684,15 +710,23 @@ std::string ComparisonCsv(const std::vector<EngineAgreement>& engines) {
       "peak_rel_error,peak_time_error_s,impacts_reference,impacts_engine,impacts_matched,"
       "max_abs_impact_time_error_s,overturn_agree,final_agree,status,wall_s,"
       "predictability_horizon_s,max_abs_error_predictable_rad,max_abs_error_beyond_rad,"
-      "verdict_kind,judged,max_abs_error_u_m,tolerance_u_m\n";
+      "verdict_kind,judged,max_abs_error_u_m,tolerance_u_m,quantity\n";
   char line[1280];
   for (const EngineAgreement& a : engines) {
+    // One row per compared angle: each body's first, then its further ones (a cylinder's
+    // tilt_y after tilt_x), the quantity named in the last column.
+    std::vector<std::pair<int, const AngleAgreement*>> rows;
     for (int b = 1; b <= a.blocks(); ++b) {
-      const AngleAgreement& g = a.angle(b);
+      rows.emplace_back(b, &a.angle(b));
+      for (const AngleAgreement& g : a.body(b).more_angles) rows.emplace_back(b, &g);
+    }
+    for (const auto& [b, gp] : rows) {
+      const AngleAgreement& g = *gp;
+      const std::string quantity = g.name.empty() ? BodyColumn(g.quantity, b) : g.name;
       const std::optional<SlipAgreement>& slip = a.body(b).slip;
       std::snprintf(line, sizeof line,
                     "%s,%d,%.9e,%.9e,%.9g,%d,%.9e,%.9e,%.9e,%.9e,%.9e,%.9e,%.9e,%d,%d,%d,%.9e,%d,"
-                    "%d,%s,%.6g,%s,%.9e,%.9e,%s,%d,%s,%s\n",
+                    "%d,%s,%.6g,%s,%.9e,%.9e,%s,%d,%s,%s,%s\n",
                     a.engine.c_str(), b, g.max_abs_error_rad, g.rms_error_rad, g.horizon_s,
                     g.within_tolerance ? 1 : 0, g.tolerance_rad, g.max_abs_error_horizon_rad,
                     g.rms_error_horizon_rad, g.peak_reference_rad, g.peak_engine_rad,
@@ -705,7 +739,7 @@ std::string ComparisonCsv(const std::vector<EngineAgreement>& engines) {
                     g.max_abs_error_predictable_rad, g.max_abs_error_beyond_rad,
                     a.verdict_kind.c_str(), g.judged ? 1 : 0,
                     slip ? Format("%.9e", slip->max_abs_error_m).c_str() : "",
-                    slip ? Format("%.9e", slip->tolerance_m).c_str() : "");
+                    slip ? Format("%.9e", slip->tolerance_m).c_str() : "", quantity.c_str());
       out += line;
     }
   }

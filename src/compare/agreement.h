@@ -34,9 +34,12 @@ inline constexpr double kPeakToleranceFloorFraction = 0.1;
 /// Agreement of one body's compared angle (theta1, theta2, ..., thetaN of planar blocks) with
 /// the reference.
 struct AngleAgreement {
-  /// The column stem of the quantity compared (scene/body_kind.h): "theta" for the planar block.
-  /// Its keys and columns are BodyColumn(quantity, body).
+  /// The column stem of the quantity compared (scene/body_kind.h): "theta" for the planar block,
+  /// "tilt_x" and "tilt_y" for the cylinder. Its keys and columns are BodyColumn(quantity, body).
   std::string quantity = "theta";
+  /// Its name in comparison.json and the verdict's words when the body has several compared
+  /// angles ("tilt_y1"); empty: BodyColumn(quantity, body) by the body's place.
+  std::string name;
   /// The tolerance at the reference's peak (AngleTolerance_rad): the scale of the run's
   /// largest motion. The horizon uses the local tolerance (run/tolerance.h).
   double tolerance_rad = 0.0;
@@ -77,6 +80,9 @@ struct AngleAgreement {
   /// Impacts of this block (block 1 on the ground, block k on block k - 1) in each run, faster
   /// than the comparison's minimum rate, over the compared run (reported beside the peak).
   int impacts_reference = 0, impacts_engine = 0;
+  /// Engine minus reference at the last compared sample, rad: set for a body's more_angles (its
+  /// first angle's is BodyAgreement::final_angle_error_rad).
+  double final_error_rad = 0.0;
 };
 
 /// Agreement of one block's slip u_k (or lift z_k) on its support with the reference's, where
@@ -134,11 +140,16 @@ inline constexpr std::array<double, kMaxBlocks> EveryBlockInfinite() {
 /// Everything compared of one body (body k of the stack at index k - 1 of
 /// EngineAgreement::bodies).
 struct BodyAgreement {
+  /// The body's first compared angle (theta_k of a planar block, tilt_xk of a cylinder).
   AngleAgreement angle;
   /// Engine minus reference of the compared angle at the last compared sample, rad.
   double final_angle_error_rad = 0.0;
   /// Its slip u_k and lift z_k on its support, when both histories carry them.
   std::optional<SlipAgreement> slip, lift;
+  /// Its further compared angles, named (AngleAgreement::name): a cylinder's tilt_yk (the tilt
+  /// vector's two components, judged each on the tilt's local tolerance). Empty for the planar
+  /// block.
+  std::vector<AngleAgreement> more_angles;
 };
 
 /// Options of the comparison.
@@ -176,6 +187,9 @@ struct EngineAgreement {
   bool overturn_agree = true;
   std::optional<int> overturn_block_reference, overturn_block_engine;
   std::optional<double> overturn_time_error_s;
+  /// A cylinder's fall: the azimuth toward which each run's top fell (rad, from +x toward +y,
+  /// within (-pi, pi]); absent for planar blocks and for a run that did not overturn.
+  std::optional<double> overturn_azimuth_reference_rad, overturn_azimuth_engine_rad;
   /// Final state at compared_until_s: same mode family (rest / rocking / overturned) and angles
   /// within the horizon tolerances.
   bool final_agree = true;
@@ -215,6 +229,10 @@ struct EngineAgreement {
   /// Body `block`'s compared angle (1..blocks()).
   const AngleAgreement& angle(int block) const { return body(block).angle; }
   AngleAgreement& angle(int block) { return body(block).angle; }
+  /// Every compared angle: each body's `angle` and then its `more_angles`, body 1 first (one
+  /// per body for planar blocks; tilt_x1, tilt_y1 for a cylinder). The verdict judges these,
+  /// in this order (Horizons holds one horizon per entry).
+  std::vector<const AngleAgreement*> compared_angles() const;
 };
 
 /// Impacts of a history whose landing rate (|omega1| before a ground impact, |omega_k -

@@ -1,9 +1,9 @@
 #pragma once
 /// Agreement of one compared quantity of one body with a reference given as a function of time,
 /// for a body of any kind (scene/body_kind.h): the quantity is named by its stem and read from
-/// the history with StateQuantityReader. The planar block's full comparison with the reference model
-/// (local tolerance, predictability split, impacts) is CompareWithReference (agreement.h); this
-/// is what any kind gets from its history alone, against a closed form or another run.
+/// the history with StateQuantityReader. The planar block's full comparison with the reference
+/// model (local tolerance, predictability split, impacts) is CompareWithReference (agreement.h);
+/// this is what any kind gets from its history alone, against a closed form or another run.
 #include <functional>
 #include <string_view>
 

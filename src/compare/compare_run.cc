@@ -5,7 +5,9 @@
 #include <functional>
 #include <new>
 
+#include "compare/cylinder_compare.h"
 #include "run/reference_engine.h"
+#include "run/reference_witness.h"
 #include "run/summary.h"
 #include "scene/body_kind.h"
 #include "util/format.h"
@@ -21,16 +23,47 @@ std::string HorizonText(const std::optional<double>& h) {
 }
 
 // The ensemble's horizons, as the verdict reads them and as the comparison splits its errors.
+// A cylinder's one horizon (its tilt vector's) holds for both its compared angles.
 void TakeHorizons(const ReferencePerturbationMembers& e, int nb, Horizons* h, CompareOptions* o) {
   for (int b = 0; b < nb; ++b) {
     h->horizon_s[b] = e.horizon_s[b];
     if (e.horizon_s[b]) o->predictability_horizon_s[b] = *e.horizon_s[b];
   }
+  if (e.stem == "tilt") h->horizon_s[1] = e.horizon_s[0];
   for (const MemberOutcome& m : e.outcomes) {
     if (IsNonFinite(m.status) && h->non_finite_members++ == 0) {
       h->non_finite_detail = "member " + std::to_string(m.member) + ": " + m.detail;
     }
   }
+}
+
+// An engine's run against the reference's solution used (a cylinder's or the planar model's).
+EngineAgreement CompareWithUsed(const Scene& scene, const CompareRun& out, const EngineRun& run,
+                                const CompareOptions& options) {
+  if (const CylinderReferenceExtension* c = out.cylinder_reference()) {
+    return CompareCylinderWithReference(scene, c->used(), run, options);
+  }
+  return CompareWithReference(scene, out.reference().used(), run, options);
+}
+
+// The reference's perturbation members of `scene` (the model settings of the solution used).
+ReferencePerturbationMembers ReferenceMembers(const Scene& scene, const GroundMotion& motion,
+                                              const CompareRun& out, int jobs) {
+  if (const CylinderReferenceExtension* c = out.cylinder_reference()) {
+    return RunCylinderPerturbationMembers(scene, motion, c->used(), scene.compare.members,
+                                          out.tolerance_rad.at(0), jobs);
+  }
+  return RunReferencePerturbationMembers(scene, motion, out.reference().used(),
+                                         scene.compare.members, out.tolerance_rad, jobs,
+                                         CompareOptions{}.min_impact_rate_radps);
+}
+
+// The members' statistics: a cylinder's on its tilt ("tilt" keys, and its fall's azimuth).
+StatisticalComparison CompareMembers(const Scene& scene, const CompareRun& out,
+                                     const ReferencePerturbationMembers& reference,
+                                     const std::vector<MemberOutcome>& engine) {
+  return ComparePerturbationMembers(reference.outcomes, engine, out.tolerance_rad,
+                                    scene.run.output_interval_s, 0.05, reference.stem);
 }
 
 // The statistical decision with the next kVerdictSeeds - 1 seeds.
@@ -47,7 +80,6 @@ SeedCheck RecheckWithSeeds(
     const Scene& scene, const CompareRun& out, const GroundMotion& motion, const std::string& name,
     const EngineRun& run, int engine_members, int jobs, const Verdict& first, double first_p,
     std::vector<std::optional<ReferencePerturbationMembers>>* extra_ensembles) {
-  const reference::Result& ref = out.reference().used();
   const CompareOptions base;
   SeedCheck c;
   c.seeds.push_back(
@@ -59,17 +91,15 @@ SeedCheck RecheckWithSeeds(
     if (!e) {
       Scene seeded_reference = out.reference_scene;
       seeded_reference.compare.seed = seeded.compare.seed;
-      e = RunReferencePerturbationMembers(seeded_reference, motion, ref, scene.compare.members,
-                                          out.tolerance_rad, jobs, base.min_impact_rate_radps);
+      e = ReferenceMembers(seeded_reference, motion, out, jobs);
     }
     Horizons h;
     CompareOptions o = base;
     TakeHorizons(*e, scene.block_count(), &h, &o);
-    const EngineAgreement ak = CompareWithReference(seeded, ref, run, o);
+    const EngineAgreement ak = CompareWithUsed(seeded, out, run, o);
     const std::vector<MemberOutcome> ok = RunEnginePerturbationMembers(
         name, seeded, motion, engine_members, jobs, base.min_impact_rate_radps);
-    const StatisticalComparison sk =
-        ComparePerturbationMembers(e->outcomes, ok, out.tolerance_rad, scene.run.output_interval_s);
+    const StatisticalComparison sk = CompareMembers(scene, out, *e, ok);
     const Verdict vk = MakeVerdict(seeded, ak, h, sk);
     c.same = c.same && vk.agrees == first.agrees;
     c.seeds.push_back({{"seed", seeded.compare.seed},
@@ -101,14 +131,13 @@ void CompareOneEngine(const Scene& scene, const GroundMotion& motion, const std:
                       CompareRun* out_ptr) {
   CompareRun& out = *out_ptr;
   const CompareOptions base;
-  const reference::Result& ref = out.reference().used();
   auto log = [&](const std::string& line) {
     if (options.log) options.log(line);
   };
   EngineRun run = RunEngine(name, scene, motion);
   log(run.one_line);
 
-  EngineAgreement a = CompareWithReference(scene, ref, run, compare_options);
+  EngineAgreement a = CompareWithUsed(scene, out, run, compare_options);
   std::optional<StatisticalComparison> statistics;
   std::vector<MemberOutcome> outcomes;
   Verdict v = MakeVerdict(scene, a, horizons, std::nullopt);
@@ -119,8 +148,7 @@ void CompareOneEngine(const Scene& scene, const GroundMotion& motion, const std:
     if (engine_members > 0) {
       outcomes = RunEnginePerturbationMembers(name, scene, motion, engine_members, options.jobs,
                                               base.min_impact_rate_radps);
-      statistics = ComparePerturbationMembers(out.perturbation_members->outcomes, outcomes,
-                                              out.tolerance_rad, scene.run.output_interval_s);
+      statistics = CompareMembers(scene, out, *out.perturbation_members, outcomes);
     }
     v = MakeVerdict(scene, a, horizons, statistics);
   }
@@ -160,9 +188,25 @@ void RunReference(const Scene& scene, const GroundMotion& motion,
                   const std::function<void(const std::string&)>& log, CompareRun* out) {
   char buf[512];
   out->reference_run = RunEngine(std::string(kReferenceEngine), scene, motion);
+  out->reference_scene = scene;
+  if (const CylinderReferenceExtension* c = out->cylinder_reference()) {
+    // A cylinder: the witness's model when the nominal solution is not converged.
+    if (!c->converged()) out->reference_scene.model = WitnessModel(scene.model);
+    std::snprintf(buf, sizeof buf, "; witness within %.2g rad of the tilt vector%s",
+                  c->max_abs_diff_rad, c->converged() ? ", converged" : "");
+    log(CylinderSummaryLine(*c) + buf);
+    if (!c->converged()) {
+      std::snprintf(buf, sizeof buf,
+                    "  WARNING: the reference's nominal solution differs from its witness by "
+                    "%.3g rad (tolerance %.3g rad)%s: the witness's solution is compared",
+                    c->max_abs_diff_rad, c->tolerance_rad,
+                    c->same_status ? "" : " and ends otherwise");
+      log(buf);
+    }
+    return;
+  }
   const reference::Result& ref = out->reference().used();
   const ConvergenceCheck& check = *out->reference().check;
-  out->reference_scene = scene;
   if (&ref != &out->reference().nominal) out->reference_scene.model = check.witness;
   std::snprintf(buf, sizeof buf, "reference: %s, %zu events, %.3g ms; witness within %.2g rad%s",
                 StatusText(ref.summary.status), ref.history.events.size(),
@@ -185,20 +229,27 @@ void RunReference(const Scene& scene, const GroundMotion& motion,
 void RunPredictability(const Scene& scene, const GroundMotion& motion, int jobs,
                        const std::function<void(const std::string&)>& log, CompareRun* out,
                        std::optional<Horizons>* horizons, CompareOptions* compare_options) {
-  const reference::Result& ref = out->reference().used();
   const int nb = scene.block_count();
+  const CylinderReferenceExtension* cylinder = out->cylinder_reference();
   out->tolerance_rad.resize(nb);
-  for (int b = 0; b < nb; ++b) {
-    out->tolerance_rad[b] = AngleTolerance_rad(scene, b + 1, ref.summary.peak_theta_rad[b]);
+  RunStatus status = RunStatus::kCompleted;
+  if (cylinder) {
+    // One tolerance for both components: the tilt's at its peak.
+    out->tolerance_rad[0] = AngleTolerance_rad(scene, 1, cylinder->used().summary.peak_tilt_rad);
+    status = cylinder->used().summary.status;
+  } else {
+    const reference::Result& ref = out->reference().used();
+    for (int b = 0; b < nb; ++b) {
+      out->tolerance_rad[b] = AngleTolerance_rad(scene, b + 1, ref.summary.peak_theta_rad[b]);
+    }
+    status = ref.summary.status;
   }
   // A reference that failed (non_finite) leaves nothing to compare with: no ensemble, and every
   // verdict is reference_failed.
-  const bool reference_failed = IsNonFinite(ref.summary.status);
+  const bool reference_failed = IsNonFinite(status);
   if (reference_failed) log("  FAILED: " + NonFiniteText(out->reference_run));
   if (scene.compare.members <= 0 || reference_failed) return;
-  out->perturbation_members = RunReferencePerturbationMembers(
-      out->reference_scene, motion, ref, scene.compare.members, out->tolerance_rad, jobs,
-      CompareOptions{}.min_impact_rate_radps);
+  out->perturbation_members = ReferenceMembers(out->reference_scene, motion, *out, jobs);
   *horizons = Horizons{};
   TakeHorizons(*out->perturbation_members, nb, &**horizons, compare_options);
   char buf[512];
@@ -210,7 +261,8 @@ void RunPredictability(const Scene& scene, const GroundMotion& motion, int jobs,
                 scene.compare.initial_rel);
   line += buf;
   for (int b = 0; b < nb; ++b) {
-    line += (b == 0 ? "" : ", ") + BodyColumn("theta", b + 1) + " horizon " +
+    line += (b == 0 ? "" : ", ") + BodyColumn(out->perturbation_members->stem, b + 1) +
+            (cylinder ? " (tilt vector)" : "") + " horizon " +
             HorizonText(out->perturbation_members->horizon_s[b]);
   }
   std::snprintf(buf, sizeof buf, " (ensemble wall time %.2f s)", out->perturbation_members->wall_s);
@@ -285,7 +337,6 @@ CompareRun RunCompare(const Scene& scene, const GroundMotion& motion,
   const std::function<void(const std::string&)> log = [&](const std::string& line) {
     if (options.log) options.log(line);
   };
-  RequirePlanarBodies(scene, "compare");
   CompareRun out;
   const CompareOptions base;
   RunReference(scene, motion, log, &out);
@@ -295,9 +346,16 @@ CompareRun RunCompare(const Scene& scene, const GroundMotion& motion,
   CompareEngines(scene, motion, engines, options, horizons, compare_options, &out);
   CollectFailures(&out);
 
-  const reference::Result& ref = out.reference().used();
-  out.comparison = ComparisonJson(scene, ref, out.reference().nominal_wall_s, out.agreements, base);
-  out.comparison["reference"]["convergence"] = ConvergenceJson(scene, *out.reference().check);
+  if (const CylinderReferenceExtension* c = out.cylinder_reference()) {
+    out.comparison = CylinderComparisonJson(scene, c->used(), c->nominal_wall_s, out.agreements);
+    out.comparison["reference"]["convergence"] =
+        out.reference_run.summary.value("convergence", nlohmann::json(nullptr));
+  } else {
+    const reference::Result& ref = out.reference().used();
+    out.comparison =
+        ComparisonJson(scene, ref, out.reference().nominal_wall_s, out.agreements, base);
+    out.comparison["reference"]["convergence"] = ConvergenceJson(scene, *out.reference().check);
+  }
   out.comparison["failed_engines"] = nlohmann::json::array();
   for (const FailedEngine& f : out.failed_engines) {
     out.comparison["failed_engines"].push_back({{"engine", f.engine}, {"reason", f.reason}});

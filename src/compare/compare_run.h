@@ -12,6 +12,7 @@
 #include "compare/agreement.h"
 #include "compare/perturbation_members.h"
 #include "compare/verdict.h"
+#include "run/cylinder_reference.h"
 #include "run/engine_run.h"
 #include "run/reference_engine.h"
 
@@ -35,8 +36,14 @@ struct CompareRun {
   const CheckedReference& reference() const {
     return *ReferenceResultOf(reference_run.extension.get());
   }
-  Scene reference_scene;              ///< the scene with the model settings of the solution used
-  std::vector<double> tolerance_rad;  ///< per block (AngleTolerance_rad of the reference)
+  /// A cylinder scene's reference (docs/three-d.md), from reference_run's extension; null for
+  /// planar blocks (whose reference() this is not).
+  const CylinderReferenceExtension* cylinder_reference() const {
+    return dynamic_cast<const CylinderReferenceExtension*>(reference_run.extension.get());
+  }
+  Scene reference_scene;  ///< the scene with the model settings of the solution used
+  /// Per block (AngleTolerance_rad of the reference; a cylinder's at its peak tilt).
+  std::vector<double> tolerance_rad;
   std::optional<ReferencePerturbationMembers>
       perturbation_members;  ///< none with compare.members = 0
   /// Nominal runs, in the order asked, of the engines that did not fail (engine_runs[k].engine

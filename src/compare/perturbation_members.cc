@@ -33,8 +33,11 @@ double Uniform(uint64_t seed, uint64_t member, uint64_t slot) {
   return 2.0 * (static_cast<double>(x >> 11) * 0x1.0p-53) - 1.0;
 }
 
-// Slots: amplitude of each component, initial state, then each record sample.
+// Slots: amplitude of each component (horizontal, vertical, then transverse), initial state,
+// a cylinder's initial state, then each record sample (component 0 horizontal, 1 vertical, 2
+// transverse). The draws of a planar scene are those it always had.
 constexpr uint64_t kSlotAmplitude = 1, kSlotInitial = 8, kSlotSamples = 1ull << 32;
+constexpr uint64_t kSlotTransverse = kSlotAmplitude + 2, kSlotCylinderInitial = 1ull << 20;
 
 // The slot of body k's (1-based) initial angle factor (`rate`: of its rate). Bodies 1 and 2 take
 // kSlotInitial .. + 3 in the order theta1, theta2, omega1, omega2, body k >= 3 the pair
@@ -90,6 +93,28 @@ MemberInput PerturbedInput(const Scene& scene, const GroundMotion& motion, int m
     in.motion.set_vertical(PerturbedComponent(*motion.vertical(), p.vertical_factor,
                                               cfg.sample_precision, cfg.seed, m, 1,
                                               &p.vertical_max_sample_move_mps2));
+  }
+  if (motion.transverse()) {
+    p.transverse_factor = 1.0 + Uniform(cfg.seed, m, kSlotTransverse) * cfg.amplitude_rel;
+    in.motion.set_transverse(PerturbedComponent(*motion.transverse(), p.transverse_factor,
+                                                cfg.sample_precision, cfg.seed, m, 2,
+                                                &p.transverse_max_sample_move_mps2));
+  }
+  if (scene.three_dimensional()) {
+    // A cylinder: its tilt and its rates; a start upright at rest stays so (a factor of zero).
+    const auto factor = [&](uint64_t k) {
+      return 1.0 + Uniform(cfg.seed, m, kSlotCylinderInitial + k) * cfg.initial_rel;
+    };
+    p.tilt_factor = factor(0);
+    p.tilt_rate_factor = factor(1);
+    p.azimuth_rate_factor = factor(2);
+    p.spin_rate_factor = factor(3);
+    InitialState& c = in.scene.initial;
+    c.tilt_rad[0] *= p.tilt_factor;
+    c.tilt_rate_radps[0] *= p.tilt_rate_factor;
+    c.azimuth_rate_radps[0] *= p.azimuth_rate_factor;
+    c.spin_rate_radps[0] *= p.spin_rate_factor;
+    return in;
   }
   // Block 1's angle and rate, and every other block's relative to the block below: a closed
   // contact (block 1 flat, or block k flat on block k - 1: a relative value of 0) stays closed,
@@ -147,7 +172,64 @@ double SettledAfter_s(const Scene& scene, const GroundMotion& motion, double saf
   return last_s;
 }
 
+namespace {
+
+// A cylinder's outcome: its tilt's peak (the run's own, at every step for the engines), residual
+// and RMS; an overturn's time and fall azimuth.
+MemberOutcome CylinderOutcomeOf(const EngineRun& run, const Scene& scene) {
+  MemberOutcome o;
+  const RunOutcome& s = run.outcome;
+  o.status = s.status;
+  if (run.summary.is_object()) o.detail = run.summary.value("status_detail", std::string());
+  o.wall_s = run.wall_s;
+  if (s.blocks() >= 1) {
+    o.peak_rad[0] = s.peak_theta_rad[0];
+    o.peak_t_s[0] = s.peak_theta_t_s[0];
+  }
+  const StateQuantityReader tilt(run.history, "tilt");
+  if (!run.history.samples.empty()) o.residual_rad[0] = tilt(run.history.samples.back(), 1);
+  // The time of the largest tilt, to the resolution its value is compared at (the statistics'
+  // margin, a tenth of the tolerance at the peak): the first sample within it. A wobble without
+  // losses returns to its peak tilt again and again, and which return rounding makes the largest
+  // is no outcome.
+  const double resolution_rad = 0.1 * AngleTolerance_rad(scene, 1, o.peak_rad[0]);
+  for (const Sample& x : run.history.samples) {
+    if (tilt(x, 1) >= o.peak_rad[0] - resolution_rad) {
+      o.peak_t_s[0] = std::min(o.peak_t_s[0], x.t_s);
+      break;
+    }
+  }
+  if (s.overturned()) {
+    o.overturned_block = 1;
+    o.overturn_t_s = s.overturn_t_s;
+    o.peak_rad[0] = o.residual_rad[0] = scene.model.overturn_rad;
+    o.peak_t_s[0] = o.overturn_t_s;
+    if (run.summary.is_object()) {
+      const auto ov = run.summary.find("overturn");
+      if (ov != run.summary.end() && ov->is_object() && ov->contains("azimuth_rad")) {
+        o.overturn_azimuth_rad = (*ov)["azimuth_rad"].get<double>();
+      }
+    }
+  }
+  const double t_end = o.overturned_block != 0       ? o.overturn_t_s
+                       : run.history.samples.empty() ? 0.0
+                                                     : run.history.samples.back().t_s;
+  double integral = 0.0;
+  for (size_t k = 1; k < run.history.samples.size(); ++k) {
+    const Sample& a = run.history.samples[k - 1];
+    const Sample& c = run.history.samples[k];
+    if (a.t_s >= t_end) break;
+    const double va = tilt(a, 1), vc = tilt(c, 1);
+    integral += 0.5 * (va * va + vc * vc) * (std::min(c.t_s, t_end) - a.t_s);
+  }
+  o.rms_rad[0] = scene.run.duration_s > 0.0 ? std::sqrt(integral / scene.run.duration_s) : 0.0;
+  return o;
+}
+
+}  // namespace
+
 MemberOutcome OutcomeOf(const EngineRun& run, const Scene& scene, double min_impact_rate_radps) {
+  if (run.history.shape == kCylinderShape) return CylinderOutcomeOf(run, scene);
   // The blocks both the scene and the run have (a run of another stack compares block 1).
   const int nb = scene.block_count() == run.outcome.blocks() ? scene.block_count() : 1;
   MemberOutcome o;
@@ -353,7 +435,10 @@ std::vector<MemberOutcome> RunEnginePerturbationMembers(const std::string& name,
         const MemberInput in = PerturbedInput(scene, motion, i);
         SimulateOptions options;
         options.check_convergence = false;
-        options.stop_at_rest_after_s = SettledAfter_s(in.scene, in.motion);
+        // (A cylinder's runs go to the end: its onset from rest is another criterion.)
+        if (!in.scene.three_dimensional()) {
+          options.stop_at_rest_after_s = SettledAfter_s(in.scene, in.motion);
+        }
         const EngineRun run = RunEngine(name, in.scene, in.motion, options);
         out[i] = OutcomeOf(run, in.scene, min_impact_rate_radps);
         out[i].member = i;
@@ -376,6 +461,14 @@ nlohmann::json PredictabilityJson(const Scene& scene, const ReferencePerturbatio
        "each component's amplitude x (1 + u amplitude_rel), each record sample + u "
        "sample_precision (half a unit of its last printed digit), each nonzero initial value x "
        "(1 + u initial_rel); u uniform in [-1, 1], independent"}};
+  if (e.stem == "tilt") {
+    j["perturbation"]["rule"] =
+        "each component's amplitude (horizontal, transverse, vertical) x (1 + u amplitude_rel), "
+        "each record sample + u sample_precision (half a unit of its last printed digit), the "
+        "cylinder's initial tilt and its tilt, azimuth and spin rates x (1 + u initial_rel); u "
+        "uniform in [-1, 1], independent; the spread is |member - nominal| of the tilt vector "
+        "(tilt_x, tilt_y)";
+  }
   auto opt = [](const std::optional<double>& v) {
     return v ? nlohmann::json(*v) : nlohmann::json(nullptr);
   };
@@ -383,7 +476,7 @@ nlohmann::json PredictabilityJson(const Scene& scene, const ReferencePerturbatio
   j["spread_rad"] = nlohmann::json::object();
   j["tolerance_rad"] = nlohmann::json::object();
   for (int b = 0; b < nb; ++b) {
-    const std::string th = BodyColumn("theta", b + 1);
+    const std::string th = BodyColumn(e.stem, b + 1);
     j["horizon_s"][th] = opt(e.horizon_s[b]);
     j["spread_rad"][th] = e.max_spread_rad[b];
     j["tolerance_rad"][th] = e.tolerance_rad[b];
@@ -402,7 +495,7 @@ std::string PerturbationBandCsv(const ReferencePerturbationMembers& e) {
   const int nb = std::min(e.blocks, static_cast<int>(e.lo_rad.size()));
   std::string out = "t";
   for (int b = 1; b <= nb; ++b) {
-    const std::string th = BodyColumn("theta", b);
+    const std::string th = BodyColumn(e.stem, b);
     for (const char* col : {"_lo", "_hi", "_spread", "_tol"}) out.append(",").append(th + col);
   }
   out += "\n";
@@ -457,6 +550,33 @@ std::string OutcomesCsv(const std::vector<MemberOutcome>& outcomes,
     }
     for (int b = 0; b < nb; ++b) out.append(",").append(Num(o.rms_rad[b]));
     out.append(",").append(std::to_string(o.impacts)).append("\n");
+  }
+  return out;
+}
+
+std::string CylinderOutcomesCsv(const std::vector<MemberOutcome>& outcomes,
+                                const std::vector<MemberPerturbation>& perturbations) {
+  std::string out =
+      "member,horizontal_factor,transverse_factor,vertical_factor,initial_factor_tilt1,status,"
+      "overturned,overturn_t_s,overturn_azimuth_rad,peak_tilt1_rad,peak_tilt1_t_s,"
+      "residual_tilt1_rad,rms_tilt1_rad\n";
+  for (const MemberOutcome& o : outcomes) {
+    const MemberPerturbation p = o.member >= 0 && o.member < static_cast<int>(perturbations.size())
+                                     ? perturbations[o.member]
+                                     : MemberPerturbation{};
+    out.append(std::to_string(o.member));
+    for (double v : {p.horizontal_factor, p.transverse_factor, p.vertical_factor, p.tilt_factor}) {
+      out.append(",").append(Num(v));
+    }
+    out.append(",").append(StatusText(o.status));
+    out.append(o.overturned_block ? ",yes," : ",no,");
+    if (o.overturned_block) out.append(Num(o.overturn_t_s));
+    out.append(",");
+    if (o.overturn_azimuth_rad) out.append(Num(*o.overturn_azimuth_rad));
+    for (double v : {o.peak_rad[0], o.peak_t_s[0], o.residual_rad[0], o.rms_rad[0]}) {
+      out.append(",").append(Num(v));
+    }
+    out.append("\n");
   }
   return out;
 }

@@ -33,6 +33,15 @@ struct MemberPerturbation {
   /// every other body's relative to the body below (theta_k - theta_(k-1), omega_k -
   /// omega_(k-1)). Empty for a member left unperturbed.
   std::vector<double> theta_factor, omega_factor;
+  /// A 3-D scene's transverse component (base.transverse): its amplitude factor and largest
+  /// sample move, m/s^2.
+  double transverse_factor = 1.0;
+  double transverse_max_sample_move_mps2 = 0.0;
+  /// A cylinder's initial state: the factors of its tilt and of its tilt, azimuth and spin
+  /// rates (the azimuth itself is not perturbed: a turned start is a turned problem, the
+  /// rotation invariance of docs/three-d.md).
+  double tilt_factor = 1.0, tilt_rate_factor = 1.0, azimuth_rate_factor = 1.0,
+         spin_rate_factor = 1.0;
 };
 
 /// A member's scene and base motion.
@@ -54,6 +63,8 @@ struct MemberOutcome {
   std::string detail;                        ///< summary.json's status_detail (why it ended so)
   int overturned_block = 0;                  ///< 0: none, 1..N
   double overturn_t_s = 0.0;                 ///< when overturned_block != 0
+  /// A cylinder that overturned: the azimuth toward which its top fell (rad, within (-pi, pi]).
+  std::optional<double> overturn_azimuth_rad;
   /// Per block (block k at k - 1; the entries beyond the scene's blocks are zero):
   std::array<double, kMaxBlocks> peak_rad{};  ///< peak |theta_k|
   std::array<double, kMaxBlocks> peak_t_s{};  ///< their times (the time of the largest excursion)
@@ -70,7 +81,11 @@ struct MemberOutcome {
 };
 
 /// The outcome of a run (reference or engine) of `scene`: summary "status", "peaks",
-/// "overturn"; the history's last sample and impacts. An overturned block's peak and residual
+/// "overturn"; the history's last sample and impacts. A cylinder's (history shape "cylinder")
+/// peak, residual and RMS are of its tilt, its impacts 0, and a fall carries its azimuth
+/// (summary overturn.azimuth_rad); its peak's time is the first sample within a tenth of the
+/// tolerance of the peak (the resolution the peak is compared at: a lossless wobble returns to
+/// its peak tilt again and again). An overturned block's peak and residual
 /// are model.overturn_angle (signed) and its peak time the overturn time: past the crossing an
 /// angle says nothing more, and engines stop on the step after it.
 MemberOutcome OutcomeOf(const EngineRun& run, const Scene& scene, double min_impact_rate_radps);
@@ -80,6 +95,10 @@ MemberOutcome OutcomeOf(const EngineRun& run, const Scene& scene, double min_imp
 struct ReferencePerturbationMembers {
   int members = 0;
   int blocks = 1;  ///< blocks of the scene
+  /// The magnitude whose spread is measured, as named in the files: "theta" (each planar
+  /// block's angle) or "tilt" (a cylinder's tilt vector: the spread is |member - nominal| of
+  /// (tilt_x, tilt_y), the band the tilt's).
+  std::string stem = "theta";
   std::vector<MemberPerturbation> perturbations;
   std::vector<MemberOutcome> outcomes;
   /// On the grid t_k = k * run.output_interval (to the end of the run): the band every member
@@ -132,6 +151,11 @@ std::string PerturbationBandCsv(const ReferencePerturbationMembers& e);
 /// <engine>/ensemble.csv: one row per member with its perturbation and outcome, `blocks` blocks.
 std::string OutcomesCsv(const std::vector<MemberOutcome>& outcomes,
                         const std::vector<MemberPerturbation>& perturbations, int blocks);
+/// A cylinder's ensemble.csv: member, the amplitude factors of the three components and of the
+/// initial tilt, status, overturn (time and fall azimuth), peak tilt and its time, residual and
+/// RMS tilt.
+std::string CylinderOutcomesCsv(const std::vector<MemberOutcome>& outcomes,
+                                const std::vector<MemberPerturbation>& perturbations);
 /// (A bool here was "two blocks": give the number of blocks.)
 std::string OutcomesCsv(const std::vector<MemberOutcome>&, const std::vector<MemberPerturbation>&,
                         bool) = delete;

@@ -105,17 +105,17 @@ QuantityComparison CompareQuantity(const ValidMembers& m, std::string key, std::
 // impacts (outside the family), then every body's residual.
 std::vector<QuantityComparison> CompareQuantities(const ValidMembers& m,
                                                   std::span<const double> tolerance_rad, int blocks,
-                                                  double time_margin_s) {
+                                                  double time_margin_s, std::string_view stem) {
   std::vector<QuantityComparison> out;
   const auto always = [](const MemberOutcome&) { return true; };
   for (int b = 0; b < blocks; ++b) {
-    const std::string th = BodyColumn("theta", b + 1);
+    const std::string th = BodyColumn(stem, b + 1);
     out.push_back(CompareQuantity(
         m, "peak_" + th + "_rad", "peak |" + th + "|", "rad", 0.1 * tolerance_rad[b],
         [b](const MemberOutcome& o) { return o.peak_rad[b]; }, always));
   }
   for (int b = 0; b < blocks; ++b) {
-    const std::string th = BodyColumn("theta", b + 1);
+    const std::string th = BodyColumn(stem, b + 1);
     const double tol = tolerance_rad[b];
     // The time of the largest excursion means something only for a block that moved.
     out.push_back(CompareQuantity(
@@ -124,7 +124,7 @@ std::vector<QuantityComparison> CompareQuantities(const ValidMembers& m,
         [b, tol](const MemberOutcome& o) { return o.peak_rad[b] > tol; }));
   }
   for (int b = 0; b < blocks; ++b) {
-    const std::string th = BodyColumn("theta", b + 1);
+    const std::string th = BodyColumn(stem, b + 1);
     out.push_back(CompareQuantity(
         m, "rms_" + th + "_rad", "RMS " + th, "rad", 0.1 * tolerance_rad[b],
         [b](const MemberOutcome& o) { return o.rms_rad[b]; }, always));
@@ -134,10 +134,33 @@ std::vector<QuantityComparison> CompareQuantities(const ValidMembers& m,
       [](const MemberOutcome& o) { return static_cast<double>(o.impacts); }, always));
   out.back().in_family = false;
   for (int b = 0; b < blocks; ++b) {
-    const std::string th = BodyColumn("theta", b + 1);
+    const std::string th = BodyColumn(stem, b + 1);
     out.push_back(CompareQuantity(
         m, "residual_" + th + "_rad", "residual " + th, "rad", 0.1 * tolerance_rad[b],
         [b](const MemberOutcome& o) { return o.residual_rad[b]; }, always));
+  }
+  // A cylinder's fall direction, over the members that overturned (kMinMembers on each side at
+  // least): the azimuth relative to the circular mean of the reference's falls, within
+  // (-pi, pi]. Its margin, 0.01 rad, is the KS margin of the angles (a tenth of the tolerance)
+  // turned into an azimuth at the tilt where the tolerance is largest: 0.1 x (0.1 alpha) / alpha.
+  double sx = 0.0, sy = 0.0;
+  int ref_falls = 0, eng_falls = 0;
+  for (const MemberOutcome* o : m.reference) {
+    if (o->overturn_azimuth_rad) {
+      sx += std::cos(*o->overturn_azimuth_rad);
+      sy += std::sin(*o->overturn_azimuth_rad);
+      ++ref_falls;
+    }
+  }
+  for (const MemberOutcome* o : m.engine) eng_falls += o->overturn_azimuth_rad ? 1 : 0;
+  if (ref_falls >= kMinMembers && eng_falls >= kMinMembers) {
+    const double mean = std::atan2(sy, sx);
+    out.push_back(CompareQuantity(
+        m, "fall_azimuth1_rad", "fall azimuth (from the reference's mean direction)", "rad", 0.01,
+        [mean](const MemberOutcome& o) {
+          return std::remainder(*o.overturn_azimuth_rad - mean, 2.0 * M_PI);
+        },
+        [](const MemberOutcome& o) { return o.overturn_azimuth_rad.has_value(); }));
   }
   return out;
 }
@@ -202,7 +225,8 @@ void JudgeFamily(StatisticalComparison& s) {
 StatisticalComparison ComparePerturbationMembers(const std::vector<MemberOutcome>& reference,
                                                  const std::vector<MemberOutcome>& engine,
                                                  std::span<const double> tolerance_rad,
-                                                 double time_margin_s, double alpha) {
+                                                 double time_margin_s, double alpha,
+                                                 std::string_view stem) {
   StatisticalComparison s;
   s.alpha = alpha;
   s.blocks = std::clamp(static_cast<int>(tolerance_rad.size()), 1, kMaxBlocks);
@@ -215,7 +239,7 @@ StatisticalComparison ComparePerturbationMembers(const std::vector<MemberOutcome
     return s;
   }
   s.available = true;
-  s.quantities = CompareQuantities(members, tolerance_rad, s.blocks, time_margin_s);
+  s.quantities = CompareQuantities(members, tolerance_rad, s.blocks, time_margin_s, stem);
   CompareOverturning(members, s);
   JudgeFamily(s);
   return s;
@@ -225,7 +249,7 @@ namespace {
 
 // The name of body b + 1's compared angle: "theta1", "theta2", ...
 std::string Name(int b, const AngleAgreement& g) {
-  return BodyColumn(g.quantity, b + 1);
+  return g.name.empty() ? BodyColumn(g.quantity, b + 1) : g.name;
 }
 
 // A flag in words: what the engine did.
@@ -710,8 +734,7 @@ Verdict MakeVerdict(const Scene& scene, const EngineAgreement& a,
                     const std::optional<Horizons>& predictability,
                     const std::optional<StatisticalComparison>& statistics) {
   const int nb = a.blocks();
-  std::vector<const AngleAgreement*> ang;
-  for (int b = 1; b <= nb; ++b) ang.push_back(&a.angle(b));
+  const std::vector<const AngleAgreement*> ang = a.compared_angles();
   const double slack_s = scene.run.output_interval_s;
   const ModelEnd model = ModelEndOf(a);
   if (auto v = FailedRunVerdict(a, predictability, statistics)) return *v;

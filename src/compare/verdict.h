@@ -14,6 +14,7 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "compare/agreement.h"
@@ -69,11 +70,14 @@ struct StatisticalComparison {
 /// number is the number of blocks compared); `time_margin_s`: the margin of times (the scene's
 /// output interval). Per block k (thetak): peak_thetak_rad, peak_thetak_t_s, rms_thetak_rad,
 /// residual_thetak_rad, in that order of quantities, then the overturning (none or which
-/// block), one Holm family.
+/// block), one Holm family. `stem` names the compared magnitude in the keys: "theta" for planar
+/// blocks, "tilt" for a cylinder (whose members also compare their fall azimuth,
+/// fall_azimuth1_rad, when at least five overturned on each side).
 StatisticalComparison ComparePerturbationMembers(const std::vector<MemberOutcome>& reference,
                                                  const std::vector<MemberOutcome>& engine,
                                                  std::span<const double> tolerance_rad,
-                                                 double time_margin_s, double alpha = 0.05);
+                                                 double time_margin_s, double alpha = 0.05,
+                                                 std::string_view stem = "theta");
 
 /// The verdict on one engine.
 struct Verdict {
@@ -113,7 +117,9 @@ inline bool InMarginalBand(double p) {
   return p >= kMarginalLowP && p <= kMarginalHighP;
 }
 
-/// Horizons per block (block k at k - 1): nullopt inside means "predictable for the whole run";
+/// Horizons per compared angle, in EngineAgreement::compared_angles()'s order (per block, block
+/// k at k - 1, for planar blocks; tilt_x1 and tilt_y1, both the tilt vector's horizon, for a
+/// cylinder): nullopt inside means "predictable for the whole run";
 /// an absent `predictability` means no perturbation members were run.
 struct Horizons {
   std::array<std::optional<double>, kMaxBlocks> horizon_s{};

@@ -98,8 +98,13 @@ std::string Engine::SummaryLine(const EngineResult& r) const {
     flags += f;
   }
   char line[320];
+  // A cylinder's peak is of its tilt, and its monitor counts passes near upright, not impacts.
+  const bool cylinder = r.history.shape == kCylinderShape;
   std::snprintf(line, sizeof line,
-                "%s (%s): %s, peak |theta1| %.4g rad at %.3f s, %d impacts, flags: %s, %.3g ms",
+                cylinder ? "%s (%s): %s, peak tilt1 %.4g rad at %.3f s, %d passes near upright, "
+                           "flags: %s, %.3g ms"
+                         : "%s (%s): %s, peak |theta1| %.4g rad at %.3f s, %d impacts, flags: %s, "
+                           "%.3g ms",
                 name().c_str(), r.settings_line.c_str(), StatusText(o.status),
                 o.peak_theta_rad.empty() ? 0.0 : o.peak_theta_rad[0],
                 o.peak_theta_t_s.empty() ? 0.0 : o.peak_theta_t_s[0], o.impacts(),
@@ -117,8 +122,8 @@ void CheckBuildsBodies(const Engine& engine, const Scene& scene) {
   const std::vector<std::string> builds = engine.body_shapes();
   if (std::find(builds.begin(), builds.end(), shape) != builds.end()) return;
   // A planar engine facing a body that rocks in 3-D says so.
-  const bool three_d = std::find(builds.begin(), builds.end(), std::string(kCylinderShape)) !=
-                       builds.end();
+  const bool three_d =
+      std::find(builds.begin(), builds.end(), std::string(kCylinderShape)) != builds.end();
   const std::string why = shape == kCylinderShape && !three_d
                               ? " (a cylinder rocks in three dimensions; this engine simulates "
                                 "bodies in the x-z plane only)"

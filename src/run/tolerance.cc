@@ -4,6 +4,7 @@
 #include <cmath>
 #include <deque>
 
+#include "scene/body_kind.h"
 #include "util/format.h"
 
 namespace rockbench {
@@ -77,9 +78,23 @@ ToleranceProfile LocalTolerance(const Scene& scene, int block, const History& re
   const auto n = static_cast<size_t>(std::floor(scene.run.duration_s / p.grid_dt_s + 1e-9)) + 1;
   std::vector<double> cell(n, -1.0);
   double last = 0.0;
+  // A body of another kind: the length of its compared angles' vector (a cylinder's tilt, from
+  // tilt_x and tilt_y), so that each component is judged on the scale of the whole motion.
+  std::vector<StateQuantityReader> compared;
+  if (const BodyKind* kind = FindBodyKind(reference.shape);
+      kind != nullptr && reference.shape != PlanarBlockKind().shape) {
+    for (const StateQuantity& q : kind->state) {
+      if (q.compared_angle) compared.emplace_back(reference, q.stem);
+    }
+  }
+  const int body = block >= 1 && block <= reference.blocks ? block : 1;
   for (const Sample& s : reference.samples) {
+    double norm2 = 0.0;
+    for (const StateQuantityReader& q : compared) norm2 += q(s, body) * q(s, body);
     const double v =
-        std::abs(block >= 2 && block <= s.blocks() ? s.theta_rad[block - 1] : s.theta_rad[0]);
+        !compared.empty()
+            ? std::sqrt(norm2)
+            : std::abs(block >= 2 && block <= s.blocks() ? s.theta_rad[block - 1] : s.theta_rad[0]);
     if (!std::isfinite(v)) continue;
     const double k = std::floor(s.t_s / p.grid_dt_s + 0.5);
     const size_t i = k <= 0.0 ? 0 : std::min(n - 1, static_cast<size_t>(k));

@@ -52,7 +52,10 @@ struct ToleranceProfile {
 };
 
 /// The profile of block `block` (1 or 2) from the reference's history (samples at the output
-/// interval and every event time), on the output grid to the end of the run.
+/// interval and every event time), on the output grid to the end of the run. For a body of
+/// another kind the envelope is of the length of its compared angles' vector: a cylinder's
+/// tilt, sqrt(tilt_x^2 + tilt_y^2), with its critical angle atan(D / H) and the window of the
+/// block rule with B = D (docs/three-d.md, "Comparison").
 ToleranceProfile LocalTolerance(const Scene& scene, int block, const History& reference,
                                 const ToleranceConfig& config = {});
 

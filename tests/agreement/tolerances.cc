@@ -12,6 +12,7 @@
 
 #include "compare/agreement.h"
 #include "compare/compare_run.h"
+#include "engine/engine.h"
 #include "motion/ground_motion.h"
 #include "reference/simulate.h"
 #include "run/engine_registry.h"
@@ -302,13 +303,26 @@ std::vector<Bound> ParseTolerances(std::string_view text, const std::string& fil
                         b.reference_settings.end());
     const std::string load_key = b.scene + "\n" + Join(b.settings, "\t");
     if (!block_count.count(load_key)) {
-      block_count[load_key] = LoadFor(b, b.settings, "settings").block_count();
+      const Scene loaded = LoadFor(b, b.settings, "settings");
+      // A 3-D scene (a cylinder) is marked by a negative count: its keys are tilt_x1, tilt_y1.
+      block_count[load_key] = loaded.three_dimensional() ? -1 : loaded.block_count();
     }
     if (!b.reference_settings.empty()) LoadFor(b, ref_settings, "reference_settings");
     // The keys of this scene's comparison: theta1..thetaN and their final errors.
-    const int blocks = block_count[load_key];
+    const bool cylinder = block_count[load_key] < 0;
+    const int blocks = std::abs(block_count[load_key]);
     EngineAgreement shape;
     shape.bodies.resize(static_cast<size_t>(blocks));
+    if (cylinder) {
+      // The keys of a cylinder's comparison (compare/cylinder_compare.h).
+      shape.bodies[0].angle.quantity = "tilt_x";
+      AngleAgreement tilt_y;
+      tilt_y.quantity = "tilt_y";
+      tilt_y.name = "tilt_y1";
+      shape.bodies[0].more_angles.push_back(tilt_y);
+      shape.overturn_azimuth_reference_rad = 0.0;
+      shape.overturn_azimuth_engine_rad = 0.0;
+    }
     shape.verdict_kind = "agrees";  // the verdict's keys are written when a verdict is made
     nlohmann::json shape_json = AgreementJson(shape);
     shape_json["statistics"] = nullptr;  // its shape depends on the run (null: any key below)
@@ -316,10 +330,11 @@ std::vector<Bound> ParseTolerances(std::string_view text, const std::string& fil
     if (leaf == nullptr || leaf->is_object() || leaf->is_array()) {
       std::vector<std::string> keys;
       Leaves(shape_json, "", &keys);
-      throw fail("metric",
-                 "unknown metric '" + b.metric_path + "' for this scene (" +
-                     (blocks == 1 ? std::string("one block") : std::to_string(blocks) + " blocks") +
-                     "); expected one of: " + Join(keys));
+      throw fail("metric", "unknown metric '" + b.metric_path + "' for this scene (" +
+                               (cylinder      ? std::string("a cylinder")
+                                : blocks == 1 ? std::string("one block")
+                                              : std::to_string(blocks) + " blocks") +
+                               "); expected one of: " + Join(keys));
     }
     // Wall times depend on the machine: they belong in benchmarks, not in a test's bounds.
     if (b.metric_path == "wall_s") {
@@ -466,6 +481,14 @@ std::vector<std::string> SceneFiles(const std::filesystem::path& scenes_dir) {
       out.push_back(e.path().filename().string());
     }
   }
+  // The 3-D scenes (scenes/three_d/), named relative to the scenes folder.
+  if (std::filesystem::is_directory(scenes_dir / "three_d")) {
+    for (const auto& e : std::filesystem::directory_iterator(scenes_dir / "three_d")) {
+      if (e.is_regular_file() && e.path().extension() == ".toml") {
+        out.push_back("three_d/" + e.path().filename().string());
+      }
+    }
+  }
   std::sort(out.begin(), out.end());
   return out;
 }
@@ -474,8 +497,20 @@ std::vector<std::string> UnguardedScenes(const std::vector<Bound>& bounds,
                                          const std::filesystem::path& scenes_dir) {
   std::vector<std::string> out;
   for (const std::string& scene : SceneFiles(scenes_dir)) {
+    // A 3-D scene needs the engines that build its body (a planar engine cannot: it says so
+    // when named); an engine this build left out cannot tell, so it is not asked for there.
+    const Scene loaded = LoadScene(scenes_dir / scene);
     for (const std::string& engine : KnownEngines()) {
       if (engine == "reference") continue;
+      if (loaded.three_dimensional()) {
+        const Engine* built = FindEngine(engine);
+        if (built == nullptr) continue;
+        try {
+          CheckBuildsBodies(*built, loaded);
+        } catch (const SceneError&) {
+          continue;
+        }
+      }
       const bool guarded = std::any_of(bounds.begin(), bounds.end(), [&](const Bound& b) {
         return b.scene == scene && b.engine == engine;
       });

@@ -96,11 +96,13 @@ struct Verdict {
 /// kind fails with a message saying so.
 Verdict CheckBound(const Bound& bound, const nlohmann::json& agreement);
 
-/// Scene files (*.toml, sorted by name) in `scenes_dir`.
+/// Scene files (*.toml, sorted by name) in `scenes_dir` and its 3-D folder three_d/ (named
+/// "three_d/NAME.toml").
 std::vector<std::string> SceneFiles(const std::filesystem::path& scenes_dir);
 
 /// "scene: engine" for every scene of `scenes_dir` that has no bound for an engine of
-/// KnownEngines() other than the reference (reference-against-itself bounds are extras).
+/// KnownEngines() other than the reference (reference-against-itself bounds are extras); for a
+/// 3-D scene, the built engines that build its body (the planar ones say why they cannot).
 std::vector<std::string> UnguardedScenes(const std::vector<Bound>& bounds,
                                          const std::filesystem::path& scenes_dir);
 
