@@ -82,10 +82,13 @@ std::vector<Keyframe> KeyframeTimes(const RunData& run, int max_frames) {
   };
   const EngineData& ref = run.engines.front();
   const int blocks = run.scene.block_count();
+  // A cylinder's peak is its tilt's (summary.json peaks.tilt1).
+  const bool cylinder = run.scene.three_dimensional();
   const auto add_peak = [&](int b) {
-    const std::string key = "peaks.theta" + std::to_string(b) + ".t_s";
+    const std::string key = (cylinder ? "peaks.tilt" : "peaks.theta") + std::to_string(b) + ".t_s";
     add(OptNumber(ref.summary, key, run.summary_path),
-        "peak |theta" + std::to_string(b) + "| of the reference");
+        cylinder ? "peak tilt of the reference"
+                 : "peak |theta" + std::to_string(b) + "| of the reference");
   };
   const auto add_overturns = [&] {
     for (const EngineData& e : run.engines) {
@@ -165,8 +168,13 @@ void PicturesSection(const RunData& run, const GroundMotion& motion,
       renders::FrameRenderer renderer(run.scene, tracks, base, kc);
       page.Heading("Keyframes");
       page.Paragraph(
-          "Frames drawn from the histories (renders/): the reference solid, the "
-          "engines outlined on top; the strip chart shows the angles up to that time.");
+          run.scene.three_dimensional()
+              ? "Frames drawn from the histories (renders/): the cylinder in perspective, the "
+                "reference solid, the engines outlined on top, an arrow on the base toward "
+                "each one's lean; the square on the right is the axis's path seen from above "
+                "up to that time."
+              : "Frames drawn from the histories (renders/): the reference solid, the "
+                "engines outlined on top; the strip chart shows the angles up to that time.");
       int index = 0;
       for (const Keyframe& k : KeyframeTimes(run, options.max_keyframes)) {
         char name[64];

@@ -8,6 +8,7 @@
 #include "report/common/page.h"
 #include "report/compare/agreement_section.h"
 #include "report/run/angles_section.h"
+#include "report/run/cylinder_sections.h"
 #include "report/run/energy_section.h"
 #include "report/run/friction_section.h"
 #include "report/run/impacts_section.h"
@@ -42,7 +43,6 @@ RunReportResult WriteRunReport(const fs::path& run_dir, const fs::path& out_dir,
     }
   }();
   const GroundMotion motion = GroundMotion::FromScene(run.scene);
-  const reference::StackModel model(run.scene);
   RunReportResult result;
   result.name = fs::absolute(run_dir).lexically_normal().filename().string();
   if (result.name.empty())
@@ -59,24 +59,43 @@ RunReportResult WriteRunReport(const fs::path& run_dir, const fs::path& out_dir,
   fig.page = &page;
   fs::create_directories(fig.dir);
 
-  // Outcome in words; the warnings go to the top of the page.
-  std::string outcome = ReferenceOutcome(run, result.warnings);
-  const FrictionFacts ff = ComputeFriction(run, model, motion, options);
-  FrictionWarnings(run, model, ff, result.warnings);
-  outcome += EnginesOutcome(run, result.warnings);
-  result.outcome = outcome;
+  if (run.scene.three_dimensional()) {
+    // A cylinder: its own outcome, scene, tilt and axis-path figures and events; the planar
+    // stack's angles, agreement, impacts, energy and friction are not its (docs/report.md).
+    result.outcome = CylinderOutcome(run, result.warnings);
+    page.Heading("Outcome");
+    page.Paragraph(result.outcome);
+    VerdictSection(run, page, result);
+    CylinderSceneSection(run, motion, fig);
+    page.Heading("Tilt and axis path");
+    CylinderTiltFigure(run, fig);
+    CylinderAxisPathFigure(run, fig);
+    CylinderEventsSection(run, fig);
+    PicturesSection(run, motion, options, fig, result);
+    result.left_out.push_back(
+        "the planar stack's sections (theta angles, agreement, impacts, energy, friction): a "
+        "cylinder rocks in 3-D; its tilt, axis path and events are above");
+  } else {
+    const reference::StackModel model(run.scene);
+    // Outcome in words; the warnings go to the top of the page.
+    std::string outcome = ReferenceOutcome(run, result.warnings);
+    const FrictionFacts ff = ComputeFriction(run, model, motion, options);
+    FrictionWarnings(run, model, ff, result.warnings);
+    outcome += EnginesOutcome(run, result.warnings);
+    result.outcome = outcome;
 
-  page.Heading("Outcome");
-  page.Paragraph(outcome);
-  VerdictSection(run, page, result);
-  SceneSection(run, motion, fig);
-  page.Heading("Angles");
-  AnglesFigure(run, fig);
-  AgreementSection(run, options, fig);
-  ImpactsSection(run, fig);
-  EnergySection(run, model, fig);
-  FrictionSection(run, ff, options, fig);
-  PicturesSection(run, motion, options, fig, result);
+    page.Heading("Outcome");
+    page.Paragraph(outcome);
+    VerdictSection(run, page, result);
+    SceneSection(run, motion, fig);
+    page.Heading("Angles");
+    AnglesFigure(run, fig);
+    AgreementSection(run, options, fig);
+    ImpactsSection(run, fig);
+    EnergySection(run, model, fig);
+    FrictionSection(run, ff, options, fig);
+    PicturesSection(run, motion, options, fig, result);
+  }
   if (!result.left_out.empty()) {
     page.Heading("Left out");
     for (const std::string& l : result.left_out) page.Paragraph(l + ".");
