@@ -73,8 +73,9 @@ RunReportResult WriteRunReport(const fs::path& run_dir, const fs::path& out_dir,
     CylinderEventsSection(run, fig);
     PicturesSection(run, motion, options, fig, result);
     result.left_out.push_back(
-        "the planar stack's sections (theta angles, agreement, impacts, energy, friction): a "
-        "cylinder rocks in 3-D; its tilt, axis path and events are above");
+        "the planar stack's sections (theta angles, the angle-error figures, impacts, energy, "
+        "friction): a cylinder rocks in 3-D; its tilt, axis path and events are above, and a "
+        "compare folder's verdict on tilt_x1 and tilt_y1 is in the Verdict");
   } else {
     const reference::StackModel model(run.scene);
     // Outcome in words; the warnings go to the top of the page.
