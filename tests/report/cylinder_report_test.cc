@@ -196,5 +196,24 @@ TEST(CylinderReport, ARunThatDoesNotFallHasNoOverturnMark) {
   fs::remove_all(base);
 }
 
+// A cylinder's compare folder (its ensemble band is of the tilt: tilt1_lo, ...) gets its page,
+// with the verdict on tilt_x1 and tilt_y1.
+TEST(CylinderReport, ACompareFolderGetsItsPageWithTheVerdict) {
+  const fs::path base =
+      fs::temp_directory_path() / ("rockbench_cylinder_report_compare_" + std::to_string(getpid()));
+  fs::remove_all(base);
+  RockbenchOk({"compare", SceneFile("three_d/cylinder_rotating_harmonic.toml").string(), "--out",
+               (base / "runs" / "cmp").string(), "--engines", "ode", "--members", "6",
+               "--engine-members", "0", "--set", "run.duration=2"});
+  ASSERT_NE(Slurp(base / "runs" / "cmp" / "reference" / "ensemble_band.csv").find("t,tilt1_lo,"),
+            std::string::npos);
+  RockbenchOk({"report", (base / "runs" / "cmp").string(), "--out", (base / "out").string(),
+               "--no-animation", "--no-keyframes"});
+  const std::string md = Slurp(base / "out" / "cmp" / "report.md");
+  EXPECT_NE(md.find("Verdict"), std::string::npos);
+  EXPECT_NE(md.find("tilt_x1"), std::string::npos);
+  fs::remove_all(base);
+}
+
 }  // namespace
 }  // namespace rockbench

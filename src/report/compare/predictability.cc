@@ -65,8 +65,11 @@ std::optional<Predictability> ReadPredictability(const json& comparison, const f
   out.horizon_s.assign(std::max(nb, 2), std::nullopt);
   out.tolerance_rad.assign(std::max(nb, 2), Predictability::kNaN);
   out.spread_rad.assign(std::max(nb, 2), Predictability::kNaN);
+  // A cylinder's horizon and spread are of its tilt vector ("tilt1").
+  const json* cylinder = Find(*p, "horizon_s.tilt1");
+  const std::string stem = cylinder != nullptr ? "tilt" : "theta";
   for (int b = 0; b < nb; ++b) {
-    const std::string th = BodyColumn("theta", b + 1);
+    const std::string th = BodyColumn(stem, b + 1);
     const double h = OptNumber(*p, "horizon_s." + th, file);
     if (!std::isnan(h)) out.horizon_s[b] = h;
     out.tolerance_rad[b] = OptNumber(*p, "tolerance_rad." + th, file);
@@ -97,14 +100,16 @@ std::optional<EnsembleBand> ReadEnsembleBand(const fs::path& csv) {
   // Blocks 1, 2, ... as long as their columns are there (theta1's are required).
   std::vector<std::string> names = {"t"};
   std::vector<std::vector<double>*> targets = {&band.t_s};
+  // A cylinder's band is of its tilt (tilt1_lo, ...).
+  const std::string stem = column("tilt1_lo") >= 0 ? "tilt" : "theta";
   int nb = 0;
-  while (nb < kMaxBlocks && (nb == 0 || column(BodyColumn("theta", nb + 1) + "_lo") >= 0)) ++nb;
+  while (nb < kMaxBlocks && (nb == 0 || column(BodyColumn(stem, nb + 1) + "_lo") >= 0)) ++nb;
   band.blocks = nb;
   band.lo_rad.resize(std::max(nb, 2));
   band.hi_rad.resize(std::max(nb, 2));
   band.spread_rad.resize(std::max(nb, 2));
   for (int b = 0; b < nb; ++b) {
-    const std::string th = BodyColumn("theta", b + 1);
+    const std::string th = BodyColumn(stem, b + 1);
     for (const char* tail : {"_lo", "_hi", "_spread"}) names.push_back(th + tail);
     targets.push_back(&band.lo_rad[b]);
     targets.push_back(&band.hi_rad[b]);
@@ -116,7 +121,8 @@ std::optional<EnsembleBand> ReadEnsembleBand(const fs::path& csv) {
     if (cols[k] < 0) {
       throw std::runtime_error(csv.string() + ": line 1: no column '" + names[k] +
                                "' (expected t,theta1_lo,theta1_hi,theta1_spread[,theta2_lo,"
-                               "theta2_hi,theta2_spread])");
+                               "theta2_hi,theta2_spread], or a cylinder's t,tilt1_lo,tilt1_hi,"
+                               "tilt1_spread)");
     }
   }
   for (int n = 2; std::getline(text, line); ++n) {

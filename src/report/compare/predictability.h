@@ -56,7 +56,8 @@ struct EnsembleBand {
 };
 
 /// Reads t,theta1_lo,theta1_hi,theta1_spread[,theta2_lo,theta2_hi,theta2_spread[,...,
-/// thetaN_spread]] (every block whose thetaK_lo column is there, K = 1, 2, ... in turn);
+/// thetaN_spread]] (every block whose thetaK_lo column is there, K = 1, 2, ... in turn), or a
+/// cylinder's t,tilt1_lo,tilt1_hi,tilt1_spread (its tilt's band, its tilt vector's spread);
 /// nullopt when the file does not exist. Throws std::runtime_error naming the file (and line)
 /// when it is malformed.
 std::optional<EnsembleBand> ReadEnsembleBand(const std::filesystem::path& csv);
