@@ -223,6 +223,30 @@ double SlipTolerance_m(const Scene& scene, int block, double peak_reference_m) {
   return std::max(0.1 * std::abs(peak_reference_m), 0.01 * alpha * d.width_m);
 }
 
+void CopyEngineRunStatus(const EngineRun& run, EngineAgreement* a) {
+  a->engine = run.engine;
+  a->wall_s = run.wall_s;
+  a->status = run.outcome.status;
+  // The monitor's measures behind the flags, passed through to comparison.json.
+  if (run.summary.is_object() && run.summary.contains("violations")) {
+    a->violations = run.summary["violations"];
+  }
+  if (run.summary.is_object()) {
+    a->status_detail = run.summary.value("status_detail", std::string());
+    if (const auto nf = run.summary.find("non_finite"); nf != run.summary.end()) {
+      a->non_finite_what = nf->value("quantity", std::string("a quantity")) + " is " +
+                           nf->value("value", std::string("not finite"));
+      a->non_finite_t_s = nf->value("t_s", 0.0);
+    }
+  }
+  a->flags = run.outcome.violations;
+  a->flag_onsets_t_s = run.outcome.violation_onsets_t_s;
+  a->flag_onsets_t_s.resize(a->flags.size(), run.outcome.end_t_s);
+  a->significant_flags = run.outcome.significant_violations;
+  a->significant_onsets_t_s = run.outcome.significant_onsets_t_s;
+  a->significant_onsets_t_s.resize(a->significant_flags.size(), run.outcome.end_t_s);
+}
+
 int CountComparedImpacts(const History& history, double min_rate_radps) {
   int all = 0;
   return static_cast<int>(Impacts(history, min_rate_radps, &all).size());
@@ -245,28 +269,8 @@ std::string ComparedAngleStem(const Scene& scene, int block) {
 // The engine's and the reference's statuses, flags and how each run ended, copied for the
 // verdict and comparison.json.
 void CopyRunStatuses(const reference::Result& ref, const EngineRun& run, EngineAgreement* a) {
-  a->engine = run.engine;
-  a->wall_s = run.wall_s;
-  a->status = run.outcome.status;
-  // The monitor's measures behind the flags, passed through to comparison.json.
-  if (run.summary.is_object() && run.summary.contains("violations")) {
-    a->violations = run.summary["violations"];
-  }
-  if (run.summary.is_object()) {
-    a->status_detail = run.summary.value("status_detail", std::string());
-    if (const auto nf = run.summary.find("non_finite"); nf != run.summary.end()) {
-      a->non_finite_what = nf->value("quantity", std::string("a quantity")) + " is " +
-                           nf->value("value", std::string("not finite"));
-      a->non_finite_t_s = nf->value("t_s", 0.0);
-    }
-  }
+  CopyEngineRunStatus(run, a);
   const reference::Summary& rs = ref.summary;
-  a->flags = run.outcome.violations;
-  a->flag_onsets_t_s = run.outcome.violation_onsets_t_s;
-  a->flag_onsets_t_s.resize(a->flags.size(), run.outcome.end_t_s);
-  a->significant_flags = run.outcome.significant_violations;
-  a->significant_onsets_t_s = run.outcome.significant_onsets_t_s;
-  a->significant_onsets_t_s.resize(a->significant_flags.size(), run.outcome.end_t_s);
   a->reference_status = rs.status;
   a->reference_status_detail = rs.status_detail;
   a->reference_end_s = ref.trajectory.end_s();

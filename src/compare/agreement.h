@@ -249,6 +249,10 @@ bool PeakAgrees(double peak_reference_rad, double peak_engine_rad, double floor_
 /// The tolerance of a block's slip (or lift): max(0.1 peak_reference, 0.01 alpha B), m.
 double SlipTolerance_m(const Scene& scene, int block, double peak_reference_m);
 
+/// Copies an engine run's name, wall time, status (its detail, what stopped being finite and
+/// when) and monitor flags (all and significant, with their onsets) into `a`.
+void CopyEngineRunStatus(const EngineRun& run, EngineAgreement* a);
+
 /// Compares an engine's run with the reference's result on the same scene.
 EngineAgreement CompareWithReference(const Scene& scene, const reference::Result& reference,
                                      const EngineRun& run, const CompareOptions& options = {});

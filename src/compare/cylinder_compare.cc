@@ -43,24 +43,7 @@ void SampledPeak(const History& h, const StateQuantityReader& q, double until_s,
 
 // The statuses, flags and ends of both runs, as CompareWithReference copies them.
 void CopyRunStatuses(const CylinderResult& ref, const EngineRun& run, EngineAgreement* a) {
-  a->engine = run.engine;
-  a->wall_s = run.wall_s;
-  a->status = run.outcome.status;
-  if (run.summary.is_object()) {
-    if (run.summary.contains("violations")) a->violations = run.summary["violations"];
-    a->status_detail = run.summary.value("status_detail", std::string());
-    if (const auto nf = run.summary.find("non_finite"); nf != run.summary.end()) {
-      a->non_finite_what = nf->value("quantity", std::string("a quantity")) + " is " +
-                           nf->value("value", std::string("not finite"));
-      a->non_finite_t_s = nf->value("t_s", 0.0);
-    }
-  }
-  a->flags = run.outcome.violations;
-  a->flag_onsets_t_s = run.outcome.violation_onsets_t_s;
-  a->flag_onsets_t_s.resize(a->flags.size(), run.outcome.end_t_s);
-  a->significant_flags = run.outcome.significant_violations;
-  a->significant_onsets_t_s = run.outcome.significant_onsets_t_s;
-  a->significant_onsets_t_s.resize(a->significant_flags.size(), run.outcome.end_t_s);
+  CopyEngineRunStatus(run, a);
   const CylinderSummary& rs = ref.summary;
   a->reference_status = rs.status;
   a->reference_status_detail = rs.status_detail;
@@ -69,16 +52,6 @@ void CopyRunStatuses(const CylinderResult& ref, const EngineRun& run, EngineAgre
     a->reference_non_finite_what = rs.status_detail;
     a->reference_non_finite_t_s = rs.end_s;
   }
-}
-
-// The overturn's azimuth in an engine's summary.json, if it has one.
-std::optional<double> EngineFallAzimuth(const EngineRun& run) {
-  if (!run.summary.is_object()) return std::nullopt;
-  const auto ov = run.summary.find("overturn");
-  if (ov == run.summary.end() || !ov->is_object() || !ov->contains("azimuth_rad")) {
-    return std::nullopt;
-  }
-  return (*ov)["azimuth_rad"].get<double>();
 }
 
 // The reference's tilt vector on the grid t_s: NaN past the end of a solution whose model
@@ -123,6 +96,15 @@ MemberOutcome MemberOutcomeOf(const Scene& scene, const CylinderResult& r, doubl
 }
 
 }  // namespace
+
+std::optional<double> FallAzimuthOf(const EngineRun& run) {
+  if (!run.summary.is_object()) return std::nullopt;
+  const auto ov = run.summary.find("overturn");
+  if (ov == run.summary.end() || !ov->is_object() || !ov->contains("azimuth_rad")) {
+    return std::nullopt;
+  }
+  return (*ov)["azimuth_rad"].get<double>();
+}
 
 TiltVector TiltVectorAt(const History& history, double t_s) {
   const std::vector<Sample>& s = history.samples;
@@ -206,7 +188,7 @@ EngineAgreement CompareCylinderWithReference(const Scene& scene, const CylinderR
   }
   if (run.outcome.overturned()) {
     a.overturn_block_engine = 1;
-    a.overturn_azimuth_engine_rad = EngineFallAzimuth(run);
+    a.overturn_azimuth_engine_rad = FallAzimuthOf(run);
     if (rs.overturn_t_s) a.overturn_time_error_s = run.outcome.overturn_t_s - *rs.overturn_t_s;
   }
   a.overturn_agree = a.overturn_block_reference == a.overturn_block_engine;
@@ -255,10 +237,8 @@ ReferencePerturbationMembers RunCylinderPerturbationMembers(const Scene& nominal
   e.hi_rad.resize(1);
   e.spread_rad.resize(1);
   e.local_tolerance_rad.resize(1);
-  const double dt = nominal_scene.run.output_interval_s;
-  const auto n_grid = static_cast<size_t>(std::floor(nominal_scene.run.duration_s / dt + 1e-9)) + 1;
-  e.t_s.resize(n_grid);
-  for (size_t k = 0; k < n_grid; ++k) e.t_s[k] = RoundTime_s(static_cast<double>(k) * dt);
+  e.t_s = OutputGrid_s(nominal_scene);
+  const size_t n_grid = e.t_s.size();
   std::vector<double> nx, ny;
   OnGrid(nominal, e.t_s, &nx, &ny);
 

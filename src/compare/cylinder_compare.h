@@ -29,6 +29,10 @@ struct TiltVector {
 };
 TiltVector TiltVectorAt(const History& history, double t_s);
 
+/// The azimuth toward which a cylinder run's top fell (summary.json overturn.azimuth_rad, rad),
+/// if it overturned.
+std::optional<double> FallAzimuthOf(const EngineRun& run);
+
 /// Compares an engine's cylinder run with the reference's solution `reference` (the one used:
 /// CylinderReferenceExtension::used()). Body 1's `angle` is tilt_x1, its more_angles {tilt_y1};
 /// the impacts are not matched (a cylinder's landings and its passes near upright are counted

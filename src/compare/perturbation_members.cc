@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "compare/agreement.h"
+#include "compare/cylinder_compare.h"
 #include "reference/stack_model.h"
 #include "run/parallel.h"
 #include "run/summary.h"
@@ -75,6 +76,14 @@ std::string Num(double v) {
 
 }  // namespace
 
+std::vector<double> OutputGrid_s(const Scene& scene) {
+  const double dt = scene.run.output_interval_s;
+  const auto n = static_cast<size_t>(std::floor(scene.run.duration_s / dt + 1e-9)) + 1;
+  std::vector<double> t_s(n);
+  for (size_t k = 0; k < n; ++k) t_s[k] = RoundTime_s(static_cast<double>(k) * dt);
+  return t_s;
+}
+
 MemberInput PerturbedInput(const Scene& scene, const GroundMotion& motion, int member) {
   const CompareConfig& cfg = scene.compare;
   MemberInput in;
@@ -82,23 +91,25 @@ MemberInput PerturbedInput(const Scene& scene, const GroundMotion& motion, int m
   MemberPerturbation& p = in.perturbation;
   p.member = member;
   const uint64_t m = static_cast<uint64_t>(member);
-  if (motion.horizontal()) {
-    p.horizontal_factor = 1.0 + Uniform(cfg.seed, m, kSlotAmplitude) * cfg.amplitude_rel;
-    in.motion.set_horizontal(PerturbedComponent(*motion.horizontal(), p.horizontal_factor,
-                                                cfg.sample_precision, cfg.seed, m, 0,
-                                                &p.horizontal_max_sample_move_mps2));
-  }
-  if (motion.vertical()) {
-    p.vertical_factor = 1.0 + Uniform(cfg.seed, m, kSlotAmplitude + 1) * cfg.amplitude_rel;
-    in.motion.set_vertical(PerturbedComponent(*motion.vertical(), p.vertical_factor,
-                                              cfg.sample_precision, cfg.seed, m, 1,
-                                              &p.vertical_max_sample_move_mps2));
-  }
-  if (motion.transverse()) {
-    p.transverse_factor = 1.0 + Uniform(cfg.seed, m, kSlotTransverse) * cfg.amplitude_rel;
-    in.motion.set_transverse(PerturbedComponent(*motion.transverse(), p.transverse_factor,
-                                                cfg.sample_precision, cfg.seed, m, 2,
-                                                &p.transverse_max_sample_move_mps2));
+  // Each component: its amplitude factor from its slot, its samples from its component index.
+  struct Component {
+    const std::optional<MotionComponent>& nominal;
+    void (GroundMotion::*set)(MotionComponent);
+    uint64_t slot, index;
+    double *factor, *max_move_mps2;
+  };
+  const Component components[] = {
+      {motion.horizontal(), &GroundMotion::set_horizontal, kSlotAmplitude, 0, &p.horizontal_factor,
+       &p.horizontal_max_sample_move_mps2},
+      {motion.vertical(), &GroundMotion::set_vertical, kSlotAmplitude + 1, 1, &p.vertical_factor,
+       &p.vertical_max_sample_move_mps2},
+      {motion.transverse(), &GroundMotion::set_transverse, kSlotTransverse, 2, &p.transverse_factor,
+       &p.transverse_max_sample_move_mps2}};
+  for (const Component& c : components) {
+    if (!c.nominal) continue;
+    *c.factor = 1.0 + Uniform(cfg.seed, m, c.slot) * cfg.amplitude_rel;
+    (in.motion.*c.set)(PerturbedComponent(*c.nominal, *c.factor, cfg.sample_precision, cfg.seed, m,
+                                          c.index, c.max_move_mps2));
   }
   if (scene.three_dimensional()) {
     // A cylinder: its tilt and its rates; a start upright at rest stays so (a factor of zero).
@@ -204,12 +215,7 @@ MemberOutcome CylinderOutcomeOf(const EngineRun& run, const Scene& scene) {
     o.overturn_t_s = s.overturn_t_s;
     o.peak_rad[0] = o.residual_rad[0] = scene.model.overturn_rad;
     o.peak_t_s[0] = o.overturn_t_s;
-    if (run.summary.is_object()) {
-      const auto ov = run.summary.find("overturn");
-      if (ov != run.summary.end() && ov->is_object() && ov->contains("azimuth_rad")) {
-        o.overturn_azimuth_rad = (*ov)["azimuth_rad"].get<double>();
-      }
-    }
+    o.overturn_azimuth_rad = FallAzimuthOf(run);
   }
   const double t_end = o.overturned_block != 0       ? o.overturn_t_s
                        : run.history.samples.empty() ? 0.0
@@ -379,10 +385,8 @@ ReferencePerturbationMembers RunReferencePerturbationMembers(
   e.hi_rad.resize(nbs);
   e.spread_rad.resize(nbs);
   e.local_tolerance_rad.resize(nbs);
-  const double dt = nominal_scene.run.output_interval_s;
-  const auto n_grid = static_cast<size_t>(std::floor(nominal_scene.run.duration_s / dt + 1e-9)) + 1;
-  e.t_s.resize(n_grid);
-  for (size_t k = 0; k < n_grid; ++k) e.t_s[k] = RoundTime_s(static_cast<double>(k) * dt);
+  e.t_s = OutputGrid_s(nominal_scene);
+  const size_t n_grid = e.t_s.size();
   const std::vector<std::vector<double>> nominal_grid = OnGrid(nominal, e.t_s, nb);
   const double nominal_model_end_s = ModelEnd_s(nominal);
   std::vector<double> member_model_end_s(static_cast<size_t>(members), INFINITY);

@@ -51,6 +51,10 @@ struct MemberInput {
   GroundMotion motion;
 };
 
+/// The output grid the members are measured on: t_k = k * run.output_interval (rounded as the
+/// files' times), k = 0 .. to the run's duration.
+std::vector<double> OutputGrid_s(const Scene& scene);
+
 /// Member i's inputs, from the nominal scene and motion and the [compare] perturbation sizes
 /// (amplitude_rel, sample_precision, initial_rel, seed). Deterministic: depends only on the
 /// nominal inputs, the sizes, the seed and i.
