@@ -254,18 +254,40 @@ std::string EventsToCsv(const History& history) {
 
 namespace {
 
-// The kind of body (other than the planar block) and the number of bodies whose history header
-// `line` is, or nullopt.
-std::optional<std::pair<std::string, int>> KindOfHeader(const std::string& line, size_t columns) {
+// The kind of body (other than the planar block) and the number of its bodies whose header
+// `line` (of `columns` columns) is: header(kind, n), the file's header for n bodies of that kind,
+// has `fixed_columns` and per_body(kind) more for each body. Nullopt for none.
+template <typename PerBody, typename Header>
+std::optional<std::pair<const BodyKind*, int>> KindOfHeader(const std::string& line, size_t columns,
+                                                            size_t fixed_columns,
+                                                            const PerBody& per_body,
+                                                            const Header& header) {
   for (const std::string& shape : BodyShapes()) {
     const BodyKind* kind = FindBodyKind(shape);
     if (shape == PlanarBlockKind().shape || !kind) continue;
-    const size_t q = kind->state.size();
-    if (columns < 2 + q || (columns - 2) % q != 0) continue;
-    const int n = static_cast<int>((columns - 2) / q);
-    if (n <= kMaxBlocks && line == KindHistoryCsvHeader(*kind, n)) return {{shape, n}};
+    const size_t q = per_body(*kind);
+    if (q == 0 || columns < fixed_columns + q || (columns - fixed_columns) % q != 0) continue;
+    const int n = static_cast<int>((columns - fixed_columns) / q);
+    if (n <= kMaxBlocks && line == header(*kind, n)) return {{kind, n}};
   }
   return std::nullopt;
+}
+
+// A history header's kind: "t", each quantity for every body, "mode".
+std::optional<std::pair<const BodyKind*, int>> KindOfHistoryHeader(const std::string& line,
+                                                                   size_t columns) {
+  return KindOfHeader(
+      line, columns, 2, [](const BodyKind& kind) { return kind.state.size(); },
+      [](const BodyKind& kind, int n) { return KindHistoryCsvHeader(kind, n); });
+}
+
+// An events header's kind: "t,kind,mode_before,mode_after", every body's rate before and after,
+// "energy_before_j,energy_after_j,note".
+std::optional<std::pair<const BodyKind*, int>> KindOfEventsHeader(const std::string& line,
+                                                                  size_t columns) {
+  return KindOfHeader(
+      line, columns, 7, [](const BodyKind&) { return size_t{2}; },
+      [](const BodyKind& kind, int n) { return EventsCsvHeader(n, kind.event_rate_stem); });
 }
 
 // Cell i of a history row as a number; `fail` (which throws) names the column otherwise.
@@ -299,8 +321,7 @@ Sample KindSample(const std::vector<std::string_view>& cells, const BodyKind& ki
     fail((kind.contact_names.empty() || blocks != 1
               ? std::string("expected a configuration (one letter f, r or l per body)")
               : "expected a mode (" + QuotedList(kind.contact_names) + ")") +
-         ", got '" +
-         std::string(cells[mode_col]) + "'");
+         ", got '" + std::string(cells[mode_col]) + "'");
   }
   s.mode = *mode;
   return s;
@@ -329,8 +350,8 @@ History ReadHistoryCsv(const std::filesystem::path& path) {
       const int n = columns >= 4 && columns % 2 == 0 ? static_cast<int>((columns - 2) / 2) : 0;
       const int n_slip =
           columns >= 6 && (columns - 2) % 4 == 0 ? static_cast<int>((columns - 2) / 4) : 0;
-      if (const std::optional<std::pair<std::string, int>> kind = KindOfHeader(line, columns)) {
-        h.shape = kind->first;
+      if (const auto kind = KindOfHistoryHeader(line, columns)) {
+        h.shape = kind->first->shape;
         h.blocks = kind->second;
       } else if (n_slip >= 1 && n_slip <= kMaxBlocks && line == HistoryCsvHeader(n_slip, true)) {
         h.slip_and_lift = true;
@@ -392,33 +413,55 @@ History ReadHistoryCsv(const std::filesystem::path& path) {
   return h;
 }
 
-std::vector<Event> ReadEventsCsv(const std::filesystem::path& path, int blocks) {
+std::vector<Event> ReadEventsCsv(const std::filesystem::path& path, int blocks,
+                                 std::string_view shape) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw std::runtime_error(path.string() + ": cannot open the events file");
+  const BodyKind* wanted = shape.empty() ? nullptr : FindBodyKind(shape);
+  if (!shape.empty() && !wanted) {
+    throw std::invalid_argument("events: unknown body kind '" + std::string(shape) + "'");
+  }
   std::vector<Event> events;
   std::string line;
   int number = 0;
   const auto fail = [&](const std::string& msg) {
     throw std::runtime_error(path.string() + ":" + std::to_string(number) + ": " + msg);
   };
-  // The header's blocks (1 or 2 share one: `blocks`, 2 when unknown) and its columns.
+  // The header's kind and bodies (1 or 2 planar blocks share one: `blocks`, 2 when unknown), its
+  // columns and the rate columns on each side (a planar block's omega2 is written when alone).
+  const BodyKind* kind = &PlanarBlockKind();
   int n = 0;
   size_t want = 0;
+  int rates = 0;
   while (std::getline(in, line)) {
     ++number;
     if (!line.empty() && line.back() == '\r') line.pop_back();
     if (number == 1) {
       const size_t columns = SplitCommas(line).size();
+      const auto other = KindOfEventsHeader(line, columns);
       if (line == kEventsCsvHeader && blocks <= 2) {
         n = blocks == 1 ? 1 : 2;
       } else if (columns >= 13 && columns % 2 == 1 && (columns - 7) / 2 <= kMaxBlocks &&
                  line == EventsCsvHeader(static_cast<int>((columns - 7) / 2)) &&
                  (blocks == 0 || blocks == static_cast<int>((columns - 7) / 2))) {
         n = static_cast<int>((columns - 7) / 2);
+      } else if (other && (blocks == 0 || blocks == other->second)) {
+        kind = other->first;
+        n = other->second;
       } else {
-        fail("expected the header '" + EventsCsvHeader(blocks) + "', got '" + line + "'");
+        const bool planar = !wanted || wanted == &PlanarBlockKind();
+        fail("expected the header '" +
+             (planar ? EventsCsvHeader(blocks)
+                     : EventsCsvHeader(std::max(blocks, 1), wanted->event_rate_stem)) +
+             "', got '" + line + "'");
       }
-      want = n <= 2 ? 11 : columns;
+      if (wanted && kind != wanted) {
+        fail("expected the events of " + wanted->shape + " bodies, got the header '" + line +
+             "' (" + kind->shape + ")");
+      }
+      const bool planar = kind == &PlanarBlockKind();
+      rates = planar ? std::max(n, 2) : n;
+      want = planar && n <= 2 ? 11 : columns;
       continue;
     }
     if (line.empty()) continue;
@@ -434,7 +477,7 @@ std::vector<Event> ReadEventsCsv(const std::filesystem::path& path, int blocks) 
       return *x;
     };
     const auto mode_at = [&](size_t i, const char* what) {
-      const std::optional<Configuration> m = ParseConfiguration(cells[i], n);
+      const std::optional<Configuration> m = ParseKindConfiguration(cells[i], n, *kind);
       if (!m) fail(std::string(what) + ": unknown mode '" + std::string(cells[i]) + "'");
       return *m;
     };
@@ -443,18 +486,17 @@ std::vector<Event> ReadEventsCsv(const std::filesystem::path& path, int blocks) 
     e.kind = std::string(cells[1]);
     e.mode_before = mode_at(2, "mode_before");
     e.mode_after = mode_at(3, "mode_after");
-    // The rate columns: max(n, 2) before, then as many after (one block's omega2 is unused).
-    const int columns = std::max(n, 2);
+    // The rate columns: `rates` before, then as many after.
     for (int side = 0; side < 2; ++side) {
       BlockValues& v = side == 0 ? e.omega_before_radps : e.omega_after_radps;
-      for (int k = 0; k < columns; ++k) {
-        const double x =
-            number_at(4 + static_cast<size_t>(side * columns + k),
-                      "omega" + std::to_string(k + 1) + (side == 0 ? "_before" : "_after"));
+      for (int k = 0; k < rates; ++k) {
+        const double x = number_at(
+            4 + static_cast<size_t>(side * rates + k),
+            BodyColumn(kind->event_rate_stem, k + 1) + (side == 0 ? "_before" : "_after"));
         if (k < n) v[static_cast<size_t>(k)] = x;
       }
     }
-    const size_t tail = 4 + 2 * static_cast<size_t>(columns);
+    const size_t tail = 4 + 2 * static_cast<size_t>(rates);
     e.energy_before_j = number_at(tail, "energy_before_j");
     e.energy_after_j = number_at(tail + 1, "energy_after_j");
     e.note = std::string(cells[tail + 2]);

@@ -2,6 +2,7 @@
 /// history.csv and events.csv: the files of a History (scene/history.h), written and read back.
 #include <filesystem>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "scene/history.h"
@@ -25,12 +26,19 @@ std::string HistoryToCsv(const History& history);
 /// omega1_before,...,omegaN_before,omega1_after,...,omegaN_after,energy_before_j,
 /// energy_after_j,note". Same number formats; commas in kind/note become ';'.
 std::string EventsToCsv(const History& history);
-/// Reads a history.csv (any block count and body kind, from the header). Throws std::runtime_error naming
-/// file and line.
+/// Reads a history.csv (any block count and body kind, from the header). Throws std::runtime_error
+/// naming file and line.
 History ReadHistoryCsv(const std::filesystem::path& path);
-/// Reads an events.csv (EventsToCsv's format) of a stack of `blocks` blocks (1 or 2 share a
-/// header: 2 when 0; N >= 3 is also read from the header, which must then agree). Throws
-/// std::runtime_error naming file and line.
-std::vector<Event> ReadEventsCsv(const std::filesystem::path& path, int blocks = 0);
+/// Reads an events.csv (EventsToCsv's format) of a stack of `blocks` bodies (0: any) of the kind
+/// its header names, as ReadHistoryCsv reads a history: planar blocks (1 or 2 share a header: 2
+/// when `blocks` is 0; N >= 3 is read from the header, which must then agree) or bodies of
+/// another kind (every body's rate BodyColumn(event_rate_stem, k) before and after, the modes by
+/// the kind's contact names: a cylinder's "t,kind,mode_before,mode_after,tilt_rate1_before,
+/// tilt_rate1_after,energy_before_j,energy_after_j,note"); the rates go to the events'
+/// omega_before_radps and omega_after_radps. A non-empty `shape` (a history's) is the kind the
+/// file must be of. Throws std::runtime_error naming file and line; std::invalid_argument for an
+/// unknown `shape`.
+std::vector<Event> ReadEventsCsv(const std::filesystem::path& path, int blocks = 0,
+                                 std::string_view shape = {});
 
 }  // namespace rockbench

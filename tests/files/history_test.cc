@@ -15,6 +15,7 @@
 #include "engine/outcome.h"
 #include "files/atomic_file.h"
 #include "files/history_csv.h"
+#include "scene/body_kind.h"
 #include "tests/common/scratch_dir_test.h"
 
 namespace rockbench {
@@ -375,6 +376,75 @@ TEST_F(HistoryTest, EventsCsvRoundTripAndErrors) {
   expect_error(header + "1.0,ground_impact,1a,2b,0,0,0,0,0,0\n", "bad.csv:2: expected 11 columns");
   expect_error(header + "1.0,ground_impact,1a,9z,0,0,0,0,0,0,\n", "bad.csv:2: mode_after");
   expect_error(header + "1.0,ground_impact,1a,2b,0,nan,0,0,0,0,\n", "bad.csv:2: omega2_before");
+}
+
+// A cylinder's events.csv (written here by hand, in EventsToCsv's number formats) is read from
+// its header: its modes by the cylinder's names, its tilt rates as the events' rates; writing the
+// events back gives the same bytes. Told the wrong kind or count, or given a bad cell, the
+// reader says so.
+TEST_F(HistoryTest, ACylindersEventsCsvIsReadFromItsHeader) {
+  const std::string text =
+      "t,kind,mode_before,mode_after,tilt_rate1_before,tilt_rate1_after,energy_before_j,"
+      "energy_after_j,note\n"
+      "0.250000000,initiation,rest,rim,0.000000000000e+00,1.500000000000e-01,"
+      "1.250000000000e+01,1.250000000000e+01,\n"
+      "1.120700000,overturn,rim,rim,-2.000000000000e+00,-2.125000000000e+00,"
+      "3.000000000000e+01,2.950000000000e+01,past atan(D/H)\n";
+  const auto path = Write("cylinder_events.csv", text);
+  const std::vector<Event> back = ReadEventsCsv(path);
+  ASSERT_EQ(back.size(), 2u);
+  EXPECT_EQ(back[0].blocks(), 1);
+  EXPECT_EQ(back[0].t_s, 0.25);
+  EXPECT_EQ(back[0].kind, "initiation");
+  EXPECT_EQ(back[0].mode_before[0], Contact::kFace);
+  EXPECT_EQ(back[0].mode_after[0], Contact::kRight);
+  EXPECT_EQ(back[0].omega_before_radps[0], 0.0);
+  EXPECT_EQ(back[0].omega_after_radps[0], 0.15);
+  EXPECT_EQ(back[0].energy_before_j, 12.5);
+  EXPECT_EQ(back[0].note, "");
+  EXPECT_EQ(back[1].t_s, 1.1207);
+  EXPECT_EQ(back[1].kind, "overturn");
+  EXPECT_EQ(back[1].mode_before[0], Contact::kRight);
+  EXPECT_EQ(back[1].omega_before_radps[0], -2.0);
+  EXPECT_EQ(back[1].omega_after_radps[0], -2.125);
+  EXPECT_EQ(back[1].energy_after_j, 29.5);
+  EXPECT_EQ(back[1].note, "past atan(D/H)");
+  History h;
+  h.blocks = 1;
+  h.shape = std::string(kCylinderShape);
+  h.events = back;
+  EXPECT_EQ(EventsToCsv(h), text);
+  // Told its kind and count, it reads the same; told another, it refuses.
+  EXPECT_EQ(ReadEventsCsv(path, 1, kCylinderShape).size(), 2u);
+  EXPECT_THROW(ReadEventsCsv(path, 2), std::runtime_error);
+  EXPECT_THROW(ReadEventsCsv(path, 1, "block"), std::runtime_error);
+  History planar;
+  planar.events = {Event(2)};
+  const auto planar_path = Write("planar_events.csv", EventsToCsv(planar));
+  try {
+    ReadEventsCsv(planar_path, 0, kCylinderShape);
+    ADD_FAILURE() << "a planar events file read as a cylinder's";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("planar_events.csv:1: expected the events of cylinder"),
+              std::string::npos)
+        << e.what();
+  }
+  const std::string header = text.substr(0, text.find('\n') + 1);
+  const auto expect_error = [&](const std::string& bad, const std::string& what) {
+    const auto p = Write("bad_cylinder.csv", bad);
+    try {
+      ReadEventsCsv(p, 1, kCylinderShape);
+      ADD_FAILURE() << "no error for: " << bad;
+    } catch (const std::runtime_error& e) {
+      EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
+    }
+  };
+  expect_error("t,kind\n", "bad_cylinder.csv:1: expected the header '" +
+                               header.substr(0, header.size() - 1) + "'");
+  expect_error(header + "1.0,overturn,rim,rim,0,0,0,0\n", "bad_cylinder.csv:2: expected 9 columns");
+  expect_error(header + "1.0,overturn,rim,3a,0,0,0,0,\n", "bad_cylinder.csv:2: mode_after");
+  expect_error(header + "1.0,overturn,rim,rim,0,nan,0,0,\n",
+               "bad_cylinder.csv:2: tilt_rate1_after");
 }
 
 TEST_F(HistoryTest, WriteFileAtomicReplacesAndLeavesNoTemporary) {

@@ -1,17 +1,12 @@
 #include "report/run/run_readers.h"
 
 #include <algorithm>
-#include <charconv>
-#include <cmath>
-#include <fstream>
-#include <sstream>
 #include <stdexcept>
 
 #include "files/history_csv.h"
 #include "report/common/json_keys.h"
 #include "report/common/names.h"
 #include "run/engine_registry.h"
-#include "scene/body_kind.h"
 
 namespace rockbench::report {
 namespace {
@@ -26,72 +21,6 @@ constexpr const char* kEngineColours[] = {"#d95f02", "#1b9e77", "#7570b3", "#e72
 std::string BlocksText(int n, bool count_only = false) {
   const std::string count = n == 1 ? "one" : n == 2 ? "two" : std::to_string(n);
   return count_only ? count : count + (n == 1 ? " block" : " blocks");
-}
-
-// A cylinder's events.csv (history_csv.h's ReadEventsCsv reads the planar blocks' only): "t,kind,
-// mode_before,mode_after,tilt_rate1_before,tilt_rate1_after,energy_before_j,energy_after_j,note",
-// the modes "rest" or "rim"; the tilt rates go to the events' rates.
-std::vector<Event> ReadCylinderEventsCsv(const fs::path& path) {
-  const BodyKind& kind = CylinderKind();
-  const std::string header =
-      "t,kind,mode_before,mode_after," + BodyColumn(kind.event_rate_stem, 1) + "_before," +
-      BodyColumn(kind.event_rate_stem, 1) + "_after,energy_before_j,energy_after_j,note";
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error(path.string() + ": cannot open the events file");
-  std::vector<Event> events;
-  std::string line;
-  int number = 0;
-  const auto fail = [&](const std::string& msg) {
-    throw std::runtime_error(path.string() + ":" + std::to_string(number) + ": " + msg);
-  };
-  while (std::getline(in, line)) {
-    ++number;
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    if (number == 1) {
-      if (line != header) fail("expected the header '" + header + "', got '" + line + "'");
-      continue;
-    }
-    if (line.empty()) continue;
-    std::vector<std::string> cells;
-    std::stringstream row(line);
-    for (std::string cell; std::getline(row, cell, ',');) cells.push_back(cell);
-    if (!line.empty() && line.back() == ',') cells.emplace_back();
-    if (cells.size() != 9) fail("expected 9 columns, got " + std::to_string(cells.size()));
-    const auto number_at = [&](size_t i, const char* what) {
-      double v = 0.0;
-      const char* end = cells[i].data() + cells[i].size();
-      const auto r = std::from_chars(cells[i].data(), end, v);
-      if (cells[i].empty() || r.ec != std::errc() || r.ptr != end || !std::isfinite(v)) {
-        fail(std::string(what) + ": expected a finite number, got '" + cells[i] + "'");
-      }
-      return v;
-    };
-    const auto mode_at = [&](size_t i, const char* what) {
-      for (size_t c = 0; c < kind.contact_names.size(); ++c) {
-        if (kind.contact_names[c] != cells[i]) continue;
-        Configuration m(1);
-        m.set(0, static_cast<Contact>(c));
-        return m;
-      }
-      fail(std::string(what) + ": unknown mode '" + cells[i] + "'");
-      return Configuration(1);  // not reached: fail throws
-    };
-    Event e(1);
-    e.t_s = number_at(0, "t");
-    e.kind = cells[1];
-    e.mode_before = mode_at(2, "mode_before");
-    e.mode_after = mode_at(3, "mode_after");
-    e.omega_before_radps[0] = number_at(4, "tilt_rate1_before");
-    e.omega_after_radps[0] = number_at(5, "tilt_rate1_after");
-    e.energy_before_j = number_at(6, "energy_before_j");
-    e.energy_after_j = number_at(7, "energy_after_j");
-    e.note = cells[8];
-    events.push_back(std::move(e));
-  }
-  if (number == 0) {
-    throw std::runtime_error(path.string() + ":1: empty file (expected the events header)");
-  }
-  return events;
 }
 
 // The reference ensemble of a compare folder, when it has one.
@@ -183,9 +112,7 @@ void ReadEngines(const fs::path& run_dir, RunData& run) {
     EngineData d;
     d.name = name;
     d.history = ReadHistoryCsv(run_dir / name / "history.csv");
-    d.events = d.history.shape == CylinderKind().shape
-                   ? ReadCylinderEventsCsv(run_dir / name / "events.csv")
-                   : ReadEventsCsv(run_dir / name / "events.csv", d.history.blocks);
+    d.events = ReadEventsCsv(run_dir / name / "events.csv", d.history.blocks, d.history.shape);
     if (d.history.samples.empty()) {
       throw std::runtime_error((run_dir / name / "history.csv").string() + ": has no samples");
     }
