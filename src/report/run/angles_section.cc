@@ -74,8 +74,7 @@ void AnglesFigure(const RunData& run, Figures& fig) {
       const EngineData& e = run.engines[i];
       if (i > 0) plot += ", ";
       plot += Quote("angles." + e.name + ".dat") + " using 1:" + std::to_string(1 + block) +
-              " with lines lw " + (i == 0 ? "2.2" : "1.4") + (i == 0 ? "" : " dt 2") + " lc rgb " +
-              Quote(e.colour) + " title " + Quote(e.label);
+              RunLineStyle(i, e);
     }
     return s + plot + "\n";
   };

@@ -2,11 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <initializer_list>
 #include <map>
 #include <set>
 
 #include "report/common/json_keys.h"
 #include "report/common/number_text.h"
+#include "report/run/outcome_section.h"
+#include "report/run/scene_section.h"
 #include "run/engine_registry.h"
 #include "scene/body_kind.h"
 #include "scene/cylinder_state.h"
@@ -24,6 +27,22 @@ std::vector<double> Column(const EngineData& e, const char* stem) {
   v.reserve(e.history.samples.size());
   for (const Sample& s : e.history.samples) v.push_back(q(s, 1));
   return v;
+}
+
+// The data file of a run's history: the header line, then a row a sample: its time and each
+// of `columns` (one value a sample).
+std::string HistoryDat(const EngineData& e, const std::string& header,
+                       std::initializer_list<const std::vector<double>*> columns) {
+  std::string dat = header + "\n";
+  for (size_t k = 0; k < e.history.samples.size(); ++k) {
+    AppendDat(dat, e.history.samples[k].t_s);
+    for (const std::vector<double>* c : columns) {
+      dat += ' ';
+      AppendDat(dat, (*c)[k]);
+    }
+    dat += '\n';
+  }
+  return dat;
 }
 
 // A run's overturn (summary.json "overturn"): its time and azimuth, NaN when it did not.
@@ -94,19 +113,8 @@ void CylinderBaseFigure(const GroundMotion& motion, double T, Figures& fig) {
   const double g = kStandardGravity_mps2;
   std::set<double> times = {0.0, T};
   for (int k = 0; k <= 4000; ++k) times.insert(T * k / 4000.0);
-  for (const auto* c : {&motion.horizontal(), &motion.transverse(), &motion.vertical()}) {
-    if (!*c) continue;
-    const auto& samples = (*c)->samples_mps2();
-    for (size_t k = 0; k < samples.size(); ++k) {
-      const double t = (*c)->t0_s() + static_cast<double>(k) * (*c)->dt_s();
-      if (t >= 0.0 && t <= T) times.insert(t);
-    }
-  }
-  for (double t = motion.next_breakpoint_after(-1e-9); t <= T;
-       t = motion.next_breakpoint_after(t)) {
-    if (t - 1e-9 > 0.0) times.insert(t - 1e-9);
-    times.insert(t);
-  }
+  AddMotionPlotTimes(motion, T, {&motion.horizontal(), &motion.transverse(), &motion.vertical()},
+                     times);
   std::string dat = "# t_s xg_g yg_transverse_g zg_vertical_g\n";
   for (double t : times) {
     AppendDat(dat, t);
@@ -154,15 +162,7 @@ std::string CylinderOutcome(const RunData& run, std::vector<std::string>& warnin
     outcome = "The reference model: the cylinder came to rest (run to " +
               Fixed(ref.history.samples.back().t_s, 3) + " s).";
   } else if (status == "assumption_violated") {
-    outcome = "The reference model stopped: an assumption was violated.";
-    std::string when;
-    for (const Event& ev : ref.events) {
-      if (ev.kind == "assumption_violated") when = Fixed(ev.t_s, 4);
-    }
-    warnings.push_back("The reference model's assumptions were violated" +
-                       (when.empty() ? std::string() : " at t = " + when + " s") + ": " +
-                       OptString(run.summary, "status_detail", run.summary_path) +
-                       ". The run stopped there; nothing after that time is simulated.");
+    outcome = AssumptionViolatedOutcome(run, warnings);
   } else if (status == "non_finite") {
     outcome = "The reference model FAILED: its solution stopped being finite.";
     warnings.push_back("The reference model's solution is not finite: " +
@@ -208,13 +208,7 @@ std::string CylinderOutcome(const RunData& run, std::vector<std::string>& warnin
 void CylinderSceneSection(const RunData& run, const GroundMotion& motion, Figures& fig) {
   Page& page = *fig.page;
   const Scene& s = run.scene;
-  page.Heading("Scene");
-  std::string where = "Scene file " + s.path.string();
-  if (!run.overrides.empty()) {
-    where += ", with";
-    for (const std::string& o : run.overrides) where += " --set " + o;
-  }
-  page.Paragraph(where + ".");
+  SceneFileHeading(run, page);
   const BlockDef& b = s.blocks.front();
   const double critical = std::atan2(b.diameter_m, b.height_m);
   const std::string friction = std::isfinite(b.friction) ? "rim friction " + Num(b.friction)
@@ -235,10 +229,7 @@ void CylinderSceneSection(const RunData& run, const GroundMotion& motion, Figure
   rows.push_back({"landing", "clearance " + Num(s.model.landing_clearance_rel) + " of the diameter",
                   "a pass near upright lands its face below tilt asin(" +
                       Num(s.model.landing_clearance_rel) + ") (docs/three-d.md)"});
-  rows.push_back({"run",
-                  "duration " + Num(s.run.duration_s) + " s, output every " +
-                      Num(s.run.output_interval_s) + " s",
-                  "gravity " + Num(s.run.gravity_mps2) + " m/s^2"});
+  rows.push_back(RunSettingsRow(s));
   page.Table({"part", "value", "note"}, rows);
 
   page.Heading("Base motion", 3);
@@ -250,25 +241,12 @@ void CylinderSceneSection(const RunData& run, const GroundMotion& motion, Figure
     CylinderBaseFigure(motion, s.run.duration_s, fig);
   }
 
-  page.Heading("Engine settings", 3);
   const ModelConfig& m = s.model;
-  std::vector<std::vector<std::string>> settings;
-  settings.push_back({"reference", std::string(IntegratorName(m.integrator)) + ", rtol " +
-                                       Num(m.rtol) + ", atol " + Num(m.atol) + "; rest rate " +
-                                       Num(m.rest_rate_rel) + " sqrt(g/R)"});
-  for (const EngineData& e : run.engines) {
-    if (IsReference(e.name)) continue;
-    const json* set = Find(e.summary, "settings");
-    if (set == nullptr || !set->is_object()) continue;
-    std::string text;
-    for (const auto& [key, value] : set->items()) {
-      text += (text.empty() ? "" : "; ") + key + " " +
-              (value.is_string() ? value.get<std::string>()
-                                 : (value.is_number() ? Num(value.get<double>()) : value.dump()));
-    }
-    settings.push_back({e.name, text});
-  }
-  page.Table({"engine", "settings"}, settings);
+  EngineSettingsTable(run,
+                      std::string(IntegratorName(m.integrator)) + ", rtol " + Num(m.rtol) +
+                          ", atol " + Num(m.atol) + "; rest rate " + Num(m.rest_rate_rel) +
+                          " sqrt(g/R)",
+                      page);
 }
 
 void CylinderTiltFigure(const RunData& run, Figures& fig) {
@@ -279,14 +257,7 @@ void CylinderTiltFigure(const RunData& run, Figures& fig) {
   double label_y = 0.08;
   for (const EngineData& e : run.engines) {
     const std::vector<double> tilt = Column(e, "tilt");
-    std::string dat = "# t_s tilt1_rad\n";
-    for (size_t k = 0; k < tilt.size(); ++k) {
-      AppendDat(dat, e.history.samples[k].t_s);
-      dat += ' ';
-      AppendDat(dat, tilt[k]);
-      dat += '\n';
-    }
-    f.data_files.push_back({"tilt." + e.name + ".dat", dat});
+    f.data_files.push_back({"tilt." + e.name + ".dat", HistoryDat(e, "# t_s tilt1_rad", {&tilt})});
     const Overturn o = OverturnOf(run, e);
     if (!std::isnan(o.t_s)) {
       marks += VerticalMark(o.t_s, run.t_end_s, e.colour, "overturns (" + e.name + ")", label_y);
@@ -296,9 +267,8 @@ void CylinderTiltFigure(const RunData& run, Figures& fig) {
   std::string plot = "plot ";
   for (size_t i = 0; i < run.engines.size(); ++i) {
     const EngineData& e = run.engines[i];
-    plot += std::string(i > 0 ? ", " : "") + Quote("tilt." + e.name + ".dat") +
-            " using 1:2 with lines lw " + (i == 0 ? "2.2" : "1.4") + (i == 0 ? "" : " dt 2") +
-            " lc rgb " + Quote(e.colour) + " title " + Quote(e.label);
+    plot += std::string(i > 0 ? ", " : "") + Quote("tilt." + e.name + ".dat") + " using 1:2" +
+            RunLineStyle(i, e);
   }
   f.script = CommonAxes(run.t_end_s) + marks + "set ylabel " + Quote("tilt (rad)") + "\n" +
              "set yrange [0:*]\n" + plot + "\n";
@@ -318,18 +288,12 @@ void CylinderAxisPathFigure(const RunData& run, Figures& fig) {
   bool any_overturn = false;
   for (const EngineData& e : run.engines) {
     const std::vector<double> tx = Column(e, "tilt_x"), ty = Column(e, "tilt_y");
-    std::string dat = "# t_s tilt_x1_rad tilt_y1_rad\n";
     for (size_t k = 0; k < tx.size(); ++k) {
-      AppendDat(dat, e.history.samples[k].t_s);
-      dat += ' ';
-      AppendDat(dat, tx[k]);
-      dat += ' ';
-      AppendDat(dat, ty[k]);
-      dat += '\n';
       if (std::isfinite(tx[k]) && std::isfinite(ty[k]))
         peak = std::max(peak, std::hypot(tx[k], ty[k]));
     }
-    f.data_files.push_back({"axis_path." + e.name + ".dat", dat});
+    f.data_files.push_back({"axis_path." + e.name + ".dat",
+                            HistoryDat(e, "# t_s tilt_x1_rad tilt_y1_rad", {&tx, &ty})});
     // The overturn: where the path is at its time (the last sample at or before it).
     const Overturn o = OverturnOf(run, e);
     if (!std::isnan(o.t_s) && !tx.empty()) {
@@ -370,9 +334,7 @@ void CylinderAxisPathFigure(const RunData& run, Figures& fig) {
   for (size_t i = 0; i < run.engines.size(); ++i) {
     const EngineData& e = run.engines[i];
     const std::string file = Quote("axis_path." + e.name + ".dat");
-    plot += std::string(i > 0 ? ", " : "") + file + " using 2:3 with lines lw " +
-            (i == 0 ? "2.2" : "1.4") + (i == 0 ? "" : " dt 2") + " lc rgb " + Quote(e.colour) +
-            " title " + Quote(e.label);
+    plot += std::string(i > 0 ? ", " : "") + file + " using 2:3" + RunLineStyle(i, e);
     // The path's end.
     plot += ", " + file + " every ::" + std::to_string(e.history.samples.size() - 1) +
             " using 2:3 with points pt 7 ps 1.2 lc rgb " + Quote(e.colour) + " notitle";

@@ -40,9 +40,7 @@ void EnergySection(const RunData& run, const reference::StackModel& model, Figur
   for (size_t i = 0; i < run.engines.size(); ++i) {
     const EngineData& e = run.engines[i];
     if (i > 0) plot += ", ";
-    plot += Quote("energy." + e.name + ".dat") + " using 1:2 with lines lw " +
-            (i == 0 ? "2.2" : "1.4") + (i == 0 ? "" : " dt 2") + " lc rgb " + Quote(e.colour) +
-            " title " + Quote(e.label);
+    plot += Quote("energy." + e.name + ".dat") + " using 1:2" + RunLineStyle(i, e);
   }
   f.script += plot + "\n";
   fig.Add(

@@ -103,6 +103,18 @@ std::string EngineWarnings(const RunData& run, const EngineData& e, std::vector<
 
 }  // namespace
 
+std::string AssumptionViolatedOutcome(const RunData& run, std::vector<std::string>& warnings) {
+  std::string when;
+  for (const Event& ev : run.engines.front().events) {
+    if (ev.kind == "assumption_violated") when = Fixed(ev.t_s, 4);
+  }
+  warnings.push_back("The reference model's assumptions were violated" +
+                     (when.empty() ? std::string() : " at t = " + when + " s") + ": " +
+                     OptString(run.summary, "status_detail", run.summary_path) +
+                     ". The run stopped there; nothing after that time is simulated.");
+  return "The reference model stopped: an assumption was violated.";
+}
+
 std::string ReferenceOutcome(const RunData& run, std::vector<std::string>& warnings) {
   const EngineData& ref = run.engines.front();
   std::string outcome;
@@ -129,15 +141,7 @@ std::string ReferenceOutcome(const RunData& run, std::vector<std::string>& warni
                        ". Its history, peaks and counts are those of the part before that; "
                        "nothing after it was computed, and no verdict rests on it.");
   } else if (status == "assumption_violated") {
-    outcome = "The reference model stopped: an assumption was violated.";
-    std::string when;
-    for (const Event& ev : ref.events) {
-      if (ev.kind == "assumption_violated") when = Fixed(ev.t_s, 4);
-    }
-    warnings.push_back("The reference model's assumptions were violated" +
-                       (when.empty() ? std::string() : " at t = " + when + " s") + ": " +
-                       OptString(run.summary, "status_detail", run.summary_path) +
-                       ". The run stopped there; nothing after that time is simulated.");
+    outcome = AssumptionViolatedOutcome(run, warnings);
   } else {
     outcome = "The reference model ran to t = " + Fixed(ref.history.samples.back().t_s, 3) +
               " s (" + status + ").";

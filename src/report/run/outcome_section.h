@@ -11,6 +11,11 @@
 
 namespace rockbench::report {
 
+/// The reference's outcome when it stopped because an assumption was violated (status
+/// "assumption_violated", a planar stack's or a cylinder's), in words; appends the warning
+/// naming when (its events) and why (status_detail).
+std::string AssumptionViolatedOutcome(const RunData& run, std::vector<std::string>& warnings);
+
 /// The reference's outcome in words; appends the warnings of its summary.
 std::string ReferenceOutcome(const RunData& run, std::vector<std::string>& warnings);
 

@@ -39,6 +39,11 @@ std::string VerticalMark(double t, double t_end_s, const std::string& colour,
   return s;
 }
 
+std::string RunLineStyle(size_t i, const EngineData& e) {
+  return std::string(" with lines lw ") + (i == 0 ? "2.2" : "1.4") + (i == 0 ? "" : " dt 2") +
+         " lc rgb " + Quote(e.colour) + " title " + Quote(e.label);
+}
+
 std::string CommonAxes(double t_end_s) {
   return "set grid lc rgb '#dddddd'\nset xlabel 'time t (s)'\nset xrange [0:" + Num(t_end_s, 9) +
          "]\nset key top right box opaque\n";

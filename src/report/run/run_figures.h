@@ -49,6 +49,11 @@ std::string Quote(const std::string& s);
 std::string VerticalMark(double t, double t_end_s, const std::string& colour,
                          const std::string& label, double label_y_graph = 0.95, bool boxed = false);
 
+/// The line of run `i` of run.engines (`e`) in a plot of every run: " with lines lw 2.2 lc rgb
+/// '<colour>' title '<label>'" for the reference (i = 0), thinner and dashed (lw 1.4, dt 2) for
+/// the engines.
+std::string RunLineStyle(size_t i, const EngineData& e);
+
 /// Grid, time axis from 0 to t_end_s and key of every time plot.
 std::string CommonAxes(double t_end_s);
 

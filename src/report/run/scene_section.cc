@@ -65,24 +65,15 @@ std::vector<std::vector<std::string>> PeakMotionRows(const GroundMotion& motion,
   return rows;
 }
 
-// Plot times: record samples, analytic kinks and jumps (both sides), a fine grid.
+// Plot times: record samples, analytic kinks and jumps (both sides), a fine grid where a
+// component is analytic.
 std::set<double> PlotTimes(const GroundMotion& motion, double T) {
   std::set<double> times = {0.0, T};
+  AddMotionPlotTimes(motion, T, {&motion.horizontal(), &motion.vertical()}, times);
   for (const auto* c : {&motion.horizontal(), &motion.vertical()}) {
-    if (!*c) continue;
-    const auto& samples = (*c)->samples_mps2();
-    for (size_t k = 0; k < samples.size(); ++k) {
-      const double t = (*c)->t0_s() + static_cast<double>(k) * (*c)->dt_s();
-      if (t >= 0.0 && t <= T) times.insert(t);
-    }
-    if (samples.empty()) {
+    if (*c && (*c)->samples_mps2().empty()) {
       for (int k = 0; k <= 2000; ++k) times.insert(T * k / 2000.0);
     }
-  }
-  for (double t = motion.next_breakpoint_after(-1e-9); t <= T;
-       t = motion.next_breakpoint_after(t)) {
-    if (t - 1e-9 > 0.0) times.insert(t - 1e-9);
-    times.insert(t);
   }
   return times;
 }
@@ -150,16 +141,65 @@ void BaseMotionSection(const RunData& run, const GroundMotion& motion, Figures& 
 
 }  // namespace
 
-void SceneSection(const RunData& run, const GroundMotion& motion, Figures& fig) {
-  Page& page = *fig.page;
-  const Scene& s = run.scene;
+void SceneFileHeading(const RunData& run, Page& page) {
   page.Heading("Scene");
-  std::string where = "Scene file " + s.path.string();
+  std::string where = "Scene file " + run.scene.path.string();
   if (!run.overrides.empty()) {
     where += ", with";
     for (const std::string& o : run.overrides) where += " --set " + o;
   }
   page.Paragraph(where + ".");
+}
+
+std::vector<std::string> RunSettingsRow(const Scene& scene) {
+  return {"run",
+          "duration " + Num(scene.run.duration_s) + " s, output every " +
+              Num(scene.run.output_interval_s) + " s",
+          "gravity " + Num(scene.run.gravity_mps2) + " m/s^2"};
+}
+
+void EngineSettingsTable(const RunData& run, const std::string& reference, Page& page) {
+  page.Heading("Engine settings", 3);
+  std::vector<std::vector<std::string>> settings;
+  settings.push_back({"reference", reference});
+  // Each engine's settings as its summary.json states them (ours and the values they set).
+  for (const EngineData& e : run.engines) {
+    if (IsReference(e.name)) continue;
+    const json* set = Find(e.summary, "settings");
+    if (set == nullptr || !set->is_object()) continue;
+    std::string text;
+    for (const auto& [key, value] : set->items()) {
+      text += (text.empty() ? "" : "; ") + key + " " +
+              (value.is_string() ? value.get<std::string>()
+                                 : (value.is_number() ? Num(value.get<double>()) : value.dump()));
+    }
+    settings.push_back({e.name, text});
+  }
+  page.Table({"engine", "settings"}, settings);
+}
+
+void AddMotionPlotTimes(const GroundMotion& motion, double T,
+                        std::initializer_list<const std::optional<MotionComponent>*> components,
+                        std::set<double>& times) {
+  for (const auto* c : components) {
+    if (!*c) continue;
+    const auto& samples = (*c)->samples_mps2();
+    for (size_t k = 0; k < samples.size(); ++k) {
+      const double t = (*c)->t0_s() + static_cast<double>(k) * (*c)->dt_s();
+      if (t >= 0.0 && t <= T) times.insert(t);
+    }
+  }
+  for (double t = motion.next_breakpoint_after(-1e-9); t <= T;
+       t = motion.next_breakpoint_after(t)) {
+    if (t - 1e-9 > 0.0) times.insert(t - 1e-9);
+    times.insert(t);
+  }
+}
+
+void SceneSection(const RunData& run, const GroundMotion& motion, Figures& fig) {
+  Page& page = *fig.page;
+  const Scene& s = run.scene;
+  SceneFileHeading(run, page);
   std::vector<std::vector<std::string>> rows;
   const int nb = s.block_count();
   if (nb <= 2) {
@@ -214,42 +254,24 @@ void SceneSection(const RunData& run, const GroundMotion& motion, Figures& fig) 
                       k == 0 ? "theta > 0: tilted to the right" : ""});
     }
   }
-  rows.push_back({"run",
-                  "duration " + Num(s.run.duration_s) + " s, output every " +
-                      Num(s.run.output_interval_s) + " s",
-                  "gravity " + Num(s.run.gravity_mps2) + " m/s^2"});
+  rows.push_back(RunSettingsRow(s));
   page.Table({"part", "value", "note"}, rows);
   BaseMotionSection(run, motion, fig);
 
-  page.Heading("Engine settings", 3);
   const ModelConfig& m = s.model;
-  std::vector<std::vector<std::string>> settings;
-  settings.push_back(
-      {"reference",
-       std::string(IntegratorName(m.integrator)) +
-           (m.integrator == Integrator::kRk4 ? ", step " + Num(m.step_s) + " s"
-                                             : ", rtol " + Num(m.rtol) + ", atol " + Num(m.atol)) +
-           "; events " + (m.events == EventScheme::kLocated ? "located" : "thesis") +
-           "; equations " + (m.equations == Equations::kNonlinear ? "nonlinear" : "linearized") +
-           "; transitions " + (m.check_transitions ? "checked" : "not checked") + "; rest rate " +
-           Num(m.rest_rate_rel) + " sqrt(g/R)" +
-           (OptString(run.summary, "convergence.used", run.summary_path) == "witness"
-                ? " (not converged: the run used its witness, see Verdict)"
-                : "")});
-  // Each engine's settings as its summary.json states them (ours and the values they set).
-  for (const EngineData& e : run.engines) {
-    if (IsReference(e.name)) continue;
-    const json* set = Find(e.summary, "settings");
-    if (set == nullptr || !set->is_object()) continue;
-    std::string text;
-    for (const auto& [key, value] : set->items()) {
-      text += (text.empty() ? "" : "; ") + key + " " +
-              (value.is_string() ? value.get<std::string>()
-                                 : (value.is_number() ? Num(value.get<double>()) : value.dump()));
-    }
-    settings.push_back({e.name, text});
-  }
-  page.Table({"engine", "settings"}, settings);
+  EngineSettingsTable(
+      run,
+      std::string(IntegratorName(m.integrator)) +
+          (m.integrator == Integrator::kRk4 ? ", step " + Num(m.step_s) + " s"
+                                            : ", rtol " + Num(m.rtol) + ", atol " + Num(m.atol)) +
+          "; events " + (m.events == EventScheme::kLocated ? "located" : "thesis") +
+          "; equations " + (m.equations == Equations::kNonlinear ? "nonlinear" : "linearized") +
+          "; transitions " + (m.check_transitions ? "checked" : "not checked") + "; rest rate " +
+          Num(m.rest_rate_rel) + " sqrt(g/R)" +
+          (OptString(run.summary, "convergence.used", run.summary_path) == "witness"
+               ? " (not converged: the run used its witness, see Verdict)"
+               : ""),
+      page);
 }
 
 }  // namespace rockbench::report
