@@ -118,9 +118,15 @@ py::dict LocalToleranceColumns(const Scene& scene, const History& reference) {
         tol.push_back(profile.tol_rad[i]);
       }
     }
-    out[py::str(BodyColumn("theta", k))] =
-        py::dict(py::arg("t") = py::array_t<double>(t.size(), t.data()),
-                 py::arg("tolerance_rad") = py::array_t<double>(tol.size(), tol.data()));
+    // Each compared angle of the body's kind: theta for a block, tilt_x and tilt_y (one profile,
+    // the tilt's) for a cylinder.
+    const BodyKind* kind = FindBodyKind(scene.blocks.at(static_cast<size_t>(k - 1)).shape);
+    for (const StateQuantity& q : kind ? kind->state : PlanarBlockKind().state) {
+      if (!q.compared_angle) continue;
+      out[py::str(BodyColumn(q.stem, k))] =
+          py::dict(py::arg("t") = py::array_t<double>(t.size(), t.data()),
+                   py::arg("tolerance_rad") = py::array_t<double>(tol.size(), tol.data()));
+    }
   }
   return out;
 }
@@ -128,7 +134,11 @@ py::dict LocalToleranceColumns(const Scene& scene, const History& reference) {
 py::dict Compare(const PyScene& s, const std::string& engines_text, int jobs,
                  const py::object& log) {
   CheckEngineTables(s.scene);
-  const std::vector<std::string> engines = ParseEnginesBesideReference(engines_text);
+  std::vector<std::string> engines = ParseEnginesBesideReference(engines_text);
+  // "all" leaves out the engines that do not build the scene's bodies (a cylinder's planar
+  // engines), said in the note as the command line says it.
+  std::string not_run;
+  if (engines_text == "all") engines = EnginesThatBuild(s.scene, engines, &not_run);
   CompareRunOptions options;
   options.jobs = jobs;
   options.log = LineCallback(log);
@@ -151,11 +161,15 @@ py::dict Compare(const PyScene& s, const std::string& engines_text, int jobs,
   py::dict failed;
   for (const FailedEngine& f : run->failed_engines) failed[py::str(f.engine)] = f.reason;
   out["failed_engines"] = failed;
-  const reference::Summary& rs = run->reference().used().summary;
-  out["undetermined_from_s"] =
-      rs.undetermined_from_s ? py::object(py::float_(*rs.undetermined_from_s)) : py::none();
-  out["undetermined_detail"] = rs.undetermined_detail;
-  out["not_run_note"] = NotRunNote(engines);
+  // A cylinder's landing has one outcome: its model decides the whole run.
+  out["undetermined_from_s"] = py::none();
+  out["undetermined_detail"] = "";
+  if (!run->cylinder_reference()) {
+    const reference::Summary& rs = run->reference().used().summary;
+    if (rs.undetermined_from_s) out["undetermined_from_s"] = py::float_(*rs.undetermined_from_s);
+    out["undetermined_detail"] = rs.undetermined_detail;
+  }
+  out["not_run_note"] = not_run + NotRunNote(engines);
   out["local_tolerance"] = LocalToleranceColumns(run->reference_scene, run->reference_run.history);
   return out;
 }

@@ -193,16 +193,9 @@ void Execute(const CompareCliOptions& opt) {
   // "all" on a scene whose bodies an engine does not build (a cylinder in a planar engine): that
   // engine is left out, and said why; named on its own, it fails as any engine that cannot run.
   if (opt.engines == "all") {
-    std::vector<std::string> builds;
-    for (const std::string& name : engines) {
-      try {
-        if (const Engine* engine = FindEngine(name)) CheckBuildsBodies(*engine, scene);
-        builds.push_back(name);
-      } catch (const SceneError& e) {
-        std::fprintf(stderr, "rockbench: compare: not run: %s\n", e.what());
-      }
-    }
-    engines = builds;
+    std::string not_run;
+    engines = EnginesThatBuild(scene, engines, &not_run);
+    std::fputs(not_run.c_str(), stderr);
   }
   // An engine the scene brings runs only when the user names it: said, with how to opt in.
   std::fputs(NotRunNote(engines).c_str(), stderr);

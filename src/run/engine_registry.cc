@@ -333,4 +333,19 @@ std::string EngineListText() {
   return out;
 }
 
+std::vector<std::string> EnginesThatBuild(const Scene& scene,
+                                          const std::vector<std::string>& selected,
+                                          std::string* not_run) {
+  std::vector<std::string> builds;
+  for (const std::string& name : selected) {
+    try {
+      if (const Engine* engine = FindEngine(name)) CheckBuildsBodies(*engine, scene);
+      builds.push_back(name);
+    } catch (const SceneError& e) {
+      if (not_run) *not_run += std::string("rockbench: compare: not run: ") + e.what() + "\n";
+    }
+  }
+  return builds;
+}
+
 }  // namespace rockbench

@@ -64,6 +64,14 @@ std::vector<std::string> ParseEngineList(const std::string& text);
 /// empty when the list names the reference alone. Throws as ParseEngineList.
 std::vector<std::string> ParseEnginesBesideReference(const std::string& text);
 
+/// The engines of `selected` that build the bodies of `scene` (engine/engine.h's
+/// CheckBuildsBodies), in order; one line per engine left out, "rockbench: compare: not run:
+/// SCENE: block1.shape: the engine 'box2d' builds bodies of shape ...", in *not_run. For "all" on
+/// a scene whose bodies some engines do not build (a cylinder in a planar engine).
+std::vector<std::string> EnginesThatBuild(const Scene& scene,
+                                          const std::vector<std::string>& selected,
+                                          std::string* not_run);
+
 /// Checks one engine name that a file (not the user) lists, as a study's `engines` does: the
 /// reference, or a built engine of the build or of a registry file the user owns. Throws SceneError
 /// (without a place: the caller adds the file and key) for a text that is no single engine name

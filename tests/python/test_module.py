@@ -178,6 +178,25 @@ def test_compare_is_comparison_json(tmp_path):
     assert c.failures == []
 
 
+def test_compare_of_a_cylinder_is_comparison_json(tmp_path):
+    # A cylinder (issue 41): the tilt vector's two components, their local tolerance, and "all"
+    # leaving the planar engines out as the command line does.
+    scene = os.path.join(SOURCE, "scenes", "three_d", "cylinder_rotating_harmonic.toml")
+    cli("compare", scene, "--engines", "ode", "--quick", "--out", str(tmp_path))
+    c = rockbench.compare(scene, engines=["ode"], members=0, progress=False)
+    expected = json.loads(read(tmp_path / "comparison.json"))
+    assert without_timing(dict(c)) == without_timing(expected)
+    assert {"tilt_x1", "tilt_y1"} <= set(c["engines"]["ode"])
+    assert set(c.local_tolerance) == {"tilt_x1", "tilt_y1"}
+    assert np.array_equal(
+        c.local_tolerance["tilt_x1"]["tolerance_rad"], c.local_tolerance["tilt_y1"]["tolerance_rad"]
+    )
+    planar = [e["name"] for e in rockbench.engines() if e["built"] and e["name"] in ("box2d", "rapier")]
+    if planar:
+        with pytest.warns(rockbench.RockbenchWarning, match="compare: not run: .*block1.shape"):
+            rockbench.compare(scene, engines="all", members=0, progress=False)
+
+
 def test_engines_lists_the_builds_engines():
     listed = rockbench.engines()
     assert listed[0]["name"] == "reference" and listed[0]["built"]
