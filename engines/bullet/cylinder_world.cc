@@ -36,27 +36,13 @@ btVector3 Bt(const Vec3d& v) {
 }  // namespace
 
 BulletCylinderWorld::BulletCylinderWorld(const BulletInput& input)
-    : in_(input), body_(CylinderBodyOf(input)) {
+    : in_(input),
+      body_(CylinderBodyOf(input)),
+      dynamics_(input, btVector3(0, 0, btScalar(-input.run.gravity_mps2))),
+      world_(dynamics_.world()) {
   const BulletConfig& c = in_.config;
   dt_ = in_.time_step_s;
   kinematic_ = in_.drive_kind == DriveKind::kKinematic;
-
-  collision_config_ = std::make_unique<btDefaultCollisionConfiguration>();
-  dispatcher_ = std::make_unique<btCollisionDispatcher>(collision_config_.get());
-  broadphase_ = std::make_unique<btDbvtBroadphase>();
-  solver_ = std::make_unique<btSequentialImpulseConstraintSolver>();
-  world_ = std::make_unique<btDiscreteDynamicsWorld>(dispatcher_.get(), broadphase_.get(),
-                                                     solver_.get(), collision_config_.get());
-  // The solver as for the blocks (RockingWorld): the same keys, the same Bullet values.
-  btContactSolverInfo& si = world_->getSolverInfo();
-  si.m_numIterations = c.solver_iterations;
-  si.m_erp = btScalar(c.erp);
-  si.m_erp2 = btScalar(c.erp2);
-  si.m_splitImpulse = c.split_impulse ? 1 : 0;
-  si.m_splitImpulsePenetrationThreshold = btScalar(c.split_impulse_threshold);
-  si.m_restitutionVelocityThreshold = btScalar(c.restitution_velocity_threshold);
-  si.m_timeStep = btScalar(dt_);
-  world_->setGravity(btVector3(0, 0, btScalar(-in_.run.gravity_mps2)));
 
   // Friction: Bullet's contact coefficient is the product of the two bodies' values (clamped at
   // 10). The scene's finite coefficient goes on the cylinder over a ground of 1, so that the
@@ -68,23 +54,8 @@ BulletCylinderWorld::BulletCylinderWorld(const BulletInput& input)
   // Ground: the plane z = 0 at the base's displacement (kinematic drive) or at rest.
   ground_shape_ = std::make_unique<BoundedPlaneShape>();
   const Vec3d u0 = kinematic_ ? CylinderBaseDisplacement(in_, 0) : Vec3d{};
-  {
-    btRigidBody::btRigidBodyConstructionInfo info(0, nullptr, ground_shape_.get(),
-                                                  btVector3(0, 0, 0));
-    info.m_startWorldTransform = GroundTransform(u0);
-    info.m_friction = btScalar(ground_friction_);
-    info.m_restitution = btScalar(c.restitution);
-    info.m_rollingFriction = btScalar(c.rolling_friction);
-    ground_ = std::make_unique<btRigidBody>(info);
-    if (kinematic_) {
-      // As RockingWorld's ground: kinematic, not static (a static body is a fixed solver body).
-      ground_->setCollisionFlags(
-          (ground_->getCollisionFlags() & ~btCollisionObject::CF_STATIC_OBJECT) |
-          btCollisionObject::CF_KINEMATIC_OBJECT);
-      ground_->setActivationState(DISABLE_DEACTIVATION);
-    }
-    world_->addRigidBody(ground_.get());
-  }
+  ground_ = MakeGround(in_, ground_shape_.get(), GroundTransform(u0), ground_friction_);
+  world_->addRigidBody(ground_.get());
 
   // The cylinder: exact radius and half-height (no margin unless the table sets one), the mass
   // and central inertia of CylinderBodyOf, the start pose shifted with the ground.
@@ -102,15 +73,8 @@ BulletCylinderWorld::BulletCylinderWorld(const BulletInput& input)
                             btScalar(q[4]), btScalar(q[5]), btScalar(q[6]), btScalar(q[7]),
                             btScalar(q[8])));
   pose.setOrigin(Bt(start.centre_m) + Bt(u0));
-  btRigidBody::btRigidBodyConstructionInfo info(btScalar(body_.mass_kg), nullptr, shape_.get(),
-                                                inertia);
-  info.m_startWorldTransform = pose;
-  info.m_friction = btScalar(cylinder_friction_);
-  info.m_restitution = btScalar(c.restitution);
-  info.m_rollingFriction = btScalar(c.rolling_friction);
-  info.m_linearDamping = 0;
-  info.m_angularDamping = 0;
-  cylinder_ = std::make_unique<btRigidBody>(info);
+  cylinder_ = std::make_unique<btRigidBody>(
+      BodyInfo(c, body_.mass_kg, shape_.get(), inertia, pose, cylinder_friction_));
   // Bullet's default gyroscopic term (implicit, body frame), named here because the wobble
   // depends on it.
   cylinder_->setFlags(BT_ENABLE_GYROSCOPIC_FORCE_IMPLICIT_BODY);
@@ -141,11 +105,10 @@ void BulletCylinderWorld::ApplyDrive(std::int64_t n) {
         btVector3(btScalar(-a[0]), btScalar(-a[1]), btScalar(-(in_.run.gravity_mps2 + a[2]))));
     return;
   }
-  // Kinematic, as RockingWorld::ApplyDrive: the interpolation pose one step behind makes the
-  // ground's velocity (u_{n+1} - u_n) / dt while collision detection sees it at u_n.
+  // Kinematic: the ground at u_n moving with (u_{n+1} - u_n) / dt (PlaceKinematicGround).
   const Vec3d u = CylinderBaseDisplacement(in_, n), next = CylinderBaseDisplacement(in_, n + 1);
-  ground_->setWorldTransform(GroundTransform(u));
-  ground_->setInterpolationWorldTransform(
+  PlaceKinematicGround(
+      ground_.get(), GroundTransform(u),
       GroundTransform({2.0 * u[0] - next[0], 2.0 * u[1] - next[1], 2.0 * u[2] - next[2]}));
 }
 
@@ -176,30 +139,11 @@ CylinderPose BulletCylinderWorld::ReadPose() const {
 }
 
 nlohmann::json BulletCylinderWorld::Settings() const {
-  const BulletConfig& c = in_.config;
-  const btContactSolverInfo& si = world_->getSolverInfo();
-  nlohmann::json j;
-  j["precision"] = CompiledPrecision();
-  j["drive"] = kinematic_ ? "kinematic" : "inertial";
-  j["time_step_s"] = in_.time_step_s;
-  j["output_interval_s"] = in_.run.output_interval_s;
-  j["substeps_per_sample"] = std::max(1.0, std::round(in_.run.output_interval_s / dt_));
-  j["solver_iterations"] = c.solver_iterations;
-  j["erp"] = c.erp;
-  j["erp2"] = c.erp2;
-  j["split_impulse"] = c.split_impulse;
-  j["split_impulse_threshold"] = c.split_impulse_threshold;
-  j["restitution"] = c.restitution;
-  j["restitution_combined"] = c.restitution * c.restitution;
-  j["friction"] = c.friction;
+  nlohmann::json j = CommonSettings(in_, *world_);
   j["cylinder_friction"] = cylinder_friction_;
   j["ground_friction"] = ground_friction_;
   // Bullet multiplies the two bodies' values and clamps the product at 10.
   j["friction_combined"] = std::min(10.0, cylinder_friction_ * ground_friction_);
-  j["rolling_friction"] = c.rolling_friction;
-  j["restitution_velocity_threshold"] = c.restitution_velocity_threshold;
-  j["margin_m"] = c.margin_m;
-  j["kinematic_highpass_hz"] = in_.kinematic_highpass_hz;
   j["shape"] = "btCylinderShapeZ";
   j["ground"] = "btStaticPlaneShape z = 0";
   j["contact"] = "convex-plane: the cylinder's support point (exact rim), one a step";
@@ -207,10 +151,6 @@ nlohmann::json BulletCylinderWorld::Settings() const {
   j["inertia_kgm2"] = {body_.inertia_transverse_kgm2, body_.inertia_transverse_kgm2,
                        body_.inertia_axial_kgm2};
   j["gyroscopic"] = "implicit (body)";
-  j["deactivation"] = "disabled";
-  j["warmstarting_factor"] = double(si.m_warmstartingFactor);
-  j["solver_mode"] = si.m_solverMode;
-  j["bullet_version"] = btGetVersion();
   return j;
 }
 

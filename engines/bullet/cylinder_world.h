@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "engines/bullet/bullet_settings.h"
+#include "engines/bullet/bullet_world_parts.h"
 #include "engines/common/cylinder_world.h"
 
 namespace rockbench::bullet {
@@ -49,11 +50,8 @@ class BulletCylinderWorld {
   std::int64_t steps_done_ = 0;  // steps taken: the pose is at t = steps_done_ * dt
   std::int64_t next_step_ = 0;   // the step ApplyDrive set up
   double cylinder_friction_ = 0.0, ground_friction_ = 0.0;
-  std::unique_ptr<btDefaultCollisionConfiguration> collision_config_;
-  std::unique_ptr<btCollisionDispatcher> dispatcher_;
-  std::unique_ptr<btBroadphaseInterface> broadphase_;
-  std::unique_ptr<btSequentialImpulseConstraintSolver> solver_;
-  std::unique_ptr<btDiscreteDynamicsWorld> world_;
+  BulletDynamics dynamics_;
+  btDiscreteDynamicsWorld* const world_;  // dynamics_'s
   std::unique_ptr<btStaticPlaneShape> ground_shape_;
   std::unique_ptr<btCylinderShapeZ> shape_;
   std::unique_ptr<btRigidBody> ground_;

@@ -79,31 +79,19 @@ const char* CompiledPrecision() {
   return sizeof(btScalar) == sizeof(double) ? "double" : "float";
 }
 
-RockingWorld::RockingWorld(const BulletInput& input) : in_(input) {
+RockingWorld::RockingWorld(const BulletInput& input)
+    : in_(input),
+      dynamics_(input, btVector3(0, btScalar(-input.run.gravity_mps2), 0)),
+      world_(dynamics_.world()) {
   const BulletConfig& c = in_.config;
   dt_ = in_.time_step_s;
   kinematic_ = in_.drive_kind == DriveKind::kKinematic;
 
-  collision_config_ = std::make_unique<btDefaultCollisionConfiguration>();
-  dispatcher_ = std::make_unique<btCollisionDispatcher>(collision_config_.get());
-  broadphase_ = std::make_unique<btDbvtBroadphase>();
-  solver_ = std::make_unique<btSequentialImpulseConstraintSolver>();
-  world_ = std::make_unique<btDiscreteDynamicsWorld>(dispatcher_.get(), broadphase_.get(),
-                                                     solver_.get(), collision_config_.get());
   const int n = in_.block_count();
   if (n >= 3) {
     filter_ = std::make_unique<NeighbourFilter>();
     world_->getPairCache()->setOverlapFilterCallback(filter_.get());
   }
-  btContactSolverInfo& si = world_->getSolverInfo();
-  si.m_numIterations = c.solver_iterations;
-  si.m_erp = btScalar(c.erp);
-  si.m_erp2 = btScalar(c.erp2);
-  si.m_splitImpulse = c.split_impulse ? 1 : 0;
-  si.m_splitImpulsePenetrationThreshold = btScalar(c.split_impulse_threshold);
-  si.m_restitutionVelocityThreshold = btScalar(c.restitution_velocity_threshold);
-  si.m_timeStep = btScalar(dt_);
-  world_->setGravity(btVector3(0, btScalar(-in_.run.gravity_mps2), 0));
 
   // The ground's size: much wider than the largest block (one block: as if block 2 were 0).
   double size = 0.5, depth = 0.0;
@@ -119,25 +107,9 @@ RockingWorld::RockingWorld(const BulletInput& input) : in_(input) {
   ground_shape_->setMargin(btScalar(c.margin_m));
   const double ux0 = kinematic_ ? in_.drive.ux_m.front() : 0.0;
   const double uy0 = kinematic_ ? in_.drive.uy_m.front() : 0.0;
-  {
-    btRigidBody::btRigidBodyConstructionInfo info(0, nullptr, ground_shape_.get(),
-                                                  btVector3(0, 0, 0));
-    info.m_startWorldTransform = GroundTransform(ux0, uy0);
-    info.m_friction = btScalar(c.friction);
-    info.m_restitution = btScalar(c.restitution);
-    info.m_rollingFriction = btScalar(c.rolling_friction);
-    ground_ = std::make_unique<btRigidBody>(info);
-    ground_->setUserIndex(0);
-    if (kinematic_) {
-      // A mass-0 body is flagged static; a kinematic body must not be (a BT_THREADSAFE solver
-      // maps static bodies to a fixed solver body with zero velocity).
-      ground_->setCollisionFlags(
-          (ground_->getCollisionFlags() & ~btCollisionObject::CF_STATIC_OBJECT) |
-          btCollisionObject::CF_KINEMATIC_OBJECT);
-      ground_->setActivationState(DISABLE_DEACTIVATION);
-    }
-    world_->addRigidBody(ground_.get());
-  }
+  ground_ = MakeGround(in_, ground_shape_.get(), GroundTransform(ux0, uy0), c.friction);
+  ground_->setUserIndex(0);
+  world_->addRigidBody(ground_.get());
 
   // Blocks, placed by the pivot chain in the base frame then shifted with the ground.
   const StackPlacement place = PlaceStack(in_.blocks, in_.initial);
@@ -150,15 +122,8 @@ RockingWorld::RockingWorld(const BulletInput& input) : in_(input) {
     (*shape)->setMargin(btScalar(c.margin_m));
     btVector3 inertia(0, 0, 0);
     (*shape)->calculateLocalInertia(btScalar(def.mass_kg), inertia);
-    btRigidBody::btRigidBodyConstructionInfo info(btScalar(def.mass_kg), nullptr, shape->get(),
-                                                  inertia);
-    info.m_startWorldTransform = PoseTransform(pose, ux0, uy0, z);
-    info.m_friction = btScalar(c.friction);
-    info.m_restitution = btScalar(c.restitution);
-    info.m_rollingFriction = btScalar(c.rolling_friction);
-    info.m_linearDamping = 0;
-    info.m_angularDamping = 0;
-    auto body = std::make_unique<btRigidBody>(info);
+    auto body = std::make_unique<btRigidBody>(BodyInfo(
+        c, def.mass_kg, shape->get(), inertia, PoseTransform(pose, ux0, uy0, z), c.friction));
     body->setUserIndex(index);  // its place in the stack, for NeighbourFilter
     // Planar motion: translation in x-y, rotation about z only.
     body->setLinearFactor(btVector3(1, 1, 0));
@@ -213,13 +178,11 @@ void RockingWorld::ApplyDrive(std::int64_t n) {
     world_->setGravity(btVector3(btScalar(-ax), btScalar(-(in_.run.gravity_mps2 + ay)), 0));
     return;
   }
-  // Kinematic: Bullet sets a kinematic body's velocity to (world - interpolation) / dt in
-  // stepSimulation; placing the interpolation pose one step behind makes that velocity
-  // (u_{n+1} - u_n) / dt while collision detection sees the ground at u_n, where the blocks are.
+  // Kinematic: the ground at u_n moving with (u_{n+1} - u_n) / dt (PlaceKinematicGround).
   const double ux = in_.drive.ux_m[i], uy = in_.drive.uy_m[i];
   const double nx = in_.drive.ux_m[i + 1], ny = in_.drive.uy_m[i + 1];
-  ground_->setWorldTransform(GroundTransform(ux, uy));
-  ground_->setInterpolationWorldTransform(GroundTransform(2.0 * ux - nx, 2.0 * uy - ny));
+  PlaceKinematicGround(ground_.get(), GroundTransform(ux, uy),
+                       GroundTransform(2.0 * ux - nx, 2.0 * uy - ny));
 }
 
 void RockingWorld::Step() {
@@ -247,32 +210,10 @@ StepReadout RockingWorld::Read(std::int64_t n) const {
 
 nlohmann::json RockingWorld::Settings() const {
   const BulletConfig& c = in_.config;
-  const btContactSolverInfo& si = world_->getSolverInfo();
-  nlohmann::json j;
-  j["precision"] = CompiledPrecision();
-  j["drive"] = kinematic_ ? "kinematic" : "inertial";
-  j["time_step_s"] = in_.time_step_s;
-  j["output_interval_s"] = in_.run.output_interval_s;
-  j["substeps_per_sample"] = std::max(1.0, std::round(in_.run.output_interval_s / dt_));
-  j["solver_iterations"] = c.solver_iterations;
-  j["erp"] = c.erp;
-  j["erp2"] = c.erp2;
-  j["split_impulse"] = c.split_impulse;
-  j["split_impulse_threshold"] = c.split_impulse_threshold;
-  j["restitution"] = c.restitution;
-  j["friction"] = c.friction;
+  nlohmann::json j = CommonSettings(in_, *world_);
   // Bullet multiplies the two bodies' values; friction products are clamped at 10.
   j["friction_combined"] = std::min(10.0, c.friction * c.friction);
-  j["restitution_combined"] = c.restitution * c.restitution;
-  j["rolling_friction"] = c.rolling_friction;
-  j["restitution_velocity_threshold"] = c.restitution_velocity_threshold;
-  j["margin_m"] = c.margin_m;
   j["ground_depth_m"] = c.ground_depth_m;
-  j["kinematic_highpass_hz"] = in_.kinematic_highpass_hz;
-  j["deactivation"] = "disabled";
-  j["warmstarting_factor"] = double(si.m_warmstartingFactor);
-  j["solver_mode"] = si.m_solverMode;
-  j["bullet_version"] = btGetVersion();
   // Three or more blocks: only neighbours collide (one and two blocks: every pair, as before).
   if (filter_) j["collision_filter"] = "neighbours";
   // Friction from the scene: each interface's coefficient, block 1 on the ground first.

@@ -13,6 +13,7 @@
 #include "engine/engine.h"
 #include "engines/bullet/bullet_engine.h"
 #include "engines/bullet/bullet_settings.h"
+#include "engines/bullet/bullet_world_parts.h"
 #include "engines/common/monitor.h"
 
 namespace rockbench::bullet {
@@ -43,7 +44,7 @@ class RockingWorld {
   /// Settings in use (ours and the Bullet values they set) for summary.json.
   nlohmann::json Settings() const;
 
-  btDiscreteDynamicsWorld* world() { return world_.get(); }
+  btDiscreteDynamicsWorld* world() { return world_; }
   /// Block k's body (k = 0: block 1, the lowest), bottom first.
   btRigidBody* block(int k) { return blocks_.at(static_cast<size_t>(k)).get(); }
   int block_count() const { return static_cast<int>(blocks_.size()); }
@@ -61,11 +62,8 @@ class RockingWorld {
   bool kinematic_ = false;
   // Three or more blocks only; declared first so that it outlives the broadphase's pair cache.
   std::unique_ptr<btOverlapFilterCallback> filter_;
-  std::unique_ptr<btDefaultCollisionConfiguration> collision_config_;
-  std::unique_ptr<btCollisionDispatcher> dispatcher_;
-  std::unique_ptr<btBroadphaseInterface> broadphase_;
-  std::unique_ptr<btSequentialImpulseConstraintSolver> solver_;
-  std::unique_ptr<btDiscreteDynamicsWorld> world_;
+  BulletDynamics dynamics_;
+  btDiscreteDynamicsWorld* const world_;  // dynamics_'s
   std::unique_ptr<btBoxShape> ground_shape_;
   std::vector<std::unique_ptr<btBoxShape>> shapes_;  // per block, bottom first
   std::unique_ptr<btRigidBody> ground_;
