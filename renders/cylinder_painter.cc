@@ -7,24 +7,21 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <string>
+
+#include "renders/frame_parts.h"
+#include "renders/gl_draw.h"
+#include "util/format.h"
 
 namespace rockbench::renders {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-// The planar overlay's outline colours of the second, third, ... track (renderer.cc).
-constexpr Rgb kOverlayOutlines[] = {{15, 15, 15}, {180, 20, 20}, {20, 130, 60}};
 // The base plane, its grid and the light (world, unit: from the upper front left).
 constexpr Rgb kPlane{214, 214, 208};
 constexpr Rgb kPlaneGrid{172, 172, 166};
 const Vec3d kLight{-0.42, -0.50, 0.757};
-
-void Colour(Rgb c, double alpha = 1.0) {
-  glColor4d(c.r / 255.0, c.g / 255.0, c.b / 255.0, alpha);
-}
 
 // `c` lit by a surface of unit normal n: half ambient, half diffuse.
 Rgb Shaded(Rgb c, const Vec3d& n) {
@@ -49,46 +46,6 @@ Vec3d Plus(const Vec3d& a, const Vec3d& b, double s = 1.0) {
   return {a[0] + s * b[0], a[1] + s * b[1], a[2] + s * b[2]};
 }
 
-void FillRect(const PixelRect& r) {
-  glBegin(GL_QUADS);
-  glVertex2d(r.x_px, r.y_px);
-  glVertex2d(r.x_px + r.w_px, r.y_px);
-  glVertex2d(r.x_px + r.w_px, r.y_px + r.h_px);
-  glVertex2d(r.x_px, r.y_px + r.h_px);
-  glEnd();
-}
-
-// The smallest of 1, 2, 5 times a power of ten that is >= x (x > 0).
-double NiceStep(double x) {
-  const double p = std::pow(10.0, std::floor(std::log10(x)));
-  for (double m : {1.0, 2.0, 5.0, 10.0}) {
-    if (m * p >= x) return m * p;
-  }
-  return 10.0 * p;
-}
-
-std::string Format(const char* fmt, double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, fmt, v);
-  return buf;
-}
-
-// `text`, shortened with an ellipsis to at most room_px wide (a whole code point at a time).
-std::string Fitted(Font* font, const std::string& text, int room_px) {
-  if (font->Measure(text) <= room_px) return text;
-  std::string kept = text;
-  while (!kept.empty()) {
-    while (!kept.empty()) {
-      const auto c = static_cast<unsigned char>(kept.back());
-      kept.pop_back();
-      if ((c & 0xC0) != 0x80) break;
-    }
-    const std::string shortened = kept + "…";
-    if (font->Measure(shortened) <= room_px) return shortened;
-  }
-  return std::string();
-}
-
 std::string TiltText(const CylinderAt& at) {
   return "tilt " + Format("%.4f", at.state.tilt_rad) + " rad   azimuth " +
          Format("%+.3f", WrappedAzimuth_rad(at.state.azimuth_rad)) + " rad";
@@ -108,11 +65,11 @@ CylinderPainter::CylinderPainter(const Scene& scene, const std::vector<Track>& t
       size_(CylinderSizeOf(scene)) {}
 
 Rgb CylinderPainter::TrackColour(const Palette& palette, size_t i) {
-  return i == 0 ? palette.chart_theta(0) : kOverlayOutlines[(i - 1) % 3];
+  return i == 0 ? palette.chart_theta(0) : OverlayOutline(i);
 }
 
 double CylinderPainter::line_w() const {
-  return std::max(1.0, config_.height_px / 480.0);
+  return LineWidth_px(config_);
 }
 
 Vec3d CylinderPainter::BaseAt(double t_s) const {
@@ -124,13 +81,17 @@ void CylinderPainter::DrawGround(const PerspectiveCamera& cam, double t_s) const
   const double g = layout_.ground_half_side_m;
   const int s = config_.supersample;
   auto at = [&](double x, double y) { return Vec3d{b[0] + x, b[1] + y, b[2]}; };
+  // The plane's square, filled (GL_QUADS) or its edge (GL_LINE_LOOP).
+  auto square = [&](GLenum mode) {
+    glBegin(mode);
+    Vertex(cam, at(-g, -g));
+    Vertex(cam, at(g, -g));
+    Vertex(cam, at(g, g));
+    Vertex(cam, at(-g, g));
+    glEnd();
+  };
   Colour(kPlane);
-  glBegin(GL_QUADS);
-  Vertex(cam, at(-g, -g));
-  Vertex(cam, at(g, -g));
-  Vertex(cam, at(g, g));
-  Vertex(cam, at(-g, g));
-  glEnd();
+  square(GL_QUADS);
   // A grid fixed to the plane (it moves with the base), its middle lines darker.
   const double step = NiceStep(2.0 * g / 8.0);
   const long k_max = static_cast<long>(std::floor(g / step + 1e-9));
@@ -147,12 +108,7 @@ void CylinderPainter::DrawGround(const PerspectiveCamera& cam, double t_s) const
   glEnd();
   glLineWidth(static_cast<float>(1.5 * line_w() * s));
   Colour(palette_.ground_line);
-  glBegin(GL_LINE_LOOP);
-  Vertex(cam, at(-g, -g));
-  Vertex(cam, at(g, -g));
-  Vertex(cam, at(g, g));
-  Vertex(cam, at(-g, g));
-  glEnd();
+  square(GL_LINE_LOOP);
   // A fixed mark in front of the plane's near edge at rest: the plane moves past it.
   glBegin(GL_TRIANGLES);
   glVertex2d(cam.ToPixel({0.0, -1.04 * g, 0.0}).x, cam.ToPixel({0.0, -1.04 * g, 0.0}).y);
@@ -293,17 +249,12 @@ void CylinderPainter::DrawTopView(double t_s) const {
     return Vec2{r.x_px + 0.5 * (tx / range + 1.0) * r.w_px,
                 r.y_px + 0.5 * (1.0 - ty / range) * r.h_px};
   };
-  Colour(palette_.chart_frame);
-  FillRect({r.x_px - lw, r.y_px - lw, r.w_px + 2 * lw, r.h_px + 2 * lw});
-  Colour(palette_.chart_background);
-  FillRect(r);
+  PlotArea(r, lw, palette_);
   Colour(palette_.chart_frame);
   FillRect({r.x_px, r.y_px + 0.5 * r.h_px - 0.5 * lw, r.w_px, lw});
   FillRect({r.x_px + 0.5 * r.w_px - 0.5 * lw, r.y_px, lw, r.h_px});
   glEnable(GL_SCISSOR_TEST);
-  glScissor(static_cast<int>(r.x_px * s),
-            static_cast<int>((config_.height_px - r.y_px - r.h_px) * s),
-            static_cast<int>(r.w_px * s), static_cast<int>(r.h_px * s));
+  ScissorTo(r, config_);
   // The critical angle atan(D / H): beyond it a cylinder at rest on its rim falls.
   const double critical = std::atan2(size_.radius_m, size_.half_height_m);
   if (critical < range) {
@@ -324,26 +275,15 @@ void CylinderPainter::DrawTopView(double t_s) const {
   for (size_t j = tracks_.size(); j-- > 0;) {
     const History& h = tracks_[j].history;
     const StateQuantityReader tx(h, "tilt_x"), ty(h, "tilt_y");
-    if (j > 0) {
-      glEnable(GL_LINE_STIPPLE);
-      glLineStipple(3 * s, 0xF0F0);
-    }
-    glLineWidth(static_cast<float>((j == 0 ? 1.5 : 1.2) * lw * s));
+    TrackLine(j, lw, s);
     Colour(TrackColour(palette_, j));
-    glBegin(GL_LINE_STRIP);
-    const CylinderState first = CylinderStateAt(h, layout_.t_from_s).state;
-    const Vec2 p0 = px(first.tilt_x_rad(), first.tilt_y_rad());
-    glVertex2d(p0.x, p0.y);
-    for (const Sample& smp : h.samples) {
-      if (smp.t_s <= layout_.t_from_s) continue;
-      if (smp.t_s > t_clamped) break;
-      const Vec2 p = px(tx(smp, 1), ty(smp, 1));
-      glVertex2d(p.x, p.y);
-    }
-    const CylinderState now = CylinderStateAt(h, t_clamped).state;
-    const Vec2 p1 = px(now.tilt_x_rad(), now.tilt_y_rad());
-    glVertex2d(p1.x, p1.y);
-    glEnd();
+    HistoryStrip(
+        h, layout_.t_from_s, t_clamped,
+        [&](double t) {
+          const CylinderState st = CylinderStateAt(h, t).state;
+          return px(st.tilt_x_rad(), st.tilt_y_rad());
+        },
+        [&](const Sample& smp) { return px(tx(smp, 1), ty(smp, 1)); });
     glDisable(GL_LINE_STIPPLE);
   }
   // The current points, the first track's on top.
@@ -364,21 +304,9 @@ void CylinderPainter::DrawTopView(double t_s) const {
 
 void CylinderPainter::DrawGl(double t_s) const {
   const int s = config_.supersample;
-  glViewport(0, 0, config_.width_px * s, config_.height_px * s);
-  glMatrixMode(GL_PROJECTION);
-  glLoadIdentity();
-  // Final-image pixel coordinates, y down.
-  glOrtho(0, config_.width_px, config_.height_px, 0, -1, 1);
-  glMatrixMode(GL_MODELVIEW);
-  glLoadIdentity();
-  glDisable(GL_DEPTH_TEST);
-  glDisable(GL_CULL_FACE);
-  glDisable(GL_BLEND);
+  BeginFrame(config_, palette_);
+  // The side is lit per vertex: colours interpolated across each face.
   glShadeModel(GL_SMOOTH);
-  glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
-  glClearColor(palette_.background.r / 255.f, palette_.background.g / 255.f,
-               palette_.background.b / 255.f, 1.f);
-  glClear(GL_COLOR_BUFFER_BIT);
 
   const Vec3d base = BaseAt(t_s);
   std::vector<CylinderAt> states;

@@ -7,6 +7,8 @@
 #include <limits>
 #include <stdexcept>
 
+#include "renders/frame_parts.h"
+
 namespace rockbench::renders {
 namespace {
 
@@ -26,14 +28,17 @@ Vec3d Unit(const Vec3d& a) {
   return {a[0] / n, a[1] / n, a[2] / n};
 }
 
-// The smallest of 1, 1.5, 2, 3, 4, 5, 6, 8 times a power of ten that is >= x (x > 0), as the
-// planar chart's range.
-double NiceCeil(double x) {
-  const double p = std::pow(10.0, std::floor(std::log10(x)));
-  for (double m : {1.0, 1.5, 2.0, 3.0, 4.0, 5.0, 6.0, 8.0, 10.0}) {
-    if (m * p >= x * (1.0 - 1e-12)) return m * p;
+// The box of `points`: its lowest and highest x, y and z.
+void BoundingBox(const std::vector<Vec3d>& points, Vec3d& lo, Vec3d& hi) {
+  const double inf = std::numeric_limits<double>::infinity();
+  lo = {inf, inf, inf};
+  hi = {-inf, -inf, -inf};
+  for (const Vec3d& p : points) {
+    for (int i = 0; i < 3; ++i) {
+      lo[i] = std::min(lo[i], p[i]);
+      hi[i] = std::max(hi[i], p[i]);
+    }
   }
-  return 10.0 * p;
 }
 
 // The quantities of a cylinder history, looked up once.
@@ -78,14 +83,8 @@ PerspectiveCamera FramePerspective(const std::vector<Vec3d>& points, double azim
   cam.vp_w_px = vp_w_px;
   cam.vp_h_px = vp_h_px;
   // The points' bounding box: its centre is looked at, its half-diagonal bounds them.
-  const double inf = std::numeric_limits<double>::infinity();
-  Vec3d lo{inf, inf, inf}, hi{-inf, -inf, -inf};
-  for (const Vec3d& p : points) {
-    for (int i = 0; i < 3; ++i) {
-      lo[i] = std::min(lo[i], p[i]);
-      hi[i] = std::max(hi[i], p[i]);
-    }
-  }
+  Vec3d lo, hi;
+  BoundingBox(points, lo, hi);
   const Vec3d centre{0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1]), 0.5 * (lo[2] + hi[2])};
   const double radius = std::max(0.5 * std::sqrt(Dot3(Sub(hi, lo), Sub(hi, lo))), 1e-6);
   const Vec3d to_eye{std::cos(elevation_rad) * std::cos(azimuth_rad),
@@ -98,6 +97,7 @@ PerspectiveCamera FramePerspective(const std::vector<Vec3d>& points, double azim
   cam.right = Unit(Cross(cam.forward, {0.0, 0.0, 1.0}));
   cam.up = Cross(cam.right, cam.forward);
   // The projected points' box at unit focal length, then the focal length and centre that fit it.
+  const double inf = std::numeric_limits<double>::infinity();
   double a0 = inf, a1 = -inf, b0 = inf, b1 = -inf;
   for (const Vec3d& p : points) {
     const Vec3d d = Sub(p, cam.eye_m);
@@ -189,14 +189,10 @@ void PlaceCylinderLayout(const Scene& scene, const std::vector<Track>& tracks,
   const int w = config.width_px, h = config.height_px;
   const int n = static_cast<int>(tracks.size());
   const bool side = config.layout == Layout::kSide && n > 1;
-  // Text sizes as the planar frames'.
-  lay.font_px = std::clamp(static_cast<int>(std::lround(h / 34.0)), 9, 40);
-  lay.line_px = static_cast<int>(std::lround(lay.font_px * 1.3));
-  lay.margin_px = std::max(3, static_cast<int>(std::lround(h * 0.015)));
+  // Text sizes and header as the planar frames'.
+  SetTextSizes(h, lay);
   const double m = lay.margin_px;
-  const int header_lines = config.show_text ? (side ? 1 : 1 + n) : 0;
-  lay.header = {m, m, w - 2 * m, static_cast<double>(header_lines * lay.line_px)};
-  const double top = header_lines > 0 ? lay.header.y_px + lay.header.h_px + m : m;
+  const double top = PlaceHeader(config, n, side, lay);
   const double bottom = h - m;
   double views_right = w - m;
   const CylinderSize size = CylinderSizeOf(scene);
@@ -236,14 +232,8 @@ void PlaceCylinderLayout(const Scene& scene, const std::vector<Track>& tracks,
   lay.ground_half_side_m = 1.15 * std::max(reach_m, 3.0 * size.radius_m) + 0.5 * size.radius_m;
   const double g = lay.ground_half_side_m;
   // The poses' box (relative to the base) and the plane, at the base's positions over the window.
-  const double inf = std::numeric_limits<double>::infinity();
-  Vec3d lo{inf, inf, inf}, hi{-inf, -inf, -inf};
-  for (const Vec3d& p : body_points) {
-    for (int i = 0; i < 3; ++i) {
-      lo[i] = std::min(lo[i], p[i]);
-      hi[i] = std::max(hi[i], p[i]);
-    }
-  }
+  Vec3d lo, hi;
+  BoundingBox(body_points, lo, hi);
   std::vector<Vec3d> points;
   const int base_steps = shown.empty() ? 0 : 400;
   for (int i = 0; i <= base_steps; ++i) {
@@ -277,21 +267,10 @@ void PlaceCylinderLayout(const Scene& scene, const std::vector<Track>& tracks,
   if (bottom - top < 16.0 || views_right - m < 16.0) {
     throw std::invalid_argument("image too small for the text and chart: give a larger size");
   }
-  if (side) {
-    const double panel_w = (views_right - m * n) / n;
-    const int label_lines = config.show_text ? 2 : 0;
-    for (int i = 0; i < n; ++i) {
-      const double x = m + i * (panel_w + m);
-      lay.view_labels.push_back({x, top, panel_w, static_cast<double>(label_lines * lay.line_px)});
-      const double view_top = top + label_lines * lay.line_px;
-      lay.perspective_views.push_back(FramePerspective(points, kCylinderCameraAzimuth_rad,
-                                                       kCylinderCameraElevation_rad, x, view_top,
-                                                       panel_w, bottom - view_top));
-    }
-  } else {
+  for (const PixelRect& r : PlaceViews(config, n, side, top, bottom, views_right, lay)) {
     lay.perspective_views.push_back(FramePerspective(points, kCylinderCameraAzimuth_rad,
-                                                     kCylinderCameraElevation_rad, m, top,
-                                                     views_right - m, bottom - top));
+                                                     kCylinderCameraElevation_rad, r.x_px, r.y_px,
+                                                     r.w_px, r.h_px));
   }
 }
 

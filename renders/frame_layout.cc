@@ -7,20 +7,12 @@
 #include <string>
 
 #include "renders/cylinder_scene.h"
+#include "renders/frame_parts.h"
 #include "renders/limits.h"
 #include "renders/renderer.h"
 
 namespace rockbench::renders {
 namespace {
-
-// The smallest of 1, 1.5, 2, 3, 4, 5, 6, 8 times a power of ten that is >= x (x > 0).
-double NiceCeil(double x) {
-  const double p = std::pow(10.0, std::floor(std::log10(x)));
-  for (double m : {1.0, 1.5, 2.0, 3.0, 4.0, 5.0, 6.0, 8.0, 10.0}) {
-    if (m * p >= x * (1.0 - 1e-12)) return m * p;
-  }
-  return 10.0 * p;
-}
 
 // Throws std::invalid_argument for an image size or supersampling out of the limits.
 void CheckImageSize(const RenderConfig& config) {
@@ -80,10 +72,8 @@ ViewArea PlaceHeaderAndChart(const RenderConfig& config, int n, bool side, bool 
                              FrameLayout& lay) {
   const int w = config.width_px, h = config.height_px;
   const double m = lay.margin_px;
-  const int header_lines = config.show_text ? (side ? 1 : 1 + n) : 0;
-  lay.header = {m, m, w - 2 * m, static_cast<double>(header_lines * lay.line_px)};
   ViewArea area;
-  area.top = header_lines > 0 ? lay.header.y_px + lay.header.h_px + m : m;
+  area.top = PlaceHeader(config, n, side, lay);
   area.bottom = h - m;
   // The views' right edge: the image's margin, or the stacked chart's column.
   area.right = w - m;
@@ -173,16 +163,12 @@ FrameLayout ComputeLayout(const Scene& scene, const std::vector<Track>& tracks,
     return lay;
   }
 
-  const int h = config.height_px;
   const int n = static_cast<int>(tracks.size());
   const bool side = config.layout == Layout::kSide && n > 1;
   // Three and more blocks: one small axis per block, in a column right of the views.
   const int blocks = scene.block_count();
   const bool stacked = blocks >= 3;
-  lay.font_px = std::clamp(static_cast<int>(std::lround(h / 34.0)), 9, 40);
-  lay.line_px = static_cast<int>(std::lround(lay.font_px * 1.3));
-  lay.margin_px = std::max(3, static_cast<int>(std::lround(h * 0.015)));
-  const double m = lay.margin_px;
+  SetTextSizes(config.height_px, lay);
   const ViewArea area = PlaceHeaderAndChart(config, n, side, stacked, lay);
   const double top = area.top, bottom = area.bottom, views_right = area.right;
 
@@ -190,17 +176,8 @@ FrameLayout ComputeLayout(const Scene& scene, const std::vector<Track>& tracks,
                             lay.t_from_s, lay.t_to_s);
   // The views share [m, views_right] (whole numbers of pixels: the same widths as w - 2 m and
   // w - m (n + 1) when there is no stacked chart).
-  if (side) {
-    const double panel_w = (views_right - m * n) / n;
-    const int label_lines = config.show_text ? 2 : 0;
-    for (int i = 0; i < n; ++i) {
-      const double x = m + i * (panel_w + m);
-      lay.view_labels.push_back({x, top, panel_w, static_cast<double>(label_lines * lay.line_px)});
-      const double view_top = top + label_lines * lay.line_px;
-      lay.views.push_back(FitCamera(box, x, view_top, panel_w, bottom - view_top));
-    }
-  } else {
-    lay.views.push_back(FitCamera(box, m, top, views_right - m, bottom - top));
+  for (const PixelRect& r : PlaceViews(config, n, side, top, bottom, views_right, lay)) {
+    lay.views.push_back(FitCamera(box, r.x_px, r.y_px, r.w_px, r.h_px));
   }
 
   lay.chart_theta_max_rad = ChartRange_rad(tracks, lay);

@@ -6,24 +6,18 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <string>
 #include <vector>
 
 #include "renders/cylinder_painter.h"
+#include "renders/frame_parts.h"
 #include "renders/gl_context.h"
+#include "renders/gl_draw.h"
 #include "scene/mode.h"
+#include "util/format.h"
 
 namespace rockbench::renders {
 namespace {
-
-// Outline colours of the second, third, ... engine in the overlay layout (luminances 0.06,
-// 0.21, 0.40).
-constexpr Rgb kOverlayOutlines[] = {{15, 15, 15}, {180, 20, 20}, {20, 130, 60}};
-
-void Colour(Rgb c, double alpha = 1.0) {
-  glColor4d(c.r / 255.0, c.g / 255.0, c.b / 255.0, alpha);
-}
 
 // A quad in pixel coordinates (final-image px; the projection scales to the supersampled buffer).
 using PixelQuad = std::array<Vec2, 4>;
@@ -68,36 +62,12 @@ void Ring(const PixelQuad& outer, const PixelQuad& inner) {
   glEnd();
 }
 
-void FillRect(const PixelRect& r) {
-  glBegin(GL_QUADS);
-  glVertex2d(r.x_px, r.y_px);
-  glVertex2d(r.x_px + r.w_px, r.y_px);
-  glVertex2d(r.x_px + r.w_px, r.y_px + r.h_px);
-  glVertex2d(r.x_px, r.y_px + r.h_px);
-  glEnd();
-}
-
 // An axis-aligned line as a thin rectangle (exact width, no line-rasterisation rules).
 void HLine(double x0, double x1, double y, double width) {
   FillRect({x0, y - 0.5 * width, x1 - x0, width});
 }
 void VLine(double x, double y0, double y1, double width) {
   FillRect({x - 0.5 * width, y0, width, y1 - y0});
-}
-
-// The smallest of 1, 2, 5 times a power of ten that is >= x (x > 0).
-double NiceStep(double x) {
-  const double p = std::pow(10.0, std::floor(std::log10(x)));
-  for (double m : {1.0, 2.0, 5.0, 10.0}) {
-    if (m * p >= x) return m * p;
-  }
-  return 10.0 * p;
-}
-
-std::string Format(const char* fmt, double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, fmt, v);
-  return buf;
 }
 
 // "θ" and block k's number as subscript digits (U+2080..U+2089): "θ₁₂" for k = 12.
@@ -121,22 +91,6 @@ std::string StackedAngles(const Sample& s) {
   return out + " rad";
 }
 
-// `text`, shortened with an ellipsis to at most room_px wide (a whole code point at a time).
-std::string Fitted(Font* font, const std::string& text, int room_px) {
-  if (font->Measure(text) <= room_px) return text;
-  std::string kept = text;
-  while (!kept.empty()) {
-    while (!kept.empty()) {
-      const auto c = static_cast<unsigned char>(kept.back());
-      kept.pop_back();
-      if ((c & 0xC0) != 0x80) break;
-    }
-    const std::string shortened = kept + "…";
-    if (font->Measure(shortened) <= room_px) return shortened;
-  }
-  return std::string();
-}
-
 }  // namespace
 
 struct FrameRenderer::Impl {
@@ -151,7 +105,7 @@ struct FrameRenderer::Impl {
   /// A cylinder scene's drawing (renders/cylinder_painter.h); null for planar blocks.
   std::unique_ptr<CylinderPainter> cylinder;
 
-  double line_w() const { return std::max(1.0, config.height_px / 480.0); }
+  double line_w() const { return LineWidth_px(config); }
 
   Vec2 BaseAt(double t) const { return config.show_base_motion ? base.At(t) : Vec2{}; }
 
@@ -230,28 +184,15 @@ struct FrameRenderer::Impl {
   // the samples (px maps a time and an angle to pixels).
   template <typename ToPixel>
   void Trace(const History& h, size_t which, double t_clamped, const ToPixel& px) const {
-    glBegin(GL_LINE_STRIP);
-    const Sample first = StateAt(h, layout.t_from_s);
-    const Vec2 p0 = px(layout.t_from_s, first.theta_rad[which]);
-    glVertex2d(p0.x, p0.y);
-    for (const Sample& smp : h.samples) {
-      if (smp.t_s <= layout.t_from_s) continue;
-      if (smp.t_s > t_clamped) break;
-      const Vec2 p = px(smp.t_s, smp.theta_rad[which]);
-      glVertex2d(p.x, p.y);
-    }
-    const Sample now = StateAt(h, t_clamped);
-    const Vec2 p = px(t_clamped, now.theta_rad[which]);
-    glVertex2d(p.x, p.y);
-    glEnd();
+    HistoryStrip(
+        h, layout.t_from_s, t_clamped,
+        [&](double t) { return px(t, StateAt(h, t).theta_rad[which]); },
+        [&](const Sample& smp) { return px(smp.t_s, smp.theta_rad[which]); });
   }
 
   void DrawChart(double t) const {
     const PixelRect& r = layout.chart;
-    Colour(palette.chart_frame);
-    FillRect({r.x_px - line_w(), r.y_px - line_w(), r.w_px + 2 * line_w(), r.h_px + 2 * line_w()});
-    Colour(palette.chart_background);
-    FillRect(r);
+    PlotArea(r, line_w(), palette);
     const double span = std::max(layout.t_to_s - layout.t_from_s, 1e-9);
     auto px = [&](double ts, double theta) {
       const double half = 0.5 * r.h_px - 2.0 * line_w();
@@ -266,16 +207,10 @@ struct FrameRenderer::Impl {
     // Curves up to t: the first engine solid, the others dashed.
     const int s = config.supersample;
     glEnable(GL_SCISSOR_TEST);
-    glScissor(static_cast<int>(r.x_px * s),
-              static_cast<int>((config.height_px - r.y_px - r.h_px) * s),
-              static_cast<int>(r.w_px * s), static_cast<int>(r.h_px * s));
+    ScissorTo(r, config);
     for (size_t i = 0; i < tracks.size(); ++i) {
       const History& h = tracks[i].history;
-      if (i > 0) {
-        glEnable(GL_LINE_STIPPLE);
-        glLineStipple(3 * s, 0xF0F0);
-      }
-      glLineWidth(static_cast<float>((i == 0 ? 1.5 : 1.2) * line_w() * s));
+      TrackLine(i, line_w(), s);
       for (int which = h.blocks == 2 ? 1 : 0; which >= 0; --which) {
         Colour(palette.chart_theta(which));
         Trace(h, which, t_clamped, px);
@@ -298,28 +233,18 @@ struct FrameRenderer::Impl {
         return Vec2{r.x_px + (ts - layout.t_from_s) / span * r.w_px,
                     r.y_px + 0.5 * r.h_px - theta / layout.chart_theta_max_rad * half};
       };
-      Colour(palette.chart_frame);
-      FillRect(
-          {r.x_px - line_w(), r.y_px - line_w(), r.w_px + 2 * line_w(), r.h_px + 2 * line_w()});
-      Colour(palette.chart_background);
-      FillRect(r);
+      PlotArea(r, line_w(), palette);
       Colour(palette.chart_frame);
       HLine(r.x_px, r.x_px + r.w_px, r.y_px + 0.5 * r.h_px, line_w());
       VLine(px(t_clamped, 0).x, r.y_px, r.y_px + r.h_px, line_w());
       glEnable(GL_SCISSOR_TEST);
-      glScissor(static_cast<int>(r.x_px * s),
-                static_cast<int>((config.height_px - r.y_px - r.h_px) * s),
-                static_cast<int>(r.w_px * s), static_cast<int>(r.h_px * s));
+      ScissorTo(r, config);
       Colour(palette.chart_theta(static_cast<int>(k)));
       for (size_t i = 0; i < tracks.size(); ++i) {
         const History& h = tracks[i].history;
         // A history of fewer blocks: the blocks above its top one ride locked on it.
         const size_t which = std::min(k, static_cast<size_t>(std::max(h.blocks, 1) - 1));
-        if (i > 0) {
-          glEnable(GL_LINE_STIPPLE);
-          glLineStipple(3 * s, 0xF0F0);
-        }
-        glLineWidth(static_cast<float>((i == 0 ? 1.5 : 1.2) * line_w() * s));
+        TrackLine(i, line_w(), s);
         Trace(h, which, t_clamped, px);
         glDisable(GL_LINE_STIPPLE);
       }
@@ -328,23 +253,7 @@ struct FrameRenderer::Impl {
   }
 
   void DrawGl(double t) {
-    const int s = config.supersample;
-    glViewport(0, 0, config.width_px * s, config.height_px * s);
-    glMatrixMode(GL_PROJECTION);
-    glLoadIdentity();
-    // Final-image pixel coordinates, y down.
-    glOrtho(0, config.width_px, config.height_px, 0, -1, 1);
-    glMatrixMode(GL_MODELVIEW);
-    glLoadIdentity();
-    glDisable(GL_DEPTH_TEST);
-    glDisable(GL_CULL_FACE);
-    // Opaque drawing without blending (cheaper per pixel); translucent fills turn it on.
-    glDisable(GL_BLEND);
-    glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
-    glClearColor(palette.background.r / 255.f, palette.background.g / 255.f,
-                 palette.background.b / 255.f, 1.f);
-    glClear(GL_COLOR_BUFFER_BIT);
-
+    BeginFrame(config, palette);
     const bool side = layout.views.size() > 1;
     for (size_t v = 0; v < layout.views.size(); ++v) {
       const Camera& cam = layout.views[v];
@@ -356,7 +265,7 @@ struct FrameRenderer::Impl {
       } else {
         DrawSolid(cam, PoseOf(tracks[0], t));
         for (size_t i = 1; i < tracks.size(); ++i) {
-          DrawOutlined(cam, PoseOf(tracks[i], t), kOverlayOutlines[(i - 1) % 3]);
+          DrawOutlined(cam, PoseOf(tracks[i], t), OverlayOutline(i));
         }
       }
       glDisable(GL_SCISSOR_TEST);

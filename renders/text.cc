@@ -121,4 +121,19 @@ int Font::line_height_px() const {
   return static_cast<int>(std::lround(impl_->face->size->metrics.height / 64.0));
 }
 
+std::string Fitted(Font* font, const std::string& text, int room_px) {
+  if (font->Measure(text) <= room_px) return text;
+  std::string kept = text;
+  while (!kept.empty()) {
+    while (!kept.empty()) {
+      const auto c = static_cast<unsigned char>(kept.back());
+      kept.pop_back();
+      if ((c & 0xC0) != 0x80) break;
+    }
+    const std::string shortened = kept + "…";
+    if (font->Measure(shortened) <= room_px) return shortened;
+  }
+  return std::string();
+}
+
 }  // namespace rockbench::renders

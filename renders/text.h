@@ -2,6 +2,7 @@
 /// Text drawn on finished frames with FreeType (anti-aliased glyphs, alpha-blended).
 #include <filesystem>
 #include <memory>
+#include <string>
 #include <string_view>
 
 #include "renders/image.h"
@@ -34,5 +35,9 @@ class Font {
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
+
+/// `text`, shortened with an ellipsis to at most room_px wide in `font` (a whole code point at a
+/// time); empty when not even the ellipsis fits.
+std::string Fitted(Font* font, const std::string& text, int room_px);
 
 }  // namespace rockbench::renders
