@@ -4,31 +4,14 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <limits>
-#include <mutex>
 #include <stdexcept>
 #include <string>
 
-#include "engines/ode/ode_library.h"
-
-#if !defined(dDOUBLE)
-#error "rockbench's ODE engine needs ODE built in double precision (dDOUBLE)"
-#endif
+#include "engines/ode/ode_world_parts.h"
 
 namespace rockbench::ode {
 namespace {
-
-static_assert(sizeof(dReal) == sizeof(double), "ODE must be double precision");
-
-// As OdeWorld's (ode_world.cc): a step whose bound on |omega| dt exceeds this is not taken
-// (ODE aborts on an orientation quaternion it cannot normalise once |omega| dt passes ~1e154).
-constexpr double kMaxStepRotation_rad = 1e100;
-
-// |v| of a 3-vector.
-double Norm2(const dReal* v) {
-  return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-}
 
 void CheckInput(const EngineInput& in) {
   if (in.blocks.size() != 1) {
@@ -53,34 +36,12 @@ OdeCylinderWorld::OdeCylinderWorld(const EngineInput& input, const OdeSettings& 
   dt_ = in_.time_step_s;
   kinematic_ = in_.drive_kind == DriveKind::kKinematic;
   // The scene's coefficient wins (Coulomb's pyramid with that mu), as for the blocks.
-  const bool scene_friction = std::isfinite(body_def_.friction);
-  mu_ = scene_friction ? body_def_.friction : s_.friction;
-  pyramid_ = scene_friction || s_.friction_pyramid;
+  const OdeFriction friction = FrictionOf(body_def_.friction, s_);
+  mu_ = friction.mu;
+  pyramid_ = friction.pyramid;
   max_contacts_ = std::min(s_.max_contacts, kCylinderPlaneMaxContacts);
 
-  AcquireOde();
-  thread_ = std::this_thread::get_id();
-  world_ = dWorldCreate();
-  // A threading implementation of its own (see OdeWorld's class comment).
-  threading_ = dThreadingAllocateSelfThreadedImplementation();
-  if (threading_ == nullptr) {
-    dWorldDestroy(world_);
-    ReleaseOde();
-    throw std::runtime_error("ode: dThreadingAllocateSelfThreadedImplementation failed");
-  }
-  dWorldSetStepThreadingImplementation(world_, dThreadingImplementationGetFunctions(threading_),
-                                       threading_);
-  dWorldSetGravity(world_, 0, 0, -in_.run.gravity_mps2);
-  dWorldSetERP(world_, s_.erp);
-  dWorldSetCFM(world_, s_.cfm);
-  dWorldSetContactMaxCorrectingVel(world_, s_.contact_max_correcting_vel_mps);
-  dWorldSetContactSurfaceLayer(world_, s_.contact_surface_layer_m);
-  dWorldSetQuickStepNumIterations(world_, s_.quick_step_iterations);
-  dWorldSetQuickStepW(world_, s_.quick_step_w);
-  dWorldSetAutoDisableFlag(world_, 0);
-  dWorldSetLinearDamping(world_, 0);
-  dWorldSetAngularDamping(world_, 0);
-  contact_group_ = dJointGroupCreate(0);
+  core_ = std::make_unique<OdeWorldCore>(s_, 0, 0, -in_.run.gravity_mps2);
 
   // Ground: the plane z = u_z (n . p = d with n = +z), and for the kinematic drive the body the
   // contacts hold on to, at the base's displacement and velocity.
@@ -88,16 +49,11 @@ OdeCylinderWorld::OdeCylinderWorld(const EngineInput& input, const OdeSettings& 
   const Vec3d v0 = kinematic_ ? CylinderBaseVelocityBefore(in_) : Vec3d{0, 0, 0};
   const Vec3d shift = kinematic_ ? u0 : Vec3d{0, 0, 0};
   plane_ = dCreatePlane(nullptr, 0, 0, 1, shift[2]);
-  if (kinematic_) {
-    ground_body_ = dBodyCreate(world_);
-    dBodySetKinematic(ground_body_);
-    dBodySetPosition(ground_body_, u0[0], u0[1], u0[2]);
-    dBodySetLinearVel(ground_body_, v0[0], v0[1], v0[2]);
-  }
+  if (kinematic_) ground_body_ = MakeKinematicBody(core_->world(), u0.data(), v0.data());
 
   // The cylinder: mass and central inertia exactly CylinderBodyOf's (body z the axis).
   const CylinderPose start = CylinderStartPose(in_);
-  body_ = dBodyCreate(world_);
+  body_ = dBodyCreate(core_->world());
   dMass m;
   dMassSetZero(&m);
   dMassSetParameters(&m, body_def_.mass_kg, 0, 0, 0, body_def_.inertia_transverse_kgm2,
@@ -114,31 +70,27 @@ OdeCylinderWorld::OdeCylinderWorld(const EngineInput& input, const OdeSettings& 
   dBodySetLinearVel(body_, start.velocity_mps[0] + v0[0], start.velocity_mps[1] + v0[1],
                     start.velocity_mps[2] + v0[2]);
   dBodySetAngularVel(body_, start.omega_radps[0], start.omega_radps[1], start.omega_radps[2]);
-  dBodySetAutoDisableFlag(body_, 0);
-  dBodySetDamping(body_, 0, 0);
-  if (s_.finite_rotation) {
-    dBodySetFiniteRotationMode(body_, 1);
-    dBodySetFiniteRotationAxis(body_, 0, 0, 0);  // full finite rotation
-  }
+  SetUndampedBody(body_, s_);
   // dCreateCylinder's axis is its local z, its length the full height.
   geom_ = dCreateCylinder(nullptr, body_def_.radius_m, 2.0 * body_def_.half_height_m);
   dGeomSetBody(geom_, body_);
 }
 
 OdeCylinderWorld::~OdeCylinderWorld() {
-  if (contact_group_) dJointGroupDestroy(contact_group_);
   if (geom_) dGeomDestroy(geom_);
   if (plane_) dGeomDestroy(plane_);
-  if (world_) dWorldDestroy(world_);  // and its bodies
-  if (threading_) dThreadingFreeImplementation(threading_);
-  ReleaseOde();
+  // core_ then destroys the contact group and the world with its bodies.
+}
+
+const std::string& OdeCylinderWorld::fault() const {
+  return core_->fault();
 }
 
 void OdeCylinderWorld::ApplyDrive(std::int64_t n) {
   if (!kinematic_) {
     // The exact equivalent of a translating base: effective gravity in the base frame.
     const Vec3d a = CylinderDriveAccel(in_, n);
-    dWorldSetGravity(world_, -a[0], -a[1], -(in_.run.gravity_mps2 + a[2]));
+    dWorldSetGravity(core_->world(), -a[0], -a[1], -(in_.run.gravity_mps2 + a[2]));
     return;
   }
   // Kinematic: the plane at u_n's height (where collision detection sees it), the ground body
@@ -152,7 +104,7 @@ void OdeCylinderWorld::ApplyDrive(std::int64_t n) {
 
 double OdeCylinderWorld::StepRotationBound_rad() const {
   dVector3 g;
-  dWorldGetGravity(world_, g);
+  dWorldGetGravity(core_->world(), g);
   double speed = Norm2(g) * dt_;  // m/s gained in the step
   if (kinematic_) speed += Norm2(dBodyGetLinearVel(ground_body_));
   const double corner_m = std::hypot(body_def_.radius_m, body_def_.half_height_m);
@@ -208,36 +160,15 @@ int OdeCylinderWorld::Collide(dContact* contact) const {
 }
 
 void OdeCylinderWorld::Step() {
-  if (!fault_.empty()) return;  // the run has ended (see the header)
-  if (const double bound = StepRotationBound_rad(); !(bound <= kMaxStepRotation_rad)) {
-    char buf[200];
-    std::snprintf(buf, sizeof buf,
-                  "ODE's orientation update would overflow (|omega| dt up to %.3g rad, on "
-                  "which ODE aborts): the step was not taken",
-                  bound);
-    fault_ = buf;
-    return;
-  }
-  if (std::this_thread::get_id() != thread_) {
-    AllocateForThisThread();
-    thread_ = std::this_thread::get_id();
-  }
+  // Not taken once the run has ended or when it could overflow (see the header).
+  if (!core_->fault().empty() || !core_->MayStep(StepRotationBound_rad())) return;
   dContact contact[kCylinderPlaneMaxContacts];
   contacts_ = Collide(contact);
   const dReal* centre = dBodyGetPosition(body_);
   for (int k = 0; k < contacts_; ++k) {
     dContact& c = contact[k];
     dSurfaceParameters& sp = c.surface;
-    sp.mode = dContactSoftERP | dContactSoftCFM;
-    sp.mu = mu_;
-    sp.soft_erp = s_.contact_erp;
-    sp.soft_cfm = s_.contact_cfm;
-    if (pyramid_) sp.mode |= dContactApprox1;
-    if (s_.restitution > 0.0) {
-      sp.mode |= dContactBounce;
-      sp.bounce = s_.restitution;
-      sp.bounce_vel = 0.0;
-    }
+    SetSurface(&sp, s_, {mu_, pyramid_});
     // First friction direction: from the axis toward the contact point, along the base (the
     // lean's direction on the rim): the pyramid is exact Coulomb for a force along the lean,
     // as in planar rocking; across it, it allows up to sqrt(2) mu N.
@@ -250,27 +181,16 @@ void OdeCylinderWorld::Step() {
       c.fdir1[2] = 0;
       c.fdir1[3] = 0;
     }
-    dJointID j = dJointCreateContact(world_, contact_group_, &c);
+    dJointID j = dJointCreateContact(core_->world(), core_->contacts(), &c);
     dJointAttach(j, body_, ground_body_);
   }
-  int ok = 0;
-  if (s_.stepper == OdeStepper::kQuickStep) {
-    // As OdeWorld: this world's own generator state, under the process-wide lock.
-    std::lock_guard<std::mutex> lock(QuickStepMutex());
-    dRandSetSeed(rand_seed_);
-    ok = dWorldQuickStep(world_, dt_);
-    rand_seed_ = dRandGetSeed();
-  } else {
-    ok = dWorldStep(world_, dt_);
-  }
-  dJointGroupEmpty(contact_group_);
-  if (!ok) throw std::runtime_error("ode: the step failed (out of memory)");
+  core_->Advance(dt_);
   ++steps_;
 }
 
 CylinderPose OdeCylinderWorld::ReadPose() const {
   CylinderPose p;
-  if (!fault_.empty()) {
+  if (!core_->fault().empty()) {
     // The step was not taken: no pose to read (the monitor ends the run as non_finite).
     constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
     p.centre_m = {kNaN, kNaN, kNaN};
@@ -294,37 +214,13 @@ CylinderPose OdeCylinderWorld::ReadPose() const {
 }
 
 nlohmann::json OdeCylinderWorld::Settings() const {
-  auto finite_or_null = [](double v) {
-    return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
-  };
-  nlohmann::json j;
-  j["ode_version"] = dODE_VERSION;
-  j["ode_configuration"] = dGetConfiguration();
-  j["precision"] = "double";
-  j["drive"] = DriveKindName(in_.drive_kind);
-  j["time_step_s"] = dt_;
-  j["output_interval_s"] = in_.run.output_interval_s;
-  j["substeps_per_sample"] = std::max(1.0, std::round(in_.run.output_interval_s / dt_));
-  j["stepper"] = OdeStepperName(s_.stepper);
-  if (s_.stepper == OdeStepper::kQuickStep) {
-    j["quick_step_iterations"] = dWorldGetQuickStepNumIterations(world_);
-    j["quick_step_w"] = dWorldGetQuickStepW(world_);
-  }
-  j["erp"] = dWorldGetERP(world_);
-  j["cfm"] = dWorldGetCFM(world_);
-  j["contact_erp"] = s_.contact_erp;
-  j["contact_cfm"] = s_.contact_cfm;
-  j["contact_max_correcting_vel_mps"] = finite_or_null(dWorldGetContactMaxCorrectingVel(world_));
-  j["contact_surface_layer_m"] = dWorldGetContactSurfaceLayer(world_);
-  j["friction"] = finite_or_null(s_.friction);
+  nlohmann::json j = CommonSettings(in_, s_, core_->world());
   j["friction_model"] =
       pyramid_ ? "pyramid (dContactApprox1: mu times the normal force, first direction along "
                  "the lean)"
                : (std::isfinite(mu_) ? "box (constant bound mu, N)" : "unbounded (never slips)");
   if (std::isfinite(body_def_.friction)) j["interface_friction"] = {body_def_.friction};
-  j["restitution"] = s_.restitution;
   j["max_contacts"] = max_contacts_;
-  j["finite_rotation"] = s_.finite_rotation;
   j["body"] = "dCreateCylinder (exact), mass and inertia set from the scene";
   j["ground"] = kinematic_ ? "plane (dCreatePlane) following the base, contacts on a kinematic "
                              "body moving with it"
@@ -336,8 +232,6 @@ nlohmann::json OdeCylinderWorld::Settings() const {
                       : "dCollideCylinderPlane as it is (within 4.5e-4 rad of upright: no contact "
                         "until the face's centre is under the plane)";
   j["cylinder_upright_rim"] = s_.cylinder_upright_rim;
-  j["kinematic_highpass_hz"] = in_.kinematic_highpass_hz;
-  j["auto_disable"] = false;
   return j;
 }
 

@@ -3,23 +3,22 @@
 /// ODE's own cylinder geom on a ground plane, satisfying CylinderWorld
 /// (engines/common/cylinder_world.h). ODE's world is z up, as the cylinder's: no axis mapping.
 #include <cstdint>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
-#include <thread>
 
 #include "engines/common/cylinder_world.h"
 #include "engines/common/engine_input.h"
 #include "engines/ode/ode_settings.h"
 
 // ODE's handles (ode/common.h), declared here so that this header does not pull in ODE.
-struct dxWorld;
 struct dxBody;
 struct dxGeom;
-struct dxJointGroup;
 struct dContact;
-struct dxThreadingImplementation;
 
 namespace rockbench::ode {
+
+class OdeWorldCore;
 
 /// Most contact points dCollideCylinderPlane makes (ODE 0.16.2, collision_cylinder_plane.cpp),
 /// and OdeCylinderWorld's completion of it near upright: tilted, the deepest point of each cap's
@@ -65,7 +64,7 @@ class OdeCylinderWorld {
   /// Contact points created in the last step.
   int last_contacts() const { return contacts_; }
   /// Why the last step was not taken; empty: every step was.
-  const std::string& fault() const { return fault_; }
+  const std::string& fault() const;
 
  private:
   // The contact points with the plane at the current pose into `contact` (room for
@@ -85,16 +84,12 @@ class OdeCylinderWorld {
   std::int64_t steps_ = 0;  // steps taken
   int max_contacts_ = 0;    // points asked of dCollide
   int contacts_ = 0;        // points of the last step
-  dxThreadingImplementation* threading_ = nullptr;
-  dxWorld* world_ = nullptr;
+  // The world, its contact joints and its step (ode_world_parts.h).
+  std::unique_ptr<OdeWorldCore> core_;
   dxBody* body_ = nullptr;
   dxGeom* geom_ = nullptr;
   dxGeom* plane_ = nullptr;
   dxBody* ground_body_ = nullptr;  // kinematic drive only
-  dxJointGroup* contact_group_ = nullptr;
-  unsigned long rand_seed_ = 0;  // this world's state of ODE's generator (QuickStep's order)
-  std::string fault_;
-  std::thread::id thread_;  // last thread that allocated ODE's per-thread data for this world
 };
 
 }  // namespace rockbench::ode

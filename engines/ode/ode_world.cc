@@ -4,35 +4,15 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <limits>
-#include <mutex>
 #include <stdexcept>
 #include <string>
 
-#include "engines/ode/ode_library.h"
+#include "engines/ode/ode_world_parts.h"
 #include "scene/stack_pose.h"
-
-#if !defined(dDOUBLE)
-#error "rockbench's ODE engine needs ODE built in double precision (dDOUBLE)"
-#endif
 
 namespace rockbench::ode {
 namespace {
-
-static_assert(sizeof(dReal) == sizeof(double), "ODE must be double precision");
-
-// ODE adds 0.5 dt (omega x q) to each body's orientation quaternion q and normalises it: once
-// |omega| dt passes about 1e154 the squared norm overflows, and ODE aborts the process on the
-// quaternion it cannot normalise (assertion in dxNormalize4). A step whose bound on |omega| dt
-// (StepRotationBound_rad) exceeds this is not taken; 1e100 rad leaves 54 orders of magnitude
-// for how loosely the bound holds, and 96 above any real step (|omega| dt < 1e4).
-constexpr double kMaxStepRotation_rad = 1e100;
-
-// |v| of a 3-vector (+inf past the range of a double: then the bound is exceeded anyway).
-double Norm2(const dReal* v) {
-  return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-}
 
 void ReadBody(dBodyID body, BodyReadout* out) {
   const dReal* p = dBodyGetPosition(body);
@@ -77,30 +57,7 @@ OdeWorld::OdeWorld(const EngineInput& input, const OdeSettings& settings)
   dt_ = in_.time_step_s;
   kinematic_ = in_.drive_kind == DriveKind::kKinematic;
 
-  AcquireOde();
-  thread_ = std::this_thread::get_id();
-
-  world_ = dWorldCreate();
-  // A threading implementation of its own (see the class comment).
-  threading_ = dThreadingAllocateSelfThreadedImplementation();
-  if (threading_ == nullptr) {
-    dWorldDestroy(world_);
-    ReleaseOde();
-    throw std::runtime_error("ode: dThreadingAllocateSelfThreadedImplementation failed");
-  }
-  dWorldSetStepThreadingImplementation(world_, dThreadingImplementationGetFunctions(threading_),
-                                       threading_);
-  dWorldSetGravity(world_, 0, -in_.run.gravity_mps2, 0);
-  dWorldSetERP(world_, s_.erp);
-  dWorldSetCFM(world_, s_.cfm);
-  dWorldSetContactMaxCorrectingVel(world_, s_.contact_max_correcting_vel_mps);
-  dWorldSetContactSurfaceLayer(world_, s_.contact_surface_layer_m);
-  dWorldSetQuickStepNumIterations(world_, s_.quick_step_iterations);
-  dWorldSetQuickStepW(world_, s_.quick_step_w);
-  dWorldSetAutoDisableFlag(world_, 0);
-  dWorldSetLinearDamping(world_, 0);
-  dWorldSetAngularDamping(world_, 0);
-  contacts_ = dJointGroupCreate(0);
+  core_ = std::make_unique<OdeWorldCore>(s_, 0, -in_.run.gravity_mps2, 0);
 
   // Ground: a box whose top face is y = 0 in the base frame, much wider than the stack and
   // deeper (z) than the blocks, so that its z faces never give the separating axis.
@@ -114,11 +71,10 @@ OdeWorld::OdeWorld(const EngineInput& input, const OdeSettings& settings)
   const double ux0 = kinematic_ ? in_.drive.ux_m.front() : 0.0;
   const double uy0 = kinematic_ ? in_.drive.uy_m.front() : 0.0;
   if (kinematic_) {
-    ground_body_ = dBodyCreate(world_);
-    dBodySetKinematic(ground_body_);
+    const double p[3] = {ux0, uy0 - ground_half_depth_m_, 0};
+    const double v[3] = {in_.drive.ux0_mps, in_.drive.uy0_mps, 0};
+    ground_body_ = MakeKinematicBody(core_->world(), p, v);
     dGeomSetBody(ground_geom_, ground_body_);
-    dBodySetPosition(ground_body_, ux0, uy0 - ground_half_depth_m_, 0);
-    dBodySetLinearVel(ground_body_, in_.drive.ux0_mps, in_.drive.uy0_mps, 0);
   } else {
     dGeomSetPosition(ground_geom_, 0, -ground_half_depth_m_, 0);
   }
@@ -129,7 +85,7 @@ OdeWorld::OdeWorld(const EngineInput& input, const OdeSettings& settings)
   const double gvy = kinematic_ ? in_.drive.uy0_mps : 0.0;
   auto make_block = [&](const BlockDef& def, const PlanarPose& pose, dBodyID* body, dGeomID* geom,
                         dJointID* plane) {
-    *body = dBodyCreate(world_);
+    *body = dBodyCreate(core_->world());
     dMass m;
     // Uniform box: I_zz = m (w^2 + h^2) / 12 about the centre, as the model's.
     dMassSetBoxTotal(&m, def.mass_kg, def.width_m, def.height_m, def.depth_m);
@@ -140,17 +96,12 @@ OdeWorld::OdeWorld(const EngineInput& input, const OdeSettings& settings)
     dBodySetRotation(*body, r);
     dBodySetLinearVel(*body, pose.vx_mps + gvx, pose.vy_mps + gvy, 0);
     dBodySetAngularVel(*body, 0, 0, pose.w_radps);
-    dBodySetAutoDisableFlag(*body, 0);
-    dBodySetDamping(*body, 0, 0);
-    if (s_.finite_rotation) {
-      dBodySetFiniteRotationMode(*body, 1);
-      dBodySetFiniteRotationAxis(*body, 0, 0, 0);  // full finite rotation
-    }
+    SetUndampedBody(*body, s_);
     *geom = dCreateBox(nullptr, def.width_m, def.height_m, def.depth_m);
     dGeomSetBody(*geom, *body);
     // Planar motion: v_z = 0 (with ERP back to z = 0), w_x = w_y = 0. Attached to the static
     // environment; the joint's rows do not involve w_z.
-    *plane = dJointCreatePlane2D(world_, nullptr);
+    *plane = dJointCreatePlane2D(core_->world(), nullptr);
     dJointAttach(*plane, *body, nullptr);
   };
   // Bottom first.
@@ -164,15 +115,11 @@ OdeWorld::OdeWorld(const EngineInput& input, const OdeSettings& settings)
 }
 
 OdeWorld::~OdeWorld() {
-  if (contacts_) dJointGroupDestroy(contacts_);
   for (auto it = geoms_.rbegin(); it != geoms_.rend(); ++it) {
     if (*it) dGeomDestroy(*it);
   }
   if (ground_geom_) dGeomDestroy(ground_geom_);
-  // dWorldDestroy destroys the bodies and the (non-group) Plane2D joints.
-  if (world_) dWorldDestroy(world_);
-  if (threading_) dThreadingFreeImplementation(threading_);
-  ReleaseOde();
+  // core_ then destroys the contact group and the world with its bodies and Plane2D joints.
 }
 
 void OdeWorld::ApplyDrive(std::int64_t n) {
@@ -181,7 +128,7 @@ void OdeWorld::ApplyDrive(std::int64_t n) {
     const double ax = in_.drive.ax_mps2.empty() ? 0.0 : in_.drive.ax_mps2[i];
     const double ay = in_.drive.ay_mps2.empty() ? 0.0 : in_.drive.ay_mps2[i];
     // The exact equivalent of a translating base: effective gravity in the base frame.
-    dWorldSetGravity(world_, -ax, -(in_.run.gravity_mps2 + ay), 0);
+    dWorldSetGravity(core_->world(), -ax, -(in_.run.gravity_mps2 + ay), 0);
     return;
   }
   // Kinematic: the ground at u_n (where collision detection sees it, with the blocks) moving
@@ -194,22 +141,13 @@ void OdeWorld::ApplyDrive(std::int64_t n) {
 
 int OdeWorld::Collide(dxGeom* a, dxGeom* b, dxBody* body_a, dxBody* body_b, double scene_mu) {
   // The scene's coefficient wins: Coulomb's law with that mu (the pyramid is exact in the plane).
-  const bool scene_friction = std::isfinite(scene_mu);
+  const OdeFriction friction = FrictionOf(scene_mu, s_);
   dContact contact[8];
   const int n = dCollide(a, b, s_.max_contacts, &contact[0].geom, sizeof(dContact));
   for (int k = 0; k < n; ++k) {
     dContact& c = contact[k];
     dSurfaceParameters& sp = c.surface;
-    sp.mode = dContactSoftERP | dContactSoftCFM;
-    sp.mu = scene_friction ? scene_mu : s_.friction;
-    sp.soft_erp = s_.contact_erp;
-    sp.soft_cfm = s_.contact_cfm;
-    if (scene_friction || s_.friction_pyramid) sp.mode |= dContactApprox1;
-    if (s_.restitution > 0.0) {
-      sp.mode |= dContactBounce;
-      sp.bounce = s_.restitution;
-      sp.bounce_vel = 0.0;
-    }
+    SetSurface(&sp, s_, friction);
     // First friction direction: the in-plane tangent, so that the friction pyramid is exact
     // Coulomb in the plane (the second direction, along z, is redundant with Plane2D).
     const double nx = c.geom.normal[0], ny = c.geom.normal[1];
@@ -221,7 +159,7 @@ int OdeWorld::Collide(dxGeom* a, dxGeom* b, dxBody* body_a, dxBody* body_b, doub
       c.fdir1[2] = 0;
       c.fdir1[3] = 0;
     }
-    dJointID j = dJointCreateContact(world_, contacts_, &c);
+    dJointID j = dJointCreateContact(core_->world(), core_->contacts(), &c);
     dJointAttach(j, body_a, body_b);
   }
   return n;
@@ -229,7 +167,7 @@ int OdeWorld::Collide(dxGeom* a, dxGeom* b, dxBody* body_a, dxBody* body_b, doub
 
 double OdeWorld::StepRotationBound_rad() const {
   dVector3 g;
-  dWorldGetGravity(world_, g);
+  dWorldGetGravity(core_->world(), g);
   double speed = Norm2(g) * dt_;  // m/s gained in the step
   if (kinematic_) speed += Norm2(dBodyGetLinearVel(ground_body_));
   double fastest = 0.0, smallest = std::min(in_.blocks[0].width_m, in_.blocks[0].height_m);
@@ -244,20 +182,8 @@ double OdeWorld::StepRotationBound_rad() const {
 }
 
 void OdeWorld::Step() {
-  if (!fault_.empty()) return;  // the run has ended (see the header)
-  if (const double bound = StepRotationBound_rad(); !(bound <= kMaxStepRotation_rad)) {
-    char buf[200];
-    std::snprintf(buf, sizeof buf,
-                  "ODE's orientation update would overflow (|omega| dt up to %.3g rad, on "
-                  "which ODE aborts): the step was not taken",
-                  bound);
-    fault_ = buf;
-    return;
-  }
-  if (std::this_thread::get_id() != thread_) {
-    AllocateForThisThread();
-    thread_ = std::this_thread::get_id();
-  }
+  // Not taken once the run has ended or when it could overflow (see the header).
+  if (!core_->fault().empty() || !core_->MayStep(StepRotationBound_rad())) return;
   // Neighbours only, bottom first: block 1 on the ground, block k on block k - 1.
   contacts_ground_ =
       Collide(geoms_[0], ground_geom_, bodies_[0], ground_body_, in_.blocks[0].friction);
@@ -274,21 +200,7 @@ void OdeWorld::Step() {
     contacts_block2_ground_ = Collide(geoms_[1], ground_geom_, bodies_[1], ground_body_,
                                       std::numeric_limits<double>::infinity());
   }
-  int ok = 0;
-  if (s_.stepper == OdeStepper::kQuickStep) {
-    // QuickStep reorders its rows at random, drawing from ODE's one process-wide generator
-    // (dRandInt). Each world keeps its own generator state and steps with it under a lock, so a
-    // run does not depend on what other worlds, in this thread or another, drew before it
-    // (measured before this: the same sweep gave different errors from run to run).
-    std::lock_guard<std::mutex> lock(QuickStepMutex());
-    dRandSetSeed(rand_seed_);
-    ok = dWorldQuickStep(world_, dt_);
-    rand_seed_ = dRandGetSeed();
-  } else {
-    ok = dWorldStep(world_, dt_);
-  }
-  dJointGroupEmpty(contacts_);
-  if (!ok) throw std::runtime_error("ode: the step failed (out of memory)");
+  core_->Advance(dt_);
 }
 
 StepReadout OdeWorld::Read(std::int64_t n) const {
@@ -305,35 +217,12 @@ StepReadout OdeWorld::Read(std::int64_t n) const {
   s.out_of_plane_m = oop_m;
   s.out_of_plane_rad = oop_rad;
   ReadBaseMotion(in_, n, &s);
-  s.engine_fault = fault_;
+  s.engine_fault = core_->fault();
   return s;
 }
 
 nlohmann::json OdeWorld::Settings() const {
-  nlohmann::json j;
-  j["ode_version"] = dODE_VERSION;
-  j["ode_configuration"] = dGetConfiguration();
-  j["precision"] = "double";
-  j["drive"] = DriveKindName(in_.drive_kind);
-  j["time_step_s"] = dt_;
-  j["output_interval_s"] = in_.run.output_interval_s;
-  j["substeps_per_sample"] = std::max(1.0, std::round(in_.run.output_interval_s / dt_));
-  j["stepper"] = OdeStepperName(s_.stepper);
-  if (s_.stepper == OdeStepper::kQuickStep) {
-    j["quick_step_iterations"] = dWorldGetQuickStepNumIterations(world_);
-    j["quick_step_w"] = dWorldGetQuickStepW(world_);
-  }
-  j["erp"] = dWorldGetERP(world_);
-  j["cfm"] = dWorldGetCFM(world_);
-  j["contact_erp"] = s_.contact_erp;
-  j["contact_cfm"] = s_.contact_cfm;
-  // JSON has no infinity: null stands for ODE's dInfinity (no cap, never slips).
-  auto finite_or_null = [](double v) {
-    return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
-  };
-  j["contact_max_correcting_vel_mps"] = finite_or_null(dWorldGetContactMaxCorrectingVel(world_));
-  j["contact_surface_layer_m"] = dWorldGetContactSurfaceLayer(world_);
-  j["friction"] = finite_or_null(s_.friction);
+  nlohmann::json j = CommonSettings(in_, s_, core_->world());
   j["friction_model"] =
       s_.friction_pyramid
           ? "pyramid (dContactApprox1: mu times the normal force)"
@@ -343,17 +232,13 @@ nlohmann::json OdeWorld::Settings() const {
   if (HasFiniteFriction(in_)) {
     nlohmann::json mu = nlohmann::json::array();
     for (int k = 0; k < in_.block_count(); ++k) {
-      mu.push_back(finite_or_null(InterfaceFriction(in_, k, s_.friction)));
+      mu.push_back(FiniteOrNull(InterfaceFriction(in_, k, s_.friction)));
     }
     j["interface_friction"] = mu;
   }
-  j["restitution"] = s_.restitution;
   j["max_contacts"] = s_.max_contacts;
-  j["finite_rotation"] = s_.finite_rotation;
   j["planar_constraint"] = "Plane2D joint per block";
   j["ground_depth_m"] = s_.ground_depth_m;
-  j["kinematic_highpass_hz"] = in_.kinematic_highpass_hz;
-  j["auto_disable"] = false;
   // Three or more blocks: contacts between neighbours only (two: block 2 and the ground too).
   if (bodies_.size() >= 3) j["collision_pairs"] = "neighbours";
   return j;

@@ -2,9 +2,8 @@
 /// The ODE scene of one block or two stacked blocks: the same semantics as Bullet's
 /// RockingWorld (engines/bullet/rocking_world.h), so that the Monitor reads both alike.
 #include <cstdint>
+#include <memory>
 #include <nlohmann/json.hpp>
-#include <string>
-#include <thread>
 #include <vector>
 
 #include "engines/common/engine_input.h"
@@ -12,14 +11,13 @@
 #include "engines/ode/ode_settings.h"
 
 // ODE's handles (ode/common.h), declared here so that this header does not pull in ODE.
-struct dxWorld;
 struct dxBody;
 struct dxGeom;
 struct dxJoint;
-struct dxJointGroup;
-struct dxThreadingImplementation;
 
 namespace rockbench::ode {
+
+class OdeWorldCore;
 
 /// An ODE world holding a static (inertial drive) or kinematic (kinematic drive) ground box and
 /// N box blocks placed by the pivot chain (PlaceStack), each held in the x-y plane by a
@@ -87,9 +85,8 @@ class OdeWorld {
   double dt_ = 0.0;
   bool kinematic_ = false;
   double ground_half_depth_m_ = 0.0;
-  dxThreadingImplementation* threading_ = nullptr;
-  dxWorld* world_ = nullptr;
-  dxJointGroup* contacts_ = nullptr;
+  // The world, its contact joints and its step (ode_world_parts.h).
+  std::unique_ptr<OdeWorldCore> core_;
   dxBody* ground_body_ = nullptr;  // kinematic drive only
   dxGeom* ground_geom_ = nullptr;
   // Per block, bottom first.
@@ -97,10 +94,6 @@ class OdeWorld {
   std::vector<dxGeom*> geoms_;
   std::vector<dxJoint*> planes_;
   int contacts_ground_ = 0, contacts_interface_ = 0, contacts_block2_ground_ = 0;
-  unsigned long rand_seed_ = 0;  // this world's state of ODE's generator (QuickStep's order)
-  // Why the last step was not taken (see Step); empty: every step was.
-  std::string fault_;
-  std::thread::id thread_;  // last thread that allocated ODE's per-thread data for this world
 };
 
 }  // namespace rockbench::ode
