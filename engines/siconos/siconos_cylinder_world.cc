@@ -9,6 +9,7 @@
 
 #include "engines/siconos/siconos_cylinder_system.h"
 #include "engines/siconos/siconos_system.h"
+#include "engines/siconos/siconos_world_parts.h"
 
 namespace rockbench::siconos_engine {
 namespace {
@@ -42,17 +43,9 @@ SiconosCylinderWorld::SiconosCylinderWorld(const EngineInput& input,
   }
   std::copy(start.rotation.begin(), start.rotation.end(), c.rotation.begin());
   c.upright_azimuth_rad = in_.initial.azimuth_rad[0];
-  c.time_step_s = in_.time_step_s;
-  c.theta = s_.theta;
-  c.restitution = s_.restitution;
+  SetTimeStepping(in_, s_, kinematic_, &c);
   c.friction = friction_;
-  c.solver = s_.solver;
-  c.solver_tolerance = s_.solver_tolerance;
-  c.solver_max_iterations = s_.solver_max_iterations;
   c.newton_fallback = s_.lemke_fallback;
-  c.newton_linear = s_.newton_linear;
-  c.activation_threshold_m = s_.activation_threshold_m;
-  c.moving_ground = kinematic_;
   c.ground_m = Arr(u0);
   c.ground_velocity_mps = Arr(v0);
   sys_ = std::make_unique<SiconosCylinderSystem>(c);
@@ -104,28 +97,14 @@ CylinderPose SiconosCylinderWorld::ReadPose() const {
 }
 
 nlohmann::json SiconosCylinderWorld::Settings() const {
-  nlohmann::json j;
-  j["siconos_version"] = SiconosVersionString();
-  j["drive"] = kinematic_ ? "kinematic" : "inertial";
-  j["time_step_s"] = in_.time_step_s;
-  j["output_interval_s"] = in_.run.output_interval_s;
-  j["substeps_per_sample"] = std::max(1.0, std::round(in_.run.output_interval_s / in_.time_step_s));
-  j["theta"] = s_.theta;
-  j["restitution"] = s_.restitution;
-  j["friction"] = s_.friction;
+  nlohmann::json j = CommonSettings(in_, s_, kinematic_);
   j["cylinder_friction"] = friction_;
   j["solver"] = std::string(SiconosSolverName(s_.solver)) + " (SICONOS_FRICTION_3D_NSGS)";
-  j["solver_tolerance"] = s_.solver_tolerance;
-  j["solver_max_iterations"] = s_.solver_max_iterations;
   j["lemke_fallback"] = s_.lemke_fallback;
   if (s_.lemke_fallback) {
     j["fallback_solver"] = "SICONOS_FRICTION_3D_NSN_AC (no Lemke in 3-D)";
   }
-  j["newton"] =
-      s_.newton_linear ? "linear (SICONOS_TS_LINEAR)" : "nonlinear (SICONOS_TS_NONLINEAR)";
   j["activation_threshold_m"] = s_.activation_threshold_m;
-  j["kinematic_highpass_hz"] = in_.kinematic_highpass_hz;
-  j["integrator"] = "Moreau-Jean time stepping (TimeStepping + MoreauJeanOSI)";
   j["body"] = "NewtonEulerDS (quaternion), gyroscopic term on";
   j["mass_kg"] = body_.mass_kg;
   j["inertia_kgm2"] = {body_.inertia_transverse_kgm2, body_.inertia_transverse_kgm2,
@@ -139,20 +118,7 @@ nlohmann::json SiconosCylinderWorld::Settings() const {
 }
 
 nlohmann::json SiconosCylinderWorld::Diagnostics() const {
-  const SiconosCounters& c = sys_->Counters();
-  nlohmann::json j;
-  j["steps"] = c.steps;
-  j["solver_failures"] = c.solver_failures;
-  j["fallback_solves"] = c.fallback_solves;
-  j["fallback_failures"] = c.fallback_failures;
-  j["newton_iterations"] = c.newton_iterations;
-  j["max_newton_iterations_per_step"] = c.max_newton_iterations;
-  j["max_active_contacts"] = c.max_active_contacts;
-  j["solves"] = c.solves;
-  j["solver_iterations"] = c.solver_iterations;
-  j["max_solver_iterations"] = c.max_solver_iterations;
-  j["siconos_error"] = sys_->LastError();
-  return j;
+  return CountersJson(sys_->Counters(), sys_->LastError());
 }
 
 EngineResult SimulateCylinder(const std::string& scene_path, const EngineInput& input,

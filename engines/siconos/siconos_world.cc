@@ -1,12 +1,12 @@
 #include "engines/siconos/siconos_world.h"
 
-#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
 #include <string>
 
 #include "engines/siconos/siconos_system.h"
+#include "engines/siconos/siconos_world_parts.h"
 #include "scene/stack_pose.h"
 
 namespace rockbench::siconos_engine {
@@ -61,17 +61,9 @@ SiconosWorld::SiconosWorld(const EngineInput& input, const SiconosSettings& sett
     // Friction from the scene: the law of block k's base contacts has its coefficient.
     if (std::isfinite(in_.blocks[k].friction)) c.blocks.back().friction = in_.blocks[k].friction;
   }
-  c.time_step_s = in_.time_step_s;
-  c.theta = s_.theta;
-  c.restitution = s_.restitution;
+  SetTimeStepping(in_, s_, kinematic_, &c);
   c.friction = s_.friction;
-  c.solver = s_.solver;
-  c.solver_tolerance = s_.solver_tolerance;
-  c.solver_max_iterations = s_.solver_max_iterations;
   c.lemke_fallback = s_.lemke_fallback;
-  c.newton_linear = s_.newton_linear;
-  c.activation_threshold_m = s_.activation_threshold_m;
-  c.moving_ground = kinematic_;
   c.ground_x_m = ux0;
   c.ground_y_m = uy0;
   c.ground_vx_mps = gvx;
@@ -122,40 +114,13 @@ StepReadout SiconosWorld::Read(std::int64_t n) const {
 }
 
 nlohmann::json SiconosWorld::Diagnostics() const {
-  const SiconosCounters& c = sys_->Counters();
-  nlohmann::json j;
-  j["steps"] = c.steps;
-  j["solver_failures"] = c.solver_failures;
-  j["fallback_solves"] = c.fallback_solves;
-  j["fallback_failures"] = c.fallback_failures;
-  j["newton_iterations"] = c.newton_iterations;
-  j["max_newton_iterations_per_step"] = c.max_newton_iterations;
-  j["max_active_contacts"] = c.max_active_contacts;
-  j["solves"] = c.solves;
-  j["solver_iterations"] = c.solver_iterations;
-  j["max_solver_iterations"] = c.max_solver_iterations;
-  j["siconos_error"] = sys_->LastError();
-  return j;
+  return CountersJson(sys_->Counters(), sys_->LastError());
 }
 
 nlohmann::json SiconosWorld::Settings() const {
-  nlohmann::json j;
-  j["siconos_version"] = SiconosVersionString();
-  j["drive"] = kinematic_ ? "kinematic" : "inertial";
-  j["time_step_s"] = in_.time_step_s;
-  j["output_interval_s"] = in_.run.output_interval_s;
-  j["substeps_per_sample"] = std::max(1.0, std::round(in_.run.output_interval_s / in_.time_step_s));
-  j["theta"] = s_.theta;
-  j["restitution"] = s_.restitution;
-  j["friction"] = s_.friction;
+  nlohmann::json j = CommonSettings(in_, s_, kinematic_);
   j["solver"] = SiconosSolverName(s_.solver);
-  j["solver_tolerance"] = s_.solver_tolerance;
-  j["solver_max_iterations"] = s_.solver_max_iterations;
   j["lemke_fallback"] = s_.lemke_fallback && s_.solver != SiconosSolver::kLemke;
-  j["newton"] =
-      s_.newton_linear ? "linear (SICONOS_TS_LINEAR)" : "nonlinear (SICONOS_TS_NONLINEAR)";
-  j["kinematic_highpass_hz"] = in_.kinematic_highpass_hz;
-  j["integrator"] = "Moreau-Jean time stepping (TimeStepping + MoreauJeanOSI)";
   j["contact"] = "FrictionContact (2-D), NewtonImpactFrictionNSL per bottom corner";
   // Friction from the scene: each interface's coefficient (its contacts' law), block 1 on the
   // ground first.
