@@ -28,6 +28,7 @@
 ///
 /// Thread safety: as MujocoWorld (each world owns its model and data; compilation serialised).
 #include <cstdint>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -38,6 +39,8 @@ struct mjModel_;
 struct mjData_;
 
 namespace rockbench::mujoco {
+
+class MujocoSim;
 
 class MujocoCylinderWorld {
  public:
@@ -72,10 +75,9 @@ class MujocoCylinderWorld {
   const EngineInput& in_;
   MujocoSettings s_;
   std::string xml_;
-  mjModel_* m_ = nullptr;
-  mjData_* d_ = nullptr;
-  bool blown_up_ = false;
-  int max_contacts_ = 0, max_iterations_ = 0;
+  std::unique_ptr<MujocoSim> sim_;  // the model, its data and its step (mujoco_world_parts.h)
+  mjModel_* m_ = nullptr;           // sim_'s
+  mjData_* d_ = nullptr;            // sim_'s
   std::int64_t steps_with_contacts_[5] = {0, 0, 0, 0, 0};  // 0, 1, 2, 3, 4 or more
 };
 

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "engines/mujoco/mujoco_mjcf.h"
+#include "engines/mujoco/mujoco_world_parts.h"
 #include "scene/stack_pose.h"
 
 // Kinematic drive. A moving ground in MuJoCo would be a mocap body (or a body welded to one).
@@ -73,12 +74,7 @@ std::string SceneFrictionPairs(const EngineInput& in, const ContactParams& c) {
     const std::string lower =
         k == 0 ? std::string("ground") : std::string("block") + std::to_string(k);
     const std::string lower_body = k == 0 ? std::string("world") : lower;
-    x += std::string("    <exclude body1=\"") + lower_body + "\" body2=\"" + upper + "\"/>\n";
-    x += std::string("    <pair geom1=\"") + lower + "\" geom2=\"" + upper + "\" condim=\"" +
-         (mu > 0.0 ? "3" : "1") + "\" friction=\"" + Num(mu) + " " + Num(mu) +
-         " 0.005 0.0001 0.0001\" solref=\"" + Num(c.solref[0]) + " " + Num(c.solref[1]) +
-         "\" solimp=\"" + Num(c.solimp[0]) + " " + Num(c.solimp[1]) + " " + Num(c.solimp[2]) + " " +
-         Num(c.solimp[3]) + " " + Num(c.solimp[4]) + "\" margin=\"0\" gap=\"0\"/>\n";
+    x += SceneFrictionPairMjcf(lower_body, upper, lower, upper, mu, c);
   }
   return x;
 }
@@ -94,22 +90,11 @@ std::string ModelMjcf(const EngineInput& in, const MujocoSettings& s) {
   const int nconmax = std::max(100, 10 * blocks);
   x += std::string("  <size njmax=\"") + std::to_string(4 * nconmax) + "\" nconmax=\"" +
        std::to_string(nconmax) + "\"/>\n";
-  x += "  <option timestep=\"" + Num(in.time_step_s) + "\" gravity=\"0 " +
-       Num(-in.run.gravity_mps2) + " 0\" integrator=\"" + MjcfIntegrator(s.integrator) +
-       "\" solver=\"" + MjcfSolver(s.solver) + "\" iterations=\"" + std::to_string(s.iterations) +
-       "\" tolerance=\"" + Num(s.tolerance) + "\" cone=\"" + std::string(ConeName(s.cone)) +
-       "\" impratio=\"" + Num(s.impratio) + "\" noslip_iterations=\"" +
-       std::to_string(s.noslip_iterations) + "\" noslip_tolerance=\"" + Num(s.noslip_tolerance) +
-       "\"/>\n";
+  x += OptionMjcf(in, s, "0 " + Num(-in.run.gravity_mps2) + " 0");
   x += "  <default>\n";
   x += "    <joint limited=\"false\" damping=\"0\" armature=\"0\" stiffness=\"0\" "
        "frictionloss=\"0\"/>\n";
-  x += "    <geom condim=\"3\" friction=\"" + Num(s.friction) +
-       " 0.005 0.0001\" margin=\"0\" "
-       "gap=\"0\" solref=\"" +
-       Num(c.solref[0]) + " " + Num(c.solref[1]) + "\" solimp=\"" + Num(c.solimp[0]) + " " +
-       Num(c.solimp[1]) + " " + Num(c.solimp[2]) + " " + Num(c.solimp[3]) + " " + Num(c.solimp[4]) +
-       "\"/>\n";
+  x += GeomDefaultMjcf(s, c);
   x += "  </default>\n";
   x += "  <worldbody>\n";
   // The ground: a plane (half-space) whose normal is +y through the origin.
@@ -181,12 +166,9 @@ MujocoWorld::MujocoWorld(const EngineInput& input, const MujocoSettings& setting
   InstallQuietWarningHandler();
   dt_ = in_.time_step_s;
   xml_ = ModelMjcf(in_, s_);
-  m_ = CompileMjcf(xml_);
-  d_ = mj_makeData(m_);
-  if (!d_) {
-    mj_deleteModel(m_);
-    throw std::runtime_error("mujoco: mj_makeData failed");
-  }
+  sim_ = std::make_unique<MujocoSim>(xml_);
+  m_ = sim_->m();
+  d_ = sim_->d();
   // Each block's joints are consecutive: (x, y, phi) at qpos_[k] .. qpos_[k] + 2.
   const int n = in_.block_count();
   qpos_.assign(static_cast<size_t>(n), 0);
@@ -204,9 +186,14 @@ MujocoWorld::MujocoWorld(const EngineInput& input, const MujocoSettings& setting
   mj_forward(m_, d_);
 }
 
-MujocoWorld::~MujocoWorld() {
-  if (d_) mj_deleteData(d_);
-  if (m_) mj_deleteModel(m_);
+MujocoWorld::~MujocoWorld() = default;
+
+const mjModel_* MujocoWorld::model() const {
+  return m_;
+}
+
+const mjData_* MujocoWorld::data() const {
+  return d_;
 }
 
 void MujocoWorld::ApplyDrive(std::int64_t n) {
@@ -220,23 +207,13 @@ void MujocoWorld::ApplyDrive(std::int64_t n) {
 }
 
 void MujocoWorld::Step() {
-  if (blown_up_) return;
-  const double t_before = d_->time;
-  mj_step(m_, d_);
-  max_contacts_ = std::max(max_contacts_, d_->ncon);
-  max_iterations_ = std::max(max_iterations_, d_->solver_iter);
-  // MuJoCo resets the simulation (time back to 0) when it meets a bad number in qpos, qvel or
-  // qacc: that is the end of the run.
-  if (d_->warning[mjWARN_BADQPOS].number > 0 || d_->warning[mjWARN_BADQVEL].number > 0 ||
-      d_->warning[mjWARN_BADQACC].number > 0 || !(d_->time > t_before)) {
-    blown_up_ = true;
-  }
+  sim_->Step();
 }
 
 StepReadout MujocoWorld::Read(std::int64_t n) const {
   StepReadout s(in_.block_count());
   s.t_s = static_cast<double>(n) * dt_;
-  if (blown_up_) {
+  if (sim_->blown_up()) {
     for (BodyReadout& b : s.blocks) SetNaN(&b);
     return s;
   }
@@ -249,36 +226,12 @@ StepReadout MujocoWorld::Read(std::int64_t n) const {
 }
 
 nlohmann::json MujocoWorld::Settings() const {
-  const ContactParams c = ContactParamsOf(s_, dt_);
-  nlohmann::json j;
-  j["mujoco_version"] = mj_versionString();
-  j["drive"] = "inertial";
-  j["time_step_s"] = dt_;
-  j["output_interval_s"] = in_.run.output_interval_s;
+  nlohmann::json j = CommonSettings(in_, s_, m_);
   j["substeps_per_sample"] = std::max(1.0, std::round(in_.run.output_interval_s / dt_));
-  j["contact"] = std::string(ContactModelName(s_.contact));
-  j["solref"] = {c.solref[0], c.solref[1]};
-  j["solimp"] = {c.solimp[0], c.solimp[1], c.solimp[2], c.solimp[3], c.solimp[4]};
-  if (s_.contact == ContactModel::kStiff) {
-    j["stiff_timeconst_steps"] = s_.stiff_timeconst_steps;
-    j["stiff_dampratio"] = s_.stiff_dampratio;
-  }
-  j["solver"] = std::string(SolverName(s_.solver));
-  j["iterations"] = s_.iterations;
-  j["tolerance"] = s_.tolerance;
-  j["integrator"] = std::string(IntegratorName(s_.integrator));
-  j["cone"] = std::string(ConeName(s_.cone));
-  j["impratio"] = s_.impratio;
-  j["friction"] = s_.friction;
   j["friction_combined"] = s_.friction;  // MuJoCo takes the larger of the two geoms'
-  j["noslip_iterations"] = s_.noslip_iterations;
-  j["noslip_tolerance"] = s_.noslip_tolerance;
   j["condim"] = 3;
-  j["margin_m"] = 0.0;
   j["ground"] = "plane y = 0";
   j["planar_joints"] = "slide x, slide y, hinge z per block";
-  j["refsafe"] = (m_->opt.disableflags & mjDSBL_REFSAFE) == 0;
-  j["warmstart"] = (m_->opt.disableflags & mjDSBL_WARMSTART) == 0;
   // Three or more blocks: contacts between neighbours only (two: block 2 and the ground too).
   if (qpos_.size() >= 3) j["collision_pairs"] = "neighbours";
   // Friction from the scene: each interface's coefficient as the compiled model has it, block 1
@@ -307,16 +260,7 @@ nlohmann::json MujocoWorld::Settings() const {
 }
 
 nlohmann::json MujocoWorld::Diagnostics() const {
-  nlohmann::json j;
-  j["contact_buffer_full"] = d_->warning[mjWARN_CONTACTFULL].number;
-  j["constraint_buffer_full"] = d_->warning[mjWARN_CNSTRFULL].number;
-  j["bad_qpos"] = d_->warning[mjWARN_BADQPOS].number;
-  j["bad_qvel"] = d_->warning[mjWARN_BADQVEL].number;
-  j["bad_qacc"] = d_->warning[mjWARN_BADQACC].number;
-  j["max_contacts"] = max_contacts_;
-  j["max_solver_iterations"] = max_iterations_;
-  j["blown_up"] = blown_up_;
-  return j;
+  return sim_->Diagnostics();
 }
 
 }  // namespace rockbench::mujoco

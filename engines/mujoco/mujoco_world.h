@@ -14,6 +14,7 @@
 /// global) is serialised by a mutex. A MuJoCo error (mju_error: out of stack memory, which the
 /// sizes here rule out) would end the process through MuJoCo's default handler.
 #include <cstdint>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -27,6 +28,8 @@ struct mjModel_;
 struct mjData_;
 
 namespace rockbench::mujoco {
+
+class MujocoSim;
 
 /// A MuJoCo world holding a ground plane and N box blocks placed by the pivot chain, children
 /// of the world body. With three or more blocks only neighbours collide (block 1 and the
@@ -62,19 +65,18 @@ class MujocoWorld {
 
   /// The MJCF text the model was compiled from.
   const std::string& xml() const { return xml_; }
-  const mjModel_* model() const { return m_; }
-  const mjData_* data() const { return d_; }
+  const mjModel_* model() const;
+  const mjData_* data() const;
 
  private:
   const EngineInput& in_;
   MujocoSettings s_;
   double dt_ = 0.0;
   std::string xml_;
-  mjModel_* m_ = nullptr;
-  mjData_* d_ = nullptr;
-  std::vector<int> qpos_, qvel_;  // addresses of (x, y, phi) per block, bottom first
-  bool blown_up_ = false;
-  int max_contacts_ = 0, max_iterations_ = 0;
+  std::unique_ptr<MujocoSim> sim_;  // the model, its data and its step (mujoco_world_parts.h)
+  mjModel_* m_ = nullptr;           // sim_'s
+  mjData_* d_ = nullptr;            // sim_'s
+  std::vector<int> qpos_, qvel_;    // addresses of (x, y, phi) per block, bottom first
 };
 
 }  // namespace rockbench::mujoco
