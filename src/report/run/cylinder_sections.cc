@@ -124,11 +124,7 @@ void CylinderBaseFigure(const GroundMotion& motion, double T, Figures& fig) {
     }
     dat += '\n';
   }
-  GnuplotFigure f;
-  f.name = "base_motion";
-  f.height_px = 420;
-  f.data_files = {{"base_motion.dat", dat}};
-  f.script = CommonAxes(T) + "set ylabel 'base acceleration (g)'\n";
+  GnuplotFigure f = BaseMotionFigure(dat, T);
   std::string plot = "plot ";
   std::string sep;
   if (motion.horizontal()) {

@@ -79,7 +79,7 @@ std::set<double> PlotTimes(const GroundMotion& motion, double T) {
 }
 
 // The base acceleration against time (g), both components.
-void BaseMotionFigure(const GroundMotion& motion, double T, Figures& fig) {
+void PlanarBaseMotionFigure(const GroundMotion& motion, double T, Figures& fig) {
   const double g = kStandardGravity_mps2;  // the plot is in g, as the records are
   const std::set<double> times = PlotTimes(motion, T);
   std::string dat = motion.has_vertical() ? "# t_s xg_g yg_g\n" : "# t_s xg_g\n";
@@ -93,11 +93,7 @@ void BaseMotionFigure(const GroundMotion& motion, double T, Figures& fig) {
     }
     dat += '\n';
   }
-  GnuplotFigure f;
-  f.name = "base_motion";
-  f.height_px = 420;
-  f.data_files = {{"base_motion.dat", dat}};
-  f.script = CommonAxes(T) + "set ylabel 'base acceleration (g)'\n";
+  GnuplotFigure f = BaseMotionFigure(dat, T);
   std::string plot = "plot 'base_motion.dat' using 1:2 with lines lw 1.2 lc rgb '#1f4e9a' title " +
                      Quote("horizontal x_g'' (positive to the right)");
   if (motion.has_vertical()) {
@@ -136,7 +132,7 @@ void BaseMotionSection(const RunData& run, const GroundMotion& motion, Figures& 
       "of the acceleration over the simulated " +
       Num(T) + " s from rest, without baseline correction.");
 
-  BaseMotionFigure(motion, T, fig);
+  PlanarBaseMotionFigure(motion, T, fig);
 }
 
 }  // namespace
@@ -176,6 +172,15 @@ void EngineSettingsTable(const RunData& run, const std::string& reference, Page&
     settings.push_back({e.name, text});
   }
   page.Table({"engine", "settings"}, settings);
+}
+
+GnuplotFigure BaseMotionFigure(const std::string& dat, double T) {
+  GnuplotFigure f;
+  f.name = "base_motion";
+  f.height_px = 420;
+  f.data_files = {{"base_motion.dat", dat}};
+  f.script = CommonAxes(T) + "set ylabel 'base acceleration (g)'\n";
+  return f;
 }
 
 void AddMotionPlotTimes(const GroundMotion& motion, double T,

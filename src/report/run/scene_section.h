@@ -22,6 +22,9 @@ std::vector<std::string> RunSettingsRow(const Scene& scene);
 /// The heading "Engine settings" and its table: the reference model's settings in words
 /// (`reference`), then each engine's as its summary.json states them.
 void EngineSettingsTable(const RunData& run, const std::string& reference, Page& page);
+/// The figure "base_motion" over [0, T] (s) with its data file `dat`: the time axis and the
+/// base acceleration's (g); the caller appends the plot command.
+GnuplotFigure BaseMotionFigure(const std::string& dat, double T);
 /// Adds to `times` the times a plot of the base motion over [0, T] (s) passes through: the
 /// record samples of each of `components` and both sides of every breakpoint (kinks and jumps).
 void AddMotionPlotTimes(const GroundMotion& motion, double T,
