@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <dart/config.hpp>
 #include <dart/dynamics/BodyNode.hpp>
 #include <dart/dynamics/BoxShape.hpp>
 #include <dart/dynamics/CylinderShape.hpp>
@@ -12,7 +11,6 @@
 #include <dart/dynamics/TranslationalJoint.hpp>
 #include <dart/simulation/World.hpp>
 #include <numbers>
-#include <stdexcept>
 #include <string>
 
 #include "engines/dart/dart_solver.h"
@@ -22,13 +20,6 @@ namespace {
 
 Eigen::Vector3d Eig(const Vec3d& v) {
   return {v[0], v[1], v[2]};
-}
-
-// The shape's coefficients: friction (DART takes the smaller of a contact's two shapes') and
-// restitution (DART multiplies them).
-void SetContactCoefficients(dart::dynamics::ShapeNode* node, double mu, double restitution) {
-  node->getDynamicsAspect()->setFrictionCoeff(mu);
-  node->getDynamicsAspect()->setRestitutionCoeff(restitution);
 }
 
 }  // namespace
@@ -48,9 +39,7 @@ struct DartCylinderWorld::Impl {
   Eigen::Vector3d ground_velocity = Eigen::Vector3d::Zero();
   std::unique_ptr<DartContactParams> params;
   // Diagnostics.
-  std::int64_t steps = 0;
-  DartLcpCounts lcp;
-  std::size_t max_contacts_seen = 0;
+  DartStepCounts counts;
 
   Impl(const EngineInput& input, const DartSettings& settings)
       : in(input), s(settings), body_def(CylinderBodyOf(input)) {}
@@ -148,19 +137,13 @@ void DartCylinderWorld::Impl::MakeCylinder() {
 DartCylinderWorld::DartCylinderWorld(const EngineInput& input, const DartSettings& settings)
     : impl_(std::make_unique<Impl>(input, settings)) {
   Impl& m = *impl_;
-  // The settings' ranges are the [dart] schema's (dart_settings.cc), checked when the table
-  // was resolved; the step is the input's, checked by MakeEngineInput.
+  CheckDartInput(m.in);
   m.dt = m.in.time_step_s;
   m.kinematic = m.in.drive_kind == DriveKind::kKinematic;
-  const size_t samples = static_cast<size_t>(m.in.steps) + 1;
-  if (m.kinematic && (m.in.drive.ux_m.size() < samples || m.in.drive.uy_m.size() < samples)) {
-    throw std::invalid_argument("dart: kinematic drive without ground displacement samples");
-  }
   m.mu = InterfaceFriction(m.in, 0, m.s.friction);
-  m.world = dart::simulation::World::create("rockbench_cylinder");
-  m.world->setTimeStep(m.dt);
-  m.world->setGravity(Eigen::Vector3d(0.0, 0.0, -m.in.run.gravity_mps2));
-  ConfigureDartSolver(*m.world, m.s, &m.lcp);
+  m.world =
+      MakeDartWorld("rockbench_cylinder", m.in, Eigen::Vector3d(0.0, 0.0, -m.in.run.gravity_mps2),
+                    m.s, &m.counts.lcp, nullptr);
   m.MakeGround();
   m.MakeCylinder();
   m.params = std::make_unique<DartContactParams>(m.s);
@@ -189,9 +172,7 @@ void DartCylinderWorld::ApplyDrive(std::int64_t n) {
 void DartCylinderWorld::Step() {
   Impl& m = *impl_;
   m.world->step();
-  ++m.steps;
-  m.max_contacts_seen =
-      std::max(m.max_contacts_seen, m.world->getLastCollisionResult().getNumContacts());
+  m.counts.Count(*m.world);
 }
 
 CylinderPose DartCylinderWorld::ReadPose() const {
@@ -201,7 +182,7 @@ CylinderPose DartCylinderWorld::ReadPose() const {
   const Eigen::Vector3d c = m.cylinder->getCOM();
   const Eigen::Vector3d v = m.cylinder->getCOMLinearVelocity();
   const Eigen::Vector3d w = m.cylinder->getAngularVelocity();
-  const Vec3d u = m.kinematic ? CylinderBaseDisplacement(m.in, m.steps) : Vec3d{0, 0, 0};
+  const Vec3d u = m.kinematic ? CylinderBaseDisplacement(m.in, m.counts.steps) : Vec3d{0, 0, 0};
   for (int i = 0; i < 3; ++i) {
     const size_t k = static_cast<size_t>(i);
     p.centre_m[k] = c[i] - u[k];
@@ -213,26 +194,12 @@ CylinderPose DartCylinderWorld::ReadPose() const {
 }
 
 nlohmann::json DartCylinderWorld::Diagnostics() const {
-  const Impl& m = *impl_;
-  nlohmann::json j;
-  j["steps"] = m.steps;
-  j["max_contacts"] = m.max_contacts_seen;
-  j["lcp_solves"] = m.lcp.primary_calls;
-  j["lcp_primary_failures"] = m.lcp.primary_failures;
-  j["lcp_fallback_solves"] = m.lcp.fallback_calls;
-  j["lcp_fallback_failures"] = m.lcp.fallback_failures;
-  return j;
+  return impl_->counts.Diagnostics();
 }
 
 nlohmann::json DartCylinderWorld::Settings() const {
   const Impl& m = *impl_;
-  nlohmann::json j;
-  j["dart_version"] = DART_VERSION;
-  j["drive"] = m.kinematic ? "kinematic" : "inertial";
-  j["time_step_s"] = m.dt;
-  j["output_interval_s"] = m.in.run.output_interval_s;
-  j["collision"] = DartCollisionName(m.s.collision);
-  j["collision_detector"] = m.world->getConstraintSolver()->getCollisionDetector()->getType();
+  nlohmann::json j = CommonSettings(m.in, m.s, *m.world);
   j["cylinder_shape"] = m.Prism() ? "prism of " + std::to_string(kDartCylinderPrismSides) +
                                         " sides inscribed in " + "the rim (" +
                                         std::to_string(kDartCylinderPrismSides / 4) +
@@ -245,19 +212,8 @@ nlohmann::json DartCylinderWorld::Settings() const {
   j["mass_kg"] = m.body_def.mass_kg;
   j["inertia_kgm2"] = {m.body_def.inertia_transverse_kgm2, m.body_def.inertia_transverse_kgm2,
                        m.body_def.inertia_axial_kgm2};
-  j["lcp_solver"] = DartLcpSolverName(m.s.lcp_solver);
-  j["pgs_fallback"] = m.s.lcp_solver == DartLcpSolver::kDantzig && m.s.pgs_fallback;
-  j["pgs_iterations"] = m.s.pgs_iterations;
-  j["restitution"] = m.s.restitution;
-  j["restitution_combined"] = m.s.restitution * m.s.restitution;  // DART: product
-  j["friction"] = m.s.friction;
   j["friction_combined"] = m.mu;  // the scene's where finite; DART: the smaller (both equal)
-  DartContactParams::Write(&j);
-  j["max_contacts"] = m.s.max_contacts;
-  j["ground_depth_m"] = m.s.ground_depth_m;
-  j["kinematic_highpass_hz"] = m.in.kinematic_highpass_hz;
   j["joint"] = "FreeJoint";
-  j["integrator"] = "semi-implicit Euler (DART World::step)";
   return j;
 }
 

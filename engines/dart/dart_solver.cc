@@ -1,10 +1,14 @@
 #include "engines/dart/dart_solver.h"
 
+#include <algorithm>
+#include <cmath>
 #include <dart/collision/dart/DARTCollisionDetector.hpp>
 #include <dart/collision/fcl/FCLCollisionDetector.hpp>
+#include <dart/config.hpp>
 #include <dart/constraint/ContactConstraint.hpp>
 #include <dart/constraint/DantzigBoxedLcpSolver.hpp>
 #include <dart/constraint/PgsBoxedLcpSolver.hpp>
+#include <dart/dynamics/ShapeNode.hpp>
 #include <memory>
 #include <mutex>
 #include <stdexcept>
@@ -135,6 +139,70 @@ void DartContactParams::Write(nlohmann::json* j) {
   (*j)["error_allowance_m"] = ContactConstraint::getErrorAllowance();
   (*j)["max_erv_mps"] = ContactConstraint::getMaxErrorReductionVelocity();
   (*j)["cfm"] = ContactConstraint::getConstraintForceMixing();
+}
+
+dart::simulation::WorldPtr MakeDartWorld(const std::string& name, const EngineInput& input,
+                                         const Eigen::Vector3d& gravity_mps2,
+                                         const DartSettings& settings, DartLcpCounts* counts,
+                                         dart::constraint::BoxedLcpConstraintSolver** solver) {
+  dart::simulation::WorldPtr world = dart::simulation::World::create(name);
+  world->setTimeStep(input.time_step_s);
+  world->setGravity(gravity_mps2);
+  dart::constraint::BoxedLcpConstraintSolver* s = ConfigureDartSolver(*world, settings, counts);
+  if (solver != nullptr) *solver = s;
+  return world;
+}
+
+void CheckDartInput(const EngineInput& input) {
+  const size_t samples = static_cast<size_t>(input.steps) + 1;
+  if (input.drive_kind == DriveKind::kKinematic &&
+      (input.drive.ux_m.size() < samples || input.drive.uy_m.size() < samples)) {
+    throw std::invalid_argument("dart: kinematic drive without ground displacement samples");
+  }
+}
+
+void SetContactCoefficients(dart::dynamics::ShapeNode* node, double mu, double restitution) {
+  node->getDynamicsAspect()->setFrictionCoeff(mu);
+  node->getDynamicsAspect()->setRestitutionCoeff(restitution);
+}
+
+void DartStepCounts::Count(const dart::simulation::World& world) {
+  ++steps;
+  max_contacts = std::max(max_contacts, world.getLastCollisionResult().getNumContacts());
+}
+
+nlohmann::json DartStepCounts::Diagnostics() const {
+  nlohmann::json j;
+  j["steps"] = steps;
+  j["max_contacts"] = max_contacts;
+  j["lcp_solves"] = lcp.primary_calls;
+  j["lcp_primary_failures"] = lcp.primary_failures;
+  j["lcp_fallback_solves"] = lcp.fallback_calls;
+  j["lcp_fallback_failures"] = lcp.fallback_failures;
+  return j;
+}
+
+nlohmann::json CommonSettings(const EngineInput& input, const DartSettings& s,
+                              const dart::simulation::World& world) {
+  nlohmann::json j;
+  j["dart_version"] = DART_VERSION;
+  j["drive"] = input.drive_kind == DriveKind::kKinematic ? "kinematic" : "inertial";
+  j["time_step_s"] = input.time_step_s;
+  j["output_interval_s"] = input.run.output_interval_s;
+  j["collision"] = DartCollisionName(s.collision);
+  j["collision_detector"] = world.getConstraintSolver()->getCollisionDetector()->getType();
+  j["lcp_solver"] = DartLcpSolverName(s.lcp_solver);
+  j["pgs_fallback"] = s.lcp_solver == DartLcpSolver::kDantzig && s.pgs_fallback;
+  j["pgs_iterations"] = s.pgs_iterations;
+  j["restitution"] = s.restitution;
+  j["restitution_combined"] = s.restitution * s.restitution;  // DART: product
+  j["friction"] = s.friction;
+  DartContactParams::Write(&j);
+  j["max_contacts"] = s.max_contacts;
+  j["ground_depth_m"] = s.ground_depth_m;
+  j["kinematic_highpass_hz"] = input.kinematic_highpass_hz;
+  j["integrator"] = "semi-implicit Euler (DART World::step)";
+  return j;
 }
 
 }  // namespace rockbench::dart_engine

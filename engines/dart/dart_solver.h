@@ -1,12 +1,18 @@
 #pragma once
 /// What DART's worlds of rockbench share, whatever they hold (the planar stack, dart_world.h; the
 /// cylinder, dart_cylinder_world.h): the constraint solver and collision detector the [dart]
-/// settings choose, with their LCP solves counted, and the process-wide contact parameters.
+/// settings choose, with their LCP solves counted, and the process-wide contact parameters; the
+/// world made with them, the input's check, a shape's contact coefficients, the step's counts
+/// and the settings both worlds write.
+#include <cstddef>
 #include <cstdint>
 #include <dart/constraint/BoxedLcpConstraintSolver.hpp>
+#include <dart/dynamics/ShapeNode.hpp>
 #include <dart/simulation/World.hpp>
 #include <nlohmann/json.hpp>
+#include <string>
 
+#include "engines/common/engine_input.h"
 #include "engines/dart/dart_settings.h"
 
 namespace rockbench::dart_engine {
@@ -42,5 +48,41 @@ class DartContactParams {
   /// The values in force (read back from DART), for summary.json's settings.
   static void Write(nlohmann::json* settings);
 };
+
+/// A world named `name` with the input's step, gravity `gravity_mps2` until the drive sets it,
+/// and the settings' solver and collision detector (ConfigureDartSolver, counting into *counts).
+/// Its constraint solver goes to *solver when that is not null.
+dart::simulation::WorldPtr MakeDartWorld(const std::string& name, const EngineInput& input,
+                                         const Eigen::Vector3d& gravity_mps2,
+                                         const DartSettings& settings, DartLcpCounts* counts,
+                                         dart::constraint::BoxedLcpConstraintSolver** solver);
+
+/// Throws std::invalid_argument when the kinematic drive has no ground displacement samples at
+/// n = 0..steps (the settings' ranges are the [dart] schema's, checked when the table was
+/// resolved; the step is the input's, checked by MakeEngineInput).
+void CheckDartInput(const EngineInput& input);
+
+/// A shape's coefficients: friction (DART takes the smaller of a contact's two shapes') and
+/// restitution (DART multiplies them).
+void SetContactCoefficients(dart::dynamics::ShapeNode* node, double mu, double restitution);
+
+/// A world's counts since construction: steps, the most contacts of a step, and its LCP solves.
+struct DartStepCounts {
+  std::int64_t steps = 0;
+  std::size_t max_contacts = 0;
+  DartLcpCounts lcp;
+
+  /// After a World::step: one more step, and its contacts.
+  void Count(const dart::simulation::World& world);
+  /// For summary.json's "diagnostics": steps, max_contacts and the LCP solves' counts.
+  nlohmann::json Diagnostics() const;
+};
+
+/// The settings both worlds write to summary.json: DART's version, drive, step and output
+/// interval, the collision detector, the LCP solvers, restitution and friction with DART's
+/// combination of restitution, the contact parameters in force (DartContactParams::Write),
+/// the contact cap, the ground's depth, the kinematic high-pass and the integrator.
+nlohmann::json CommonSettings(const EngineInput& input, const DartSettings& settings,
+                              const dart::simulation::World& world);
 
 }  // namespace rockbench::dart_engine

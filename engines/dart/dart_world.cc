@@ -4,9 +4,7 @@
 #include <cmath>
 #include <dart/collision/CollisionFilter.hpp>
 #include <dart/collision/CollisionObject.hpp>
-#include <dart/config.hpp>
 #include <dart/constraint/BoxedLcpConstraintSolver.hpp>
-#include <dart/constraint/ContactConstraint.hpp>
 #include <dart/dynamics/BodyNode.hpp>
 #include <dart/dynamics/BoxShape.hpp>
 #include <dart/dynamics/PlanarJoint.hpp>
@@ -17,7 +15,6 @@
 #include <functional>
 #include <limits>
 #include <set>
-#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -138,9 +135,7 @@ struct DartWorld::Impl {
   // The process-wide contact parameters, taken once the world is built.
   std::unique_ptr<DartContactParams> params;
   // Diagnostics.
-  std::int64_t steps = 0;
-  DartLcpCounts lcp;
-  std::size_t max_contacts_seen = 0, max_contacts_step = 0;
+  DartStepCounts counts;
 
   Impl(const EngineInput& input, const DartSettings& settings) : in(input), s(settings) {}
 
@@ -178,14 +173,12 @@ dart::dynamics::BodyNode* DartWorld::Impl::MakeBlock(const std::string& name, co
   auto shape = std::make_shared<BoxShape>(Eigen::Vector3d(def.width_m, def.height_m, def.depth_m));
   ShapeNode* node =
       body->createShapeNodeWith<CollisionAspect, DynamicsAspect>(shape, name + "_shape");
-  node->getDynamicsAspect()->setFrictionCoeff(base_mu);
-  node->getDynamicsAspect()->setRestitutionCoeff(s.restitution);
+  SetContactCoefficients(node, base_mu, s.restitution);
   base_shapes.push_back(node);
   ShapeNode* top = nullptr;
   if (!std::isnan(top_mu)) {
     top = body->createShapeNodeWith<CollisionAspect, DynamicsAspect>(shape, name + "_top_shape");
-    top->getDynamicsAspect()->setFrictionCoeff(top_mu);
-    top->getDynamicsAspect()->setRestitutionCoeff(s.restitution);
+    SetContactCoefficients(top, top_mu, s.restitution);
   }
   top_shapes.push_back(top);
   body->setInertia(
@@ -199,11 +192,10 @@ dart::dynamics::BodyNode* DartWorld::Impl::MakeBlock(const std::string& name, co
 }
 
 dart::constraint::BoxedLcpConstraintSolver* DartWorld::Impl::MakeWorld() {
-  world = dart::simulation::World::create("rockbench");
-  world->setTimeStep(dt);
-  world->setGravity(Eigen::Vector3d(0.0, -in.run.gravity_mps2, 0.0));
-
-  return ConfigureDartSolver(*world, s, &lcp);
+  dart::constraint::BoxedLcpConstraintSolver* solver = nullptr;
+  world = MakeDartWorld("rockbench", in, Eigen::Vector3d(0.0, -in.run.gravity_mps2, 0.0), s,
+                        &counts.lcp, &solver);
+  return solver;
 }
 
 void DartWorld::Impl::MakeGround(double ground_mu, double size, double depth) {
@@ -217,8 +209,7 @@ void DartWorld::Impl::MakeGround(double ground_mu, double size, double depth) {
       Eigen::Vector3d(80.0 * size, s.ground_depth_m, 2.0 * (depth + 1.0)));
   ShapeNode* node =
       body->createShapeNodeWith<CollisionAspect, DynamicsAspect>(shape, "ground_shape");
-  node->getDynamicsAspect()->setFrictionCoeff(ground_mu);
-  node->getDynamicsAspect()->setRestitutionCoeff(s.restitution);
+  SetContactCoefficients(node, ground_mu, s.restitution);
   ground_shape = node;
   // The box's centre is half its thickness below the body frame, the ground's reference point.
   Eigen::Isometry3d offset = Eigen::Isometry3d::Identity();
@@ -284,14 +275,9 @@ void DartWorld::Impl::FilterContacts(dart::constraint::BoxedLcpConstraintSolver*
 DartWorld::DartWorld(const EngineInput& input, const DartSettings& settings)
     : impl_(std::make_unique<Impl>(input, settings)) {
   Impl& m = *impl_;
-  // The settings' ranges are the [dart] schema's (dart_settings.cc), checked when the table
-  // was resolved; the step is the input's, checked by MakeEngineInput.
+  CheckDartInput(m.in);
   m.dt = m.in.time_step_s;
   m.kinematic = m.in.drive_kind == DriveKind::kKinematic;
-  const size_t samples = static_cast<size_t>(m.in.steps) + 1;
-  if (m.kinematic && (m.in.drive.ux_m.size() < samples || m.in.drive.uy_m.size() < samples)) {
-    throw std::invalid_argument("dart: kinematic drive without ground displacement samples");
-  }
   dart::constraint::BoxedLcpConstraintSolver* solver = m.MakeWorld();
 
   // Friction from the scene: each interface's coefficient (the block's where finite, else the
@@ -337,12 +323,7 @@ void DartWorld::ApplyDrive(std::int64_t n) {
 void DartWorld::Step() {
   Impl& m = *impl_;
   m.world->step();
-  ++m.steps;
-  const std::size_t contacts = m.world->getLastCollisionResult().getNumContacts();
-  if (contacts > m.max_contacts_seen) {
-    m.max_contacts_seen = contacts;
-    m.max_contacts_step = static_cast<std::size_t>(m.steps);
-  }
+  m.counts.Count(*m.world);
 }
 
 StepReadout DartWorld::Read(std::int64_t n) const {
@@ -368,43 +349,14 @@ std::size_t DartWorld::LastContactCount() const {
 }
 
 nlohmann::json DartWorld::Diagnostics() const {
-  const Impl& m = *impl_;
-  nlohmann::json j;
-  j["steps"] = m.steps;
-  j["max_contacts"] = m.max_contacts_seen;
-  j["lcp_solves"] = m.lcp.primary_calls;
-  j["lcp_primary_failures"] = m.lcp.primary_failures;
-  j["lcp_fallback_solves"] = m.lcp.fallback_calls;
-  j["lcp_fallback_failures"] = m.lcp.fallback_failures;
-  return j;
+  return impl_->counts.Diagnostics();
 }
 
 nlohmann::json DartWorld::Settings() const {
   const Impl& m = *impl_;
-  using dart::constraint::ContactConstraint;
-  nlohmann::json j;
-  j["dart_version"] = DART_VERSION;
-  j["drive"] = m.kinematic ? "kinematic" : "inertial";
-  j["time_step_s"] = m.dt;
-  j["output_interval_s"] = m.in.run.output_interval_s;
+  nlohmann::json j = CommonSettings(m.in, m.s, *m.world);
   j["substeps_per_sample"] = std::max(1.0, std::round(m.in.run.output_interval_s / m.dt));
-  j["collision"] = DartCollisionName(m.s.collision);
-  j["collision_detector"] = m.world->getConstraintSolver()->getCollisionDetector()->getType();
-  j["lcp_solver"] = DartLcpSolverName(m.s.lcp_solver);
-  j["pgs_fallback"] = m.s.lcp_solver == DartLcpSolver::kDantzig && m.s.pgs_fallback;
-  j["pgs_iterations"] = m.s.pgs_iterations;
-  j["restitution"] = m.s.restitution;
-  j["restitution_combined"] = m.s.restitution * m.s.restitution;  // DART: product
-  j["friction"] = m.s.friction;
   j["friction_combined"] = m.s.friction;  // DART: the smaller of the two
-  // The values in force (process-wide statics), read back.
-  j["erp"] = ContactConstraint::getErrorReductionParameter();
-  j["error_allowance_m"] = ContactConstraint::getErrorAllowance();
-  j["max_erv_mps"] = ContactConstraint::getMaxErrorReductionVelocity();
-  j["cfm"] = ContactConstraint::getConstraintForceMixing();
-  j["max_contacts"] = m.s.max_contacts;
-  j["ground_depth_m"] = m.s.ground_depth_m;
-  j["kinematic_highpass_hz"] = m.in.kinematic_highpass_hz;
   j["joint"] = "PlanarJoint (x-y plane) per block";
   // Three or more blocks: contacts between neighbours only (two: block 2 and the ground too).
   if (m.blocks.size() >= 3) j["collision_pairs"] = "neighbours";
@@ -423,7 +375,6 @@ nlohmann::json DartWorld::Settings() const {
     }
     j["interface_friction"] = mu;
   }
-  j["integrator"] = "semi-implicit Euler (DART World::step)";
   return j;
 }
 
