@@ -134,10 +134,13 @@ void CylinderMonitor::Start(const CylinderPose& pose) {
 
 bool CylinderMonitor::Step(std::int64_t n, const CylinderPose& pose) {
   const double t = static_cast<double>(n) * input_.time_step_s;
-  if (!Finite(pose)) {
+  if (!pose.engine_fault.empty() || !Finite(pose)) {
     status_ = RunStatus::kNonFinite;
     status_detail_ =
-        "the cylinder's pose or velocity stopped being finite at t = " + std::to_string(t) + " s";
+        !pose.engine_fault.empty()
+            ? pose.engine_fault + " (at t = " + std::to_string(t) + " s)"
+            : "the cylinder's pose or velocity stopped being finite at t = " + std::to_string(t) +
+                  " s";
     Flag(kBlowUp, t, 0.0);
     return false;
   }

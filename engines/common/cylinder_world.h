@@ -40,6 +40,10 @@ struct CylinderPose {
   Mat3d rotation{1, 0, 0, 0, 1, 0, 0, 0, 1};
   Vec3d velocity_mps{};
   Vec3d omega_radps{};
+  /// Not empty: the engine refused its step (its next state would not be finite, or it would
+  /// abort on it), and why; the monitor ends the run non_finite with this as its detail, as
+  /// StepReadout::engine_fault does for planar blocks.
+  std::string engine_fault;
 };
 
 /// The scene's initial state as a pose: leaning at its tilt and azimuth on the rim point on that

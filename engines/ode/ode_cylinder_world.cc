@@ -191,9 +191,10 @@ void OdeCylinderWorld::Step() {
 CylinderPose OdeCylinderWorld::ReadPose() const {
   CylinderPose p;
   if (!core_->fault().empty()) {
-    // The step was not taken: no pose to read (the monitor ends the run as non_finite).
+    // The step was not taken: no pose to read; the monitor ends the run as non_finite, saying why.
     constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
     p.centre_m = {kNaN, kNaN, kNaN};
+    p.engine_fault = core_->fault();
     return p;
   }
   const dReal* pos = dBodyGetPosition(body_);

@@ -12,6 +12,8 @@
 #include <string>
 #include <vector>
 
+#include "engines/common/cylinder_world.h"
+#include "scene/scene.h"
 #include "scene/stack_pose.h"
 #include "tests/common/initial_state.h"
 
@@ -592,6 +594,33 @@ TEST(MonitorTest, SlipAndLiftAreTheReferencesOnTheSupportsFace) {
     ASSERT_EQ(m.history().samples.size(), 2u);
     EXPECT_EQ(m.history().samples[1].u_m, m.last().u_m);
   }
+}
+
+}  // namespace
+}  // namespace rockbench
+
+namespace rockbench {
+namespace {
+
+// A cylinder's engine that refuses its step (ODE before an orientation update it would abort
+// on) says why: the run ends non_finite with the engine's words, not only "not finite".
+TEST(CylinderMonitorTest, AnEnginesRefusedStepEndsTheRunWithItsReason) {
+  const Scene scene = ParseScene(
+      "[[block]]\nshape = \"cylinder\"\ndiameter = 0.5\nheight = 1.5\ndensity = 2500\n"
+      "[initial]\ntilt = [0.1]\n[run]\nduration = 0.01\noutput_interval = 0.001\n",
+      "c.toml", {});
+  const EngineInput in =
+      MakeEngineInput(scene, GroundMotion{}, "test", 1e-3, DriveKind::kInertial, 0.0);
+  CylinderMonitor monitor(in);
+  CylinderPose pose = CylinderStartPose(in);
+  monitor.Start(pose);
+  EXPECT_TRUE(monitor.Step(1, pose));
+  pose.engine_fault = "the engine's orientation update would overflow: the step was not taken";
+  EXPECT_FALSE(monitor.Step(2, pose));
+  EXPECT_EQ(monitor.Outcome().status, RunStatus::kNonFinite);
+  const std::string detail = monitor.Summary()["status_detail"].get<std::string>();
+  EXPECT_EQ(detail.find(pose.engine_fault), 0u) << detail;
+  EXPECT_NE(detail.find("t = 0.002"), std::string::npos) << detail;
 }
 
 }  // namespace
