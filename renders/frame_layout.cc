@@ -6,7 +6,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "renders/cylinder_scene.h"
+#include "renders/cylinder/cylinder_scene.h"
 #include "renders/frame_parts.h"
 #include "renders/limits.h"
 #include "renders/renderer.h"

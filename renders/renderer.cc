@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "renders/cylinder_painter.h"
+#include "renders/cylinder/cylinder_painter.h"
 #include "renders/frame_parts.h"
 #include "renders/gl_context.h"
 #include "renders/gl_draw.h"
@@ -102,7 +102,7 @@ struct FrameRenderer::Impl {
   Palette palette;
   std::unique_ptr<Font> font;
   std::unique_ptr<GlContext> gl;
-  /// A cylinder scene's drawing (renders/cylinder_painter.h); null for planar blocks.
+  /// A cylinder scene's drawing (renders/cylinder/cylinder_painter.h); null for planar blocks.
   std::unique_ptr<CylinderPainter> cylinder;
 
   double line_w() const { return LineWidth_px(config); }

@@ -2,9 +2,9 @@
 /// Frames of a scene's motion: the ground and the blocks (any number of them) at a time of one or
 /// more engines' histories, with the base displacement, text (time, mode, angles) and a strip
 /// chart of the angles; a cylinder in perspective with the top view of its axis's path
-/// (renders/cylinder_scene.h). Draws with legacy GL into an off-screen context (gl_context.h),
-/// supersampled and box-filtered down for anti-aliased edges; text is drawn with FreeType on the
-/// final pixels.
+/// (renders/cylinder/cylinder_scene.h). Draws with legacy GL into an off-screen context
+/// (gl_context.h), supersampled and box-filtered down for anti-aliased edges; text is drawn with
+/// FreeType on the final pixels.
 #include <array>
 #include <filesystem>
 #include <limits>

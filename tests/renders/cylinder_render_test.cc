@@ -1,4 +1,4 @@
-// A cylinder's frames (renders/cylinder_scene.h, cylinder_painter.cc) checked from their pixels
+// A cylinder's frames (renders/cylinder/cylinder_scene.h, cylinder_painter.cc) checked from their pixels
 // and from the layout: the cylinder is where its lean puts it, the base plane moves with the
 // transverse displacement, the top view's point is where tilt_x and tilt_y put it, the azimuth
 // and the spin each change the picture, the camera keeps every pose in view, and the same input
@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "renders/cylinder_scene.h"
+#include "renders/cylinder/cylinder_scene.h"
 #include "renders/renderer.h"
 #include "scene/body_kind.h"
 #include "scene/history.h"

@@ -1,7 +1,7 @@
 // A cylinder scene's frames: the points are projected by the layout's PerspectiveCamera and
 // drawn in final-image pixel coordinates (the planar renderer's projection); the cylinder is
 // convex, so drawing the faces that face the camera, in any order, hides what it should.
-#include "renders/cylinder_painter.h"
+#include "renders/cylinder/cylinder_painter.h"
 
 #include <GL/gl.h>
 

@@ -3,7 +3,7 @@
 /// a history, the points of its surface, the base it stands on, and the layout of its frames (a
 /// perspective view and the top view of the axis's path). The pose is scene/cylinder_state.h's
 /// (CylinderRotation, CylinderCentre): the one convention of the reference and the engines.
-/// The drawing itself is FrameRenderer's (renders/cylinder_painter.cc).
+/// The drawing itself is FrameRenderer's (renders/cylinder/cylinder_painter.cc).
 #include <string>
 #include <vector>
 

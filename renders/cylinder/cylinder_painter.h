@@ -6,7 +6,7 @@
 /// current context (pixel coordinates set by the caller), text on the final pixels.
 #include <vector>
 
-#include "renders/cylinder_scene.h"
+#include "renders/cylinder/cylinder_scene.h"
 #include "renders/renderer.h"
 #include "renders/text.h"
 

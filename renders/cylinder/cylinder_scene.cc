@@ -1,6 +1,6 @@
 // A cylinder as drawn, without GL: its state at a time, its pose, the perspective camera and the
 // layout of its frames.
-#include "renders/cylinder_scene.h"
+#include "renders/cylinder/cylinder_scene.h"
 
 #include <algorithm>
 #include <cmath>
