@@ -351,13 +351,19 @@ std::string CylinderCsvHeader(const StudyDef& study) {
   return h;
 }
 
-std::string CylinderCsvLine(const StudyDef& study, const MemberRow& r) {
-  std::string s = std::to_string(r.member);
-  const std::vector<int> idx = study.ValueIndices(r.member);
+// A row's first cells: the member and its value on every axis.
+std::string MemberAndAxesCells(const StudyDef& study, int64_t member) {
+  std::string s = std::to_string(member);
+  const std::vector<int> idx = study.ValueIndices(member);
   for (size_t k = 0; k < study.axes.size(); ++k) {
     s += ",";
     s += TextCell(study.axes[k].values[idx[k]].text);
   }
+  return s;
+}
+
+std::string CylinderCsvLine(const StudyDef& study, const MemberRow& r) {
+  std::string s = MemberAndAxesCells(study, r.member);
   const auto add = [&](const std::string& cell) {
     s += ",";
     s += cell;
@@ -411,12 +417,7 @@ std::string MembersCsvHeader(const StudyDef& study) {
 std::string MembersCsvLine(const StudyDef& study, const MemberRow& r) {
   if (study.cylinder) return CylinderCsvLine(study, r);
   const int nb = MembersCsvBodies(study);
-  std::string s = std::to_string(r.member);
-  const std::vector<int> idx = study.ValueIndices(r.member);
-  for (size_t k = 0; k < study.axes.size(); ++k) {
-    s += ",";
-    s += TextCell(study.axes[k].values[idx[k]].text);
-  }
+  std::string s = MemberAndAxesCells(study, r.member);
   const auto add = [&](const std::string& cell) {
     s += ",";
     s += cell;
