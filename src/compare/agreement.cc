@@ -51,22 +51,6 @@ void EnginePeak(const EngineRun& run, int block, double* peak, double* t) {
   *t = has ? o.peak_theta_t_s[block - 1] : 0.0;
 }
 
-// The largest |angle| of a body (0-based) read by `angle` over a history's samples up to
-// until_s, and when.
-void SampledPeak(const History& h, const StateQuantityReader& angle, int block, double until_s,
-                 double* peak, double* t) {
-  *peak = 0.0;
-  *t = 0.0;
-  for (const Sample& x : h.samples) {
-    if (x.t_s > until_s + 1e-12) break;
-    const double v = std::abs(angle(x, block + 1));
-    if (v > *peak) {
-      *peak = v;
-      *t = x.t_s;
-    }
-  }
-}
-
 // Mode family for the final-state check.
 std::string Family(const Configuration& m, bool overturned, bool left_support = false) {
   if (left_support) return "left_support";
@@ -245,6 +229,20 @@ void CopyEngineRunStatus(const EngineRun& run, EngineAgreement* a) {
   a->significant_flags = run.outcome.significant_violations;
   a->significant_onsets_t_s = run.outcome.significant_onsets_t_s;
   a->significant_onsets_t_s.resize(a->significant_flags.size(), run.outcome.end_t_s);
+}
+
+void SampledPeak(const History& h, const StateQuantityReader& angle, int block, double until_s,
+                 double* peak, double* t) {
+  *peak = 0.0;
+  *t = 0.0;
+  for (const Sample& x : h.samples) {
+    if (x.t_s > until_s + 1e-12) break;
+    const double v = std::abs(angle(x, block + 1));
+    if (v > *peak) {
+      *peak = v;
+      *t = x.t_s;
+    }
+  }
 }
 
 int CountComparedImpacts(const History& history, double min_rate_radps) {

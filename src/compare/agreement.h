@@ -240,6 +240,11 @@ struct EngineAgreement {
 /// comparison counts.
 int CountComparedImpacts(const History& history, double min_rate_radps);
 
+/// The largest |value| of body `block` (0-based) read by `angle` over a history's samples up to
+/// until_s, and its time (0 and 0 when no sample is that early).
+void SampledPeak(const History& h, const StateQuantityReader& angle, int block, double until_s,
+                 double* peak, double* t);
+
 /// Whether block `block`'s peak agrees with the reference's on the scale of a block below the
 /// floor: |peak_engine - peak_reference| <= max(kPeakToleranceRel peak_reference,
 /// kPeakToleranceFloorFraction floor). Sets *tolerance_rad to that bound.

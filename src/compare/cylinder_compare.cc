@@ -26,21 +26,6 @@ bool ModelStops(const CylinderSummary& s) {
   return s.status == RunStatus::kAssumptionViolated || IsNonFinite(s.status);
 }
 
-// The largest |value| of body 1's quantity read by `q` over a history's samples up to until_s,
-// and when.
-void SampledPeak(const History& h, const StateQuantityReader& q, double until_s, double* peak,
-                 double* t) {
-  *peak = 0.0;
-  *t = 0.0;
-  for (const Sample& x : h.samples) {
-    if (x.t_s > until_s + 1e-12) break;
-    if (std::abs(q(x, 1)) > *peak) {
-      *peak = std::abs(q(x, 1));
-      *t = x.t_s;
-    }
-  }
-}
-
 // The statuses, flags and ends of both runs, as CompareWithReference copies them.
 void CopyRunStatuses(const CylinderResult& ref, const EngineRun& run, EngineAgreement* a) {
   CopyEngineRunStatus(run, a);
@@ -74,11 +59,11 @@ double ModelEnd_s(const CylinderResult& r) {
 }
 
 // A member's outcome, from its solution (MemberOutcome of the engines' OutcomeOf).
-MemberOutcome MemberOutcomeOf(const Scene& scene, const CylinderResult& r, double wall_s) {
+MemberOutcome MemberOutcomeOf(const Scene& scene, CylinderResult&& r, double wall_s) {
   EngineRun run;
   run.engine = "reference";
   run.wall_s = wall_s;
-  run.history = r.history;
+  run.history = std::move(r.history);
   run.outcome = RunOutcome(1);
   run.outcome.status = r.summary.status;
   run.outcome.end_t_s = r.summary.end_s;
@@ -168,10 +153,10 @@ EngineAgreement CompareCylinderWithReference(const Scene& scene, const CylinderR
   sy.Finish(&gy);
   // Peaks of each component over the compared window.
   const StateQuantityReader rtx(ref.history, "tilt_x"), rty(ref.history, "tilt_y");
-  SampledPeak(ref.history, rtx, until, &gx.peak_reference_rad, &gx.peak_reference_t_s);
-  SampledPeak(ref.history, rty, until, &gy.peak_reference_rad, &gy.peak_reference_t_s);
-  SampledPeak(run.history, etx, until, &gx.peak_engine_rad, &gx.peak_engine_t_s);
-  SampledPeak(run.history, ety, until, &gy.peak_engine_rad, &gy.peak_engine_t_s);
+  SampledPeak(ref.history, rtx, 0, until, &gx.peak_reference_rad, &gx.peak_reference_t_s);
+  SampledPeak(ref.history, rty, 0, until, &gy.peak_reference_rad, &gy.peak_reference_t_s);
+  SampledPeak(run.history, etx, 0, until, &gx.peak_engine_rad, &gx.peak_engine_t_s);
+  SampledPeak(run.history, ety, 0, until, &gy.peak_engine_rad, &gy.peak_engine_t_s);
   for (AngleAgreement* g : {&gx, &gy}) {
     g->peak_rel_error = g->peak_reference_rad > 0.0
                             ? (g->peak_engine_rad - g->peak_reference_rad) / g->peak_reference_rad
@@ -252,12 +237,12 @@ ReferencePerturbationMembers RunCylinderPerturbationMembers(const Scene& nominal
       [&](int i) {
         const MemberInput in = PerturbedInput(nominal_scene, motion, i);
         const auto t0 = std::chrono::steady_clock::now();
-        const CylinderResult r = reference::cylinder::SimulateCylinder(in.scene, in.motion);
+        CylinderResult r = reference::cylinder::SimulateCylinder(in.scene, in.motion);
         const double wall_s = SecondsSince(t0);
         OnGrid(r, e.t_s, &gx[i], &gy[i]);
         member_end_s[i] = ModelEnd_s(r);
         e.perturbations[i] = in.perturbation;
-        e.outcomes[i] = MemberOutcomeOf(in.scene, r, wall_s);
+        e.outcomes[i] = MemberOutcomeOf(in.scene, std::move(r), wall_s);
         e.outcomes[i].member = i;
       },
       [&](int done, int total) { progress.Update(done, total); });

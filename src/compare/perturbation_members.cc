@@ -185,6 +185,27 @@ double SettledAfter_s(const Scene& scene, const GroundMotion& motion, double saf
 
 namespace {
 
+// Where a run's RMS integral ends: its overturn, or its last sample.
+double RmsEnd_s(const MemberOutcome& o, const History& h) {
+  return o.overturned_block != 0 ? o.overturn_t_s : h.samples.empty() ? 0.0 : h.samples.back().t_s;
+}
+
+// The root mean square of value(sample) over the scene's duration: trapezoids on the history's
+// samples (the engines' output grid, the reference's grid and event times) up to t_end.
+template <typename Value>
+double RmsOver(const History& h, double t_end, double duration_s, Value value) {
+  double integral = 0.0;
+  for (size_t k = 1; k < h.samples.size(); ++k) {
+    const Sample& a = h.samples[k - 1];
+    const Sample& c = h.samples[k];
+    if (a.t_s >= t_end) break;
+    const double va = value(a);
+    const double vc = value(c);
+    integral += 0.5 * (va * va + vc * vc) * (std::min(c.t_s, t_end) - a.t_s);
+  }
+  return duration_s > 0.0 ? std::sqrt(integral / duration_s) : 0.0;
+}
+
 // A cylinder's outcome: its tilt's peak (the run's own, at every step for the engines), residual
 // and RMS; an overturn's time and fall azimuth.
 MemberOutcome CylinderOutcomeOf(const EngineRun& run, const Scene& scene) {
@@ -217,18 +238,8 @@ MemberOutcome CylinderOutcomeOf(const EngineRun& run, const Scene& scene) {
     o.peak_t_s[0] = o.overturn_t_s;
     o.overturn_azimuth_rad = FallAzimuthOf(run);
   }
-  const double t_end = o.overturned_block != 0       ? o.overturn_t_s
-                       : run.history.samples.empty() ? 0.0
-                                                     : run.history.samples.back().t_s;
-  double integral = 0.0;
-  for (size_t k = 1; k < run.history.samples.size(); ++k) {
-    const Sample& a = run.history.samples[k - 1];
-    const Sample& c = run.history.samples[k];
-    if (a.t_s >= t_end) break;
-    const double va = tilt(a, 1), vc = tilt(c, 1);
-    integral += 0.5 * (va * va + vc * vc) * (std::min(c.t_s, t_end) - a.t_s);
-  }
-  o.rms_rad[0] = scene.run.duration_s > 0.0 ? std::sqrt(integral / scene.run.duration_s) : 0.0;
+  o.rms_rad[0] = RmsOver(run.history, RmsEnd_s(o, run.history), scene.run.duration_s,
+                         [&](const Sample& x) { return tilt(x, 1); });
   return o;
 }
 
@@ -264,22 +275,11 @@ MemberOutcome OutcomeOf(const EngineRun& run, const Scene& scene, double min_imp
     o.peak_t_s[b] = o.overturn_t_s;
     o.residual_rad[b] = sign * scene.model.overturn_rad;
   }
-  // RMS angles: trapezoids on the history's samples (the engines' output grid, the
-  // reference's grid and event times), up to an overturn.
-  const double t_end = o.overturned_block != 0       ? o.overturn_t_s
-                       : run.history.samples.empty() ? 0.0
-                                                     : run.history.samples.back().t_s;
+  // RMS angles, up to an overturn.
+  const double t_end = RmsEnd_s(o, run.history);
   for (int b = 0; b < nb; ++b) {
-    double integral = 0.0;
-    for (size_t k = 1; k < run.history.samples.size(); ++k) {
-      const Sample& a = run.history.samples[k - 1];
-      const Sample& c = run.history.samples[k];
-      if (a.t_s >= t_end) break;
-      const double va = a.theta_rad[b];
-      const double vc = c.theta_rad[b];
-      integral += 0.5 * (va * va + vc * vc) * (std::min(c.t_s, t_end) - a.t_s);
-    }
-    o.rms_rad[b] = scene.run.duration_s > 0.0 ? std::sqrt(integral / scene.run.duration_s) : 0.0;
+    o.rms_rad[b] = RmsOver(run.history, t_end, scene.run.duration_s,
+                           [b](const Sample& x) { return x.theta_rad[b]; });
   }
   o.impacts = CountComparedImpacts(run.history, min_impact_rate_radps);
   return o;
